@@ -1,0 +1,128 @@
+"""What every stage shares: the run context, the result record and progress."""
+
+from __future__ import annotations
+
+import logging
+import os
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import pandas as pd
+
+from .. import io
+
+log = logging.getLogger("tyrelab")
+
+
+@dataclass
+class Context:
+    """Where a pipeline run reads and writes, and how it executes.
+
+    Attributes
+    ----------
+    raw : Path
+        Raw data folder (campaigns, ``published/``, ``tyres.csv``).
+    build : Path
+        Output folder (``parquet/``, ``warehouse.duckdb``, ``reports/``).
+    force : bool
+        Recompute everything, ignoring recorded hashes.
+    jobs : int
+        Worker processes for ``executor="local"``.
+    executor : str
+        ``"local"`` (process pool) or ``"dask"``.
+    scheduler : str or None
+        Dask scheduler address for ``executor="dask"``.
+    """
+
+    raw: Path = Path("raw")
+    build: Path = Path("build")
+    force: bool = False
+    jobs: int = field(default_factory=lambda: os.cpu_count() or 1)
+    executor: str = "local"
+    scheduler: str | None = None
+    log: logging.Logger = field(default=log, repr=False)
+
+    def __post_init__(self) -> None:
+        self.raw = Path(self.raw).resolve()
+        self.build = Path(self.build).resolve()
+
+    @property
+    def parquet(self) -> Path:
+        """Folder of the Parquet tables, ``build/parquet``."""
+        return self.build / "parquet"
+
+    @property
+    def state(self) -> Path:
+        """Folder of per-stage bookkeeping (hashes of what was consumed)."""
+        return self.build / "state"
+
+    def table(self, name: str) -> Path:
+        """Path of table ``name``: ``build/parquet/<name>.parquet``."""
+        return self.parquet / f"{name}.parquet"
+
+    def has_table(self, name: str) -> bool:
+        """Whether table ``name`` exists."""
+        return self.table(name).exists()
+
+    def read_table(self, name: str) -> pd.DataFrame:
+        """Read table ``name`` into a DataFrame."""
+        return pd.read_parquet(self.table(name))
+
+    def write_table(self, name: str, df: pd.DataFrame) -> Path:
+        """Write table ``name`` atomically."""
+        return io.write_parquet_atomic(df, self.table(name))
+
+
+@dataclass
+class StageResult:
+    """What a stage did, for the one-line summary and the exit code."""
+
+    name: str
+    n_in: int = 0
+    n_ok: int = 0
+    n_quarantined: int = 0
+    seconds: float = 0.0
+    skipped: bool = False
+    message: str = ""
+
+    def summary(self) -> str:
+        """One line: ``analyse: 120 in, 118 ok, 2 quarantined, 1.3 s``."""
+        if self.skipped:
+            return f"{self.name}: up to date, nothing recomputed ({self.message or 'inputs unchanged'})"
+        text = (
+            f"{self.name}: {self.n_in} in, {self.n_ok} ok, "
+            f"{self.n_quarantined} quarantined, {self.seconds:.1f} s"
+        )
+        return f"{text}; {self.message}" if self.message else text
+
+
+class Progress:
+    """Log ``done/total`` and rate at most every ``every_s`` seconds.
+
+    Parameters
+    ----------
+    label : str
+        What is being counted, e.g. ``"analyse"``.
+    total : int
+        Number of items.
+    """
+
+    def __init__(self, label: str, total: int, every_s: float = 2.0, logger: logging.Logger = log):
+        self.label, self.total, self.every_s, self.log = label, total, every_s, logger
+        self.t0 = self._last = time.perf_counter()
+        self.done = 0
+
+    def step(self, n: int = 1) -> None:
+        """Count ``n`` items done; log if enough time has passed or at the end."""
+        self.done += n
+        now = time.perf_counter()
+        if now - self._last >= self.every_s or self.done == self.total:
+            rate = self.done / max(now - self.t0, 1e-9)
+            self.log.info("%s: %d/%d runs (%.0f runs/s)", self.label, self.done, self.total, rate)
+            self._last = now
+
+    @property
+    def elapsed(self) -> float:
+        """Seconds since the start."""
+        return time.perf_counter() - self.t0
