@@ -62,58 +62,69 @@ def _coerce(series: pd.Series, ftype: str) -> tuple[pd.Series, pd.Series]:
     return series.where(present), pd.Series(False, index=series.index)
 
 
-def validate_frame(df: pd.DataFrame, schema: dict) -> list[str]:
-    """Check ``df`` against a Table Schema; return a list of problems.
+def row_problems(df: pd.DataFrame, schema: dict) -> tuple[list[str], dict[int, list[str]]]:
+    """Check ``df`` against a Table Schema, row by row.
 
-    Each problem is one line naming the column and, where it applies, the
-    first offending row (0-based) and value.
+    Returns
+    -------
+    frame_problems : list of str
+        Problems of the frame as a whole (missing required or unexpected columns).
+    by_row : dict
+        Row position (0-based) -> one-line problems of that row.
     """
-    problems: list[str] = []
+    frame: list[str] = []
+    by_row: dict[int, list[str]] = {}
+
+    def flag(mask: pd.Series, text) -> None:
+        for i in np.flatnonzero(mask.to_numpy(dtype=bool)):
+            by_row.setdefault(int(i), []).append(text(int(i)))
+
     names = field_names(schema)
     for f in schema["fields"]:
-        name = f["name"]
+        name, ftype = f["name"], f.get("type", "string")
         cons = f.get("constraints", {})
         if name not in df.columns:
             if cons.get("required", False):
-                problems.append(f"missing column '{name}'")
+                frame.append(f"missing column '{name}'")
             continue
-        values, bad = _coerce(df[name], f.get("type", "string"))
-        if bad.any():
-            i = int(np.flatnonzero(bad.to_numpy())[0])
-            problems.append(
-                f"column '{name}': value {df[name].iloc[i]!r} in row {i} is not of type {f.get('type')}"
-            )
-            continue
-        missing = values.isna()
-        if cons.get("required", False) and missing.any():
-            i = int(np.flatnonzero(missing.to_numpy())[0])
-            problems.append(f"column '{name}': required value missing in row {i}")
-        if f.get("type") in ("number", "integer"):
-            if np.isinf(values.to_numpy(dtype=float, na_value=np.nan)).any():
-                problems.append(f"column '{name}': infinite value")
-            for key, op, word in (("minimum", np.less, "below minimum"), ("maximum", np.greater, "above maximum")):
-                if key in cons:
-                    viol = values.notna() & op(values, cons[key])
-                    if viol.any():
-                        i = int(np.flatnonzero(viol.to_numpy())[0])
-                        problems.append(
-                            f"column '{name}': value {values.iloc[i]} in row {i} {word} {cons[key]}"
-                        )
+        raw = df[name]
+        values, bad = _coerce(raw, ftype)
+        flag(bad, lambda i: f"column '{name}': value {raw.iloc[i]!r} is not of type {ftype}")
+        ok = values.notna() & ~bad
+        if cons.get("required", False):
+            flag(values.isna() & ~bad, lambda i: f"column '{name}': required value missing")
+        if ftype in ("number", "integer"):
+            num = values.astype(float)
+            flag(ok & np.isinf(num), lambda i: f"column '{name}': infinite value")
+            if "minimum" in cons:
+                flag(ok & (num < cons["minimum"]), lambda i: f"column '{name}': value {num.iloc[i]:g} below minimum {cons['minimum']}")
+            if "maximum" in cons:
+                flag(ok & (num > cons["maximum"]), lambda i: f"column '{name}': value {num.iloc[i]:g} above maximum {cons['maximum']}")
         if "enum" in cons:
             allowed = set(cons["enum"])
-            viol = values.notna() & ~values.isin(allowed)
-            if viol.any():
-                i = int(np.flatnonzero(viol.to_numpy())[0])
-                problems.append(
-                    f"column '{name}': value {values.iloc[i]!r} in row {i} not one of {sorted(allowed)}"
-                )
+            flag(ok & ~values.isin(allowed), lambda i: f"column '{name}': value {values.iloc[i]!r} not one of {sorted(allowed)}")
         if cons.get("unique", False):
-            dup = values.notna() & values.duplicated(keep="first")
-            if dup.any():
-                i = int(np.flatnonzero(dup.to_numpy())[0])
-                problems.append(f"column '{name}': duplicate value {values.iloc[i]!r} in row {i}")
+            flag(ok & values.duplicated(keep="first"), lambda i: f"column '{name}': duplicate value {values.iloc[i]!r}")
     if schema.get("additionalFields", True) is False:
         extra = [c for c in df.columns if c not in names]
         if extra:
-            problems.append(f"unexpected column(s) {extra}")
+            frame.append(f"unexpected column(s) {extra}")
+    return frame, by_row
+
+
+def validate_frame(df: pd.DataFrame, schema: dict) -> list[str]:
+    """Check ``df`` against a Table Schema; return a list of problems.
+
+    Each problem is one line naming the column and, for a row problem, the
+    first offending row (0-based). An empty list means the frame conforms.
+    """
+    frame, by_row = row_problems(df, schema)
+    problems = list(frame)
+    seen: set[str] = set()
+    for i in sorted(by_row):
+        for text in by_row[i]:
+            column = text.split(":", 1)[0]
+            if column not in seen:
+                seen.add(column)
+                problems.append(f"{text} (row {i})")
     return problems

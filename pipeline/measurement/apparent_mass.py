@@ -1,0 +1,309 @@
+"""Tyre stiffness and damping from the apparent mass (thesis chapter 3).
+
+The dynamic tyre test vehicle measures the axle acceleration and the force the
+tyre exerts on the axle; the transfer function between them at the excitation
+frequency gives the tyre's stiffness K and damping C (thesis §3.3.1, eqs 1-9,
+worked example §3.5).
+
+Sign conventions
+----------------
+Recordings (raw format v1) use *upward-positive* acceleration ``a`` and
+upward-positive ground force ``f_t`` on the axle. A Kelvin-Voigt tyre under an
+axle displaced upwards by ``x`` gives ``f_t = -(K x + C x')`` about the static
+load, so in the frequency domain ``F/A = (K + jωC)/ω²``.
+
+The thesis' apparent mass ``H`` is defined with deflection-positive
+acceleration (its worked example ``H = -400 - 100j`` kg at 3.8 Hz gives
+``K = 228 027 N/m`` and ``C = 2 388 N s/m``), i.e. ``H = -F/A``, and
+
+    K = Re(-ω² H),   C = Re(jω H)            (thesis eqs 8 and 9, §3.5).
+
+Every function here returns ``H`` in the thesis convention.
+
+All functions operate along the last axis, so a 2-D array of equal-length
+runs (runs x samples) is analysed in one vectorised call.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import signal
+
+#: Band in which the excitation is searched for, Hz (vibrator range 1.5-6 Hz, thesis §3.2.5).
+EXCITATION_BAND_Hz = (1.0, 8.0)
+
+
+def tyre_force(
+    accel_left_m_s2: np.ndarray,
+    accel_right_m_s2: np.ndarray,
+    load_beams_N: np.ndarray,
+    axle_mass_kg: float | np.ndarray,
+) -> np.ndarray:
+    """Ground reaction force on the tyre from axle acceleration and load beams.
+
+    ``f_t = M_a * mean(a_left, a_right) - sum(load beams)`` (thesis §3.2.8,
+    Fig. 15; the static ``M_a g`` term has no component at the excitation
+    frequency and is left in).
+
+    Parameters
+    ----------
+    accel_left_m_s2, accel_right_m_s2 : ndarray, shape (..., n)
+        Axle-end accelerations, m/s², upward positive.
+    load_beams_N : ndarray, shape (..., 4, n)
+        Forces exerted by the carriage on the axle through the load beams, N,
+        upward positive.
+    axle_mass_kg : float or ndarray, shape (...)
+        Mass of axle, wheel and tyre M_a, kg (typically about 600 kg).
+
+    Returns
+    -------
+    ndarray, shape (..., n)
+        Tyre force on the axle, N, upward positive.
+    """
+    accel = 0.5 * (np.asarray(accel_left_m_s2) + np.asarray(accel_right_m_s2))
+    mass = np.asarray(axle_mass_kg, dtype=float)[..., np.newaxis]
+    return mass * accel - np.sum(load_beams_N, axis=-2)
+
+
+def stiffness_damping(apparent_mass_kg: complex | np.ndarray, frequency_Hz: float | np.ndarray):
+    """Stiffness and damping from the apparent mass at one frequency.
+
+    ``K = Re(-ω² H)`` and ``C = Re(jω H)`` with ``ω = 2π f`` (thesis eqs 8-9,
+    §3.3.1 and the worked example of §3.5).
+
+    Parameters
+    ----------
+    apparent_mass_kg : complex or ndarray
+        Apparent mass H in the thesis convention (deflection-positive), kg.
+    frequency_Hz : float or ndarray
+        Frequency at which H was evaluated, Hz.
+
+    Returns
+    -------
+    stiffness_N_per_m, damping_N_s_per_m : float or ndarray
+
+    Examples
+    --------
+    >>> k, c = stiffness_damping(-400 - 100j, 3.8)
+    >>> round(float(k)), round(float(c))
+    (228027, 2388)
+    """
+    omega = 2.0 * np.pi * np.asarray(frequency_Hz, dtype=float)
+    h = np.asarray(apparent_mass_kg, dtype=complex)
+    return np.real(-(omega**2) * h), np.real(1j * omega * h)
+
+
+def apparent_mass_from_kc(stiffness_N_per_m, damping_N_s_per_m, frequency_Hz):
+    """Apparent mass (thesis convention) of a Kelvin-Voigt tyre: ``H = -(K + jωC)/ω²``.
+
+    The inverse of :func:`stiffness_damping`; used for synthetic cases.
+    """
+    omega = 2.0 * np.pi * np.asarray(frequency_Hz, dtype=float)
+    return -(np.asarray(stiffness_N_per_m) + 1j * omega * np.asarray(damping_N_s_per_m)) / omega**2
+
+
+def excitation_frequency(
+    accel_m_s2: np.ndarray, sample_rate_Hz: float, band_Hz: tuple[float, float] = EXCITATION_BAND_Hz
+) -> np.ndarray:
+    """Frequency of the sinusoidal excitation, from the acceleration spectrum.
+
+    The peak of the Hann-windowed, zero-padded (×8) amplitude spectrum within
+    ``band_Hz``, refined by parabolic interpolation of the log magnitude
+    around the peak. This is the frequency at which the thesis reads H
+    (§3.3.1: "evaluated at the frequency at which the axle was being
+    excited"), without picket-fence error.
+
+    Parameters
+    ----------
+    accel_m_s2 : ndarray, shape (..., n)
+        Axle acceleration, m/s².
+    sample_rate_Hz : float
+        Sampling rate, Hz.
+    band_Hz : (float, float)
+        Search band, Hz.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        Excitation frequency, Hz (NaN where the band is empty).
+    """
+    x = np.asarray(accel_m_s2, dtype=float)
+    n = x.shape[-1]
+    nfft = 1 << int(np.ceil(np.log2(8 * n)))
+    spec = np.abs(np.fft.rfft((x - x.mean(axis=-1, keepdims=True)) * np.hanning(n), nfft, axis=-1))
+    freqs = np.fft.rfftfreq(nfft, 1.0 / sample_rate_Hz)
+    in_band = np.flatnonzero((freqs >= band_Hz[0]) & (freqs <= band_Hz[1]))
+    if in_band.size < 3:
+        return np.full(x.shape[:-1], np.nan)
+    sub = spec[..., in_band]
+    k = np.argmax(sub, axis=-1)
+    k = np.clip(k, 1, in_band.size - 2)
+    take = lambda off: np.take_along_axis(sub, (k + off)[..., np.newaxis], axis=-1)[..., 0]  # noqa: E731
+    ym, y0, yp = (np.log(np.maximum(take(o), 1e-300)) for o in (-1, 0, 1))
+    denom = ym - 2 * y0 + yp
+    delta = np.where(denom != 0, 0.5 * (ym - yp) / np.where(denom != 0, denom, 1), 0.0)
+    df = freqs[1] - freqs[0]
+    return freqs[in_band[0]] + (k + np.clip(delta, -0.5, 0.5)) * df
+
+
+@dataclass(frozen=True)
+class DemodulationResult:
+    """Output of :func:`apparent_mass_demodulation` (arrays of shape (...))."""
+
+    apparent_mass_kg: np.ndarray  #: H, thesis convention, kg
+    frequency_Hz: np.ndarray  #: amplitude-weighted mean instantaneous excitation frequency, Hz
+    stiffness_N_per_m: np.ndarray  #: K, N/m
+    damping_N_s_per_m: np.ndarray  #: C, N s/m
+    displacement_amplitude_m: np.ndarray  #: mean axle displacement amplitude (peak), m
+    acceleration_amplitude_m_s2: np.ndarray  #: mean axle acceleration amplitude (peak), m/s²
+
+
+def _instantaneous_phase(accel: np.ndarray, sample_rate_Hz: float, f0: np.ndarray, half_band_Hz: float):
+    """Phase and angular frequency of the excitation component of ``accel``.
+
+    Zero-phase band-pass (4th-order Butterworth, ``f0 ± half_band``) followed
+    by the analytic signal; works row by row when ``f0`` differs between rows.
+    """
+    x = accel - accel.mean(axis=-1, keepdims=True)
+    f0 = np.broadcast_to(np.asarray(f0, dtype=float), x.shape[:-1])
+    out = np.empty(x.shape, dtype=complex)
+    flat_x = x.reshape(-1, x.shape[-1])
+    flat_out = out.reshape(-1, x.shape[-1])
+    for i, (row, f) in enumerate(zip(flat_x, f0.reshape(-1))):
+        lo = max(f - half_band_Hz, 0.2)
+        hi = min(f + half_band_Hz, 0.45 * sample_rate_Hz)
+        sos = signal.butter(4, [lo, hi], btype="bandpass", fs=sample_rate_Hz, output="sos")
+        flat_out[i] = signal.hilbert(signal.sosfiltfilt(sos, row))
+    phase = np.unwrap(np.angle(out), axis=-1)
+    omega = np.gradient(phase, 1.0 / sample_rate_Hz, axis=-1)
+    # Smooth the instantaneous frequency over about one second.
+    width = max(int(round(sample_rate_Hz)), 1)
+    kernel = np.ones(width) / width
+    omega = np.apply_along_axis(lambda r: np.convolve(r, kernel, mode="same"), -1, omega)
+    return phase, omega, np.abs(out)
+
+
+def apparent_mass_demodulation(
+    force_N: np.ndarray,
+    accel_m_s2: np.ndarray,
+    sample_rate_Hz: float,
+    excitation_frequency_Hz: float | np.ndarray | None = None,
+    half_band_Hz: float = 0.5,
+) -> DemodulationResult:
+    """Apparent mass by phase-locked synchronous demodulation over the whole run.
+
+    The excitation's instantaneous phase φ(t) is taken from the band-passed
+    acceleration; force and acceleration (mean removed) are both demodulated
+    with ``exp(-jφ)`` and averaged over the run with a Hann taper. The
+    acceleration is divided by the instantaneous ω(t)² first, so that the
+    ratio is the dynamic stiffness ``K + jωC`` even while the vibrator's
+    frequency wanders (thesis §3.5 holds it within ±0.1 Hz). Uncorrelated
+    force noise, wheel-rotation and lug-passing components average out.
+    Unlike reading a Welch estimate at an FFT bin (the thesis' method), there
+    is no picket-fence error and every cycle is used.
+
+    Parameters
+    ----------
+    force_N : ndarray, shape (..., n)
+        Tyre force on the axle, N, upward positive (:func:`tyre_force`).
+    accel_m_s2 : ndarray, shape (..., n)
+        Axle acceleration, m/s², upward positive.
+    sample_rate_Hz : float
+        Sampling rate, Hz.
+    excitation_frequency_Hz : float or ndarray, optional
+        Centre of the phase-reference band; found with
+        :func:`excitation_frequency` when omitted.
+    half_band_Hz : float
+        Half-width of the phase-reference band-pass, Hz.
+
+    Returns
+    -------
+    DemodulationResult
+    """
+    f = np.asarray(force_N, dtype=float)
+    a = np.asarray(accel_m_s2, dtype=float)
+    if excitation_frequency_Hz is None:
+        excitation_frequency_Hz = excitation_frequency(a, sample_rate_Hz)
+    phase, omega, envelope = _instantaneous_phase(a, sample_rate_Hz, excitation_frequency_Hz, half_band_Hz)
+    n = a.shape[-1]
+    w = np.hanning(n)
+    rot = np.exp(-1j * phase)
+    f0 = f - f.mean(axis=-1, keepdims=True)
+    a0 = a - a.mean(axis=-1, keepdims=True)
+    num = np.sum(w * f0 * rot, axis=-1)
+    den = np.sum(w * (a0 / omega**2) * rot, axis=-1)
+    dynamic_stiffness = num / den  # K + jωC, upward-positive recording convention
+    weight = w * envelope
+    omega_mean = np.sum(weight * omega, axis=-1) / np.sum(weight, axis=-1)
+    freq = omega_mean / (2 * np.pi)
+    h = -dynamic_stiffness / omega_mean**2
+    k, c = stiffness_damping(h, freq)
+    accel_amp = 2.0 * np.abs(np.sum(w * a0 * rot, axis=-1)) / np.sum(w, axis=-1)
+    disp_amp = 2.0 * np.abs(den) / np.sum(w, axis=-1)
+    return DemodulationResult(h, freq, k, c, disp_amp, accel_amp)
+
+
+@dataclass(frozen=True)
+class WelchResult:
+    """Output of :func:`apparent_mass_welch` (arrays of shape (...))."""
+
+    apparent_mass_kg: np.ndarray  #: H at the excitation bin, thesis convention, kg
+    frequency_Hz: np.ndarray  #: frequency of that bin, Hz
+    stiffness_N_per_m: np.ndarray  #: K, N/m
+    damping_N_s_per_m: np.ndarray  #: C, N s/m
+    coherence: np.ndarray  #: magnitude-squared coherence at that bin
+
+
+def apparent_mass_welch(
+    force_N: np.ndarray,
+    accel_m_s2: np.ndarray,
+    sample_rate_Hz: float,
+    excitation_frequency_Hz: float | np.ndarray | None = None,
+    resolution_Hz: float = 0.125,
+) -> WelchResult:
+    """Apparent mass the thesis' way: H1 from Welch spectra, read at the excitation bin.
+
+    ``H1 = G_af / G_aa`` with ``G_af = csd(a, f)`` (scipy's ``csd(x, y)`` is
+    ``conj(X) Y``, so this is the estimator of the system from acceleration to
+    force) and ``G_aa = welch(a)``; Hann window, 50 % overlap, segment length
+    the power of two giving about ``resolution_Hz`` bins (thesis §3.3.1,
+    Fig. 19). H is read at the bin nearest the excitation frequency and K, C
+    are computed at that bin's frequency, as the thesis did: this suffers
+    picket-fence error when the excitation falls between bins.
+
+    Parameters
+    ----------
+    force_N, accel_m_s2 : ndarray, shape (..., n)
+        Tyre force (N) and axle acceleration (m/s²), upward positive.
+    sample_rate_Hz : float
+        Sampling rate, Hz.
+    excitation_frequency_Hz : float or ndarray, optional
+        Excitation frequency, Hz (found with :func:`excitation_frequency` if omitted).
+    resolution_Hz : float
+        Target bin width, Hz.
+
+    Returns
+    -------
+    WelchResult
+    """
+    f = np.asarray(force_N, dtype=float)
+    a = np.asarray(accel_m_s2, dtype=float)
+    if excitation_frequency_Hz is None:
+        excitation_frequency_Hz = excitation_frequency(a, sample_rate_Hz)
+    n = a.shape[-1]
+    nperseg = min(1 << int(round(np.log2(sample_rate_Hz / resolution_Hz))), 1 << int(np.log2(n)))
+    freqs, g_af = signal.csd(a, f, fs=sample_rate_Hz, nperseg=nperseg, axis=-1)
+    _, g_aa = signal.welch(a, fs=sample_rate_Hz, nperseg=nperseg, axis=-1)
+    _, g_ff = signal.welch(f, fs=sample_rate_Hz, nperseg=nperseg, axis=-1)
+    fe = np.broadcast_to(np.asarray(excitation_frequency_Hz, dtype=float), a.shape[:-1])
+    idx = np.clip(np.rint(fe / (freqs[1] - freqs[0])).astype(int), 0, freqs.size - 1)
+    pick = lambda g: np.take_along_axis(g, idx[..., np.newaxis], axis=-1)[..., 0]  # noqa: E731
+    gaf, gaa, gff = pick(g_af), pick(g_aa), pick(g_ff)
+    h_up = gaf / gaa
+    coherence = np.abs(gaf) ** 2 / (gaa * gff)
+    h = -h_up
+    fbin = freqs[idx]
+    k, c = stiffness_damping(h, fbin)
+    return WelchResult(h, fbin, k, c, coherence)
