@@ -1,0 +1,529 @@
+"""Stiffness and damping regressions of thesis chapters 4 and 5 (Tables III–X).
+
+Every fit is an ordinary least-squares line from :mod:`statsmodels` and is
+reported with estimate, standard error, 95 % confidence interval, r² and n.
+Run selection follows :mod:`pipeline.tyre.conditions` (the one place that says
+which runs are "nominal"). Functions return tidy DataFrames in thesis units:
+stiffness kN/m, damping kNs/m, pressure bar, speed km/h, amplitude mm p-p.
+
+Tables reproducing a thesis table carry ``thesis_<column>``, ``<column>`` and
+``<column>_difference`` (ours − thesis) side by side (:func:`compare_with_thesis`).
+Tyres with fewer than two distinct regressor values get a row with ``n`` and
+null estimates and a ``reason``.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pandas as pd
+import statsmodels.api as sm
+
+from . import conditions as cond
+
+STIFFNESS = "stiffness_kN_per_m"
+DAMPING = "damping_kN_s_per_m"
+_RESPONSE_UNIT = {STIFFNESS: "kN/m", DAMPING: "kNs/m"}
+
+#: Columns of every line fit (:func:`fit_line`).
+FIT_COLUMNS = [
+    "n", "n_distinct_x", "intercept", "intercept_se", "intercept_ci_low", "intercept_ci_high",
+    "slope", "slope_se", "slope_ci_low", "slope_ci_high", "slope_p_value", "r_squared", "reason",
+]
+
+
+def fit_line(x, y, *, alpha: float = 0.05) -> dict:
+    """Least-squares line ``y = intercept + slope x`` with its statistics (statsmodels OLS).
+
+    r² is the thesis' coefficient of determination Σ(ŷ−ȳ)²/Σ(y−ȳ)² (§4.3.1).
+
+    Parameters
+    ----------
+    x, y : array-like
+        Regressor and response; rows where either is NaN are dropped.
+    alpha : float
+        1 − confidence level of the intervals (0.05 → 95 %).
+
+    Returns
+    -------
+    dict
+        Keys :data:`FIT_COLUMNS`. With fewer than two distinct x the estimates
+        are NaN and ``reason`` says why; with two points the standard errors
+        and intervals are NaN (no residual degrees of freedom).
+    """
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
+    ok = np.isfinite(x) & np.isfinite(y)
+    x, y = x[ok], y[ok]
+    out = dict.fromkeys(FIT_COLUMNS, np.nan)
+    out["n"] = int(len(x))
+    out["n_distinct_x"] = int(len(np.unique(np.round(x, 9))))
+    out["reason"] = None
+    if out["n_distinct_x"] < 2:
+        out["reason"] = f"fewer than 2 distinct regressor values (n={out['n']}, distinct={out['n_distinct_x']})"
+        return out
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = sm.OLS(y, sm.add_constant(x, has_constant="add")).fit()
+        ci = np.asarray(res.conf_int(alpha))
+        bse = np.asarray(res.bse)
+        p = np.asarray(res.pvalues)
+    has_df = res.df_resid > 0
+    out.update(
+        intercept=float(res.params[0]),
+        slope=float(res.params[1]),
+        r_squared=float(res.rsquared) if np.var(y) > 0 else np.nan,
+        intercept_se=float(bse[0]) if has_df else np.nan,
+        slope_se=float(bse[1]) if has_df else np.nan,
+        intercept_ci_low=float(ci[0, 0]) if has_df else np.nan,
+        intercept_ci_high=float(ci[0, 1]) if has_df else np.nan,
+        slope_ci_low=float(ci[1, 0]) if has_df else np.nan,
+        slope_ci_high=float(ci[1, 1]) if has_df else np.nan,
+        slope_p_value=float(p[1]) if has_df else np.nan,
+    )
+    if not has_df:
+        out["reason"] = "only 2 points: no standard error"
+    return out
+
+
+def fit_mean(y, *, alpha: float = 0.05) -> dict:
+    """Mean of ``y`` with standard error and t-interval (statsmodels OLS on a constant).
+
+    Returns
+    -------
+    dict
+        ``n, mean, se, ci_low, ci_high, sd, reason``.
+    """
+    y = np.asarray(y, dtype=float)
+    y = y[np.isfinite(y)]
+    out = {"n": int(len(y)), "mean": np.nan, "se": np.nan, "ci_low": np.nan, "ci_high": np.nan,
+           "sd": np.nan, "reason": None}
+    if len(y) == 0:
+        out["reason"] = "no matched observations"
+        return out
+    out["mean"] = float(y.mean())
+    if len(y) < 2:
+        out["reason"] = "one matched observation: no standard error"
+        return out
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = sm.OLS(y, np.ones((len(y), 1))).fit()
+    ci = np.asarray(res.conf_int(alpha))
+    out.update(se=float(np.asarray(res.bse)[0]), ci_low=float(ci[0, 0]), ci_high=float(ci[0, 1]),
+               sd=float(y.std(ddof=1)))
+    return out
+
+
+def _speed(s: pd.Series) -> pd.Series:
+    return pd.to_numeric(s, errors="coerce").astype(float).round(cond.SPEED_DECIMALS)
+
+
+def measured_tyres(results: pd.DataFrame) -> list[str]:
+    """Tyre ids with at least one measurement run, sorted (the tyres "in our data")."""
+    if results.empty or "tyre_id" not in results.columns:
+        return []
+    kind = results.get("kind", pd.Series("measurement", index=results.index)).fillna("measurement")
+    return sorted(results.loc[kind == "measurement", "tyre_id"].dropna().astype(str).unique())
+
+
+def _fit_groups(runs, keys, grid, response, hold, prefer) -> pd.DataFrame:
+    """Fit ``response ~ x`` per group of ``keys``; ``grid`` lists the groups to report."""
+    rows = []
+    groups = dict(tuple(runs.groupby(keys, sort=True))) if not runs.empty else {}
+    for key in grid.itertuples(index=False, name=None):
+        sub = groups.get(key if len(keys) > 1 else key[0], runs.iloc[0:0])
+        sub = sub.loc[sub[response].notna()] if response in sub else sub
+        sub, levels, note = cond.hold_constant(sub, "x", hold, prefer=prefer)
+        fit = fit_line(sub["x"], sub[response]) if len(sub) else fit_line([], [])
+        if len(sub) == 0:
+            fit["reason"] = "no runs under the selection convention (pipeline.tyre.conditions)"
+        row = dict(zip(keys, key))
+        row.update(fit)
+        for c in hold:
+            row[f"held_{c}"] = levels.get(c)
+        row["note"] = note or None
+        rows.append(row)
+    cols = list(keys) + FIT_COLUMNS + [f"held_{c}" for c in hold] + ["note"]
+    return pd.DataFrame(rows, columns=cols)
+
+
+def pressure_regressions(
+    results: pd.DataFrame, response: str = STIFFNESS, *, by: str = "condition",
+    tyre_ids: list[str] | None = None,
+) -> pd.DataFrame:
+    """Response vs inflation pressure per tyre × condition or per tyre × speed.
+
+    ``K = K_c + ΔK_p P`` (thesis §4.3.1, Table III; §4.5.3) or ``C = C_c + ΔC P``
+    (§5.3.1, Table VII). Nominal runs only (:func:`conditions.nominal`); load held
+    constant (:func:`conditions.hold_constant`).
+
+    Parameters
+    ----------
+    results : DataFrame
+        The ``results`` table.
+    response : str
+        ``"stiffness_kN_per_m"`` or ``"damping_kN_s_per_m"``.
+    by : {"condition", "speed"}
+        ``"condition"``: Table III stationary / rolling (10–15 km/h pooled);
+        ``"speed"``: one fit per nominal speed.
+    tyre_ids : list of str, optional
+        Tyres to report (default: every tyre with measurement runs); a tyre
+        without runs gets a row with ``n = 0`` and a reason.
+
+    Returns
+    -------
+    DataFrame
+        ``tyre_id``, ``condition`` or ``speed_km_h``, then :data:`FIT_COLUMNS`
+        (intercept = carcass value, slope = pressure dependence per bar),
+        ``held_load_kN``, ``note``.
+    """
+    tyre_ids = measured_tyres(results) if tyre_ids is None else list(tyre_ids)
+    if by == "condition":
+        runs = cond.table_iii_runs(results) if not results.empty else results.assign(condition=None)
+        key = "condition"
+        levels = ["stationary", "rolling"]
+        grid = pd.DataFrame([(t, c) for t in tyre_ids for c in levels], columns=["tyre_id", key])
+    elif by == "speed":
+        runs = results.loc[cond.nominal(results)].copy() if not results.empty else results.copy()
+        key = "speed_km_h"
+        runs[key] = _speed(runs[key]) if key in runs else np.nan
+        grid = runs[["tyre_id", key]].drop_duplicates()
+        grid = grid.loc[grid["tyre_id"].astype(str).isin(tyre_ids)]
+        missing = sorted(set(tyre_ids) - set(grid["tyre_id"].astype(str)))
+        grid = pd.concat([grid, pd.DataFrame({"tyre_id": missing, key: np.nan})], ignore_index=True)
+        grid = grid.sort_values(["tyre_id", key]).reset_index(drop=True)
+    else:
+        raise ValueError(f"by must be 'condition' or 'speed', not {by!r}")
+    runs = runs.assign(x=pd.to_numeric(runs.get("pressure_bar"), errors="coerce"), tyre_id=runs["tyre_id"].astype(str)) \
+        if not runs.empty else runs.assign(x=np.nan)
+    return _fit_groups(runs, ["tyre_id", key], grid, response, ["load_kN"], {"load_kN": 0.0})
+
+
+def factor_regressions(
+    results: pd.DataFrame, factor: str, responses=(STIFFNESS, DAMPING),
+) -> pd.DataFrame:
+    """Rate of change of stiffness and damping with one condition, per tyre × speed.
+
+    Thesis §4.3.3–4.3.6 and §5.3.3–5.3.6; Tables IV and VIII (amplitude) and the
+    rates summarised in Tables VI and X (load, frequency, torque, pressure).
+    Runs: :func:`conditions.factor_runs`; pressure and load held constant where
+    not regressed (nearest 1.38 bar preferred).
+
+    Parameters
+    ----------
+    results : DataFrame
+    factor : {"amplitude", "frequency", "load", "torque", "pressure"}
+    responses : sequence of str
+
+    Returns
+    -------
+    DataFrame
+        ``tyre_id, speed_km_h, response, factor, factor_unit, rate_unit``, the fit
+        (slope = rate), ``held_pressure_bar``, ``held_load_kN``, ``note``.
+    """
+    runs = cond.factor_runs(results, factor) if not results.empty else results.assign(x=np.nan)
+    runs = runs.copy()
+    if not runs.empty:
+        runs["speed_km_h"] = _speed(runs["speed_km_h"])
+        runs["tyre_id"] = runs["tyre_id"].astype(str)
+    unit = cond.FACTORS[factor][2]
+    hold = [c for c in ("pressure_bar", "load_kN") if c != cond.FACTORS[factor][0]]
+    grid = runs[["tyre_id", "speed_km_h"]].drop_duplicates().sort_values(["tyre_id", "speed_km_h"]) \
+        if not runs.empty else pd.DataFrame(columns=["tyre_id", "speed_km_h"])
+    out = []
+    for response in responses:
+        f = _fit_groups(runs, ["tyre_id", "speed_km_h"], grid, response, hold,
+                        {"pressure_bar": cond.STANDARD_PRESSURE_BAR, "load_kN": 0.0})
+        f.insert(2, "response", response)
+        f.insert(3, "factor", factor)
+        f.insert(4, "factor_unit", unit)
+        f.insert(5, "rate_unit", f"{_RESPONSE_UNIT.get(response, response)} per {unit}")
+        for c in ("held_pressure_bar", "held_load_kN"):
+            if c not in f:
+                f[c] = np.nan
+        out.append(f)
+    return pd.concat(out, ignore_index=True) if out else pd.DataFrame()
+
+
+def surface_effects(results: pd.DataFrame, response: str = STIFFNESS) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Percent change of stiffness or damping on each surface relative to concrete.
+
+    Thesis §4.3.7 Table V (stiffness) and §5.3.7 Table IX (damping). Runs are
+    nominal except for the surface; each surface mean is matched with the
+    concrete mean of the same tyre, speed, pressure and load (a *cell*); the
+    change is ``100 (mean_surface / mean_concrete − 1)`` per cell and the
+    surface estimate is the mean over cells (:func:`fit_mean`).
+
+    Returns
+    -------
+    cells : DataFrame
+        ``surface, tyre_id, speed_km_h, pressure_bar, load_kN, n_surface, n_concrete,
+        surface_mean, concrete_mean, change_percent``.
+    summary : DataFrame
+        Per non-concrete surface: ``surface, n_cells, change_percent, se, ci_low, ci_high,
+        sd, tyres, reason``.
+    """
+    cell_cols = ["surface", "tyre_id", "speed_km_h", "pressure_bar", "load_kN", "n_surface",
+                 "n_concrete", "surface_mean", "concrete_mean", "change_percent"]
+    sum_cols = ["surface", "n_cells", "change_percent", "se", "ci_low", "ci_high", "sd", "tyres", "reason"]
+    if results.empty:
+        return pd.DataFrame(columns=cell_cols), pd.DataFrame(columns=sum_cols)
+    runs = results.loc[cond.nominal(results, except_for="surface")].copy()
+    runs = runs.loc[runs[response].notna()]
+    runs["surface"] = runs["surface"].fillna(cond.REFERENCE_SURFACE).astype(str).str.strip().str.lower()
+    runs["tyre_id"] = runs["tyre_id"].astype(str)
+    runs["speed_km_h"] = _speed(runs["speed_km_h"])
+    runs["pressure_bar"] = pd.to_numeric(runs["pressure_bar"], errors="coerce").round(cond.PRESSURE_DECIMALS)
+    runs["load_kN"] = pd.to_numeric(runs.get("load_kN", np.nan), errors="coerce").round(cond.LOAD_DECIMALS)
+    keys = ["tyre_id", "speed_km_h", "pressure_bar", "load_kN"]
+    agg = runs.groupby(["surface"] + keys, dropna=False)[response].agg(["mean", "size"]).reset_index()
+    ref = agg.loc[agg["surface"] == cond.REFERENCE_SURFACE].drop(columns="surface") \
+        .rename(columns={"mean": "concrete_mean", "size": "n_concrete"})
+    other = agg.loc[agg["surface"] != cond.REFERENCE_SURFACE] \
+        .rename(columns={"mean": "surface_mean", "size": "n_surface"})
+    cells = other.merge(ref, on=keys, how="left")
+    cells["change_percent"] = 100.0 * (cells["surface_mean"] / cells["concrete_mean"] - 1.0)
+    cells = cells[cell_cols].sort_values(["surface"] + keys).reset_index(drop=True)
+    rows = []
+    for surface, sub in cells.groupby("surface", sort=True):
+        m = fit_mean(sub["change_percent"])
+        matched = sub.loc[sub["change_percent"].notna()]
+        rows.append({
+            "surface": surface, "n_cells": m["n"], "change_percent": m["mean"], "se": m["se"],
+            "ci_low": m["ci_low"], "ci_high": m["ci_high"], "sd": m["sd"],
+            "tyres": ",".join(sorted(matched["tyre_id"].unique())) or None,
+            "reason": ("no concrete run at the same tyre, speed, pressure and load"
+                       if m["n"] == 0 else m["reason"]),
+        })
+    return cells, pd.DataFrame(rows, columns=sum_cols)
+
+
+# --------------------------------------------------------------------------- comparisons
+
+
+def _norm_surface(s: pd.Series) -> pd.Series:
+    return s.astype(str).str.strip().str.lower().str.replace(r"[\s\-]+", "_", regex=True)
+
+
+def compare_with_thesis(
+    ours: pd.DataFrame, thesis: pd.DataFrame | None, keys: list[str], values: dict[str, str],
+) -> pd.DataFrame:
+    """Outer-join our estimates with the thesis' and add differences.
+
+    Parameters
+    ----------
+    ours : DataFrame
+        Our table, with ``keys`` and the columns named in ``values``' keys.
+    thesis : DataFrame or None
+        Published table (``raw/published/*.csv``) with ``keys`` and the columns named
+        in ``values``' values; None or empty gives null thesis columns.
+    keys : list of str
+        Join keys (e.g. ``["tyre_id", "condition"]``).
+    values : dict
+        our column -> published column.
+
+    Returns
+    -------
+    DataFrame
+        Keys, then per value ``thesis_<col>``, ``<col>``, ``<col>_difference`` (ours − thesis),
+        then the remaining columns of ``ours``; also a boolean ``in_thesis``. Rows
+        of either side without a partner are kept (thesis columns null for new tyres).
+    """
+    ours = ours.copy()
+    th_cols = {pub: f"thesis_{col}" for col, pub in values.items()}
+    if thesis is None or thesis.empty:
+        th = pd.DataFrame(columns=keys + list(th_cols.values()))
+    else:
+        th = thesis.copy()
+        for c in th_cols:
+            if c not in th.columns:
+                th[c] = np.nan
+        extra = [c for c in th.columns if c not in keys and c not in th_cols and c not in ours.columns]
+        th = th[keys + list(th_cols) + extra].rename(columns=th_cols)
+        th = th.rename(columns={c: f"thesis_{c}" for c in extra})
+    for k in keys:
+        if k == "speed_km_h":
+            ours[k] = _speed(ours[k])
+            th[k] = _speed(th[k])
+        elif k == "surface":
+            ours[k] = _norm_surface(ours[k])
+            th[k] = _norm_surface(th[k])
+        else:
+            ours[k] = ours[k].astype(str)
+            th[k] = th[k].astype(str)
+    th["in_thesis"] = True
+    merged = ours.merge(th, on=keys, how="outer", sort=True)
+    merged["in_thesis"] = merged["in_thesis"].astype("boolean").fillna(False).astype(bool)
+    front = list(keys)
+    for col in values:
+        tcol = f"thesis_{col}"
+        merged[tcol] = pd.to_numeric(merged[tcol], errors="coerce")
+        if col not in merged:
+            merged[col] = np.nan
+        merged[f"{col}_difference"] = merged[col] - merged[tcol]
+        front += [tcol, col, f"{col}_difference"]
+    rest = [c for c in merged.columns if c not in front]
+    return merged[front + rest].reset_index(drop=True)
+
+
+def _fit_renamed(fit: pd.DataFrame, intercept: str | None, slope: str) -> pd.DataFrame:
+    ren = {"slope": slope, "slope_se": f"{slope}_se", "slope_ci_low": f"{slope}_ci_low",
+           "slope_ci_high": f"{slope}_ci_high"}
+    if intercept is not None:
+        ren.update({"intercept": intercept, "intercept_se": f"{intercept}_se",
+                    "intercept_ci_low": f"{intercept}_ci_low", "intercept_ci_high": f"{intercept}_ci_high"})
+    return fit.rename(columns=ren)
+
+
+def table_iii(fit: pd.DataFrame, published: pd.DataFrame | None) -> pd.DataFrame:
+    """Table III side by side: K_c, ΔK_p and r², thesis vs ours (thesis §4.3.1).
+
+    Parameters
+    ----------
+    fit : DataFrame
+        :func:`pressure_regressions` of stiffness by condition.
+    published : DataFrame or None
+        ``raw/published/table_iii.csv`` (tyre_id, size, condition, carcass_stiffness_kN_per_m,
+        pressure_dependence_kN_per_m_bar, r_squared, r_squared_qualifier).
+    """
+    ours = _fit_renamed(fit, "carcass_stiffness_kN_per_m", "pressure_dependence_kN_per_m_bar")
+    pub = None if published is None else published.loc[
+        published[["carcass_stiffness_kN_per_m", "pressure_dependence_kN_per_m_bar"]].notna().any(axis=1)]
+    return compare_with_thesis(
+        ours, pub, ["tyre_id", "condition"],
+        {"carcass_stiffness_kN_per_m": "carcass_stiffness_kN_per_m",
+         "pressure_dependence_kN_per_m_bar": "pressure_dependence_kN_per_m_bar",
+         "r_squared": "r_squared"},
+    )
+
+
+def table_vii(fit: pd.DataFrame, published: pd.DataFrame | None) -> pd.DataFrame:
+    """Table VII side by side: carcass damping C_c, ΔC and r² per tyre × speed (thesis §5.3.1).
+
+    ``fit`` is :func:`pressure_regressions` of damping by speed.
+    """
+    ours = _fit_renamed(fit, "carcass_damping_kN_s_per_m", "pressure_dependence_kN_s_per_m_bar")
+    return compare_with_thesis(
+        ours, published, ["tyre_id", "speed_km_h"],
+        {"carcass_damping_kN_s_per_m": "carcass_damping_kN_s_per_m",
+         "pressure_dependence_kN_s_per_m_bar": "pressure_dependence_kN_s_per_m_bar",
+         "r_squared": "r_squared"},
+    )
+
+
+def amplitude_table(rates: pd.DataFrame, published: pd.DataFrame | None, response: str) -> pd.DataFrame:
+    """Table IV (stiffness) or VIII (damping): rate per mm p-p amplitude per tyre × speed.
+
+    Parameters
+    ----------
+    rates : DataFrame
+        :func:`factor_regressions` for ``factor="amplitude"``.
+    published : DataFrame or None
+        ``table_iv.csv`` (stiffness_rate_kN_per_m_per_mm) or ``table_viii.csv``
+        (damping_rate_kN_s_per_m_per_mm), with tyre_id, speed_km_h, r_squared.
+    response : str
+        ``"stiffness_kN_per_m"`` (Table IV, thesis §4.3.4) or ``"damping_kN_s_per_m"``
+        (Table VIII, §5.3.4).
+    """
+    col = "stiffness_rate_kN_per_m_per_mm" if response == STIFFNESS else "damping_rate_kN_s_per_m_per_mm"
+    sub = rates.loc[(rates["response"] == response) & (rates["factor"] == "amplitude")]
+    sub = sub.drop(columns=["response", "factor", "factor_unit", "rate_unit"])
+    ours = _fit_renamed(sub, None, col)
+    return compare_with_thesis(ours, published, ["tyre_id", "speed_km_h"],
+                               {col: col, "r_squared": "r_squared"})
+
+
+def surface_table(summary: pd.DataFrame, published: pd.DataFrame | None, response: str) -> pd.DataFrame:
+    """Table V (stiffness) or IX (damping): percent change per surface vs concrete.
+
+    ``published`` is ``table_v.csv`` (surface, stiffness_change_percent) or ``table_ix.csv``
+    (surface, damping_change_percent). Surfaces are matched case- and space-insensitively.
+    """
+    col = "stiffness_change_percent" if response == STIFFNESS else "damping_change_percent"
+    ours = summary.rename(columns={"change_percent": col, "se": f"{col}_se",
+                                   "ci_low": f"{col}_ci_low", "ci_high": f"{col}_ci_high"})
+    if published is not None and not published.empty:
+        published = published.copy()
+        published[col] = pd.to_numeric(
+            published[col].astype(str).str.replace("%", "").str.replace("+", "").str.strip()
+            .replace({"-": np.nan, "": np.nan, "nan": np.nan, "None": np.nan}), errors="coerce")
+    return compare_with_thesis(ours, published, ["surface"], {col: col})
+
+
+# --------------------------------------------------------------------------- Tables VI and X
+
+#: Thesis Table VI (§4.5): change of stiffness with conditions (kN/m), as printed.
+THESIS_TABLE_VI = [
+    ("pressure", "0.7-2 bar", 190.0, "kN/m per bar"),
+    ("rolling_speed_0_15", "0-15 km/h", -150.0, "kN/m total"),
+    ("rolling_speed_10_15", "10-15 km/h", -8.0, "kN/m total"),
+    ("load", "16-22.5 kN", 0.0, "kN/m per kN (none)"),
+    ("amplitude", "7-30 mm", 1.0, "kN/m per mm (±1)"),
+    ("torque", "0-4.7 kNm", 0.0, "kN/m per kNm (none)"),
+    ("frequency", "2-5 Hz", 5.0, "kN/m per Hz"),
+]
+#: Thesis Table X (§5.4.3): change of damping with conditions (kNs/m), as printed.
+THESIS_TABLE_X = [
+    ("pressure", "0.7-2 bar", 0.4, "kNs/m per bar"),
+    ("rolling_speed_0_15", "0-15 km/h", -2.0, "kNs/m total"),
+    ("rolling_speed_10_15", "10-15 km/h", -0.3, "kNs/m total"),
+    ("load", "16-22.5 kN", 0.1, "kNs/m per kN"),
+    ("amplitude", "7-30 mm", 0.01, "kNs/m per mm"),
+    ("torque", "0-4.7 kNm", -0.1, "kNs/m per kNm"),
+    ("frequency", "2-5 Hz", -0.3, "kNs/m per Hz"),
+]
+
+
+def summary_rates(
+    by_speed: pd.DataFrame, rates: pd.DataFrame, response: str, *,
+    pressure_bar: float = cond.STANDARD_PRESSURE_BAR, rolling_min_km_h: float = 1.0,
+) -> pd.DataFrame:
+    """Table VI (stiffness) or X (damping): typical rates of change, ours beside the thesis'.
+
+    Our value per factor is the mean over tyre × speed fits of rolling tyres
+    (speed ≥ ``rolling_min_km_h``; the thesis quotes rolling rates) of the
+    one-factor slope; the pressure row uses the per-speed pressure fits at
+    10–15 km/h; the speed rows are the mean over tyres of K(15) − K(0) and
+    K(15) − K(10) from the per-speed pressure fits evaluated at ``pressure_bar``.
+    Thesis §4.5 Table VI, §5.4.3 Table X.
+
+    Parameters
+    ----------
+    by_speed : DataFrame
+        :func:`pressure_regressions` with ``by="speed"`` for ``response``.
+    rates : DataFrame
+        Concatenated :func:`factor_regressions` for amplitude, frequency, load, torque.
+    response : str
+
+    Returns
+    -------
+    DataFrame
+        ``factor, measured_range, unit, thesis_value, value, value_difference, n, se, basis``.
+    """
+    thesis = THESIS_TABLE_VI if response == STIFFNESS else THESIS_TABLE_X
+    rows = []
+    bs = by_speed.dropna(subset=["slope"]).copy()
+    lo, hi = cond.ROLLING_POOL_KM_H
+    for factor, rng, tval, unit in thesis:
+        basis = ""
+        if factor == "pressure":
+            vals = bs.loc[(bs["speed_km_h"] >= lo) & (bs["speed_km_h"] <= hi), "slope"]
+            basis = f"mean pressure dependence of per-speed fits at {lo:g}-{hi:g} km/h"
+        elif factor.startswith("rolling_speed"):
+            v0 = 0.0 if factor == "rolling_speed_0_15" else lo
+            bs["k"] = bs["intercept"] + bs["slope"] * pressure_bar
+            piv = bs.pivot_table(index="tyre_id", columns="speed_km_h", values="k")
+            vals = (piv[hi] - piv[v0]).dropna() if (hi in piv and v0 in piv) else pd.Series(dtype=float)
+            basis = f"mean over tyres of K({hi:g}) - K({v0:g} km/h) at {pressure_bar:g} bar (per-speed fits)"
+        else:
+            sub = rates.loc[(rates["response"] == response) & (rates["factor"] == factor)
+                            & (rates["speed_km_h"] >= rolling_min_km_h)]
+            vals = sub["slope"].dropna()
+            basis = f"mean {factor} slope over tyre x speed fits at >= {rolling_min_km_h:g} km/h"
+        m = fit_mean(vals)
+        rows.append({"factor": factor, "measured_range": rng, "unit": unit, "thesis_value": tval,
+                     "value": m["mean"], "value_difference": m["mean"] - tval if m["n"] else np.nan,
+                     "n": m["n"], "se": m["se"], "ci_low": m["ci_low"], "ci_high": m["ci_high"],
+                     "basis": basis, "reason": m["reason"]})
+    return pd.DataFrame(rows)
