@@ -1,0 +1,335 @@
+"""Bounce and pitch natural frequencies of an unsuspended tractor (thesis ch. 8).
+
+The tractor is reduced to a rigid beam on two springs (thesis §8.2, Fig. 68): mass
+``M``, pitch moment of inertia ``I``, front axle ``l1`` ahead of and rear axle ``l2``
+behind the centre of gravity, axle stiffnesses ``K_f`` and ``K_r``. The axle
+stiffness is the sum of the left and right tyres, i.e. twice the per-tyre stiffness.
+Undamped free vibration obeys (thesis §8.2)::
+
+    | K_f + K_r            K_f l1 - K_r l2        |   | z |         | M  0 | | z |
+    | K_f l1 - K_r l2      K_f l1^2 + K_r l2^2    | . | g | = w^2 . | 0  I | | g |
+
+which is solved here as a generalised symmetric eigenproblem
+(:func:`scipy.linalg.eigh`). SI inside; the per-tyre stiffness in the report is in
+kN/m, the thesis' unit.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+from scipy import linalg
+
+from ..tyre.stiffness import estimate_tyre_stiffness
+from .metrics import ratio_error_statistics
+
+__all__ = [
+    "natural_frequencies",
+    "tractor_natural_frequencies",
+    "natural_frequencies_report",
+    "table_xx",
+    "table_xx_statistics",
+]
+
+
+def natural_frequencies(
+    mass_kg: float,
+    pitch_inertia_kg_m2: float,
+    front_distance_m: float,
+    rear_distance_m: float,
+    front_stiffness_N_per_m_axle: float,
+    rear_stiffness_N_per_m_axle: float,
+) -> tuple[float, float]:
+    """Undamped bounce/pitch natural frequencies of a beam on two springs.
+
+    Thesis §8.2, Fig. 68 and its matrix equation of motion.
+
+    Parameters
+    ----------
+    mass_kg : float
+        Tractor mass M in kg.
+    pitch_inertia_kg_m2 : float
+        Pitch moment of inertia I about the centre of gravity, kg m^2.
+    front_distance_m, rear_distance_m : float
+        Horizontal distances l1 (front axle) and l2 (rear axle) from the centre of
+        gravity, m.
+    front_stiffness_N_per_m_axle, rear_stiffness_N_per_m_axle : float
+        Axle stiffnesses K_f and K_r in N/m (both tyres of the axle: twice the
+        per-tyre stiffness).
+
+    Returns
+    -------
+    tuple of float
+        ``(f1_Hz, f2_Hz)`` in ascending order.
+
+    Examples
+    --------
+    Equal springs with the centre of gravity midway decouple bounce and pitch:
+
+    >>> f1, f2 = natural_frequencies(1000, 250, 1.0, 1.0, 1e5, 1e5)
+    >>> round(f1, 4), round(f2, 4)   # sqrt(2e5/1000)/2pi, sqrt(2e5*1/250)/2pi
+    (2.2508, 4.5016)
+    """
+    m, inertia = float(mass_kg), float(pitch_inertia_kg_m2)
+    l1, l2 = float(front_distance_m), float(rear_distance_m)
+    kf, kr = float(front_stiffness_N_per_m_axle), float(rear_stiffness_N_per_m_axle)
+    if m <= 0 or inertia <= 0:
+        raise ValueError("mass and pitch inertia must be positive")
+    if kf <= 0 or kr <= 0:
+        raise ValueError("axle stiffnesses must be positive")
+    if l1 < 0 or l2 < 0 or l1 + l2 <= 0:
+        raise ValueError("axle distances must be non-negative with a positive wheelbase")
+    stiffness = np.array([[kf + kr, kf * l1 - kr * l2], [kf * l1 - kr * l2, kf * l1**2 + kr * l2**2]])
+    mass = np.diag([m, inertia])
+    omega2 = linalg.eigh(stiffness, mass, eigvals_only=True)
+    f = np.sqrt(np.clip(omega2, 0.0, None)) / (2.0 * math.pi)
+    return float(f[0]), float(f[1])
+
+
+def tractor_natural_frequencies(
+    mass_kg: float,
+    pitch_inertia_kg_m2: float,
+    front_distance_m: float,
+    rear_distance_m: float,
+    front_size: str,
+    front_pressure_bar: float,
+    rear_size: str,
+    rear_pressure_bar: float,
+    *,
+    front_traction: bool = False,
+    front_water_ballast: bool = False,
+    rear_water_ballast: bool = False,
+    age_years: float = 1.0,
+    front_stiffness_kN_per_m: float | None = None,
+    rear_stiffness_kN_per_m: float | None = None,
+) -> dict:
+    """Natural frequencies of a tractor from its tyre sizes and pressures (thesis §8.2).
+
+    Per-tyre stiffnesses come from :func:`pipeline.tyre.stiffness.estimate_tyre_stiffness`:
+    traction tyres use ``K = 172 - 1.77 R + 5.6 A + 0.34 W R P``; undriven ribbed
+    front tyres (``front_traction=False``) use ``K = 134/(7.5*18) W R P``; water
+    ballast multiplies by 1.25. The axle stiffness is twice the per-tyre stiffness.
+
+    Parameters
+    ----------
+    mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m : float
+        As :func:`natural_frequencies`.
+    front_size, rear_size : str
+        Tyre size designations, e.g. ``"7.50-16"``, ``"13.6-38"``.
+    front_pressure_bar, rear_pressure_bar : float
+        Inflation pressures in bar.
+    front_traction : bool, optional
+        Front tyres are traction tyres (four-wheel drive); default: undriven ribbed.
+    front_water_ballast, rear_water_ballast : bool, optional
+        Water-ballasted tyres (stiffness x1.25, Siefkes 1989, thesis §1.7.10).
+    age_years : float, optional
+        Tyre age in years (default 1, as thesis §8.2 assumes).
+    front_stiffness_kN_per_m, rear_stiffness_kN_per_m : float, optional
+        Per-tyre stiffnesses that override the formula.
+
+    Returns
+    -------
+    dict
+        ``front_tyre_stiffness_kN_per_m``, ``rear_tyre_stiffness_kN_per_m`` (per tyre),
+        ``frequency_1_Hz``, ``frequency_2_Hz``.
+    """
+    kf = (
+        float(front_stiffness_kN_per_m)
+        if front_stiffness_kN_per_m is not None
+        else estimate_tyre_stiffness(
+            front_size,
+            front_pressure_bar,
+            age_years,
+            undriven_front=not front_traction,
+            water_ballast=front_water_ballast,
+        )
+    )
+    kr = (
+        float(rear_stiffness_kN_per_m)
+        if rear_stiffness_kN_per_m is not None
+        else estimate_tyre_stiffness(rear_size, rear_pressure_bar, age_years, water_ballast=rear_water_ballast)
+    )
+    f1, f2 = natural_frequencies(
+        mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m, 2e3 * kf, 2e3 * kr
+    )
+    return {
+        "front_tyre_stiffness_kN_per_m": kf,
+        "rear_tyre_stiffness_kN_per_m": kr,
+        "frequency_1_Hz": f1,
+        "frequency_2_Hz": f2,
+    }
+
+
+def natural_frequencies_report(
+    *,
+    mass: float,
+    pitch_inertia: float,
+    front_distance: float,
+    rear_distance: float,
+    front_tyre: str,
+    front_pressure: float,
+    rear_tyre: str,
+    rear_pressure: float,
+    front_traction: bool = False,
+    front_water_ballast: bool = False,
+    age: float = 1.0,
+    front_stiffness: float | None = None,
+    rear_stiffness: float | None = None,
+) -> dict:
+    """The ``tyrelab natural-frequencies`` answer, keyword per CLI option.
+
+    Parameters mirror the CLI options ``--mass KG --pitch-inertia KGM2
+    --front-distance M --rear-distance M --front-tyre SIZE --front-pressure BAR
+    --rear-tyre SIZE --rear-pressure BAR [--front-traction] [--front-water-ballast]
+    [--age YEARS] [--front-stiffness KN_PER_M] [--rear-stiffness KN_PER_M]``
+    (stiffnesses per tyre, kN/m). See :func:`tractor_natural_frequencies`.
+
+    Returns
+    -------
+    dict
+        Exactly ``{"front_tyre_stiffness_kN_per_m", "rear_tyre_stiffness_kN_per_m",
+        "frequency_1_Hz", "frequency_2_Hz"}`` as floats, JSON-serialisable.
+
+    Examples
+    --------
+    >>> r = natural_frequencies_report(mass=3235, pitch_inertia=2669, front_distance=1.33,
+    ...     rear_distance=0.71, front_tyre="7.50-16", front_pressure=2.06,
+    ...     rear_tyre="13.6-38", rear_pressure=1.1)
+    >>> round(r["rear_tyre_stiffness_kN_per_m"], 1)
+    303.6
+    """
+    out = tractor_natural_frequencies(
+        mass,
+        pitch_inertia,
+        front_distance,
+        rear_distance,
+        front_tyre,
+        front_pressure,
+        rear_tyre,
+        rear_pressure,
+        front_traction=front_traction,
+        front_water_ballast=front_water_ballast,
+        age_years=age,
+        front_stiffness_kN_per_m=front_stiffness,
+        rear_stiffness_kN_per_m=rear_stiffness,
+    )
+    return {k: float(v) for k, v in out.items()}
+
+
+def table_xx(tractors: pd.DataFrame, published: pd.DataFrame | None = None) -> pd.DataFrame:
+    """Table XX: tyre stiffnesses and predicted natural frequencies, ours beside the thesis'.
+
+    For each tractor of Table XIX two rows are produced:
+
+    * ``stiffness_source = "formula"``: our per-tyre stiffnesses from the size
+      formula (:func:`tractor_natural_frequencies`) and the frequencies they give,
+      plus the frequencies recomputed from the thesis' *printed* stiffnesses;
+    * ``stiffness_source = "stationary_free_vibration"``: the thesis' measured
+      stationary stiffnesses (no formula), frequencies recomputed from them.
+
+    Parameters
+    ----------
+    tractors : DataFrame
+        Table XIX columns: ``tractor, mass_kg, pitch_inertia_kg_m2, front_distance_m,
+        rear_distance_m, front_size, front_pressure_bar, rear_size, rear_pressure_bar,
+        four_wheel_drive, front_water_ballast``.
+    published : DataFrame, optional
+        Table XX columns: ``tractor, stiffness_source, rear_stiffness_kN_per_m,
+        front_stiffness_kN_per_m, predicted_frequency_1_Hz, predicted_frequency_2_Hz,
+        measured_frequency_1_Hz, measured_frequency_2_Hz``.
+
+    Returns
+    -------
+    DataFrame
+        One row per tractor and stiffness source with ``thesis_*`` and ``ours_*``
+        stiffnesses and frequencies, ``*_from_thesis_stiffness_Hz`` and differences.
+    """
+    rows = []
+    pub = published if published is not None else pd.DataFrame()
+    for t in tractors.itertuples(index=False):
+        ours = tractor_natural_frequencies(
+            t.mass_kg,
+            t.pitch_inertia_kg_m2,
+            t.front_distance_m,
+            t.rear_distance_m,
+            t.front_size,
+            t.front_pressure_bar,
+            t.rear_size,
+            t.rear_pressure_bar,
+            front_traction=bool(t.four_wheel_drive),
+            front_water_ballast=bool(t.front_water_ballast),
+        )
+        for source in ("formula", "stationary_free_vibration"):
+            p = (
+                pub[(pub["tractor"] == t.tractor) & (pub["stiffness_source"] == source)]
+                if len(pub)
+                else pub
+            )
+            rec = p.iloc[0] if len(p) else None
+            row = {"tractor": t.tractor, "stiffness_source": source}
+            if rec is not None:
+                row.update(
+                    thesis_rear_stiffness_kN_per_m=float(rec["rear_stiffness_kN_per_m"]),
+                    thesis_front_stiffness_kN_per_m=float(rec["front_stiffness_kN_per_m"]),
+                    thesis_frequency_1_Hz=float(rec["predicted_frequency_1_Hz"]),
+                    thesis_frequency_2_Hz=float(rec["predicted_frequency_2_Hz"]),
+                    measured_frequency_1_Hz=float(rec["measured_frequency_1_Hz"]),
+                    measured_frequency_2_Hz=float(rec["measured_frequency_2_Hz"]),
+                )
+                g1, g2 = natural_frequencies(
+                    t.mass_kg,
+                    t.pitch_inertia_kg_m2,
+                    t.front_distance_m,
+                    t.rear_distance_m,
+                    2e3 * row["thesis_front_stiffness_kN_per_m"],
+                    2e3 * row["thesis_rear_stiffness_kN_per_m"],
+                )
+                row.update(frequency_1_from_thesis_stiffness_Hz=g1, frequency_2_from_thesis_stiffness_Hz=g2)
+            if source == "formula":
+                row.update(
+                    ours_rear_stiffness_kN_per_m=ours["rear_tyre_stiffness_kN_per_m"],
+                    ours_front_stiffness_kN_per_m=ours["front_tyre_stiffness_kN_per_m"],
+                    ours_frequency_1_Hz=ours["frequency_1_Hz"],
+                    ours_frequency_2_Hz=ours["frequency_2_Hz"],
+                )
+            else:
+                # No formula: our stiffness is the thesis' measured stationary stiffness.
+                row.update(
+                    ours_rear_stiffness_kN_per_m=row.get("thesis_rear_stiffness_kN_per_m", math.nan),
+                    ours_front_stiffness_kN_per_m=row.get("thesis_front_stiffness_kN_per_m", math.nan),
+                    ours_frequency_1_Hz=row.get("frequency_1_from_thesis_stiffness_Hz", math.nan),
+                    ours_frequency_2_Hz=row.get("frequency_2_from_thesis_stiffness_Hz", math.nan),
+                )
+            rows.append(row)
+    out = pd.DataFrame(rows)
+    for q in ("rear_stiffness_kN_per_m", "front_stiffness_kN_per_m", "frequency_1_Hz", "frequency_2_Hz"):
+        if f"thesis_{q}" in out:
+            out[f"difference_{q}"] = out[f"ours_{q}"] - out[f"thesis_{q}"]
+    if "measured_frequency_1_Hz" in out:
+        for i in (1, 2):
+            out[f"ours_ratio_error_{i}"] = out[f"ours_frequency_{i}_Hz"] / out[f"measured_frequency_{i}_Hz"]
+            out[f"thesis_ratio_error_{i}"] = out[f"thesis_frequency_{i}_Hz"] / out[f"measured_frequency_{i}_Hz"]
+    return out
+
+
+def table_xx_statistics(table: pd.DataFrame) -> pd.DataFrame:
+    """Ratio-error statistics of Table XX per stiffness source (thesis §8.2).
+
+    Pools both natural frequencies of every tractor (ten ratios per source).
+
+    Returns
+    -------
+    DataFrame
+        ``stiffness_source, basis (thesis|ours), n, mean, sd, p_within_10, p_within_30``.
+    """
+    rows = []
+    for source, g in table.groupby("stiffness_source", sort=False):
+        for basis in ("thesis", "ours"):
+            cols = [f"{basis}_ratio_error_1", f"{basis}_ratio_error_2"]
+            if not all(c in g for c in cols):
+                continue
+            r = np.concatenate([g[c].to_numpy(float) for c in cols])
+            rows.append({"stiffness_source": source, "basis": basis, **ratio_error_statistics(r)})
+    return pd.DataFrame(rows)

@@ -1,0 +1,354 @@
+"""Single-wheel carriage rolling over a rough track (thesis ch. 6, Fig. 50).
+
+Model (§6.3): carriage mass ``M`` on a Kelvin-Voigt tyre (stiffness ``K``, damping
+``C``) in contact with the (enveloped) ground elevation ``u(t)``, plus parasitic
+linkage damping ``C_p`` (1 kNs/m, estimated from free decay, §6.3). With ``z`` the
+carriage displacement from static equilibrium (upward)::
+
+    M z'' = K (u - z) + C (u' - z') - C_p z'                         (linear, thesis)
+
+Three solution paths:
+
+* :func:`simulate_linear` - exact discretisation (first-order hold on ``u`` and
+  ``u'``, :func:`scipy.signal.cont2discrete`), exact for piecewise-linear input;
+* :func:`simulate_nonlinear` - fixed-step 4th-order Runge-Kutta at 1 ms (the thesis
+  used Runge-Kutta-Nystrom at about 1 ms) adding what the linear model leaves out:
+  tyre lift-off (total tyre force cannot pull) and Coulomb friction in the linkage
+  (smoothed sign, ``tanh(v/v_s)``); vectorised over a batch of runs;
+* :func:`simulate_ivp` - :func:`scipy.integrate.solve_ivp` on the same equations
+  (reference for tests and ``bench/bench_carriage.py``);
+* :func:`acceleration_response` / :func:`response_psd` - frequency domain,
+  ``S_a(f) = |H(f)|^2 G(n)/v`` with ``n = f/v``.
+
+The profile is interpolated with a cubic spline (§6.3). SI units throughout.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import integrate, interpolate, signal
+
+__all__ = [
+    "GRAVITY_M_S2",
+    "PARASITIC_DAMPING_N_S_PER_M",
+    "Carriage",
+    "ground_input",
+    "state_space",
+    "simulate_linear",
+    "simulate_nonlinear",
+    "simulate_ivp",
+    "acceleration_response",
+    "response_psd",
+    "damped_natural_frequency",
+]
+
+GRAVITY_M_S2 = 9.81
+#: Linkage damping estimated by the thesis from free decay on coil springs (§6.3).
+PARASITIC_DAMPING_N_S_PER_M = 1000.0
+
+
+@dataclass(frozen=True)
+class Carriage:
+    """Parameters of the single-wheel carriage (thesis Fig. 50).
+
+    Any field may be an array (one element per run) for batched nonlinear runs.
+
+    Attributes
+    ----------
+    mass_kg : float
+        Carriage mass M on the tyre, kg.
+    stiffness_N_per_m : float
+        Tyre vertical stiffness K, N/m.
+    damping_N_s_per_m : float
+        Tyre vertical damping C, N s/m.
+    parasitic_damping_N_s_per_m : float
+        Viscous linkage damping C_p, N s/m (thesis: 1000).
+    coulomb_friction_N : float
+        Dry friction in the linkage, N (nonlinear path only; thesis §6.5.2 suspects it).
+    """
+
+    mass_kg: float
+    stiffness_N_per_m: float
+    damping_N_s_per_m: float
+    parasitic_damping_N_s_per_m: float = PARASITIC_DAMPING_N_S_PER_M
+    coulomb_friction_N: float = 0.0
+
+    @property
+    def natural_frequency_Hz(self) -> float:
+        """Undamped natural frequency sqrt(K/M)/2pi, Hz."""
+        return math.sqrt(self.stiffness_N_per_m / self.mass_kg) / (2 * math.pi)
+
+    @property
+    def damping_ratio(self) -> float:
+        """Viscous damping ratio (C + C_p)/(2 sqrt(K M))."""
+        return (self.damping_N_s_per_m + self.parasitic_damping_N_s_per_m) / (
+            2 * math.sqrt(self.stiffness_N_per_m * self.mass_kg)
+        )
+
+
+def damped_natural_frequency(carriage: Carriage) -> float:
+    """Damped natural frequency f_n sqrt(1 - zeta^2), Hz."""
+    z = carriage.damping_ratio
+    return carriage.natural_frequency_Hz * math.sqrt(max(1 - z * z, 0.0))
+
+
+def ground_input(
+    x_m, elevation_m, speed_m_s: float, dt_s: float, x_start_m: float, x_end_m: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Time histories of ground elevation and its rate under a wheel at constant speed.
+
+    The profile is interpolated with a cubic spline (thesis §6.3), so ``u`` and
+    ``u' = v dh/dx`` are smooth between survey points.
+
+    Parameters
+    ----------
+    x_m, elevation_m : array_like
+        Profile, m.
+    speed_m_s : float
+        Rolling speed v, m/s.
+    dt_s : float
+        Time step, s.
+    x_start_m, x_end_m : float
+        Stretch of profile travelled, m.
+
+    Returns
+    -------
+    t_s, u_m, u_dot_m_s : ndarray
+    """
+    spline = interpolate.CubicSpline(np.asarray(x_m, float), np.asarray(elevation_m, float))
+    n = int(math.floor((x_end_m - x_start_m) / (speed_m_s * dt_s))) + 1
+    t = np.arange(n) * dt_s
+    x = x_start_m + speed_m_s * t
+    return t, spline(x), speed_m_s * spline(x, 1)
+
+
+def state_space(c: Carriage) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Continuous state space of the linear carriage.
+
+    State ``[z, z']``, inputs ``[u, u']``, outputs ``[z, z', z'']``.
+    """
+    m, k, cc, cp = c.mass_kg, c.stiffness_N_per_m, c.damping_N_s_per_m, c.parasitic_damping_N_s_per_m
+    a = np.array([[0.0, 1.0], [-k / m, -(cc + cp) / m]])
+    b = np.array([[0.0, 0.0], [k / m, cc / m]])
+    out_c = np.vstack([np.eye(2), a[1]])
+    out_d = np.vstack([np.zeros((2, 2)), b[1]])
+    return a, b, out_c, out_d
+
+
+def simulate_linear(
+    carriage: Carriage, u_m, u_dot_m_s, dt_s: float, z0_m: float = 0.0, v0_m_s: float = 0.0
+) -> dict[str, np.ndarray]:
+    """Exact discretisation of the linear carriage (thesis §6.3 model).
+
+    First-order hold (:func:`scipy.signal.cont2discrete`, ``method="foh"``) on both
+    inputs: exact when ``u`` and ``u'`` vary linearly over each step. The discrete
+    system is diagonalised and each mode run with :func:`scipy.signal.lfilter`, so
+    the cost is a few vectorised passes.
+
+    Parameters
+    ----------
+    carriage : Carriage
+        Scalar parameters.
+    u_m, u_dot_m_s : array_like
+        Ground elevation (m) and rate (m/s) at ``t = k dt``.
+    dt_s : float
+        Step, s.
+    z0_m, v0_m_s : float
+        Initial displacement and velocity of the mass, m and m/s.
+
+    Returns
+    -------
+    dict
+        ``z_m``, ``v_m_s``, ``a_m_s2`` arrays like ``u_m``.
+    """
+    a, b, c, d = state_space(carriage)
+    ad, bd, cd, dd, _ = signal.cont2discrete((a, b, c, d), dt_s, method="foh")
+    w = np.vstack([np.asarray(u_m, float), np.asarray(u_dot_m_s, float)])  # (2, n)
+    # foh state xi_k = x_k - Gamma2 w_k; Dd - D = C Gamma2 recovers Gamma2 from the z, z' rows
+    gamma2 = (dd - d)[:2]
+    xi0 = np.array([z0_m, v0_m_s]) - gamma2 @ w[:, 0]
+    mu, vecs = np.linalg.eig(ad)
+    inv = np.linalg.inv(vecs)
+    g = inv @ bd @ w  # modal forcing, (2, n) complex
+    n = w.shape[1]
+    q = np.empty((2, n), dtype=complex)
+    q0 = inv @ xi0
+    powers = np.arange(n)
+    for i in range(2):
+        p = signal.lfilter([1.0], [1.0, -mu[i]], g[i])
+        q[i, 0] = 0.0
+        q[i, 1:] = p[:-1]
+        q[i] += q0[i] * mu[i] ** powers
+    y = (cd @ (vecs @ q)).real + dd @ w
+    return {"z_m": y[0], "v_m_s": y[1], "a_m_s2": y[2]}
+
+
+def _half_samples(u, u_dot):
+    u = np.atleast_2d(np.asarray(u, float))
+    ud = np.atleast_2d(np.asarray(u_dot, float))
+    if u.shape[-1] % 2 == 0:
+        raise ValueError("nonlinear inputs must be sampled at dt/2 (odd length)")
+    return u, ud
+
+
+def simulate_nonlinear(
+    carriage: Carriage,
+    u_half_m,
+    u_dot_half_m_s,
+    dt_s: float = 1e-3,
+    lift_off: bool = True,
+    friction_velocity_m_s: float = 0.005,
+    gravity_m_s2: float = GRAVITY_M_S2,
+) -> dict[str, np.ndarray]:
+    """Fixed-step RK4 carriage with tyre lift-off and Coulomb linkage friction.
+
+    ``M z'' = F_t + F_l`` with ``F_t = max(K (u - z) + C (u' - z'), -M g)`` when
+    ``lift_off`` (the total tyre force ``M g + F_t`` cannot pull the carriage down)
+    and ``F_l = -C_p z' - F_c tanh(z'/v_s)``.
+
+    Parameters
+    ----------
+    carriage : Carriage
+        Scalars or arrays of shape ``(n_runs,)`` (batched).
+    u_half_m, u_dot_half_m_s : array_like
+        Input sampled at ``dt/2``: shape ``(2 N - 1,)`` or ``(n_runs, 2 N - 1)``.
+    dt_s : float
+        Integration step, s (1 ms as the thesis).
+    lift_off : bool
+        Allow the tyre to leave the ground.
+    friction_velocity_m_s : float
+        Smoothing velocity v_s of the Coulomb friction, m/s.
+
+    Returns
+    -------
+    dict
+        ``z_m``, ``v_m_s``, ``a_m_s2``, ``lift_off_fraction`` (per run); arrays of
+        shape ``(N,)`` or ``(n_runs, N)``.
+    """
+    u, ud = _half_samples(u_half_m, u_dot_half_m_s)
+    squeeze = np.ndim(u_half_m) == 1
+    runs = u.shape[0]
+    shape = (runs,)
+    m = np.broadcast_to(np.asarray(carriage.mass_kg, float), shape)
+    k = np.broadcast_to(np.asarray(carriage.stiffness_N_per_m, float), shape)
+    c = np.broadcast_to(np.asarray(carriage.damping_N_s_per_m, float), shape)
+    cp = np.broadcast_to(np.asarray(carriage.parasitic_damping_N_s_per_m, float), shape)
+    fc = np.broadcast_to(np.asarray(carriage.coulomb_friction_N, float), shape)
+    floor = -m * gravity_m_s2 if lift_off else np.full(shape, -np.inf)
+    inv_m = 1.0 / m
+    vs = friction_velocity_m_s
+
+    def accel(z, v, uu, uud):
+        ft = np.maximum(k * (uu - z) + c * (uud - v), floor)
+        return (ft - cp * v - fc * np.tanh(v / vs)) * inv_m, ft
+
+    n = (u.shape[1] + 1) // 2
+    z_out = np.empty((runs, n))
+    v_out = np.empty((runs, n))
+    a_out = np.empty((runs, n))
+    off = np.zeros(runs)
+    z = np.zeros(runs)
+    v = np.zeros(runs)
+    h = dt_s
+    for i in range(n):
+        j = 2 * i
+        a1, ft = accel(z, v, u[:, j], ud[:, j])
+        z_out[:, i], v_out[:, i], a_out[:, i] = z, v, a1
+        off += ft <= floor
+        if i == n - 1:
+            break
+        zb, vb = z + 0.5 * h * v, v + 0.5 * h * a1
+        a2, _ = accel(zb, vb, u[:, j + 1], ud[:, j + 1])
+        zc, vc = z + 0.5 * h * vb, v + 0.5 * h * a2
+        a3, _ = accel(zc, vc, u[:, j + 1], ud[:, j + 1])
+        zd, vd = z + h * vc, v + h * a3
+        a4, _ = accel(zd, vd, u[:, j + 2], ud[:, j + 2])
+        z = z + h / 6.0 * (v + 2 * vb + 2 * vc + vd)
+        v = v + h / 6.0 * (a1 + 2 * a2 + 2 * a3 + a4)
+    out = {"z_m": z_out, "v_m_s": v_out, "a_m_s2": a_out, "lift_off_fraction": off / n}
+    if squeeze:
+        out = {kk: vv[0] for kk, vv in out.items()}
+    return out
+
+
+def simulate_ivp(
+    carriage: Carriage,
+    x_m,
+    elevation_m,
+    speed_m_s: float,
+    t_end_s: float,
+    dt_out_s: float = 1e-3,
+    x_start_m: float = 0.0,
+    lift_off: bool = False,
+    rtol: float = 1e-9,
+    atol: float = 1e-12,
+    max_step_s: float = 2e-3,
+) -> dict[str, np.ndarray]:
+    """The carriage integrated by :func:`scipy.integrate.solve_ivp` (DOP853).
+
+    Same equations as :func:`simulate_nonlinear` (without friction smoothing when
+    ``coulomb_friction_N`` is 0 the model is the linear one), the spline evaluated
+    inside the right-hand side. The ground elevation is taken relative to its value
+    at ``x_start_m`` and the carriage starts at rest at static equilibrium.
+
+    Returns
+    -------
+    dict
+        ``t_s``, ``z_m``, ``v_m_s``, ``a_m_s2`` at multiples of ``dt_out_s``.
+    """
+    spline = interpolate.CubicSpline(np.asarray(x_m, float), np.asarray(elevation_m, float))
+    ds = spline.derivative()
+    u0 = float(spline(x_start_m))
+    m, k, c = carriage.mass_kg, carriage.stiffness_N_per_m, carriage.damping_N_s_per_m
+    cp, fc = carriage.parasitic_damping_N_s_per_m, carriage.coulomb_friction_N
+    floor = -m * GRAVITY_M_S2 if lift_off else -np.inf
+
+    def accel(t, z, v):
+        x = x_start_m + speed_m_s * t
+        ft = max(k * (float(spline(x)) - u0 - z) + c * (speed_m_s * float(ds(x)) - v), floor)
+        return (ft - cp * v - fc * math.tanh(v / 0.005)) / m
+
+    def rhs(t, y):
+        return [y[1], accel(t, y[0], y[1])]
+
+    t_eval = np.arange(int(math.floor(t_end_s / dt_out_s + 1e-9)) + 1) * dt_out_s
+    sol = integrate.solve_ivp(
+        rhs, (0.0, t_eval[-1]), [0.0, 0.0], method="DOP853", t_eval=t_eval, rtol=rtol, atol=atol, max_step=max_step_s
+    )
+    acc = np.array([accel(t, z, v) for t, z, v in zip(sol.t, sol.y[0], sol.y[1])])
+    return {"t_s": sol.t, "z_m": sol.y[0], "v_m_s": sol.y[1], "a_m_s2": acc}
+
+
+def acceleration_response(carriage: Carriage, frequency_Hz) -> np.ndarray:
+    """Complex acceleration per unit ground displacement, H(f) = z''/u, 1/s^2.
+
+    ``H = -w^2 (K + j w C) / (K - M w^2 + j w (C + C_p))``.
+    """
+    w = 2 * math.pi * np.asarray(frequency_Hz, dtype=float)
+    k, c, m, cp = (
+        carriage.stiffness_N_per_m,
+        carriage.damping_N_s_per_m,
+        carriage.mass_kg,
+        carriage.parasitic_damping_N_s_per_m,
+    )
+    return -(w**2) * (k + 1j * w * c) / (k - m * w**2 + 1j * w * (c + cp))
+
+
+def response_psd(
+    carriage: Carriage, n_cycles_per_m, profile_psd_m3, speed_m_s: float
+) -> tuple[np.ndarray, np.ndarray]:
+    """Acceleration PSD from a profile spectrum (frequency-domain path).
+
+    ``f = n v``, ``G_u(f) = G(n)/v`` and ``S_a(f) = |H(f)|^2 G_u(f)``.
+
+    Returns
+    -------
+    f_Hz, psd_m2_s4_per_Hz : ndarray
+    """
+    n = np.asarray(n_cycles_per_m, dtype=float)
+    f = n * speed_m_s
+    g = np.asarray(profile_psd_m3, dtype=float) / speed_m_s
+    return f, np.abs(acceleration_response(carriage, f)) ** 2 * g
