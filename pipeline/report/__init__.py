@@ -1,1 +1,1 @@
-"""report"""
+"""HTML report rendering: jinja2 templates in ``reports/``, output in ``build/reports/``."""

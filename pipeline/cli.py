@@ -1,0 +1,196 @@
+"""The ``tyrelab`` command line.
+
+Verbs (a stable contract; see docs/architecture.md):
+
+- ``generate``             write a seeded virtual campaign
+- ``run``                  every stage: raw -> warehouse -> report
+- ``ingest``, ``analyse``, ... one stage
+- ``sql``                  read-only query of the warehouse
+- ``analyze-run``          K and C of one recording, as JSON
+- ``estimate-stiffness``   the empirical formula of thesis §4.5.3
+- ``natural-frequencies``  bounce/pitch frequencies of a tractor (thesis ch. 8)
+
+Exit codes: 0 success; 3 some runs were quarantined; 2 usage or input error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+import sys
+from pathlib import Path
+
+from . import __version__
+
+EXIT_OK, EXIT_USAGE, EXIT_QUARANTINE = 0, 2, 3
+
+log = logging.getLogger("tyrelab")
+
+
+def _context(args):
+    from .stages.base import Context
+
+    return Context(
+        raw=Path(args.raw),
+        build=Path(args.build),
+        force=getattr(args, "force", False),
+        jobs=getattr(args, "jobs", None) or Context().jobs,
+        executor=getattr(args, "executor", "local"),
+        scheduler=getattr(args, "scheduler", None),
+    )
+
+
+def cmd_generate(args) -> int:
+    from .generate import generate_campaign
+
+    summary = generate_campaign(Path(args.out), scale=args.scale, seed=args.seed)
+    log.info("generate: %s", json.dumps(summary, default=str))
+    return EXIT_OK
+
+
+def cmd_run(args) -> int:
+    from .stages import run_pipeline
+
+    results = run_pipeline(_context(args))
+    return EXIT_QUARANTINE if any(r.n_quarantined for r in results) else EXIT_OK
+
+
+def cmd_stage(args) -> int:
+    from .stages import run_stage
+
+    result = run_stage(args.stage, _context(args))
+    return EXIT_QUARANTINE if result.n_quarantined else EXIT_OK
+
+
+def cmd_sql(args) -> int:
+    from .warehouse import WriteRefused, query
+
+    try:
+        df = query(Path(args.build) / "warehouse.duckdb", args.query)
+    except WriteRefused as exc:
+        print(f"tyrelab sql: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except FileNotFoundError as exc:
+        print(f"tyrelab sql: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except Exception as exc:  # noqa: BLE001 - DuckDB errors are the user's query errors
+        print(f"tyrelab sql: {type(exc).__name__}: {str(exc).splitlines()[0]}", file=sys.stderr)
+        return EXIT_USAGE
+    if args.format == "csv":
+        sys.stdout.write(df.to_csv(index=False))
+    elif args.format == "json":
+        sys.stdout.write(df.to_json(orient="records", date_format="iso", double_precision=15) + "\n")
+    else:
+        sys.stdout.write(df.to_string(index=False) + "\n")
+    return EXIT_OK
+
+
+def cmd_analyze_run(args) -> int:
+    from .stages.analyse import analyse_recording
+    from .stages.ingest import RunFileError
+
+    try:
+        out = analyse_recording(Path(args.file), args.axle_mass)
+    except RunFileError as exc:
+        print(f"tyrelab analyze-run: {args.file}: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    print(json.dumps(out, indent=2))
+    return EXIT_OK
+
+
+def cmd_estimate_stiffness(args) -> int:
+    from .tyre.sizes import TyreSizeError, parse_tyre_size
+    from .tyre.stiffness import estimate_tyre_stiffness
+
+    try:
+        size = parse_tyre_size(args.size)
+        k = estimate_tyre_stiffness(
+            size, args.pressure, args.age, undriven_front=args.front_undriven, water_ballast=args.water_ballast
+        )
+    except (TyreSizeError, ValueError) as exc:
+        print(f"tyrelab estimate-stiffness: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    out = {
+        "size": size.designation,
+        "section_width_in": size.section_width_in,
+        "rim_diameter_in": size.rim_diameter_in,
+        "pressure_bar": args.pressure,
+        "age_years": args.age,
+        "rule": "front undriven K = 134/(7.5*18) W R P (thesis §8.2)"
+        if args.front_undriven
+        else "K = 172 - 1.77 R + 5.6 A + 0.34 W R P (thesis §4.5.3)",
+        "water_ballast": args.water_ballast,
+        "stiffness_kN_per_m": round(k, 3),
+    }
+    if args.json:
+        print(json.dumps(out, indent=2))
+    else:
+        print(f"{k:.1f} kN/m")
+    return EXIT_OK
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The argument parser (exposed for tests and documentation)."""
+    from .stages import ORDER
+
+    p = argparse.ArgumentParser(prog="tyrelab", description=__doc__.split("\n\n")[0])
+    p.add_argument("--version", action="version", version=f"tyrelab {__version__}")
+    p.add_argument("-q", "--quiet", action="store_true", help="only warnings and errors")
+    sub = p.add_subparsers(dest="command", required=True)
+
+    g = sub.add_parser("generate", help="write a seeded virtual campaign (manifest.csv + runs)")
+    g.add_argument("--out", required=True, help="campaign folder to write")
+    g.add_argument("--scale", choices=["small", "full"], default="small")
+    g.add_argument("--seed", type=int, default=1991)
+    g.set_defaults(func=cmd_generate)
+
+    def io_options(sp):
+        sp.add_argument("--raw", default="raw", help="raw data folder (default raw/)")
+        sp.add_argument("--build", default="build", help="output folder (default build/)")
+        sp.add_argument("--force", action="store_true", help="recompute everything")
+        sp.add_argument("--jobs", type=int, default=None, help="worker processes (default: cores)")
+        sp.add_argument("--executor", choices=["local", "dask"], default="local")
+        sp.add_argument("--scheduler", default=None, help="dask scheduler address (with --executor dask)")
+
+    r = sub.add_parser("run", help="run every stage: raw -> warehouse -> report")
+    io_options(r)
+    r.set_defaults(func=cmd_run)
+    for name in ORDER:
+        s = sub.add_parser(name, help=f"run the {name} stage only")
+        io_options(s)
+        s.set_defaults(func=cmd_stage, stage=name)
+
+    q = sub.add_parser("sql", help="read-only SQL query of the warehouse")
+    q.add_argument("query", help='e.g. "SELECT * FROM table_iii"')
+    q.add_argument("--build", default="build")
+    q.add_argument("--format", choices=["table", "csv", "json"], default="table")
+    q.set_defaults(func=cmd_sql)
+
+    a = sub.add_parser("analyze-run", help="K and C of one recording (raw format v1), as JSON")
+    a.add_argument("file")
+    a.add_argument("--axle-mass", type=float, required=True, help="axle+wheel+tyre mass M_a, kg")
+    a.set_defaults(func=cmd_analyze_run)
+
+    e = sub.add_parser("estimate-stiffness", help="rolling tyre stiffness from size, pressure and age (kN/m)")
+    e.add_argument("--size", required=True, help="tyre size, e.g. 13.6R38")
+    e.add_argument("--pressure", type=float, required=True, help="inflation pressure, bar")
+    e.add_argument("--age", type=float, default=1.0, help="tyre age, years (default 1)")
+    e.add_argument("--front-undriven", action="store_true", help="undriven ribbed front tyre rule (thesis §8.2)")
+    e.add_argument("--water-ballast", action="store_true", help="water-ballasted tyre (+25 %%)")
+    e.add_argument("--json", action="store_true", help="print JSON with the inputs")
+    e.set_defaults(func=cmd_estimate_stiffness)
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``tyrelab`` console script."""
+    args = build_parser().parse_args(argv)
+    logging.basicConfig(
+        level=logging.WARNING if args.quiet else logging.INFO, format="%(message)s", stream=sys.stderr
+    )
+    return args.func(args)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,68 @@
+"""Render report pages from the warehouse with jinja2 (autoescaped)."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+from datetime import datetime, timezone
+from pathlib import Path
+
+import jinja2
+import numpy as np
+import pandas as pd
+
+from .. import __version__
+
+#: Templates live in the repository's ``reports/`` folder.
+TEMPLATE_DIR = Path(__file__).resolve().parents[2] / "reports"
+
+
+def environment() -> jinja2.Environment:
+    """The jinja2 environment: templates from ``reports/``, HTML autoescaping on."""
+    env = jinja2.Environment(
+        loader=jinja2.FileSystemLoader(TEMPLATE_DIR),
+        autoescape=jinja2.select_autoescape(["html", "j2"], default=True),
+        undefined=jinja2.StrictUndefined,
+        trim_blocks=True,
+        lstrip_blocks=True,
+    )
+    env.filters["num"] = format_number
+    return env
+
+
+def format_number(value, digits: int = 3) -> str:
+    """Format a cell: numbers to ``digits`` significant decimals, blanks for missing."""
+    if value is None or (isinstance(value, float) and math.isnan(value)) or value is pd.NA:
+        return "–"
+    if isinstance(value, (bool, np.bool_)):
+        return "yes" if value else "no"
+    if isinstance(value, (int, np.integer)):
+        return str(int(value))
+    if isinstance(value, (float, np.floating)):
+        v = float(value)
+        if v != 0 and (abs(v) >= 1e5 or abs(v) < 1e-3):
+            return f"{v:.{digits}g}"
+        return f"{v:,.{digits}f}".rstrip("0").rstrip(".") if "." in f"{v:.{digits}f}" else f"{v:,.0f}"
+    return str(value)
+
+
+def code_version() -> str:
+    """tyrelab version plus the git commit when run from a checkout."""
+    try:
+        sha = subprocess.run(
+            ["git", "rev-parse", "--short", "HEAD"], cwd=TEMPLATE_DIR.parent, capture_output=True, text=True, timeout=5
+        ).stdout.strip()
+    except (OSError, subprocess.SubprocessError):
+        sha = ""
+    return f"{__version__}" + (f" ({sha})" if sha else "")
+
+
+def provenance(raw: Path, campaigns: list[str], seeds: list[str]) -> dict:
+    """Data set, generator seed or raw source, code version and time for a page footer."""
+    return {
+        "raw": str(raw),
+        "campaigns": campaigns,
+        "seeds": seeds,
+        "code_version": code_version(),
+        "generated_at": datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+    }

@@ -1,0 +1,229 @@
+"""Analyse: per run, the apparent mass, K and C, amplitude, coherence and QC.
+
+Reads the ``manifest`` table and the per-run Parquet files written by ingest,
+calls the estimators of :mod:`pipeline.measurement.apparent_mass` on batches
+of equal-length runs (vectorised), and writes the ``results`` table (one row
+per measurement run; calibration runs are the calibrate stage's).
+
+Both estimators are stored: the thesis' Welch H1 read at the excitation bin
+(``welch_*`` columns) and the phase-locked synchronous demodulation used
+downstream (``stiffness_kN_per_m``, ``damping_kN_s_per_m``).
+
+Incremental: a run whose ``input_hash`` (file SHA-256, manifest row and
+:data:`ANALYSIS_VERSION`) matches the previous ``results`` row is not
+re-analysed.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import time
+
+import numpy as np
+import pandas as pd
+import pyarrow.parquet as pq
+
+from ..measurement import apparent_mass as am
+from .base import Context, Progress, StageResult
+from .ingest import CHANNELS, check_run, read_run_file, write_quarantine
+
+#: Bump when the analysis changes in a way that changes results.
+ANALYSIS_VERSION = "1"
+#: Runs analysed together in one vectorised call.
+BATCH = 32
+#: Coherence below which a run is flagged (thesis §3.3.1: H "valid" only where data support it).
+MIN_COHERENCE = 0.9
+
+CONDITION_COLUMNS = [
+    "campaign", "run_id", "tyre_id", "kind", "speed_km_h", "pressure_bar", "load_kN",
+    "excitation_frequency_Hz", "amplitude_mm_pp", "torque_kNm", "surface", "axle_mass_kg", "recorded_on",
+]
+
+
+def input_hash(sha256: str, row_hash: str) -> str:
+    """Hash of everything a run's result depends on."""
+    return hashlib.sha256(f"{sha256}|{row_hash}|{ANALYSIS_VERSION}".encode()).hexdigest()
+
+
+def load_signals(paths: list[str]) -> tuple[np.ndarray, np.ndarray]:
+    """Read runs of equal length; return (accelerations (runs, 2, n), load beams (runs, 4, n))."""
+    accel, beams = [], []
+    for p in paths:
+        t = pq.read_table(p, columns=CHANNELS)
+        cols = [t.column(c).to_numpy().astype(np.float64) for c in CHANNELS]
+        accel.append(cols[:2])
+        beams.append(cols[2:])
+    return np.asarray(accel), np.asarray(beams)
+
+
+def analyse_batch(accel: np.ndarray, beams: np.ndarray, axle_mass_kg: np.ndarray, sample_rate_Hz: float) -> pd.DataFrame:
+    """Analyse equal-length runs sampled at one rate.
+
+    Parameters
+    ----------
+    accel : ndarray, shape (runs, 2, n)
+        Left and right axle accelerations, m/s², upward positive.
+    beams : ndarray, shape (runs, 4, n)
+        Load-beam forces on the axle, N, upward positive.
+    axle_mass_kg : ndarray, shape (runs,)
+        Axle mass M_a, kg.
+    sample_rate_Hz : float
+        Sampling rate, Hz.
+
+    Returns
+    -------
+    DataFrame
+        One row per run: measured frequency, H, K, C (both estimators),
+        measured amplitude and coherence, in thesis units.
+    """
+    force = am.tyre_force(accel[:, 0], accel[:, 1], beams, axle_mass_kg)
+    a = accel.mean(axis=1)
+    fe = am.excitation_frequency(a, sample_rate_Hz)
+    out = pd.DataFrame(index=range(len(fe)))
+    found = np.isfinite(fe)
+    cols = {k: np.full(len(fe), np.nan) for k in (
+        "excitation_frequency_measured_Hz",
+        "apparent_mass_real_kg", "apparent_mass_imag_kg", "stiffness_N_per_m", "damping_N_s_per_m",
+        "welch_stiffness_N_per_m", "welch_damping_N_s_per_m", "welch_frequency_Hz", "coherence",
+        "amplitude_measured_mm_pp", "amplitude_measured_rms_mm", "acceleration_amplitude_m_s2",
+    )}
+    if found.any():
+        d = am.apparent_mass_demodulation(force[found], a[found], sample_rate_Hz, fe[found])
+        w = am.apparent_mass_welch(force[found], a[found], sample_rate_Hz, fe[found])
+        cols["excitation_frequency_measured_Hz"][found] = d.frequency_Hz
+        cols["apparent_mass_real_kg"][found] = d.apparent_mass_kg.real
+        cols["apparent_mass_imag_kg"][found] = d.apparent_mass_kg.imag
+        cols["stiffness_N_per_m"][found] = d.stiffness_N_per_m
+        cols["damping_N_s_per_m"][found] = d.damping_N_s_per_m
+        cols["welch_stiffness_N_per_m"][found] = w.stiffness_N_per_m
+        cols["welch_damping_N_s_per_m"][found] = w.damping_N_s_per_m
+        cols["welch_frequency_Hz"][found] = w.frequency_Hz
+        cols["coherence"][found] = w.coherence
+        cols["amplitude_measured_mm_pp"][found] = 2e3 * d.displacement_amplitude_m
+        cols["amplitude_measured_rms_mm"][found] = 1e3 * d.displacement_amplitude_m / np.sqrt(2)
+        cols["acceleration_amplitude_m_s2"][found] = d.acceleration_amplitude_m_s2
+    for k, v in cols.items():
+        out[k] = v
+    out["stiffness_kN_per_m"] = out["stiffness_N_per_m"] / 1e3
+    out["damping_kN_s_per_m"] = out["damping_N_s_per_m"] / 1e3
+    out["welch_stiffness_kN_per_m"] = out["welch_stiffness_N_per_m"] / 1e3
+    out["welch_damping_kN_s_per_m"] = out["welch_damping_N_s_per_m"] / 1e3
+    return out
+
+
+def qc_reasons(row: pd.Series) -> list[str]:
+    """Basic QC of one analysed run: reasons it should not be used downstream."""
+    reasons = []
+    if not np.isfinite(row["excitation_frequency_measured_Hz"]):
+        reasons.append("excitation not found")
+    elif row["coherence"] < MIN_COHERENCE:
+        reasons.append(f"coherence {row['coherence']:.2f} < {MIN_COHERENCE} at the excitation frequency")
+    return reasons
+
+
+def run(ctx: Context) -> StageResult:
+    """Analyse every measurement run in ``manifest``; write ``results``."""
+    t0 = time.perf_counter()
+    res = StageResult("analyse")
+    manifest = ctx.read_table("manifest") if ctx.has_table("manifest") else pd.DataFrame()
+    if manifest.empty:
+        ctx.write_table("results", pd.DataFrame())
+        write_quarantine(ctx, "analyse", [])
+        res.seconds = time.perf_counter() - t0
+        return res
+    runs = manifest[manifest["kind"].fillna("measurement") == "measurement"].copy()
+    runs["input_hash"] = [input_hash(s, h) for s, h in zip(runs["sha256"], runs["row_hash"])]
+    previous = ctx.read_table("results") if ctx.has_table("results") and not ctx.force else pd.DataFrame()
+    reuse = (
+        previous[previous["input_hash"].isin(set(runs["input_hash"]))]
+        if not previous.empty and "input_hash" in previous
+        else pd.DataFrame()
+    )
+    todo = runs[~runs["input_hash"].isin(set(reuse["input_hash"]) if not reuse.empty else set())]
+    res.n_in = len(runs)
+    progress = Progress("analyse", len(todo), logger=ctx.log)
+    frames = []
+    for (_, fs), group in todo.groupby(["n_samples", "sample_rate_Hz"], sort=True):
+        for start in range(0, len(group), BATCH):
+            chunk = group.iloc[start : start + BATCH]
+            accel, beams = load_signals(chunk["run_path"].tolist())
+            out = analyse_batch(accel, beams, chunk["axle_mass_kg"].to_numpy(float), float(fs))
+            frames.append(pd.concat([chunk.reset_index(drop=True), out], axis=1))
+            progress.step(len(chunk))
+    new = pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
+    if not new.empty:
+        reasons = [qc_reasons(r) for _, r in new.iterrows()]
+        new["qc_ok"] = [not r for r in reasons]
+        new["qc_reasons"] = ["; ".join(r) for r in reasons]
+        new["rolling"] = new["speed_km_h"] > 0
+    results = pd.concat([df for df in (reuse, new) if not df.empty], ignore_index=True) if len(reuse) or len(new) else new
+    quarantine = []
+    if not results.empty:
+        results = results.sort_values("run_id", kind="stable").reset_index(drop=True)
+        keep = [c for c in CONDITION_COLUMNS if c in results] + [
+            c for c in results.columns if c not in CONDITION_COLUMNS and c not in manifest.columns
+        ] + ["input_hash"]
+        results = results[list(dict.fromkeys(keep))]
+        bad = results[~results["excitation_frequency_measured_Hz"].notna()]
+        quarantine = [
+            {"campaign": r["campaign"], "run_id": r["run_id"], "file": r["run_id"], "stage": "analyse", "reason": "excitation not found"}
+            for _, r in bad.iterrows()
+        ]
+        for q in quarantine:
+            ctx.log.error("%s: run %s: %s", q["campaign"], q["run_id"], q["reason"])
+    ctx.write_table("results", results)
+    write_quarantine(ctx, "analyse", quarantine)
+    res.n_ok = int(results["qc_ok"].sum()) if not results.empty else 0
+    res.n_quarantined = len(quarantine)
+    flagged = len(results) - res.n_ok - len(quarantine) if not results.empty else 0
+    res.message = f"{len(reuse)} reused, {len(new)} analysed" + (f", {flagged} flagged by QC" if flagged else "")
+    res.seconds = time.perf_counter() - t0
+    return res
+
+
+def analyse_recording(path, axle_mass_kg: float) -> dict:
+    """Analyse one recording in raw format v1; return a JSON-ready dict.
+
+    Keys: ``file``, ``sample_rate_Hz``, ``duration_s``,
+    ``excitation_frequency_Hz`` (measured), ``stiffness_N_per_m``,
+    ``damping_N_s_per_m``, ``stiffness_kN_per_m``, ``damping_kN_s_per_m``,
+    ``apparent_mass_real_kg``, ``apparent_mass_imag_kg`` (thesis convention),
+    ``amplitude_mm_pp``, ``amplitude_rms_mm``, ``coherence``, ``welch`` (the
+    thesis-method estimate), ``qc_ok``, ``qc_reasons``.
+
+    Raises
+    ------
+    pipeline.stages.ingest.RunFileError
+        If the file is unreadable or fails the raw-format checks.
+    """
+    df = read_run_file(path)
+    info = check_run(df, excitation_frequency_Hz=0.0)
+    accel = np.asarray([[df[c].to_numpy(float) for c in CHANNELS[:2]]])
+    beams = np.asarray([[df[c].to_numpy(float) for c in CHANNELS[2:]]])
+    row = analyse_batch(accel, beams, np.array([axle_mass_kg]), info.sample_rate_Hz).iloc[0]
+    reasons = qc_reasons(row)
+    num = lambda v: None if not np.isfinite(v) else float(v)  # noqa: E731
+    return {
+        "file": str(path),
+        "sample_rate_Hz": info.sample_rate_Hz,
+        "duration_s": info.duration_s,
+        "axle_mass_kg": axle_mass_kg,
+        "excitation_frequency_Hz": num(row["excitation_frequency_measured_Hz"]),
+        "stiffness_N_per_m": num(row["stiffness_N_per_m"]),
+        "damping_N_s_per_m": num(row["damping_N_s_per_m"]),
+        "stiffness_kN_per_m": num(row["stiffness_kN_per_m"]),
+        "damping_kN_s_per_m": num(row["damping_kN_s_per_m"]),
+        "apparent_mass_real_kg": num(row["apparent_mass_real_kg"]),
+        "apparent_mass_imag_kg": num(row["apparent_mass_imag_kg"]),
+        "amplitude_mm_pp": num(row["amplitude_measured_mm_pp"]),
+        "amplitude_rms_mm": num(row["amplitude_measured_rms_mm"]),
+        "coherence": num(row["coherence"]),
+        "estimator": "phase-locked synchronous demodulation",
+        "welch": {
+            "frequency_Hz": num(row["welch_frequency_Hz"]),
+            "stiffness_N_per_m": num(row["welch_stiffness_N_per_m"]),
+            "damping_N_s_per_m": num(row["welch_damping_N_s_per_m"]),
+        },
+        "qc_ok": not reasons,
+        "qc_reasons": reasons,
+    }

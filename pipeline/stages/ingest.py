@@ -1,0 +1,393 @@
+"""Ingest: validate raw campaigns against ``schemas/`` and write per-run Parquet.
+
+Reads every campaign below ``ctx.raw`` (a folder holding ``manifest.csv``),
+the tyre catalogue (``raw/tyres.csv`` shipped with tyrelab, extended by any
+``tyres.csv`` in ``ctx.raw`` or a campaign), and each run file. A bad run
+never stops the batch: it is written to the ``quarantine`` table with a
+one-line reason naming the file, and good runs go through.
+
+Incremental: a run whose file bytes (SHA-256, re-hashed only when size or
+mtime changed) and manifest row are unchanged is not re-read; outputs of runs
+that disappeared from the raw folder are removed.
+
+Outputs: ``runs/tyre_id=<id>/<run_key>.parquet`` (channels, float32),
+tables ``manifest``, ``tyres``, ``quarantine`` (rows of stage ``ingest``).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import re
+import time
+import urllib.parse
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pyarrow as pa
+import pyarrow.parquet as pq
+
+from .. import io
+from ..schema import field_names, load_schema, row_problems, validate_frame
+from ..tyre.sizes import TyreSizeError, parse_tyre_size
+from .base import Context, Progress, StageResult
+
+#: The built-in tyre catalogue (thesis Table II).
+BUILTIN_TYRES = Path(__file__).resolve().parents[2] / "raw" / "tyres.csv"
+
+#: Largest run file read, bytes; larger files are quarantined unread.
+MAX_RUN_FILE_BYTES = 512 * 1024**2
+
+#: Accepted sampling rates, Hz, and the minimum samples per excitation cycle.
+SAMPLE_RATE_RANGE_Hz = (32.0, 20000.0)
+MIN_SAMPLES_PER_CYCLE = 8
+#: Shortest usable run, s (at least a few dozen cycles at 1.5 Hz).
+MIN_DURATION_s = 10.0
+#: Allowed relative jitter of the sampling interval.
+MAX_DT_JITTER = 0.01
+
+CHANNELS = [
+    "accel_left_m_s2",
+    "accel_right_m_s2",
+    "load_beam_1_N",
+    "load_beam_2_N",
+    "load_beam_3_N",
+    "load_beam_4_N",
+]
+OPTIONAL_CHANNELS = ["force_plate_N"]
+
+
+class RunFileError(ValueError):
+    """A run file that cannot be used; the message is the one-line reason."""
+
+
+@dataclass(frozen=True)
+class RunInfo:
+    """What ingest learns from a valid run file."""
+
+    sample_rate_Hz: float
+    n_samples: int
+    duration_s: float
+    channels: tuple[str, ...]
+
+
+def discover_campaigns(raw: Path) -> list[Path]:
+    """Campaign folders: ``raw`` itself if it holds ``manifest.csv``, else every folder below that does."""
+    raw = Path(raw)
+    if (raw / "manifest.csv").is_file():
+        return [raw]
+    return sorted(p.parent for p in raw.rglob("manifest.csv") if p.is_file())
+
+
+def run_key(run_id: str) -> str:
+    """A file-name-safe, unique key for a run id."""
+    safe = re.sub(r"[^A-Za-z0-9._-]", "_", run_id)[:80]
+    if safe != run_id:
+        safe += "-" + hashlib.sha1(run_id.encode()).hexdigest()[:8]
+    return safe
+
+
+def tyre_partition(tyre_id: str) -> str:
+    """Hive partition folder name for a tyre (percent-encoded)."""
+    return "tyre_id=" + urllib.parse.quote(str(tyre_id), safe="")
+
+
+def load_catalogue(raw: Path, campaigns: list[Path]) -> tuple[pd.DataFrame, list[str]]:
+    """Merge the tyre catalogues; return (tyres with W and R, problems).
+
+    Later catalogues (``raw/tyres.csv``, then each campaign's) override
+    earlier rows with the same ``tyre_id``. A row whose size does not parse
+    is dropped with a one-line problem naming the file.
+    """
+    sources = [BUILTIN_TYRES]
+    for p in [Path(raw) / "tyres.csv", *[c / "tyres.csv" for c in campaigns]]:
+        if p.is_file() and p.resolve() not in {s.resolve() for s in sources}:
+            sources.append(p)
+    frames, problems = [], []
+    schema = load_schema("tyres")
+    for src in sources:
+        try:
+            df = pd.read_csv(src, dtype=str, keep_default_na=False, na_values=[""])
+        except Exception as exc:  # noqa: BLE001 - any unreadable catalogue is reported, not fatal
+            problems.append(f"{src}: unreadable tyre catalogue ({type(exc).__name__}: {exc})")
+            continue
+        issues = [p for p in validate_frame(df, {**schema, "additionalFields": True}) if "size" not in p]
+        if "tyre_id" not in df.columns or "size" not in df.columns:
+            problems.append(f"{src}: tyre catalogue needs columns tyre_id and size")
+            continue
+        problems.extend(f"{src}: {p}" for p in issues)
+        df["catalogue_file"] = str(src)
+        frames.append(df)
+    cat = pd.concat(frames, ignore_index=True).drop_duplicates("tyre_id", keep="last")
+    widths, rims, cons, ok = [], [], [], []
+    for _, row in cat.iterrows():
+        try:
+            s = parse_tyre_size(row["size"])
+        except TyreSizeError as exc:
+            problems.append(f"{row['catalogue_file']}: tyre {row['tyre_id']!r}: {exc}")
+            widths.append(np.nan), rims.append(np.nan), cons.append(None), ok.append(False)
+            continue
+        widths.append(s.section_width_in), rims.append(s.rim_diameter_in), cons.append(s.construction)
+        ok.append(True)
+    cat["section_width_in"] = widths
+    cat["rim_diameter_in"] = rims
+    if "construction" not in cat.columns:
+        cat["construction"] = cons
+    else:
+        cat["construction"] = cat["construction"].fillna(pd.Series(cons, index=cat.index))
+    cat["size_ok"] = ok
+    return cat.reset_index(drop=True), problems
+
+
+def read_run_file(path: Path, columns: list[str] | None = None) -> pd.DataFrame:
+    """Read a run file (``.parquet`` or ``.csv``) into a DataFrame.
+
+    Raises
+    ------
+    RunFileError
+        With a one-line reason if the file is missing, too large, truncated,
+        corrupt or of an unknown type.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise RunFileError("file not found")
+    size = path.stat().st_size
+    if size > MAX_RUN_FILE_BYTES:
+        raise RunFileError(f"file is {size / 1e9:.1f} GB, larger than the {MAX_RUN_FILE_BYTES / 1e6:.0f} MB limit")
+    if size == 0:
+        raise RunFileError("file is empty")
+    suffix = path.suffix.lower()
+    try:
+        if suffix == ".parquet":
+            pf = pq.ParquetFile(path)
+            wanted = None if columns is None else [c for c in columns if c in pf.schema_arrow.names]
+            return pf.read(columns=wanted).to_pandas()
+        if suffix == ".csv":
+            return pd.read_csv(path, usecols=lambda c: columns is None or c in columns)
+    except (pa.ArrowException, OSError, ValueError, UnicodeDecodeError, pd.errors.ParserError) as exc:
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise RunFileError(f"corrupt or truncated {suffix[1:]} file ({first})") from None
+    raise RunFileError(f"unknown file type {suffix!r} (expected .parquet or .csv)")
+
+
+def check_run(df: pd.DataFrame, excitation_frequency_Hz: float, sample_rate_Hz: float | None = None) -> RunInfo:
+    """Validate a run's channels; return its sampling facts.
+
+    Checks required channels, numeric finite samples, a strictly increasing
+    and regular time base, the sampling rate (accepted range, enough samples
+    per excitation cycle, agreement with the manifest's ``sample_rate_Hz``
+    when given) and a minimum duration.
+
+    Raises
+    ------
+    RunFileError
+        With a one-line reason.
+    """
+    missing = [c for c in ["time_s", *CHANNELS] if c not in df.columns]
+    if missing:
+        raise RunFileError(f"missing channel(s) {', '.join(missing)}")
+    present = ["time_s", *CHANNELS, *[c for c in OPTIONAL_CHANNELS if c in df.columns]]
+    for c in present:
+        values = pd.to_numeric(df[c], errors="coerce").to_numpy(dtype=float)
+        if np.isnan(values).any():
+            i = int(np.flatnonzero(np.isnan(values))[0])
+            raise RunFileError(f"channel {c} has a NaN or non-numeric sample at row {i}")
+        if np.isinf(values).any():
+            i = int(np.flatnonzero(np.isinf(values))[0])
+            raise RunFileError(f"channel {c} has an infinite sample at row {i}")
+    t = df["time_s"].to_numpy(dtype=float)
+    if t.size < 2:
+        raise RunFileError(f"only {t.size} sample(s)")
+    dt = np.diff(t)
+    if (dt <= 0).any():
+        i = int(np.flatnonzero(dt <= 0)[0])
+        raise RunFileError(f"time_s is not strictly increasing at row {i + 1}")
+    dt_med = float(np.median(dt))
+    jitter = np.abs(dt - dt_med) / dt_med
+    if (jitter > MAX_DT_JITTER).any():
+        i = int(np.flatnonzero(jitter > MAX_DT_JITTER)[0])
+        raise RunFileError(f"irregular sampling: interval at row {i + 1} is {dt[i]:.6g} s, median {dt_med:.6g} s")
+    fs = 1.0 / float(np.mean(dt))
+    if not SAMPLE_RATE_RANGE_Hz[0] <= fs <= SAMPLE_RATE_RANGE_Hz[1]:
+        raise RunFileError(f"sample rate {fs:.4g} Hz outside {SAMPLE_RATE_RANGE_Hz[0]:g}-{SAMPLE_RATE_RANGE_Hz[1]:g} Hz")
+    if sample_rate_Hz is not None and not np.isnan(sample_rate_Hz) and abs(fs / sample_rate_Hz - 1) > 0.005:
+        raise RunFileError(f"sample rate {fs:.4g} Hz does not match the manifest's {sample_rate_Hz:g} Hz")
+    if fs < MIN_SAMPLES_PER_CYCLE * excitation_frequency_Hz:
+        raise RunFileError(
+            f"sample rate {fs:.4g} Hz too low for {excitation_frequency_Hz:g} Hz excitation "
+            f"(need {MIN_SAMPLES_PER_CYCLE} samples per cycle)"
+        )
+    duration = float(t[-1] - t[0] + np.mean(dt))
+    if duration < MIN_DURATION_s:
+        raise RunFileError(f"run is {duration:.1f} s long, shorter than {MIN_DURATION_s:g} s (truncated?)")
+    return RunInfo(fs, int(t.size), duration, tuple(present))
+
+
+def _run_table(df: pd.DataFrame, run_id: str, channels: tuple[str, ...]) -> pa.Table:
+    cols = {"run_id": pa.array(np.full(len(df), run_id, dtype=object), pa.string()).dictionary_encode()}
+    cols["time_s"] = pa.array(df["time_s"].to_numpy(dtype=np.float64))
+    for c in channels:
+        if c != "time_s":
+            cols[c] = pa.array(pd.to_numeric(df[c]).to_numpy(dtype=np.float32))
+    return pa.table(cols)
+
+
+def _row_hash(row: pd.Series) -> str:
+    return hashlib.sha256(json.dumps({k: str(v) for k, v in row.items()}, sort_keys=True).encode()).hexdigest()
+
+
+def _read_manifest(path: Path) -> pd.DataFrame:
+    try:
+        return pd.read_csv(path, dtype=str, keep_default_na=False, na_values=[""])
+    except Exception as exc:  # noqa: BLE001 - reported as a one-line error
+        raise RunFileError(f"unreadable manifest ({type(exc).__name__}: {str(exc).strip()[:120]})") from None
+
+
+def run(ctx: Context) -> StageResult:
+    """Validate and convert every raw run below ``ctx.raw``; see the module docstring."""
+    t0 = time.perf_counter()
+    result = StageResult("ingest")
+    schema = load_schema("raw_manifest")
+    numeric = [f["name"] for f in schema["fields"] if f["type"] in ("number", "integer")]
+    campaigns = discover_campaigns(ctx.raw)
+    catalogue, cat_problems = load_catalogue(ctx.raw, campaigns)
+    for p in cat_problems:
+        ctx.log.error(p)
+    sizes_ok = dict(zip(catalogue["tyre_id"], catalogue["size_ok"]))
+
+    state_path = ctx.state / "ingest.json"
+    state = {} if ctx.force or not state_path.exists() else json.loads(state_path.read_text())
+    new_state: dict[str, dict] = {}
+    quarantine: list[dict] = []
+    rows: list[dict] = []
+    seen: dict[str, str] = {}
+
+    def reject(campaign: Path, run_id, file, reason: str) -> None:
+        where = campaign / file if isinstance(file, str) and file else campaign / "manifest.csv"
+        ctx.log.error("%s: %s", where, reason)
+        quarantine.append(
+            {"campaign": str(campaign), "run_id": run_id, "file": str(where), "stage": "ingest", "reason": reason}
+        )
+
+    todo: list[tuple[Path, pd.Series]] = []
+    for campaign in campaigns:
+        manifest_path = campaign / "manifest.csv"
+        try:
+            manifest = _read_manifest(manifest_path)
+        except RunFileError as exc:
+            reject(campaign, None, None, str(exc))
+            continue
+        missing = [c for c in field_names(schema, required_only=True) if c not in manifest.columns]
+        if missing:
+            reject(campaign, None, None, f"manifest lacks column(s) {', '.join(missing)}")
+            continue
+        listed = set()
+        _, by_row = row_problems(manifest, schema)
+        for i, row in manifest.iterrows():
+            run_id = row["run_id"] if isinstance(row["run_id"], str) else None
+            listed.add(str(row.get("file")))
+            problems = by_row.get(i, [])
+            if problems:
+                reject(campaign, run_id, row.get("file"), f"manifest row {i + 2}: " + "; ".join(problems))
+                continue
+            if run_id in seen:
+                reject(campaign, run_id, row["file"], f"duplicate run_id {run_id!r} (already in {seen[run_id]})")
+                continue
+            seen[run_id] = str(manifest_path)
+            if row["tyre_id"] not in sizes_ok:
+                reject(campaign, run_id, row["file"], f"unknown tyre_id {row['tyre_id']!r} (not in any tyres.csv)")
+                continue
+            if not sizes_ok[row["tyre_id"]]:
+                reject(campaign, run_id, row["file"], f"tyre {row['tyre_id']!r} has a size that does not parse")
+                continue
+            todo.append((campaign, row))
+        for f in sorted(campaign.iterdir()):
+            if f.suffix.lower() in (".parquet", ".csv") and f.name not in ("manifest.csv", "tyres.csv"):
+                if f.name not in listed and str(f.relative_to(campaign)) not in listed:
+                    reject(campaign, None, f.name, "file has no row in manifest.csv")
+
+    result.n_in = len(todo) + sum(1 for q in quarantine if q["run_id"] is not None)
+    progress = Progress("ingest", len(todo), logger=ctx.log)
+    runs_dir = ctx.parquet / "runs"
+    for campaign, row in todo:
+        run_id = row["run_id"]
+        src = campaign / row["file"]
+        out = runs_dir / tyre_partition(row["tyre_id"]) / f"{run_key(run_id)}.parquet"
+        row_hash = _row_hash(row)
+        prev = state.get(run_id)
+        try:
+            st = src.stat() if src.is_file() else None
+            if st is None:
+                raise RunFileError("file not found")
+            if prev and prev["size"] == st.st_size and prev["mtime_ns"] == st.st_mtime_ns:
+                sha = prev["sha256"]
+            else:
+                sha = io.file_sha256(src) if st.st_size <= MAX_RUN_FILE_BYTES else "too-large"
+            if prev and prev["sha256"] == sha and prev["row"] == row_hash and out.exists() and prev["out"] == str(out):
+                info = prev["info"]
+            else:
+                df = read_run_file(src)
+                fs_manifest = float(row["sample_rate_Hz"]) if "sample_rate_Hz" in row and pd.notna(row.get("sample_rate_Hz")) else None
+                ri = check_run(df, float(row["excitation_frequency_Hz"]), fs_manifest)
+                if prev and prev["out"] != str(out) and Path(prev["out"]).exists():
+                    Path(prev["out"]).unlink()
+                with io.atomic_path(out) as tmp:
+                    pq.write_table(_run_table(df, run_id, ri.channels), tmp, compression="zstd")
+                info = {"sample_rate_Hz": ri.sample_rate_Hz, "n_samples": ri.n_samples, "duration_s": ri.duration_s}
+            new_state[run_id] = {
+                "size": st.st_size, "mtime_ns": st.st_mtime_ns, "sha256": sha,
+                "row": row_hash, "out": str(out), "info": info,
+            }
+            rec = {c: row.get(c) for c in manifest_columns(schema, row)}
+            rec.update(campaign=str(campaign), sha256=sha, row_hash=row_hash, run_path=str(out), **info)
+            rows.append(rec)
+        except RunFileError as exc:
+            reject(campaign, run_id, row["file"], str(exc))
+        progress.step()
+
+    # Remove outputs of runs that are gone or now invalid.
+    for run_id, prev in state.items():
+        if run_id not in new_state and Path(prev["out"]).exists():
+            Path(prev["out"]).unlink()
+
+    manifest_df = pd.DataFrame(rows)
+    if not manifest_df.empty:
+        for c in numeric:
+            if c in manifest_df:
+                manifest_df[c] = pd.to_numeric(manifest_df[c])
+        if "kind" not in manifest_df:
+            manifest_df["kind"] = "measurement"
+        manifest_df["kind"] = manifest_df["kind"].fillna("measurement")
+        manifest_df = manifest_df.sort_values("run_id", kind="stable").reset_index(drop=True)
+    ctx.write_table("manifest", manifest_df)
+    ctx.write_table("tyres", catalogue.drop(columns=["catalogue_file"]))
+    write_quarantine(ctx, "ingest", quarantine)
+    io.write_text_atomic(json.dumps(new_state, sort_keys=True), state_path)
+
+    result.n_ok = len(rows)
+    result.n_quarantined = sum(1 for q in quarantine if q["run_id"] is not None)
+    unlisted = sum(1 for q in quarantine if q["run_id"] is None)
+    if unlisted:
+        result.message = f"{unlisted} file/manifest problem(s) without a run id"
+    result.seconds = time.perf_counter() - t0
+    return result
+
+
+def manifest_columns(schema: dict, row: pd.Series) -> list[str]:
+    """Manifest columns to carry into the ``manifest`` table: the schema's, then any extras."""
+    names = field_names(schema)
+    return names + [c for c in row.index if c not in names]
+
+
+QUARANTINE_COLUMNS = ["campaign", "run_id", "file", "stage", "reason"]
+
+
+def write_quarantine(ctx: Context, stage: str, entries: list[dict]) -> None:
+    """Replace the quarantine rows of ``stage`` with ``entries`` (other stages' rows are kept)."""
+    old = ctx.read_table("quarantine") if ctx.has_table("quarantine") else pd.DataFrame(columns=QUARANTINE_COLUMNS)
+    old = old[old["stage"] != stage]
+    new = pd.DataFrame(entries, columns=QUARANTINE_COLUMNS)
+    both = pd.concat([df for df in (old, new) if not df.empty], ignore_index=True) if len(old) or len(new) else new
+    ctx.write_table("quarantine", both.astype({"run_id": "string", "campaign": "string", "file": "string"}))

@@ -1,0 +1,120 @@
+import numpy as np
+import pytest
+
+from pipeline.measurement import apparent_mass as am
+from synthetic import CHANNELS, spring_damper_recording
+
+
+def split(df):
+    accel = np.array([df[c].to_numpy() for c in CHANNELS[:2]])
+    beams = np.array([df[c].to_numpy() for c in CHANNELS[2:]])
+    return accel, beams
+
+
+def test_thesis_worked_example():
+    # thesis §3.5: H = -400 - 100j at 3.8 Hz -> K = 228 027 N/m, C = 2 388 N s/m
+    k, c = am.stiffness_damping(-400 - 100j, 3.8)
+    assert k == pytest.approx(228_027, abs=0.5)
+    assert c == pytest.approx(2_388, abs=0.5)
+
+
+def test_apparent_mass_from_kc_inverts_stiffness_damping():
+    h = am.apparent_mass_from_kc(228_027.0, 2_387.6, 3.8)
+    k, c = am.stiffness_damping(h, 3.8)
+    assert (k, c) == pytest.approx((228_027.0, 2_387.6))
+
+
+def test_tyre_force_recovers_ground_force():
+    df = spring_damper_recording(stiffness_N_per_m=2e5, damping_N_s_per_m=1500, static_load_N=1e4)
+    accel, beams = split(df)
+    f = am.tyre_force(accel[0], accel[1], beams, 600.0)
+    t = df["time_s"].to_numpy()
+    w = 2 * np.pi * 4.0
+    x = 0.007 * np.sin(w * t)
+    v = 0.007 * w * np.cos(w * t)
+    np.testing.assert_allclose(f, 1e4 - (2e5 * x + 1500 * v), atol=1e-6)
+
+
+@pytest.mark.parametrize("freq", [2.0, 3.93, 4.0, 5.17])
+@pytest.mark.parametrize("k,c", [(250e3, 2000.0), (120e3, 800.0), (450e3, 3500.0)])
+def test_demodulation_recovers_pure_spring_damper(freq, k, c):
+    df = spring_damper_recording(k, c, freq)
+    accel, beams = split(df)
+    f = am.tyre_force(accel[0], accel[1], beams, 600.0)
+    d = am.apparent_mass_demodulation(f, accel.mean(axis=0), 256.0)
+    assert d.frequency_Hz == pytest.approx(freq, rel=1e-4)
+    assert d.stiffness_N_per_m == pytest.approx(k, rel=0.005)
+    assert d.damping_N_s_per_m == pytest.approx(c, rel=0.005)
+    assert d.displacement_amplitude_m == pytest.approx(0.007, rel=0.005)
+
+
+def test_damping_sign_is_positive_for_a_dissipative_tyre():
+    # Swapping csd arguments conjugates H and flips the damping sign (field notes).
+    df = spring_damper_recording(250e3, 2000.0, 4.0)
+    accel, beams = split(df)
+    f = am.tyre_force(accel[0], accel[1], beams, 600.0)
+    w = am.apparent_mass_welch(f, accel.mean(axis=0), 256.0, 4.0)
+    d = am.apparent_mass_demodulation(f, accel.mean(axis=0), 256.0)
+    assert w.damping_N_s_per_m > 0 and d.damping_N_s_per_m > 0
+    assert w.apparent_mass_kg.real < 0  # thesis convention: H = -(K + jωC)/ω²
+
+
+def test_welch_on_bin_is_exact_and_off_bin_shows_picket_fence():
+    df = spring_damper_recording(250e3, 2000.0, 4.0)
+    accel, beams = split(df)
+    f = am.tyre_force(accel[0], accel[1], beams, 600.0)
+    w = am.apparent_mass_welch(f, accel.mean(axis=0), 256.0, 4.0)
+    assert w.stiffness_N_per_m == pytest.approx(250e3, rel=0.005)
+    assert w.damping_N_s_per_m == pytest.approx(2000.0, rel=0.005)
+    assert w.coherence == pytest.approx(1.0, abs=1e-6)
+    df = spring_damper_recording(250e3, 2000.0, 3.93)
+    accel, beams = split(df)
+    f = am.tyre_force(accel[0], accel[1], beams, 600.0)
+    w = am.apparent_mass_welch(f, accel.mean(axis=0), 256.0)
+    assert abs(w.stiffness_N_per_m / 250e3 - 1) > 0.01  # the bin is 0.055 Hz away
+
+
+def test_noisy_recording_within_instrument_accuracy():
+    df = spring_damper_recording(250e3, 2000.0, 4.0, force_noise_N=400.0, accel_noise_m_s2=0.2, seed=3)
+    accel, beams = split(df)
+    f = am.tyre_force(accel[0], accel[1], beams, 600.0)
+    d = am.apparent_mass_demodulation(f, accel.mean(axis=0), 256.0)
+    assert d.stiffness_N_per_m == pytest.approx(250e3, rel=0.01)
+    assert d.damping_N_s_per_m == pytest.approx(2000.0, rel=0.03)
+
+
+def test_frequency_wander_is_tracked():
+    fs, k, c = 256.0, 300e3, 2500.0
+    t = np.arange(int(50 * fs)) / fs
+    # Vibrator frequency wanders ±0.08 Hz, amplitude ±15 % (thesis §3.5 tolerances).
+    phase = 2 * np.pi * (4.0 * t - 0.08 * 31 / (2 * np.pi) * np.cos(2 * np.pi * t / 31))
+    omega = 2 * np.pi * (4.0 + 0.08 * np.sin(2 * np.pi * t / 31))
+    amp = 0.005 * (1 + 0.15 * np.sin(2 * np.pi * t / 23))
+    damp = 0.005 * 0.15 * 2 * np.pi / 23 * np.cos(2 * np.pi * t / 23)
+    x = amp * np.sin(phase)
+    v = damp * np.sin(phase) + amp * omega * np.cos(phase)
+    a = np.gradient(v, 1 / fs)
+    f = -(k * x + c * v)
+    d = am.apparent_mass_demodulation(f, a, fs)
+    assert d.stiffness_N_per_m == pytest.approx(k, rel=0.01)
+    assert d.damping_N_s_per_m == pytest.approx(c, rel=0.03)
+
+
+def test_vectorised_over_runs_matches_one_by_one():
+    recs = [spring_damper_recording(k, c, fr, force_noise_N=100, seed=i)
+            for i, (k, c, fr) in enumerate([(2e5, 1e3, 3.5), (3e5, 2e3, 4.0), (4e5, 3e3, 4.6)])]
+    pairs = [split(df) for df in recs]
+    forces = np.array([am.tyre_force(a[0], a[1], b, 600.0) for a, b in pairs])
+    accels = np.array([a.mean(axis=0) for a, _ in pairs])
+    batch = am.apparent_mass_demodulation(forces, accels, 256.0)
+    for i in range(3):
+        one = am.apparent_mass_demodulation(forces[i], accels[i], 256.0)
+        assert batch.stiffness_N_per_m[i] == pytest.approx(float(one.stiffness_N_per_m), rel=1e-9)
+        assert batch.damping_N_s_per_m[i] == pytest.approx(float(one.damping_N_s_per_m), rel=1e-9)
+
+
+def test_excitation_frequency_between_bins():
+    fs = 256.0
+    t = np.arange(int(20 * fs)) / fs
+    assert am.excitation_frequency(np.sin(2 * np.pi * 3.437 * t), fs) == pytest.approx(3.437, abs=2e-3)
+    assert np.isnan(am.excitation_frequency(np.sin(2 * np.pi * 3.0 * t[:4]), fs))
