@@ -1,0 +1,43 @@
+"""Ingest basics; the full bad-input suite is in test_ingest_robustness.py."""
+
+import pandas as pd
+
+from pipeline.stages import Context, run_stage
+from pipeline.stages.ingest import discover_campaigns, run_key, tyre_partition
+from synthetic import manifest_row, spring_damper_recording, write_campaign
+
+
+def test_discover_campaigns(tmp_path):
+    write_campaign(tmp_path / "a", [(manifest_row("a1", "a1.parquet"), spring_damper_recording())])
+    write_campaign(tmp_path / "b" / "deep", [(manifest_row("b1", "b1.parquet"), spring_damper_recording())])
+    assert discover_campaigns(tmp_path) == [tmp_path / "a", tmp_path / "b" / "deep"]
+    assert discover_campaigns(tmp_path / "a") == [tmp_path / "a"]
+
+
+def test_run_key_and_partition_are_file_safe():
+    assert run_key("T1-001") == "T1-001"
+    assert "/" not in run_key("a/b") and run_key("a/b") != run_key("a_b")
+    assert tyre_partition("<script>") == "tyre_id=%3Cscript%3E"
+
+
+def test_bad_run_quarantined_good_runs_proceed(tmp_path):
+    write_campaign(tmp_path / "raw", [
+        (manifest_row("ok", "ok.parquet"), spring_damper_recording()),
+        (manifest_row("bad", "bad.parquet"), b"\x00garbage"),
+        (manifest_row("neg", "neg.parquet", pressure_bar=-1.0), spring_damper_recording()),
+    ])
+    ctx = Context(raw=tmp_path / "raw", build=tmp_path / "build", jobs=1)
+    r = run_stage("ingest", ctx)
+    assert (r.n_ok, r.n_quarantined) == (1, 2)
+    q = ctx.read_table("quarantine").set_index("run_id")
+    assert "corrupt" in q.loc["bad", "reason"] and q.loc["bad", "file"].endswith("bad.parquet")
+    assert "pressure_bar" in q.loc["neg", "reason"] and "minimum" in q.loc["neg", "reason"]
+
+
+def test_campaign_tyres_csv_extends_catalogue(tmp_path):
+    raw = write_campaign(tmp_path / "raw", [(manifest_row("n1", "n1.parquet", tyre_id="NEW1"), spring_damper_recording())])
+    pd.DataFrame({"tyre_id": ["NEW1"], "size": ["18.4R38"]}).to_csv(raw / "tyres.csv", index=False)
+    ctx = Context(raw=raw, build=tmp_path / "build", jobs=1)
+    assert run_stage("ingest", ctx).n_ok == 1
+    tyres = ctx.read_table("tyres").set_index("tyre_id")
+    assert tyres.loc["NEW1", "section_width_in"] == 18.4 and "T1" in tyres.index
