@@ -1,0 +1,49 @@
+import numpy as np
+import pandas as pd
+import pytest
+
+from pipeline.tyre import formula_accuracy as fa
+from pipeline.tyre.stiffness import traction_tyre_stiffness
+from thesis_tables import table_iii, tyres
+from tyre_synthetic import run
+
+
+def test_normal_probabilities_match_thesis_statements():
+    # thesis §4.5.3: N(3, 10) -> "65 %", N(17, 24) -> "25 %"
+    assert fa.p_within(3, 10) == pytest.approx(0.66, abs=0.01)
+    assert fa.p_within(17, 24) == pytest.approx(0.25, abs=0.01)
+    assert fa.p_within(0, 10) == pytest.approx(0.6827, abs=1e-4)
+
+
+def test_formula_error_is_zero_for_a_tyre_that_follows_the_formula():
+    # a 13.6R38 tyre of age 4 whose rolling line is the formula itself
+    kc = 172 - 1.77 * 38 + 5.6 * 4
+    t = pd.DataFrame({"tyre_id": ["X"], "size": ["13.6R38"], "condition": ["rolling"],
+                      "carcass_stiffness_kN_per_m": [kc], "pressure_dependence_kN_per_m_bar": [0.34 * 13.6 * 38]})
+    pred = fa.predictions_from_table(t, pd.DataFrame({"tyre_id": ["X"], "age_years": [4], "position": ["rear"]}))
+    assert len(pred) == 5 and np.allclose(pred.formula_error_percent, 0.0)
+    assert pred.stationary_error_percent.isna().all()
+
+
+def test_published_table_iii_accuracy():
+    pred = fa.predictions_from_table(table_iii(), tyres())
+    assert "F1" not in set(pred.tyre_id) and pred.tyre_id.nunique() == 16
+    s = fa.accuracy_summary(pred, "published").set_index("method")
+    assert s.loc["formula", "n"] == 80
+    assert s.loc["stationary", "n_tyres"] == 13
+    # measured literal check of one cell: T3 at 1.2 bar
+    r = pred.query("tyre_id == 'T3' and pressure_bar == 1.2").iloc[0]
+    assert r.measured_kN_per_m == pytest.approx(112 + 177 * 1.2)
+    assert r.formula_kN_per_m == pytest.approx(traction_tyre_stiffness("13.6R38", 1.2, 4))
+    assert r.stationary_kN_per_m == pytest.approx(184 + 200 * 1.2)
+    assert np.isfinite(s.loc["formula", "mean_error_percent"])
+
+
+def test_predictions_from_recordings_use_measured_pressures():
+    rows = [run("T3", 10.0, p, 112 + 177 * p, 1.0) for p in (0.8, 1.2, 1.6)]
+    rows += [run("F1", 10.0, p, 200.0, 1.0) for p in (0.8, 1.2)]
+    ours = pd.DataFrame({"tyre_id": ["T3", "T3"], "condition": ["stationary", "rolling"],
+                         "carcass_stiffness_kN_per_m": [184.0, 112.0], "pressure_dependence_kN_per_m_bar": [200.0, 177.0]})
+    pred = fa.predictions_from_recordings(pd.DataFrame(rows), ours, tyres())
+    assert list(pred.pressure_bar) == [0.8, 1.2, 1.6] and set(pred.tyre_id) == {"T3"}
+    assert pred.stationary_error_percent.iloc[0] == pytest.approx(100 * ((184 + 160) / (112 + 177 * 0.8) - 1))

@@ -1,0 +1,55 @@
+import numpy as np
+import pytest
+
+from pipeline.tyre import size_regressions as sr
+from thesis_tables import table_iii, tyres
+
+
+def test_points_use_table_ii_sizes_and_wr():
+    p = sr.tyre_points(table_iii(), tyres())
+    as11 = p.loc[p.tyre_id == "AS11"].iloc[0]
+    assert as11.size_used == "13.6-38" and as11.size_in_table == "13.6R38"
+    assert as11.wr_in2 == pytest.approx(13.6 * 38)
+
+
+def test_analytic_line_is_recovered():
+    import pandas as pd
+    t = pd.DataFrame({"tyre_id": ["A", "B", "C"], "condition": "rolling",
+                      "size": ["10R20", "10R30", "20R40"], "carcass_stiffness_kN_per_m": [100, 100, 100],
+                      "pressure_dependence_kN_per_m_bar": [0.3 * 200 + 5, 0.3 * 300 + 5, 0.3 * 800 + 5]})
+    out = sr.size_regressions(t, None, "test").set_index("fit")
+    assert out.loc["dkp_vs_wr", "slope"] == pytest.approx(0.3) and out.loc["dkp_vs_wr", "intercept"] == pytest.approx(5)
+
+
+def test_published_table_iii_reproduces_wr_gradient_and_r2():
+    out = sr.size_regressions(table_iii(), tyres(), "published").set_index("fit")
+    wr = out.loc["dkp_vs_wr"]
+    assert wr.slope == pytest.approx(0.34, abs=0.01)
+    assert wr.r_squared == pytest.approx(0.82, abs=0.01)
+    assert wr.n == 16 and "F1" not in wr.tyres_used.split(",")
+    assert wr.reproduces_printed and "not a slipped 29.7" in wr.finding
+    assert wr.intercept == pytest.approx(0.53, abs=0.01)
+    assert "AS11 13.6R38 vs 13.6-38" in wr.finding and "no effect" in wr.finding
+
+
+def test_published_rim_fit_coefficients_close_but_r2_not():
+    out = sr.size_regressions(table_iii(), tyres(), "published").set_index("fit")
+    r = out.loc["kc_vs_rim"]
+    assert r.intercept == pytest.approx(172, abs=1) and r.slope == pytest.approx(-1.77, abs=0.05)
+    assert r.r_squared == pytest.approx(0.63, abs=0.01)          # printed 0.70
+    assert not r.reproduces_printed and "NOT reproduced" in r.finding
+
+
+def test_published_age_fit_is_4_6_not_5_6():
+    out = sr.size_regressions(table_iii(), tyres(), "published").set_index("fit")
+    a = out.loc["kc_vs_age"]
+    assert a.n == 5 and a.slope == pytest.approx(4.57, abs=0.01)
+    search = sr.selection_search(sr.tyre_points(table_iii(), tyres()), "kc_vs_age", max_excluded=1)
+    without_t2 = search.loc[search.change == "also excluding T2"].iloc[0]
+    assert without_t2.slope == pytest.approx(6.32, abs=0.01)
+
+
+def test_empty_table_gives_rows_with_reasons():
+    import pandas as pd
+    out = sr.size_regressions(pd.DataFrame(columns=table_iii().columns), None, "ours")
+    assert len(out) == 3 and out["slope"].isna().all()
