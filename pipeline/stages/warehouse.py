@@ -31,7 +31,7 @@ def published_tables(ctx: Context) -> dict[str, Path]:
     src_dir = ctx.raw / "published" if (ctx.raw / "published").is_dir() else PUBLISHED_DIR
     out: dict[str, Path] = {}
     for csv in sorted(src_dir.glob("*.csv")):
-        df = pd.read_csv(csv)
+        df = pd.read_csv(csv, keep_default_na=False, na_values=[""])
         schema_file = SCHEMA_DIR / "published" / f"{csv.stem}.json"
         if schema_file.exists():
             for problem in validate_frame(df, load_schema(f"published/{csv.stem}")):
