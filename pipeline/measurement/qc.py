@@ -1,0 +1,175 @@
+"""Quality control of one measurement run (thesis §3.5, §3.2.8).
+
+The experimenter "checked frequently" that the conditions stayed constant: the
+amplitude was "measured and variation limited to about 20 %" and "the
+frequency of vibration of the tyre maintained within 0.1 Hz" (§3.5). A run
+that breaks these limits, whose excitation cannot be found, whose force and
+acceleration are poorly coherent at the excitation frequency, or whose
+channels hit the converter rails, should not be used downstream.
+
+:func:`qc_reasons` returns the list of reasons (empty = run OK). The amplitude
+and frequency checks use short-time synchronous demodulation of the
+acceleration at the nominal/measured excitation frequency over ~5 s blocks
+(:func:`block_demodulation`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+from scipy import signal
+
+MIN_COHERENCE = 0.9
+MAX_AMPLITUDE_DRIFT = 0.20  # §3.5: "variation limited to about 20%"
+MAX_FREQUENCY_DRIFT_HZ = 0.1  # §3.5: "maintained within 0.1 Hz"
+BLOCK_S = 5.0
+
+
+def block_demodulation(time_s: np.ndarray, accel_m_s2: np.ndarray, excitation_frequency_Hz: float,
+                       block_s: float = BLOCK_S, lowpass_Hz: float = 0.5) -> tuple[np.ndarray, np.ndarray]:
+    """Amplitude and frequency of the excitation per block of ``block_s`` seconds.
+
+    The acceleration is demodulated with ``exp(-j 2 pi f0 t)`` and low-passed
+    (4th-order Butterworth, zero phase, ``lowpass_Hz``); per block, the
+    amplitude is the mean of ``2|z|`` and the frequency ``f0 + slope/(2 pi)`` of a
+    straight line fitted to the unwrapped phase.
+
+    Parameters
+    ----------
+    time_s : ndarray
+        Sample times, s (uniform).
+    accel_m_s2 : ndarray
+        Axle acceleration, m/s².
+    excitation_frequency_Hz : float
+        Reference frequency f0, Hz.
+    block_s : float
+        Block length, s.
+    lowpass_Hz : float
+        Bandwidth of the demodulated signal, Hz.
+
+    Returns
+    -------
+    amplitude_m_s2, frequency_Hz : ndarray, shape (n_blocks,)
+        Acceleration amplitude (peak) and frequency of each block.
+    """
+    t = np.asarray(time_s, dtype=float)
+    a = np.asarray(accel_m_s2, dtype=float)
+    a = a - a.mean()
+    fs = 1.0 / np.median(np.diff(t))
+    z = a * np.exp(-2j * np.pi * excitation_frequency_Hz * (t - t[0]))
+    sos = signal.butter(4, min(lowpass_Hz, 0.45 * fs), fs=fs, output="sos")
+    z = signal.sosfiltfilt(sos, z.real) + 1j * signal.sosfiltfilt(sos, z.imag)
+    n_blk = max(int(round(block_s * fs)), 2)
+    edge = min(int(round(1.0 / lowpass_Hz * fs)), len(a) // 4)  # drop filter start-up at both ends
+    z, tt = z[edge:len(z) - edge], t[edge:len(t) - edge]
+    k = max(len(z) // n_blk, 1)
+    amps, freqs = [], []
+    for i in range(k):
+        zz = z[i * n_blk:(i + 1) * n_blk] if k > 1 else z
+        ti = tt[i * n_blk:(i + 1) * n_blk] if k > 1 else tt
+        if zz.size < 2:
+            continue
+        amps.append(2 * np.mean(np.abs(zz)))
+        ph = np.unwrap(np.angle(zz))
+        slope = np.polyfit(ti - ti[0], ph, 1)[0]
+        freqs.append(excitation_frequency_Hz + slope / (2 * np.pi))
+    return np.asarray(amps), np.asarray(freqs)
+
+
+def clipped(x: np.ndarray, full_scale: float | None = None, min_run: int = 3, min_count: int = 5) -> bool:
+    """Whether a channel shows clipping.
+
+    Either samples within one LSB of ``+-full_scale`` (16-bit converter), or
+    the channel's extreme value repeated at least ``min_run`` times in a row
+    and ``min_count`` times in all (flat tops at a rail of unknown range).
+    """
+    x = np.asarray(x, dtype=float)
+    if x.size == 0:
+        return False
+    if full_scale is not None:
+        lsb = 2 * full_scale / 65536
+        if np.any(np.abs(x) >= full_scale - 1.5 * lsb):
+            return True
+    for ext in (x.max(), x.min()):
+        at = x == ext
+        if at.sum() < min_count:
+            continue
+        # longest run of consecutive samples at the extreme
+        d = np.diff(np.concatenate(([0], at.view(np.int8), [0])))
+        runs = np.flatnonzero(d == -1) - np.flatnonzero(d == 1)
+        if runs.size and runs.max() >= min_run:
+            return True
+    return False
+
+
+def qc_reasons(
+    time_s: np.ndarray,
+    accel_m_s2: np.ndarray,
+    force_N: np.ndarray,
+    excitation_frequency_Hz: float,
+    coherence: float,
+    *,
+    channels: Mapping[str, np.ndarray] | None = None,
+    full_scale: Mapping[str, float] | None = None,
+    min_coherence: float = MIN_COHERENCE,
+    max_amplitude_drift: float = MAX_AMPLITUDE_DRIFT,
+    max_frequency_drift_Hz: float = MAX_FREQUENCY_DRIFT_HZ,
+    block_s: float = BLOCK_S,
+) -> list[str]:
+    """Reasons a measurement run should not be used (empty list = OK).
+
+    Parameters
+    ----------
+    time_s : ndarray
+        Sample times, s.
+    accel_m_s2 : ndarray
+        Axle acceleration (mean of the two ends), m/s².
+    force_N : ndarray
+        Derived tyre force, N.
+    excitation_frequency_Hz : float
+        Measured excitation frequency, Hz; NaN if none was found.
+    coherence : float
+        Magnitude-squared coherence of force and acceleration at the excitation bin.
+    channels : mapping of str to ndarray, optional
+        Raw channels (e.g. the six of raw format v1) to check for clipping;
+        default: ``accel`` and ``force``.
+    full_scale : mapping of str to float, optional
+        Converter full scale per channel name (units of the channel).
+    min_coherence, max_amplitude_drift, max_frequency_drift_Hz, block_s :
+        Thresholds (§3.5) and demodulation block length (s).
+
+    Returns
+    -------
+    list of str
+        e.g. ``["coherence 0.62 < 0.9 at the excitation frequency",
+        "amplitude drift 27 % > 20 %", "frequency drift 0.14 Hz > 0.1 Hz",
+        "clipping in load_beam_2_N", "excitation not found"]``.
+    """
+    reasons: list[str] = []
+    chans = dict(channels) if channels is not None else {"accel": accel_m_s2, "force": force_N}
+    fsc = dict(full_scale or {})
+    for name, x in chans.items():
+        if clipped(x, fsc.get(name)):
+            reasons.append(f"clipping in {name}")
+    f0 = float(excitation_frequency_Hz) if excitation_frequency_Hz is not None else float("nan")
+    if not np.isfinite(f0) or f0 <= 0:
+        reasons.append("excitation not found")
+        return reasons
+    if not np.isfinite(coherence) or coherence < min_coherence:
+        reasons.append(f"coherence {coherence:.2f} < {min_coherence:g} at the excitation frequency")
+    amp, freq = block_demodulation(time_s, accel_m_s2, f0, block_s)
+    if amp.size == 0 or not np.all(np.isfinite(amp)) or np.median(amp) <= 0:
+        reasons.append("excitation not found")
+        return reasons
+    noise = np.std(np.asarray(accel_m_s2, dtype=float))
+    if np.median(amp) < 0.2 * np.sqrt(2) * noise:
+        reasons.append("excitation not found")
+        return reasons
+    drift = float(np.max(np.abs(amp / np.median(amp) - 1)))
+    if drift > max_amplitude_drift:
+        reasons.append(f"amplitude drift {100 * drift:.0f} % > {100 * max_amplitude_drift:.0f} %")
+    fdrift = float(np.max(np.abs(freq - np.median(freq))))
+    if fdrift > max_frequency_drift_Hz:
+        reasons.append(f"frequency drift {fdrift:.2f} Hz > {max_frequency_drift_Hz:g} Hz")
+    return reasons
