@@ -76,6 +76,23 @@ FACTORS: dict[str, tuple[str, str | None, str]] = {
 }
 
 
+#: Columns of the ``results`` table the regressions read (architecture.md).
+RESULTS_COLUMNS = [
+    "tyre_id", "kind", "speed_km_h", "pressure_bar", "load_kN", "excitation_frequency_Hz",
+    "amplitude_mm_pp", "torque_kNm", "surface", "excitation_frequency_measured_Hz",
+    "stiffness_kN_per_m", "damping_kN_s_per_m", "amplitude_measured_mm_pp", "qc_ok",
+]
+
+
+def with_columns(results: pd.DataFrame) -> pd.DataFrame:
+    """``results`` with any missing :data:`RESULTS_COLUMNS` added as nulls (e.g. an empty table)."""
+    missing = [c for c in RESULTS_COLUMNS if c not in results.columns]
+    if not missing:
+        return results
+    return results.assign(**{c: pd.Series(np.nan, index=results.index, dtype=object if c in
+                                          ("tyre_id", "kind", "surface") else float) for c in missing})
+
+
 def _col(df: pd.DataFrame, name: str, default) -> pd.Series:
     if name in df.columns:
         return df[name]

@@ -178,6 +178,7 @@ def pressure_regressions(
         (intercept = carcass value, slope = pressure dependence per bar),
         ``held_load_kN``, ``note``.
     """
+    results = cond.with_columns(results)
     tyre_ids = measured_tyres(results) if tyre_ids is None else list(tyre_ids)
     if by == "condition":
         runs = cond.table_iii_runs(results) if not results.empty else results.assign(condition=None)
@@ -222,6 +223,7 @@ def factor_regressions(
         ``tyre_id, speed_km_h, response, factor, factor_unit, rate_unit``, the fit
         (slope = rate), ``held_pressure_bar``, ``held_load_kN``, ``note``.
     """
+    results = cond.with_columns(results)
     runs = cond.factor_runs(results, factor) if not results.empty else results.assign(x=np.nan)
     runs = runs.copy()
     if not runs.empty:
@@ -359,8 +361,7 @@ def compare_with_thesis(
     for col in values:
         tcol = f"thesis_{col}"
         merged[tcol] = pd.to_numeric(merged[tcol], errors="coerce")
-        if col not in merged:
-            merged[col] = np.nan
+        merged[col] = pd.to_numeric(merged[col], errors="coerce") if col in merged else np.nan
         merged[f"{col}_difference"] = merged[col] - merged[tcol]
         front += [tcol, col, f"{col}_difference"]
     rest = [c for c in merged.columns if c not in front]
@@ -478,6 +479,7 @@ THESIS_TABLE_X = [
 def summary_rates(
     by_speed: pd.DataFrame, rates: pd.DataFrame, response: str, *,
     pressure_bar: float = cond.STANDARD_PRESSURE_BAR, rolling_min_km_h: float = 1.0,
+    published: pd.DataFrame | None = None,
 ) -> pd.DataFrame:
     """Table VI (stiffness) or X (damping): typical rates of change, ours beside the thesis'.
 
@@ -495,11 +497,16 @@ def summary_rates(
     rates : DataFrame
         Concatenated :func:`factor_regressions` for amplitude, frequency, load, torque.
     response : str
+    published : DataFrame, optional
+        ``table_vi.csv`` / ``table_x.csv`` (factor, range_low, change_text, rate_value,
+        rate_kind, ...); where given, its value replaces the built-in printed one
+        ("(none)" → 0) and its ``change_text`` is kept.
 
     Returns
     -------
     DataFrame
-        ``factor, measured_range, unit, thesis_value, value, value_difference, n, se, basis``.
+        ``factor, measured_range, unit, thesis_value, thesis_change_text, value,
+        value_difference, n, se, ci_low, ci_high, basis, reason``.
     """
     thesis = THESIS_TABLE_VI if response == STIFFNESS else THESIS_TABLE_X
     rows = []
@@ -526,4 +533,24 @@ def summary_rates(
                      "value": m["mean"], "value_difference": m["mean"] - tval if m["n"] else np.nan,
                      "n": m["n"], "se": m["se"], "ci_low": m["ci_low"], "ci_high": m["ci_high"],
                      "basis": basis, "reason": m["reason"]})
-    return pd.DataFrame(rows)
+    out = pd.DataFrame(rows)
+    out.insert(4, "thesis_change_text", None)
+    if published is not None and not published.empty and "factor" in published:
+        pub = published.copy()
+        pub["key"] = pub["factor"].astype(str).str.strip().str.lower().str.replace(" ", "_")
+        low = pd.to_numeric(pub["range_low"], errors="coerce") if "range_low" in pub else pd.Series(np.nan, index=pub.index)
+        rs = pub["key"] == "rolling_speed"
+        pub.loc[rs, "key"] = np.where(low[rs] == 0, "rolling_speed_0_15", "rolling_speed_10_15")
+        pub = pub.drop_duplicates("key").set_index("key")
+        for i, f in enumerate(out["factor"]):
+            if f not in pub.index:
+                continue
+            r = pub.loc[f]
+            val = pd.to_numeric(pd.Series([r.get("rate_value")]), errors="coerce").iloc[0]
+            if not np.isfinite(val) and str(r.get("rate_kind")) == "none":
+                val = 0.0
+            if np.isfinite(val):
+                out.loc[i, "thesis_value"] = val
+            out.loc[i, "thesis_change_text"] = r.get("change_text")
+        out["value_difference"] = out["value"] - out["thesis_value"]
+    return out

@@ -373,6 +373,7 @@ def fit_tyres(results: pd.DataFrame, tyres: pd.DataFrame | None = None, *,
     points : DataFrame
         Per tyre and speed: measured and fitted damping (kNs/m) and error.
     """
+    results = cond.with_columns(results)
     sizes = {}
     if tyres is not None and not tyres.empty and "size" in tyres:
         sizes = dict(zip(tyres["tyre_id"].astype(str), tyres["size"]))

@@ -1,0 +1,147 @@
+"""Regress: thesis chapters 4–5 as tables (Tables III–X, size fits, formula accuracy, spoke model).
+
+Reads ``results`` and ``tyres`` (``build/parquet``; ``raw/tyres.csv`` if the
+``tyres`` table is missing) and the published tables ``raw/published/table_*.csv``;
+calls the pure functions of :mod:`pipeline.tyre` and writes, under ``build/parquet``:
+
+=============================  =============================================================
+table                          contents
+=============================  =============================================================
+``table_iii``                  K_c, ΔK_p, r² per tyre × stationary/rolling, thesis beside ours
+``stiffness_pressure_by_speed`` K vs P per tyre × individual speed
+``damping_pressure_by_speed``  C vs P per tyre × individual speed
+``table_vii``                  C_c, ΔC, r² per tyre × speed, thesis beside ours
+``factor_regressions``         stiffness/damping rate vs amplitude, frequency, load, torque
+``table_iv`` / ``table_viii``  amplitude rates (stiffness / damping), thesis beside ours
+``surface_cells``              matched surface-vs-concrete cells (stiffness and damping)
+``table_v`` / ``table_ix``     percent change per surface, thesis beside ours
+``table_vi`` / ``table_x``     summary of rates, thesis beside ours
+``size_regressions``           ΔK_p~W·R, K_c~R, K_c~age from published and from our Table III
+``size_regression_search``     which tyre selections reproduce the printed coefficients
+``formula_predictions``        per tyre × pressure: formula and stationary predictions, errors
+``formula_accuracy``           mean, sd, within ±10 %, normal P(|e|<10 %) per source × method
+``spoke_force``                Fig. 43 data; ``spoke_speed`` Figs 44–45; ``spoke_frequency``
+                               Fig. 46; ``spoke_amplitude`` Fig. 47; ``spoke_deflection`` Fig. 48
+``spoke_fit`` / ``spoke_fit_points``  Coulomb and viscous coefficients per tyre from our damping
+=============================  =============================================================
+
+Every tyre with measurement runs has rows (null estimates and a ``reason``
+where it cannot be fitted); tyres only in the thesis keep their thesis values
+with null estimates of ours. Always recomputes: it takes about a second.
+"""
+
+from __future__ import annotations
+
+import time
+
+import pandas as pd
+
+from ..tyre import formula_accuracy as fa
+from ..tyre import regressions as reg
+from ..tyre import size_regressions as sr
+from ..tyre import spoke
+from .base import Context, StageResult
+
+PUBLISHED = ("table_iii", "table_iv", "table_v", "table_vi", "table_vii", "table_viii", "table_ix", "table_x")
+FACTORS = ("amplitude", "frequency", "load", "torque")
+
+
+def read_published(ctx: Context) -> dict[str, pd.DataFrame | None]:
+    """Published thesis tables ``raw/published/<name>.csv`` (None where absent)."""
+    out = {}
+    for name in PUBLISHED:
+        path = ctx.raw / "published" / f"{name}.csv"
+        out[name] = pd.read_csv(path) if path.exists() else None
+    return out
+
+
+def read_tyres(ctx: Context) -> pd.DataFrame | None:
+    """The ``tyres`` table, or ``raw/tyres.csv`` before ingest has written it."""
+    if ctx.has_table("tyres"):
+        return ctx.read_table("tyres")
+    path = ctx.raw / "tyres.csv"
+    return pd.read_csv(path) if path.exists() else None
+
+
+def compute(results: pd.DataFrame, tyres: pd.DataFrame | None,
+            published: dict[str, pd.DataFrame | None]) -> dict[str, pd.DataFrame]:
+    """All regress tables from in-memory inputs (no I/O); see the module docstring."""
+    out: dict[str, pd.DataFrame] = {}
+    tyre_ids = reg.measured_tyres(results)
+
+    k_cond = reg.pressure_regressions(results, reg.STIFFNESS, by="condition", tyre_ids=tyre_ids)
+    out["table_iii"] = reg.table_iii(k_cond, published.get("table_iii"))
+    out["stiffness_pressure_by_speed"] = reg.pressure_regressions(results, reg.STIFFNESS, by="speed", tyre_ids=tyre_ids)
+    c_speed = reg.pressure_regressions(results, reg.DAMPING, by="speed", tyre_ids=tyre_ids)
+    out["damping_pressure_by_speed"] = c_speed
+    out["table_vii"] = reg.table_vii(c_speed, published.get("table_vii"))
+
+    rates = pd.concat([reg.factor_regressions(results, f) for f in FACTORS], ignore_index=True)
+    out["factor_regressions"] = rates
+    out["table_iv"] = reg.amplitude_table(rates, published.get("table_iv"), reg.STIFFNESS)
+    out["table_viii"] = reg.amplitude_table(rates, published.get("table_viii"), reg.DAMPING)
+
+    cells_k, sum_k = reg.surface_effects(results, reg.STIFFNESS)
+    cells_c, sum_c = reg.surface_effects(results, reg.DAMPING)
+    out["surface_cells"] = pd.concat([cells_k.assign(response=reg.STIFFNESS), cells_c.assign(response=reg.DAMPING)],
+                                     ignore_index=True)
+    out["table_v"] = reg.surface_table(sum_k, published.get("table_v"), reg.STIFFNESS)
+    out["table_ix"] = reg.surface_table(sum_c, published.get("table_ix"), reg.DAMPING)
+
+    out["table_vi"] = reg.summary_rates(out["stiffness_pressure_by_speed"], rates, reg.STIFFNESS,
+                                        published=published.get("table_vi"))
+    out["table_x"] = reg.summary_rates(c_speed, rates, reg.DAMPING, published=published.get("table_x"))
+
+    ours_iii = k_cond.rename(columns={"intercept": "carcass_stiffness_kN_per_m",
+                                      "slope": "pressure_dependence_kN_per_m_bar"})
+    pub_iii = published.get("table_iii")
+    sources = [("ours", ours_iii)] + ([("published", pub_iii)] if pub_iii is not None else [])
+    size_rows, searches, preds, acc = [], [], [], []
+    for source, table in sources:
+        size_rows.append(sr.size_regressions(table, tyres, source))
+        if not table.empty:
+            points = sr.tyre_points(table, tyres)
+            for name in sr.THESIS_FITS:
+                searches.append(sr.selection_search(points, name).head(25).assign(source=source))
+        p = (fa.predictions_from_table(table, tyres, source=source) if source == "published"
+             else fa.predictions_from_recordings(results, ours_iii, tyres))
+        preds.append(p)
+        acc.append(fa.accuracy_summary(p, source))
+    out["size_regressions"] = pd.concat(size_rows, ignore_index=True)
+    out["size_regression_search"] = pd.concat(searches, ignore_index=True) if searches else pd.DataFrame(
+        columns=["fit", "condition", "change", "n", "intercept", "slope", "r_squared", "matches_printed",
+                 "distance", "source"])
+    out["formula_predictions"] = pd.concat(preds, ignore_index=True)
+    out["formula_accuracy"] = pd.concat(acc, ignore_index=True)
+
+    out["spoke_force"] = spoke.force_curves()
+    out["spoke_speed"] = spoke.speed_curves()
+    out["spoke_frequency"] = spoke.frequency_curves()
+    out["spoke_amplitude"] = spoke.amplitude_curves()
+    out["spoke_deflection"] = spoke.deflection_curves()
+    out["spoke_fit"], out["spoke_fit_points"] = spoke.fit_tyres(results, tyres)
+    return out
+
+
+def run(ctx: Context) -> StageResult:
+    """Compute and write every regress table (module docstring)."""
+    t0 = time.perf_counter()
+    res = StageResult("regress")
+    results = ctx.read_table("results") if ctx.has_table("results") else pd.DataFrame()
+    if not results.empty and "tyre_id" in results:
+        results["tyre_id"] = results["tyre_id"].astype(str)
+    tables = compute(results, read_tyres(ctx), read_published(ctx))
+    for name, df in tables.items():
+        ctx.write_table(name, df.reset_index(drop=True))
+    t3 = tables["table_iii"]
+    fitted = t3.loc[t3["carcass_stiffness_kN_per_m"].notna(), "tyre_id"].nunique()
+    res.n_in = len(results)
+    res.n_ok = len(results.loc[results["qc_ok"].fillna(False).astype(bool)]) if "qc_ok" in results else 0
+    sz = tables["size_regressions"].set_index(["source", "fit"])
+    msg = [f"{len(tables)} tables", f"{fitted} tyres with Table III fits"]
+    if ("published", "dkp_vs_wr") in sz.index:
+        r = sz.loc[("published", "dkp_vs_wr")]
+        msg.append(f"published dKp~W.R gradient {r['slope']:.3f}, r2 {r['r_squared']:.3f}")
+    res.message = "; ".join(msg)
+    res.seconds = time.perf_counter() - t0
+    return res

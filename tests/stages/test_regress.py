@@ -1,0 +1,112 @@
+"""The regress stage: tables written, thesis side by side, new tyres, degenerate inputs."""
+
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pipeline.stages import regress
+from pipeline.stages.base import Context
+
+REPO_RAW = Path(__file__).resolve().parents[2] / "raw"
+TABLES = ["table_iii", "table_iv", "table_v", "table_vi", "table_vii", "table_viii", "table_ix", "table_x",
+          "size_regressions", "formula_accuracy", "spoke_speed", "spoke_frequency", "spoke_amplitude",
+          "spoke_deflection", "spoke_fit", "stiffness_pressure_by_speed"]
+
+
+def _run(tyre_id, speed, p, k, c, **kw):
+    row = dict(campaign="c", run_id=f"{tyre_id}-{speed}-{p}-{kw}", tyre_id=tyre_id, kind="measurement",
+               speed_km_h=speed, pressure_bar=p, load_kN=18.3, excitation_frequency_Hz=4.0,
+               amplitude_mm_pp=14.0, torque_kNm=0.0, surface="concrete", axle_mass_kg=1200.0,
+               recorded_on="1989-06-01", rolling=speed > 0, excitation_frequency_measured_Hz=4.0,
+               stiffness_kN_per_m=k, damping_kN_s_per_m=c, welch_stiffness_kN_per_m=k,
+               welch_damping_kN_s_per_m=c, amplitude_measured_mm_pp=14.0, coherence=0.99,
+               qc_ok=True, qc_reasons="")
+    row.update(kw)
+    return row
+
+
+def _results():
+    rows = []
+    for v in (0.0, 10.0, 15.0):
+        for p in (0.8, 1.1, 1.4, 1.6):   # T3 as Table III / VII
+            kc, dk = (184, 200) if v == 0 else (112, 177)
+            cc, dc = {0.0: (1.2, 0.4), 10.0: (0.67, 0.31), 15.0: (0.67, 0.36)}[v]
+            rows.append(_run("T3", v, p, kc + dk * p, cc + dc * p))
+        for a in (6.0, 20.0, 28.0):
+            rows.append(_run("T3", v, 1.4, 112 + 177 * 1.4 + 0.8 * (a - 14), 1.1, amplitude_mm_pp=a,
+                             amplitude_measured_mm_pp=a))
+    rows.append(_run("T3", 10.0, 1.4, 0.9 * (112 + 177 * 1.4), 1.3, surface="Artificial Rough Track"))
+    rows.append(_run("NEW9", 10.0, 1.2, 310.0, 1.0))       # a tyre not in the thesis, one pressure
+    rows.append(_run("NEW9", 12.0, 1.2, 305.0, 0.9))
+    return pd.DataFrame(rows)
+
+
+@pytest.fixture
+def ctx(tmp_path):
+    raw = tmp_path / "raw"
+    (raw / "published").mkdir(parents=True)
+    for f in (REPO_RAW / "published").glob("table_*.csv"):
+        shutil.copy(f, raw / "published" / f.name)
+    if (REPO_RAW / "tyres.csv").exists():
+        shutil.copy(REPO_RAW / "tyres.csv", raw / "tyres.csv")
+    c = Context(raw=raw, build=tmp_path / "build", jobs=1)
+    c.write_table("results", _results())
+    return c
+
+
+def test_writes_every_table(ctx):
+    res = regress.run(ctx)
+    for t in TABLES:
+        assert ctx.has_table(t), t
+    assert res.n_in == len(_results())
+
+
+def test_table_iii_side_by_side(ctx):
+    regress.run(ctx)
+    t = ctx.read_table("table_iii")
+    r = t.query("tyre_id == 'T3' and condition == 'rolling'").iloc[0]
+    assert r.carcass_stiffness_kN_per_m == pytest.approx(112) and r.pressure_dependence_kN_per_m_bar == pytest.approx(177)
+    if (ctx.raw / "published" / "table_iii.csv").exists():
+        assert r.thesis_carcass_stiffness_kN_per_m == 112
+        assert r.carcass_stiffness_kN_per_m_difference == pytest.approx(0, abs=1e-6)
+        assert t.query("tyre_id == 'AS9'").carcass_stiffness_kN_per_m.isna().all()
+    new = t.query("tyre_id == 'NEW9'")
+    assert set(new.condition) == {"stationary", "rolling"}
+    assert new.thesis_carcass_stiffness_kN_per_m.isna().all() and new.carcass_stiffness_kN_per_m.isna().all()
+    assert new.reason.notna().all()
+    assert {"carcass_stiffness_kN_per_m_se", "carcass_stiffness_kN_per_m_ci_low", "n"} <= set(t.columns)
+
+
+def test_other_tables(ctx):
+    regress.run(ctx)
+    t7 = ctx.read_table("table_vii").query("tyre_id == 'T3' and speed_km_h == 15").iloc[0]
+    assert t7.carcass_damping_kN_s_per_m == pytest.approx(0.67) and t7.pressure_dependence_kN_s_per_m_bar == pytest.approx(0.36)
+    t4 = ctx.read_table("table_iv").query("tyre_id == 'T3' and speed_km_h == 10").iloc[0]
+    assert t4.stiffness_rate_kN_per_m_per_mm == pytest.approx(0.8)
+    t5 = ctx.read_table("table_v").set_index("surface")
+    assert t5.loc["artificial_rough_track", "stiffness_change_percent"] == pytest.approx(-10)
+    fit = ctx.read_table("spoke_fit").set_index("tyre_id")
+    assert {"T3", "NEW9"} <= set(fit.index)
+    sp = ctx.read_table("spoke_speed").query("model == 'combined' and speed_km_h >= 1")
+    assert np.all(np.diff(sp.sort_values("speed_km_h").damping_N_s_per_m) < 0)
+
+
+@pytest.mark.skipif(not (REPO_RAW / "published" / "table_iii.csv").exists(), reason="published Table III not digitised")
+def test_published_wr_regression_reproduces_thesis(ctx):
+    regress.run(ctx)
+    s = ctx.read_table("size_regressions").set_index(["source", "fit"])
+    wr = s.loc[("published", "dkp_vs_wr")]
+    assert wr.slope == pytest.approx(0.34, abs=0.01) and wr.r_squared == pytest.approx(0.82, abs=0.01)
+    acc = ctx.read_table("formula_accuracy").set_index(["source", "method"])
+    assert acc.loc[("published", "formula"), "n_tyres"] == 16
+
+
+def test_no_results_no_published(tmp_path):
+    c = Context(raw=tmp_path / "raw", build=tmp_path / "build", jobs=1)
+    res = regress.run(c)
+    assert c.has_table("table_iii") and c.read_table("table_iii").empty
+    assert len(c.read_table("size_regressions")) == 3
+    assert res.n_in == 0
