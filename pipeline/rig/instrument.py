@@ -272,7 +272,7 @@ def simulate_axle(
     lug_height_mm: float = 0.0,
     traction: bool = False,
     random_band_Hz: tuple[float, float] | None = None,
-    random_accel_rms_m_s2: float = 3.0,
+    random_displacement_rms_m: float = 3e-3,
 ) -> RunSignals:
     """Simulate the axle of the vehicle for one run.
 
@@ -290,7 +290,8 @@ def simulate_axle(
         Target sinusoidal excitation of the axle (held by the experimenter).
     random_band_Hz : (float, float) or None
         Instead of a sinusoid, band-limited random excitation (§3.2.9
-        calibration: 1-8 Hz) of the given rms axle acceleration.
+        calibration: 1-8 Hz) with a flat displacement spectrum of rms
+        ``random_displacement_rms_m`` (m).
     speed_km_h, surface, circumference_m, lug_height_mm, traction :
         Ground input (see :func:`ground_profile`).
 
@@ -325,11 +326,9 @@ def simulate_axle(
         f = omega / (2 * np.pi)
         band = (f >= random_band_Hz[0]) & (f <= random_band_Hz[1])
         spec = np.where(band, np.exp(1j * rng.uniform(0, 2 * np.pi, f.size)), 0)
-        acc = sfft.irfft(spec, n)
-        acc *= random_accel_rms_m_s2 / acc.std()
-        A = sfft.rfft(acc * taper)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            X_cmd = np.where(omega > 0, -A / omega**2, 0)
+        xr = sfft.irfft(spec, n)
+        xr *= random_displacement_rms_m / xr.std()
+        X_cmd = sfft.rfft(xr * taper)
     # drive force that produces it (F_d = -X det / a12), kept for the record
     F_d = -X_cmd * det / a12
 

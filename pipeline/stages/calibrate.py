@@ -1,0 +1,145 @@
+"""Calibrate: daily force-plate check of the tyre force (thesis §3.2.9, §3.6).
+
+For every ``kind == "calibration"`` run of the ``manifest`` table: the
+transfer function from the force-plate force to the derived tyre force
+(``M_a * mean(acc) - sum(beams)``), pass/fail against 1 +- 3 % and 0 +- 1
+degree over 2-6 Hz. A day passes when all its calibration runs pass.
+
+Writes ``calibration`` (one row per calibration run: campaign, day, run_id,
+tyre_id, pass, day_pass, max_gain_error_pct, max_phase_error_deg, mean_gain,
+mean_phase_deg) and ``calibration_tf`` (run_id, day, frequency_Hz, gain,
+phase_deg, coherence). Runs after ``analyse``: rewrites ``results`` so that
+runs recorded on a failed day (same campaign and ``recorded_on``) have
+``qc_ok`` False and the reason ``calibration failed on <day>``. Days without
+a calibration run are left as they are.
+
+Optional correction (§3.6): with ``TYRELAB_CALIBRATION_CORRECT=1`` in the
+environment, ``stiffness_N_per_m``/``damping_N_s_per_m`` (and the kN columns) of
+runs on *passing* days are corrected by the day's transfer function at the
+run's measured frequency; the uncorrected values are kept in
+``uncorrected_stiffness_N_per_m`` / ``uncorrected_damping_N_s_per_m``.
+
+Also writes ``table_i`` (thesis Table I: apparent mass vs load-deflection,
+free and forced vibration, from virtual experiments; :mod:`pipeline.measurement.methods`).
+"""
+
+from __future__ import annotations
+
+import os
+import time
+
+import numpy as np
+import pandas as pd
+import pyarrow.parquet as pq
+
+from ..measurement import calibration as cal
+from .base import Context, StageResult
+
+CHANNELS = ["accel_left_m_s2", "accel_right_m_s2", "load_beam_1_N", "load_beam_2_N", "load_beam_3_N",
+            "load_beam_4_N", "force_plate_N"]
+CALIBRATION_COLUMNS = ["campaign", "day", "run_id", "tyre_id", "pass", "day_pass", "max_gain_error_pct",
+                       "max_phase_error_deg", "mean_gain", "mean_phase_deg", "reason"]
+TF_COLUMNS = ["campaign", "day", "run_id", "frequency_Hz", "gain", "phase_deg", "coherence"]
+
+
+def check_run(path: str, axle_mass_kg: float, sample_rate_Hz: float) -> tuple[dict, pd.DataFrame]:
+    """Check one calibration run file; return (check dict, transfer function)."""
+    t = pq.read_table(path)
+    if "force_plate_N" not in t.column_names:
+        return {"pass": False, "reason": "no force_plate_N channel"}, pd.DataFrame()
+    col = {c: t.column(c).to_numpy().astype(np.float64) for c in CHANNELS}
+    derived = axle_mass_kg * (col["accel_left_m_s2"] + col["accel_right_m_s2"]) / 2 - sum(
+        col[f"load_beam_{i}_N"] for i in range(1, 5))
+    tf = cal.calibration_transfer_function(col["force_plate_N"], derived, sample_rate_Hz)
+    check = cal.check_calibration(tf)
+    check["reason"] = "" if check["pass"] else (
+        f"gain error {check['max_gain_error_pct']:.1f} % / phase error {check['max_phase_error_deg']:.2f} deg "
+        f"outside 3 % / 1 deg over 2-6 Hz")
+    return check, tf
+
+
+def _sample_rate(row: pd.Series) -> float:
+    fs = row.get("sample_rate_Hz")
+    if fs is None or not np.isfinite(fs):
+        t = pq.read_table(row["run_path"], columns=["time_s"]).column(0).to_numpy()
+        fs = 1.0 / float(np.median(np.diff(t)))
+    return float(fs)
+
+
+def correct_results(results: pd.DataFrame, tfs: pd.DataFrame, checks: pd.DataFrame) -> pd.DataFrame:
+    """§3.6 option: correct K, C of runs on passing days by that day's transfer function."""
+    out = results.copy()
+    if out.empty or checks.empty:
+        return out
+    out["uncorrected_stiffness_N_per_m"] = out["stiffness_N_per_m"]
+    out["uncorrected_damping_N_s_per_m"] = out["damping_N_s_per_m"]
+    good = checks[checks["pass"]].drop_duplicates(["campaign", "day"])
+    for r in good.itertuples(index=False):
+        tf = tfs[tfs["run_id"] == r.run_id]
+        sel = (out["campaign"].astype(str) == str(r.campaign)) & (out["recorded_on"].astype(str) == str(r.day))
+        for i in np.flatnonzero(sel.to_numpy()):
+            k, c, f = (out.iloc[i][n] for n in ("stiffness_N_per_m", "damping_N_s_per_m", "excitation_frequency_measured_Hz"))
+            if np.isfinite(k) and np.isfinite(f):
+                k2, c2 = cal.corrected_stiffness_damping(k, c, f, tf)
+                out.iloc[i, out.columns.get_loc("stiffness_N_per_m")] = k2
+                out.iloc[i, out.columns.get_loc("damping_N_s_per_m")] = c2
+    out["stiffness_kN_per_m"] = out["stiffness_N_per_m"] / 1e3
+    out["damping_kN_s_per_m"] = out["damping_N_s_per_m"] / 1e3
+    return out
+
+
+def run(ctx: Context) -> StageResult:
+    """Check every calibration run; flag results of failed days; write the tables."""
+    t0 = time.perf_counter()
+    res = StageResult("calibrate")
+    manifest = ctx.read_table("manifest") if ctx.has_table("manifest") else pd.DataFrame()
+    rows, tfs = [], []
+    if not manifest.empty and "kind" in manifest:
+        cal_runs = manifest[manifest["kind"].fillna("measurement") == "calibration"]
+        res.n_in = len(cal_runs)
+        for _, r in cal_runs.sort_values("run_id").iterrows():
+            check, tf = check_run(r["run_path"], float(r["axle_mass_kg"]), _sample_rate(r))
+            day = str(r["recorded_on"])
+            rows.append({"campaign": str(r.get("campaign", "")), "day": day, "run_id": r["run_id"],
+                         "tyre_id": r["tyre_id"], **check})
+            if not tf.empty:
+                tf.insert(0, "run_id", r["run_id"])
+                tf.insert(0, "day", day)
+                tf.insert(0, "campaign", str(r.get("campaign", "")))
+                tfs.append(tf)
+    checks = pd.DataFrame(rows)
+    if checks.empty:
+        checks = pd.DataFrame(columns=CALIBRATION_COLUMNS)
+        days = pd.DataFrame(columns=["campaign", "day", "day_pass", "n_calibration_runs"])
+    else:
+        days = cal.day_summary(checks, ("campaign", "day"))
+        checks = checks.merge(days[["campaign", "day", "day_pass"]], on=["campaign", "day"], how="left")
+        checks = checks.reindex(columns=CALIBRATION_COLUMNS)
+    tf_all = pd.concat(tfs, ignore_index=True) if tfs else pd.DataFrame(columns=TF_COLUMNS)
+    ctx.write_table("calibration", checks)
+    ctx.write_table("calibration_tf", tf_all)
+    res.n_ok = int(checks["pass"].sum()) if len(checks) else 0
+    failed_days = sorted(days.loc[~days["day_pass"].astype(bool), "day"]) if len(days) else []
+    n_flagged = 0
+    if ctx.has_table("results"):
+        results = ctx.read_table("results")
+        if not results.empty and "recorded_on" in results:
+            keys = ("campaign", "recorded_on") if "campaign" in results else ("recorded_on",)
+            dkeys = ("campaign", "day") if "campaign" in results else ("day",)
+            if os.environ.get("TYRELAB_CALIBRATION_CORRECT") == "1":
+                results = correct_results(results, tf_all, checks)
+            results = cal.flag_failed_days(results, days, keys, dkeys)
+            n_flagged = int(results["qc_reasons"].str.contains("calibration failed on", regex=False).sum())
+            ctx.write_table("results", results)
+    try:
+        from ..measurement.methods import table_i
+
+        ctx.write_table("table_i", table_i())
+    except Exception as exc:  # noqa: BLE001 - table I is a side product; never fail the check for it
+        ctx.log.warning("calibrate: table_i not written: %s", exc)
+    res.message = (f"{len(days)} days, {len(failed_days)} failed" + (f" ({', '.join(failed_days)})" if failed_days else "")
+                   + (f"; {n_flagged} runs flagged" if n_flagged else ""))
+    for d in failed_days:
+        ctx.log.warning("calibrate: calibration failed on %s: runs of that day flagged", d)
+    res.seconds = time.perf_counter() - t0
+    return res

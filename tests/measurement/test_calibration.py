@@ -1,0 +1,71 @@
+"""Force-plate calibration check (thesis §3.2.9)."""
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pipeline.measurement import calibration as cal
+from pipeline.rig.campaigns import campaign_plan, simulate_run
+from pipeline.rig.instrument import derived_tyre_force
+
+FS = 256.0
+
+
+def _random(n=60 * 256, seed=0):
+    x = np.random.default_rng(seed).standard_normal(n)
+    return np.convolve(x, np.ones(8) / 8, mode="same") * 1e3
+
+
+def test_identity_passes_and_sign_of_phase():
+    fp = _random()
+    tf = cal.calibration_transfer_function(fp, fp, FS)
+    assert cal.check_calibration(tf)["pass"]
+    # derived force lagging the plate by 2 samples: negative phase, fails the 1 degree limit at 6 Hz
+    late = np.roll(fp, 2)
+    tf = cal.calibration_transfer_function(fp, late, FS)
+    c = cal.check_calibration(tf)
+    assert not c["pass"] and c["mean_phase_deg"] < 0
+    assert c["max_phase_error_deg"] == pytest.approx(360 * 6.0 * 2 / FS, rel=0.05)
+
+
+def test_gain_error_detected():
+    fp = _random()
+    c = cal.check_calibration(cal.calibration_transfer_function(fp, 1.04 * fp, FS))
+    assert not c["pass"] and c["max_gain_error_pct"] == pytest.approx(4.0, abs=0.05)
+    assert cal.check_calibration(cal.calibration_transfer_function(fp, 1.02 * fp, FS))["pass"]
+
+
+def test_virtual_days_good_and_miscalibrated():
+    plan = campaign_plan("small")
+    rows = plan[plan["kind"] == "calibration"].to_dict("records")
+    good = next(r for r in rows if r["plan_beam_gain_error"] == 0 and r["tyre_id"] == "T1")
+    bad = next(r for r in rows if r["plan_beam_gain_error"] > 0)
+    out = {}
+    for r in (good, bad):
+        run, _ = simulate_run(r, 1991)
+        tf = cal.calibration_transfer_function(run["force_plate_N"].to_numpy(float), derived_tyre_force(run, 600.0), FS)
+        out[r["run_id"]] = cal.check_calibration(tf)
+    assert out[good["run_id"]]["pass"]
+    assert not out[bad["run_id"]]["pass"] and out[bad["run_id"]]["max_gain_error_pct"] > 3
+
+
+def test_flag_failed_days_idempotent_and_clears():
+    results = pd.DataFrame({"run_id": ["a", "b", "c"], "recorded_on": ["1989-05-01", "1989-05-02", "1989-05-02"],
+                            "qc_ok": [True, True, False], "qc_reasons": ["", "", "coherence 0.50 < 0.9"]})
+    days = pd.DataFrame({"day": ["1989-05-01", "1989-05-02"], "day_pass": [True, False]})
+    f1 = cal.flag_failed_days(results, days)
+    assert f1["qc_ok"].tolist() == [True, False, False]
+    assert f1["qc_reasons"].tolist()[1:] == ["calibration failed on 1989-05-02",
+                                             "coherence 0.50 < 0.9; calibration failed on 1989-05-02"]
+    assert cal.flag_failed_days(f1, days).equals(f1)
+    cleared = cal.flag_failed_days(f1, days.assign(day_pass=True))
+    assert cleared["qc_ok"].tolist() == [True, True, False]
+
+
+def test_correction_by_calibration():
+    f = np.linspace(1, 8, 29)
+    tf = pd.DataFrame({"frequency_Hz": f, "gain": 1.02, "phase_deg": 0.5})
+    w = 2 * np.pi * 4.0
+    z = (300e3 + 1j * w * 1.5e3) * 1.02 * np.exp(1j * np.radians(0.5))
+    k, c = cal.corrected_stiffness_damping(z.real, z.imag / w, 4.0, tf)
+    assert (k, c) == pytest.approx((300e3, 1.5e3), rel=1e-9)

@@ -1,0 +1,41 @@
+"""The calibrate stage flags runs of a miscalibrated day (thesis §3.2.9)."""
+
+import pandas as pd
+
+from pipeline.generate import write_run
+from pipeline.rig.campaigns import campaign_plan, simulate_run
+from pipeline.stages import calibrate
+from pipeline.stages.base import Context
+
+
+def test_failed_day_flags_its_runs(tmp_path):
+    plan = campaign_plan("small")
+    cal_rows = plan[plan["kind"] == "calibration"]
+    good = cal_rows[cal_rows["plan_beam_gain_error"] == 0].iloc[-1].to_dict()
+    bad = cal_rows[cal_rows["plan_beam_gain_error"] > 0].iloc[0].to_dict()
+    manifest = []
+    for r in (good, bad):
+        run, _ = simulate_run(r, 1991)
+        path = tmp_path / "runs" / f"{r['run_id']}.parquet"
+        write_run(run, path)
+        manifest.append({**{k: v for k, v in r.items() if not k.startswith("plan_")}, "campaign": "c1",
+                         "run_path": str(path)})
+    ctx = Context(raw=tmp_path, build=tmp_path / "build")
+    ctx.write_table("manifest", pd.DataFrame(manifest))
+    results = pd.DataFrame({
+        "campaign": "c1", "run_id": ["m_good", "m_bad", "m_other_campaign"],
+        "recorded_on": [good["recorded_on"], bad["recorded_on"], bad["recorded_on"]],
+        "stiffness_N_per_m": 4e5, "damping_N_s_per_m": 2e3, "excitation_frequency_measured_Hz": 4.0,
+        "qc_ok": True, "qc_reasons": "",
+    })
+    results.loc[2, "campaign"] = "c2"
+    ctx.write_table("results", results)
+    res = calibrate.run(ctx)
+    table = ctx.read_table("calibration")
+    assert table.set_index("run_id")["pass"].to_dict() == {good["run_id"]: True, bad["run_id"]: False}
+    assert len(ctx.read_table("calibration_tf")) > 20
+    out = ctx.read_table("results").set_index("run_id")
+    assert out.loc["m_good", "qc_ok"] and out.loc["m_other_campaign", "qc_ok"]
+    assert not out.loc["m_bad", "qc_ok"]
+    assert out.loc["m_bad", "qc_reasons"] == f"calibration failed on {bad['recorded_on']}"
+    assert "1 failed" in res.message
