@@ -461,7 +461,7 @@ def tractor_study(
     rows = []
     for name in ("rolling", "stationary"):
         p = main[(main["characteristics"] == name)].set_index(keys)
-        joined = p.join(ref, rsuffix="_ref")
+        joined = p.merge(ref, left_index=True, right_index=True, how="left", suffixes=("", "_ref"))
         for track in ("SBT", "HH"):
             j = joined[joined.index.get_level_values("track") == track]
             for q, col in (

@@ -1,0 +1,99 @@
+"""Carriage simulators (thesis §6.3): exact vs integrated, analytic frequency, frequency domain."""
+
+import math
+
+import numpy as np
+import pytest
+
+from pipeline.vehicle import carriage as cm
+from pipeline.vehicle import enveloping as ev
+from pipeline.vehicle import metrics as mt
+from pipeline.vehicle import profiles as pr
+
+# Table XII, 10 km/h light: 2.728 m/s, 1860 kg, 1.72 kNs/m, 388 kN/m (x0.9 on slats)
+CAR = cm.Carriage(1860.0, 0.9 * 388e3, 1720.0)
+SPEED = 2.728
+
+
+@pytest.fixture(scope="module")
+def track():
+    t = pr.add_lead_in(pr.slatted_track(seed=3, length_m=40.0), 2.0)
+    return t.x_m, ev.tapered_moving_average(t.left_m, t.dx_m, 0.5)
+
+
+def test_exact_matches_solve_ivp(track):
+    x, h = track
+    _, u, ud = cm.ground_input(x, h, SPEED, 1e-3, 0.0, 30.0)
+    lin = cm.simulate_linear(CAR, u - u[0], ud, 1e-3)["a_m_s2"]
+    ivp = cm.simulate_ivp(CAR, x, h, SPEED, (u.size - 1) * 1e-3)["a_m_s2"]
+    n = min(lin.size, ivp.size)
+    err = np.sqrt(np.mean((lin[:n] - ivp[:n]) ** 2)) / np.sqrt(np.mean(ivp[:n] ** 2))
+    assert err < 1e-3
+
+
+def test_rk4_matches_exact_without_nonlinearity(track):
+    x, h = track
+    _, uh, udh = cm.ground_input(x, h, SPEED, 5e-4, 0.0, 20.0)
+    if uh.size % 2 == 0:
+        uh, udh = uh[:-1], udh[:-1]
+    nl = cm.simulate_nonlinear(CAR, uh - uh[0], udh, 1e-3, lift_off=False)["a_m_s2"]
+    lin = cm.simulate_linear(CAR, uh[::2] - uh[0], udh[::2], 1e-3)["a_m_s2"]
+    assert np.sqrt(np.mean((nl - lin) ** 2)) / np.sqrt(np.mean(lin**2)) < 1e-3
+
+
+def test_free_decay_frequency_lightly_damped():
+    c = cm.Carriage(2000.0, 320e3, 300.0, parasitic_damping_N_s_per_m=200.0)
+    n = 20000
+    out = cm.simulate_linear(c, np.zeros(n), np.zeros(n), 1e-3, z0_m=0.01)
+    z = out["z_m"]
+    zc = np.flatnonzero((z[:-1] > 0) & (z[1:] <= 0))
+    frac = z[zc] / (z[zc] - z[zc + 1])
+    tc = (zc + frac) * 1e-3
+    f_sim = (tc.size - 1) / (tc[-1] - tc[0])
+    assert f_sim == pytest.approx(cm.damped_natural_frequency(c), rel=0.01)
+    assert abs(f_sim / cm.damped_natural_frequency(c) - 1) < 1e-4
+    # free decay: log decrement gives the damping ratio
+    assert out["a_m_s2"][0] == pytest.approx(-320e3 * 0.01 / 2000)
+
+
+def test_spectral_peak_of_random_response_near_damped_frequency():
+    c = cm.Carriage(2000.0, 320e3, 200.0, parasitic_damping_N_s_per_m=100.0)
+    f = np.linspace(0.5, 10, 100001)
+    h = np.abs(cm.acceleration_response(c, f)) ** 2 / (2 * math.pi * f) ** 4  # displacement transmissibility
+    fd = cm.damped_natural_frequency(c)
+    assert f[np.argmax(h)] == pytest.approx(fd, rel=0.01)
+
+
+def test_frequency_domain_matches_time_domain_rms():
+    t = pr.add_lead_in(pr.slatted_track(seed=4, length_m=100.0), 2.0)
+    h = ev.tapered_moving_average(t.left_m, t.dx_m, 0.5)
+    _, u, ud = cm.ground_input(t.x_m, h, 3.0, 1e-3, 2.0, 100.0)
+    a = cm.simulate_linear(CAR, u - u[0], ud, 1e-3)["a_m_s2"][3000:]
+    n, g = pr.profile_spectrum(h, t.dx_m, segment_m=25.6)
+    f, s = cm.response_psd(CAR, n, g, 3.0)
+    rms_fd = math.sqrt(np.trapezoid(s, f))
+    assert rms_fd == pytest.approx(mt.rms(a), rel=0.15)
+
+
+def test_lift_off_limits_pull_and_friction_damps():
+    n = 4001
+    t = np.arange(n) * 5e-4
+    u = 0.05 * np.sin(2 * np.pi * 2.0 * t)  # large input near resonance
+    ud = 0.05 * 2 * np.pi * 2.0 * np.cos(2 * np.pi * 2.0 * t)
+    free = cm.simulate_nonlinear(cm.Carriage(1860.0, 350e3, 1500.0), u, ud, 1e-3, lift_off=True)
+    assert free["a_m_s2"].min() >= -cm.GRAVITY_M_S2 - 1e-6 - 1000 / 1860 * 2
+    assert free["lift_off_fraction"] > 0
+    fr = cm.simulate_nonlinear(cm.Carriage(1860.0, 350e3, 1500.0, 0.0, 300.0), u, ud, 1e-3, lift_off=False)
+    nf = cm.simulate_nonlinear(cm.Carriage(1860.0, 350e3, 1500.0, 0.0, 0.0), u, ud, 1e-3, lift_off=False)
+    assert mt.rms(fr["a_m_s2"]) < mt.rms(nf["a_m_s2"])
+
+
+def test_batched_equals_single():
+    n = 2001
+    rng = np.random.default_rng(0)
+    u = np.cumsum(rng.standard_normal(n)) * 1e-4
+    ud = np.gradient(u, 5e-4)
+    cars = cm.Carriage(np.array([1860.0, 2300.0]), np.array([3.4e5, 2.9e5]), np.array([1700.0, 1600.0]), 0.0, 150.0)
+    b = cm.simulate_nonlinear(cars, np.vstack([u, u]), np.vstack([ud, ud]), 1e-3)
+    s = cm.simulate_nonlinear(cm.Carriage(2300.0, 2.9e5, 1600.0, 0.0, 150.0), u, ud, 1e-3)
+    np.testing.assert_allclose(b["a_m_s2"][1], s["a_m_s2"], rtol=1e-12, atol=1e-12)

@@ -1,0 +1,88 @@
+"""Accuracy metrics (thesis §6.4) and the pitch-plane tractor (ch. 7)."""
+
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pipeline.vehicle import bounce_pitch as bp
+from pipeline.vehicle import metrics as mt
+from pipeline.vehicle.tractor import Tractor, simulate_tractor
+
+
+def test_probabilities_match_thesis_table_xiii():
+    # Table XIII rolling rms: mean 0.92, sd 0.12 -> P(±10 %) 0.51, P(±30 %) 0.97 (printed)
+    from scipy import stats
+
+    m, s = 0.92, 0.12
+    p10 = stats.norm.cdf((1.1 - m) / s) - stats.norm.cdf((0.9 - m) / s)
+    p30 = stats.norm.cdf((1.3 - m) / s) - stats.norm.cdf((0.7 - m) / s)
+    assert p10 == pytest.approx(0.51, abs=0.02) and p30 == pytest.approx(0.97, abs=0.01)
+    r = mt.ratio_error_statistics([0.8, 0.9, 1.0, 1.1, 1.2])
+    assert r["mean"] == pytest.approx(1.0) and r["n"] == 5
+
+
+def test_peak_width_of_single_mode():
+    fs, fn, zeta = 100.0, 2.0, 0.05
+    f = np.linspace(0, 50, 50001)
+    r = f / fn
+    p = 1.0 / ((1 - r**2) ** 2 + (2 * zeta * r) ** 2)
+    pk = mt.spectral_peak(f, p)
+    assert pk["peak_frequency_Hz"] == pytest.approx(fn * math.sqrt(1 - 2 * zeta**2), rel=1e-3)
+    assert pk["width_over_frequency"] == pytest.approx(2 * zeta, rel=0.02)
+
+
+def test_envelope_and_similarity():
+    fs = 100.0
+    t = np.arange(0, 60, 1 / fs)
+    env = 1.0 + 0.5 * np.sin(2 * np.pi * 0.05 * t)
+    x = env * np.sin(2 * np.pi * 2.0 * t)
+    e = mt.envelope(x, fs, 2.0, 0.5)
+    assert np.max(np.abs(e[500:-500] - env[500:-500])) < 0.02
+    assert mt.envelope_similarity(e, e, fs) == pytest.approx(1.0)
+    rng = np.random.default_rng(1)
+    other = mt.envelope(rng.standard_normal(t.size), fs, 2.0, 0.5)
+    assert abs(mt.envelope_similarity(e, other, fs)) < 0.5
+    assert mt.envelope_error(e, e) == 0.0
+
+
+def test_accuracy_table_layout():
+    rows = []
+    for ch, k in (("rolling", 1.0), ("stationary", 1.2)):
+        for i in range(4):
+            rows.append({"characteristics": ch, "ratio_rms": k + 0.01 * i, "ratio_sqrt_peak_height": k,
+                         "ratio_peak_frequency": k, "ratio_width_over_frequency": k,
+                         "envelope_correlation": 0.9, "envelope_error": 0.3})
+    t = mt.accuracy_table(pd.DataFrame(rows))
+    assert len(t) == 20 and list(t.columns) == ["quantity", "statistic", "rolling", "stationary"]
+
+
+def _free_decay(tr, n=12001, z0=0.0, th0=0.0):
+    zeros = np.zeros(2 * n - 1)
+    return simulate_tractor(tr, zeros, zeros, zeros, zeros, 1e-3, lift_off=False)
+
+
+def test_tractor_modes_match_eigenproblem():
+    # MF698T heavy, Table XV; tiny damping; impulse via a short bump under the front axle
+    m, i, b, a = 5120.0, 6210.0, 0.896, 2.436 - 0.896
+    kf, kr = 2 * 426e3, 2 * 328e3
+    tr = Tractor(m, i, a, b, 0.838, kf, kr, 50.0, 50.0)
+    n = 40001
+    t = np.arange(2 * n - 1) * 5e-4
+    bump = np.where(t < 0.02, 0.01 * np.sin(np.pi * t / 0.02) ** 2, 0.0)
+    rate = np.gradient(bump, 5e-4)
+    out = simulate_tractor(tr, bump, rate, np.zeros_like(bump), np.zeros_like(bump), 1e-3, lift_off=False)
+    f, p = mt.acceleration_psd(out["vertical_m_s2"], 1000.0, 0.05)
+    fp, pp = mt.acceleration_psd(out["pitch_rad_s2"], 1000.0, 0.05)
+    peaks = mt.spectral_peaks(f, p + pp * (p.max() / pp.max()), 2, 1.0, 6.0)
+    f1, f2 = bp.natural_frequencies(m, i, a, b, kf, kr)
+    assert peaks[0] == pytest.approx(f1, abs=0.06) and peaks[1] == pytest.approx(f2, abs=0.06)
+
+
+def test_tractor_static_and_longitudinal_models():
+    tr = Tractor(5120.0, 6210.0, 1.54, 0.896, 0.838, 8.5e5, 6.6e5, 3e3, 2e3, 9.1e5, 6e3, "maxwell")
+    out = _free_decay(tr, 2001)
+    assert np.allclose(out["vertical_m_s2"], 0.0) and np.allclose(out["pitch_rad_s2"], 0.0)
+    with pytest.raises(ValueError):
+        _free_decay(Tractor(1, 1, 1, 1, 1, 1, 1, 1, 1, longitudinal_model="spring"))
