@@ -206,11 +206,13 @@ def equivalent_damping(speed_km_h, frequency_Hz=FREQUENCY_HZ, amplitude_m=AMPLIT
 
 
 def fit_coefficients(speed_km_h, damping, frequency_Hz=FREQUENCY_HZ, amplitude_m=AMPLITUDE_M,
-                     h_over_r0=H_OVER_R0, r0=R0_13_6R38_M) -> dict:
+                     h_over_r0=H_OVER_R0, r0=R0_13_6R38_M, *, nonnegative: bool = True) -> dict:
     """Fit the Coulomb and viscous coefficients to damping measured at several speeds.
 
-    The equivalent damping is linear in (c1, c2); solved by bounded linear least
-    squares (``scipy.optimize.lsq_linear``, c ≥ 0). Thesis §5.5.2: "determine these
+    The equivalent damping is linear in (c1, c2); solved by linear least squares
+    (``scipy.optimize.lsq_linear``), with c ≥ 0 when ``nonnegative`` (physical
+    coefficients) or unconstrained (reproduces two speeds exactly, but a negative
+    coefficient has no physical meaning). Thesis §5.5.2: "determine these
     parameters by measuring tyre damping at two rolling speeds ... and fitting".
 
     Parameters
@@ -236,12 +238,16 @@ def fit_coefficients(speed_km_h, damping, frequency_Hz=FREQUENCY_HZ, amplitude_m
         return {"c_coulomb": nan, "c_viscous": nan, "fitted": np.full_like(y, np.nan),
                 "relative_error": np.full_like(y, np.nan), "max_abs_relative_error": nan,
                 "n": int(len(v)), "status": "fewer than 2 distinct speeds"}
-    res = lsq_linear(A, y, bounds=(0.0, np.inf), method="bvls")
+    res = lsq_linear(A, y, bounds=(0.0, np.inf) if nonnegative else (-np.inf, np.inf), method="bvls")
     fitted = A @ res.x
     rel = (fitted - y) / y
     active = [name for name, c in zip(("c_coulomb", "c_viscous"), res.x) if c <= 0.0]
-    status = "ok" if not active else (
-        f"bound active ({', '.join(active)} = 0): damping vs speed outside the model's c >= 0 shapes")
+    if not active:
+        status = "ok"
+    elif nonnegative:
+        status = f"bound active ({', '.join(active)} = 0): damping vs speed outside the model's c >= 0 shapes"
+    else:
+        status = f"unphysical ({', '.join(active)} <= 0): damping vs speed outside the model's c >= 0 shapes"
     return {"c_coulomb": float(res.x[0]), "c_viscous": float(res.x[1]), "fitted": fitted,
             "relative_error": rel, "max_abs_relative_error": float(np.max(np.abs(rel))),
             "n": int(len(v)), "status": status}
@@ -343,21 +349,28 @@ SPOKE_FIT_COLUMNS = [
     "tyre_id", "size", "r0_m", "h_over_r0", "pressure_bar", "load_kN", "n_runs", "n_speeds",
     "speeds_km_h", "frequency_Hz", "amplitude_mm_pp", "c_coulomb_kN_per_rad",
     "c_viscous_kN_s_per_m_per_rad", "viscous_to_coulomb_ratio_s_per_m", "max_abs_error_percent",
-    "status", "note",
+    "physical", "c_coulomb_nonneg_kN_per_rad", "c_viscous_nonneg_kN_s_per_m_per_rad",
+    "max_abs_error_nonneg_percent", "status", "note",
 ]
 
 
 def fit_tyres(results: pd.DataFrame, tyres: pd.DataFrame | None = None, *,
-              min_speed_km_h: float = 5.0, h_over_r0: float = H_OVER_R0) -> tuple[pd.DataFrame, pd.DataFrame]:
+              min_speed_km_h: float = 10.0, h_over_r0: float = H_OVER_R0) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Fit spoke coefficients per tyre from measured damping vs rolling speed.
 
-    Runs: nominal (:mod:`pipeline.tyre.conditions`) at speed ≥ ``min_speed_km_h``
-    (default 5 km/h: the model describes the steady decrease of damping with
-    speed, §5.3.2, not the rise below 0.6 km/h nor the return to the stationary
-    level at about 2 km/h); pressure and load held at one level (most
+    Fitting speeds: nominal runs (:mod:`pipeline.tyre.conditions`) at speed ≥
+    ``min_speed_km_h`` (default 10 km/h: the Table VII speeds; the thesis
+    suggests fitting "at two rolling speeds", and the model cannot describe the
+    rise of damping below 0.6 km/h). Pressure and load held at one level (most
     distinct speeds; nearest 1.38 bar). Damping averaged per speed, with the
-    mean measured frequency and amplitude of those runs. r0 from the size
+    mean measured frequency and amplitude. r0 from the size
     (:func:`unloaded_radius_m`), h = ``h_over_r0`` r0. Thesis §5.5.2.
+
+    The main coefficients are the unconstrained linear least-squares solution
+    (exact at two speeds); ``physical`` says whether both are ≥ 0, and the
+    ``*_nonneg_*`` columns give the best physical (c ≥ 0) fit with its error.
+    ``points`` also evaluates the fit at the lower rolling speeds of the same
+    pressure and load (``used_in_fit`` false): an out-of-sample check.
 
     Parameters
     ----------
@@ -383,7 +396,7 @@ def fit_tyres(results: pd.DataFrame, tyres: pd.DataFrame | None = None, *,
     if not runs.empty:
         runs["tyre_id"] = runs["tyre_id"].astype(str)
         runs["x"] = pd.to_numeric(runs["speed_km_h"], errors="coerce").round(cond.SPEED_DECIMALS)
-        runs = runs.loc[(runs["x"] >= min_speed_km_h) & runs["damping_kN_s_per_m"].notna()]
+        runs = runs.loc[(runs["x"] > 0) & runs["damping_kN_s_per_m"].notna()]
     for tid in ids:
         size = sizes.get(tid)
         note = []
@@ -395,40 +408,64 @@ def fit_tyres(results: pd.DataFrame, tyres: pd.DataFrame | None = None, *,
         if not isinstance(size, str):
             note.append("no size: r0 = 0.795 m")
         sub = runs.loc[runs["tyre_id"] == tid] if not runs.empty else runs
-        sub, levels, hold_note = cond.hold_constant(sub, "x", ["pressure_bar", "load_kN"],
-                                                    prefer={"pressure_bar": cond.STANDARD_PRESSURE_BAR})
+        fast = sub.loc[sub["x"] >= min_speed_km_h] if len(sub) else sub
+        fast, levels, hold_note = cond.hold_constant(fast, "x", ["pressure_bar", "load_kN"],
+                                                     prefer={"pressure_bar": cond.STANDARD_PRESSURE_BAR})
+        if len(sub) and not hold_note:
+            for c in ("pressure_bar", "load_kN"):
+                if levels.get(c) is not None:
+                    d = cond.PRESSURE_DECIMALS if c == "pressure_bar" else cond.LOAD_DECIMALS
+                    sub = sub.loc[pd.to_numeric(sub[c], errors="coerce").round(d) == levels[c]]
+        else:
+            sub = fast
         if hold_note:
             note.append(hold_note)
         row = dict.fromkeys(SPOKE_FIT_COLUMNS, None)
         row.update(tyre_id=tid, size=size, r0_m=r0, h_over_r0=h_over_r0,
                    pressure_bar=levels.get("pressure_bar"), load_kN=levels.get("load_kN"),
-                   n_runs=int(len(sub)))
-        if sub.empty:
+                   n_runs=int(len(fast)))
+        if fast.empty:
             row.update(n_speeds=0, status=f"no nominal runs at >= {min_speed_km_h:g} km/h")
             row["note"] = "; ".join(note) or None
             fits.append(row)
             continue
         freq = cond.regressor(sub, "frequency").fillna(cond.NOMINAL_FREQUENCY_HZ)
         amp = cond.regressor(sub, "amplitude").fillna(14.0)
-        g = pd.DataFrame({"speed_km_h": sub["x"], "damping": sub["damping_kN_s_per_m"],
-                          "f": freq, "a": amp}).groupby("speed_km_h").mean().reset_index()
-        fit = fit_coefficients(g["speed_km_h"], g["damping"], g["f"], g["a"] / 2000.0, h_over_r0, r0)
+        g_all = pd.DataFrame({"speed_km_h": sub["x"], "damping": sub["damping_kN_s_per_m"],
+                              "f": freq, "a": amp}).groupby("speed_km_h").mean().reset_index()
+        g = g_all.loc[g_all["speed_km_h"] >= min_speed_km_h].reset_index(drop=True)
+        fit = fit_coefficients(g["speed_km_h"], g["damping"], g["f"], g["a"] / 2000.0, h_over_r0, r0,
+                               nonnegative=False)
+        phys = fit_coefficients(g["speed_km_h"], g["damping"], g["f"], g["a"] / 2000.0, h_over_r0, r0)
         row.update(
             n_speeds=int(len(g)), speeds_km_h=",".join(f"{v:g}" for v in g["speed_km_h"]),
             frequency_Hz=float(g["f"].mean()), amplitude_mm_pp=float(g["a"].mean()),
             c_coulomb_kN_per_rad=fit["c_coulomb"], c_viscous_kN_s_per_m_per_rad=fit["c_viscous"],
             viscous_to_coulomb_ratio_s_per_m=(fit["c_viscous"] / fit["c_coulomb"]
                                               if fit["c_coulomb"] and np.isfinite(fit["c_coulomb"]) else None),
-            max_abs_error_percent=100 * fit["max_abs_relative_error"], status=fit["status"],
-            note="; ".join(note) or None,
+            max_abs_error_percent=100 * fit["max_abs_relative_error"],
+            physical=bool(fit["c_coulomb"] >= 0 and fit["c_viscous"] >= 0) if fit["status"] != "fewer than 2 distinct speeds" else None,
+            c_coulomb_nonneg_kN_per_rad=phys["c_coulomb"], c_viscous_nonneg_kN_s_per_m_per_rad=phys["c_viscous"],
+            max_abs_error_nonneg_percent=100 * phys["max_abs_relative_error"],
+            status=fit["status"], note="; ".join(note) or None,
         )
         fits.append(row)
+        if np.isfinite(fit["c_coulomb"]):
+            pred = equivalent_damping(g_all["speed_km_h"], g_all["f"], g_all["a"] / 2000.0, h_over_r0, r0,
+                                      fit["c_coulomb"], fit["c_viscous"])
+            pred_phys = equivalent_damping(g_all["speed_km_h"], g_all["f"], g_all["a"] / 2000.0, h_over_r0, r0,
+                                           phys["c_coulomb"], phys["c_viscous"])
+        else:
+            pred = pred_phys = np.full(len(g_all), np.nan)
         points.append(pd.DataFrame({
-            "tyre_id": tid, "speed_km_h": g["speed_km_h"], "frequency_Hz": g["f"],
-            "amplitude_mm_pp": g["a"], "damping_kN_s_per_m": g["damping"],
-            "fitted_damping_kN_s_per_m": fit["fitted"], "error_percent": 100 * fit["relative_error"],
+            "tyre_id": tid, "speed_km_h": g_all["speed_km_h"], "used_in_fit": g_all["speed_km_h"] >= min_speed_km_h,
+            "frequency_Hz": g_all["f"], "amplitude_mm_pp": g_all["a"], "damping_kN_s_per_m": g_all["damping"],
+            "fitted_damping_kN_s_per_m": pred, "error_percent": 100 * (pred / g_all["damping"] - 1),
+            "fitted_nonneg_damping_kN_s_per_m": pred_phys,
+            "error_nonneg_percent": 100 * (pred_phys / g_all["damping"] - 1),
         }))
-    pts_cols = ["tyre_id", "speed_km_h", "frequency_Hz", "amplitude_mm_pp", "damping_kN_s_per_m",
-                "fitted_damping_kN_s_per_m", "error_percent"]
+    pts_cols = ["tyre_id", "speed_km_h", "used_in_fit", "frequency_Hz", "amplitude_mm_pp", "damping_kN_s_per_m",
+                "fitted_damping_kN_s_per_m", "error_percent", "fitted_nonneg_damping_kN_s_per_m",
+                "error_nonneg_percent"]
     pts = pd.concat(points, ignore_index=True) if points else pd.DataFrame(columns=pts_cols)
     return pd.DataFrame(fits, columns=SPOKE_FIT_COLUMNS), pts
