@@ -103,6 +103,23 @@ def clipped(x: np.ndarray, full_scale: float | None = None, min_run: int = 3, mi
     return False
 
 
+def interference_frequencies_Hz(speed_km_h: float, circumference_m: float, lugs_per_side: int = 0,
+                                harmonics: int = 3) -> list[float]:
+    """Frequencies of the periodic excitation by the rolling wheel (§2.4.5), Hz.
+
+    Wheel rotation ``v/circumference`` and its first ``harmonics`` multiples;
+    for traction tyres half the lug passing frequency (``lugs_per_side`` per
+    revolution) and the lug passing frequency. Empty for a stationary tyre.
+    """
+    if speed_km_h <= 0 or circumference_m <= 0:
+        return []
+    f_rot = speed_km_h / 3.6 / circumference_m
+    out = [k * f_rot for k in range(1, harmonics + 1)]
+    if lugs_per_side > 0:
+        out += [lugs_per_side * f_rot, 2 * lugs_per_side * f_rot]
+    return out
+
+
 def qc_reasons(
     time_s: np.ndarray,
     accel_m_s2: np.ndarray,
@@ -116,6 +133,8 @@ def qc_reasons(
     max_amplitude_drift: float = MAX_AMPLITUDE_DRIFT,
     max_frequency_drift_Hz: float = MAX_FREQUENCY_DRIFT_HZ,
     block_s: float = BLOCK_S,
+    interference_Hz: list[float] | None = None,
+    interference_tolerance_Hz: float = 0.15,
 ) -> list[str]:
     """Reasons a measurement run should not be used (empty list = OK).
 
@@ -138,6 +157,11 @@ def qc_reasons(
         Converter full scale per channel name (units of the channel).
     min_coherence, max_amplitude_drift, max_frequency_drift_Hz, block_s :
         Thresholds (§3.5) and demodulation block length (s).
+    interference_Hz : list of float, optional
+        Known periodic excitation frequencies (:func:`interference_frequencies_Hz`);
+        a run whose excitation lies within ``interference_tolerance_Hz`` of one is
+        flagged: the wheel's own excitation then adds to the axle motion at the
+        measurement frequency and biases K and C (coherence stays high).
 
     Returns
     -------
@@ -156,6 +180,10 @@ def qc_reasons(
     if not np.isfinite(f0) or f0 <= 0:
         reasons.append("excitation not found")
         return reasons
+    for fi in interference_Hz or []:
+        if abs(fi - f0) <= interference_tolerance_Hz:
+            reasons.append(f"wheel excitation at {fi:.2f} Hz within {interference_tolerance_Hz:g} Hz of the excitation")
+            break
     if not np.isfinite(coherence) or coherence < min_coherence:
         reasons.append(f"coherence {coherence:.2f} < {min_coherence:g} at the excitation frequency")
     amp, freq = block_demodulation(time_s, accel_m_s2, f0, block_s)

@@ -66,3 +66,13 @@ def test_virtual_runs_pass(run_id):
     coh = float(am.apparent_mass_welch(f, a, FS, fe).coherence)
     chans = {c: run[c].to_numpy(float) for c in run.columns if c != "time_s"}
     assert qc_reasons(run["time_s"].to_numpy(), a, f, fe, coh, channels=chans) == []
+
+
+def test_wheel_excitation_near_excitation_flagged():
+    from pipeline.measurement.qc import interference_frequencies_Hz
+
+    fi = interference_frequencies_Hz(50.0, 3.44)
+    assert fi[0] == pytest.approx(50 / 3.6 / 3.44)
+    reasons = qc_reasons(T, _sine(), _sine(), 4.0, 0.99, interference_Hz=fi)
+    assert any(r.startswith("wheel excitation") for r in reasons)
+    assert qc_reasons(T, _sine(), _sine(), 4.0, 0.99, interference_Hz=interference_frequencies_Hz(10.0, 4.66, 23)) == []

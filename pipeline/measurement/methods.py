@@ -1,0 +1,185 @@
+"""Alternative methods of measuring tyre stiffness and damping (thesis §3.4, Table I).
+
+a) load-deflection: slope of the slow load-deflection curve (no damping);
+b) free vibration: natural frequency and logarithmic decrement of the decay;
+c) forced vibration: peak frequency and half-power bandwidth of the response
+   to random (or swept) force.
+
+The response-based methods b) and c) measure the whole suspended system, so
+they include the linkage between tractor and carriage (damping upper bound
+1.2 kNs/m, §3.4) which the apparent-mass method excludes; slow loading lets
+the rubber creep, which makes the load-deflection stiffness low (§3.4).
+:func:`table_i` reproduces the structure of Table I from virtual experiments
+(:mod:`pipeline.rig.experiments`) on the stationary tyre T1 at 1.38 bar.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+from scipy import signal
+
+#: Table I (§3.4): 13.6R38 (T1), 1.38 bar, 1860 kg, stationary. kN/m, kNs/m.
+TABLE_I = {
+    "apparent_mass": (450.0, 3.0),
+    "load_deflection": (330.0, np.nan),
+    "free_vibration": (485.0, 3.8),
+    "forced_vibration": (480.0, 3.6),
+}
+METHOD_LABELS = {
+    "apparent_mass": "Apparent mass method",
+    "load_deflection": "Load deflection",
+    "free_vibration": "Free vibration",
+    "forced_vibration": "Forced vibration",
+}
+
+
+def load_deflection_stiffness(force_N: np.ndarray, deflection_m: np.ndarray, fraction: tuple[float, float] = (0.2, 0.9)) -> float:
+    """Stiffness (N/m) from the loading branch of a load-deflection test.
+
+    Straight line of force on deflection over the loading branch between
+    ``fraction`` of the maximum force (the unloading branch differs by the
+    hysteresis, §3.4).
+    """
+    F = np.asarray(force_N, dtype=float)
+    d = np.asarray(deflection_m, dtype=float)
+    i_max = int(np.argmax(F))
+    F, d = F[: i_max + 1], d[: i_max + 1]
+    sel = (F >= fraction[0] * F.max()) & (F <= fraction[1] * F.max())
+    return float(np.polyfit(d[sel], F[sel], 1)[0])
+
+
+def free_vibration(time_s: np.ndarray, response: np.ndarray, mass_kg: float, n_cycles: int = 5) -> dict:
+    """K and C from a free decay: damped frequency and logarithmic decrement.
+
+    Positive peaks of the (mean-removed) response; ``delta = ln(x_0/x_n)/n``,
+    ``zeta = delta/sqrt(4 pi^2 + delta^2)``, damped frequency from the peak
+    spacing, ``w_n = w_d/sqrt(1 - zeta^2)``, ``K = m w_n^2``, ``C = 2 zeta m w_n``.
+
+    Returns
+    -------
+    dict
+        ``stiffness_N_per_m``, ``damping_N_s_per_m``, ``natural_frequency_Hz``, ``damping_ratio``.
+    """
+    t = np.asarray(time_s, dtype=float)
+    x = np.asarray(response, dtype=float)
+    x = x - x[-len(x) // 10:].mean()
+    fs = 1.0 / (t[1] - t[0])
+    peaks, _ = signal.find_peaks(x, height=0.05 * np.abs(x).max(), distance=max(int(0.12 * fs), 1))
+    peaks = peaks[: n_cycles + 1]
+    if peaks.size < 3:
+        raise ValueError("too few decay cycles")
+    # parabolic refinement of each peak's time and height
+    tp, xp = [], []
+    dt = t[1] - t[0]
+    for p in peaks:
+        ym, y0, yp = x[p - 1], x[p], x[p + 1]
+        den = ym - 2 * y0 + yp
+        delta = 0.5 * (ym - yp) / den if den else 0.0
+        tp.append(t[p] + delta * dt)
+        xp.append(y0 - 0.25 * (ym - yp) * delta)
+    tp, xp = np.asarray(tp), np.asarray(xp)
+    n = len(xp) - 1
+    log_dec = float(np.log(xp[0] / xp[-1]) / n)
+    zeta = log_dec / np.sqrt(4 * np.pi**2 + log_dec**2)
+    wd = 2 * np.pi * n / (tp[-1] - tp[0])
+    wn = wd / np.sqrt(1 - zeta**2)
+    return {"stiffness_N_per_m": mass_kg * wn**2, "damping_N_s_per_m": 2 * zeta * mass_kg * wn,
+            "natural_frequency_Hz": wn / (2 * np.pi), "damping_ratio": zeta}
+
+
+def half_power(force_N: np.ndarray, accel_m_s2: np.ndarray, sample_rate_Hz: float, mass_kg: float,
+               resolution_Hz: float = 0.01, band_Hz: tuple[float, float] = (1.0, 8.0)) -> dict:
+    """K and C from the forced response: resonance peak and half-power bandwidth.
+
+    Receptance ``X/F = -H1/w^2`` with ``H1 = csd(F, a)/welch(F)`` (system from
+    force to acceleration); peak frequency ``f_n`` and the -3 dB points
+    (linear interpolation) give ``zeta = (f2 - f1)/(2 f_n)``; ``K = m (2 pi f_n)^2``,
+    ``C = 2 zeta m 2 pi f_n``.
+    """
+    nperseg = int(round(sample_rate_Hz / resolution_Hz))
+    f, gfa = signal.csd(force_N, accel_m_s2, fs=sample_rate_Hz, nperseg=nperseg)
+    _, gff = signal.welch(force_N, fs=sample_rate_Hz, nperseg=nperseg)
+    sel = (f >= band_Hz[0]) & (f <= band_Hz[1])
+    f, h = f[sel], gfa[sel] / gff[sel]
+    r = np.abs(h) / (2 * np.pi * f) ** 2
+    k = int(np.argmax(r))
+    # parabolic refinement of the peak
+    ym, y0, yp = r[k - 1], r[k], r[k + 1]
+    den = ym - 2 * y0 + yp
+    dk = 0.5 * (ym - yp) / den if den else 0.0
+    fn = f[k] + dk * (f[1] - f[0])
+    peak = y0 - 0.25 * (ym - yp) * dk
+    level = peak / np.sqrt(2)
+    i1 = k
+    while i1 > 0 and r[i1] > level:
+        i1 -= 1
+    i2 = k
+    while i2 < r.size - 1 and r[i2] > level:
+        i2 += 1
+    f1 = np.interp(level, [r[i1], r[i1 + 1]], [f[i1], f[i1 + 1]])
+    f2 = np.interp(level, [r[i2], r[i2 - 1]], [f[i2], f[i2 - 1]])
+    zeta = (f2 - f1) / (2 * fn)
+    wn = 2 * np.pi * fn
+    return {"stiffness_N_per_m": mass_kg * wn**2, "damping_N_s_per_m": 2 * zeta * mass_kg * wn,
+            "natural_frequency_Hz": fn, "damping_ratio": zeta}
+
+
+def table_i(tyre_id: str = "T1", pressure_bar: float = 1.38, load_kN: float = 18.25, seed: int = 1991) -> pd.DataFrame:
+    """Table I from virtual experiments on the stationary tyre.
+
+    The tyre's K and C are the truth model's at 0 km/h, 4 Hz, 14 mm p-p; the
+    apparent mass method analyses a virtual nominal run with
+    :func:`pipeline.measurement.apparent_mass.apparent_mass_demodulation`; the
+    others analyse :mod:`pipeline.rig.experiments` recordings. The response
+    methods use the suspended mass L/g.
+
+    Returns
+    -------
+    DataFrame
+        ``method``, ``method_label``, ``thesis_stiffness_kN_per_m``,
+        ``thesis_damping_kN_s_per_m``, ``stiffness_kN_per_m``,
+        ``damping_kN_s_per_m``, ``stiffness_difference_kN_per_m`` (ours - thesis),
+        ``damping_difference_kN_s_per_m``, ``thesis_stiffness_ratio`` and
+        ``stiffness_ratio`` (to the apparent-mass row), ``thesis_damping_excess_kN_s_per_m``
+        and ``damping_excess_kN_s_per_m`` (over the apparent-mass row), ``truth_*``.
+    """
+    from ..rig import experiments as ex
+    from ..rig import truth
+    from ..rig.instrument import RigConfig, record, simulate_axle, DayCalibration
+    from . import apparent_mass as am
+
+    cfg = RigConfig()
+    rng = np.random.default_rng(seed)
+    K = truth.stiffness(tyre_id, pressure_bar, 0.0, load_kN)
+    C = truth.damping(tyre_id, pressure_bar, 0.0, load_kN)
+    m = ex.suspended_mass_kg(load_kN)
+    sig = simulate_axle(K, C, 50.0, rng, cfg, load_kN=load_kN)
+    run = record(sig, DayCalibration(), rng, cfg)
+    l, r = run["accel_left_m_s2"].to_numpy(float), run["accel_right_m_s2"].to_numpy(float)
+    beams = np.stack([run[f"load_beam_{i}_N"].to_numpy(float) for i in range(1, 5)])
+    d = am.apparent_mass_demodulation(am.tyre_force(l, r, beams, cfg.axle_mass_kg), (l + r) / 2, cfg.sample_rate_Hz)
+    ours = {"apparent_mass": (float(d.stiffness_N_per_m), float(d.damping_N_s_per_m))}
+    ramp = ex.load_ramp(K, load_kN * 1e3, rng=rng)
+    ours["load_deflection"] = (load_deflection_stiffness(ramp.force_N, ramp.displacement_m), np.nan)
+    dec = ex.free_decay(K, C, load_kN, cfg=cfg, rng=rng)
+    fv = free_vibration(dec.time_s, dec.displacement_m, m)
+    ours["free_vibration"] = (fv["stiffness_N_per_m"], fv["damping_N_s_per_m"])
+    rf = ex.random_force_response(K, C, load_kN, cfg=cfg, rng=rng)
+    hp = half_power(rf.force_N, rf.acceleration_m_s2, cfg.sample_rate_Hz, m)
+    ours["forced_vibration"] = (hp["stiffness_N_per_m"], hp["damping_N_s_per_m"])
+    rows = []
+    k0, c0 = ours["apparent_mass"]
+    tk0, tc0 = TABLE_I["apparent_mass"]
+    for method, (tk, tc) in TABLE_I.items():
+        k, c = ours[method]
+        rows.append({
+            "method": method, "method_label": METHOD_LABELS[method],
+            "thesis_stiffness_kN_per_m": tk, "thesis_damping_kN_s_per_m": tc,
+            "stiffness_kN_per_m": k / 1e3, "damping_kN_s_per_m": c / 1e3,
+            "stiffness_difference_kN_per_m": k / 1e3 - tk, "damping_difference_kN_s_per_m": c / 1e3 - tc,
+            "thesis_stiffness_ratio": tk / tk0, "stiffness_ratio": k / k0,
+            "thesis_damping_excess_kN_s_per_m": tc - tc0, "damping_excess_kN_s_per_m": (c - c0) / 1e3,
+            "truth_stiffness_kN_per_m": K / 1e3, "truth_damping_kN_s_per_m": C / 1e3,
+        })
+    return pd.DataFrame(rows)
