@@ -7,32 +7,41 @@ module of this package with ``run(ctx) -> StageResult``.
 from __future__ import annotations
 
 import importlib
+import importlib.util
 import time
 
+from . import state
 from .base import Context, StageResult
 
 ORDER = ["ingest", "analyse", "calibrate", "regress", "simulate", "warehouse", "report"]
 
 
 def available() -> list[str]:
-    """Stages of :data:`ORDER` that are installed."""
-    names = []
-    for name in ORDER:
-        try:
-            importlib.import_module(f"{__name__}.{name}")
-        except ModuleNotFoundError as exc:
-            if exc.name != f"{__name__}.{name}":
-                raise
-            continue
-        names.append(name)
-    return names
+    """Stages of :data:`ORDER` that are installed (found without importing them)."""
+    return [name for name in ORDER if importlib.util.find_spec(f"{__name__}.{name}") is not None]
 
 
 def run_stage(name: str, ctx: Context) -> StageResult:
-    """Run one stage by name and log its one-line summary."""
+    """Run one stage by name unless it is up to date; log why it ran and its summary.
+
+    The stage module is imported only when it has to run, so a no-op
+    ``tyrelab run`` imports none of the heavy libraries.
+    """
+    prev = state.load(ctx.build, name)
+    cache = state.HashCache(prev.get("hash_cache"))
+    code = state.code_fingerprint(f"{__name__}.{name}")
+    inputs = state.input_digests(ctx, name, ORDER, cache)
+    reason = state.why_stale(ctx, name, code, inputs)
+    if reason is None:
+        result = StageResult(name, skipped=True, message="inputs unchanged", **prev.get("counts", {}))
+        ctx.log.info("%s", result.summary())
+        return result
+    ctx.log.info("%s: recomputing (%s)", name, reason)
+    before = state.snapshot(ctx.build)
     module = importlib.import_module(f"{__name__}.{name}")
-    ctx.log.info("%s: starting", name)
     result = module.run(ctx)
+    counts = {"n_in": result.n_in, "n_ok": result.n_ok, "n_quarantined": result.n_quarantined}
+    state.record(ctx, name, code, inputs, before, cache, counts)
     ctx.log.info("%s", result.summary())
     return result
 
@@ -41,6 +50,8 @@ def run_pipeline(ctx: Context, stages: list[str] | None = None) -> list[StageRes
     """Run ``stages`` (default: every available stage in order)."""
     t0 = time.perf_counter()
     results = [run_stage(name, ctx) for name in (stages or available())]
+    ran = [r.name for r in results if not r.skipped]
+    ctx.log.info("recomputed: %s", ", ".join(ran) if ran else "nothing (every stage up to date)")
     ingest = next((r for r in results if r.name == "ingest"), None)
     analyse = next((r for r in results if r.name == "analyse"), None)
     quarantined = sum(r.n_quarantined for r in results)

@@ -9,26 +9,35 @@ Both estimators are stored: the thesis' Welch H1 read at the excitation bin
 (``welch_*`` columns) and the phase-locked synchronous demodulation used
 downstream (``stiffness_kN_per_m``, ``damping_kN_s_per_m``).
 
-Incremental: a run whose ``input_hash`` (file SHA-256, manifest row and
-:data:`ANALYSIS_VERSION`) matches the previous ``results`` row is not
-re-analysed.
+Incremental: the stage is skipped when the ``manifest`` table is unchanged
+(``INPUTS``, see :mod:`pipeline.stages.state`); otherwise a run whose
+``input_hash`` (file SHA-256, manifest row, :data:`ANALYSIS_VERSION` and the
+source of the estimators) matches the previous ``results`` row is not
+re-analysed. Batches go to :func:`pipeline.executor.map_batches` as file
+paths, so any executor gives the same bytes.
 """
 
 from __future__ import annotations
 
 import hashlib
 import time
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pyarrow.parquet as pq
 
 from ..measurement import apparent_mass as am
+from ..executor import map_batches
 from .base import Context, Progress, StageResult
 from .ingest import CHANNELS, check_run, read_run_file, write_quarantine
 
+#: What the stage reads (see :mod:`pipeline.stages.state`).
+INPUTS = ["manifest"]
 #: Bump when the analysis changes in a way that changes results.
 ANALYSIS_VERSION = "1"
+#: Source of the estimators; a change re-analyses every run.
+ESTIMATOR_SOURCE = hashlib.sha256(Path(am.__file__).read_bytes()).hexdigest()[:16]
 #: Runs analysed together in one vectorised call.
 BATCH = 32
 #: Coherence below which a run is flagged (thesis §3.3.1: H "valid" only where data support it).
@@ -42,7 +51,7 @@ CONDITION_COLUMNS = [
 
 def input_hash(sha256: str, row_hash: str) -> str:
     """Hash of everything a run's result depends on."""
-    return hashlib.sha256(f"{sha256}|{row_hash}|{ANALYSIS_VERSION}".encode()).hexdigest()
+    return hashlib.sha256(f"{sha256}|{row_hash}|{ANALYSIS_VERSION}|{ESTIMATOR_SOURCE}".encode()).hexdigest()
 
 
 def load_signals(paths: list[str]) -> tuple[np.ndarray, np.ndarray]:
@@ -111,6 +120,44 @@ def analyse_batch(accel: np.ndarray, beams: np.ndarray, axle_mass_kg: np.ndarray
     return out
 
 
+def batches(runs: pd.DataFrame, size: int = BATCH) -> list[pd.DataFrame]:
+    """Split runs into batches of equal length and sampling rate, at most ``size`` runs each.
+
+    The split depends only on the manifest, never on the executor, so the
+    results are the same whichever executor analyses the batches.
+    """
+    out = []
+    for _, group in runs.groupby(["n_samples", "sample_rate_Hz"], sort=True):
+        out.extend(group.iloc[start : start + size] for start in range(0, len(group), size))
+    return out
+
+
+def _batch_task(chunk: pd.DataFrame) -> dict:
+    return {
+        "paths": chunk["run_path"].tolist(),
+        "axle_mass_kg": chunk["axle_mass_kg"].to_numpy(float).tolist(),
+        "sample_rate_Hz": float(chunk["sample_rate_Hz"].iloc[0]),
+    }
+
+
+def analyse_paths(task: dict) -> pd.DataFrame:
+    """Read and analyse one batch of equal-length runs (runs in a worker process).
+
+    Parameters
+    ----------
+    task : dict
+        ``paths`` (per-run Parquet files written by ingest), ``axle_mass_kg``
+        (one per path) and ``sample_rate_Hz``.
+
+    Returns
+    -------
+    DataFrame
+        :func:`analyse_batch`'s rows, in the order of ``paths``.
+    """
+    accel, beams = load_signals(task["paths"])
+    return analyse_batch(accel, beams, np.asarray(task["axle_mass_kg"], dtype=float), task["sample_rate_Hz"])
+
+
 def qc_reasons(row: pd.Series) -> list[str]:
     """Basic QC of one analysed run: reasons it should not be used downstream."""
     reasons = []
@@ -141,15 +188,12 @@ def run(ctx: Context) -> StageResult:
     )
     todo = runs[~runs["input_hash"].isin(set(reuse["input_hash"]) if not reuse.empty else set())]
     res.n_in = len(runs)
-    progress = Progress("analyse", len(todo), logger=ctx.log)
-    frames = []
-    for (_, fs), group in todo.groupby(["n_samples", "sample_rate_Hz"], sort=True):
-        for start in range(0, len(group), BATCH):
-            chunk = group.iloc[start : start + BATCH]
-            accel, beams = load_signals(chunk["run_path"].tolist())
-            out = analyse_batch(accel, beams, chunk["axle_mass_kg"].to_numpy(float), float(fs))
-            frames.append(pd.concat([chunk.reset_index(drop=True), out], axis=1))
-            progress.step(len(chunk))
+    chunks = batches(todo)
+    ctx.log.info("analyse: %d run(s) reused, %d to analyse in %d batch(es) (%s)",
+                 len(reuse), len(todo), len(chunks), ctx.executor)
+    outs = map_batches(analyse_paths, [_batch_task(c) for c in chunks], ctx)
+    Progress("analyse", len(todo), logger=ctx.log).step(len(todo))
+    frames = [pd.concat([c.reset_index(drop=True), o], axis=1) for c, o in zip(chunks, outs)]
     new = pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
     if not new.empty:
         reasons = [qc_reasons(r) for _, r in new.iterrows()]

@@ -89,7 +89,7 @@ class StageResult:
     def summary(self) -> str:
         """One line: ``analyse: 120 in, 118 ok, 2 quarantined, 1.3 s``."""
         if self.skipped:
-            return f"{self.name}: up to date, nothing recomputed ({self.message or 'inputs unchanged'})"
+            return f"{self.name}: up to date: {self.message or 'inputs unchanged'}"
         text = (
             f"{self.name}: {self.n_in} in, {self.n_ok} ok, "
             f"{self.n_quarantined} quarantined, {self.seconds:.1f} s"

@@ -6,9 +6,17 @@ the tyre catalogue (``raw/tyres.csv`` shipped with tyrelab, extended by any
 never stops the batch: it is written to the ``quarantine`` table with a
 one-line reason naming the file, and good runs go through.
 
-Incremental: a run whose file bytes (SHA-256, re-hashed only when size or
-mtime changed) and manifest row are unchanged is not re-read; outputs of runs
-that disappeared from the raw folder are removed.
+Run files may be ``.parquet``/``.csv`` (raw format v1) or ``.mf4``/``.tdms``
+read through the campaign's ``channel_map.json`` (:mod:`pipeline.formats`).
+Files are hashed, checked and converted in parallel by
+:func:`pipeline.executor.map_batches` (paths go to the workers, not data).
+
+Incremental: the stage is skipped when no file below ``--raw`` changed size or
+mtime (``INPUTS = ["raw"]``, see :mod:`pipeline.stages.state`); otherwise a run
+whose file bytes (SHA-256, re-hashed only when size or mtime changed) and
+manifest row are unchanged is not re-read, and outputs of runs that
+disappeared from the raw folder are removed. Per-run state
+(``build/state/ingest_runs.json``) is written after the outputs it describes.
 
 Outputs: ``runs/tyre_id=<id>/<run_key>.parquet`` (channels, float32),
 tables ``manifest``, ``tyres``, ``quarantine`` (rows of stage ``ingest``).
@@ -21,7 +29,7 @@ import json
 import re
 import time
 import urllib.parse
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -29,10 +37,14 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from .. import io
+from .. import formats, io
+from ..executor import map_batches
 from ..schema import field_names, load_schema, row_problems, validate_frame
 from ..tyre.sizes import TyreSizeError, parse_tyre_size
 from .base import Context, Progress, StageResult
+
+#: What the stage reads (see :mod:`pipeline.stages.state`): every file below ``--raw``.
+INPUTS = ["raw"]
 
 #: The built-in tyre catalogue (thesis Table II).
 BUILTIN_TYRES = Path(__file__).resolve().parents[2] / "raw" / "tyres.csv"
@@ -57,6 +69,8 @@ CHANNELS = [
     "load_beam_4_N",
 ]
 OPTIONAL_CHANNELS = ["force_plate_N"]
+#: Suffixes of run files: raw format v1, and other formats read through a channel map.
+RUN_SUFFIXES = (".parquet", ".csv", *formats.SUFFIXES)
 
 
 class RunFileError(ValueError):
@@ -141,8 +155,12 @@ def load_catalogue(raw: Path, campaigns: list[Path]) -> tuple[pd.DataFrame, list
     return cat.reset_index(drop=True), problems
 
 
-def read_run_file(path: Path, columns: list[str] | None = None) -> pd.DataFrame:
-    """Read a run file (``.parquet`` or ``.csv``) into a DataFrame.
+def read_run_file(path: Path, columns: list[str] | None = None, channel_map: dict | None = None) -> pd.DataFrame:
+    """Read a run file into a DataFrame of raw-format-v1 columns.
+
+    ``.parquet`` and ``.csv`` are raw format v1; ``.mf4`` (ASAM MDF4) and
+    ``.tdms`` (NI TDMS) are read through ``channel_map``
+    (:mod:`pipeline.formats`). The size is checked before anything is read.
 
     Raises
     ------
@@ -166,10 +184,14 @@ def read_run_file(path: Path, columns: list[str] | None = None) -> pd.DataFrame:
             return pf.read(columns=wanted).to_pandas()
         if suffix == ".csv":
             return pd.read_csv(path, usecols=lambda c: columns is None or c in columns)
+        if suffix in formats.SUFFIXES:
+            return formats.read_mapped(path, CHANNELS, OPTIONAL_CHANNELS, channel_map)
+    except formats.FormatError as exc:
+        raise RunFileError(str(exc)) from None
     except (pa.ArrowException, OSError, ValueError, UnicodeDecodeError, pd.errors.ParserError) as exc:
         first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
         raise RunFileError(f"corrupt or truncated {suffix[1:]} file ({first})") from None
-    raise RunFileError(f"unknown file type {suffix!r} (expected .parquet or .csv)")
+    raise RunFileError(f"unknown file type {suffix!r} (expected {', '.join(RUN_SUFFIXES)})")
 
 
 def check_run(df: pd.DataFrame, excitation_frequency_Hz: float, sample_rate_Hz: float | None = None) -> RunInfo:
@@ -245,6 +267,128 @@ def _read_manifest(path: Path) -> pd.DataFrame:
         raise RunFileError(f"unreadable manifest ({type(exc).__name__}: {str(exc).strip()[:120]})") from None
 
 
+def convert_run(task: dict) -> dict:
+    """Hash, read, check and convert one run file (runs in a worker process).
+
+    Parameters
+    ----------
+    task : dict
+        ``run_id``, ``src`` (raw file), ``out`` (Parquet to write),
+        ``excitation_frequency_Hz``, ``sample_rate_Hz`` (manifest, or None),
+        ``channel_map`` (path or None), ``size`` (bytes, from ``stat``) and
+        ``prev`` (the run's previous state or None): when the file's bytes
+        and manifest row are unchanged and the output exists, nothing is read
+        beyond hashing.
+
+    Returns
+    -------
+    dict
+        ``run_id``, ``sha256``, and either ``info`` (sampling facts) or
+        ``reason`` (one line, the run is quarantined).
+    """
+    src, out, prev = Path(task["src"]), Path(task["out"]), task.get("prev")
+    if task["size"] > MAX_RUN_FILE_BYTES:
+        sha = "too-large"  # rejected by size below, never read
+    else:
+        sha = io.file_sha256(src)
+    done = {"run_id": task["run_id"], "sha256": sha}
+    if prev and prev["sha256"] == sha and prev["row"] == task["row"] and prev["out"] == str(out) and out.exists():
+        return {**done, "info": prev["info"]}
+    try:
+        cmap = formats.load_channel_map(task["channel_map"]) if task.get("channel_map") else None
+        df = read_run_file(src, channel_map=cmap)
+        ri = check_run(df, task["excitation_frequency_Hz"], task["sample_rate_Hz"])
+        with io.atomic_path(out) as tmp:
+            pq.write_table(_run_table(df, task["run_id"], ri.channels), tmp, compression="zstd")
+    except (RunFileError, formats.FormatError) as exc:
+        return {**done, "reason": str(exc)}
+    return {**done, "info": {"sample_rate_Hz": ri.sample_rate_Hz, "n_samples": ri.n_samples, "duration_s": ri.duration_s}}
+
+
+def _optional_float(row: pd.Series, name: str) -> float | None:
+    value = row.get(name)
+    return float(value) if value is not None and pd.notna(value) else None
+
+
+@dataclass
+class _Plan:
+    """What a pass over the raw folder found: runs to convert and problems."""
+
+    todo: list = field(default_factory=list)  # (campaign, manifest row)
+    quarantine: list = field(default_factory=list)
+
+
+def _quarantine_entry(ctx: Context, campaign: Path, run_id, file, reason: str, plan: _Plan) -> None:
+    where = campaign / file if isinstance(file, str) and file else campaign / "manifest.csv"
+    ctx.log.error("%s: %s", where, reason)
+    plan.quarantine.append(
+        {"campaign": str(campaign), "run_id": run_id, "file": str(where), "stage": "ingest", "reason": reason}
+    )
+
+
+def _plan(ctx: Context, schema: dict, campaigns: list[Path], sizes_ok: dict) -> _Plan:
+    """Check every manifest row and every file of every campaign; collect the runs to convert."""
+    plan = _Plan()
+    seen: dict[str, str] = {}
+    for campaign in campaigns:
+        manifest_path = campaign / "manifest.csv"
+        reject = lambda run_id, file, reason: _quarantine_entry(ctx, campaign, run_id, file, reason, plan)  # noqa: E731
+        try:
+            manifest = _read_manifest(manifest_path)
+        except RunFileError as exc:
+            reject(None, None, str(exc))
+            continue
+        missing = [c for c in field_names(schema, required_only=True) if c not in manifest.columns]
+        if missing:
+            reject(None, None, f"manifest lacks column(s) {', '.join(missing)}")
+            continue
+        listed = set()
+        _, by_row = row_problems(manifest, schema)
+        for i, row in manifest.iterrows():
+            run_id = row["run_id"] if isinstance(row["run_id"], str) else None
+            listed.add(str(Path(str(row.get("file")))))
+            problems = by_row.get(i, [])
+            if problems:
+                reject(run_id, row.get("file"), f"manifest row {i + 2}: " + "; ".join(problems))
+            elif run_id in seen:
+                reject(run_id, row["file"], f"duplicate run_id {run_id!r} (already in {seen[run_id]})")
+            elif row["tyre_id"] not in sizes_ok:
+                reject(run_id, row["file"], f"unknown tyre_id {row['tyre_id']!r} (not in any tyres.csv)")
+            elif not sizes_ok[row["tyre_id"]]:
+                reject(run_id, row["file"], f"tyre {row['tyre_id']!r} has a size that does not parse")
+            else:
+                plan.todo.append((campaign, row))
+            if run_id is not None:
+                seen.setdefault(run_id, str(manifest_path))
+        for f in sorted(_run_files(campaign)):
+            rel = f.relative_to(campaign)
+            if str(rel) not in listed and f.name not in listed:
+                reject(None, str(rel), "file has no row in manifest.csv")
+    return plan
+
+
+def _run_files(campaign: Path):
+    """Files of a campaign folder (and its sub-folders without their own manifest) that look like runs."""
+    for f in campaign.rglob("*"):
+        if f.suffix.lower() not in RUN_SUFFIXES or f.name in ("manifest.csv", "tyres.csv") or not f.is_file():
+            continue
+        if "published" in f.relative_to(campaign).parts:  # digitised thesis tables, not runs
+            continue
+        if any((p / "manifest.csv").is_file() for p in f.parents if p != campaign and campaign in p.parents):
+            continue
+        yield f
+
+
+def _sweep(runs_dir: Path, keep: set[str]) -> None:
+    """Remove run outputs no longer produced and temporary files left by a killed run."""
+    for f in runs_dir.rglob("*") if runs_dir.is_dir() else []:
+        if f.is_file() and str(f) not in keep:
+            f.unlink()
+    for d in sorted(runs_dir.glob("*"), reverse=True) if runs_dir.is_dir() else []:
+        if d.is_dir() and not any(d.iterdir()):
+            d.rmdir()
+
+
 def run(ctx: Context) -> StageResult:
     """Validate and convert every raw run below ``ctx.raw``; see the module docstring."""
     t0 = time.perf_counter()
@@ -253,126 +397,93 @@ def run(ctx: Context) -> StageResult:
     numeric = [f["name"] for f in schema["fields"] if f["type"] in ("number", "integer")]
     campaigns = discover_campaigns(ctx.raw)
     catalogue, cat_problems = load_catalogue(ctx.raw, campaigns)
-    for p in cat_problems:
-        ctx.log.error(p)
+    plan = _Plan()
+    for problem in cat_problems:
+        src, _, reason = problem.partition(": ")
+        _quarantine_entry(ctx, Path(src).parent, None, Path(src).name, reason, plan)
     sizes_ok = dict(zip(catalogue["tyre_id"], catalogue["size_ok"]))
+    found = _plan(ctx, schema, campaigns, sizes_ok)
+    plan.todo, plan.quarantine = found.todo, plan.quarantine + found.quarantine
 
-    state_path = ctx.state / "ingest.json"
-    state = {} if ctx.force or not state_path.exists() else json.loads(state_path.read_text())
-    new_state: dict[str, dict] = {}
-    quarantine: list[dict] = []
-    rows: list[dict] = []
-    seen: dict[str, str] = {}
-
-    def reject(campaign: Path, run_id, file, reason: str) -> None:
-        where = campaign / file if isinstance(file, str) and file else campaign / "manifest.csv"
-        ctx.log.error("%s: %s", where, reason)
-        quarantine.append(
-            {"campaign": str(campaign), "run_id": run_id, "file": str(where), "stage": "ingest", "reason": reason}
-        )
-
-    todo: list[tuple[Path, pd.Series]] = []
-    for campaign in campaigns:
-        manifest_path = campaign / "manifest.csv"
-        try:
-            manifest = _read_manifest(manifest_path)
-        except RunFileError as exc:
-            reject(campaign, None, None, str(exc))
-            continue
-        missing = [c for c in field_names(schema, required_only=True) if c not in manifest.columns]
-        if missing:
-            reject(campaign, None, None, f"manifest lacks column(s) {', '.join(missing)}")
-            continue
-        listed = set()
-        _, by_row = row_problems(manifest, schema)
-        for i, row in manifest.iterrows():
-            run_id = row["run_id"] if isinstance(row["run_id"], str) else None
-            listed.add(str(row.get("file")))
-            problems = by_row.get(i, [])
-            if problems:
-                reject(campaign, run_id, row.get("file"), f"manifest row {i + 2}: " + "; ".join(problems))
-                continue
-            if run_id in seen:
-                reject(campaign, run_id, row["file"], f"duplicate run_id {run_id!r} (already in {seen[run_id]})")
-                continue
-            seen[run_id] = str(manifest_path)
-            if row["tyre_id"] not in sizes_ok:
-                reject(campaign, run_id, row["file"], f"unknown tyre_id {row['tyre_id']!r} (not in any tyres.csv)")
-                continue
-            if not sizes_ok[row["tyre_id"]]:
-                reject(campaign, run_id, row["file"], f"tyre {row['tyre_id']!r} has a size that does not parse")
-                continue
-            todo.append((campaign, row))
-        for f in sorted(campaign.iterdir()):
-            if f.suffix.lower() in (".parquet", ".csv") and f.name not in ("manifest.csv", "tyres.csv"):
-                if f.name not in listed and str(f.relative_to(campaign)) not in listed:
-                    reject(campaign, None, f.name, "file has no row in manifest.csv")
-
-    result.n_in = len(todo) + sum(1 for q in quarantine if q["run_id"] is not None)
-    progress = Progress("ingest", len(todo), logger=ctx.log)
+    state = {} if ctx.force else _load_run_state(ctx)
     runs_dir = ctx.parquet / "runs"
-    for campaign, row in todo:
-        run_id = row["run_id"]
-        src = campaign / row["file"]
+    tasks, rows = [], {}
+    for campaign, row in plan.todo:
+        run_id, src = row["run_id"], campaign / row["file"]
         out = runs_dir / tyre_partition(row["tyre_id"]) / f"{run_key(run_id)}.parquet"
-        row_hash = _row_hash(row)
-        prev = state.get(run_id)
-        try:
-            st = src.stat() if src.is_file() else None
-            if st is None:
-                raise RunFileError("file not found")
-            if prev and prev["size"] == st.st_size and prev["mtime_ns"] == st.st_mtime_ns:
-                sha = prev["sha256"]
-            else:
-                sha = io.file_sha256(src) if st.st_size <= MAX_RUN_FILE_BYTES else "too-large"
-            if prev and prev["sha256"] == sha and prev["row"] == row_hash and out.exists() and prev["out"] == str(out):
-                info = prev["info"]
-            else:
-                df = read_run_file(src)
-                fs_manifest = float(row["sample_rate_Hz"]) if "sample_rate_Hz" in row and pd.notna(row.get("sample_rate_Hz")) else None
-                ri = check_run(df, float(row["excitation_frequency_Hz"]), fs_manifest)
-                if prev and prev["out"] != str(out) and Path(prev["out"]).exists():
-                    Path(prev["out"]).unlink()
-                with io.atomic_path(out) as tmp:
-                    pq.write_table(_run_table(df, run_id, ri.channels), tmp, compression="zstd")
-                info = {"sample_rate_Hz": ri.sample_rate_Hz, "n_samples": ri.n_samples, "duration_s": ri.duration_s}
-            new_state[run_id] = {
-                "size": st.st_size, "mtime_ns": st.st_mtime_ns, "sha256": sha,
-                "row": row_hash, "out": str(out), "info": info,
-            }
-            rec = {c: row.get(c) for c in manifest_columns(schema, row)}
-            rec.update(campaign=str(campaign), sha256=sha, row_hash=row_hash, run_path=str(out), **info)
-            rows.append(rec)
-        except RunFileError as exc:
-            reject(campaign, run_id, row["file"], str(exc))
-        progress.step()
+        row_hash, prev = _row_hash(row), state.get(run_id)
+        if not src.is_file():
+            _quarantine_entry(ctx, campaign, run_id, row["file"], "file not found", plan)
+            continue
+        st = src.stat()
+        cmap = campaign / formats.CHANNEL_MAP
+        rows[run_id] = (campaign, row, row_hash, out, st)
+        tasks.append({
+            "run_id": run_id, "src": str(src), "out": str(out), "row": row_hash, "size": st.st_size, "prev": prev,
+            "touched": not prev or (prev["size"], prev["mtime_ns"]) != (st.st_size, st.st_mtime_ns),
+            "excitation_frequency_Hz": float(row["excitation_frequency_Hz"]),
+            "sample_rate_Hz": _optional_float(row, "sample_rate_Hz"),
+            "channel_map": str(cmap) if cmap.is_file() and src.suffix.lower() in formats.SUFFIXES else None,
+        })
+    cached = [t for t in tasks if not t["touched"] and t["prev"]["row"] == t["row"]
+              and t["prev"]["out"] == t["out"] and Path(t["out"]).exists()]
+    cached_ids = {t["run_id"] for t in cached}
+    work = [t for t in tasks if t["run_id"] not in cached_ids]
+    ctx.log.info("ingest: %d run(s) unchanged, %d to convert", len(cached), len(work))
+    done = {t["run_id"]: {"run_id": t["run_id"], "sha256": t["prev"]["sha256"], "info": t["prev"]["info"]} for t in cached}
+    done.update((d["run_id"], d) for d in map_batches(convert_run, work, ctx))
 
-    # Remove outputs of runs that are gone or now invalid.
-    for run_id, prev in state.items():
-        if run_id not in new_state and Path(prev["out"]).exists():
-            Path(prev["out"]).unlink()
+    new_state, records = {}, []
+    for t in tasks:
+        campaign, row, row_hash, out, st = rows[t["run_id"]]
+        d = done[t["run_id"]]
+        if "reason" in d:
+            _quarantine_entry(ctx, campaign, t["run_id"], row["file"], d["reason"], plan)
+            continue
+        new_state[t["run_id"]] = {"size": st.st_size, "mtime_ns": st.st_mtime_ns, "sha256": d["sha256"],
+                                  "row": row_hash, "out": str(out), "info": d["info"]}
+        rec = {c: row.get(c) for c in manifest_columns(schema, row)}
+        rec.update(campaign=str(campaign), sha256=d["sha256"], row_hash=row_hash, run_path=str(out), **d["info"])
+        records.append(rec)
 
-    manifest_df = pd.DataFrame(rows)
-    if not manifest_df.empty:
-        for c in numeric:
-            if c in manifest_df:
-                manifest_df[c] = pd.to_numeric(manifest_df[c])
-        if "kind" not in manifest_df:
-            manifest_df["kind"] = "measurement"
-        manifest_df["kind"] = manifest_df["kind"].fillna("measurement")
-        manifest_df = manifest_df.sort_values("run_id", kind="stable").reset_index(drop=True)
-    ctx.write_table("manifest", manifest_df)
+    ctx.write_table("manifest", _manifest_table(records, numeric))
     ctx.write_table("tyres", catalogue.drop(columns=["catalogue_file"]))
-    write_quarantine(ctx, "ingest", quarantine)
-    io.write_text_atomic(json.dumps(new_state, sort_keys=True), state_path)
+    write_quarantine(ctx, "ingest", plan.quarantine)
+    _sweep(runs_dir, {s["out"] for s in new_state.values()})
+    io.write_text_atomic(json.dumps(new_state, sort_keys=True), _run_state_path(ctx))  # after the outputs
 
-    result.n_ok = len(rows)
-    result.n_quarantined = sum(1 for q in quarantine if q["run_id"] is not None)
-    unlisted = sum(1 for q in quarantine if q["run_id"] is None)
-    if unlisted:
-        result.message = f"{unlisted} file/manifest problem(s) without a run id"
+    result.n_ok = len(records)
+    result.n_quarantined = sum(1 for q in plan.quarantine if q["run_id"] is not None)
+    result.n_in = result.n_ok + result.n_quarantined
+    unlisted = sum(1 for q in plan.quarantine if q["run_id"] is None)
+    result.message = f"{len(work)} converted, {len(cached)} unchanged" + (
+        f"; {unlisted} file/manifest/catalogue problem(s) without a run id" if unlisted else "")
     result.seconds = time.perf_counter() - t0
     return result
+
+
+def _run_state_path(ctx: Context) -> Path:
+    return ctx.state / "ingest_runs.json"
+
+
+def _load_run_state(ctx: Context) -> dict:
+    try:
+        return json.loads(_run_state_path(ctx).read_text())
+    except (FileNotFoundError, ValueError):
+        return {}
+
+
+def _manifest_table(records: list[dict], numeric: list[str]) -> pd.DataFrame:
+    df = pd.DataFrame(records)
+    if df.empty:
+        return df
+    for c in numeric:
+        if c in df:
+            df[c] = pd.to_numeric(df[c])
+    if "kind" not in df:
+        df["kind"] = "measurement"
+    df["kind"] = df["kind"].fillna("measurement")
+    return df.sort_values("run_id", kind="stable").reset_index(drop=True)
 
 
 def manifest_columns(schema: dict, row: pd.Series) -> list[str]:

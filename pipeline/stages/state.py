@@ -1,0 +1,252 @@
+"""Make-style bookkeeping: what each stage consumed, so unchanged stages are skipped.
+
+Each stage gets a *fingerprint* stored in ``build/state/<stage>.json``:
+
+- ``code``: SHA-256 of the stage module's source and of every ``pipeline``
+  module it imports (followed transitively, read with :mod:`ast`, so nothing
+  heavy is imported to decide), plus the ``schemas/`` files;
+- ``inputs``: one digest per input. What a stage reads is declared by a
+  module-level literal ``INPUTS = [...]`` in the stage module: table names
+  (``"manifest"`` is ``build/parquet/manifest.parquet``, hashed by content) or
+  ``"raw"`` (every file below ``--raw`` by path, size and mtime — ingest then
+  re-hashes the content of each changed file itself). A stage without
+  ``INPUTS`` depends on every file written by the stages before it in
+  :data:`pipeline.stages.ORDER`, and on the raw files outside campaign folders
+  (``published/``, ``tyres.csv``);
+- ``outputs``: the files the stage wrote (found by comparing ``build/``
+  before and after it ran) with their content hashes.
+
+A stage is skipped when its code and input digests equal the recorded ones
+and its outputs exist. The state file is written only after the stage's
+outputs, so a crash leaves the previous state and the stage simply reruns.
+Content hashes are cached by (size, mtime) in the state, so a no-op run
+hashes nothing.
+"""
+
+from __future__ import annotations
+
+import ast
+import hashlib
+import json
+import os
+from pathlib import Path
+
+from .. import io
+
+#: Root of the source tree (``pipeline/``'s parent).
+REPO = Path(__file__).resolve().parents[2]
+SCHEMAS = REPO / "schemas"
+#: Built-in raw files every stage may read (tyre catalogue, digitised thesis tables).
+BUILTIN_RAW = [REPO / "raw" / "tyres.csv", REPO / "raw" / "published"]
+#: Folders of ``build/`` that are not stage outputs tracked here.
+UNTRACKED = {"state", "runs"}
+
+
+def _sha(data: bytes) -> str:
+    return hashlib.sha256(data).hexdigest()
+
+
+def _module_file(name: str) -> Path | None:
+    """Source file of a ``pipeline`` module, found without importing anything (None if not a module)."""
+    base = REPO.joinpath(*name.split("."))
+    for path in (base.with_suffix(".py"), base / "__init__.py"):
+        if path.is_file():
+            return path
+    return None
+
+
+def _imports(path: Path, module: str) -> tuple[set[str], dict]:
+    """``pipeline`` modules imported by a module, and its literal top-level assignments."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+    found, literals = set(), {}
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                parts = package.split(".")
+                parts = parts[: len(parts) - node.level + 1]
+                base = ".".join(parts + ([base] if base else []))
+            if base.split(".")[0] == "pipeline":
+                found.add(base)
+                found.update(f"{base}.{a.name}" for a in node.names)
+        elif isinstance(node, ast.Import):
+            found.update(a.name for a in node.names if a.name.split(".")[0] == "pipeline")
+    for node in tree.body:
+        if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
+            try:
+                literals[node.targets[0].id] = ast.literal_eval(node.value)
+            except ValueError:
+                pass
+    return found, literals
+
+
+def declarations(stage_module: str) -> dict:
+    """Module-level literals of a stage module (``INPUTS``, ...), read without importing it."""
+    path = _module_file(stage_module)
+    return _imports(path, stage_module)[1] if path else {}
+
+
+def code_fingerprint(stage_module: str) -> str:
+    """Hash of the source of ``stage_module``, every ``pipeline`` module it imports, and ``schemas/``."""
+    seen: dict[str, Path] = {}
+    todo = [stage_module]
+    while todo:
+        name = todo.pop()
+        if name in seen:
+            continue
+        path = _module_file(name)
+        if path is None:
+            seen[name] = Path()
+            continue
+        seen[name] = path
+        todo.extend(_imports(path, name)[0])
+    h = hashlib.sha256()
+    for name in sorted(seen):
+        if seen[name].name:
+            h.update(name.encode() + b"\0" + seen[name].read_bytes() + b"\0")
+    for p in sorted(SCHEMAS.rglob("*.json")):
+        h.update(str(p.relative_to(SCHEMAS)).encode() + b"\0" + p.read_bytes())
+    return h.hexdigest()
+
+
+class HashCache:
+    """Content hashes of files, re-computed only when a file's size or mtime changed."""
+
+    def __init__(self, entries: dict | None = None):
+        self.entries: dict[str, list] = dict(entries or {})
+        self.used: dict[str, list] = {}
+
+    def digest(self, path: Path) -> str:
+        """SHA-256 of ``path`` (``"missing"`` if it does not exist)."""
+        key = str(path)
+        try:
+            st = path.stat()
+        except FileNotFoundError:
+            return "missing"
+        hit = self.entries.get(key)
+        if hit and hit[0] == st.st_size and hit[1] == st.st_mtime_ns:
+            sha = hit[2]
+        else:
+            sha = io.file_sha256(path)
+        self.used[key] = [st.st_size, st.st_mtime_ns, sha]
+        return sha
+
+
+def stat_digest(paths) -> str:
+    """Hash of the (path, size, mtime) of files: changes when any is added, removed or touched."""
+    h = hashlib.sha256()
+    for p in sorted(paths):
+        try:
+            st = os.stat(p)
+        except FileNotFoundError:
+            continue
+        h.update(f"{p}\0{st.st_size}\0{st.st_mtime_ns}\n".encode())
+    return h.hexdigest()
+
+
+def _files_below(folder: Path):
+    for dirpath, dirnames, filenames in os.walk(folder):
+        dirnames.sort()
+        for f in filenames:
+            yield Path(dirpath) / f
+
+
+def raw_digest(raw: Path) -> str:
+    """Stat digest of every file below ``raw`` and of the built-in raw files."""
+    files = [p for src in [raw, *BUILTIN_RAW] for p in (_files_below(src) if src.is_dir() else [src])]
+    return stat_digest(str(p) for p in files)
+
+
+def raw_extras(raw: Path) -> list[Path]:
+    """Raw files outside campaign folders (``published/``, ``tyres.csv``, ...), plus the built-in ones."""
+    campaigns = {p.parent for p in Path(raw).rglob("manifest.csv")} if Path(raw).is_dir() else set()
+    out = []
+    for src in [Path(raw), *BUILTIN_RAW]:
+        for p in _files_below(src) if src.is_dir() else ([src] if src.exists() else []):
+            if not any(c == p.parent or c in p.parents for c in campaigns):
+                out.append(p)
+    return sorted(set(out))
+
+
+def snapshot(build: Path) -> dict[str, tuple[int, int]]:
+    """(size, mtime) of every file of ``build/`` except state and the per-run dataset."""
+    snap = {}
+    for p in _files_below(build) if build.is_dir() else []:
+        rel = p.relative_to(build)
+        if not UNTRACKED.intersection(rel.parts[:2]) and not p.name.endswith(".tmp"):
+            st = p.stat()
+            snap[str(rel)] = (st.st_size, st.st_mtime_ns)
+    return snap
+
+
+def state_path(build: Path, stage: str) -> Path:
+    """``build/state/<stage>.json``."""
+    return build / "state" / f"{stage}.json"
+
+
+def load(build: Path, stage: str) -> dict:
+    """The recorded fingerprint of ``stage`` (empty if none or unreadable)."""
+    try:
+        return json.loads(state_path(build, stage).read_text())
+    except (FileNotFoundError, ValueError):
+        return {}
+
+
+def input_digests(ctx, stage: str, order: list[str], cache: HashCache) -> dict[str, str]:
+    """Digest of each input of ``stage`` (see the module docstring)."""
+    declared = declarations(f"pipeline.stages.{stage}").get("INPUTS")
+    digests: dict[str, str] = {}
+    if declared is not None:
+        for name in declared:
+            if name == "raw":
+                digests["raw"] = raw_digest(ctx.raw)
+            else:
+                digests[name] = cache.digest(ctx.table(name))
+        return digests
+    own = set(load(ctx.build, stage).get("outputs", {}))
+    for earlier in order[: order.index(stage)] if stage in order else []:
+        for rel in load(ctx.build, earlier).get("outputs", {}):
+            if rel not in own:
+                digests[rel] = cache.digest(ctx.build / rel)
+    for p in raw_extras(ctx.raw):
+        digests[f"raw:{p}"] = cache.digest(p)
+    return digests
+
+
+def why_stale(ctx, stage: str, code: str, inputs: dict[str, str]) -> str | None:
+    """Why ``stage`` must run (one phrase), or None if it is up to date."""
+    if ctx.force:
+        return "--force"
+    prev = load(ctx.build, stage)
+    if not prev:
+        return "no previous run recorded"
+    if prev.get("code") != code:
+        return "code changed"
+    old = prev.get("inputs", {})
+    changed = sorted(k for k in inputs.keys() | old.keys() if inputs.get(k) != old.get(k))
+    if changed:
+        names = [Path(k).name if k.startswith("raw:") or "/" in k else k for k in changed]
+        more = f" and {len(names) - 3} more" if len(names) > 3 else ""
+        return "input(s) changed: " + ", ".join(names[:3]) + more
+    missing = [rel for rel in prev.get("outputs", {}) if not (ctx.build / rel).exists()]
+    if missing:
+        return "output(s) missing: " + ", ".join(missing[:3])
+    return None
+
+
+def record(ctx, stage: str, code: str, inputs: dict[str, str], before: dict, cache: HashCache,
+           counts: dict | None = None) -> None:
+    """Write the state of ``stage`` after it ran (outputs = files it created or changed).
+
+    ``counts`` (runs in, ok, quarantined) are kept so that a skipped stage
+    still reports them, and the exit code still says runs are quarantined.
+    """
+    after = snapshot(ctx.build)
+    prev = load(ctx.build, stage).get("outputs", {})
+    written = {rel for rel, st in after.items() if before.get(rel) != st}
+    outputs = {rel: cache.digest(ctx.build / rel) for rel in sorted(written | (set(prev) & set(after)))}
+    inputs = {k: v for k, v in inputs.items() if k not in outputs}  # a table it rewrites is not its input
+    state = {"stage": stage, "code": code, "inputs": inputs, "outputs": outputs,
+             "counts": counts or {}, "hash_cache": cache.used}
+    io.write_text_atomic(json.dumps(state, indent=1, sort_keys=True), state_path(ctx.build, stage))
