@@ -28,20 +28,22 @@ import pandas as pd
 import pyarrow.parquet as pq
 
 from ..measurement import apparent_mass as am
+from ..measurement import qc
+from ..tyre.sizes import LUG_PITCH_m, parse_tyre_size, rolling_circumference_m
 from ..executor import map_batches
 from .base import Context, Progress, StageResult
 from .ingest import CHANNELS, check_run, read_run_file, write_quarantine
 
 #: What the stage reads (see :mod:`pipeline.stages.state`).
-INPUTS = ["manifest"]
+INPUTS = ["manifest", "tyres"]
 #: Bump when the analysis changes in a way that changes results.
-ANALYSIS_VERSION = "1"
-#: Source of the estimators; a change re-analyses every run.
-ESTIMATOR_SOURCE = hashlib.sha256(Path(am.__file__).read_bytes()).hexdigest()[:16]
+ANALYSIS_VERSION = "2"
+#: Source of the estimators and QC; a change re-analyses every run.
+ESTIMATOR_SOURCE = hashlib.sha256(
+    Path(am.__file__).read_bytes() + Path(qc.__file__).read_bytes()
+).hexdigest()[:16]
 #: Runs analysed together in one vectorised call.
 BATCH = 32
-#: Coherence below which a run is flagged (thesis §3.3.1: H "valid" only where data support it).
-MIN_COHERENCE = 0.9
 
 CONDITION_COLUMNS = [
     "campaign", "run_id", "tyre_id", "kind", "speed_km_h", "pressure_bar", "load_kN",
@@ -65,7 +67,13 @@ def load_signals(paths: list[str]) -> tuple[np.ndarray, np.ndarray]:
     return np.asarray(accel), np.asarray(beams)
 
 
-def analyse_batch(accel: np.ndarray, beams: np.ndarray, axle_mass_kg: np.ndarray, sample_rate_Hz: float) -> pd.DataFrame:
+def analyse_batch(
+    accel: np.ndarray,
+    beams: np.ndarray,
+    axle_mass_kg: np.ndarray,
+    sample_rate_Hz: float,
+    interference_Hz: list[list[float]] | None = None,
+) -> pd.DataFrame:
     """Analyse equal-length runs sampled at one rate.
 
     Parameters
@@ -78,12 +86,17 @@ def analyse_batch(accel: np.ndarray, beams: np.ndarray, axle_mass_kg: np.ndarray
         Axle mass M_a, kg.
     sample_rate_Hz : float
         Sampling rate, Hz.
+    interference_Hz : list of list of float, optional
+        Per run, frequencies of the wheel's own excitation (rotation, lug
+        passing) that would bias K and C if they met the excitation
+        (:func:`pipeline.measurement.qc.interference_frequencies_Hz`).
 
     Returns
     -------
     DataFrame
         One row per run: measured frequency, H, K, C (both estimators),
-        measured amplitude and coherence, in thesis units.
+        measured amplitude, coherence and QC (``qc_ok``, ``qc_reasons``), in
+        thesis units.
     """
     force = am.tyre_force(accel[:, 0], accel[:, 1], beams, axle_mass_kg)
     a = accel.mean(axis=1)
@@ -117,7 +130,32 @@ def analyse_batch(accel: np.ndarray, beams: np.ndarray, axle_mass_kg: np.ndarray
     out["damping_kN_s_per_m"] = out["damping_N_s_per_m"] / 1e3
     out["welch_stiffness_kN_per_m"] = out["welch_stiffness_N_per_m"] / 1e3
     out["welch_damping_kN_s_per_m"] = out["welch_damping_N_s_per_m"] / 1e3
+    t = np.arange(a.shape[-1]) / sample_rate_Hz
+    reasons = []
+    for i in range(len(out)):
+        channels = dict(zip(CHANNELS, [accel[i, 0], accel[i, 1], *beams[i]]))
+        reasons.append(qc.qc_reasons(
+            t, a[i], force[i], out["excitation_frequency_measured_Hz"].iloc[i], out["coherence"].iloc[i],
+            channels=channels, interference_Hz=interference_Hz[i] if interference_Hz else None,
+        ))
+    out["qc_ok"] = [not r for r in reasons]
+    out["qc_reasons"] = ["; ".join(r) for r in reasons]
     return out
+
+
+def wheel_interference_Hz(speed_km_h: float, tyre: pd.Series | None) -> list[float]:
+    """Wheel-rotation and lug-passing frequencies of a run (thesis §2.4.5), Hz.
+
+    Uses the catalogue's ``rolling_circumference_m`` where given, else an
+    estimate from the size; ribbed (undriven front) tyres have no lugs.
+    """
+    if tyre is None:
+        return []
+    circ = tyre.get("rolling_circumference_m")
+    if circ is None or not np.isfinite(float(circ)):
+        circ = rolling_circumference_m(parse_tyre_size(tyre["size"]))
+    lugs = 0 if str(tyre.get("position", "")).endswith("ribbed") else max(int(round(float(circ) / LUG_PITCH_m)), 8)
+    return qc.interference_frequencies_Hz(float(speed_km_h), float(circ), lugs)
 
 
 def batches(runs: pd.DataFrame, size: int = BATCH) -> list[pd.DataFrame]:
@@ -132,9 +170,10 @@ def batches(runs: pd.DataFrame, size: int = BATCH) -> list[pd.DataFrame]:
     return out
 
 
-def _batch_task(chunk: pd.DataFrame) -> dict:
+def _batch_task(chunk: pd.DataFrame, tyres: dict) -> dict:
     return {
         "paths": chunk["run_path"].tolist(),
+        "interference_Hz": [wheel_interference_Hz(v, tyres.get(t)) for v, t in zip(chunk["speed_km_h"], chunk["tyre_id"])],
         "axle_mass_kg": chunk["axle_mass_kg"].to_numpy(float).tolist(),
         "sample_rate_Hz": float(chunk["sample_rate_Hz"].iloc[0]),
     }
@@ -147,7 +186,7 @@ def analyse_paths(task: dict) -> pd.DataFrame:
     ----------
     task : dict
         ``paths`` (per-run Parquet files written by ingest), ``axle_mass_kg``
-        (one per path) and ``sample_rate_Hz``.
+        and ``interference_Hz`` (one per path) and ``sample_rate_Hz``.
 
     Returns
     -------
@@ -155,17 +194,9 @@ def analyse_paths(task: dict) -> pd.DataFrame:
         :func:`analyse_batch`'s rows, in the order of ``paths``.
     """
     accel, beams = load_signals(task["paths"])
-    return analyse_batch(accel, beams, np.asarray(task["axle_mass_kg"], dtype=float), task["sample_rate_Hz"])
-
-
-def qc_reasons(row: pd.Series) -> list[str]:
-    """Basic QC of one analysed run: reasons it should not be used downstream."""
-    reasons = []
-    if not np.isfinite(row["excitation_frequency_measured_Hz"]):
-        reasons.append("excitation not found")
-    elif row["coherence"] < MIN_COHERENCE:
-        reasons.append(f"coherence {row['coherence']:.2f} < {MIN_COHERENCE} at the excitation frequency")
-    return reasons
+    return analyse_batch(
+        accel, beams, np.asarray(task["axle_mass_kg"], dtype=float), task["sample_rate_Hz"], task["interference_Hz"]
+    )
 
 
 def run(ctx: Context) -> StageResult:
@@ -191,14 +222,13 @@ def run(ctx: Context) -> StageResult:
     chunks = batches(todo)
     ctx.log.info("analyse: %d run(s) reused, %d to analyse in %d batch(es) (%s)",
                  len(reuse), len(todo), len(chunks), ctx.executor)
-    outs = map_batches(analyse_paths, [_batch_task(c) for c in chunks], ctx)
+    catalogue = ctx.read_table("tyres") if ctx.has_table("tyres") else pd.DataFrame(columns=["tyre_id"])
+    tyres = {r["tyre_id"]: r for _, r in catalogue.iterrows()}
+    outs = map_batches(analyse_paths, [_batch_task(c, tyres) for c in chunks], ctx)
     Progress("analyse", len(todo), logger=ctx.log).step(len(todo))
     frames = [pd.concat([c.reset_index(drop=True), o], axis=1) for c, o in zip(chunks, outs)]
     new = pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
     if not new.empty:
-        reasons = [qc_reasons(r) for _, r in new.iterrows()]
-        new["qc_ok"] = [not r for r in reasons]
-        new["qc_reasons"] = ["; ".join(r) for r in reasons]
         new["rolling"] = new["speed_km_h"] > 0
     results = pd.concat([df for df in (reuse, new) if not df.empty], ignore_index=True) if len(reuse) or len(new) else new
     quarantine = []
@@ -245,7 +275,7 @@ def analyse_recording(path, axle_mass_kg: float) -> dict:
     accel = np.asarray([[df[c].to_numpy(float) for c in CHANNELS[:2]]])
     beams = np.asarray([[df[c].to_numpy(float) for c in CHANNELS[2:]]])
     row = analyse_batch(accel, beams, np.array([axle_mass_kg]), info.sample_rate_Hz).iloc[0]
-    reasons = qc_reasons(row)
+    reasons = [r for r in row["qc_reasons"].split("; ") if r]
     num = lambda v: None if not np.isfinite(v) else float(v)  # noqa: E731
     return {
         "file": str(path),

@@ -8,6 +8,7 @@ manufacturer (in inches)". This module turns a designation such as
 
 from __future__ import annotations
 
+import math
 import re
 from dataclasses import dataclass
 
@@ -98,3 +99,24 @@ def parse_tyre_size(text: str) -> TyreSize:
         construction="radial" if sep == "R" else "cross-ply",
         alternative_width_in=float(m["alt"]) if m["alt"] else None,
     )
+
+
+#: Sidewall height / section width assumed for a tractor tyre without a printed aspect ratio.
+DEFAULT_ASPECT_RATIO = 0.85
+#: Free diameter to loaded rolling circumference factor; makes 13.6R38 give the
+#: 4.66 m of thesis §4.5.1 / §6.5.3.
+ROLLING_FACTOR = 0.956
+#: Typical circumferential lug pitch of a traction tyre, m (one lug per side every ~0.2 m).
+LUG_PITCH_m = 0.2
+
+
+def rolling_circumference_m(size: TyreSize, aspect_ratio: float = DEFAULT_ASPECT_RATIO) -> float:
+    """Estimated rolling circumference of a tyre, m.
+
+    ``pi * (R + 2 * aspect * W) * 0.0254 * 0.956``: the free diameter from the
+    size, reduced to the loaded rolling circumference so that a 13.6R38 gives
+    the 4.66 m of thesis §4.5.1. A ribbed front tyre has taller sidewalls: a
+    7.50-18 comes out at 2.35 m against the 2.63 m of §5.5.4, so a catalogue
+    value is preferred where one is given.
+    """
+    return math.pi * (size.rim_diameter_in + 2 * aspect_ratio * size.section_width_in) * 0.0254 * ROLLING_FACTOR
