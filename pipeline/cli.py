@@ -130,6 +130,26 @@ def cmd_estimate_stiffness(args) -> int:
     return EXIT_OK
 
 
+def cmd_natural_frequencies(args) -> int:
+    from .tyre.sizes import TyreSizeError
+    from .vehicle.bounce_pitch import natural_frequencies_report
+
+    try:
+        out = natural_frequencies_report(
+            mass=args.mass, pitch_inertia=args.pitch_inertia,
+            front_distance=args.front_distance, rear_distance=args.rear_distance,
+            front_tyre=args.front_tyre, front_pressure=args.front_pressure,
+            rear_tyre=args.rear_tyre, rear_pressure=args.rear_pressure,
+            front_traction=args.front_traction, front_water_ballast=args.front_water_ballast,
+            age=args.age, front_stiffness=args.front_stiffness, rear_stiffness=args.rear_stiffness,
+        )
+    except (TyreSizeError, ValueError) as exc:
+        print(f"tyrelab natural-frequencies: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    print(json.dumps(out, indent=2))
+    return EXIT_OK
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (exposed for tests and documentation)."""
     from .stages import ORDER
@@ -180,6 +200,22 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--water-ballast", action="store_true", help="water-ballasted tyre (+25 %%)")
     e.add_argument("--json", action="store_true", help="print JSON with the inputs")
     e.set_defaults(func=cmd_estimate_stiffness)
+
+    n = sub.add_parser("natural-frequencies", help="bounce and pitch natural frequencies of a tractor (thesis ch. 8), JSON")
+    n.add_argument("--mass", type=float, required=True, help="tractor mass, kg")
+    n.add_argument("--pitch-inertia", type=float, required=True, help="pitch moment of inertia, kg m²")
+    n.add_argument("--front-distance", type=float, required=True, help="centre of gravity to front axle, m")
+    n.add_argument("--rear-distance", type=float, required=True, help="centre of gravity to rear axle, m")
+    n.add_argument("--front-tyre", required=True, help="front tyre size, e.g. 7.50-18")
+    n.add_argument("--front-pressure", type=float, required=True, help="front inflation pressure, bar")
+    n.add_argument("--rear-tyre", required=True, help="rear tyre size, e.g. 13.6R38")
+    n.add_argument("--rear-pressure", type=float, required=True, help="rear inflation pressure, bar")
+    n.add_argument("--front-traction", action="store_true", help="front tyres are traction tyres (4WD): size formula")
+    n.add_argument("--front-water-ballast", action="store_true", help="front tyres water-ballasted (+25 %%)")
+    n.add_argument("--age", type=float, default=1.0, help="tyre age, years (default 1, thesis §8.2)")
+    n.add_argument("--front-stiffness", type=float, default=None, help="override: front stiffness per tyre, kN/m")
+    n.add_argument("--rear-stiffness", type=float, default=None, help="override: rear stiffness per tyre, kN/m")
+    n.set_defaults(func=cmd_natural_frequencies)
     return p
 
 
