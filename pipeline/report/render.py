@@ -27,6 +27,7 @@ def environment() -> jinja2.Environment:
         lstrip_blocks=True,
     )
     env.filters["num"] = format_number
+    env.filters["label"] = column_label
     return env
 
 
@@ -57,12 +58,42 @@ def code_version() -> str:
     return f"{__version__}" + (f" ({sha})" if sha else "")
 
 
-def provenance(raw: Path, campaigns: list[str], seeds: list[str]) -> dict:
-    """Data set, generator seed or raw source, code version and time for a page footer."""
+def provenance(raw: Path, dataset: dict) -> dict:
+    """Data set, generator seed or raw source, code version and time for a page footer.
+
+    Parameters
+    ----------
+    raw : Path
+        Raw data folder of the run.
+    dataset : dict
+        ``campaigns``, ``seeds`` (from each campaign's ``generator.json``) and
+        ``digest`` (of the run files' SHA-256) as built by the site builder.
+    """
     return {
         "raw": str(raw),
-        "campaigns": campaigns,
-        "seeds": seeds,
+        "campaigns": dataset.get("campaigns", []),
+        "seeds": dataset.get("seeds", []),
+        "digest": dataset.get("digest", "–"),
         "code_version": code_version(),
         "generated_at": datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
     }
+
+
+#: Unit suffixes of column names and how headers show them.
+UNITS = {
+    "_kN_per_m_per_mm": " (kN/m per mm)", "_kN_s_per_m_per_mm": " (kN s/m per mm)",
+    "_kN_per_m_bar": " (kN/m per bar)", "_kN_s_per_m_bar": " (kN s/m per bar)",
+    "_kN_s_per_m_per_rad": " (kN s/m per rad)", "_kN_per_rad": " (kN/rad)",
+    "_kN_per_m": " (kN/m)", "_kN_s_per_m": " (kN s/m)", "_km_h": " (km/h)", "_bar": " (bar)",
+    "_kNm": " (kN m)", "_kN": " (kN)", "_kg": " (kg)", "_Hz": " (Hz)", "_mm_pp": " (mm p-p)",
+    "_m_s2": " (m/s²)", "_rad_s2": " (rad/s²)", "_m_s1_75": " (m/s^1.75)", "_m_s": " (m/s)",
+    "_percent": " (%)", "_in": " (in)",
+}
+
+
+def column_label(name: str) -> str:
+    """A readable header from a column name: ``speed_km_h`` -> ``speed (km/h)``."""
+    for suffix, unit in UNITS.items():
+        if name.endswith(suffix):
+            return name[: -len(suffix)].replace("_", " ") + unit
+    return name.replace("_", " ")

@@ -1,0 +1,232 @@
+"""What each report page shows: thesis tables and figures per chapter (pure data).
+
+A :class:`TableSpec` names our warehouse table (or a query producing our
+values), the digitised thesis table and the stage that produces ours, so a
+missing table gets a "not produced yet by stage X" note. A :class:`FigureSpec`
+names a function of :mod:`pipeline.report.figures` and the warehouse tables it
+takes. :data:`CHAPTERS` lists the pages in thesis order.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+
+@dataclass(frozen=True)
+class TableSpec:
+    """A thesis table (or one of our own tables) shown on a chapter page.
+
+    Attributes
+    ----------
+    number : str
+        Thesis table number (``"III"``) or ``""`` for tables of our own.
+    title : str
+        Caption.
+    view : str
+        Our warehouse table.
+    stage : str
+        Stage that writes ``view``.
+    published : str or None
+        Digitised thesis table view (``published_table_iii``).
+    ours_sql : str or None
+        Query for our values when ``view`` has no thesis columns (input tables).
+    keys : tuple of str
+        Join keys between ``ours_sql`` and ``published``.
+    values : dict
+        our column -> thesis column, for ``ours_sql``.
+    thesis_rename : dict
+        Renames of the thesis table's columns before joining.
+    columns : tuple of str
+        For plain (non-comparison) tables: columns shown (all when empty).
+    note : str
+        Explanation shown under the caption.
+    """
+
+    number: str
+    title: str
+    view: str
+    stage: str
+    published: str | None = None
+    ours_sql: str | None = None
+    keys: tuple[str, ...] = ()
+    values: dict = field(default_factory=dict)
+    thesis_rename: dict = field(default_factory=dict)
+    columns: tuple[str, ...] = ()
+    note: str = ""
+
+    @property
+    def anchor(self) -> str:
+        """HTML id of the table's section."""
+        return f"table-{self.number.lower()}" if self.number else self.view.replace("_", "-")
+
+
+@dataclass(frozen=True)
+class FigureSpec:
+    """A figure: ``pipeline.report.figures.<function>(*tables, **kwargs)``.
+
+    Attributes
+    ----------
+    number : str
+        Thesis figure number(s).
+    caption : str
+        Caption.
+    function : str
+        Name in :mod:`pipeline.report.figures`.
+    inputs : tuple of str
+        Warehouse tables passed positionally (empty DataFrame when missing).
+    stage : str
+        Stage that writes the first input.
+    kwargs : dict
+        Extra keyword arguments.
+    """
+
+    number: str
+    caption: str
+    function: str
+    inputs: tuple[str, ...]
+    stage: str
+    kwargs: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Chapter:
+    """One report page."""
+
+    slug: str
+    title: str
+    intro: str
+    items: tuple = ()
+
+
+def _spoke(table: str, number: str, caption: str) -> FigureSpec:
+    from .figures import SPOKE_FIGURES  # the axis choice lives with the figure code
+
+    x, xlabel, fig = SPOKE_FIGURES[table]
+    return FigureSpec(number, caption, "spoke_curves", (table,), "regress", {"x": x, "xlabel": xlabel, "figure": fig})
+
+
+CHAPTERS: tuple[Chapter, ...] = (
+    Chapter("ch3-measurement", "Chapter 3 — measurement and calibration",
+            "Apparent-mass method (§3.2–3.5): each run's K and C from the tyre force and axle acceleration "
+            "at the excitation frequency; the force plate checks the load-beam calibration every day.",
+            (
+                TableSpec("I", "Stiffness and damping by measurement method", "table_i", "calibrate",
+                          "published_table_i"),
+                TableSpec("", "Force-plate calibration per day", "calibration", "calibrate"),
+                TableSpec("", "Calibration transfer function", "calibration_tf", "calibrate"),
+            )),
+    Chapter("ch4-stiffness", "Chapter 4 — tyre stiffness",
+            "Stiffness K = K_c + ΔK_p·P fitted per tyre (§4.3); effects of amplitude, surface and the "
+            "other factors; size regressions and the empirical formula (§4.5).",
+            (
+                TableSpec("III", "Carcass stiffness K_c (kN/m) and pressure dependence ΔK_p (kN/m per bar)",
+                          "table_iii", "regress", "published_table_iii"),
+                FigureSpec("20", "Variation in stiffness with inflation pressure", "stiffness_vs_pressure",
+                           ("results",), "analyse"),
+                FigureSpec("21", "Variation of stiffness with rolling speed, tyres T1–T5 at 1.38 bar",
+                           "stiffness_vs_speed", ("results",), "analyse"),
+                TableSpec("IV", "Rate of change of stiffness with amplitude (kN/m per mm)", "table_iv", "regress",
+                          "published_table_iv"),
+                TableSpec("V", "Change of stiffness on other surfaces (% of concrete)", "table_v", "regress",
+                          "published_table_v"),
+                TableSpec("VI", "Summary of the factors affecting stiffness", "table_vi", "regress",
+                          "published_table_vi"),
+                TableSpec("", "Size regressions (Figs 30–31): ours and from the printed Table III",
+                          "size_regressions", "regress"),
+                FigureSpec("30", "ΔK_p against section width × rim diameter", "pressure_dependence_vs_wr",
+                           ("table_iii", "tyres", "size_regressions"), "regress"),
+                FigureSpec("31", "Carcass stiffness against rim diameter", "carcass_stiffness_vs_rim",
+                           ("table_iii", "tyres", "size_regressions"), "regress"),
+                TableSpec("", "Accuracy of the empirical stiffness formula (§4.5)", "formula_accuracy", "regress"),
+                FigureSpec("32", "Predicted against measured tyre stiffness", "predicted_vs_measured",
+                           ("formula_predictions",), "regress"),
+            )),
+    Chapter("ch5-damping", "Chapter 5 — tyre damping",
+            "Damping C = C_c + ΔC_p·P per tyre and speed (§5.3) and the rotating-spoke model (§5.5).",
+            (
+                TableSpec("VII", "Carcass damping C_c (kN s/m) and pressure dependence (kN s/m per bar)",
+                          "table_vii", "regress", "published_table_vii"),
+                FigureSpec("34", "Variation in damping with rolling speed at 1.38 bar, tyres T1–T5",
+                           "damping_vs_speed", ("results",), "analyse"),
+                TableSpec("VIII", "Rate of change of damping with amplitude (kN s/m per mm)", "table_viii",
+                          "regress", "published_table_viii"),
+                TableSpec("IX", "Change of damping on other surfaces (% of concrete)", "table_ix", "regress",
+                          "published_table_ix"),
+                TableSpec("X", "Summary of the factors affecting damping", "table_x", "regress",
+                          "published_table_x"),
+                _spoke("spoke_speed", "44–45", "Apparent viscous damping of the spoke model against rolling speed"),
+                _spoke("spoke_frequency", "46", "Modelled damping against forcing frequency"),
+                _spoke("spoke_amplitude", "47", "Modelled damping against vibration amplitude"),
+                _spoke("spoke_deflection", "48", "Modelled damping against tyre deflection"),
+                TableSpec("", "Spoke-model coefficients fitted to our damping per tyre", "spoke_fit", "regress",
+                          columns=("tyre_id", "size", "n_runs", "speeds_km_h", "c_coulomb_kN_per_rad",
+                                   "c_viscous_kN_s_per_m_per_rad", "max_abs_error_percent", "status")),
+            )),
+    Chapter("ch6-carriage", "Chapter 6 — single-wheel carriage",
+            "Simulated ride of the single-wheel carriage (tyre T4) on the artificial rough track, "
+            "with rolling and stationary tyre characteristics (§6.2–6.5).",
+            (
+                TableSpec("XI", "Carriage test conditions", "carriage_runs", "simulate", "published_table_xi",
+                          ours_sql="SELECT DISTINCT load_condition, speed_km_h, load_kg FROM carriage_runs",
+                          keys=("load_condition", "speed_km_h"), values={"load_kg": "load_kg"}),
+                TableSpec("XII", "Tyre characteristics used in the carriage simulations", "carriage_runs",
+                          "simulate", "published_table_xii",
+                          ours_sql="SELECT DISTINCT characteristics, load_condition, speed_km_h, stiffness_kN_per_m, "
+                                   "damping_kN_s_per_m FROM carriage_runs WHERE characteristics IN ('rolling', 'stationary')",
+                          keys=("characteristics", "load_condition", "speed_km_h"),
+                          values={"stiffness_kN_per_m": "stiffness_kN_per_m", "damping_kN_s_per_m": "damping_kN_s_per_m"},
+                          thesis_rename={"nominal_speed_km_h": "speed_km_h"}),
+                FigureSpec("51", "Power spectral estimates of the track profile", "profile_spectra",
+                           ("profile_spectra",), "simulate"),
+                TableSpec("XIII", "Accuracy of the carriage predictions, surveyed profile", "table_xiii", "simulate",
+                          "published_table_xiii"),
+                TableSpec("XIV", "Accuracy of the carriage predictions, recorded profile", "table_xiv", "simulate",
+                          "published_table_xiv"),
+                FigureSpec("54", "Measured and predicted rms acceleration", "carriage_rms",
+                           ("carriage_comparisons",), "simulate"),
+                FigureSpec("55", "Ratio errors of the rms acceleration", "carriage_ratio_errors",
+                           ("carriage_comparisons",), "simulate"),
+                FigureSpec("56", "Measured and predicted vibration spectra at 12.5 km/h", "acceleration_spectra",
+                           ("carriage_spectra",), "simulate"),
+            )),
+    Chapter("ch7-tractor", "Chapter 7 — tractor ride",
+            "Bounce–pitch simulation of the MF698T tractor on the ISO tracks (§7.2–7.5).",
+            (
+                TableSpec("XV", "Tractor parameters", "table_xv", "simulate", "published_table_xv",
+                          note="An input table: simulate takes these values as printed (see simulate_inputs)."),
+                TableSpec("XVI", "Tyre characteristics used in the tractor simulations", "tractor_runs", "simulate",
+                          "published_table_xvi",
+                          ours_sql="SELECT DISTINCT characteristics, load_condition, track, speed_km_h, "
+                                   "rear_stiffness_kN_per_m, front_stiffness_kN_per_m, rear_damping_kN_s_per_m, "
+                                   "front_damping_kN_s_per_m FROM tractor_runs WHERE NOT sweep",
+                          keys=("characteristics", "load_condition", "track", "speed_km_h"),
+                          values={c: c for c in ("rear_stiffness_kN_per_m", "front_stiffness_kN_per_m",
+                                                 "rear_damping_kN_s_per_m", "front_damping_kN_s_per_m")}),
+                TableSpec("XVII", "Accuracy of the tractor predictions", "table_xvii", "simulate",
+                          "published_table_xvii"),
+                TableSpec("XVIII", "Effect of longitudinal tyre stiffness and damping", "table_xviii", "simulate",
+                          "published_table_xviii"),
+            )),
+    Chapter("ch8-frequencies", "Chapter 8 — natural frequencies",
+            "Bounce and pitch natural frequencies of five tractors from the formula and from measured "
+            "stationary tyre stiffness (§8.2–8.3).",
+            (
+                TableSpec("XIX", "Tractor data", "table_xix", "simulate", "published_table_xix",
+                          note="An input table: simulate takes these values as printed (see simulate_inputs)."),
+                TableSpec("XX", "Predicted and measured natural frequencies", "table_xx", "simulate",
+                          "published_table_xx"),
+                TableSpec("", "Ratio errors of the natural frequencies", "table_xx_statistics", "simulate"),
+                FigureSpec("69", "Predicted against measured natural frequencies", "natural_frequencies",
+                           ("table_xx",), "simulate"),
+            )),
+    Chapter("iso2631", "ISO 2631 — whole-body vibration",
+            "Frequency-weighted rms, vibration dose value and crest factor of every simulated ride "
+            "(ISO 2631-1), with the EU action and limit values.",
+            (
+                TableSpec("", "Whole-body vibration per simulated ride", "iso2631", "simulate",
+                          columns=("study", "track", "speed_km_h", "load_condition", "characteristics",
+                                   "profile_estimate", "longitudinal", "iso_weighting", "iso_weighted_rms_m_s2",
+                                   "iso_vdv_m_s1_75", "iso_crest_factor", "iso_a8_m_s2", "iso_exceeds_action",
+                                   "iso_exceeds_limit")),
+            )),
+)

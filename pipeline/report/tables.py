@@ -1,0 +1,317 @@
+"""Shape warehouse tables for the report: pure functions, no I/O.
+
+A *comparison* table puts, per quantity, the thesis value, ours and the
+difference side by side. Stages name these columns in several ways, all
+recognised by :func:`find_pairs`:
+
+- ``thesis_<x>`` / ``<x>`` / ``<x>_difference`` (regress),
+- ``thesis_<x>`` / ``ours_<x>`` / ``difference_<x>`` (simulate),
+- ``<x>_thesis`` / ``<x>_ours`` (Table XVIII).
+
+Where a stage wrote only our values, :func:`compare_frames` joins them with
+the digitised thesis table; where it wrote nothing yet, :func:`thesis_only`
+gives the thesis columns with empty "ours" columns.
+
+A difference is *highlighted* when it exceeds the thesis' own precision,
+taken as the largest of half a unit in the last printed digit of the thesis
+value, :data:`REL_TOL` of the thesis value, and the quantity's scatter floor
+in :data:`ABS_TOL` (e.g. the ±8 kN/m standard error of K_c, thesis §4.3.1).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+#: Relative tolerance beyond which a difference is highlighted.
+REL_TOL = 0.05
+#: Absolute floors of the tolerance by column keyword (first match wins).
+ABS_TOL = {
+    "carcass_stiffness": 8.0,
+    "pressure_dependence_kN_per_m": 8.0,
+    "stiffness_kN_per_m": 8.0,
+    "r_squared": 0.02,
+    "_Hz": 0.05,
+    "percent": 2.0,
+}
+#: Numeric columns that identify a row rather than measure something.
+NUMERIC_KEYS = {
+    "speed_km_h", "nominal_speed_km_h", "pressure_bar", "rear_pressure_bar", "front_pressure_bar",
+    "load_kg", "load_kN", "load_condition", "longitudinal_stiffness_kN_per_m",
+    "longitudinal_damping_kN_s_per_m", "range_low", "range_high",
+}
+#: Columns never shown (long free text, bookkeeping); they stay in the warehouse.
+HIDDEN = {"notes", "note", "reason", "basis", "printed_text", "uncertain_columns", "in_thesis", "tyres",
+          "sign_restored", "surface_assigned", "r_squared_qualifier", "rolling_qualifier",
+          "stationary_qualifier", "input_hash", "row_hash", "sha256"}
+#: Extra numeric columns worth showing next to the pairs.
+EXTRAS = ("n",)
+
+
+@dataclass(frozen=True)
+class Pair:
+    """One compared quantity: its label and the thesis, ours and difference columns."""
+
+    label: str
+    thesis: str
+    ours: str
+    difference: str | None = None
+
+
+@dataclass
+class Shaped:
+    """A table ready for the ``comparison`` macro.
+
+    Attributes
+    ----------
+    keys : list of str
+        Identifying columns, shown first.
+    pairs : list of Pair
+        Compared quantities (thesis | ours | Δ each).
+    extras : list of str
+        Further plain columns.
+    rows : list of dict
+        Per row: ``cells`` (key/extra column -> value) and ``pairs`` (list of
+        (thesis, ours, difference, off) per pair).
+    n_off : int
+        Number of highlighted differences.
+    """
+
+    keys: list[str]
+    pairs: list[Pair]
+    extras: list[str]
+    rows: list[dict] = field(default_factory=list)
+    n_off: int = 0
+
+
+def find_pairs(columns) -> list[Pair]:
+    """Thesis/ours/difference column triples among ``columns`` (module docstring)."""
+    cols = list(columns)
+    have = set(cols)
+    pairs = []
+    for c in cols:
+        if c.startswith("thesis_"):
+            x = c[len("thesis_"):]
+            ours = next((o for o in (x, f"ours_{x}") if o in have), None)
+        elif c.endswith("_thesis"):
+            x = c[: -len("_thesis")]
+            ours = f"{x}_ours" if f"{x}_ours" in have else None
+        else:
+            continue
+        if ours is None:
+            continue
+        diff = next((d for d in (f"difference_{x}", f"{x}_difference") if d in have), None)
+        pairs.append(Pair(x, c, ours, diff))
+    return pairs
+
+
+def _decimals(value: float) -> int:
+    text = f"{abs(value):.6f}".rstrip("0")
+    return len(text.split(".")[1]) if "." in text else 0
+
+
+def tolerance(thesis_value: float, label: str) -> float:
+    """Largest difference from ``thesis_value`` that the thesis' precision allows.
+
+    Parameters
+    ----------
+    thesis_value : float
+        The printed value.
+    label : str
+        Quantity (column) name, matched against :data:`ABS_TOL` keywords.
+
+    Returns
+    -------
+    float
+        ``max(half unit of the last printed digit, REL_TOL·|value|, ABS_TOL floor)``.
+    """
+    floor = next((v for k, v in ABS_TOL.items() if k in label), 0.0)
+    half_unit = 0.5 * 10.0 ** (-_decimals(thesis_value))
+    return max(half_unit, REL_TOL * abs(thesis_value), floor)
+
+
+def _num(v) -> float:
+    try:
+        f = float(v)
+    except (TypeError, ValueError):
+        return math.nan
+    return f
+
+
+def _is_numeric(s: pd.Series) -> bool:
+    return pd.api.types.is_numeric_dtype(s) and not pd.api.types.is_bool_dtype(s)
+
+
+def shape_comparison(df: pd.DataFrame, extras: tuple[str, ...] = EXTRAS) -> Shaped:
+    """Split ``df`` into key columns, compared pairs and extras; flag differences.
+
+    Parameters
+    ----------
+    df : DataFrame
+        A table with comparison columns (see :func:`find_pairs`).
+    extras : tuple of str, optional
+        Plain columns to keep when present.
+
+    Returns
+    -------
+    Shaped
+    """
+    pairs = find_pairs(df.columns)
+    used = {c for p in pairs for c in (p.thesis, p.ours, p.difference) if c}
+    keys = [
+        c for c in df.columns
+        if c not in used and c not in HIDDEN and c not in extras and not c.startswith("thesis_")
+        and not c.endswith(("_difference", "_se", "_ci_low", "_ci_high", "_thesis", "_ours"))
+        and not c.startswith(("difference_", "ours_"))
+        and (not _is_numeric(df[c]) or c in NUMERIC_KEYS)
+    ]
+    extra = [c for c in extras if c in df.columns and c not in used]
+    shaped = Shaped(keys=keys, pairs=pairs, extras=extra)
+    for rec in df.to_dict(orient="records"):
+        cells = {c: rec[c] for c in keys + extra}
+        row_pairs = []
+        for p in pairs:
+            t, o = _num(rec[p.thesis]), _num(rec[p.ours])
+            d = _num(rec[p.difference]) if p.difference else o - t
+            off = bool(np.isfinite(d) and np.isfinite(t) and abs(d) > tolerance(t, p.label))
+            shaped.n_off += off
+            row_pairs.append((t, o, d, off))
+        shaped.rows.append({"cells": cells, "pairs": row_pairs})
+    return shaped
+
+
+def _key_text(s: pd.Series) -> pd.Series:
+    """Join keys compare as text; numbers lose trailing zeros (``10.0`` -> ``10``)."""
+    num = pd.to_numeric(s, errors="coerce")
+    text = s.astype(str).str.strip().str.lower()
+    return text.where(num.isna(), num.map(lambda v: f"{v:g}"))
+
+
+def compare_frames(ours: pd.DataFrame, thesis: pd.DataFrame, keys: list[str], values: dict[str, str],
+                   thesis_rename: dict[str, str] | None = None) -> pd.DataFrame:
+    """Outer-join our values with the thesis table as ``thesis_<x>``, ``<x>``, ``<x>_difference``.
+
+    Parameters
+    ----------
+    ours : DataFrame
+        Our table with ``keys`` and the ``values`` keys.
+    thesis : DataFrame
+        Digitised thesis table with ``keys`` (after ``thesis_rename``) and ``values`` values.
+    keys : list of str
+        Join columns; compared as text with numbers normalised.
+    values : dict
+        our column -> thesis column.
+    thesis_rename : dict, optional
+        Renames applied to the thesis table first (e.g. ``nominal_speed_km_h`` -> ``speed_km_h``).
+
+    Returns
+    -------
+    DataFrame
+        Keys (our spelling where the row has ours, else the thesis'), then per value
+        the three comparison columns.
+    """
+    th = thesis.rename(columns=thesis_rename or {})
+    keys = [k for k in keys if k in ours.columns and k in th.columns]
+    values = {o: t for o, t in values.items() if o in ours.columns and t in th.columns}
+    a = ours[keys + list(values)].drop_duplicates().copy()
+    b = th[keys + list(values.values())].rename(columns={t: f"thesis_{o}" for o, t in values.items()}).copy()
+    for frame in (a, b):
+        for k in keys:
+            frame[f"_k_{k}"] = _key_text(frame[k])
+    jk = [f"_k_{k}" for k in keys]
+    m = b.merge(a, on=jk, how="outer", suffixes=("_th", ""), sort=False)
+    out = pd.DataFrame({k: m[k].where(m[k].notna(), m[f"{k}_th"]) if f"{k}_th" in m else m[k] for k in keys})
+    for o in values:
+        out[f"thesis_{o}"] = pd.to_numeric(m[f"thesis_{o}"], errors="coerce")
+        out[o] = pd.to_numeric(m[o], errors="coerce")
+        out[f"{o}_difference"] = out[o] - out[f"thesis_{o}"]
+    return out.reset_index(drop=True)
+
+
+def thesis_only(thesis: pd.DataFrame) -> pd.DataFrame:
+    """The thesis table as ``thesis_<x>`` columns with empty ``<x>`` (ours not produced yet).
+
+    Numeric non-key columns become pairs; text and key columns stay as they are.
+    """
+    out = pd.DataFrame(index=thesis.index)
+    for c in thesis.columns:
+        if c in HIDDEN:
+            continue
+        if _is_numeric(thesis[c]) and c not in NUMERIC_KEYS:
+            out[f"thesis_{c}"] = thesis[c]
+            out[c] = np.nan
+        else:
+            out[c] = thesis[c]
+    return out.reset_index(drop=True)
+
+
+def plain_table(df: pd.DataFrame, columns: list[str] | None = None, max_rows: int = 40) -> dict:
+    """A non-comparison table: chosen columns, at most ``max_rows`` rows.
+
+    Returns
+    -------
+    dict
+        ``columns``, ``rows`` (list of lists), ``n_total``, ``truncated``.
+    """
+    cols = [c for c in (columns or list(df.columns)) if c in df.columns and c not in HIDDEN]
+    rows = df[cols].head(max_rows).to_dict(orient="split")["data"]
+    return {"columns": cols, "rows": rows, "n_total": len(df), "truncated": len(df) > max_rows}
+
+
+def campaign_summary(manifest: pd.DataFrame, results: pd.DataFrame, quarantine: pd.DataFrame,
+                     calibration: pd.DataFrame | None = None) -> dict:
+    """Counts for the index page: runs, tyres, QC failures, quarantined files, calibration days.
+
+    Parameters
+    ----------
+    manifest, results, quarantine : DataFrame
+        Warehouse tables (may be empty).
+    calibration : DataFrame, optional
+        ``calibration`` table (one row per day) if the calibrate stage ran.
+    """
+    kind = manifest["kind"].fillna("measurement") if "kind" in manifest else pd.Series("measurement", index=manifest.index)
+    cal = manifest.loc[kind == "calibration"]
+    days = cal["recorded_on"].nunique() if "recorded_on" in cal else 0
+    if calibration is not None and not calibration.empty:
+        day_col = next((c for c in ("recorded_on", "day", "date") if c in calibration), None)
+        days = calibration[day_col].nunique() if day_col else len(calibration)
+    qc = results["qc_ok"].fillna(False).astype(bool) if "qc_ok" in results else pd.Series(dtype=bool)
+    return {
+        "campaigns": int(manifest["campaign"].nunique()) if "campaign" in manifest else 0,
+        "runs": int(len(manifest)),
+        "measurement_runs": int((kind != "calibration").sum()),
+        "tyres": int(manifest.loc[kind != "calibration", "tyre_id"].nunique()) if "tyre_id" in manifest else 0,
+        "analysed": int(len(results)),
+        "qc_failures": int((~qc).sum()),
+        "quarantined": int(len(quarantine)),
+        "calibration_days": int(days),
+    }
+
+
+def select_runs(results: pd.DataFrame, per_tyre: int = 2, max_runs: int = 80) -> pd.DataFrame:
+    """Runs that get a drill-down page: the first ``per_tyre`` runs per tyre plus every QC-flagged run.
+
+    Parameters
+    ----------
+    results : DataFrame
+        ``results`` table (run_id, tyre_id, qc_ok, ...).
+    per_tyre : int, optional
+        Runs per tyre, in run_id order.
+    max_runs : int, optional
+        Cap on the total (flagged runs first) so the site stays small.
+
+    Returns
+    -------
+    DataFrame
+        Rows of ``results``, flagged first then by tyre and run_id.
+    """
+    if results.empty or "run_id" not in results:
+        return results.head(0)
+    r = results.sort_values(["tyre_id", "run_id"]) if "tyre_id" in results else results.sort_values("run_id")
+    flagged = ~r["qc_ok"].fillna(False).astype(bool) if "qc_ok" in r else pd.Series(False, index=r.index)
+    first = r.groupby("tyre_id", sort=False).head(per_tyre) if "tyre_id" in r else r.head(per_tyre)
+    chosen = pd.concat([r.loc[flagged], first.loc[~flagged.loc[first.index]]])
+    return chosen.drop_duplicates("run_id").head(max_runs).reset_index(drop=True)
