@@ -36,6 +36,7 @@ import time
 
 import pandas as pd
 
+from .. import published
 from ..tyre import formula_accuracy as fa
 from ..tyre import regressions as reg
 from ..tyre import size_regressions as sr
@@ -47,12 +48,9 @@ FACTORS = ("amplitude", "frequency", "load", "torque")
 
 
 def read_published(ctx: Context) -> dict[str, pd.DataFrame | None]:
-    """Published thesis tables ``raw/published/<name>.csv`` (None where absent)."""
-    out = {}
-    for name in PUBLISHED:
-        path = ctx.raw / "published" / f"{name}.csv"
-        out[name] = pd.read_csv(path) if path.exists() else None
-    return out
+    """Published thesis tables (:mod:`pipeline.published`; None where absent)."""
+    available = set(published.stems(ctx.raw))
+    return {name: published.read_published(name, ctx.raw) if name in available else None for name in PUBLISHED}
 
 
 def read_tyres(ctx: Context) -> pd.DataFrame | None:

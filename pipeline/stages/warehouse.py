@@ -12,33 +12,19 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-import pandas as pd
-
-from .. import io
-from ..schema import SCHEMA_DIR, load_schema, validate_frame
+from .. import io, published
 from ..warehouse import build_warehouse, view_name
 from .base import Context, StageResult
 
-#: Digitised thesis tables shipped with tyrelab.
-PUBLISHED_DIR = Path(__file__).resolve().parents[2] / "raw" / "published"
-
 
 def published_tables(ctx: Context) -> dict[str, Path]:
-    """Validate and convert the published CSVs; return view name -> Parquet path.
-
-    Uses ``<raw>/published`` if it exists, else the tables shipped with tyrelab.
-    """
-    src_dir = ctx.raw / "published" if (ctx.raw / "published").is_dir() else PUBLISHED_DIR
+    """Convert the published thesis tables to Parquet; return view name -> Parquet path."""
     out: dict[str, Path] = {}
-    for csv in sorted(src_dir.glob("*.csv")):
-        df = pd.read_csv(csv, keep_default_na=False, na_values=[""])
-        schema_file = SCHEMA_DIR / "published" / f"{csv.stem}.json"
-        if schema_file.exists():
-            for problem in validate_frame(df, load_schema(f"published/{csv.stem}")):
-                ctx.log.error("%s: %s", csv, problem)
-        target = ctx.parquet / "published" / f"{csv.stem}.parquet"
+    for stem in published.stems(ctx.raw):
+        df = published.read_published(stem, ctx.raw, strict=False)
+        target = ctx.parquet / "published" / f"{stem}.parquet"
         io.write_parquet_atomic(df, target)
-        out[f"published_{view_name(csv.stem)}"] = target
+        out[f"published_{view_name(stem)}"] = target
     return out
 
 

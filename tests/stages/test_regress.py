@@ -105,8 +105,17 @@ def test_published_wr_regression_reproduces_thesis(ctx):
 
 
 def test_no_results_no_published(tmp_path):
+    (tmp_path / "raw" / "published").mkdir(parents=True)  # a raw folder with an empty published/ overrides the shipped tables
     c = Context(raw=tmp_path / "raw", build=tmp_path / "build", jobs=1)
     res = regress.run(c)
     assert c.has_table("table_iii") and c.read_table("table_iii").empty
     assert len(c.read_table("size_regressions")) == 3
     assert res.n_in == 0
+
+
+def test_shipped_published_tables_used_when_raw_has_none(tmp_path):
+    c = Context(raw=tmp_path / "elsewhere", build=tmp_path / "build", jobs=1)
+    regress.run(c)
+    t3 = c.read_table("table_iii")
+    assert t3["thesis_carcass_stiffness_kN_per_m"].notna().sum() >= 30
+    assert t3["carcass_stiffness_kN_per_m"].isna().all()

@@ -1,0 +1,68 @@
+"""The thesis' tables, digitised by hand into ``raw/published/*.csv``.
+
+One resolver for every stage: the tables come from ``<raw>/published`` when
+the raw folder has one (a lab may ship corrected transcriptions with its
+data), otherwise from the copy shipped with tyrelab. Each CSV is read with
+blanks as missing values only ("None", "NA" are text in these tables) and
+checked against ``schemas/published/<stem>.json``.
+"""
+
+from __future__ import annotations
+
+import logging
+from pathlib import Path
+
+import pandas as pd
+
+from .schema import SCHEMA_DIR, load_schema, validate_frame
+
+#: Digitised thesis tables shipped with tyrelab.
+SHIPPED_DIR = Path(__file__).resolve().parent.parent / "raw" / "published"
+
+log = logging.getLogger("tyrelab")
+
+
+class PublishedTableError(ValueError):
+    """A published table is missing or does not match its schema."""
+
+
+def published_dir(raw: Path | None = None) -> Path:
+    """``<raw>/published`` if it exists, else the tables shipped with tyrelab."""
+    if raw is not None and (Path(raw) / "published").is_dir():
+        return Path(raw) / "published"
+    return SHIPPED_DIR
+
+
+def stems(raw: Path | None = None) -> list[str]:
+    """Names of the available published tables, e.g. ``["table_i", ..., "table_xx"]``."""
+    return sorted(p.stem for p in published_dir(raw).glob("*.csv"))
+
+
+def read_published(stem: str, raw: Path | None = None, strict: bool = True) -> pd.DataFrame:
+    """Read published table ``stem`` (e.g. ``"table_iii"``).
+
+    Parameters
+    ----------
+    stem : str
+        File stem under ``published/``.
+    raw : Path, optional
+        The run's raw folder (see :func:`published_dir`).
+    strict : bool
+        Raise on schema problems (default); otherwise log them.
+
+    Raises
+    ------
+    PublishedTableError
+        If the table is missing, or (``strict``) does not match its schema.
+    """
+    path = published_dir(raw) / f"{stem}.csv"
+    if not path.is_file():
+        raise PublishedTableError(f"{path}: published table not found")
+    df = pd.read_csv(path, keep_default_na=False, na_values=[""])
+    if (SCHEMA_DIR / "published" / f"{stem}.json").exists():
+        problems = validate_frame(df, load_schema(f"published/{stem}"))
+        if problems and strict:
+            raise PublishedTableError(f"{path}: {problems[0]}")
+        for p in problems:
+            log.error("%s: %s", path, p)
+    return df
