@@ -148,6 +148,15 @@ def excitation_frequency(
     return freqs[in_band[0]] + (k + np.clip(delta, -0.5, 0.5)) * df
 
 
+def _signals(force_N, accel_m_s2, sample_rate_Hz, excitation_frequency_Hz):
+    """Float arrays of force and acceleration, and the excitation frequency (found if None)."""
+    f = np.asarray(force_N, dtype=float)
+    a = np.asarray(accel_m_s2, dtype=float)
+    if excitation_frequency_Hz is None:
+        excitation_frequency_Hz = excitation_frequency(a, sample_rate_Hz)
+    return f, a, excitation_frequency_Hz
+
+
 @dataclass(frozen=True)
 class DemodulationResult:
     """Output of :func:`apparent_mass_demodulation` (arrays of shape (...))."""
@@ -222,10 +231,7 @@ def apparent_mass_demodulation(
     -------
     DemodulationResult
     """
-    f = np.asarray(force_N, dtype=float)
-    a = np.asarray(accel_m_s2, dtype=float)
-    if excitation_frequency_Hz is None:
-        excitation_frequency_Hz = excitation_frequency(a, sample_rate_Hz)
+    f, a, excitation_frequency_Hz = _signals(force_N, accel_m_s2, sample_rate_Hz, excitation_frequency_Hz)
     phase, omega, envelope = _instantaneous_phase(a, sample_rate_Hz, excitation_frequency_Hz, half_band_Hz)
     n = a.shape[-1]
     w = np.hanning(n)
@@ -288,10 +294,7 @@ def apparent_mass_welch(
     -------
     WelchResult
     """
-    f = np.asarray(force_N, dtype=float)
-    a = np.asarray(accel_m_s2, dtype=float)
-    if excitation_frequency_Hz is None:
-        excitation_frequency_Hz = excitation_frequency(a, sample_rate_Hz)
+    f, a, excitation_frequency_Hz = _signals(force_N, accel_m_s2, sample_rate_Hz, excitation_frequency_Hz)
     n = a.shape[-1]
     nperseg = min(1 << int(round(np.log2(sample_rate_Hz / resolution_Hz))), 1 << int(np.log2(n)))
     freqs, g_af = signal.csd(a, f, fs=sample_rate_Hz, nperseg=nperseg, axis=-1)
