@@ -1,8 +1,10 @@
 """Stage ``simulate``: chapters 6-8 - carriage, tractor, Table XX, ISO 2631 (issue 5).
 
-Reads the digitised thesis tables ``raw/published/table_{xii,xv,xvi,xix,xx}.csv``
-when present (falling back to :mod:`pipeline.vehicle.thesis_data`, recorded in the
-``source`` column of ``simulate_inputs``), runs the pure studies of
+Reads the digitised thesis Tables XII-XX through :mod:`pipeline.published`
+(``<raw>/published/table_*.csv`` when the raw folder has one, else the copy shipped
+with tyrelab, schema-checked; the file read is recorded in the ``source`` column of
+``simulate_inputs``), puts them in the studies' layouts with
+:mod:`pipeline.vehicle.published_layouts`, runs the pure studies of
 :mod:`pipeline.vehicle.studies` and :mod:`pipeline.vehicle.bounce_pitch`, and writes:
 
 ``carriage_runs``, ``carriage_comparisons``, ``table_xiii``, ``table_xiv``,
@@ -20,116 +22,76 @@ from __future__ import annotations
 
 import time
 
-import numpy as np
 import pandas as pd
 
-from ..vehicle import bounce_pitch, studies, thesis_data
+from .. import published
+from ..vehicle import bounce_pitch, studies
+from ..vehicle import published_layouts as layouts
 from .base import Context, StageResult
 
 SEED = 5007
 
-#: (stem, fallback, required columns)
-_INPUTS = {
-    "table_xii": (thesis_data.table_xii, ["speed_km_h", "actual_speed_m_s", "load_kg", "damping_kN_s_per_m", "stiffness_kN_per_m"]),
-    "table_xv": (thesis_data.table_xv, ["load_condition", "mass_kg", "pitch_inertia_kg_m2", "cg_height_m", "cg_to_rear_axle_m", "wheelbase_m"]),
-    "table_xvi": (thesis_data.table_xvi, ["load_condition", "track", "speed_km_h", "characteristics", "rear_stiffness_kN_per_m", "front_stiffness_kN_per_m", "rear_damping_kN_s_per_m", "front_damping_kN_s_per_m"]),
-    "table_xix": (thesis_data.table_xix, ["tractor", "mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_m", "front_size", "front_pressure_bar", "rear_size", "rear_pressure_bar", "four_wheel_drive", "front_water_ballast"]),
-    "table_xx": (thesis_data.table_xx, ["tractor", "stiffness_source", "rear_stiffness_kN_per_m", "front_stiffness_kN_per_m", "predicted_frequency_1_Hz", "predicted_frequency_2_Hz", "measured_frequency_1_Hz", "measured_frequency_2_Hz"]),
-}  # fmt: skip
+#: Published tables the stage reads (stems under ``published/``).
+STEMS = ("table_xii", "table_xiii", "table_xiv", "table_xv", "table_xvi", "table_xvii", "table_xviii", "table_xix", "table_xx")
+
+#: Table XX ratio-error statistics as printed in the prose of thesis §8.2 (not in a
+#: table): mean, sd and fraction within ±10 % of predicted/measured frequency, per
+#: stiffness source.
+THESIS_XX_STATISTICS = {
+    "formula": {"mean": 0.998, "sd": 0.09, "p_within_10": 0.75},
+    "stationary_free_vibration": {"mean": 1.19, "sd": 0.11, "p_within_10": 0.19},
+}
+
+_STATISTIC_ORDER = ["mean_ratio_error", "sd_ratio_error", "p_within_10", "p_within_30", "mean", "sd"]
 
 
-def _xv_wide(long: pd.DataFrame) -> pd.DataFrame:
-    """Table XV as digitised (``parameter, condition, value``) -> one row per load condition."""
-    v = {(r.parameter, r.condition): r.value for r in long.itertuples(index=False)}
-    rows = []
-    for lc in (1, 2, 3, 4):
-        cond = f"load_condition_{lc}"
-        case = str(long[(long["parameter"] == "load_case") & (long["condition"] == cond)]["value_text"].iloc[0]).strip()
-        mass_class = "light" if "light" in case.lower() else "heavy"
-        rows.append(
-            {
-                "load_condition": lc,
-                "mass_class": mass_class,
-                "front_pressure_bar": float(v[("front_pressure_bar", cond)]),
-                "rear_pressure_bar": float(v[("rear_pressure_bar", cond)]),
-                "mass_kg": float(v[("total_mass_kg", mass_class)]),
-                "pitch_inertia_kg_m2": float(v[("pitch_inertia_kg_m2", mass_class)]),
-                "cg_height_m": float(v[("cg_height_m", mass_class)]),
-                "cg_to_rear_axle_m": float(v[("cg_to_rear_axle_m", mass_class)]),
-                "wheelbase_m": float(v[("wheelbase_m", "all")]),
-            }
-        )
-    return pd.DataFrame(rows)
-
-
-def _adapt(stem: str, df: pd.DataFrame) -> pd.DataFrame:
-    """Map the digitised CSV layouts onto the columns the studies use."""
-    if stem == "table_xii" and "nominal_speed_km_h" in df and "speed_km_h" not in df:
-        df = df.rename(columns={"nominal_speed_km_h": "speed_km_h"})
-    if stem == "table_xii" and "characteristics" in df:
-        df = df[df["characteristics"] == "rolling"]
-    if stem == "table_xv" and {"parameter", "condition", "value"} <= set(df.columns):
-        df = _xv_wide(df)
-    return df.reset_index(drop=True)
-
-
-def _load(ctx: Context, stem: str) -> tuple[pd.DataFrame, str]:
-    fallback, required = _INPUTS[stem]
-    path = ctx.raw / "published" / f"{stem}.csv"
-    if path.exists():
-        try:
-            df = _adapt(stem, pd.read_csv(path))
-        except (KeyError, ValueError, IndexError) as exc:
-            ctx.log.warning("simulate: cannot read %s (%s); using the built-in transcription", path, exc)
-            return fallback(), "pipeline.vehicle.thesis_data"
-        missing = [c for c in required if c not in df.columns]
-        if not missing:
-            return df, f"raw/published/{stem}.csv"
-        ctx.log.warning("simulate: %s lacks columns %s; using the built-in transcription", path, missing)
-    return fallback(), "pipeline.vehicle.thesis_data"
-
-
-def _bool(s: pd.Series) -> pd.Series:
-    return s.map(lambda v: str(v).strip().lower() in ("true", "1", "yes", "y")) if s.dtype != bool else s
+def _read(ctx: Context) -> tuple[dict[str, pd.DataFrame], pd.DataFrame]:
+    """The published tables and the ``simulate_inputs`` record (file read, rows)."""
+    tables, sources = {}, []
+    for stem in STEMS:
+        tables[stem] = published.read_published(stem, ctx.raw)
+        path = published.published_dir(ctx.raw) / f"{stem}.csv"
+        sources.append({"table": stem, "source": str(path), "rows": len(tables[stem])})
+    return tables, pd.DataFrame(sources)
 
 
 def _side_by_side(ours: pd.DataFrame, thesis: pd.DataFrame, keys: list[str]) -> pd.DataFrame:
-    out = thesis.merge(ours, on=keys, how="left", sort=False)
+    """Thesis beside ours for every key either has; blocks in the thesis' order."""
+    out = thesis.merge(ours, on=keys, how="outer", sort=False)
+    blocks = list(dict.fromkeys(map(tuple, pd.concat([thesis, ours])[keys[:-1]].to_numpy().tolist())))
+    out["_block"] = [blocks.index(b) for b in map(tuple, out[keys[:-1]].to_numpy().tolist())]
+    out["_stat"] = out[keys[-1]].map(_STATISTIC_ORDER.index)
+    out = out.sort_values(["_block", "_stat"], kind="stable")
     for name in ("rolling", "stationary"):
         out[f"difference_{name}"] = out[f"ours_{name}"] - out[f"thesis_{name}"]
     cols = keys + ["thesis_rolling", "ours_rolling", "difference_rolling", "thesis_stationary", "ours_stationary", "difference_stationary"]
-    return out[cols]
+    return out[cols].reset_index(drop=True)
 
 
 def run(ctx: Context) -> StageResult:
     """Run the chapter 6-8 simulations and write their tables (see module docstring)."""
     t0 = time.perf_counter()
-    inputs, sources = {}, []
-    for stem in _INPUTS:
-        inputs[stem], src = _load(ctx, stem)
-        sources.append({"table": stem, "source": src, "rows": len(inputs[stem])})
-    xii = inputs["table_xii"].copy()
-    if "load_condition" not in xii:
-        xii["load_condition"] = np.where(xii["load_kg"] < 2000, "light", "heavy")
-    stationary = thesis_data.table_xii_stationary()
+    pub, sources = _read(ctx)
+    xii = layouts.carriage_rolling(pub["table_xii"])
+    stationary = layouts.carriage_stationary(pub["table_xii"])
 
     # chapter 6: carriage
     car = studies.carriage_study(xii, stationary, seed=SEED)
     xiii = _side_by_side(
         car["table_xiii"].rename(columns={"rolling": "ours_rolling", "stationary": "ours_stationary"}),
-        thesis_data.table_xiii(),
+        layouts.carriage_accuracy(pub["table_xiii"]),
         ["quantity", "statistic"],
     )
     xiv = _side_by_side(
         car["table_xiv"].rename(columns={"rolling": "ours_rolling", "stationary": "ours_stationary"}),
-        thesis_data.table_xiv(),
+        layouts.carriage_accuracy(pub["table_xiv"]),
         ["quantity", "statistic"],
     )
 
     # chapter 7: tractor
-    tr = studies.tractor_study(inputs["table_xv"], inputs["table_xvi"], seed=SEED)
-    xvii = _side_by_side(tr["table_xvii"], thesis_data.table_xvii(), ["track", "quantity", "statistic"])
-    thesis_xviii = thesis_data.table_xviii()
+    tr = studies.tractor_study(layouts.tractor_mass(pub["table_xv"]), layouts.tractor_tyres(pub["table_xvi"]), seed=SEED)
+    xvii = _side_by_side(tr["table_xvii"], layouts.tractor_accuracy(pub["table_xvii"]), ["track", "quantity", "statistic"])
+    thesis_xviii = layouts.longitudinal_sweep(pub["table_xviii"])
     xviii = tr["table_xviii"].merge(
         thesis_xviii[thesis_xviii["row"] == "predicted"].drop(columns="row").assign(longitudinal="kelvin_voigt"),
         on=["longitudinal", "longitudinal_stiffness_kN_per_m", "longitudinal_damping_kN_s_per_m"],
@@ -158,14 +120,11 @@ def run(ctx: Context) -> StageResult:
     )
 
     # chapter 8: Table XX
-    xix = inputs["table_xix"].copy()
-    for c in ("four_wheel_drive", "front_water_ballast"):
-        xix[c] = _bool(xix[c])
-    xx = bounce_pitch.table_xx(xix, inputs["table_xx"])
+    xx = bounce_pitch.table_xx(layouts.tractors(pub["table_xix"]), pub["table_xx"])
     xx_stats = bounce_pitch.table_xx_statistics(xx)
-    xx_stats["thesis_printed_mean"] = xx_stats["stiffness_source"].map({"formula": 0.998, "stationary_free_vibration": 1.19})
-    xx_stats["thesis_printed_sd"] = xx_stats["stiffness_source"].map({"formula": 0.09, "stationary_free_vibration": 0.11})
-    xx_stats["thesis_printed_p_within_10"] = xx_stats["stiffness_source"].map({"formula": 0.75, "stationary_free_vibration": 0.19})
+    for stat in ("mean", "sd", "p_within_10"):
+        printed = {source: s[stat] for source, s in THESIS_XX_STATISTICS.items()}
+        xx_stats[f"thesis_printed_{stat}"] = xx_stats["stiffness_source"].map(printed)
 
     # ISO 2631 of every simulated run
     cr = car["runs"]
@@ -191,7 +150,7 @@ def run(ctx: Context) -> StageResult:
         "table_xx_statistics": xx_stats,
         "iso2631": iso,
         "profile_spectra": spectra,
-        "simulate_inputs": pd.DataFrame(sources),
+        "simulate_inputs": sources,
     }
     for name, df in tables.items():
         ctx.write_table(name, df.reset_index(drop=True))

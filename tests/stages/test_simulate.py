@@ -1,16 +1,19 @@
 """Stage simulate: writes the chapter 6-8 tables, side by side with the thesis."""
 
+import shutil
+
 import numpy as np
 import pandas as pd
 import pytest
 
+from pipeline import published
 from pipeline.stages import simulate
 from pipeline.stages.base import Context
 
 
 @pytest.fixture(scope="module")
 def ctx(tmp_path_factory):
-    raw = tmp_path_factory.mktemp("raw")  # no published CSVs: built-in transcription
+    raw = tmp_path_factory.mktemp("raw")  # no published/: the tables shipped with tyrelab
     c = Context(raw=raw, build=tmp_path_factory.mktemp("build"))
     result = simulate.run(c)
     assert result.n_ok == result.n_in > 0
@@ -21,7 +24,30 @@ def test_tables_written(ctx):
     for name in ("carriage_runs", "table_xiii", "table_xiv", "tractor_runs", "table_xvii", "table_xviii",
                  "table_xx", "table_xx_statistics", "iso2631", "profile_spectra", "simulate_inputs"):
         assert ctx.has_table(name), name
-    assert set(ctx.read_table("simulate_inputs")["source"]) == {"pipeline.vehicle.thesis_data"}
+    inputs = ctx.read_table("simulate_inputs")
+    assert list(inputs["table"]) == list(simulate.STEMS)
+    assert list(inputs["source"]) == [str(published.SHIPPED_DIR / f"{s}.csv") for s in simulate.STEMS]
+
+
+def test_reads_published_of_the_raw_folder(tmp_path):
+    shutil.copytree(published.SHIPPED_DIR, tmp_path / "published")
+    xii = (tmp_path / "published" / "table_xii.csv").read_text().replace("stationary,T4,light,,,1860,3.42,545",
+                                                                         "stationary,T4,light,,,1860,3.42,555")
+    (tmp_path / "published" / "table_xii.csv").write_text(xii)
+    tables, inputs = simulate._read(Context(raw=tmp_path, build=tmp_path / "build"))
+    assert set(inputs["source"]) == {str((tmp_path / "published" / f"{s}.csv").resolve()) for s in simulate.STEMS}
+    st = tables["table_xii"].set_index(["characteristics", "load_condition"])
+    assert st.loc[("stationary", "light"), "stiffness_kN_per_m"] == 555
+
+
+def test_side_by_side_keeps_unprinted_rows(ctx):
+    t = ctx.read_table("table_xvii")
+    assert len(t) == 32 and t[["ours_rolling", "ours_stationary"]].notna().all().all()
+    hh = t[(t["track"] == "HH") & (t["quantity"] == "vertical_rms")]
+    assert list(hh["statistic"]) == ["mean_ratio_error", "sd_ratio_error", "p_within_10", "p_within_30"]
+    assert hh["thesis_rolling"].iloc[0] == 2.08 and hh["thesis_rolling"].iloc[2:].isna().all()
+    x = ctx.read_table("table_xviii").set_index("row")
+    assert x.loc["measured (ours: reference virtual tractor)", "vertical_rms_m_s2_thesis"] == 1.79
 
 
 def test_table_xiii_rolling_beats_stationary(ctx):

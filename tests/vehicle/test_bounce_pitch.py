@@ -5,8 +5,9 @@ import math
 import numpy as np
 import pytest
 
+from pipeline.published import read_published
 from pipeline.vehicle import bounce_pitch as bp
-from pipeline.vehicle import thesis_data as td
+from pipeline.vehicle import published_layouts as layouts
 
 # Table XIX / XX literal thesis data (tractor, M, I, l1, l2, K_rear, K_front per tyre kN/m, f1, f2 printed)
 TABLE_XX = [
@@ -70,7 +71,7 @@ def test_table_xx_ratio_statistics_formula_block():
 
 
 def test_formula_stiffness_beside_thesis():
-    t = bp.table_xx(td.table_xix(), td.table_xx())
+    t = bp.table_xx(layouts.tractors(read_published("table_xix")), read_published("table_xx"))
     f = t[t["stiffness_source"] == "formula"].set_index("tractor")
     assert f.loc["Leyland 272", "ours_rear_stiffness_kN_per_m"] == pytest.approx(303.6, abs=0.05)
     # rear traction tyres: thesis printed values are 1.4-2.4 kN/m above the formula
@@ -107,3 +108,13 @@ def test_rejects_bad_input():
         bp.natural_frequencies(0, 1, 1, 1, 1, 1)
     with pytest.raises(ValueError):
         bp.natural_frequencies(1, 1, 1, 1, -1, 1)
+
+
+def test_literals_match_published_tables():
+    xix = read_published("table_xix").set_index("tractor")
+    xx = read_published("table_xx")
+    for (t, m, i, l1, l2, kr, kf, p1, p2), rec in zip(TABLE_XX, xx.itertuples(index=False)):
+        assert (t, kr, kf, p1, p2) == (rec.tractor, rec.rear_stiffness_kN_per_m, rec.front_stiffness_kN_per_m,
+                                       rec.predicted_frequency_1_Hz, rec.predicted_frequency_2_Hz)
+        assert (m, i, l1, l2) == tuple(xix.loc[t, ["mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_m"]])
+    assert list(zip(xx["measured_frequency_1_Hz"][:5], xx["measured_frequency_2_Hz"][:5])) == MEASURED

@@ -1,0 +1,166 @@
+"""The digitised thesis Tables XII-XX in the layouts the chapter 6-8 studies use.
+
+Pure functions on the DataFrames returned by
+:func:`pipeline.published.read_published` (no file I/O, no thesis numbers: the
+numbers live only in ``raw/published/table_*.csv``). Each adapter renames the
+digitised labels to the ones of :mod:`pipeline.vehicle.studies`,
+:mod:`pipeline.vehicle.metrics` and :mod:`pipeline.vehicle.bounce_pitch`, and
+raises ``ValueError`` on a label it does not know rather than dropping the row.
+"""
+
+from __future__ import annotations
+
+import pandas as pd
+
+__all__ = [
+    "carriage_rolling",
+    "carriage_stationary",
+    "carriage_accuracy",
+    "tractor_mass",
+    "tractor_tyres",
+    "tractor_accuracy",
+    "longitudinal_sweep",
+    "tractors",
+]
+
+#: Statistic labels of Tables XIII, XIV and XVII -> :func:`metrics.accuracy_table`.
+_STATISTIC = {
+    "mean_ratio_error": "mean_ratio_error",
+    "sd_ratio_error": "sd_ratio_error",
+    "p_within_10pct": "p_within_10",
+    "p_within_30pct": "p_within_30",
+}
+#: Ratio quantities of Tables XIII/XIV -> :func:`metrics.accuracy_table`.
+_CARRIAGE_QUANTITY = {
+    "rms_acceleration": "rms_acceleration",
+    "peak_height": "sqrt_peak_height",
+    "peak_frequency": "peak_frequency",
+    "peak_width": "half_power_width_over_frequency",
+}
+#: Envelope rows of Tables XIII/XIV (statistic label) -> (quantity, statistic).
+_ENVELOPE = {
+    "mean_cross_correlation": ("envelope_correlation", "mean"),
+    "sd_cross_correlation": ("envelope_correlation", "sd"),
+    "mean_rms_envelope_error": ("envelope_error", "mean"),
+    "sd_rms_envelope_error": ("envelope_error", "sd"),
+}
+#: Table XVII (quantity, component) -> :func:`studies.tractor_study` quantity.
+_TRACTOR_QUANTITY = {
+    ("rms", "vertical"): "vertical_rms",
+    ("rms", "pitch"): "pitch_rms",
+    ("peak_frequency", "first_peak"): "first_peak_frequency",
+    ("peak_frequency", "second_peak"): "second_peak_frequency",
+}
+_XVIII_COLUMNS = [
+    "longitudinal_stiffness_kN_per_m",
+    "longitudinal_damping_kN_s_per_m",
+    "vertical_rms_m_s2",
+    "pitch_rms_rad_s2",
+    "peak_1_Hz",
+    "peak_2_Hz",
+    "peak_3_Hz",
+]
+
+
+def _lookup(mapping: dict, key, table: str):
+    if key not in mapping:
+        raise ValueError(f"{table}: unknown label {key!r}")
+    return mapping[key]
+
+
+def _as_bool(s: pd.Series) -> pd.Series:
+    return s if s.dtype == bool else s.map(lambda v: str(v).strip().lower() in ("true", "1", "yes", "y"))
+
+
+def carriage_rolling(xii: pd.DataFrame) -> pd.DataFrame:
+    """Table XII rolling rows: ``speed_km_h, actual_speed_m_s, load_condition, load_kg,
+    damping_kN_s_per_m, stiffness_kN_per_m`` (input of :func:`studies.carriage_study`)."""
+    rolling = xii[xii["characteristics"] == "rolling"].rename(columns={"nominal_speed_km_h": "speed_km_h"})
+    return rolling.reset_index(drop=True)
+
+
+def carriage_stationary(xii: pd.DataFrame) -> pd.DataFrame:
+    """Table XII stationary rows: ``load_condition, load_kg, damping_kN_s_per_m, stiffness_kN_per_m``."""
+    cols = ["load_condition", "load_kg", "damping_kN_s_per_m", "stiffness_kN_per_m"]
+    return xii.loc[xii["characteristics"] == "stationary", cols].reset_index(drop=True)
+
+
+def carriage_accuracy(table: pd.DataFrame) -> pd.DataFrame:
+    """Table XIII or XIV as ``quantity, statistic, thesis_rolling, thesis_stationary``.
+
+    Labels follow :func:`pipeline.vehicle.metrics.accuracy_table`; the ``>``
+    qualifiers of '>0.9999' cells are dropped (the value 0.9999 is kept).
+    """
+    rows = []
+    for r in table.itertuples(index=False):
+        if r.quantity == "envelope":
+            quantity, statistic = _lookup(_ENVELOPE, r.statistic, "carriage accuracy")
+        else:
+            quantity = _lookup(_CARRIAGE_QUANTITY, r.quantity, "carriage accuracy")
+            statistic = _lookup(_STATISTIC, r.statistic, "carriage accuracy")
+        rows.append((quantity, statistic, float(r.rolling), float(r.stationary)))
+    return pd.DataFrame(rows, columns=["quantity", "statistic", "thesis_rolling", "thesis_stationary"])
+
+
+def tractor_mass(xv: pd.DataFrame) -> pd.DataFrame:
+    """Table XV (long: ``parameter, condition, value``) -> one row per load condition.
+
+    Columns ``load_condition, mass_class, front_pressure_bar, rear_pressure_bar,
+    mass_kg, pitch_inertia_kg_m2, cg_height_m, cg_to_rear_axle_m, wheelbase_m``.
+    """
+    v = {(r.parameter, r.condition): r.value for r in xv.itertuples(index=False)}
+    text = {(r.parameter, r.condition): str(r.value_text).strip() for r in xv.itertuples(index=False)}
+    conditions = sorted(c for p, c in v if p == "load_case")
+    rows = []
+    for cond in conditions:
+        mass_class = "light" if "light" in text[("load_case", cond)].lower() else "heavy"
+        rows.append(
+            {
+                "load_condition": int(cond.rsplit("_", 1)[1]),
+                "mass_class": mass_class,
+                "front_pressure_bar": float(v[("front_pressure_bar", cond)]),
+                "rear_pressure_bar": float(v[("rear_pressure_bar", cond)]),
+                "mass_kg": float(v[("total_mass_kg", mass_class)]),
+                "pitch_inertia_kg_m2": float(v[("pitch_inertia_kg_m2", mass_class)]),
+                "cg_height_m": float(v[("cg_height_m", mass_class)]),
+                "cg_to_rear_axle_m": float(v[("cg_to_rear_axle_m", mass_class)]),
+                "wheelbase_m": float(v[("wheelbase_m", "all")]),
+            }
+        )
+    return pd.DataFrame(rows)
+
+
+def tractor_tyres(xvi: pd.DataFrame) -> pd.DataFrame:
+    """Table XVI as :func:`studies.tractor_study` reads it (the digitised layout already is)."""
+    return xvi.reset_index(drop=True)
+
+
+def tractor_accuracy(xvii: pd.DataFrame) -> pd.DataFrame:
+    """Table XVII as ``track, quantity, statistic, thesis_rolling, thesis_stationary``."""
+    rows = [
+        (
+            r.surface,
+            _lookup(_TRACTOR_QUANTITY, (r.quantity, r.component), "table_xvii"),
+            _lookup(_STATISTIC, r.statistic, "table_xvii"),
+            float(r.rolling),
+            float(r.stationary),
+        )
+        for r in xvii.itertuples(index=False)
+    ]
+    return pd.DataFrame(rows, columns=["track", "quantity", "statistic", "thesis_rolling", "thesis_stationary"])
+
+
+def longitudinal_sweep(xviii: pd.DataFrame) -> pd.DataFrame:
+    """Table XVIII: the sweep columns plus ``row`` = ``predicted`` | ``measured``."""
+    out = xviii[_XVIII_COLUMNS].astype(float)
+    out["row"] = _as_bool(xviii["is_measured"]).map({True: "measured", False: "predicted"})
+    return out.reset_index(drop=True)
+
+
+def tractors(xix: pd.DataFrame) -> pd.DataFrame:
+    """Table XIX with boolean ``four_wheel_drive`` and ``front_water_ballast``
+    (input of :func:`bounce_pitch.table_xx`)."""
+    out = xix.copy()
+    for c in ("four_wheel_drive", "front_water_ballast"):
+        out[c] = _as_bool(out[c])
+    return out.reset_index(drop=True)
