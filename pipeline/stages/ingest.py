@@ -73,6 +73,10 @@ OPTIONAL_CHANNELS = ["force_plate_N"]
 RUN_SUFFIXES = (".parquet", ".csv", *formats.SUFFIXES)
 
 
+#: Sampling facts ingest adds to the ``manifest`` table, in this column order.
+INFO_KEYS = ("sample_rate_Hz", "n_samples", "duration_s")
+
+
 class RunFileError(ValueError):
     """A run file that cannot be used; the message is the one-line reason."""
 
@@ -293,7 +297,7 @@ def convert_run(task: dict) -> dict:
         sha = io.file_sha256(src)
     done = {"run_id": task["run_id"], "sha256": sha}
     if prev and prev["sha256"] == sha and prev["row"] == task["row"] and prev["out"] == str(out) and out.exists():
-        return {**done, "info": prev["info"]}
+        return {**done, "info": prev["info"], "converted": False}
     try:
         cmap = formats.load_channel_map(task["channel_map"]) if task.get("channel_map") else None
         df = read_run_file(src, channel_map=cmap)
@@ -302,7 +306,8 @@ def convert_run(task: dict) -> dict:
             pq.write_table(_run_table(df, task["run_id"], ri.channels), tmp, compression="zstd")
     except (RunFileError, formats.FormatError) as exc:
         return {**done, "reason": str(exc)}
-    return {**done, "info": {"sample_rate_Hz": ri.sample_rate_Hz, "n_samples": ri.n_samples, "duration_s": ri.duration_s}}
+    info = {"sample_rate_Hz": ri.sample_rate_Hz, "n_samples": ri.n_samples, "duration_s": ri.duration_s}
+    return {**done, "info": info, "converted": True}
 
 
 def _optional_float(row: pd.Series, name: str) -> float | None:
@@ -443,7 +448,8 @@ def run(ctx: Context) -> StageResult:
         new_state[t["run_id"]] = {"size": st.st_size, "mtime_ns": st.st_mtime_ns, "sha256": d["sha256"],
                                   "row": row_hash, "out": str(out), "info": d["info"]}
         rec = {c: row.get(c) for c in manifest_columns(schema, row)}
-        rec.update(campaign=str(campaign), sha256=d["sha256"], row_hash=row_hash, run_path=str(out), **d["info"])
+        rec.update(campaign=str(campaign), sha256=d["sha256"], row_hash=row_hash, run_path=str(out))
+        rec.update((k, d["info"][k]) for k in INFO_KEYS)  # fixed order: same bytes however info was obtained
         records.append(rec)
 
     ctx.write_table("manifest", _manifest_table(records, numeric))
@@ -456,7 +462,8 @@ def run(ctx: Context) -> StageResult:
     result.n_quarantined = sum(1 for q in plan.quarantine if q["run_id"] is not None)
     result.n_in = result.n_ok + result.n_quarantined
     unlisted = sum(1 for q in plan.quarantine if q["run_id"] is None)
-    result.message = f"{len(work)} converted, {len(cached)} unchanged" + (
+    converted = sum(1 for d in done.values() if d.get("converted"))
+    result.message = f"{converted} converted, {len(done) - converted} unchanged" + (
         f"; {unlisted} file/manifest/catalogue problem(s) without a run id" if unlisted else "")
     result.seconds = time.perf_counter() - t0
     return result
