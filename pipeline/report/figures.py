@@ -40,6 +40,7 @@ RC = {
     "legend.frameon": False,
     "lines.markersize": 4,
     "figure.dpi": 72,
+    "figure.constrained_layout.w_pad": 0.12,
 }
 #: Default figure size in inches (one column of the report).
 SIZE = (5.4, 3.2)
@@ -590,7 +591,7 @@ def run_drilldown(signals: pd.DataFrame, spectra: pd.DataFrame, excitation_Hz: f
     if not has_time and not has_spec:
         return None
     fig, axes = _figure(2, 2, size=(7.6, 5.0), layout=None)  # fixed margins: constrained layout triples the time
-    fig.subplots_adjust(left=0.09, right=0.98, bottom=0.09, top=0.94, wspace=0.28, hspace=0.45)
+    fig.subplots_adjust(left=0.11, right=0.98, bottom=0.09, top=0.94, wspace=0.34, hspace=0.45)
     (a_time, a_psd), (a_tf, a_coh) = axes
     if has_time:
         _draw_time_series(a_time, signals, seconds)

@@ -80,7 +80,7 @@ def resolve_table(wh: Warehouse, spec: TableSpec) -> dict:
         else:
             item.update(mode="plain", plain=tables.plain_table(df, list(spec.columns) or None, MAX_PLAIN_ROWS))
     elif not published.empty:
-        item.update(mode="comparison", shaped=tables.shape_comparison(tables.thesis_only(published)))
+        item.update(mode="comparison", shaped=tables.shape_comparison(tables.thesis_only(published, tuple(spec.values.values()))))
         item["note"] = " ".join(filter(None, [spec.note, _missing(spec.stage, f"Our {spec.view}")]))
     else:
         item.update(mode="missing")
@@ -227,7 +227,6 @@ def build_site(db: Path, out: Path, raw: Path) -> dict:
           summary=tables.campaign_summary(manifest, results, quarantine, wh.table("calibration")),
           contents=contents,
           quarantine=tables.plain_table(quarantine, ["campaign", "file", "run_id", "stage", "reason"], 100),
-          flagged=tables.plain_table(flagged, ["run_id", "tyre_id", "speed_km_h", "pressure_bar", "qc_reasons"], 100),
-          run_pages={r["run_id"]: r["href"] for r in listed})
+          flagged=tables.plain_table(flagged, ["run_id", "tyre_id", "speed_km_h", "pressure_bar", "qc_reasons"], 100))
     size = sum(p.stat().st_size for p in out.rglob("*") if p.is_file())
     return {"pages": pages, "bytes": size, "tables": n_tables, "comparison_tables": n_comparison, "missing": missing}

@@ -231,16 +231,17 @@ def compare_frames(ours: pd.DataFrame, thesis: pd.DataFrame, keys: list[str], va
     return out.reset_index(drop=True)
 
 
-def thesis_only(thesis: pd.DataFrame) -> pd.DataFrame:
+def thesis_only(thesis: pd.DataFrame, value_columns: tuple[str, ...] = ()) -> pd.DataFrame:
     """The thesis table as ``thesis_<x>`` columns with empty ``<x>`` (ours not produced yet).
 
-    Numeric non-key columns become pairs; text and key columns stay as they are.
+    Numeric non-key columns, and ``value_columns`` even if they are usually keys
+    (Table XI's load), become pairs; text and key columns stay as they are.
     """
     out = pd.DataFrame(index=thesis.index)
     for c in thesis.columns:
         if c in HIDDEN:
             continue
-        if _is_numeric(thesis[c]) and c not in NUMERIC_KEYS:
+        if _is_numeric(thesis[c]) and (c not in NUMERIC_KEYS or c in value_columns):
             out[f"thesis_{c}"] = thesis[c]
             out[c] = np.nan
         else:
@@ -249,14 +250,14 @@ def thesis_only(thesis: pd.DataFrame) -> pd.DataFrame:
 
 
 def plain_table(df: pd.DataFrame, columns: list[str] | None = None, max_rows: int = 40) -> dict:
-    """A non-comparison table: chosen columns, at most ``max_rows`` rows.
+    """A non-comparison table: chosen columns (default: all but :data:`HIDDEN`), at most ``max_rows`` rows.
 
     Returns
     -------
     dict
         ``columns``, ``rows`` (list of lists), ``n_total``, ``truncated``.
     """
-    cols = [c for c in (columns or list(df.columns)) if c in df.columns and c not in HIDDEN]
+    cols = [c for c in columns if c in df.columns] if columns else [c for c in df.columns if c not in HIDDEN]
     rows = df[cols].head(max_rows).to_dict(orient="split")["data"]
     return {"columns": cols, "rows": rows, "n_total": len(df), "truncated": len(df) > max_rows}
 

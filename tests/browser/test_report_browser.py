@@ -1,0 +1,114 @@
+"""Open every page of a freshly built report in headless Chromium.
+
+Skipped, with the reason, when the ``playwright`` package or a Chromium
+binary is missing (CI installs both: ``.ci/run`` apt-installs chromium and
+``make test`` the ``browser`` extra). No browser is downloaded: the test
+drives the system Chromium. The report comes from a tiny synthetic campaign
+run through :func:`pipeline.stages.run_pipeline` (every stage but simulate,
+which alone takes ~40 s; chapters 6–8 then show the thesis tables with our
+columns marked "not produced yet by stage simulate").
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "report"))
+
+from small_campaign import EVIL_TYRE, build_small_report  # noqa: E402
+
+pytestmark = pytest.mark.browser
+
+CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                 "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+
+
+def chromium_path() -> str | None:
+    """The system Chromium: ``$CHROMIUM``, /usr/bin/chromium, or ``chromium`` on PATH."""
+    for candidate in (os.environ.get("CHROMIUM"), "/usr/bin/chromium", shutil.which("chromium"),
+                      shutil.which("chromium-browser")):
+        if candidate and Path(candidate).exists():
+            return candidate
+    return None
+
+
+@pytest.fixture(scope="module")
+def browser():
+    sync_api = pytest.importorskip(
+        "playwright.sync_api", reason="playwright is not installed (pip install -e '.[browser]')")
+    exe = chromium_path()
+    if exe is None:
+        pytest.skip("no Chromium found (apt-get install chromium, or set $CHROMIUM)")
+    with sync_api.sync_playwright() as p:
+        b = p.chromium.launch(executable_path=exe, args=CHROMIUM_ARGS)
+        yield b
+        b.close()
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory) -> Path:
+    ctx = build_small_report(tmp_path_factory.mktemp("browser_report"))
+    return ctx.build / "reports"
+
+
+def test_every_page_opens_cleanly(browser, site, tmp_path):
+    pages = sorted(site.rglob("*.html"))
+    assert len(pages) >= 9  # index, 7 chapters, runs list (+ drill-downs)
+    page = browser.new_page(viewport={"width": 1280, "height": 900})
+    errors: list[str] = []
+    requests: list[str] = []
+    page.on("console", lambda m: errors.append(f"{m.type}: {m.text}") if m.type == "error" else None)
+    page.on("pageerror", lambda e: errors.append(f"pageerror: {e}"))
+    page.on("dialog", lambda d: (errors.append(f"dialog: {d.message}"), d.dismiss()))
+    page.on("request", lambda r: requests.append(r.url))
+    shots = tmp_path / "screenshots"
+    shots.mkdir()
+    for path in pages:
+        page.goto(path.as_uri())
+        page.wait_for_load_state("load")
+        for t in range(page.locator("table").count()):
+            table = page.locator("table").nth(t)
+            assert table.locator("tbody tr, tr").count() > 0, f"{path.name}: table {t} has no rows"
+            if table.locator("thead").count():
+                assert table.locator("tbody tr").count() > 0, f"{path.name}: table {t} has a header but no rows"
+        assert page.locator("footer").inner_text().startswith("Provenance."), path.name
+        shot = shots / (path.relative_to(site).as_posix().replace("/", "__") + ".png")
+        page.screenshot(path=str(shot), full_page=path.name == "index.html")
+        assert shot.stat().st_size > 0
+    assert not errors, errors
+    external = [u for u in requests if not u.startswith(("file:", "data:", "about:"))]
+    assert not external, external
+
+
+def test_markup_in_tyre_id_is_shown_as_text(browser, site):
+    page = browser.new_page()
+    dialogs: list[str] = []
+    page.on("dialog", lambda d: (dialogs.append(d.message), d.dismiss()))
+    page.goto((site / "ch4-stiffness.html").as_uri())
+    table_iii = page.locator("#table-iii table")
+    assert table_iii.locator("tbody tr").count() > 0
+    assert EVIL_TYRE in table_iii.inner_text()
+    assert page.locator("script").count() == 0
+    assert not dialogs
+    # the thesis / ours / difference columns of Table III
+    assert table_iii.locator("thead th", has_text="thesis").count() >= 2
+    assert table_iii.locator("thead th", has_text="ours").count() >= 2
+
+
+def test_relative_links_resolve(browser, site):
+    page = browser.new_page()
+    page.goto((site / "index.html").as_uri())
+    page.click("nav >> text=Chapter 4")
+    assert page.url.endswith("ch4-stiffness.html")
+    page.click("nav >> text=Runs")
+    first = page.locator("tbody a").first
+    first.click()
+    assert "/runs/" in page.url
+    assert page.locator("svg").count() == 1
+    page.click("nav >> text=Summary")
+    assert page.url.endswith("index.html")
