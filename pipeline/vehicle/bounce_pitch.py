@@ -16,6 +16,7 @@ kN/m, the thesis' unit.
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -218,6 +219,57 @@ def natural_frequencies_report(
     return {k: float(v) for k, v in out.items()}
 
 
+#: Half the last printed digit of each Table XIX / XX input: mass 1 kg, inertia 1 kg m²,
+#: lever arms 0.01 m, tyre stiffness 1 kN/m.
+PRINT_ROUNDING = {"mass": 0.5, "pitch_inertia": 0.5, "front_distance": 0.005, "rear_distance": 0.005,
+                  "front_stiffness_kN_per_m": 0.5, "rear_stiffness_kN_per_m": 0.5}
+
+
+def frequency_rounding_range(
+    mass: float,
+    pitch_inertia: float,
+    front_distance: float,
+    rear_distance: float,
+    front_stiffness_kN_per_m: float,
+    rear_stiffness_kN_per_m: float,
+    rounding: dict[str, float] = PRINT_ROUNDING,
+) -> np.ndarray:
+    """Range of the two natural frequencies over the inputs' print-rounding box.
+
+    The thesis printed Table XIX and XX inputs rounded (lever arms to 0.01 m,
+    for instance) but computed its frequencies from unrounded values; the
+    frequencies are sensitive to the lever arms (about 1.6 Hz per metre), so a
+    printed frequency can differ from one recomputed from printed inputs by
+    more than its own rounding. Evaluating :func:`natural_frequencies` at every
+    corner of the box ``value ± rounding`` bounds what the unrounded inputs
+    could have given (the frequencies are smooth and the box small).
+
+    Parameters
+    ----------
+    mass, pitch_inertia, front_distance, rear_distance : float
+        kg, kg m², m, m (as printed).
+    front_stiffness_kN_per_m, rear_stiffness_kN_per_m : float
+        Per-tyre stiffness as printed, kN/m (axle stiffness is twice this, §8.2).
+    rounding : dict
+        Half-widths per input name (:data:`PRINT_ROUNDING`).
+
+    Returns
+    -------
+    ndarray, shape (2, 2)
+        ``[[f1_low, f1_high], [f2_low, f2_high]]`` in Hz.
+    """
+    values = dict(mass=mass, pitch_inertia=pitch_inertia, front_distance=front_distance, rear_distance=rear_distance,
+                  front_stiffness_kN_per_m=front_stiffness_kN_per_m, rear_stiffness_kN_per_m=rear_stiffness_kN_per_m)
+    names = list(values)
+    corners = []
+    for signs in itertools.product((-1.0, 1.0), repeat=len(names)):
+        v = {n: values[n] + sg * rounding.get(n, 0.0) for n, sg in zip(names, signs)}
+        corners.append(natural_frequencies(v["mass"], v["pitch_inertia"], v["front_distance"], v["rear_distance"],
+                                           2e3 * v["front_stiffness_kN_per_m"], 2e3 * v["rear_stiffness_kN_per_m"]))
+    f = np.asarray(corners)
+    return np.array([[f[:, 0].min(), f[:, 0].max()], [f[:, 1].min(), f[:, 1].max()]])
+
+
 def table_xx(tractors: pd.DataFrame, published: pd.DataFrame | None = None) -> pd.DataFrame:
     """Table XX: tyre stiffnesses and predicted natural frequencies, ours beside the thesis'.
 
@@ -287,6 +339,15 @@ def table_xx(tractors: pd.DataFrame, published: pd.DataFrame | None = None) -> p
                     2e3 * row["thesis_rear_stiffness_kN_per_m"],
                 )
                 row.update(frequency_1_from_thesis_stiffness_Hz=g1, frequency_2_from_thesis_stiffness_Hz=g2)
+                rng = frequency_rounding_range(t.mass_kg, t.pitch_inertia_kg_m2, t.front_distance_m, t.rear_distance_m,
+                                               row["thesis_front_stiffness_kN_per_m"], row["thesis_rear_stiffness_kN_per_m"])
+                for i in (1, 2):
+                    low, high = rng[i - 1]
+                    printed = row[f"thesis_frequency_{i}_Hz"]
+                    row[f"frequency_{i}_rounding_low_Hz"] = low
+                    row[f"frequency_{i}_rounding_high_Hz"] = high
+                    # printed to 0.01 Hz: consistent if its own rounding interval meets the range
+                    row[f"thesis_frequency_{i}_consistent_with_rounding"] = bool(low - 0.005 <= printed <= high + 0.005)
             if source == "formula":
                 row.update(
                     ours_rear_stiffness_kN_per_m=ours["rear_tyre_stiffness_kN_per_m"],

@@ -118,3 +118,29 @@ def test_literals_match_published_tables():
                                        rec.predicted_frequency_1_Hz, rec.predicted_frequency_2_Hz)
         assert (m, i, l1, l2) == tuple(xix.loc[t, ["mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_m"]])
     assert list(zip(xx["measured_frequency_1_Hz"][:5], xx["measured_frequency_2_Hz"][:5])) == MEASURED
+
+
+def test_table_xx_printed_frequencies_consistent_with_input_rounding():
+    # Recomputed from Table XIX's printed inputs, 16 of 20 frequencies lie within
+    # 0.01 Hz and all within 0.0135 Hz; every one lies inside the range that the
+    # print rounding of the inputs (0.01 m lever arms, 1 kg, 1 kg m², 1 kN/m) allows.
+    from pipeline.published import read_published
+    from pipeline.vehicle.bounce_pitch import table_xx
+    from pipeline.vehicle.published_layouts import tractors
+
+    t = table_xx(tractors(read_published("table_xix")), read_published("table_xx"))
+    assert t["thesis_frequency_1_consistent_with_rounding"].all()
+    assert t["thesis_frequency_2_consistent_with_rounding"].all()
+    for i in (1, 2):
+        err = (t[f"frequency_{i}_from_thesis_stiffness_Hz"] - t[f"thesis_frequency_{i}_Hz"]).abs()
+        assert err.max() < 0.0135
+
+
+def test_frequency_rounding_range_brackets_the_nominal_value():
+    from pipeline.vehicle.bounce_pitch import frequency_rounding_range, natural_frequencies
+
+    rng = frequency_rounding_range(3434, 3946, 1.48, 0.81, 311, 314)
+    f = natural_frequencies(3434, 3946, 1.48, 0.81, 2e3 * 311, 2e3 * 314)
+    assert rng[0, 0] < f[0] < rng[0, 1] and rng[1, 0] < f[1] < rng[1, 1]
+    # a 0.005 m lever-arm rounding alone moves f2 by ~0.008 Hz
+    assert rng[1, 1] - rng[1, 0] > 0.016
