@@ -1,0 +1,76 @@
+"""Killing `tyrelab run` at any moment leaves the previous warehouse readable; the next run completes."""
+
+import json
+import random
+import shutil
+import signal
+import subprocess
+import time
+
+import pytest
+
+from crashkit import STAGES, campaign, start_run
+from pipeline.warehouse import query
+
+QUERY = "SELECT run_id, stiffness_kN_per_m, damping_kN_s_per_m FROM results ORDER BY run_id"
+
+
+@pytest.fixture(scope="module")
+def baseline(tmp_path_factory):
+    raw = campaign(tmp_path_factory.mktemp("raw") / "c")
+    build = tmp_path_factory.mktemp("build")
+    assert start_run(raw, build).wait() == 0
+    return raw, build, query(build / "warehouse.duckdb", QUERY)
+
+
+def kill_then_rerun(raw, build, delay, expected, *extra):
+    proc = start_run(raw, build, "--force", *extra)
+    time.sleep(delay)
+    proc.send_signal(signal.SIGKILL)
+    proc.wait()
+    readable = query(build / "warehouse.duckdb", QUERY)  # the previous warehouse, still readable
+    assert len(readable) == len(expected)
+    assert start_run(raw, build).wait() == 0
+    assert query(build / "warehouse.duckdb", QUERY).equals(expected)
+
+
+@pytest.mark.parametrize("delay", [0.2, 0.9] + [round(random.Random(7).uniform(0.3, 2.5), 2) for _ in range(2)])
+def test_sigkill_at_any_moment(baseline, tmp_path, delay):
+    raw, build0, expected = baseline
+    build = tmp_path / "build"
+    shutil.copytree(build0, build)
+    # state and views of the copy name build0's absolute paths: one run re-points them at this folder
+    assert start_run(raw, build).wait() == 0
+    kill_then_rerun(raw, build, delay, expected)
+    assert not list(build.rglob("*.tmp")) or start_run(raw, build).wait() == 0
+
+
+def test_state_is_written_after_outputs(baseline, tmp_path):
+    raw, build0, expected = baseline
+    build = tmp_path / "build"
+    shutil.copytree(build0, build)
+    assert start_run(raw, build).wait() == 0
+    states = {s: json.loads((build / "state" / f"{s}.json").read_text()) for s in STAGES}
+    for i, stage in enumerate(STAGES):
+        later = {p for s in STAGES[i + 1:] for p in states[s]["outputs"]}  # e.g. quarantine: ingest, then analyse
+        outputs = [build / p for p in states[stage]["outputs"] if p not in later]
+        written = (build / "state" / f"{stage}.json").stat().st_mtime_ns
+        assert outputs and all(p.stat().st_mtime_ns <= written for p in outputs)
+
+
+@pytest.mark.slow
+def test_sigkill_real_tyrelab_run(baseline, tmp_path):
+    """The real console script with every installed stage (slow: other stages simulate for minutes)."""
+    raw, _, _ = baseline
+    build = tmp_path / "build"
+    bin_ = shutil.which("tyrelab") or pytest.skip("tyrelab console script not on PATH")
+    assert subprocess.run([bin_, "run", "--raw", str(raw), "--build", str(build)], capture_output=True).returncode == 0
+    expected = query(build / "warehouse.duckdb", QUERY)
+    proc = subprocess.Popen([bin_, "run", "--force", "--raw", str(raw), "--build", str(build)],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    time.sleep(3.0)
+    proc.kill()
+    proc.wait()
+    assert len(query(build / "warehouse.duckdb", QUERY)) == len(expected)
+    assert subprocess.run([bin_, "run", "--raw", str(raw), "--build", str(build)], capture_output=True).returncode == 0
+    assert query(build / "warehouse.duckdb", QUERY).equals(expected)
