@@ -10,13 +10,17 @@ because DuckDB resolves relative paths against the process' working folder.
 
 from __future__ import annotations
 
+import logging
 import re
 from pathlib import Path
 
 import duckdb
 import pandas as pd
+import pyarrow.parquet as pq
 
 from . import io
+
+log = logging.getLogger("tyrelab")
 
 #: Statement types a query may run; anything else is refused.
 READ_ONLY_STATEMENTS = {"SELECT", "EXPLAIN", "PRAGMA"}
@@ -50,11 +54,17 @@ def build_warehouse(db_path: Path, parquet_dir: Path, published: dict[str, Path]
     parquet_dir = Path(parquet_dir).resolve()
     views: dict[str, str] = {}
     for p in sorted(parquet_dir.glob("*.parquet")):
+        if not pq.read_schema(p).names:
+            log.warning("warehouse: %s has no columns; no view made", p)
+            continue
         views[view_name(p.stem)] = f"SELECT * FROM read_parquet({_quote(p)})"
     runs = parquet_dir / "runs"
     if any(runs.glob("*/*.parquet")):
+        # Partition folders are percent-encoded tyre ids (pipeline.stages.ingest.tyre_partition).
         views["runs"] = (
-            f"SELECT * FROM read_parquet({_quote(runs / '*' / '*.parquet')}, hive_partitioning = true, union_by_name = true)"
+            "SELECT * REPLACE (url_decode(tyre_id) AS tyre_id) FROM read_parquet("
+            f"{_quote(runs / '*' / '*.parquet')}, hive_partitioning = true, "
+            "hive_types = {'tyre_id': VARCHAR}, union_by_name = true)"
         )
     for name, path in (published or {}).items():
         views[name] = f"SELECT * FROM read_parquet({_quote(Path(path).resolve())})"

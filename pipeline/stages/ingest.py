@@ -480,10 +480,17 @@ def _load_run_state(ctx: Context) -> dict:
         return {}
 
 
+#: Columns ingest adds to the manifest's own.
+MANIFEST_EXTRA = {"kind": str, "campaign": str, "sha256": str, "row_hash": str, "run_path": str,
+                  "sample_rate_Hz": float, "n_samples": "int64", "duration_s": float}
+
+
 def _manifest_table(records: list[dict], numeric: list[str]) -> pd.DataFrame:
     df = pd.DataFrame(records)
-    if df.empty:
-        return df
+    if df.empty:  # keep the columns, so the warehouse view and later stages still bind
+        names = field_names(load_schema("raw_manifest"))
+        types = {c: (float if c in numeric else str) for c in names} | MANIFEST_EXTRA
+        return pd.DataFrame({c: pd.Series(dtype=t) for c, t in types.items()})
     for c in numeric:
         if c in df:
             df[c] = pd.to_numeric(df[c])
