@@ -12,6 +12,7 @@ without timestamps, the manifest with fixed float formatting.
 
 from __future__ import annotations
 
+import json
 import time
 from pathlib import Path
 
@@ -19,7 +20,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from . import io
+from . import __version__, io
 from .rig.campaigns import MANIFEST_COLUMNS, campaign_plan, simulate_run
 from .rig.instrument import RigConfig
 
@@ -67,6 +68,10 @@ def generate_campaign(out: Path, scale: str = "small", seed: int = 1991) -> dict
     manifest.loc[cal, "amplitude_mm_pp"] = [round(a, 2) for a, c in zip(amplitudes, cal) if c]
     io.write_text_atomic(manifest.to_csv(index=False, float_format="%.6g", lineterminator="\n"),
                          out / "manifest.csv")
+    # Provenance for the report (no timestamp: the same command gives the same bytes).
+    meta = {"generator": "tyrelab virtual dynamic tyre test vehicle (pipeline.rig)", "scale": scale, "seed": seed,
+            "tyrelab_version": __version__, "runs": int(len(plan))}
+    io.write_text_atomic(json.dumps(meta, indent=2, sort_keys=True) + "\n", out / "generator.json")
     return {
         "out": str(out), "scale": scale, "seed": seed, "runs": int(len(plan)),
         "measurement_runs": int((~cal).sum()), "calibration_runs": int(cal.sum()),

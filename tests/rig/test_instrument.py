@@ -1,6 +1,7 @@
 """Virtual instrument: raw-format contract, analysis accuracy, an independent recording."""
 
 import hashlib
+import json
 from pathlib import Path
 
 import numpy as np
@@ -113,3 +114,5 @@ def test_generate_small_is_deterministic_and_in_raw_v1(tmp_path):
     run = pd.read_parquet(tmp_path / "a" / m.loc[m["kind"] == "calibration", "file"].iloc[0])
     assert list(run.columns) == ["time_s", *ins.CHANNELS, "force_plate_N"]
     assert s1["runs"] == len(m) and m["run_id"].is_unique
+    meta = json.loads((tmp_path / "a" / "generator.json").read_text())
+    assert (meta["seed"], meta["scale"], meta["runs"]) == (5, "small", len(m))
