@@ -127,17 +127,27 @@ def measured_tyres(results: pd.DataFrame) -> list[str]:
     return sorted(results.loc[kind == "measurement", "tyre_id"].dropna().astype(str).unique())
 
 
-def _fit_groups(runs, keys, grid, response, hold, prefer) -> pd.DataFrame:
-    """Fit ``response ~ x`` per group of ``keys``; ``grid`` lists the groups to report."""
+def _fit_groups(runs, keys, grid, response, hold, prefer, design: str = "x") -> pd.DataFrame:
+    """Fit ``response ~ x`` per group of ``keys``; ``grid`` lists the groups to report.
+
+    ``design`` is the column of the experiment's set levels (the nominal
+    condition): the held level is chosen, and a group counts as an experiment
+    on x, by its distinct *design* values, so that the scatter of a measured
+    regressor around one set level is never mistaken for a sweep.
+    """
     rows = []
     groups = dict(tuple(runs.groupby(keys, sort=True))) if not runs.empty else {}
     for key in grid.itertuples(index=False, name=None):
         sub = groups.get(key if len(keys) > 1 else key[0], runs.iloc[0:0])
         sub = sub.loc[sub[response].notna()] if response in sub else sub
-        sub, levels, note = cond.hold_constant(sub, "x", hold, prefer=prefer)
-        fit = fit_line(sub["x"], sub[response]) if len(sub) else fit_line([], [])
+        sub, levels, note = cond.hold_constant(sub, design, hold, prefer=prefer)
+        one_level = len(sub) > 0 and sub[design].round(6).nunique() < 2
+        fit = fit_line(sub["x"], sub[response]) if len(sub) and not one_level else fit_line([], [])
         if len(sub) == 0:
             fit["reason"] = "no runs under the selection convention (pipeline.tyre.conditions)"
+        elif one_level:
+            fit["n"] = int(len(sub))
+            fit["reason"] = f"fewer than 2 distinct set levels of the regressor (n={len(sub)}): the runs do not vary it"
         row = dict(zip(keys, key))
         row.update(fit)
         for c in hold:
@@ -229,6 +239,7 @@ def factor_regressions(
     if not runs.empty:
         runs["speed_km_h"] = _speed(runs["speed_km_h"])
         runs["tyre_id"] = runs["tyre_id"].astype(str)
+    runs["x_design"] = pd.to_numeric(runs[cond.FACTORS[factor][0]], errors="coerce") if not runs.empty else np.nan
     unit = cond.FACTORS[factor][2]
     hold = [c for c in ("pressure_bar", "load_kN") if c != cond.FACTORS[factor][0]]
     grid = runs[["tyre_id", "speed_km_h"]].drop_duplicates().sort_values(["tyre_id", "speed_km_h"]) \
@@ -236,7 +247,7 @@ def factor_regressions(
     out = []
     for response in responses:
         f = _fit_groups(runs, ["tyre_id", "speed_km_h"], grid, response, hold,
-                        {"pressure_bar": cond.STANDARD_PRESSURE_BAR, "load_kN": 0.0})
+                        {"pressure_bar": cond.STANDARD_PRESSURE_BAR, "load_kN": 0.0}, design="x_design")
         f.insert(2, "response", response)
         f.insert(3, "factor", factor)
         f.insert(4, "factor_unit", unit)

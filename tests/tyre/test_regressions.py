@@ -141,3 +141,14 @@ def test_summary_rates_against_known_values(results):
     assert t6.loc["rolling_speed_0_15", "value"] == pytest.approx(d0)
     assert t6.loc["rolling_speed_10_15", "value"] == pytest.approx(0.0, abs=1e-9)
     assert t6.loc["pressure", "thesis_value"] == 190.0
+
+
+def test_measured_scatter_around_one_set_level_is_not_a_sweep():
+    # Runs all set to 14 mm p-p: the measured amplitudes scatter by ±0.1 mm, which
+    # must not produce an amplitude rate (it did: thousands of kN/m per mm).
+    rows = [run("AS1", 10.0, 1.2, 300.0 + d, 1.0) for d in (0.0, 3.0, -2.0)]
+    df = pd.DataFrame(rows)
+    df["amplitude_measured_mm_pp"] = [13.9, 14.0, 14.1]
+    fit = reg.factor_regressions(df, "amplitude")
+    r = fit.query("tyre_id == 'AS1' and response == 'stiffness_kN_per_m'").iloc[0]
+    assert np.isnan(r.slope) and r.n == 3 and "set levels" in r.reason
