@@ -141,6 +141,7 @@ def run(ctx: Context) -> StageResult:
     tables = {
         "carriage_runs": cr,
         "carriage_comparisons": car["comparisons"],
+        "carriage_spectra": car["acceleration_spectra"],
         "table_xiii": xiii,
         "table_xiv": xiv,
         "tractor_runs": trr,

@@ -202,6 +202,7 @@ def carriage_study(
                 **base,
                 "characteristics": "reference",
                 "profile_estimate": "true",
+                "quoted_stiffness_kN_per_m": float(c["stiffness_kN_per_m"]),
                 "stiffness_kN_per_m": surface_stiffness_factor * float(c["stiffness_kN_per_m"]),
                 "damping_kN_s_per_m": float(c["damping_kN_s_per_m"]),
                 "parasitic_damping_kN_s_per_m": 0.0,
@@ -229,6 +230,7 @@ def carriage_study(
                         **base,
                         "characteristics": name,
                         "profile_estimate": estimate,
+                        "quoted_stiffness_kN_per_m": k_kn,
                         "stiffness_kN_per_m": surface_stiffness_factor * k_kn,
                         "damping_kN_s_per_m": c_kn,
                         "parasitic_damping_kN_s_per_m": cm.PARASITIC_DAMPING_N_S_PER_M / 1e3,
@@ -268,8 +270,39 @@ def carriage_study(
         "table_xiv": tables["recorded"],
         "spectra": spectra,
         "records": records,
+        "acceleration_spectra": record_spectra(records, FS_HZ, speed_km_h=12.5),
         "track": track,
     }
+
+
+def record_spectra(records: dict, fs_Hz: float, speed_km_h: float, f_max_Hz: float = 10.0) -> pd.DataFrame:
+    """Acceleration PSDs (0.1 Hz bandwidth, §7.4) of the example records of Fig. 56.
+
+    Parameters
+    ----------
+    records : dict
+        ``(characteristics, profile estimate) -> acceleration record`` (m/s²).
+    fs_Hz : float
+        Sampling rate, Hz.
+    speed_km_h : float
+        Speed of the records (for the table), km/h.
+    f_max_Hz : float
+        Highest frequency kept, Hz.
+
+    Returns
+    -------
+    DataFrame
+        ``speed_km_h, series, frequency_Hz, psd_m2_s4_per_Hz``; the series
+        ``reference (true)`` is the "measured" side.
+    """
+    rows = []
+    for (name, estimate), a in sorted(records.items()):
+        f, p = mt.acceleration_psd(a, fs_Hz)
+        keep = f <= f_max_Hz
+        rows.append(pd.DataFrame({"speed_km_h": speed_km_h, "series": f"{name} ({estimate})",
+                                  "frequency_Hz": f[keep], "psd_m2_s4_per_Hz": p[keep]}))
+    return pd.concat(rows, ignore_index=True) if rows else pd.DataFrame(
+        columns=["speed_km_h", "series", "frequency_Hz", "psd_m2_s4_per_Hz"])
 
 
 def _tractor_inputs(profile: pr.Profile, radii, footprints, speed, wheelbase, n_steps):

@@ -87,3 +87,17 @@ def test_deterministic_pieces(ctx):
     a = profiles.slatted_track(seed=simulate.SEED)
     b = profiles.slatted_track(seed=simulate.SEED)
     assert np.array_equal(a.left_m, b.left_m)
+
+
+def test_carriage_runs_keep_the_quoted_table_xii_stiffness(ctx):
+    runs = ctx.read_table("carriage_runs")
+    rolling = runs[(runs["characteristics"] == "rolling") & (runs["speed_km_h"] == 10.0) & (runs["load_condition"] == "heavy")]
+    assert set(rolling["quoted_stiffness_kN_per_m"]) == {324.0}  # Table XII, before the 10 % surface reduction
+    assert rolling["stiffness_kN_per_m"].iloc[0] == pytest.approx(0.9 * 324.0)
+
+
+def test_fig56_spectra_written(ctx):
+    sp = ctx.read_table("carriage_spectra")
+    assert {"reference (true)", "rolling (surveyed)", "stationary (surveyed)"} <= set(sp["series"])
+    ref = sp[sp["series"] == "reference (true)"]
+    assert ref["frequency_Hz"].max() <= 10.0 and (ref["psd_m2_s4_per_Hz"] >= 0).all()
