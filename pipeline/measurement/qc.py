@@ -77,30 +77,42 @@ def block_demodulation(time_s: np.ndarray, accel_m_s2: np.ndarray, excitation_fr
     return np.asarray(amps), np.asarray(freqs)
 
 
-def clipped(x: np.ndarray, full_scale: float | None = None, min_run: int = 3, min_count: int = 5) -> bool:
-    """Whether a channel shows clipping.
+def clipped(x: np.ndarray, full_scale=None, min_run: int = 3, min_count: int = 5):
+    """Whether a channel (or each row of a stack of channels) shows clipping.
 
     Either samples within one LSB of ``+-full_scale`` (16-bit converter), or
     the channel's extreme value repeated at least ``min_run`` times in a row
     and ``min_count`` times in all (flat tops at a rail of unknown range).
+
+    Parameters
+    ----------
+    x : ndarray, shape (n,) or (channels, n)
+        Samples.
+    full_scale : float or array of float, optional
+        Converter full scale (per channel; NaN = unknown).
+
+    Returns
+    -------
+    bool, or ndarray of bool of shape (channels,)
     """
     x = np.asarray(x, dtype=float)
-    if x.size == 0:
-        return False
+    rows = np.atleast_2d(x)
+    out = np.zeros(rows.shape[0], dtype=bool)
+    if rows.shape[-1] == 0:
+        return bool(out[0]) if x.ndim == 1 else out
     if full_scale is not None:
-        lsb = 2 * full_scale / 65536
-        if np.any(np.abs(x) >= full_scale - 1.5 * lsb):
-            return True
-    for ext in (x.max(), x.min()):
-        at = x == ext
-        if at.sum() < min_count:
-            continue
-        # longest run of consecutive samples at the extreme
-        d = np.diff(np.concatenate(([0], at.view(np.int8), [0])))
-        runs = np.flatnonzero(d == -1) - np.flatnonzero(d == 1)
-        if runs.size and runs.max() >= min_run:
-            return True
-    return False
+        fsc = np.broadcast_to(np.asarray(full_scale, dtype=float), out.shape)
+        lsb = 2 * fsc / 65536
+        with np.errstate(invalid="ignore"):
+            out |= np.any(np.abs(rows) >= (fsc - 1.5 * lsb)[:, np.newaxis], axis=-1)
+    for ext in (rows.max(axis=-1), rows.min(axis=-1)):
+        at = rows == ext[:, np.newaxis]
+        # the run-length test only where the extreme repeats often enough (rare)
+        for i in np.flatnonzero((np.count_nonzero(at, axis=-1) >= min_count) & ~out):
+            d = np.diff(np.concatenate(([0], at[i].view(np.int8), [0])))
+            runs = np.flatnonzero(d == -1) - np.flatnonzero(d == 1)
+            out[i] = runs.size > 0 and runs.max() >= min_run
+    return bool(out[0]) if x.ndim == 1 else out
 
 
 def interference_frequencies_Hz(speed_km_h: float, circumference_m: float, lugs_per_side: int = 0,
@@ -135,6 +147,7 @@ def qc_reasons(
     block_s: float = BLOCK_S,
     interference_Hz: list[float] | None = None,
     interference_tolerance_Hz: float = 0.15,
+    blocks: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> list[str]:
     """Reasons a measurement run should not be used (empty list = OK).
 
@@ -162,6 +175,10 @@ def qc_reasons(
         a run whose excitation lies within ``interference_tolerance_Hz`` of one is
         flagged: the wheel's own excitation then adds to the axle motion at the
         measurement frequency and biases K and C (coherence stays high).
+    blocks : (ndarray, ndarray), optional
+        Per-block excitation amplitude and frequency (Hz) already computed by
+        the analysis (:func:`pipeline.measurement.apparent_mass.excitation_blocks`);
+        computed here with :func:`block_demodulation` when omitted.
 
     Returns
     -------
@@ -173,9 +190,10 @@ def qc_reasons(
     reasons: list[str] = []
     chans = dict(channels) if channels is not None else {"accel": accel_m_s2, "force": force_N}
     fsc = dict(full_scale or {})
-    for name, x in chans.items():
-        if clipped(x, fsc.get(name)):
-            reasons.append(f"clipping in {name}")
+    names = list(chans)
+    flags = clipped(np.stack([np.asarray(chans[n], dtype=float) for n in names]),
+                    [fsc.get(n, np.nan) for n in names])
+    reasons.extend(f"clipping in {n}" for n, flag in zip(names, flags) if flag)
     f0 = float(excitation_frequency_Hz) if excitation_frequency_Hz is not None else float("nan")
     if not np.isfinite(f0) or f0 <= 0:
         reasons.append("excitation not found")
@@ -186,7 +204,7 @@ def qc_reasons(
             break
     if not np.isfinite(coherence) or coherence < min_coherence:
         reasons.append(f"coherence {coherence:.2f} < {min_coherence:g} at the excitation frequency")
-    amp, freq = block_demodulation(time_s, accel_m_s2, f0, block_s)
+    amp, freq = blocks if blocks is not None else block_demodulation(time_s, accel_m_s2, f0, block_s)
     if amp.size == 0 or not np.all(np.isfinite(amp)) or np.median(amp) <= 0:
         reasons.append("excitation not found")
         return reasons

@@ -57,14 +57,17 @@ def input_hash(sha256: str, row_hash: str) -> str:
 
 
 def load_signals(paths: list[str]) -> tuple[np.ndarray, np.ndarray]:
-    """Read runs of equal length; return (accelerations (runs, 2, n), load beams (runs, 4, n))."""
-    accel, beams = [], []
-    for p in paths:
+    """Read runs of equal length; return (accelerations (runs, 2, n), load beams (runs, 4, n)), float64."""
+    out = None
+    for i, p in enumerate(paths):
         t = pq.read_table(p, columns=CHANNELS)
-        cols = [t.column(c).to_numpy().astype(np.float64) for c in CHANNELS]
-        accel.append(cols[:2])
-        beams.append(cols[2:])
-    return np.asarray(accel), np.asarray(beams)
+        if out is None:
+            out = np.empty((len(paths), len(CHANNELS), t.num_rows))
+        for j, c in enumerate(CHANNELS):
+            out[i, j] = t.column(c).to_numpy()
+    if out is None:
+        return np.empty((0, 2, 0)), np.empty((0, 4, 0))
+    return out[:, :2], out[:, 2:]
 
 
 def analyse_batch(
@@ -101,7 +104,6 @@ def analyse_batch(
     force = am.tyre_force(accel[:, 0], accel[:, 1], beams, axle_mass_kg)
     a = accel.mean(axis=1)
     fe = am.excitation_frequency(a, sample_rate_Hz)
-    out = pd.DataFrame(index=range(len(fe)))
     found = np.isfinite(fe)
     cols = {k: np.full(len(fe), np.nan) for k in (
         "excitation_frequency_measured_Hz",
@@ -124,23 +126,25 @@ def analyse_batch(
         cols["amplitude_measured_mm_pp"][found] = 2e3 * d.displacement_amplitude_m
         cols["amplitude_measured_rms_mm"][found] = 1e3 * d.displacement_amplitude_m / np.sqrt(2)
         cols["acceleration_amplitude_m_s2"][found] = d.acceleration_amplitude_m_s2
-    for k, v in cols.items():
-        out[k] = v
-    out["stiffness_kN_per_m"] = out["stiffness_N_per_m"] / 1e3
-    out["damping_kN_s_per_m"] = out["damping_N_s_per_m"] / 1e3
-    out["welch_stiffness_kN_per_m"] = out["welch_stiffness_N_per_m"] / 1e3
-    out["welch_damping_kN_s_per_m"] = out["welch_damping_N_s_per_m"] / 1e3
+    for q in ("stiffness", "damping", "welch_stiffness", "welch_damping"):
+        unit = "N_per_m" if q.endswith("stiffness") else "N_s_per_m"
+        cols[f"{q}_k{unit}"] = cols[f"{q}_{unit}"] / 1e3
     t = np.arange(a.shape[-1]) / sample_rate_Hz
+    blocks = [None] * len(fe)
+    if found.any():
+        amp_blocks, freq_blocks = am.excitation_blocks(d.envelope_m_s2, d.angular_frequency_rad_s, sample_rate_Hz)
+        for j, i in enumerate(np.flatnonzero(found)):
+            blocks[i] = (amp_blocks[j], freq_blocks[j])
     reasons = []
-    for i in range(len(out)):
+    for i in range(len(fe)):
         channels = dict(zip(CHANNELS, [accel[i, 0], accel[i, 1], *beams[i]]))
         reasons.append(qc.qc_reasons(
-            t, a[i], force[i], out["excitation_frequency_measured_Hz"].iloc[i], out["coherence"].iloc[i],
-            channels=channels, interference_Hz=interference_Hz[i] if interference_Hz else None,
+            t, a[i], force[i], cols["excitation_frequency_measured_Hz"][i], cols["coherence"][i],
+            channels=channels, interference_Hz=interference_Hz[i] if interference_Hz else None, blocks=blocks[i],
         ))
-    out["qc_ok"] = [not r for r in reasons]
-    out["qc_reasons"] = ["; ".join(r) for r in reasons]
-    return out
+    cols["qc_ok"] = np.array([not r for r in reasons], dtype=bool)
+    cols["qc_reasons"] = ["; ".join(r) for r in reasons]
+    return pd.DataFrame(cols)
 
 
 def wheel_interference_Hz(speed_km_h: float, tyre: pd.Series | None) -> list[float]:

@@ -118,3 +118,42 @@ def test_excitation_frequency_between_bins():
     t = np.arange(int(20 * fs)) / fs
     assert am.excitation_frequency(np.sin(2 * np.pi * 3.437 * t), fs) == pytest.approx(3.437, abs=2e-3)
     assert np.isnan(am.excitation_frequency(np.sin(2 * np.pi * 3.0 * t[:4]), fs))
+
+
+def test_welch_segments_at_bin_match_scipy_csd_welch_coherence():
+    from scipy import signal
+
+    df = spring_damper_recording(250e3, 2000.0, 3.93, force_noise_N=500, accel_noise_m_s2=0.3, seed=5)
+    accel, beams = split(df)
+    f = am.tyre_force(accel[0], accel[1], beams, 600.0)
+    a = accel.mean(axis=0)
+    fs, nperseg = 256.0, 2048
+    freqs, g_af = signal.csd(a, f, fs=fs, nperseg=nperseg)
+    _, g_aa = signal.welch(a, fs=fs, nperseg=nperseg)
+    _, coh = signal.coherence(a, f, fs=fs, nperseg=nperseg)
+    i = int(np.argmin(np.abs(freqs - 3.93)))
+    w = am.apparent_mass_welch(f, a, fs, 3.93)
+    assert w.frequency_Hz == pytest.approx(freqs[i])
+    assert complex(w.apparent_mass_kg) == pytest.approx(-g_af[i] / g_aa[i], rel=1e-9)
+    assert float(w.coherence) == pytest.approx(coh[i], rel=1e-9)
+
+
+def test_analytic_band_of_a_pure_tone():
+    fs = 256.0
+    t = np.arange(int(30 * fs)) / fs
+    z = am.analytic_band(3.0 * np.cos(2 * np.pi * 4.0 * t + 0.3) + 1.5 * np.cos(2 * np.pi * 9.0 * t), fs, 4.0)
+    mid = slice(int(3 * fs), -int(3 * fs))  # beyond the band-pass start-up at the ends
+    np.testing.assert_allclose(np.abs(z[mid]), 3.0, rtol=0.01)
+    np.testing.assert_allclose(np.angle(z[mid] * np.exp(-1j * (2 * np.pi * 4.0 * t[mid] + 0.3))), 0.0, atol=1e-3)
+    centre = slice(int(10 * fs), -int(10 * fs))
+    np.testing.assert_allclose(np.abs(z[centre]), 3.0, rtol=1e-3)
+
+
+def test_excitation_blocks_see_amplitude_and_frequency_drift():
+    fs = 256.0
+    t = np.arange(int(40 * fs)) / fs
+    amp = np.where(t < 20, 1.0, 1.3)
+    d = am.apparent_mass_demodulation(amp * np.sin(2 * np.pi * 4 * t), amp * np.sin(2 * np.pi * 4 * t), fs, 4.0)
+    a_blocks, f_blocks = am.excitation_blocks(d.envelope_m_s2, d.angular_frequency_rad_s, fs)
+    assert a_blocks.max() / a_blocks.min() == pytest.approx(1.3, rel=0.02)
+    np.testing.assert_allclose(f_blocks, 4.0, atol=0.01)
