@@ -55,9 +55,11 @@ def run_pipeline(ctx: Context, stages: list[str] | None = None) -> list[StageRes
     ingest = next((r for r in results if r.name == "ingest"), None)
     analyse = next((r for r in results if r.name == "analyse"), None)
     quarantined = sum(r.n_quarantined for r in results)
+    analysed = analyse.n_in - analyse.n_quarantined if analyse else None
     ctx.log.info(
-        "summary: %s runs in, %s runs analysed, %d runs quarantined, %.1f s",
+        "summary: %s runs in, %s runs analysed (%s passed QC), %d runs quarantined, %.1f s",
         ingest.n_in if ingest else "-",
+        analysed if analysed is not None else "-",
         analyse.n_ok if analyse else "-",
         quarantined,
         time.perf_counter() - t0,

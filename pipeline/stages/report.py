@@ -11,6 +11,9 @@ import time
 from ..report.site import build_site
 from .base import Context, StageResult
 
+#: The jinja2 templates are code of this stage: a changed template re-renders the report.
+CODE_FILES = ["reports"]
+
 
 def run(ctx: Context) -> StageResult:
     """Render every report page into ``build/reports``."""

@@ -36,6 +36,8 @@ from .. import io
 #: Root of the source tree (``pipeline/``'s parent).
 REPO = Path(__file__).resolve().parents[2]
 SCHEMAS = REPO / "schemas"
+#: Folder the stages' ``CODE_FILES`` are relative to.
+CODE_ROOT = REPO
 #: Built-in raw files every stage may read (tyre catalogue, digitised thesis tables).
 BUILTIN_RAW = [REPO / "raw" / "tyres.csv", REPO / "raw" / "published"]
 #: Folders of ``build/`` that are not stage outputs tracked here.
@@ -88,7 +90,8 @@ def declarations(stage_module: str) -> dict:
 
 
 def code_fingerprint(stage_module: str) -> str:
-    """Hash of the source of ``stage_module``, every ``pipeline`` module it imports, and ``schemas/``."""
+    """Hash of the source of ``stage_module``, every ``pipeline`` module it imports, ``schemas/``,
+    and the files below the folders the stage lists in ``CODE_FILES`` (e.g. templates)."""
     seen: dict[str, Path] = {}
     todo = [stage_module]
     while todo:
@@ -107,6 +110,10 @@ def code_fingerprint(stage_module: str) -> str:
             h.update(name.encode() + b"\0" + seen[name].read_bytes() + b"\0")
     for p in sorted(SCHEMAS.rglob("*.json")):
         h.update(str(p.relative_to(SCHEMAS)).encode() + b"\0" + p.read_bytes())
+    # Non-Python files that are code for this stage (e.g. the report's templates).
+    for rel in declarations(stage_module).get("CODE_FILES", []):
+        for p in sorted(q for q in (CODE_ROOT / rel).rglob("*") if q.is_file()):
+            h.update(str(p.relative_to(CODE_ROOT)).encode() + b"\0" + p.read_bytes())
     return h.hexdigest()
 
 

@@ -116,3 +116,17 @@ def test_noop_cli_does_not_import_heavy_modules(campaign, caplog):
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert "HEAVY []" in out.stdout, out.stdout + out.stderr
+
+
+def test_changed_template_changes_only_the_report_fingerprint(tmp_path, monkeypatch):
+    from pipeline.stages import state
+
+    reports = tmp_path / "reports"
+    reports.mkdir()
+    (reports / "page.html.j2").write_text("one")
+    monkeypatch.setattr(state, "CODE_ROOT", tmp_path)
+    before = {s: state.code_fingerprint(f"pipeline.stages.{s}") for s in ("report", "analyse")}
+    (reports / "page.html.j2").write_text("two")
+    after = {s: state.code_fingerprint(f"pipeline.stages.{s}") for s in ("report", "analyse")}
+    assert before["report"] != after["report"]
+    assert before["analyse"] == after["analyse"]
