@@ -5,7 +5,9 @@ import random
 import shutil
 import signal
 import subprocess
+import sys
 import time
+from pathlib import Path
 
 import pytest
 
@@ -63,7 +65,8 @@ def test_sigkill_real_tyrelab_run(baseline, tmp_path):
     """The real console script with every installed stage (slow: other stages simulate for minutes)."""
     raw, _, _ = baseline
     build = tmp_path / "build"
-    bin_ = shutil.which("tyrelab") or pytest.skip("tyrelab console script not on PATH")
+    beside = Path(sys.executable).parent / "tyrelab"  # the venv's console script
+    bin_ = str(beside) if beside.exists() else shutil.which("tyrelab") or pytest.skip("tyrelab console script not installed")
     assert subprocess.run([bin_, "run", "--raw", str(raw), "--build", str(build)], capture_output=True).returncode == 0
     expected = query(build / "warehouse.duckdb", QUERY)
     proc = subprocess.Popen([bin_, "run", "--force", "--raw", str(raw), "--build", str(build)],
