@@ -14,7 +14,7 @@ from pathlib import Path
 
 from synthetic import manifest_row, spring_damper_recording, write_campaign
 
-from pipeline.stages import Context, available, run_pipeline
+from pipeline.stages import Context, ORDER, run_pipeline
 
 #: Tyre id that must render as text, never as markup.
 EVIL_TYRE = "<script>alert(1)</script>"
@@ -51,5 +51,5 @@ def build_small_report(tmp: Path, skip: tuple[str, ...] = SLOW_STAGES) -> Contex
     raw, build = Path(tmp) / "raw", Path(tmp) / "build"
     write_small_campaign(raw)
     ctx = Context(raw=raw, build=build, jobs=1, log=logging.getLogger("tyrelab.test"))
-    run_pipeline(ctx, [s for s in available() if s not in skip])
+    run_pipeline(ctx, [s for s in ORDER if s not in skip])
     return ctx
