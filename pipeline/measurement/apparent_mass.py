@@ -62,9 +62,9 @@ def tyre_force(
     ndarray, shape (..., n)
         Tyre force on the axle, N, upward positive.
     """
-    accel = 0.5 * (np.asarray(accel_left_m_s2) + np.asarray(accel_right_m_s2))
+    accel = 0.5 * (np.asarray(accel_left_m_s2, dtype=float) + accel_right_m_s2)
     mass = np.asarray(axle_mass_kg, dtype=float)[..., np.newaxis]
-    return mass * accel - np.sum(load_beams_N, axis=-2)
+    return mass * accel - np.sum(load_beams_N, axis=-2, dtype=float)
 
 
 def stiffness_damping(apparent_mass_kg: complex | np.ndarray, frequency_Hz: float | np.ndarray):
@@ -227,14 +227,22 @@ def analytic_band(x: np.ndarray, sample_rate_Hz: float, f0, half_band_Hz: float 
 
 
 def _instantaneous_phase(accel: np.ndarray, sample_rate_Hz: float, f0, half_band_Hz: float):
-    """Unit phasor, angular frequency (smoothed over ~1 s) and envelope of the excitation in ``accel``."""
+    """cos φ, sin φ, angular frequency (smoothed over ~1 s) and envelope of the excitation in ``accel``."""
     z = analytic_band(accel, sample_rate_Hz, f0, half_band_Hz)
     envelope = np.abs(z)
-    phasor = z / np.where(envelope > 0, envelope, 1.0)
-    dphi = np.angle(z[..., 1:] * np.conj(z[..., :-1]))
+    safe = np.where(envelope > 0, envelope, 1.0)
+    cos_phi, sin_phi = z.real / safe, z.imag / safe
+    # phase step between samples: atan2 of the cross and dot products of successive unit phasors
+    dphi = np.arctan2(cos_phi[..., :-1] * sin_phi[..., 1:] - sin_phi[..., :-1] * cos_phi[..., 1:],
+                      cos_phi[..., :-1] * cos_phi[..., 1:] + sin_phi[..., :-1] * sin_phi[..., 1:])
     omega = np.concatenate([dphi, dphi[..., -1:]], axis=-1) * sample_rate_Hz
     omega = ndimage.uniform_filter1d(omega, size=max(int(round(sample_rate_Hz)), 1), axis=-1, mode="nearest")
-    return phasor, omega, envelope
+    return cos_phi, sin_phi, omega, envelope
+
+
+def _demodulate(x: np.ndarray, cos_phi: np.ndarray, sin_phi: np.ndarray) -> np.ndarray:
+    """``Σ x exp(-jφ)`` along the last axis, as two fused real sums (no complex temporaries)."""
+    return np.einsum("...n,...n->...", x, cos_phi) - 1j * np.einsum("...n,...n->...", x, sin_phi)
 
 
 def excitation_blocks(
@@ -304,21 +312,20 @@ def apparent_mass_demodulation(
     DemodulationResult
     """
     f, a, excitation_frequency_Hz = _signals(force_N, accel_m_s2, sample_rate_Hz, excitation_frequency_Hz)
-    phasor, omega, envelope = _instantaneous_phase(a, sample_rate_Hz, excitation_frequency_Hz, half_band_Hz)
+    cos_phi, sin_phi, omega, envelope = _instantaneous_phase(a, sample_rate_Hz, excitation_frequency_Hz, half_band_Hz)
     n = a.shape[-1]
     w = np.hanning(n)
-    rot = np.conj(phasor)
-    f0 = f - f.mean(axis=-1, keepdims=True)
-    a0 = a - a.mean(axis=-1, keepdims=True)
-    num = np.sum(w * f0 * rot, axis=-1)
-    den = np.sum(w * (a0 / omega**2) * rot, axis=-1)
+    wf = w * (f - f.mean(axis=-1, keepdims=True))
+    wa = w * (a - a.mean(axis=-1, keepdims=True))
+    num = _demodulate(wf, cos_phi, sin_phi)
+    den = _demodulate(wa / omega**2, cos_phi, sin_phi)
     dynamic_stiffness = num / den  # K + jωC, upward-positive recording convention
     weight = w * envelope
     omega_mean = np.sum(weight * omega, axis=-1) / np.sum(weight, axis=-1)
     freq = omega_mean / (2 * np.pi)
     h = -dynamic_stiffness / omega_mean**2
     k, c = stiffness_damping(h, freq)
-    accel_amp = 2.0 * np.abs(np.sum(w * a0 * rot, axis=-1)) / np.sum(w, axis=-1)
+    accel_amp = 2.0 * np.abs(_demodulate(wa, cos_phi, sin_phi)) / np.sum(w, axis=-1)
     disp_amp = 2.0 * np.abs(den) / np.sum(w, axis=-1)
     return DemodulationResult(h, freq, k, c, disp_amp, accel_amp, envelope, omega)
 
@@ -348,9 +355,10 @@ def welch_segments_at(x: np.ndarray, sample_rate_Hz: float, frequency_Hz, nperse
     segments = np.lib.stride_tricks.sliding_window_view(x, nperseg, axis=-1)[..., :: nperseg // 2, :]
     window = signal.get_window("hann", nperseg)
     k = np.arange(nperseg)
-    kernel = window * np.exp(-2j * np.pi * np.asarray(frequency_Hz, dtype=float)[..., np.newaxis] * k / sample_rate_Hz)
-    raw = np.einsum("...sk,...k->...s", segments, kernel)
-    return raw - segments.mean(axis=-1) * kernel.sum(axis=-1)[..., np.newaxis]
+    theta = 2 * np.pi * np.asarray(frequency_Hz, dtype=float)[..., np.newaxis] * k / sample_rate_Hz
+    kc, ks = window * np.cos(theta), window * np.sin(theta)  # kernel = kc - j ks
+    raw = np.einsum("...sk,...k->...s", segments, kc) - 1j * np.einsum("...sk,...k->...s", segments, ks)
+    return raw - segments.mean(axis=-1) * (kc.sum(axis=-1) - 1j * ks.sum(axis=-1))[..., np.newaxis]
 
 
 @dataclass(frozen=True)

@@ -95,7 +95,9 @@ def clipped(x: np.ndarray, full_scale=None, min_run: int = 3, min_count: int = 5
     -------
     bool, or ndarray of bool of shape (channels,)
     """
-    x = np.asarray(x, dtype=float)
+    x = np.asarray(x)
+    if not np.issubdtype(x.dtype, np.floating):
+        x = x.astype(float)
     rows = np.atleast_2d(x)
     out = np.zeros(rows.shape[0], dtype=bool)
     if rows.shape[-1] == 0:
@@ -148,6 +150,7 @@ def qc_reasons(
     interference_Hz: list[float] | None = None,
     interference_tolerance_Hz: float = 0.15,
     blocks: tuple[np.ndarray, np.ndarray] | None = None,
+    clipped_channels: list[str] | None = None,
 ) -> list[str]:
     """Reasons a measurement run should not be used (empty list = OK).
 
@@ -179,6 +182,9 @@ def qc_reasons(
         Per-block excitation amplitude and frequency (Hz) already computed by
         the analysis (:func:`pipeline.measurement.apparent_mass.excitation_blocks`);
         computed here with :func:`block_demodulation` when omitted.
+    clipped_channels : list of str, optional
+        Names of the channels already found clipped (e.g. by :func:`clipped`
+        over a whole batch); ``channels`` are checked here when omitted.
 
     Returns
     -------
@@ -190,10 +196,11 @@ def qc_reasons(
     reasons: list[str] = []
     chans = dict(channels) if channels is not None else {"accel": accel_m_s2, "force": force_N}
     fsc = dict(full_scale or {})
-    names = list(chans)
-    flags = clipped(np.stack([np.asarray(chans[n], dtype=float) for n in names]),
-                    [fsc.get(n, np.nan) for n in names])
-    reasons.extend(f"clipping in {n}" for n, flag in zip(names, flags) if flag)
+    if clipped_channels is None:
+        names = list(chans)
+        flags = clipped(np.stack([np.asarray(chans[n]) for n in names]), [fsc.get(n, np.nan) for n in names])
+        clipped_channels = [n for n, flag in zip(names, flags) if flag]
+    reasons.extend(f"clipping in {n}" for n in clipped_channels)
     f0 = float(excitation_frequency_Hz) if excitation_frequency_Hz is not None else float("nan")
     if not np.isfinite(f0) or f0 <= 0:
         reasons.append("excitation not found")

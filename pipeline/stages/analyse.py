@@ -57,16 +57,20 @@ def input_hash(sha256: str, row_hash: str) -> str:
 
 
 def load_signals(paths: list[str]) -> tuple[np.ndarray, np.ndarray]:
-    """Read runs of equal length; return (accelerations (runs, 2, n), load beams (runs, 4, n)), float64."""
+    """Read runs of equal length; return (accelerations (runs, 2, n), load beams (runs, 4, n)).
+
+    The channels keep the float32 they are stored in; the estimators promote
+    to float64 inside their reductions.
+    """
     out = None
     for i, p in enumerate(paths):
         t = pq.read_table(p, columns=CHANNELS)
         if out is None:
-            out = np.empty((len(paths), len(CHANNELS), t.num_rows))
+            out = np.empty((len(paths), len(CHANNELS), t.num_rows), dtype=np.float32)
         for j, c in enumerate(CHANNELS):
             out[i, j] = t.column(c).to_numpy()
     if out is None:
-        return np.empty((0, 2, 0)), np.empty((0, 4, 0))
+        return np.empty((0, 2, 0), np.float32), np.empty((0, 4, 0), np.float32)
     return out[:, :2], out[:, 2:]
 
 
@@ -102,7 +106,7 @@ def analyse_batch(
         thesis units.
     """
     force = am.tyre_force(accel[:, 0], accel[:, 1], beams, axle_mass_kg)
-    a = accel.mean(axis=1)
+    a = accel.mean(axis=1, dtype=float)
     fe = am.excitation_frequency(a, sample_rate_Hz)
     found = np.isfinite(fe)
     cols = {k: np.full(len(fe), np.nan) for k in (
@@ -135,12 +139,14 @@ def analyse_batch(
         amp_blocks, freq_blocks = am.excitation_blocks(d.envelope_m_s2, d.angular_frequency_rad_s, sample_rate_Hz)
         for j, i in enumerate(np.flatnonzero(found)):
             blocks[i] = (amp_blocks[j], freq_blocks[j])
+    signals = np.concatenate([accel, beams], axis=1)  # (runs, 6, n) in CHANNELS order
+    flags = qc.clipped(signals.reshape(-1, signals.shape[-1])).reshape(len(fe), len(CHANNELS))
     reasons = []
     for i in range(len(fe)):
-        channels = dict(zip(CHANNELS, [accel[i, 0], accel[i, 1], *beams[i]]))
         reasons.append(qc.qc_reasons(
             t, a[i], force[i], cols["excitation_frequency_measured_Hz"][i], cols["coherence"][i],
-            channels=channels, interference_Hz=interference_Hz[i] if interference_Hz else None, blocks=blocks[i],
+            interference_Hz=interference_Hz[i] if interference_Hz else None, blocks=blocks[i],
+            clipped_channels=[c for c, flag in zip(CHANNELS, flags[i]) if flag],
         ))
     cols["qc_ok"] = np.array([not r for r in reasons], dtype=bool)
     cols["qc_reasons"] = ["; ".join(r) for r in reasons]
