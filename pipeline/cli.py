@@ -132,16 +132,15 @@ def cmd_estimate_stiffness(args) -> int:
 
 def cmd_natural_frequencies(args) -> int:
     from .tyre.sizes import TyreSizeError
-    from .vehicle.bounce_pitch import natural_frequencies_report
+    from .vehicle.bounce_pitch import tractor_natural_frequencies
 
     try:
-        out = natural_frequencies_report(
-            mass=args.mass, pitch_inertia=args.pitch_inertia,
-            front_distance=args.front_distance, rear_distance=args.rear_distance,
-            front_tyre=args.front_tyre, front_pressure=args.front_pressure,
-            rear_tyre=args.rear_tyre, rear_pressure=args.rear_pressure,
+        out = tractor_natural_frequencies(
+            args.mass, args.pitch_inertia, args.front_distance, args.rear_distance,
+            args.front_tyre, args.front_pressure, args.rear_tyre, args.rear_pressure,
             front_traction=args.front_traction, front_water_ballast=args.front_water_ballast,
-            age=args.age, front_stiffness=args.front_stiffness, rear_stiffness=args.rear_stiffness,
+            age_years=args.age, front_stiffness_kN_per_m=args.front_stiffness,
+            rear_stiffness_kN_per_m=args.rear_stiffness,
         )
     except (TyreSizeError, ValueError) as exc:
         print(f"tyrelab natural-frequencies: {exc}", file=sys.stderr)

@@ -29,7 +29,6 @@ from .metrics import ratio_error_statistics
 __all__ = [
     "natural_frequencies",
     "tractor_natural_frequencies",
-    "natural_frequencies_report",
     "table_xx",
     "table_xx_statistics",
 ]
@@ -161,62 +160,6 @@ def tractor_natural_frequencies(
         "frequency_1_Hz": f1,
         "frequency_2_Hz": f2,
     }
-
-
-def natural_frequencies_report(
-    *,
-    mass: float,
-    pitch_inertia: float,
-    front_distance: float,
-    rear_distance: float,
-    front_tyre: str,
-    front_pressure: float,
-    rear_tyre: str,
-    rear_pressure: float,
-    front_traction: bool = False,
-    front_water_ballast: bool = False,
-    age: float = 1.0,
-    front_stiffness: float | None = None,
-    rear_stiffness: float | None = None,
-) -> dict:
-    """The ``tyrelab natural-frequencies`` answer, keyword per CLI option.
-
-    Parameters mirror the CLI options ``--mass KG --pitch-inertia KGM2
-    --front-distance M --rear-distance M --front-tyre SIZE --front-pressure BAR
-    --rear-tyre SIZE --rear-pressure BAR [--front-traction] [--front-water-ballast]
-    [--age YEARS] [--front-stiffness KN_PER_M] [--rear-stiffness KN_PER_M]``
-    (stiffnesses per tyre, kN/m). See :func:`tractor_natural_frequencies`.
-
-    Returns
-    -------
-    dict
-        Exactly ``{"front_tyre_stiffness_kN_per_m", "rear_tyre_stiffness_kN_per_m",
-        "frequency_1_Hz", "frequency_2_Hz"}`` as floats, JSON-serialisable.
-
-    Examples
-    --------
-    >>> r = natural_frequencies_report(mass=3235, pitch_inertia=2669, front_distance=1.33,
-    ...     rear_distance=0.71, front_tyre="7.50-16", front_pressure=2.06,
-    ...     rear_tyre="13.6-38", rear_pressure=1.1)
-    >>> round(r["rear_tyre_stiffness_kN_per_m"], 1)
-    303.6
-    """
-    out = tractor_natural_frequencies(
-        mass,
-        pitch_inertia,
-        front_distance,
-        rear_distance,
-        front_tyre,
-        front_pressure,
-        rear_tyre,
-        rear_pressure,
-        front_traction=front_traction,
-        front_water_ballast=front_water_ballast,
-        age_years=age,
-        front_stiffness_kN_per_m=front_stiffness,
-        rear_stiffness_kN_per_m=rear_stiffness,
-    )
-    return {k: float(v) for k, v in out.items()}
 
 
 #: Half the last printed digit of each Table XIX / XX input: mass 1 kg, inertia 1 kg m²,

@@ -84,22 +84,14 @@ def test_formula_stiffness_beside_thesis():
     assert f.loc["Deutz Intrac 2004A", "difference_front_stiffness_kN_per_m"] == pytest.approx(16.3, abs=0.1)
 
 
-def test_report_dict_and_overrides():
-    r = bp.natural_frequencies_report(
-        mass=3235, pitch_inertia=2669, front_distance=1.33, rear_distance=0.71,
-        front_tyre="7.50-16", front_pressure=2.06, rear_tyre="13.6-38", rear_pressure=1.1,
-    )
+def test_tractor_frequencies_dict_and_overrides():
+    r = bp.tractor_natural_frequencies(3235, 2669, 1.33, 0.71, "7.50-16", 2.06, "13.6-38", 1.1)
     assert set(r) == {"front_tyre_stiffness_kN_per_m", "rear_tyre_stiffness_kN_per_m", "frequency_1_Hz", "frequency_2_Hz"}
-    o = bp.natural_frequencies_report(
-        mass=3235, pitch_inertia=2669, front_distance=1.33, rear_distance=0.71,
-        front_tyre="7.50-16", front_pressure=2.06, rear_tyre="13.6-38", rear_pressure=1.1,
-        front_stiffness=247, rear_stiffness=306,
-    )
+    o = bp.tractor_natural_frequencies(3235, 2669, 1.33, 0.71, "7.50-16", 2.06, "13.6-38", 1.1,
+                                       front_stiffness_kN_per_m=247, rear_stiffness_kN_per_m=306)
     assert o["frequency_1_Hz"] == pytest.approx(2.76, abs=0.01) and o["frequency_2_Hz"] == pytest.approx(3.50, abs=0.01)
-    w = bp.natural_frequencies_report(
-        mass=4767, pitch_inertia=3862, front_distance=0.81, rear_distance=1.01, front_tyre="13.6R38",
-        front_pressure=0.83, rear_tyre="13.6R38", rear_pressure=1.2, front_traction=True, front_water_ballast=True,
-    )
+    w = bp.tractor_natural_frequencies(4767, 3862, 0.81, 1.01, "13.6R38", 0.83, "13.6R38", 1.2,
+                                       front_traction=True, front_water_ballast=True)
     assert w["front_tyre_stiffness_kN_per_m"] == pytest.approx(1.25 * (172 - 1.77 * 38 + 5.6 + 0.34 * 13.6 * 38 * 0.83))
 
 
