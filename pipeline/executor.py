@@ -25,7 +25,9 @@ from typing import Any, Callable, Sequence
 EXECUTORS = ("local", "dask")
 
 
-def map_batches(fn: Callable[[Any], Any], batches: Sequence[Any], ctx) -> list[Any]:
+def map_batches(
+    fn: Callable[[Any], Any], batches: Sequence[Any], ctx, on_done: Callable[[int], None] | None = None
+) -> list[Any]:
     """Apply ``fn`` to every batch; return the results in the order of ``batches``.
 
     Parameters
@@ -37,6 +39,8 @@ def map_batches(fn: Callable[[Any], Any], batches: Sequence[Any], ctx) -> list[A
         Picklable work items (paths and scalars, not loaded data).
     ctx : pipeline.stages.base.Context
         Supplies ``executor`` (``"local"`` or ``"dask"``), ``jobs`` and ``scheduler``.
+    on_done : callable, optional
+        Called with a batch's index as soon as that batch has finished (for progress).
 
     Returns
     -------
@@ -49,24 +53,32 @@ def map_batches(fn: Callable[[Any], Any], batches: Sequence[Any], ctx) -> list[A
         For an unknown executor name.
     """
     batches = list(batches)
+    done = on_done or (lambda i: None)
     if not batches:
         return []
     if ctx.executor == "dask":
-        return _map_dask(fn, batches, ctx)
+        return _map_dask(fn, batches, ctx, done)
     if ctx.executor != "local":
         raise ValueError(f"unknown executor {ctx.executor!r} (expected one of {', '.join(EXECUTORS)})")
     jobs = max(1, min(int(ctx.jobs or 1), len(batches)))
+    results = []
     if jobs == 1:
-        return [fn(b) for b in batches]
+        for i, b in enumerate(batches):
+            results.append(fn(b))
+            done(i)
+        return results
     mp = multiprocessing.get_context("forkserver")
     with ProcessPoolExecutor(max_workers=jobs, mp_context=mp) as pool:
-        return list(pool.map(fn, batches, chunksize=1))
+        for i, r in enumerate(pool.map(fn, batches, chunksize=1)):
+            results.append(r)
+            done(i)
+    return results
 
 
-def _map_dask(fn: Callable[[Any], Any], batches: list[Any], ctx) -> list[Any]:
+def _map_dask(fn: Callable[[Any], Any], batches: list[Any], ctx, done: Callable[[int], None]) -> list[Any]:
     """Run the batches on a Dask cluster (``ctx.scheduler``, or a local one)."""
     try:
-        from dask.distributed import Client
+        from dask.distributed import Client, as_completed
     except ImportError:  # pragma: no cover - depends on the installed extras
         raise RuntimeError("--executor dask needs dask[distributed]: pip install 'tyrelab[dask]'") from None
     if ctx.scheduler:
@@ -76,6 +88,9 @@ def _map_dask(fn: Callable[[Any], Any], batches: list[Any], ctx) -> list[Any]:
                         dashboard_address=None)
     try:
         futures = client.map(fn, batches, pure=False)
+        index = {f.key: i for i, f in enumerate(futures)}
+        for f in as_completed(futures):
+            done(index[f.key])
         return client.gather(futures)
     finally:
         if ctx.scheduler:

@@ -234,8 +234,9 @@ def run(ctx: Context) -> StageResult:
                  len(reuse), len(todo), len(chunks), ctx.executor)
     catalogue = ctx.read_table("tyres") if ctx.has_table("tyres") else pd.DataFrame(columns=["tyre_id"])
     tyres = {r["tyre_id"]: r for _, r in catalogue.iterrows()}
-    outs = map_batches(analyse_paths, [_batch_task(c, tyres) for c in chunks], ctx)
-    Progress("analyse", len(todo), logger=ctx.log).step(len(todo))
+    progress = Progress("analyse", len(todo), logger=ctx.log)
+    outs = map_batches(analyse_paths, [_batch_task(c, tyres) for c in chunks], ctx,
+                       on_done=lambda i: progress.step(len(chunks[i])))
     frames = [pd.concat([c.reset_index(drop=True), o], axis=1) for c, o in zip(chunks, outs)]
     new = pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
     if not new.empty:

@@ -436,7 +436,8 @@ def run(ctx: Context) -> StageResult:
     work = [t for t in tasks if t["run_id"] not in cached_ids]
     ctx.log.info("ingest: %d run(s) unchanged, %d to convert", len(cached), len(work))
     done = {t["run_id"]: {"run_id": t["run_id"], "sha256": t["prev"]["sha256"], "info": t["prev"]["info"]} for t in cached}
-    done.update((d["run_id"], d) for d in map_batches(convert_run, work, ctx))
+    progress = Progress("ingest", len(work), logger=ctx.log)
+    done.update((d["run_id"], d) for d in map_batches(convert_run, work, ctx, on_done=lambda i: progress.step()))
 
     new_state, records = {}, []
     for t in tasks:

@@ -31,6 +31,7 @@ __all__ = [
     "tractor_natural_frequencies",
     "table_xx",
     "table_xx_statistics",
+    "frequency_rounding_range",
 ]
 
 
