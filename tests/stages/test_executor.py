@@ -68,3 +68,18 @@ def test_same_bytes_whichever_executor(cluster, tmp_path):
         shutil.rmtree(ctx.build / "state")
     assert len(outputs["local1"]["runs"]) == 9
     assert outputs["local1"] == outputs["local2"] == outputs["dask"]
+
+
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_on_done_reports_every_batch_once(jobs):
+    ctx = SimpleNamespace(executor="local", jobs=jobs, scheduler=None)
+    seen = []
+    assert map_batches(square, [1, 2, 3, 4], ctx, on_done=seen.append) == [1, 4, 9, 16]
+    assert sorted(seen) == [0, 1, 2, 3]
+
+
+def test_on_done_with_dask(cluster):
+    ctx = SimpleNamespace(executor="dask", jobs=2, scheduler=cluster.scheduler_address)
+    seen = []
+    assert map_batches(square, [3, 1, 2], ctx, on_done=seen.append) == [9, 1, 4]
+    assert sorted(seen) == [0, 1, 2]
