@@ -127,7 +127,7 @@ def excitation_frequency(
     Returns
     -------
     ndarray, shape (...)
-        Excitation frequency, Hz (NaN where the band is empty).
+        Excitation frequency, Hz (NaN where the band is empty or the signal has no content in it).
     """
     x = np.asarray(accel_m_s2, dtype=float)
     n = x.shape[-1]
@@ -139,7 +139,7 @@ def excitation_frequency(
     in_band = np.flatnonzero((freqs >= band_Hz[0]) & (freqs <= band_Hz[1]))
     if in_band.size < 3:
         return np.full(x.shape[:-1], np.nan)
-    sub = spec[..., in_band]
+    sub = spec[..., in_band].astype(np.float64)
     k = np.argmax(sub, axis=-1)
     k = np.clip(k, 1, in_band.size - 2)
     take = lambda off: np.take_along_axis(sub, (k + off)[..., np.newaxis], axis=-1)[..., 0]  # noqa: E731
@@ -147,7 +147,8 @@ def excitation_frequency(
     denom = ym - 2 * y0 + yp
     delta = np.where(denom != 0, 0.5 * (ym - yp) / np.where(denom != 0, denom, 1), 0.0)
     df = freqs[1] - freqs[0]
-    return freqs[in_band[0]] + (k + np.clip(delta, -0.5, 0.5)) * df
+    found = sub.max(axis=-1) > 0  # a signal with no content in the band has no excitation
+    return np.where(found, freqs[in_band[0]] + (k + np.clip(delta, -0.5, 0.5)) * df, np.nan)
 
 
 def _signals(force_N, accel_m_s2, sample_rate_Hz, excitation_frequency_Hz):

@@ -190,7 +190,7 @@ def qc_reasons(
     -------
     list of str
         e.g. ``["coherence 0.62 < 0.9 at the excitation frequency",
-        "amplitude drift 27 % > 20 %", "frequency drift 0.14 Hz > 0.1 Hz",
+        "amplitude drift 27.0 % > 20 %", "frequency drift 0.140 Hz > 0.1 Hz",
         "clipping in load_beam_2_N", "excitation not found"]``.
     """
     reasons: list[str] = []
@@ -221,8 +221,29 @@ def qc_reasons(
         return reasons
     drift = float(np.max(np.abs(amp / np.median(amp) - 1)))
     if drift > max_amplitude_drift:
-        reasons.append(f"amplitude drift {100 * drift:.0f} % > {100 * max_amplitude_drift:.0f} %")
+        reasons.append(f"amplitude drift {100 * drift:.1f} % > {100 * max_amplitude_drift:g} %")
     fdrift = float(np.max(np.abs(freq - np.median(freq))))
     if fdrift > max_frequency_drift_Hz:
-        reasons.append(f"frequency drift {fdrift:.2f} Hz > {max_frequency_drift_Hz:g} Hz")
+        reasons.append(f"frequency drift {fdrift:.3f} Hz > {max_frequency_drift_Hz:g} Hz")
+    return reasons
+
+
+def plausibility_reasons(stiffness_N_per_m: float, damping_N_s_per_m: float) -> list[str]:
+    """Reasons K and C cannot be a tyre's (empty list = plausible).
+
+    A passive tyre has K > 0 and C > 0, i.e. a thesis-convention apparent
+    mass in the third quadrant (thesis §3.3.1, eqs 8-9). Negative damping
+    is the signature of accelerations recorded deflection-positive (the
+    thesis' convention) instead of upward-positive as raw format v1 requires:
+    the tyre force ``M_a a - Σ beams`` then changes too and K comes out
+    plausible but wrong, while C changes sign.
+    """
+    reasons = []
+    if np.isfinite(stiffness_N_per_m) and stiffness_N_per_m <= 0:
+        reasons.append(f"non-positive stiffness K = {stiffness_N_per_m / 1e3:.1f} kN/m")
+    if np.isfinite(damping_N_s_per_m) and damping_N_s_per_m <= 0:
+        reasons.append(
+            f"non-positive damping C = {damping_N_s_per_m / 1e3:.2f} kN s/m: are the accelerations "
+            "upward positive (raw format v1)?"
+        )
     return reasons

@@ -147,7 +147,7 @@ def analyse_batch(
             t, a[i], force[i], cols["excitation_frequency_measured_Hz"][i], cols["coherence"][i],
             interference_Hz=interference_Hz[i] if interference_Hz else None, blocks=blocks[i],
             clipped_channels=[c for c, flag in zip(CHANNELS, flags[i]) if flag],
-        ))
+        ) + qc.plausibility_reasons(cols["stiffness_N_per_m"][i], cols["damping_N_s_per_m"][i]))
     cols["qc_ok"] = np.array([not r for r in reasons], dtype=bool)
     cols["qc_reasons"] = ["; ".join(r) for r in reasons]
     return pd.DataFrame(cols)
@@ -250,12 +250,14 @@ def run(ctx: Context) -> StageResult:
         ] + ["input_hash"]
         results = results[list(dict.fromkeys(keep))]
         bad = results[~results["excitation_frequency_measured_Hz"].notna()]
+        files = manifest.set_index("run_id")["file"]
         quarantine = [
-            {"campaign": r["campaign"], "run_id": r["run_id"], "file": r["run_id"], "stage": "analyse", "reason": "excitation not found"}
+            {"campaign": r["campaign"], "run_id": r["run_id"], "file": str(Path(r["campaign"]) / files[r["run_id"]]),
+             "stage": "analyse", "reason": "excitation not found"}
             for _, r in bad.iterrows()
         ]
         for q in quarantine:
-            ctx.log.error("%s: run %s: %s", q["campaign"], q["run_id"], q["reason"])
+            ctx.log.error("%s: %s", q["file"], q["reason"])
     ctx.write_table("results", results)
     write_quarantine(ctx, "analyse", quarantine)
     res.n_ok = int(results["qc_ok"].sum()) if not results.empty else 0

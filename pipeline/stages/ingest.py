@@ -223,6 +223,13 @@ def check_run(df: pd.DataFrame, excitation_frequency_Hz: float, sample_rate_Hz: 
         if np.isinf(values).any():
             i = int(np.flatnonzero(np.isinf(values))[0])
             raise RunFileError(f"channel {c} has an infinite sample at row {i}")
+    g = 9.80665
+    mean_accel = [float(pd.to_numeric(df[c]).mean()) for c in ("accel_left_m_s2", "accel_right_m_s2")]
+    if all(-1.15 * g < m < -0.85 * g for m in mean_accel):
+        raise RunFileError(
+            f"accelerations average {np.mean(mean_accel):.2f} m/s²: they look downward-positive; "
+            "raw format v1 wants upward-positive (+g at rest, or 0 if AC-coupled)"
+        )
     t = df["time_s"].to_numpy(dtype=float)
     if t.size < 2:
         raise RunFileError(f"only {t.size} sample(s)")

@@ -35,3 +35,29 @@ def test_load_signals_keeps_float32(tmp_path):
     spring_damper_recording(seed=3).to_parquet(tmp_path / "b.parquet")
     accel, beams = load_signals([str(tmp_path / "a.parquet"), str(tmp_path / "b.parquet")])
     assert accel.shape == (2, 2, 12800) and beams.shape == (2, 4, 12800) and accel.dtype == np.float32
+
+
+def test_reversed_acceleration_sign_is_flagged():
+    # Deflection-positive accelerations (the thesis' convention) instead of upward-positive:
+    # K comes out plausible but wrong, C negative -> QC must not pass the run.
+    rec = spring_damper_recording(force_noise_N=50, seed=4)
+    for c in ("accel_left_m_s2", "accel_right_m_s2"):
+        rec[c] = -rec[c]
+    accel, beams = batch(rec)
+    out = analyse_batch(accel, beams, np.array([600.0]), 256.0)
+    assert not out["qc_ok"].iloc[0]
+    assert "non-positive damping" in out["qc_reasons"].iloc[0]
+
+
+def test_excitation_not_found_quarantine_names_the_file(tmp_path):
+    from pipeline.stages import Context, run_stage
+    from synthetic import manifest_row, write_campaign
+
+    flat = spring_damper_recording(amplitude_mm_pp=0.0)
+    raw = write_campaign(tmp_path / "raw", [(manifest_row("flat", "flat.parquet"), flat)])
+    ctx = Context(raw=raw, build=tmp_path / "build", jobs=1)
+    run_stage("ingest", ctx)
+    r = run_stage("analyse", ctx)
+    q = ctx.read_table("quarantine")
+    row = q[q["stage"] == "analyse"]
+    assert r.n_quarantined == 1 and row["file"].iloc[0].endswith("flat.parquet")

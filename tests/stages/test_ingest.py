@@ -41,3 +41,13 @@ def test_campaign_tyres_csv_extends_catalogue(tmp_path):
     assert run_stage("ingest", ctx).n_ok == 1
     tyres = ctx.read_table("tyres").set_index("tyre_id")
     assert tyres.loc["NEW1", "section_width_in"] == 18.4 and "T1" in tyres.index
+
+
+def test_downward_positive_accelerations_are_rejected(tmp_path):
+    rec = spring_damper_recording()
+    for c in ("accel_left_m_s2", "accel_right_m_s2"):
+        rec[c] = -(rec[c] + 9.80665)  # deflection-positive, DC-coupled: averages -g
+    raw = write_campaign(tmp_path / "raw", [(manifest_row("down", "down.parquet"), rec)])
+    ctx = Context(raw=raw, build=tmp_path / "build", jobs=1)
+    assert run_stage("ingest", ctx).n_quarantined == 1
+    assert "downward-positive" in ctx.read_table("quarantine")["reason"].iloc[0]
