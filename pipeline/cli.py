@@ -38,6 +38,7 @@ def _context(args):
         jobs=getattr(args, "jobs", None) or Context().jobs,
         executor=getattr(args, "executor", "local"),
         scheduler=getattr(args, "scheduler", None),
+        calibration_correct=getattr(args, "calibration_correct", False),
     )
 
 
@@ -171,6 +172,8 @@ def build_parser() -> argparse.ArgumentParser:
         sp.add_argument("--jobs", type=int, default=None, help="worker processes (default: cores)")
         sp.add_argument("--executor", choices=["local", "dask"], default="local")
         sp.add_argument("--scheduler", default=None, help="dask scheduler address (with --executor dask)")
+        sp.add_argument("--calibration-correct", action="store_true",
+                        help="correct runs by their day's force-plate transfer function (thesis §3.6)")
 
     r = sub.add_parser("run", help="run every stage: raw -> warehouse -> report")
     io_options(r)

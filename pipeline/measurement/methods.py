@@ -19,19 +19,10 @@ import numpy as np
 import pandas as pd
 from scipy import signal
 
-#: Table I (§3.4): 13.6R38 (T1), 1.38 bar, 1860 kg, stationary. kN/m, kNs/m.
-TABLE_I = {
-    "apparent_mass": (450.0, 3.0),
-    "load_deflection": (330.0, np.nan),
-    "free_vibration": (485.0, 3.8),
-    "forced_vibration": (480.0, 3.6),
-}
-METHOD_LABELS = {
-    "apparent_mass": "Apparent mass method",
-    "load_deflection": "Load deflection",
-    "free_vibration": "Free vibration",
-    "forced_vibration": "Forced vibration",
-}
+#: The methods of Table I (§3.4), as named in ``raw/published/table_i.csv``.
+METHODS = ("apparent_mass", "load_deflection", "free_vibration", "forced_vibration")
+#: Where our Table I comes from: virtual experiments, not the campaign's recordings.
+TABLE_I_SOURCE = "virtual experiments on the truth-model tyre (pipeline.rig.experiments)"
 
 
 def load_deflection_stiffness(force_N: np.ndarray, deflection_m: np.ndarray, fraction: tuple[float, float] = (0.2, 0.9)) -> float:
@@ -125,8 +116,15 @@ def half_power(force_N: np.ndarray, accel_m_s2: np.ndarray, sample_rate_Hz: floa
             "natural_frequency_Hz": fn, "damping_ratio": zeta}
 
 
-def table_i(tyre_id: str = "T1", pressure_bar: float = 1.38, load_kN: float = 18.25, seed: int = 1991) -> pd.DataFrame:
-    """Table I from virtual experiments on the stationary tyre.
+def table_i(
+    thesis: pd.DataFrame, tyre_id: str = "T1", pressure_bar: float = 1.38, load_kN: float = 18.25, seed: int = 1991
+) -> pd.DataFrame:
+    """Table I from virtual experiments on the stationary tyre, beside the thesis' Table I.
+
+    Our values do not come from the campaign's recordings: no lab run does a
+    load ramp, a free decay and a random-force test on the same tyre, so the
+    four methods are applied to virtual experiments on the truth model's tyre
+    (``source`` column says so).
 
     The tyre's K and C are the truth model's at 0 km/h, 4 Hz, 14 mm p-p; the
     apparent mass method analyses a virtual nominal run with
@@ -134,10 +132,18 @@ def table_i(tyre_id: str = "T1", pressure_bar: float = 1.38, load_kN: float = 18
     others analyse :mod:`pipeline.rig.experiments` recordings. The response
     methods use the suspended mass L/g.
 
+    Parameters
+    ----------
+    thesis : DataFrame
+        The published Table I (``method, method_label, stiffness_kN_per_m,
+        damping_kN_s_per_m``; ``raw/published/table_i.csv``).
+    tyre_id, pressure_bar, load_kN, seed :
+        The case (thesis: T1 at 1.38 bar and 1860 kg) and the experiments' seed.
+
     Returns
     -------
     DataFrame
-        ``method``, ``method_label``, ``thesis_stiffness_kN_per_m``,
+        ``method``, ``method_label``, ``source``, ``thesis_stiffness_kN_per_m``,
         ``thesis_damping_kN_s_per_m``, ``stiffness_kN_per_m``,
         ``damping_kN_s_per_m``, ``stiffness_difference_kN_per_m`` (ours - thesis),
         ``damping_difference_kN_s_per_m``, ``thesis_stiffness_ratio`` and
@@ -169,12 +175,17 @@ def table_i(tyre_id: str = "T1", pressure_bar: float = 1.38, load_kN: float = 18
     hp = half_power(rf.force_N, rf.acceleration_m_s2, cfg.sample_rate_Hz, m)
     ours["forced_vibration"] = (hp["stiffness_N_per_m"], hp["damping_N_s_per_m"])
     rows = []
+    th = thesis.set_index("method")
+    missing = [m for m in METHODS if m not in th.index]
+    if missing:
+        raise ValueError(f"published Table I lacks method(s) {missing}")
     k0, c0 = ours["apparent_mass"]
-    tk0, tc0 = TABLE_I["apparent_mass"]
-    for method, (tk, tc) in TABLE_I.items():
+    tk0, tc0 = (float(th.loc["apparent_mass", c]) for c in ("stiffness_kN_per_m", "damping_kN_s_per_m"))
+    for method in METHODS:
+        tk, tc = (float(th.loc[method, c]) for c in ("stiffness_kN_per_m", "damping_kN_s_per_m"))
         k, c = ours[method]
         rows.append({
-            "method": method, "method_label": METHOD_LABELS[method],
+            "method": method, "method_label": th.loc[method, "method_label"], "source": TABLE_I_SOURCE,
             "thesis_stiffness_kN_per_m": tk, "thesis_damping_kN_s_per_m": tc,
             "stiffness_kN_per_m": k / 1e3, "damping_kN_s_per_m": c / 1e3,
             "stiffness_difference_kN_per_m": k / 1e3 - tk, "damping_difference_kN_s_per_m": c / 1e3 - tc,

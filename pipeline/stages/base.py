@@ -33,6 +33,9 @@ class Context:
         ``"local"`` (process pool) or ``"dask"``.
     scheduler : str or None
         Dask scheduler address for ``executor="dask"``.
+    calibration_correct : bool
+        Correct each run by its day's force-plate transfer function (thesis
+        §3.6; the calibrate stage).
     """
 
     raw: Path = Path("raw")
@@ -41,6 +44,7 @@ class Context:
     jobs: int = field(default_factory=lambda: os.cpu_count() or 1)
     executor: str = "local"
     scheduler: str | None = None
+    calibration_correct: bool = False
     log: logging.Logger = field(default=log, repr=False)
 
     def __post_init__(self) -> None:

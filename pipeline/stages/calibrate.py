@@ -13,8 +13,8 @@ runs recorded on a failed day (same campaign and ``recorded_on``) have
 ``qc_ok`` False and the reason ``calibration failed on <day>``. Days without
 a calibration run are left as they are.
 
-Optional correction (§3.6): with ``TYRELAB_CALIBRATION_CORRECT=1`` in the
-environment, ``stiffness_N_per_m``/``damping_N_s_per_m`` (and the kN columns) of
+Optional correction (§3.6): with ``ctx.calibration_correct`` (``tyrelab run
+--calibration-correct``), ``stiffness_N_per_m``/``damping_N_s_per_m`` (and the kN columns) of
 runs on *passing* days are corrected by the day's transfer function at the
 run's measured frequency; the uncorrected values are kept in
 ``uncorrected_stiffness_N_per_m`` / ``uncorrected_damping_N_s_per_m``.
@@ -25,15 +25,19 @@ free and forced vibration, from virtual experiments; :mod:`pipeline.measurement.
 
 from __future__ import annotations
 
-import os
 import time
 
 import numpy as np
 import pandas as pd
 import pyarrow.parquet as pq
 
+from .. import published
 from ..measurement import calibration as cal
+from ..measurement.methods import table_i
 from .base import Context, StageResult
+
+#: Context options that change this stage's output (part of its fingerprint).
+PARAMS = ["calibration_correct"]
 
 CHANNELS = ["accel_left_m_s2", "accel_right_m_s2", "load_beam_1_N", "load_beam_2_N", "load_beam_3_N",
             "load_beam_4_N", "force_plate_N"]
@@ -126,17 +130,13 @@ def run(ctx: Context) -> StageResult:
         if not results.empty and "recorded_on" in results:
             keys = ("campaign", "recorded_on") if "campaign" in results else ("recorded_on",)
             dkeys = ("campaign", "day") if "campaign" in results else ("day",)
-            if os.environ.get("TYRELAB_CALIBRATION_CORRECT") == "1":
+            if ctx.calibration_correct:
                 results = correct_results(results, tf_all, checks)
             results = cal.flag_failed_days(results, days, keys, dkeys)
             n_flagged = int(results["qc_reasons"].str.contains("calibration failed on", regex=False).sum())
             ctx.write_table("results", results)
-    try:
-        from ..measurement.methods import table_i
-
-        ctx.write_table("table_i", table_i())
-    except Exception as exc:  # noqa: BLE001 - table I is a side product; never fail the check for it
-        ctx.log.warning("calibrate: table_i not written: %s", exc)
+    # Table I compares measurement methods on virtual experiments (see methods.table_i).
+    ctx.write_table("table_i", table_i(published.read_published("table_i", ctx.raw)))
     res.message = (f"{len(days)} days, {len(failed_days)} failed" + (f" ({', '.join(failed_days)})" if failed_days else "")
                    + (f"; {n_flagged} runs flagged" if n_flagged else ""))
     for d in failed_days:

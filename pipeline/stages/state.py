@@ -12,7 +12,8 @@ Each stage gets a *fingerprint* stored in ``build/state/<stage>.json``:
   re-hashes the content of each changed file itself). A stage without
   ``INPUTS`` depends on every file written by the stages before it in
   :data:`pipeline.stages.ORDER`, and on the raw files outside campaign folders
-  (``published/``, ``tyres.csv``);
+  (``published/``, ``tyres.csv``). Context options named in a stage's
+  ``PARAMS = [...]`` (e.g. ``calibration_correct``) count as inputs;
 - ``outputs``: the files the stage wrote (found by comparing ``build/``
   before and after it ran) with their content hashes.
 
@@ -202,8 +203,10 @@ def load(build: Path, stage: str) -> dict:
 
 def input_digests(ctx, stage: str, order: list[str], cache: HashCache) -> dict[str, str]:
     """Digest of each input of ``stage`` (see the module docstring)."""
-    declared = declarations(f"pipeline.stages.{stage}").get("INPUTS")
-    digests: dict[str, str] = {}
+    decl = declarations(f"pipeline.stages.{stage}")
+    declared = decl.get("INPUTS")
+    # Context options the stage declares in PARAMS are inputs too.
+    digests: dict[str, str] = {f"param:{p}": repr(getattr(ctx, p)) for p in decl.get("PARAMS", [])}
     if declared is not None:
         for name in declared:
             if name == "raw":

@@ -32,7 +32,11 @@ def test_half_power_and_load_deflection_without_linkage_or_creep():
 
 
 def test_table_i_structure():
-    t = methods.table_i().set_index("method")
+    from pipeline.published import read_published
+
+    t = methods.table_i(read_published("table_i")).set_index("method")
+    assert set(t["source"]) == {methods.TABLE_I_SOURCE}
+    assert t.loc["free_vibration", "thesis_stiffness_kN_per_m"] == 485.0
     am = t.loc["apparent_mass"]
     assert am["stiffness_kN_per_m"] == pytest.approx(am["truth_stiffness_kN_per_m"], rel=0.01)
     assert am["damping_kN_s_per_m"] == pytest.approx(3.0, rel=0.05)  # Table I anchor of the truth model

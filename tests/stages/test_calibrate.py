@@ -8,7 +8,8 @@ from pipeline.stages import calibrate
 from pipeline.stages.base import Context
 
 
-def test_failed_day_flags_its_runs(tmp_path):
+def _context_with_days(tmp_path, **options):
+    """Two calibration days (one good, one miscalibrated) and three analysed runs."""
     plan = campaign_plan("small")
     cal_rows = plan[plan["kind"] == "calibration"]
     good = cal_rows[cal_rows["plan_beam_gain_error"] == 0].iloc[-1].to_dict()
@@ -20,7 +21,7 @@ def test_failed_day_flags_its_runs(tmp_path):
         write_run(run, path)
         manifest.append({**{k: v for k, v in r.items() if not k.startswith("plan_")}, "campaign": "c1",
                          "run_path": str(path)})
-    ctx = Context(raw=tmp_path, build=tmp_path / "build")
+    ctx = Context(raw=tmp_path, build=tmp_path / "build", **options)
     ctx.write_table("manifest", pd.DataFrame(manifest))
     results = pd.DataFrame({
         "campaign": "c1", "run_id": ["m_good", "m_bad", "m_other_campaign"],
@@ -30,6 +31,11 @@ def test_failed_day_flags_its_runs(tmp_path):
     })
     results.loc[2, "campaign"] = "c2"
     ctx.write_table("results", results)
+    return ctx, good, bad
+
+
+def test_failed_day_flags_its_runs(tmp_path):
+    ctx, good, bad = _context_with_days(tmp_path)
     res = calibrate.run(ctx)
     table = ctx.read_table("calibration")
     assert table.set_index("run_id")["pass"].to_dict() == {good["run_id"]: True, bad["run_id"]: False}
@@ -39,3 +45,19 @@ def test_failed_day_flags_its_runs(tmp_path):
     assert not out.loc["m_bad", "qc_ok"]
     assert out.loc["m_bad", "qc_reasons"] == f"calibration failed on {bad['recorded_on']}"
     assert "1 failed" in res.message
+
+
+
+def test_calibration_correction_is_an_option_in_the_fingerprint(tmp_path):
+    from pipeline.stages import state
+
+    ctx, good, bad = _context_with_days(tmp_path, calibration_correct=True)
+    calibrate.run(ctx)
+    out = ctx.read_table("results").set_index("run_id")
+    assert "uncorrected_stiffness_N_per_m" in out.columns  # corrected by the good day's transfer function
+    assert out.loc["m_good", "uncorrected_stiffness_N_per_m"] == 4e5
+    cache = state.HashCache()
+    on = state.input_digests(ctx, "calibrate", ["analyse", "calibrate"], cache)
+    ctx.calibration_correct = False
+    off = state.input_digests(ctx, "calibrate", ["analyse", "calibrate"], cache)
+    assert on != off  # switching the option re-runs the stage
