@@ -50,9 +50,26 @@ def cmd_generate(args) -> int:
     return EXIT_OK
 
 
+def _check_raw(args, need_campaign: bool) -> str | None:
+    """One-line problem with ``--raw``, or None."""
+    raw = Path(args.raw)
+    if not raw.is_dir():
+        return f"--raw {raw}: no such folder"
+    if need_campaign:
+        from .stages.ingest import discover_campaigns
+
+        if not discover_campaigns(raw):
+            return f"--raw {raw}: no campaign (no manifest.csv in it or below it)"
+    return None
+
+
 def cmd_run(args) -> int:
     from .stages import run_pipeline
 
+    problem = _check_raw(args, need_campaign=True)
+    if problem:
+        print(f"tyrelab run: {problem}", file=sys.stderr)
+        return EXIT_USAGE
     results = run_pipeline(_context(args))
     return EXIT_QUARANTINE if any(r.n_quarantined for r in results) else EXIT_OK
 
@@ -60,6 +77,10 @@ def cmd_run(args) -> int:
 def cmd_stage(args) -> int:
     from .stages import run_stage
 
+    problem = _check_raw(args, need_campaign=args.stage == "ingest")
+    if problem:
+        print(f"tyrelab {args.stage}: {problem}", file=sys.stderr)
+        return EXIT_USAGE
     result = run_stage(args.stage, _context(args))
     return EXIT_QUARANTINE if result.n_quarantined else EXIT_OK
 
@@ -150,6 +171,22 @@ def cmd_natural_frequencies(args) -> int:
     return EXIT_OK
 
 
+def _positive(text: str) -> float:
+    """argparse type: a float > 0."""
+    value = float(text)
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"{text} is not a positive number")
+    return value
+
+
+def _non_negative(text: str) -> float:
+    """argparse type: a float >= 0."""
+    value = float(text)
+    if not value >= 0:
+        raise argparse.ArgumentTypeError(f"{text} is negative")
+    return value
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (exposed for tests and documentation)."""
     from .stages import ORDER
@@ -191,32 +228,32 @@ def build_parser() -> argparse.ArgumentParser:
 
     a = sub.add_parser("analyze-run", help="K and C of one recording (raw format v1), as JSON")
     a.add_argument("file")
-    a.add_argument("--axle-mass", type=float, required=True, help="axle+wheel+tyre mass M_a, kg")
+    a.add_argument("--axle-mass", type=_positive, required=True, help="axle+wheel+tyre mass M_a, kg")
     a.set_defaults(func=cmd_analyze_run)
 
     e = sub.add_parser("estimate-stiffness", help="rolling tyre stiffness from size, pressure and age (kN/m)")
     e.add_argument("--size", required=True, help="tyre size, e.g. 13.6R38")
-    e.add_argument("--pressure", type=float, required=True, help="inflation pressure, bar")
-    e.add_argument("--age", type=float, default=1.0, help="tyre age, years (default 1)")
+    e.add_argument("--pressure", type=_non_negative, required=True, help="inflation pressure, bar")
+    e.add_argument("--age", type=_non_negative, default=1.0, help="tyre age, years (default 1)")
     e.add_argument("--front-undriven", action="store_true", help="undriven ribbed front tyre rule (thesis §8.2)")
     e.add_argument("--water-ballast", action="store_true", help="water-ballasted tyre (+25 %%)")
     e.add_argument("--json", action="store_true", help="print JSON with the inputs")
     e.set_defaults(func=cmd_estimate_stiffness)
 
     n = sub.add_parser("natural-frequencies", help="bounce and pitch natural frequencies of a tractor (thesis ch. 8), JSON")
-    n.add_argument("--mass", type=float, required=True, help="tractor mass, kg")
-    n.add_argument("--pitch-inertia", type=float, required=True, help="pitch moment of inertia, kg m²")
-    n.add_argument("--front-distance", type=float, required=True, help="centre of gravity to front axle, m")
-    n.add_argument("--rear-distance", type=float, required=True, help="centre of gravity to rear axle, m")
+    n.add_argument("--mass", type=_positive, required=True, help="tractor mass, kg")
+    n.add_argument("--pitch-inertia", type=_positive, required=True, help="pitch moment of inertia, kg m²")
+    n.add_argument("--front-distance", type=_positive, required=True, help="centre of gravity to front axle, m")
+    n.add_argument("--rear-distance", type=_positive, required=True, help="centre of gravity to rear axle, m")
     n.add_argument("--front-tyre", required=True, help="front tyre size, e.g. 7.50-18")
-    n.add_argument("--front-pressure", type=float, required=True, help="front inflation pressure, bar")
+    n.add_argument("--front-pressure", type=_non_negative, required=True, help="front inflation pressure, bar")
     n.add_argument("--rear-tyre", required=True, help="rear tyre size, e.g. 13.6R38")
-    n.add_argument("--rear-pressure", type=float, required=True, help="rear inflation pressure, bar")
+    n.add_argument("--rear-pressure", type=_non_negative, required=True, help="rear inflation pressure, bar")
     n.add_argument("--front-traction", action="store_true", help="front tyres are traction tyres (4WD): size formula")
     n.add_argument("--front-water-ballast", action="store_true", help="front tyres water-ballasted (+25 %%)")
-    n.add_argument("--age", type=float, default=1.0, help="tyre age, years (default 1, thesis §8.2)")
-    n.add_argument("--front-stiffness", type=float, default=None, help="override: front stiffness per tyre, kN/m")
-    n.add_argument("--rear-stiffness", type=float, default=None, help="override: rear stiffness per tyre, kN/m")
+    n.add_argument("--age", type=_non_negative, default=1.0, help="tyre age, years (default 1, thesis §8.2)")
+    n.add_argument("--front-stiffness", type=_positive, default=None, help="override: front stiffness per tyre, kN/m")
+    n.add_argument("--rear-stiffness", type=_positive, default=None, help="override: rear stiffness per tyre, kN/m")
     n.set_defaults(func=cmd_natural_frequencies)
     return p
 

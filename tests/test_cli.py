@@ -40,3 +40,25 @@ def test_natural_frequencies_bad_size(capsys):
             "--rear-tyre", "13.6-38", "--rear-pressure", "1.1"]
     assert main(argv) == 2
     assert "huge" in capsys.readouterr().err
+
+
+def test_run_with_missing_or_empty_raw_is_a_usage_error(tmp_path, capsys):
+    assert main(["run", "--raw", str(tmp_path / "nowhere"), "--build", str(tmp_path / "b")]) == 2
+    assert "no such folder" in capsys.readouterr().err
+    (tmp_path / "empty").mkdir()
+    assert main(["run", "--raw", str(tmp_path / "empty"), "--build", str(tmp_path / "b")]) == 2
+    assert "no campaign" in capsys.readouterr().err
+    assert not (tmp_path / "b").exists()
+
+
+@pytest.mark.parametrize("argv", [
+    ["analyze-run", "x.parquet", "--axle-mass", "-5"],
+    ["estimate-stiffness", "--size", "13.6R38", "--pressure", "-1"],
+    ["natural-frequencies", "--mass", "0", "--pitch-inertia", "2669", "--front-distance", "1.33",
+     "--rear-distance", "0.71", "--front-tyre", "7.50-16", "--front-pressure", "2.06",
+     "--rear-tyre", "13.6-38", "--rear-pressure", "1.1"],
+])
+def test_impossible_numbers_are_refused(argv, capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(argv)
+    assert exc.value.code == 2

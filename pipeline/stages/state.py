@@ -153,25 +153,28 @@ def stat_digest(paths) -> str:
     return h.hexdigest()
 
 
-def _files_below(folder: Path):
+def _files_below(folder: Path, exclude: Path | None = None):
+    """Files below ``folder``, skipping hidden folders and ``exclude`` (a build folder inside raw)."""
+    skip = Path(exclude).resolve() if exclude is not None else None
     for dirpath, dirnames, filenames in os.walk(folder):
-        dirnames.sort()
+        dirnames[:] = sorted(d for d in dirnames
+                             if not d.startswith(".") and (skip is None or (Path(dirpath) / d).resolve() != skip))
         for f in filenames:
             yield Path(dirpath) / f
 
 
-def raw_digest(raw: Path) -> str:
-    """Stat digest of every file below ``raw`` and of the built-in raw files."""
-    files = [p for src in [raw, *BUILTIN_RAW] for p in (_files_below(src) if src.is_dir() else [src])]
+def raw_digest(raw: Path, exclude: Path | None = None) -> str:
+    """Stat digest of every file below ``raw`` (but ``exclude``) and of the built-in raw files."""
+    files = [p for src in [raw, *BUILTIN_RAW] for p in (_files_below(src, exclude) if src.is_dir() else [src])]
     return stat_digest(str(p) for p in files)
 
 
-def raw_extras(raw: Path) -> list[Path]:
+def raw_extras(raw: Path, exclude: Path | None = None) -> list[Path]:
     """Raw files outside campaign folders (``published/``, ``tyres.csv``, ...), plus the built-in ones."""
     campaigns = {p.parent for p in Path(raw).rglob("manifest.csv")} if Path(raw).is_dir() else set()
     out = []
     for src in [Path(raw), *BUILTIN_RAW]:
-        for p in _files_below(src) if src.is_dir() else ([src] if src.exists() else []):
+        for p in _files_below(src, exclude) if src.is_dir() else ([src] if src.exists() else []):
             if not any(c == p.parent or c in p.parents for c in campaigns):
                 out.append(p)
     return sorted(set(out))
@@ -210,7 +213,7 @@ def input_digests(ctx, stage: str, order: list[str], cache: HashCache) -> dict[s
     if declared is not None:
         for name in declared:
             if name == "raw":
-                digests["raw"] = raw_digest(ctx.raw)
+                digests["raw"] = raw_digest(ctx.raw, exclude=ctx.build)
             else:
                 digests[name] = cache.digest(ctx.table(name))
         return digests
@@ -219,7 +222,7 @@ def input_digests(ctx, stage: str, order: list[str], cache: HashCache) -> dict[s
         for rel in load(ctx.build, earlier).get("outputs", {}):
             if rel not in own:
                 digests[rel] = cache.digest(ctx.build / rel)
-    for p in raw_extras(ctx.raw):
+    for p in raw_extras(ctx.raw, exclude=ctx.build):
         digests[f"raw:{p}"] = cache.digest(p)
     return digests
 

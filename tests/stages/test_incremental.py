@@ -130,3 +130,14 @@ def test_changed_template_changes_only_the_report_fingerprint(tmp_path, monkeypa
     after = {s: state.code_fingerprint(f"pipeline.stages.{s}") for s in ("report", "analyse")}
     assert before["report"] != after["report"]
     assert before["analyse"] == after["analyse"]
+
+
+def test_build_folder_inside_raw_does_not_make_runs_stale(tmp_path):
+    from pipeline.stages import Context, run_stage
+    from synthetic import manifest_row, spring_damper_recording, write_campaign
+
+    raw = write_campaign(tmp_path / "raw" / "c", [(manifest_row("a", "a.parquet"), spring_damper_recording())]).parent
+    ctx = Context(raw=raw, build=raw / "build", jobs=1)
+    for stage in ("ingest", "analyse"):
+        run_stage(stage, ctx)
+    assert all(run_stage(stage, ctx).skipped for stage in ("ingest", "analyse"))
