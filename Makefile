@@ -9,6 +9,8 @@ SEED   ?= 1991
 RAW    ?= raw
 BUILD  ?= build
 DEMO   := $(RAW)/demo
+# One stamp per (scale, seed): changing SCALE or SEED regenerates the demo campaign.
+STAMP  := $(DEMO)/.generated-$(SCALE)-seed$(SEED)
 EXTRAS ?= dev,dask,formats
 
 .PHONY: all install data run test test-all bench clean distclean
@@ -23,10 +25,12 @@ $(BIN)/tyrelab: pyproject.toml
 
 install: $(BIN)/tyrelab
 
-$(DEMO)/manifest.csv: | $(BIN)/tyrelab
+$(STAMP): | $(BIN)/tyrelab
+	rm -rf $(DEMO)
 	$(BIN)/tyrelab generate --out $(DEMO) --scale $(SCALE) --seed $(SEED)
+	touch $@
 
-data: $(DEMO)/manifest.csv
+data: $(STAMP)
 
 run: data
 	$(BIN)/tyrelab run --raw $(RAW) --build $(BUILD)
@@ -45,4 +49,4 @@ clean:
 	rm -rf $(BUILD)
 
 distclean: clean
-	rm -rf $(VENV) $(DEMO) raw/full
+	rm -rf $(VENV) $(DEMO)

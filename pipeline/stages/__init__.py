@@ -54,11 +54,23 @@ def run_pipeline(ctx: Context, stages: list[str] | None = None) -> list[StageRes
         "summary: %s runs in, %s runs analysed (%s passed QC), %d runs quarantined, %.1f s",
         ingest.n_in if ingest else "-",
         analysed if analysed is not None else "-",
-        analyse.n_ok if analyse else "-",
+        _passed_qc(ctx),
         quarantined,
         time.perf_counter() - t0,
     )
     return results
+
+
+def _passed_qc(ctx: Context) -> int | str:
+    """Runs with ``qc_ok`` in the final ``results`` (after calibrate's flags)."""
+    if not ctx.has_table("results"):
+        return "-"
+    import pyarrow.parquet as pq
+
+    schema = pq.read_schema(ctx.table("results"))
+    if "qc_ok" not in schema.names:
+        return "-"
+    return int(pq.read_table(ctx.table("results"), columns=["qc_ok"]).column("qc_ok").to_numpy(zero_copy_only=False).sum())
 
 
 __all__ = ["Context", "StageResult", "ORDER", "run_stage", "run_pipeline"]
