@@ -81,7 +81,8 @@ def resolve_table(wh: Warehouse, spec: TableSpec) -> dict:
             item.update(mode="plain", plain=tables.plain_table(df, list(spec.columns) or None, MAX_PLAIN_ROWS))
     elif not published.empty:
         item.update(mode="comparison", shaped=tables.shape_comparison(tables.thesis_only(published, tuple(spec.values.values()))))
-        item["note"] = " ".join(filter(None, [spec.note, _missing(spec.stage, f"Our {spec.view}")]))
+        item["note"] = spec.note if spec.is_input else " ".join(
+            filter(None, [spec.note, _missing(spec.stage, f"Our {spec.view}")]))
     else:
         item.update(mode="missing")
         item["note"] = _missing(spec.stage, f"Table {spec.view}")
