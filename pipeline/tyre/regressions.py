@@ -465,26 +465,14 @@ def surface_table(summary: pd.DataFrame, published: pd.DataFrame | None, respons
 
 # --------------------------------------------------------------------------- Tables VI and X
 
-#: Thesis Table VI (§4.5): change of stiffness with conditions (kN/m), as printed.
-THESIS_TABLE_VI = [
-    ("pressure", "0.7-2 bar", 190.0, "kN/m per bar"),
-    ("rolling_speed_0_15", "0-15 km/h", -150.0, "kN/m total"),
-    ("rolling_speed_10_15", "10-15 km/h", -8.0, "kN/m total"),
-    ("load", "16-22.5 kN", 0.0, "kN/m per kN (none)"),
-    ("amplitude", "7-30 mm", 1.0, "kN/m per mm (±1)"),
-    ("torque", "0-4.7 kNm", 0.0, "kN/m per kNm (none)"),
-    ("frequency", "2-5 Hz", 5.0, "kN/m per Hz"),
-]
-#: Thesis Table X (§5.4.3): change of damping with conditions (kNs/m), as printed.
-THESIS_TABLE_X = [
-    ("pressure", "0.7-2 bar", 0.4, "kNs/m per bar"),
-    ("rolling_speed_0_15", "0-15 km/h", -2.0, "kNs/m total"),
-    ("rolling_speed_10_15", "10-15 km/h", -0.3, "kNs/m total"),
-    ("load", "16-22.5 kN", 0.1, "kNs/m per kN"),
-    ("amplitude", "7-30 mm", 0.01, "kNs/m per mm"),
-    ("torque", "0-4.7 kNm", -0.1, "kNs/m per kNm"),
-    ("frequency", "2-5 Hz", -0.3, "kNs/m per Hz"),
-]
+#: The condition rows of Tables VI and X we compute, with the unit of the rate (per unit
+#: of the factor, or the total change over the speed range). The thesis values come from
+#: ``raw/published/table_vi.csv`` / ``table_x.csv``.
+SUMMARY_FACTORS = (
+    ("pressure", "per bar"), ("rolling_speed_0_15", "total, 0-15 km/h"),
+    ("rolling_speed_10_15", "total, 10-15 km/h"), ("load", "per kN"), ("amplitude", "per mm"),
+    ("torque", "per kNm"), ("frequency", "per Hz"),
+)
 
 
 def summary_rates(
@@ -509,9 +497,8 @@ def summary_rates(
         Concatenated :func:`factor_regressions` for amplitude, frequency, load, torque.
     response : str
     published : DataFrame, optional
-        ``table_vi.csv`` / ``table_x.csv`` (factor, range_low, change_text, rate_value,
-        rate_kind, ...); where given, its value replaces the built-in printed one
-        ("(none)" → 0) and its ``change_text`` is kept.
+        ``table_vi.csv`` / ``table_x.csv`` (factor, range_text, range_low, change_text,
+        rate_value, rate_kind, ...): the thesis' value ("(none)" → 0), range and text.
 
     Returns
     -------
@@ -519,11 +506,12 @@ def summary_rates(
         ``factor, measured_range, unit, thesis_value, thesis_change_text, value,
         value_difference, n, se, ci_low, ci_high, basis, reason``.
     """
-    thesis = THESIS_TABLE_VI if response == STIFFNESS else THESIS_TABLE_X
+    response_unit = _RESPONSE_UNIT.get(response, response)
     rows = []
     bs = by_speed.dropna(subset=["slope"]).copy()
     lo, hi = cond.ROLLING_POOL_KM_H
-    for factor, rng, tval, unit in thesis:
+    for factor, per in SUMMARY_FACTORS:
+        unit = f"{response_unit} {per}"
         basis = ""
         if factor == "pressure":
             vals = bs.loc[(bs["speed_km_h"] >= lo) & (bs["speed_km_h"] <= hi), "slope"]
@@ -540,8 +528,8 @@ def summary_rates(
             vals = sub["slope"].dropna()
             basis = f"mean {factor} slope over tyre x speed fits at >= {rolling_min_km_h:g} km/h"
         m = fit_mean(vals)
-        rows.append({"factor": factor, "measured_range": rng, "unit": unit, "thesis_value": tval,
-                     "value": m["mean"], "value_difference": m["mean"] - tval if m["n"] else np.nan,
+        rows.append({"factor": factor, "measured_range": None, "unit": unit, "thesis_value": np.nan,
+                     "value": m["mean"], "value_difference": np.nan,
                      "n": m["n"], "se": m["se"], "ci_low": m["ci_low"], "ci_high": m["ci_high"],
                      "basis": basis, "reason": m["reason"]})
     out = pd.DataFrame(rows)
@@ -563,5 +551,6 @@ def summary_rates(
             if np.isfinite(val):
                 out.loc[i, "thesis_value"] = val
             out.loc[i, "thesis_change_text"] = r.get("change_text")
+            out.loc[i, "measured_range"] = r.get("range_text")
         out["value_difference"] = out["value"] - out["thesis_value"]
     return out

@@ -134,13 +134,18 @@ def test_surface_effects_matched_percent():
 def test_summary_rates_against_known_values(results):
     by_speed = reg.pressure_regressions(results, reg.STIFFNESS, by="speed")
     rates = reg.factor_regressions(results, "amplitude")
-    t6 = reg.summary_rates(by_speed, rates, reg.STIFFNESS).set_index("factor")
+    from pipeline.published import read_published
+
+    t6 = reg.summary_rates(by_speed, rates, reg.STIFFNESS, published=read_published("table_vi")).set_index("factor")
     # rolling dKp of T3 177 and F1 134 -> mean 155.5; speed 0->15 change at 1.38 bar
     assert t6.loc["pressure", "value"] == pytest.approx((177 + 134) / 2)
     d0 = np.mean([(112 + 177 * 1.38) - (184 + 200 * 1.38), (-3 + 134 * 1.38) - (96 + 158 * 1.38)])
     assert t6.loc["rolling_speed_0_15", "value"] == pytest.approx(d0)
     assert t6.loc["rolling_speed_10_15", "value"] == pytest.approx(0.0, abs=1e-9)
-    assert t6.loc["pressure", "thesis_value"] == 190.0
+    assert t6.loc["pressure", "thesis_value"] == 190.0  # from raw/published/table_vi.csv
+    assert t6.loc["load", "thesis_value"] == 0.0  # "(none)"
+    bare = reg.summary_rates(by_speed, rates, reg.STIFFNESS).set_index("factor")
+    assert bare["thesis_value"].isna().all()  # no thesis numbers live in the code
 
 
 def test_measured_scatter_around_one_set_level_is_not_a_sweep():
