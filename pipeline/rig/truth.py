@@ -28,6 +28,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ..tyre.sizes import DEFAULT_ASPECT_RATIO, parse_tyre_size, rolling_circumference_m
+
 # --------------------------------------------------------------------------- #
 # Nominal conditions (§3.5, §4.3.3)
 NOMINAL_FREQUENCY_HZ = 4.0  # §3.5: "a frequency of 4 Hz"
@@ -154,7 +156,7 @@ class TyreParams:
         Table II (Berlin tyres: 45 mm assumed as for new Silsoe tyres; AS3 buffed 0).
     circumference_m : float
         Rolling circumference (§4.5.1, §5.5.4: 4.66 m for 13.6R38, 2.63 m for F1;
-        others from the size, see :func:`rolling_circumference_m`).
+        others from the size, see :func:`pipeline.tyre.sizes.rolling_circumference_m`).
     pressure_range_bar : tuple of float
         Range of the pressure sweeps.
     k_stationary, k_rolling : tuple of float
@@ -184,15 +186,6 @@ class TyreParams:
     def traction(self) -> bool:
         """Whether the tyre has traction lugs (wheel-rotation *and* lug excitation)."""
         return self.group != "front_ribbed" and self.lug_height_mm > 0
-
-
-def rolling_circumference_m(rim_in: float, width_in: float, aspect: float = 0.85) -> float:
-    """Rolling circumference of a tractor tyre from its size.
-
-    ``pi * (rim + 2 * aspect * width) * 0.956``; the factor 0.956 makes the 13.6R38
-    give the 4.66 m of §4.5.1 (free diameter -> loaded rolling radius).
-    """
-    return math.pi * (rim_in + 2 * aspect * width_in) * 0.0254 * 0.956
 
 
 def _new_tyre_damping(ply: int, factor: float = 1.0) -> tuple[tuple[float, float, float], ...]:
@@ -227,6 +220,11 @@ _BERLIN_P = (0.8, 2.0)
 
 
 def _t(tyre_id, size, group, ply, age, lug, circ, prange, kst, kro, damp, source, notes=""):
+    """A :class:`TyreParams`; ``circ`` None (or an aspect ratio given as ``("aspect", a)``)
+    estimates the rolling circumference from the size (:func:`pipeline.tyre.sizes.rolling_circumference_m`)."""
+    if circ is None or isinstance(circ, tuple):
+        aspect = circ[1] if isinstance(circ, tuple) else DEFAULT_ASPECT_RATIO
+        circ = rolling_circumference_m(parse_tyre_size(size), aspect)
     return TyreParams(tyre_id, size, group, ply, age, lug, circ, prange, kst, kro, damp, source, notes)
 
 
@@ -253,34 +251,34 @@ TYRES: dict[str, TyreParams] = {
            _silsoe_damping(((10, 0.49, 0.35), (15, 0.32, 0.37))), "Table III, VII"),
         _t("F1", "7.50-18", "front_ribbed", 8, 0, 0, 2.63, _F1_P, (96, 158), (-3, 134),
            ((0, 1.34, 0.39), (10, 0.30, 0.32), (15, -0.15, 0.38)), "Table III, VII"),
-        _t("AS2", "16.9R34", "rear_traction", 6, 0, 45, rolling_circumference_m(34, 16.9), _BERLIN_P,
+        _t("AS2", "16.9R34", "rear_traction", 6, 0, 45, None, _BERLIN_P,
            (145, 139), (112, 191), _new_tyre_damping(6), "Table III; damping derived (§5.3.1, §5.4.2, Table X)"),
         # AS12: 30 % lower tread -> 30 % of the 30 % lug share of damping (§5.4.3)
-        _t("AS12", "16.9R34", "rear_traction", 6, 0, 31.5, rolling_circumference_m(34, 16.9), _BERLIN_P,
+        _t("AS12", "16.9R34", "rear_traction", 6, 0, 31.5, None, _BERLIN_P,
            (159, 129), (112, 194), _new_tyre_damping(6, 1 - 0.3 * 0.3), "Table III; damping derived"),
         # AS3: buffed, lugs give ~30 % of the damping of a new tyre (§5.4.3, Fig. 40)
-        _t("AS3", "16.9R34", "rear_traction", 6, 0, 0, rolling_circumference_m(34, 16.9), _BERLIN_P,
+        _t("AS3", "16.9R34", "rear_traction", 6, 0, 0, None, _BERLIN_P,
            (125, 116), (55, 182), _new_tyre_damping(6, 0.7), "Table III; damping derived (§5.4.3)"),
-        _t("AS10", "18.4R38", "rear_traction", 8, 0, 45, rolling_circumference_m(38, 18.4), _BERLIN_P,
+        _t("AS10", "18.4R38", "rear_traction", 8, 0, 45, None, _BERLIN_P,
            (190, 116), (114, 197), _new_tyre_damping(8), "Table III; damping derived"),
         _t("AS11", "13.6-38", "rear_traction", 6, 0, 45, _C13_6R38, _BERLIN_P,
            (121, 181), (108, 201), _new_tyre_damping(6), "Table III; damping derived"),
-        _t("AS9", "9.5R44", "rear_traction", 8, 0, 45, rolling_circumference_m(44, 9.5), _BERLIN_P,
+        _t("AS9", "9.5R44", "rear_traction", 8, 0, 45, None, _BERLIN_P,
            (86, 134), (99, 141), _new_tyre_damping(8), "Table III; damping derived"),
-        _t("AS6", "14.9R24", "front_traction", 6, 0, 45, rolling_circumference_m(24, 14.9, 0.70), _BERLIN_P,
+        _t("AS6", "14.9R24", "front_traction", 6, 0, 45, ("aspect", 0.70), _BERLIN_P,  # aspect 0.70: "70 % low aspect ratio", Table II
            (125, 139), (131, 109), _new_tyre_damping(6), "Table III; damping derived"),
         # AS4: no stationary values in Table III. Same size and construction as AS8:
         # AS8's stationary-minus-rolling differences (-73 kN/m, +68 kN/m/bar) applied.
-        _t("AS4", "13.6R24", "front_traction", 6, 0, 45, rolling_circumference_m(24, 13.6), _BERLIN_P,
+        _t("AS4", "13.6R24", "front_traction", 6, 0, 45, None, _BERLIN_P,
            (120 + (59 - 132), 98 + (166 - 98)), (120, 98), _new_tyre_damping(6),
            "Table III rolling; stationary derived from AS8; damping derived"),
-        _t("AS8", "13.6R24", "front_traction", 6, 0, 45, rolling_circumference_m(24, 13.6), _BERLIN_P,
+        _t("AS8", "13.6R24", "front_traction", 6, 0, 45, None, _BERLIN_P,
            (59, 166), (132, 98), _new_tyre_damping(6), "Table III; damping derived"),
-        _t("AS7", "13.6-24", "front_traction", 6, 0, 45, rolling_circumference_m(24, 13.6), _BERLIN_P,
+        _t("AS7", "13.6-24", "front_traction", 6, 0, 45, None, _BERLIN_P,
            (94, 189), (131, 107), _new_tyre_damping(6), "Table III; damping derived"),
         # AS1: no stationary values. Cross-ply front traction tyre like AS7: AS7's
         # stationary-minus-rolling differences (-37 kN/m, +82 kN/m/bar) applied.
-        _t("AS1", "12.4-28", "front_traction", 6, 0, 45, rolling_circumference_m(28, 12.4), _BERLIN_P,
+        _t("AS1", "12.4-28", "front_traction", 6, 0, 45, None, _BERLIN_P,
            (134 + (94 - 131), 112 + (189 - 107)), (134, 112), _new_tyre_damping(6),
            "Table III rolling; stationary derived from AS7; damping derived"),
     ]
