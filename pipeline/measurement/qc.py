@@ -8,9 +8,9 @@ acceleration are poorly coherent at the excitation frequency, or whose
 channels hit the converter rails, should not be used downstream.
 
 :func:`qc_reasons` returns the list of reasons (empty = run OK). The amplitude
-and frequency checks use short-time synchronous demodulation of the
-acceleration at the nominal/measured excitation frequency over ~5 s blocks
-(:func:`block_demodulation`).
+and frequency checks use the envelope and instantaneous frequency of the
+synchronous demodulation averaged over ~5 s blocks
+(:func:`pipeline.measurement.apparent_mass.excitation_blocks`).
 """
 
 from __future__ import annotations
@@ -18,63 +18,13 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 import numpy as np
-from scipy import signal
+
+from . import apparent_mass as am
 
 MIN_COHERENCE = 0.9
 MAX_AMPLITUDE_DRIFT = 0.20  # §3.5: "variation limited to about 20%"
 MAX_FREQUENCY_DRIFT_HZ = 0.1  # §3.5: "maintained within 0.1 Hz"
 BLOCK_S = 5.0
-
-
-def block_demodulation(time_s: np.ndarray, accel_m_s2: np.ndarray, excitation_frequency_Hz: float,
-                       block_s: float = BLOCK_S, lowpass_Hz: float = 0.5) -> tuple[np.ndarray, np.ndarray]:
-    """Amplitude and frequency of the excitation per block of ``block_s`` seconds.
-
-    The acceleration is demodulated with ``exp(-j 2 pi f0 t)`` and low-passed
-    (4th-order Butterworth, zero phase, ``lowpass_Hz``); per block, the
-    amplitude is the mean of ``2|z|`` and the frequency ``f0 + slope/(2 pi)`` of a
-    straight line fitted to the unwrapped phase.
-
-    Parameters
-    ----------
-    time_s : ndarray
-        Sample times, s (uniform).
-    accel_m_s2 : ndarray
-        Axle acceleration, m/s².
-    excitation_frequency_Hz : float
-        Reference frequency f0, Hz.
-    block_s : float
-        Block length, s.
-    lowpass_Hz : float
-        Bandwidth of the demodulated signal, Hz.
-
-    Returns
-    -------
-    amplitude_m_s2, frequency_Hz : ndarray, shape (n_blocks,)
-        Acceleration amplitude (peak) and frequency of each block.
-    """
-    t = np.asarray(time_s, dtype=float)
-    a = np.asarray(accel_m_s2, dtype=float)
-    a = a - a.mean()
-    fs = 1.0 / np.median(np.diff(t))
-    z = a * np.exp(-2j * np.pi * excitation_frequency_Hz * (t - t[0]))
-    sos = signal.butter(4, min(lowpass_Hz, 0.45 * fs), fs=fs, output="sos")
-    z = signal.sosfiltfilt(sos, z.real) + 1j * signal.sosfiltfilt(sos, z.imag)
-    n_blk = max(int(round(block_s * fs)), 2)
-    edge = min(int(round(1.0 / lowpass_Hz * fs)), len(a) // 4)  # drop filter start-up at both ends
-    z, tt = z[edge:len(z) - edge], t[edge:len(t) - edge]
-    k = max(len(z) // n_blk, 1)
-    amps, freqs = [], []
-    for i in range(k):
-        zz = z[i * n_blk:(i + 1) * n_blk] if k > 1 else z
-        ti = tt[i * n_blk:(i + 1) * n_blk] if k > 1 else tt
-        if zz.size < 2:
-            continue
-        amps.append(2 * np.mean(np.abs(zz)))
-        ph = np.unwrap(np.angle(zz))
-        slope = np.polyfit(ti - ti[0], ph, 1)[0]
-        freqs.append(excitation_frequency_Hz + slope / (2 * np.pi))
-    return np.asarray(amps), np.asarray(freqs)
 
 
 def clipped(x: np.ndarray, full_scale=None, min_run: int = 3, min_count: int = 5):
@@ -181,7 +131,7 @@ def qc_reasons(
     blocks : (ndarray, ndarray), optional
         Per-block excitation amplitude and frequency (Hz) already computed by
         the analysis (:func:`pipeline.measurement.apparent_mass.excitation_blocks`);
-        computed here with :func:`block_demodulation` when omitted.
+        computed here from the synchronous demodulation when omitted.
     clipped_channels : list of str, optional
         Names of the channels already found clipped (e.g. by :func:`clipped`
         over a whole batch); ``channels`` are checked here when omitted.
@@ -211,7 +161,11 @@ def qc_reasons(
             break
     if not np.isfinite(coherence) or coherence < min_coherence:
         reasons.append(f"coherence {coherence:.2f} < {min_coherence:g} at the excitation frequency")
-    amp, freq = blocks if blocks is not None else block_demodulation(time_s, accel_m_s2, f0, block_s)
+    if blocks is None:
+        fs = 1.0 / float(np.median(np.diff(time_s)))
+        d = am.apparent_mass_demodulation(force_N, accel_m_s2, fs, f0)
+        blocks = am.excitation_blocks(d.envelope_m_s2, d.angular_frequency_rad_s, fs, block_s)
+    amp, freq = blocks
     if amp.size == 0 or not np.all(np.isfinite(amp)) or np.median(amp) <= 0:
         reasons.append("excitation not found")
         return reasons

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from pipeline.measurement import apparent_mass as am
-from pipeline.measurement.qc import block_demodulation, clipped, qc_reasons
+from pipeline.measurement.qc import clipped, qc_reasons
 from pipeline.rig.campaigns import campaign_plan, simulate_run
 
 FS = 256.0
@@ -20,8 +20,10 @@ def test_clean_sine_has_no_reasons():
     assert qc_reasons(T, a, -1e5 * a / 631.0, 4.0, 0.99) == []
 
 
-def test_block_demodulation_recovers_amplitude_and_frequency():
-    amp, freq = block_demodulation(T, _sine(3.0, 4.03), 4.0)
+def test_excitation_blocks_recover_amplitude_and_frequency():
+    a = _sine(3.0, 4.03)
+    d = am.apparent_mass_demodulation(a, a, FS, 4.0)
+    amp, freq = am.excitation_blocks(d.envelope_m_s2, d.angular_frequency_rad_s, FS)
     assert np.allclose(amp, 3.0, rtol=0.01)
     assert np.allclose(freq, 4.03, atol=0.002)
 
