@@ -6,9 +6,9 @@ VENV   ?= .venv
 BIN    := $(VENV)/bin
 SCALE  ?= small
 SEED   ?= 1991
-RAW    ?= raw
+DEMO   ?= raw/demo
+RAW    ?= $(DEMO)
 BUILD  ?= build
-DEMO   := $(RAW)/demo
 # One stamp per (scale, seed): changing SCALE or SEED regenerates the demo campaign.
 STAMP  := $(DEMO)/.generated-$(SCALE)-seed$(SEED)
 EXTRAS ?= dev,dask,formats

@@ -4,9 +4,9 @@ For every measurement run of ``campaign_plan("full")`` the run is simulated in
 memory exactly as ``tyrelab generate --scale full`` writes it (same seeds), the
 tyre force is derived from the raw channels and K, C are estimated by
 
-* ``demodulation``: :func:`pipeline.measurement.apparent_mass.apparent_mass_demodulation`
+* ``demodulation``: :func:`tyrelab.measurement.apparent_mass.apparent_mass_demodulation`
   (used downstream), and
-* ``welch_bin``: :func:`pipeline.measurement.apparent_mass.apparent_mass_welch`
+* ``welch_bin``: :func:`tyrelab.measurement.apparent_mass.apparent_mass_welch`
   (the thesis' H1 read at the excitation bin),
 
 and compared with the K, C the truth model gave that run. Runs of the
@@ -29,11 +29,11 @@ import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from pipeline.measurement import apparent_mass as am  # noqa: E402
-from pipeline.measurement.qc import interference_frequencies_Hz  # noqa: E402
-from pipeline.rig import truth  # noqa: E402
-from pipeline.rig.campaigns import campaign_plan, simulate_run  # noqa: E402
-from pipeline.rig.instrument import RigConfig  # noqa: E402
+from tyrelab.measurement import apparent_mass as am  # noqa: E402
+from tyrelab.measurement.qc import interference_frequencies_Hz  # noqa: E402
+from tyrelab.rig import truth  # noqa: E402
+from tyrelab.rig.campaigns import campaign_plan, simulate_run  # noqa: E402
+from tyrelab.rig.instrument import RigConfig  # noqa: E402
 
 
 def evaluate(seed: int, noise_scale: float, limit: int | None = None) -> pd.DataFrame:

@@ -4,7 +4,7 @@ Usage: ``python bench/bench_analysis.py [--runs 200] [--duration 50]``. Ingests 
 closed-form campaign once (not timed), then times, on the same per-run Parquet files:
 
 - *read floor*: reading the six channels of every run with pyarrow, nothing else;
-- *tyrelab*: :func:`pipeline.stages.analyse.analyse_paths` over the stage's batches;
+- *tyrelab*: :func:`tyrelab.stages.analyse.analyse_paths` over the stage's batches;
 - *naive*: per run ``pandas.read_parquet`` and ``scipy.signal.csd``/``welch`` (H1 at the
   excitation bin), the obvious loop.
 
@@ -28,8 +28,8 @@ from scipy import signal
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from synthetic_runs import CHANNELS, write_campaign  # noqa: E402
 
-from pipeline.stages import Context, run_stage  # noqa: E402
-from pipeline.stages.analyse import _batch_task, analyse_paths, batches  # noqa: E402
+from tyrelab.stages import Context, run_stage  # noqa: E402
+from tyrelab.stages.analyse import _batch_task, analyse_paths, batches  # noqa: E402
 
 
 def read_floor(paths: list[str]) -> None:

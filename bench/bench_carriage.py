@@ -13,9 +13,9 @@ import time
 
 import numpy as np
 
-from pipeline.vehicle import carriage as cm
-from pipeline.vehicle import enveloping as ev
-from pipeline.vehicle import profiles as pr
+from tyrelab.vehicle import carriage as cm
+from tyrelab.vehicle import enveloping as ev
+from tyrelab.vehicle import profiles as pr
 
 
 def main() -> None:

@@ -22,7 +22,7 @@ HERE = Path(__file__).resolve().parent
 CHILD = """
 import json, resource, sys, time
 sys.path.insert(0, {here!r})
-from pipeline.stages import Context, run_pipeline
+from tyrelab.stages import Context, run_pipeline
 ctx = Context(raw={raw!r}, build={build!r}, jobs={jobs})
 t0 = time.perf_counter()
 res = run_pipeline(ctx, ["ingest", "analyse"])

@@ -110,7 +110,7 @@ def cmd_sql(args) -> int:
 
 def cmd_analyze_run(args) -> int:
     from .stages.analyse import analyse_recording
-    from .stages.ingest import RunFileError
+    from .rawformat import RunFileError
 
     try:
         out = analyse_recording(Path(args.file), args.axle_mass)

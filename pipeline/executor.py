@@ -37,7 +37,7 @@ def map_batches(
         (it is never assumed pure: Dask tasks are submitted with ``pure=False``).
     batches : sequence
         Picklable work items (paths and scalars, not loaded data).
-    ctx : pipeline.stages.base.Context
+    ctx : tyrelab.stages.base.Context
         Supplies ``executor`` (``"local"`` or ``"dask"``), ``jobs`` and ``scheduler``.
     on_done : callable, optional
         Called with a batch's index as soon as that batch has finished (for progress).

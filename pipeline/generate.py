@@ -1,8 +1,8 @@
 """Write a virtual measurement campaign (``tyrelab generate``).
 
-The only I/O around :mod:`pipeline.rig`: builds the plan
-(:func:`pipeline.rig.campaigns.campaign_plan`), simulates each run
-(:func:`pipeline.rig.campaigns.simulate_run`) and writes a campaign folder in
+The only I/O around :mod:`tyrelab.rig`: builds the plan
+(:func:`tyrelab.rig.campaigns.campaign_plan`), simulates each run
+(:func:`tyrelab.rig.campaigns.simulate_run`) and writes a campaign folder in
 raw format v1 (docs/architecture.md): ``manifest.csv`` and ``runs/<run_id>.parquet``.
 All tyres are Table II tyres of the built-in catalogue, so no ``tyres.csv`` is
 written. Output is byte-for-byte reproducible for the same (scale, seed): each
@@ -42,7 +42,7 @@ def generate_campaign(out: Path, scale: str = "small", seed: int = 1991) -> dict
         Campaign folder (created). Existing run files of the same names are replaced.
     scale : {"small", "full"}
         ``small``: one run of each kind, Table III regressions possible, seconds.
-        ``full``: the thesis programme (see :mod:`pipeline.rig.campaigns`).
+        ``full``: the thesis programme (see :mod:`tyrelab.rig.campaigns`).
     seed : int
         Campaign seed.
 
@@ -69,7 +69,7 @@ def generate_campaign(out: Path, scale: str = "small", seed: int = 1991) -> dict
     io.write_text_atomic(manifest.to_csv(index=False, float_format="%.6g", lineterminator="\n"),
                          out / "manifest.csv")
     # Provenance for the report (no timestamp: the same command gives the same bytes).
-    meta = {"generator": "tyrelab virtual dynamic tyre test vehicle (pipeline.rig)", "scale": scale, "seed": seed,
+    meta = {"generator": "tyrelab virtual dynamic tyre test vehicle (tyrelab.rig)", "scale": scale, "seed": seed,
             "tyrelab_version": __version__, "runs": int(len(plan))}
     io.write_text_atomic(json.dumps(meta, indent=2, sort_keys=True) + "\n", out / "generator.json")
     return {

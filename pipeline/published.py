@@ -14,10 +14,11 @@ from pathlib import Path
 
 import pandas as pd
 
+from . import resources
 from .schema import SCHEMA_DIR, load_schema, validate_frame
 
 #: Digitised thesis tables shipped with tyrelab.
-SHIPPED_DIR = Path(__file__).resolve().parent.parent / "raw" / "published"
+SHIPPED_DIR = resources.published_dir()
 
 log = logging.getLogger("tyrelab")
 

@@ -21,8 +21,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from . import resources
+
 #: Repository folder holding the schemas (``schemas/`` beside ``pipeline/``).
-SCHEMA_DIR = Path(__file__).resolve().parent.parent / "schemas"
+SCHEMA_DIR = resources.schemas_dir()
 
 
 @lru_cache(maxsize=None)

@@ -60,7 +60,7 @@ def build_warehouse(db_path: Path, parquet_dir: Path, published: dict[str, Path]
         views[view_name(p.stem)] = f"SELECT * FROM read_parquet({_quote(p)})"
     runs = parquet_dir / "runs"
     if any(runs.glob("*/*.parquet")):
-        # Partition folders are percent-encoded tyre ids (pipeline.stages.ingest.tyre_partition).
+        # Partition folders are percent-encoded tyre ids (tyrelab.stages.ingest.tyre_partition).
         views["runs"] = (
             "SELECT * REPLACE (url_decode(tyre_id) AS tyre_id) FROM read_parquet("
             f"{_quote(runs / '*' / '*.parquet')}, hive_partitioning = true, "

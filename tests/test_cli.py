@@ -2,7 +2,7 @@ import json
 
 import pytest
 
-from pipeline.cli import build_parser, main
+from tyrelab.cli import build_parser, main
 
 
 

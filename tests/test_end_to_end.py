@@ -8,10 +8,10 @@ import json
 
 import pytest
 
-from pipeline.cli import main
-from pipeline.generate import generate_campaign
-from pipeline.rig import truth
-from pipeline.stages import Context, run_stage
+from tyrelab.cli import main
+from tyrelab.generate import generate_campaign
+from tyrelab.rig import truth
+from tyrelab.stages import Context, run_stage
 
 
 @pytest.fixture(scope="module")

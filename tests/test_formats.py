@@ -5,8 +5,8 @@ import json
 import numpy as np
 import pytest
 
-from pipeline.formats import FormatError, load_channel_map, read_mapped
-from pipeline.stages import Context, run_stage
+from tyrelab.rawformat.mapped import FormatError, load_channel_map, read_mapped
+from tyrelab.stages import Context, run_stage
 from synthetic import CHANNELS, manifest_row, spring_damper_recording, write_campaign
 
 G = 9.80665

@@ -13,8 +13,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline.schema import SCHEMA_DIR, load_schema, validate_frame
-from pipeline.tyre.sizes import parse_tyre_size
+from tyrelab.schema import SCHEMA_DIR, load_schema, validate_frame
+from tyrelab.tyre.sizes import parse_tyre_size
 
 ROOT = Path(__file__).resolve().parents[1]
 PUBLISHED = ROOT / "raw" / "published"

@@ -3,9 +3,9 @@ import stat
 
 import pandas as pd
 
-from pipeline import io
-from pipeline.stages import Context, run_stage
-from pipeline.warehouse import build_warehouse, query
+from tyrelab import io
+from tyrelab.stages import Context, run_stage
+from tyrelab.warehouse import build_warehouse, query
 from synthetic import manifest_row, spring_damper_recording, write_campaign
 
 

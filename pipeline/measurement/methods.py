@@ -10,7 +10,7 @@ they include the linkage between tractor and carriage (damping upper bound
 1.2 kNs/m, §3.4) which the apparent-mass method excludes; slow loading lets
 the rubber creep, which makes the load-deflection stiffness low (§3.4).
 :func:`table_i` reproduces the structure of Table I from virtual experiments
-(:mod:`pipeline.rig.experiments`) on the stationary tyre T1 at 1.38 bar.
+(:mod:`tyrelab.rig.experiments`) on the stationary tyre T1 at 1.38 bar.
 """
 
 from __future__ import annotations
@@ -22,7 +22,7 @@ from scipy import signal
 #: The methods of Table I (§3.4), as named in ``raw/published/table_i.csv``.
 METHODS = ("apparent_mass", "load_deflection", "free_vibration", "forced_vibration")
 #: Where our Table I comes from: virtual experiments, not the campaign's recordings.
-TABLE_I_SOURCE = "virtual experiments on the truth-model tyre (pipeline.rig.experiments)"
+TABLE_I_SOURCE = "virtual experiments on the truth-model tyre (tyrelab.rig.experiments)"
 
 
 def load_deflection_stiffness(force_N: np.ndarray, deflection_m: np.ndarray, fraction: tuple[float, float] = (0.2, 0.9)) -> float:
@@ -128,8 +128,8 @@ def table_i(
 
     The tyre's K and C are the truth model's at 0 km/h, 4 Hz, 14 mm p-p; the
     apparent mass method analyses a virtual nominal run with
-    :func:`pipeline.measurement.apparent_mass.apparent_mass_demodulation`; the
-    others analyse :mod:`pipeline.rig.experiments` recordings. The response
+    :func:`tyrelab.measurement.apparent_mass.apparent_mass_demodulation`; the
+    others analyse :mod:`tyrelab.rig.experiments` recordings. The response
     methods use the suspended mass L/g.
 
     Parameters

@@ -10,7 +10,7 @@ channels hit the converter rails, should not be used downstream.
 :func:`qc_reasons` returns the list of reasons (empty = run OK). The amplitude
 and frequency checks use the envelope and instantaneous frequency of the
 synchronous demodulation averaged over ~5 s blocks
-(:func:`pipeline.measurement.apparent_mass.excitation_blocks`).
+(:func:`tyrelab.measurement.apparent_mass.excitation_blocks`).
 """
 
 from __future__ import annotations
@@ -130,7 +130,7 @@ def qc_reasons(
         measurement frequency and biases K and C (coherence stays high).
     blocks : (ndarray, ndarray), optional
         Per-block excitation amplitude and frequency (Hz) already computed by
-        the analysis (:func:`pipeline.measurement.apparent_mass.excitation_blocks`);
+        the analysis (:func:`tyrelab.measurement.apparent_mass.excitation_blocks`);
         computed here from the synchronous demodulation when omitted.
     clipped_channels : list of str, optional
         Names of the channels already found clipped (e.g. by :func:`clipped`

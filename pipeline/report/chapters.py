@@ -3,7 +3,7 @@
 A :class:`TableSpec` names our warehouse table (or a query producing our
 values), the digitised thesis table and the stage that produces ours, so a
 missing table gets a "not produced yet by stage X" note. A :class:`FigureSpec`
-names a function of :mod:`pipeline.report.figures` and the warehouse tables it
+names a function of :mod:`tyrelab.report.figures` and the warehouse tables it
 takes. :data:`CHAPTERS` lists the pages in thesis order.
 """
 
@@ -66,7 +66,7 @@ class TableSpec:
 
 @dataclass(frozen=True)
 class FigureSpec:
-    """A figure: ``pipeline.report.figures.<function>(*tables, **kwargs)``.
+    """A figure: ``tyrelab.report.figures.<function>(*tables, **kwargs)``.
 
     Attributes
     ----------
@@ -75,7 +75,7 @@ class FigureSpec:
     caption : str
         Caption.
     function : str
-        Name in :mod:`pipeline.report.figures`.
+        Name in :mod:`tyrelab.report.figures`.
     inputs : tuple of str
         Warehouse tables passed positionally (empty DataFrame when missing).
     stage : str

@@ -11,10 +11,10 @@ import jinja2
 import numpy as np
 import pandas as pd
 
-from .. import __version__
+from .. import __version__, resources
 
 #: Templates live in the repository's ``reports/`` folder.
-TEMPLATE_DIR = Path(__file__).resolve().parents[2] / "reports"
+TEMPLATE_DIR = resources.templates_dir()
 
 
 def environment() -> jinja2.Environment:

@@ -1,12 +1,12 @@
 """Build the static report site ``build/reports/`` from the warehouse (the I/O side).
 
-Reads the warehouse read-only (:func:`pipeline.warehouse.query`) and the run
+Reads the warehouse read-only (:func:`tyrelab.warehouse.query`) and the run
 Parquet files named in ``manifest.run_path``, shapes tables and figures with
-the pure functions of :mod:`pipeline.report.tables` and
-:mod:`pipeline.report.figures`, and writes one HTML file per page:
+the pure functions of :mod:`tyrelab.report.tables` and
+:mod:`tyrelab.report.figures`, and writes one HTML file per page:
 
 - ``index.html``: campaign summary, chapter contents, quarantined files, QC-flagged runs;
-- ``<chapter>.html``: one page per thesis chapter (:data:`pipeline.report.chapters.CHAPTERS`);
+- ``<chapter>.html``: one page per thesis chapter (:data:`tyrelab.report.chapters.CHAPTERS`);
 - ``runs.html`` and ``runs/<run>.html``: drill-down pages for a bounded selection of runs.
 
 Everything is inline (CSS, SVG); links are relative, so the folder opens from

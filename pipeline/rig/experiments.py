@@ -1,6 +1,6 @@
 """Virtual experiments for the alternative measurement methods of §3.4 (Table I).
 
-The same vehicle as :mod:`pipeline.rig.instrument` (axle on stiff load beams,
+The same vehicle as :mod:`tyrelab.rig.instrument` (axle on stiff load beams,
 carriage with inertial mass, linkage to the tractor with stiffness and
 damping), stationary tyre:
 

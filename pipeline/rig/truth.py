@@ -156,7 +156,7 @@ class TyreParams:
         Table II (Berlin tyres: 45 mm assumed as for new Silsoe tyres; AS3 buffed 0).
     circumference_m : float
         Rolling circumference (§4.5.1, §5.5.4: 4.66 m for 13.6R38, 2.63 m for F1;
-        others from the size, see :func:`pipeline.tyre.sizes.rolling_circumference_m`).
+        others from the size, see :func:`tyrelab.tyre.sizes.rolling_circumference_m`).
     pressure_range_bar : tuple of float
         Range of the pressure sweeps.
     k_stationary, k_rolling : tuple of float
@@ -221,7 +221,7 @@ _BERLIN_P = (0.8, 2.0)
 
 def _t(tyre_id, size, group, ply, age, lug, circ, prange, kst, kro, damp, source, notes=""):
     """A :class:`TyreParams`; ``circ`` None (or an aspect ratio given as ``("aspect", a)``)
-    estimates the rolling circumference from the size (:func:`pipeline.tyre.sizes.rolling_circumference_m`)."""
+    estimates the rolling circumference from the size (:func:`tyrelab.tyre.sizes.rolling_circumference_m`)."""
     if circ is None or isinstance(circ, tuple):
         aspect = circ[1] if isinstance(circ, tuple) else DEFAULT_ASPECT_RATIO
         circ = rolling_circumference_m(parse_tyre_size(size), aspect)

@@ -1,7 +1,7 @@
 """Analyse: per run, the apparent mass, K and C, amplitude, coherence and QC.
 
 Reads the ``manifest`` table and the per-run Parquet files written by ingest,
-calls the estimators of :mod:`pipeline.measurement.apparent_mass` on batches
+calls the estimators of :mod:`tyrelab.measurement.apparent_mass` on batches
 of equal-length runs (vectorised), and writes the ``results`` table (one row
 per measurement run; calibration runs are the calibrate stage's).
 
@@ -10,10 +10,10 @@ Both estimators are stored: the thesis' Welch H1 read at the excitation bin
 downstream (``stiffness_kN_per_m``, ``damping_kN_s_per_m``).
 
 Incremental: the stage is skipped when the ``manifest`` table is unchanged
-(``INPUTS``, see :mod:`pipeline.stages.state`); otherwise a run whose
+(``INPUTS``, see :mod:`tyrelab.stages.state`); otherwise a run whose
 ``input_hash`` (file SHA-256, manifest row, :data:`ANALYSIS_VERSION` and the
 source of the estimators) matches the previous ``results`` row is not
-re-analysed. Batches go to :func:`pipeline.executor.map_batches` as file
+re-analysed. Batches go to :func:`tyrelab.executor.map_batches` as file
 paths, so any executor gives the same bytes.
 """
 
@@ -31,10 +31,10 @@ from ..measurement import apparent_mass as am
 from ..measurement import qc
 from ..tyre.sizes import LUG_PITCH_m, parse_tyre_size, rolling_circumference_m
 from ..executor import map_batches
-from .base import Context, Progress, StageResult
-from .ingest import CHANNELS, check_run, read_run_file, write_quarantine
+from .base import Context, Progress, StageResult, write_quarantine
+from ..rawformat import CHANNELS, check_run, read_run_file
 
-#: What the stage reads (see :mod:`pipeline.stages.state`).
+#: What the stage reads (see :mod:`tyrelab.stages.state`).
 INPUTS = ["manifest", "tyres"]
 #: Bump when the analysis changes in a way that changes results.
 ANALYSIS_VERSION = "2"
@@ -96,7 +96,7 @@ def analyse_batch(
     interference_Hz : list of list of float, optional
         Per run, frequencies of the wheel's own excitation (rotation, lug
         passing) that would bias K and C if they met the excitation
-        (:func:`pipeline.measurement.qc.interference_frequencies_Hz`).
+        (:func:`tyrelab.measurement.qc.interference_frequencies_Hz`).
 
     Returns
     -------
@@ -280,7 +280,7 @@ def analyse_recording(path, axle_mass_kg: float) -> dict:
 
     Raises
     ------
-    pipeline.stages.ingest.RunFileError
+    tyrelab.rawformat.RunFileError
         If the file is unreadable or fails the raw-format checks.
     """
     df = read_run_file(path)

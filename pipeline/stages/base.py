@@ -130,3 +130,15 @@ class Progress:
     def elapsed(self) -> float:
         """Seconds since the start."""
         return time.perf_counter() - self.t0
+
+
+QUARANTINE_COLUMNS = ["campaign", "run_id", "file", "stage", "reason"]
+
+
+def write_quarantine(ctx: Context, stage: str, entries: list[dict]) -> None:
+    """Replace the quarantine rows of ``stage`` with ``entries`` (other stages' rows are kept)."""
+    old = ctx.read_table("quarantine") if ctx.has_table("quarantine") else pd.DataFrame(columns=QUARANTINE_COLUMNS)
+    old = old[old["stage"] != stage]
+    new = pd.DataFrame(entries, columns=QUARANTINE_COLUMNS)
+    both = pd.concat([df for df in (old, new) if not df.empty], ignore_index=True) if len(old) or len(new) else new
+    ctx.write_table("quarantine", both.astype({"run_id": "string", "campaign": "string", "file": "string"}))

@@ -20,7 +20,7 @@ run's measured frequency; the uncorrected values are kept in
 ``uncorrected_stiffness_N_per_m`` / ``uncorrected_damping_N_s_per_m``.
 
 Also writes ``table_i`` (thesis Table I: apparent mass vs load-deflection,
-free and forced vibration, from virtual experiments; :mod:`pipeline.measurement.methods`).
+free and forced vibration, from virtual experiments; :mod:`tyrelab.measurement.methods`).
 """
 
 from __future__ import annotations
@@ -33,27 +33,27 @@ import pyarrow.parquet as pq
 
 from .. import published
 from ..measurement import calibration as cal
+from ..measurement.apparent_mass import tyre_force
 from ..measurement.methods import table_i
+from ..rawformat import ACCEL_CHANNELS, BEAM_CHANNELS, CHANNELS
 from .base import Context, StageResult
 
 #: Context options that change this stage's output (part of its fingerprint).
 PARAMS = ["calibration_correct"]
 
-CHANNELS = ["accel_left_m_s2", "accel_right_m_s2", "load_beam_1_N", "load_beam_2_N", "load_beam_3_N",
-            "load_beam_4_N", "force_plate_N"]
 CALIBRATION_COLUMNS = ["campaign", "day", "run_id", "tyre_id", "pass", "day_pass", "max_gain_error_pct",
                        "max_phase_error_deg", "mean_gain", "mean_phase_deg", "reason"]
 TF_COLUMNS = ["campaign", "day", "run_id", "frequency_Hz", "gain", "phase_deg", "coherence"]
 
 
-def check_run(path: str, axle_mass_kg: float, sample_rate_Hz: float) -> tuple[dict, pd.DataFrame]:
-    """Check one calibration run file; return (check dict, transfer function)."""
+def check_calibration_run(path: str, axle_mass_kg: float, sample_rate_Hz: float) -> tuple[dict, pd.DataFrame]:
+    """Check one force-plate calibration run file; return (check dict, transfer function)."""
     t = pq.read_table(path)
     if "force_plate_N" not in t.column_names:
         return {"pass": False, "reason": "no force_plate_N channel"}, pd.DataFrame()
-    col = {c: t.column(c).to_numpy().astype(np.float64) for c in CHANNELS}
-    derived = axle_mass_kg * (col["accel_left_m_s2"] + col["accel_right_m_s2"]) / 2 - sum(
-        col[f"load_beam_{i}_N"] for i in range(1, 5))
+    col = {c: t.column(c).to_numpy().astype(np.float64) for c in [*CHANNELS, "force_plate_N"]}
+    derived = tyre_force(col[ACCEL_CHANNELS[0]], col[ACCEL_CHANNELS[1]], np.stack([col[c] for c in BEAM_CHANNELS]),
+                         axle_mass_kg)
     tf = cal.calibration_transfer_function(col["force_plate_N"], derived, sample_rate_Hz)
     check = cal.check_calibration(tf)
     check["reason"] = "" if check["pass"] else (
@@ -102,7 +102,7 @@ def run(ctx: Context) -> StageResult:
         cal_runs = manifest[manifest["kind"].fillna("measurement") == "calibration"]
         res.n_in = len(cal_runs)
         for _, r in cal_runs.sort_values("run_id").iterrows():
-            check, tf = check_run(r["run_path"], float(r["axle_mass_kg"]), _sample_rate(r))
+            check, tf = check_calibration_run(r["run_path"], float(r["axle_mass_kg"]), _sample_rate(r))
             day = str(r["recorded_on"])
             rows.append({"campaign": str(r.get("campaign", "")), "day": day, "run_id": r["run_id"],
                          "tyre_id": r["tyre_id"], **check})

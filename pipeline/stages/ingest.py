@@ -7,12 +7,12 @@ never stops the batch: it is written to the ``quarantine`` table with a
 one-line reason naming the file, and good runs go through.
 
 Run files may be ``.parquet``/``.csv`` (raw format v1) or ``.mf4``/``.tdms``
-read through the campaign's ``channel_map.json`` (:mod:`pipeline.formats`).
+read through the campaign's ``channel_map.json`` (:mod:`tyrelab.rawformat.mapped`).
 Files are hashed, checked and converted in parallel by
-:func:`pipeline.executor.map_batches` (paths go to the workers, not data).
+:func:`tyrelab.executor.map_batches` (paths go to the workers, not data).
 
 Incremental: the stage is skipped when no file below ``--raw`` changed size or
-mtime (``INPUTS = ["raw"]``, see :mod:`pipeline.stages.state`); otherwise a run
+mtime (``INPUTS = ["raw"]``, see :mod:`tyrelab.stages.state`); otherwise a run
 whose file bytes (SHA-256, re-hashed only when size or mtime changed) and
 manifest row are unchanged is not re-read, and outputs of runs that
 disappeared from the raw folder are removed. Per-run state
@@ -37,58 +37,22 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from .. import formats, io
+from .. import io, resources
+from .. import rawformat as rf
+from ..rawformat import CHANNEL_MAP, CHANNELS, MAX_RUN_FILE_BYTES, RUN_SUFFIXES, RunFileError, check_run, read_run_file
 from ..executor import map_batches
 from ..schema import field_names, load_schema, row_problems, validate_frame
 from ..tyre.sizes import TyreSizeError, parse_tyre_size
-from .base import Context, Progress, StageResult
+from .base import Context, Progress, StageResult, write_quarantine
 
-#: What the stage reads (see :mod:`pipeline.stages.state`): every file below ``--raw``.
+#: What the stage reads (see :mod:`tyrelab.stages.state`): every file below ``--raw``.
 INPUTS = ["raw"]
 
 #: The built-in tyre catalogue (thesis Table II).
-BUILTIN_TYRES = Path(__file__).resolve().parents[2] / "raw" / "tyres.csv"
-
-#: Largest run file read, bytes; larger files are quarantined unread.
-MAX_RUN_FILE_BYTES = 512 * 1024**2
-
-#: Accepted sampling rates, Hz, and the minimum samples per excitation cycle.
-SAMPLE_RATE_RANGE_Hz = (32.0, 20000.0)
-MIN_SAMPLES_PER_CYCLE = 8
-#: Shortest usable run, s (at least a few dozen cycles at 1.5 Hz).
-MIN_DURATION_s = 10.0
-#: Allowed relative jitter of the sampling interval.
-MAX_DT_JITTER = 0.01
-
-CHANNELS = [
-    "accel_left_m_s2",
-    "accel_right_m_s2",
-    "load_beam_1_N",
-    "load_beam_2_N",
-    "load_beam_3_N",
-    "load_beam_4_N",
-]
-OPTIONAL_CHANNELS = ["force_plate_N"]
-#: Suffixes of run files: raw format v1, and other formats read through a channel map.
-RUN_SUFFIXES = (".parquet", ".csv", *formats.SUFFIXES)
-
+BUILTIN_TYRES = resources.builtin_tyres()
 
 #: Sampling facts ingest adds to the ``manifest`` table, in this column order.
 INFO_KEYS = ("sample_rate_Hz", "n_samples", "duration_s")
-
-
-class RunFileError(ValueError):
-    """A run file that cannot be used; the message is the one-line reason."""
-
-
-@dataclass(frozen=True)
-class RunInfo:
-    """What ingest learns from a valid run file."""
-
-    sample_rate_Hz: float
-    n_samples: int
-    duration_s: float
-    channels: tuple[str, ...]
 
 
 def discover_campaigns(raw: Path) -> list[Path]:
@@ -159,105 +123,6 @@ def load_catalogue(raw: Path, campaigns: list[Path]) -> tuple[pd.DataFrame, list
     return cat.reset_index(drop=True), problems
 
 
-def read_run_file(path: Path, columns: list[str] | None = None, channel_map: dict | None = None) -> pd.DataFrame:
-    """Read a run file into a DataFrame of raw-format-v1 columns.
-
-    ``.parquet`` and ``.csv`` are raw format v1; ``.mf4`` (ASAM MDF4) and
-    ``.tdms`` (NI TDMS) are read through ``channel_map``
-    (:mod:`pipeline.formats`). The size is checked before anything is read.
-
-    Raises
-    ------
-    RunFileError
-        With a one-line reason if the file is missing, too large, truncated,
-        corrupt or of an unknown type.
-    """
-    path = Path(path)
-    if not path.is_file():
-        raise RunFileError("file not found")
-    size = path.stat().st_size
-    if size > MAX_RUN_FILE_BYTES:
-        raise RunFileError(f"file is {size / 1e9:.1f} GB, larger than the {MAX_RUN_FILE_BYTES / 1e6:.0f} MB limit")
-    if size == 0:
-        raise RunFileError("file is empty")
-    suffix = path.suffix.lower()
-    try:
-        if suffix == ".parquet":
-            pf = pq.ParquetFile(path)
-            wanted = None if columns is None else [c for c in columns if c in pf.schema_arrow.names]
-            return pf.read(columns=wanted).to_pandas()
-        if suffix == ".csv":
-            return pd.read_csv(path, usecols=lambda c: columns is None or c in columns)
-        if suffix in formats.SUFFIXES:
-            return formats.read_mapped(path, CHANNELS, OPTIONAL_CHANNELS, channel_map)
-    except formats.FormatError as exc:
-        raise RunFileError(str(exc)) from None
-    except (pa.ArrowException, OSError, ValueError, UnicodeDecodeError, pd.errors.ParserError) as exc:
-        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise RunFileError(f"corrupt or truncated {suffix[1:]} file ({first})") from None
-    raise RunFileError(f"unknown file type {suffix!r} (expected {', '.join(RUN_SUFFIXES)})")
-
-
-def check_run(df: pd.DataFrame, excitation_frequency_Hz: float, sample_rate_Hz: float | None = None) -> RunInfo:
-    """Validate a run's channels; return its sampling facts.
-
-    Checks required channels, numeric finite samples, a strictly increasing
-    and regular time base, the sampling rate (accepted range, enough samples
-    per excitation cycle, agreement with the manifest's ``sample_rate_Hz``
-    when given) and a minimum duration.
-
-    Raises
-    ------
-    RunFileError
-        With a one-line reason.
-    """
-    missing = [c for c in ["time_s", *CHANNELS] if c not in df.columns]
-    if missing:
-        raise RunFileError(f"missing channel(s) {', '.join(missing)}")
-    present = ["time_s", *CHANNELS, *[c for c in OPTIONAL_CHANNELS if c in df.columns]]
-    for c in present:
-        values = pd.to_numeric(df[c], errors="coerce").to_numpy(dtype=float)
-        if np.isnan(values).any():
-            i = int(np.flatnonzero(np.isnan(values))[0])
-            raise RunFileError(f"channel {c} has a NaN or non-numeric sample at row {i}")
-        if np.isinf(values).any():
-            i = int(np.flatnonzero(np.isinf(values))[0])
-            raise RunFileError(f"channel {c} has an infinite sample at row {i}")
-    g = 9.80665
-    mean_accel = [float(pd.to_numeric(df[c]).mean()) for c in ("accel_left_m_s2", "accel_right_m_s2")]
-    if all(-1.15 * g < m < -0.85 * g for m in mean_accel):
-        raise RunFileError(
-            f"accelerations average {np.mean(mean_accel):.2f} m/s²: they look downward-positive; "
-            "raw format v1 wants upward-positive (+g at rest, or 0 if AC-coupled)"
-        )
-    t = df["time_s"].to_numpy(dtype=float)
-    if t.size < 2:
-        raise RunFileError(f"only {t.size} sample(s)")
-    dt = np.diff(t)
-    if (dt <= 0).any():
-        i = int(np.flatnonzero(dt <= 0)[0])
-        raise RunFileError(f"time_s is not strictly increasing at row {i + 1}")
-    dt_med = float(np.median(dt))
-    jitter = np.abs(dt - dt_med) / dt_med
-    if (jitter > MAX_DT_JITTER).any():
-        i = int(np.flatnonzero(jitter > MAX_DT_JITTER)[0])
-        raise RunFileError(f"irregular sampling: interval at row {i + 1} is {dt[i]:.6g} s, median {dt_med:.6g} s")
-    fs = 1.0 / float(np.mean(dt))
-    if not SAMPLE_RATE_RANGE_Hz[0] <= fs <= SAMPLE_RATE_RANGE_Hz[1]:
-        raise RunFileError(f"sample rate {fs:.4g} Hz outside {SAMPLE_RATE_RANGE_Hz[0]:g}-{SAMPLE_RATE_RANGE_Hz[1]:g} Hz")
-    if sample_rate_Hz is not None and not np.isnan(sample_rate_Hz) and abs(fs / sample_rate_Hz - 1) > 0.005:
-        raise RunFileError(f"sample rate {fs:.4g} Hz does not match the manifest's {sample_rate_Hz:g} Hz")
-    if fs < MIN_SAMPLES_PER_CYCLE * excitation_frequency_Hz:
-        raise RunFileError(
-            f"sample rate {fs:.4g} Hz too low for {excitation_frequency_Hz:g} Hz excitation "
-            f"(need {MIN_SAMPLES_PER_CYCLE} samples per cycle)"
-        )
-    duration = float(t[-1] - t[0] + np.mean(dt))
-    if duration < MIN_DURATION_s:
-        raise RunFileError(f"run is {duration:.1f} s long, shorter than {MIN_DURATION_s:g} s (truncated?)")
-    return RunInfo(fs, int(t.size), duration, tuple(present))
-
-
 def _run_table(df: pd.DataFrame, run_id: str, channels: tuple[str, ...]) -> pa.Table:
     cols = {"run_id": pa.array(np.full(len(df), run_id, dtype=object), pa.string()).dictionary_encode()}
     cols["time_s"] = pa.array(df["time_s"].to_numpy(dtype=np.float64))
@@ -306,12 +171,12 @@ def convert_run(task: dict) -> dict:
     if prev and prev["sha256"] == sha and prev["row"] == task["row"] and prev["out"] == str(out) and out.exists():
         return {**done, "info": prev["info"], "converted": False}
     try:
-        cmap = formats.load_channel_map(task["channel_map"]) if task.get("channel_map") else None
+        cmap = rf.load_channel_map(task["channel_map"]) if task.get("channel_map") else None
         df = read_run_file(src, channel_map=cmap)
         ri = check_run(df, task["excitation_frequency_Hz"], task["sample_rate_Hz"])
         with io.atomic_path(out) as tmp:
             pq.write_table(_run_table(df, task["run_id"], ri.channels), tmp, compression="zstd")
-    except (RunFileError, formats.FormatError) as exc:
+    except RunFileError as exc:
         return {**done, "reason": str(exc)}
     info = {"sample_rate_Hz": ri.sample_rate_Hz, "n_samples": ri.n_samples, "duration_s": ri.duration_s}
     return {**done, "info": info, "converted": True}
@@ -384,8 +249,6 @@ def _run_files(campaign: Path):
     for f in campaign.rglob("*"):
         if f.suffix.lower() not in RUN_SUFFIXES or f.name in ("manifest.csv", "tyres.csv") or not f.is_file():
             continue
-        if "published" in f.relative_to(campaign).parts:  # digitised thesis tables, not runs
-            continue
         if any((p / "manifest.csv").is_file() for p in f.parents if p != campaign and campaign in p.parents):
             continue
         yield f
@@ -428,14 +291,14 @@ def run(ctx: Context) -> StageResult:
             _quarantine_entry(ctx, campaign, run_id, row["file"], "file not found", plan)
             continue
         st = src.stat()
-        cmap = campaign / formats.CHANNEL_MAP
+        cmap = campaign / CHANNEL_MAP
         rows[run_id] = (campaign, row, row_hash, out, st)
         tasks.append({
             "run_id": run_id, "src": str(src), "out": str(out), "row": row_hash, "size": st.st_size, "prev": prev,
             "touched": not prev or (prev["size"], prev["mtime_ns"]) != (st.st_size, st.st_mtime_ns),
             "excitation_frequency_Hz": float(row["excitation_frequency_Hz"]),
             "sample_rate_Hz": _optional_float(row, "sample_rate_Hz"),
-            "channel_map": str(cmap) if cmap.is_file() and src.suffix.lower() in formats.SUFFIXES else None,
+            "channel_map": str(cmap) if cmap.is_file() and src.suffix.lower() in rf.mapped.SUFFIXES else None,
         })
     cached = [t for t in tasks if not t["touched"] and t["prev"]["row"] == t["row"]
               and t["prev"]["out"] == t["out"] and Path(t["out"]).exists()]
@@ -512,15 +375,3 @@ def manifest_columns(schema: dict, row: pd.Series) -> list[str]:
     """Manifest columns to carry into the ``manifest`` table: the schema's, then any extras."""
     names = field_names(schema)
     return names + [c for c in row.index if c not in names]
-
-
-QUARANTINE_COLUMNS = ["campaign", "run_id", "file", "stage", "reason"]
-
-
-def write_quarantine(ctx: Context, stage: str, entries: list[dict]) -> None:
-    """Replace the quarantine rows of ``stage`` with ``entries`` (other stages' rows are kept)."""
-    old = ctx.read_table("quarantine") if ctx.has_table("quarantine") else pd.DataFrame(columns=QUARANTINE_COLUMNS)
-    old = old[old["stage"] != stage]
-    new = pd.DataFrame(entries, columns=QUARANTINE_COLUMNS)
-    both = pd.concat([df for df in (old, new) if not df.empty], ignore_index=True) if len(old) or len(new) else new
-    ctx.write_table("quarantine", both.astype({"run_id": "string", "campaign": "string", "file": "string"}))

@@ -2,7 +2,7 @@
 
 Reads ``results`` and ``tyres`` (``build/parquet``; ``raw/tyres.csv`` if the
 ``tyres`` table is missing) and the published tables ``raw/published/table_*.csv``;
-calls the pure functions of :mod:`pipeline.tyre` and writes, under ``build/parquet``:
+calls the pure functions of :mod:`tyrelab.tyre` and writes, under ``build/parquet``:
 
 =============================  =============================================================
 table                          contents
@@ -48,7 +48,7 @@ FACTORS = ("amplitude", "frequency", "load", "torque")
 
 
 def read_published(ctx: Context) -> dict[str, pd.DataFrame | None]:
-    """Published thesis tables (:mod:`pipeline.published`; None where absent)."""
+    """Published thesis tables (:mod:`tyrelab.published`; None where absent)."""
     available = set(published.stems(ctx.raw))
     return {name: published.read_published(name, ctx.raw) if name in available else None for name in PUBLISHED}
 

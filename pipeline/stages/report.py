@@ -1,6 +1,6 @@
 """Report: render the static site ``build/reports/`` from the warehouse (read-only).
 
-All the work is in :mod:`pipeline.report.site`; this stage only times it and
+All the work is in :mod:`tyrelab.report.site`; this stage only times it and
 summarises what was written.
 """
 
@@ -12,7 +12,7 @@ from ..report.site import build_site
 from .base import Context, StageResult
 
 #: The jinja2 templates are code of this stage: a changed template re-renders the report.
-CODE_FILES = ["reports"]
+CODE_FILES = ["tyrelab.templates"]
 
 
 def run(ctx: Context) -> StageResult:

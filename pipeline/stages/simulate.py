@@ -1,11 +1,11 @@
 """Stage ``simulate``: chapters 6-8 - carriage, tractor, Table XX, ISO 2631 (issue 5).
 
-Reads the digitised thesis Tables XII-XX through :mod:`pipeline.published`
+Reads the digitised thesis Tables XII-XX through :mod:`tyrelab.published`
 (``<raw>/published/table_*.csv`` when the raw folder has one, else the copy shipped
 with tyrelab, schema-checked; the file read is recorded in the ``source`` column of
 ``simulate_inputs``), puts them in the studies' layouts with
-:mod:`pipeline.vehicle.published_layouts`, runs the pure studies of
-:mod:`pipeline.vehicle.studies` and :mod:`pipeline.vehicle.bounce_pitch`, and writes:
+:mod:`tyrelab.vehicle.published_layouts`, runs the pure studies of
+:mod:`tyrelab.vehicle.studies` and :mod:`tyrelab.vehicle.bounce_pitch`, and writes:
 
 ``carriage_runs``, ``carriage_comparisons``, ``table_xiii``, ``table_xiv``,
 ``tractor_runs``, ``table_xvii``, ``table_xviii``, ``table_xx``,

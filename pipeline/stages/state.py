@@ -2,7 +2,7 @@
 
 Each stage gets a *fingerprint* stored in ``build/state/<stage>.json``:
 
-- ``code``: SHA-256 of the stage module's source and of every ``pipeline``
+- ``code``: SHA-256 of the stage module's source and of every ``tyrelab``
   module it imports (followed transitively, read with :mod:`ast`, so nothing
   heavy is imported to decide), plus the ``schemas/`` files;
 - ``inputs``: one digest per input. What a stage reads is declared by a
@@ -11,7 +11,7 @@ Each stage gets a *fingerprint* stored in ``build/state/<stage>.json``:
   ``"raw"`` (every file below ``--raw`` by path, size and mtime — ingest then
   re-hashes the content of each changed file itself). A stage without
   ``INPUTS`` depends on every file written by the stages before it in
-  :data:`pipeline.stages.ORDER`, and on the raw files outside campaign folders
+  :data:`tyrelab.stages.ORDER`, and on the raw files outside campaign folders
   (``published/``, ``tyres.csv``). Context options named in a stage's
   ``PARAMS = [...]`` (e.g. ``calibration_correct``) count as inputs;
 - ``outputs``: the files the stage wrote (found by comparing ``build/``
@@ -32,15 +32,12 @@ import json
 import os
 from pathlib import Path
 
-from .. import io
+from .. import io, resources
 
-#: Root of the source tree (``pipeline/``'s parent).
-REPO = Path(__file__).resolve().parents[2]
-SCHEMAS = REPO / "schemas"
-#: Folder the stages' ``CODE_FILES`` are relative to.
-CODE_ROOT = REPO
+#: Folder of the ``tyrelab`` code, and the name modules are looked up under.
+PACKAGE = "tyrelab"
 #: Built-in raw files every stage may read (tyre catalogue, digitised thesis tables).
-BUILTIN_RAW = [REPO / "raw" / "tyres.csv", REPO / "raw" / "published"]
+BUILTIN_RAW = [resources.builtin_tyres(), resources.published_dir()]
 #: Folders of ``build/`` that are not stage outputs tracked here.
 UNTRACKED = {"state", "runs"}
 
@@ -50,8 +47,11 @@ def _sha(data: bytes) -> str:
 
 
 def _module_file(name: str) -> Path | None:
-    """Source file of a ``pipeline`` module, found without importing anything (None if not a module)."""
-    base = REPO.joinpath(*name.split("."))
+    """Source file of a ``tyrelab`` module, found without importing anything (None if not a module)."""
+    top, *parts = name.split(".")
+    if top != PACKAGE:
+        return None
+    base = resources.package_dir().joinpath(*parts)
     for path in (base.with_suffix(".py"), base / "__init__.py"):
         if path.is_file():
             return path
@@ -59,7 +59,7 @@ def _module_file(name: str) -> Path | None:
 
 
 def _imports(path: Path, module: str) -> tuple[set[str], dict]:
-    """``pipeline`` modules imported by a module, and its literal top-level assignments."""
+    """``tyrelab`` modules imported by a module, and its literal top-level assignments."""
     tree = ast.parse(path.read_text(encoding="utf-8"))
     package = module if path.name == "__init__.py" else module.rpartition(".")[0]
     found, literals = set(), {}
@@ -70,11 +70,17 @@ def _imports(path: Path, module: str) -> tuple[set[str], dict]:
                 parts = package.split(".")
                 parts = parts[: len(parts) - node.level + 1]
                 base = ".".join(parts + ([base] if base else []))
-            if base.split(".")[0] == "pipeline":
-                found.add(base)
-                found.update(f"{base}.{a.name}" for a in node.names)
+            if base.split(".")[0] == PACKAGE:
+                subs = {f"{base}.{a.name}" for a in node.names}
+                modules = {m for m in subs if _module_file(m) is not None}
+                found.update(modules)
+                # ``from pkg import submodule`` depends on the submodule, not on the package's
+                # __init__ (which may re-export the whole library): a stage's fingerprint then
+                # changes only with the code it really uses.
+                if modules != subs or _module_file(base) is None or not _module_file(base).name == "__init__.py":
+                    found.add(base)
         elif isinstance(node, ast.Import):
-            found.update(a.name for a in node.names if a.name.split(".")[0] == "pipeline")
+            found.update(a.name for a in node.names if a.name.split(".")[0] == PACKAGE)
     for node in tree.body:
         if isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.targets[0], ast.Name):
             try:
@@ -91,7 +97,7 @@ def declarations(stage_module: str) -> dict:
 
 
 def code_fingerprint(stage_module: str) -> str:
-    """Hash of the source of ``stage_module``, every ``pipeline`` module it imports, ``schemas/``,
+    """Hash of the source of ``stage_module``, every ``tyrelab`` module it imports, ``schemas/``,
     and the files below the folders the stage lists in ``CODE_FILES`` (e.g. templates)."""
     seen: dict[str, Path] = {}
     todo = [stage_module]
@@ -109,12 +115,15 @@ def code_fingerprint(stage_module: str) -> str:
     for name in sorted(seen):
         if seen[name].name:
             h.update(name.encode() + b"\0" + seen[name].read_bytes() + b"\0")
-    for p in sorted(SCHEMAS.rglob("*.json")):
-        h.update(str(p.relative_to(SCHEMAS)).encode() + b"\0" + p.read_bytes())
-    # Non-Python files that are code for this stage (e.g. the report's templates).
-    for rel in declarations(stage_module).get("CODE_FILES", []):
-        for p in sorted(q for q in (CODE_ROOT / rel).rglob("*") if q.is_file()):
-            h.update(str(p.relative_to(CODE_ROOT)).encode() + b"\0" + p.read_bytes())
+    schemas = resources.schemas_dir()
+    for p in sorted(schemas.rglob("*.json")):
+        h.update(str(p.relative_to(schemas)).encode() + b"\0" + p.read_bytes())
+    # Non-Python files that are code for this stage (e.g. the report's templates): resource
+    # packages named in the stage's ``CODE_FILES``.
+    for package in declarations(stage_module).get("CODE_FILES", []):
+        root = resources.resource_dir(package)
+        for p in sorted(q for q in root.rglob("*") if q.is_file() and q.suffix != ".pyc"):
+            h.update(f"{package}/{p.relative_to(root)}".encode() + b"\0" + p.read_bytes())
     return h.hexdigest()
 
 
@@ -206,7 +215,7 @@ def load(build: Path, stage: str) -> dict:
 
 def input_digests(ctx, stage: str, order: list[str], cache: HashCache) -> dict[str, str]:
     """Digest of each input of ``stage`` (see the module docstring)."""
-    decl = declarations(f"pipeline.stages.{stage}")
+    decl = declarations(f"{PACKAGE}.stages.{stage}")
     declared = decl.get("INPUTS")
     # Context options the stage declares in PARAMS are inputs too.
     digests: dict[str, str] = {f"param:{p}": repr(getattr(ctx, p)) for p in decl.get("PARAMS", [])}

@@ -2,7 +2,7 @@
 
 Thesis chapters 4 and 5 vary one condition at a time around a standard set of
 conditions. The thesis never tabulates that standard set, so tyrelab fixes it
-here, and every regression in :mod:`pipeline.tyre.regressions` selects its runs
+here, and every regression in :mod:`tyrelab.tyre.regressions` selects its runs
 through these functions.
 
 The convention (used for Table III and Table VII, the pressure regressions)

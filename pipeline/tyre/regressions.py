@@ -2,7 +2,7 @@
 
 Every fit is an ordinary least-squares line from :mod:`statsmodels` and is
 reported with estimate, standard error, 95 % confidence interval, r² and n.
-Run selection follows :mod:`pipeline.tyre.conditions` (the one place that says
+Run selection follows :mod:`tyrelab.tyre.conditions` (the one place that says
 which runs are "nominal"). Functions return tidy DataFrames in thesis units:
 stiffness kN/m, damping kNs/m, pressure bar, speed km/h, amplitude mm p-p.
 
@@ -144,7 +144,7 @@ def _fit_groups(runs, keys, grid, response, hold, prefer, design: str = "x") -> 
         one_level = len(sub) > 0 and sub[design].round(6).nunique() < 2
         fit = fit_line(sub["x"], sub[response]) if len(sub) and not one_level else fit_line([], [])
         if len(sub) == 0:
-            fit["reason"] = "no runs under the selection convention (pipeline.tyre.conditions)"
+            fit["reason"] = "no runs under the selection convention (tyrelab.tyre.conditions)"
         elif one_level:
             fit["n"] = int(len(sub))
             fit["reason"] = f"fewer than 2 distinct set levels of the regressor (n={len(sub)}): the runs do not vary it"

@@ -264,7 +264,7 @@ def size_regressions(table: pd.DataFrame, tyres: pd.DataFrame | None, source: st
     -------
     DataFrame
         Per fit: ``fit, source, x, y, condition, selection, tyres_used, n``, the
-        :func:`~pipeline.tyre.regressions.fit_line` statistics, ``thesis_intercept,
+        :func:`~tyrelab.tyre.regressions.fit_line` statistics, ``thesis_intercept,
         thesis_slope, thesis_r_squared``, differences, ``reproduces_printed``,
         ``finding`` and ``thesis_ref``.
     """

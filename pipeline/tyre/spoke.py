@@ -358,7 +358,7 @@ def fit_tyres(results: pd.DataFrame, tyres: pd.DataFrame | None = None, *,
               min_speed_km_h: float = 10.0, h_over_r0: float = H_OVER_R0) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Fit spoke coefficients per tyre from measured damping vs rolling speed.
 
-    Fitting speeds: nominal runs (:mod:`pipeline.tyre.conditions`) at speed ≥
+    Fitting speeds: nominal runs (:mod:`tyrelab.tyre.conditions`) at speed ≥
     ``min_speed_km_h`` (default 10 km/h: the Table VII speeds; the thesis
     suggests fitting "at two rolling speeds", and the model cannot describe the
     rise of damping below 0.6 km/h). Pressure and load held at one level (most

@@ -108,7 +108,7 @@ def tractor_natural_frequencies(
 ) -> dict:
     """Natural frequencies of a tractor from its tyre sizes and pressures (thesis §8.2).
 
-    Per-tyre stiffnesses come from :func:`pipeline.tyre.stiffness.estimate_tyre_stiffness`:
+    Per-tyre stiffnesses come from :func:`tyrelab.tyre.stiffness.estimate_tyre_stiffness`:
     traction tyres use ``K = 172 - 1.77 R + 5.6 A + 0.34 W R P``; undriven ribbed
     front tyres (``front_traction=False``) use ``K = 134/(7.5*18) W R P``; water
     ballast multiplies by 1.25. The axle stiffness is twice the per-tyre stiffness.

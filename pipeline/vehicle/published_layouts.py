@@ -1,10 +1,10 @@
 """The digitised thesis Tables XII-XX in the layouts the chapter 6-8 studies use.
 
 Pure functions on the DataFrames returned by
-:func:`pipeline.published.read_published` (no file I/O, no thesis numbers: the
+:func:`tyrelab.published.read_published` (no file I/O, no thesis numbers: the
 numbers live only in ``raw/published/table_*.csv``). Each adapter renames the
-digitised labels to the ones of :mod:`pipeline.vehicle.studies`,
-:mod:`pipeline.vehicle.metrics` and :mod:`pipeline.vehicle.bounce_pitch`, and
+digitised labels to the ones of :mod:`tyrelab.vehicle.studies`,
+:mod:`tyrelab.vehicle.metrics` and :mod:`tyrelab.vehicle.bounce_pitch`, and
 raises ``ValueError`` on a label it does not know rather than dropping the row.
 """
 
@@ -88,7 +88,7 @@ def carriage_stationary(xii: pd.DataFrame) -> pd.DataFrame:
 def carriage_accuracy(table: pd.DataFrame) -> pd.DataFrame:
     """Table XIII or XIV as ``quantity, statistic, thesis_rolling, thesis_stationary``.
 
-    Labels follow :func:`pipeline.vehicle.metrics.accuracy_table`; the ``>``
+    Labels follow :func:`tyrelab.vehicle.metrics.accuracy_table`; the ``>``
     qualifiers of '>0.9999' cells are dropped (the value 0.9999 is kept).
     """
     rows = []

@@ -75,7 +75,7 @@ def profile_estimates(track: pr.Profile, radius_m: float, footprint_m: float, se
     Parameters
     ----------
     track : Profile
-        Slatted track from :func:`pipeline.vehicle.profiles.slatted_track` (no lead-in).
+        Slatted track from :func:`tyrelab.vehicle.profiles.slatted_track` (no lead-in).
     radius_m, footprint_m : float
         Tyre rolling radius and contact length, m.
     seed : int

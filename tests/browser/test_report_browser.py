@@ -4,7 +4,7 @@ Skipped, with the reason, when the ``playwright`` package or a Chromium
 binary is missing (CI installs both: ``.ci/run`` apt-installs chromium and
 ``make test`` the ``browser`` extra). No browser is downloaded: the test
 drives the system Chromium. The report comes from a tiny synthetic campaign
-run through every stage of :func:`pipeline.stages.run_pipeline`, simulate
+run through every stage of :func:`tyrelab.stages.run_pipeline`, simulate
 included, so chapters 6–8 are checked with real results.
 """
 

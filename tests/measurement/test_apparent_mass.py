@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from pipeline.measurement import apparent_mass as am
+from tyrelab.measurement import apparent_mass as am
 from synthetic import CHANNELS, spring_damper_recording
 
 

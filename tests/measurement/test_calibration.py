@@ -4,9 +4,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline.measurement import calibration as cal
-from pipeline.rig.campaigns import campaign_plan, simulate_run
-from pipeline.rig.instrument import derived_tyre_force
+from tyrelab.measurement import calibration as cal
+from tyrelab.rig.campaigns import campaign_plan, simulate_run
+from tyrelab.rig.instrument import derived_tyre_force
 
 FS = 256.0
 

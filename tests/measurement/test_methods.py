@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from pipeline.measurement import methods
-from pipeline.rig import experiments as ex
-from pipeline.rig.instrument import RigConfig
+from tyrelab.measurement import methods
+from tyrelab.rig import experiments as ex
+from tyrelab.rig.instrument import RigConfig
 
 
 def test_free_vibration_analytic_sdof():
@@ -32,7 +32,7 @@ def test_half_power_and_load_deflection_without_linkage_or_creep():
 
 
 def test_table_i_structure():
-    from pipeline.published import read_published
+    from tyrelab.published import read_published
 
     t = methods.table_i(read_published("table_i")).set_index("method")
     assert set(t["source"]) == {methods.TABLE_I_SOURCE}

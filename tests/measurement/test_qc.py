@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from pipeline.measurement import apparent_mass as am
-from pipeline.measurement.qc import clipped, qc_reasons
-from pipeline.rig.campaigns import campaign_plan, simulate_run
+from tyrelab.measurement import apparent_mass as am
+from tyrelab.measurement.qc import clipped, qc_reasons
+from tyrelab.rig.campaigns import campaign_plan, simulate_run
 
 FS = 256.0
 T = np.arange(int(50 * FS)) / FS
@@ -71,7 +71,7 @@ def test_virtual_runs_pass(run_id):
 
 
 def test_wheel_excitation_near_excitation_flagged():
-    from pipeline.measurement.qc import interference_frequencies_Hz
+    from tyrelab.measurement.qc import interference_frequencies_Hz
 
     fi = interference_frequencies_Hz(50.0, 3.44)
     assert fi[0] == pytest.approx(50 / 3.6 / 3.44)

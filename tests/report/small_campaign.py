@@ -14,7 +14,7 @@ from pathlib import Path
 
 from synthetic import manifest_row, spring_damper_recording, write_campaign
 
-from pipeline.stages import Context, ORDER, run_pipeline
+from tyrelab.stages import Context, ORDER, run_pipeline
 
 #: Tyre id that must render as text, never as markup.
 EVIL_TYRE = "<script>alert(1)</script>"

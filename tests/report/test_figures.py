@@ -5,7 +5,7 @@ import re
 import numpy as np
 import pandas as pd
 
-from pipeline.report import figures
+from tyrelab.report import figures
 from synthetic import spring_damper_recording
 
 

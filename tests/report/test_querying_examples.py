@@ -3,7 +3,7 @@
 import re
 from pathlib import Path
 
-from pipeline.warehouse import query
+from tyrelab.warehouse import query
 
 ROOT = Path(__file__).resolve().parents[2]
 

@@ -3,7 +3,7 @@
 import numpy as np
 import pandas as pd
 
-from pipeline.report import tables
+from tyrelab.report import tables
 
 
 def test_find_pairs_recognises_every_naming():

@@ -9,10 +9,10 @@ import pandas as pd
 import pytest
 from scipy.integrate import solve_ivp
 
-from pipeline.generate import generate_campaign
-from pipeline.measurement import apparent_mass as am
-from pipeline.rig import instrument as ins
-from pipeline.rig.campaigns import MANIFEST_COLUMNS, campaign_plan, simulate_run
+from tyrelab.generate import generate_campaign
+from tyrelab.measurement import apparent_mass as am
+from tyrelab.rig import instrument as ins
+from tyrelab.rig.campaigns import MANIFEST_COLUMNS, campaign_plan, simulate_run
 
 FS = 256.0
 

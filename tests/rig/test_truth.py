@@ -6,8 +6,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline.rig import truth
-from pipeline.rig.campaigns import pressures
+from tyrelab.rig import truth
+from tyrelab.rig.campaigns import pressures
 
 PUBLISHED = Path(__file__).resolve().parents[2] / "raw" / "published"
 

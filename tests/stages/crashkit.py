@@ -19,8 +19,8 @@ def campaign(folder, n=24):
 def start_run(raw, build, *extra, stages=STAGES, repeat=1):
     """Start ``tyrelab run`` (restricted to ``stages``) in a subprocess, ``repeat`` times in a row."""
     code = (
-        "import sys, pipeline.stages as s; s.ORDER[:] = %r\n"
-        "from pipeline.cli import main\n"
+        "import sys, tyrelab.stages as s; s.ORDER[:] = %r\n"
+        "from tyrelab.cli import main\n"
         "for _ in range(%d): rc = main(['run', '--raw', %r, '--build', %r, '--jobs', '1', *%r])\n"
         "sys.exit(rc)" % (list(stages), repeat, str(raw), str(build), list(extra))
     )

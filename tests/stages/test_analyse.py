@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from pipeline.stages.analyse import analyse_batch, load_signals
+from tyrelab.stages.analyse import analyse_batch, load_signals
 from synthetic import CHANNELS, spring_damper_recording
 
 
@@ -50,7 +50,7 @@ def test_reversed_acceleration_sign_is_flagged():
 
 
 def test_excitation_not_found_quarantine_names_the_file(tmp_path):
-    from pipeline.stages import Context, run_stage
+    from tyrelab.stages import Context, run_stage
     from synthetic import manifest_row, write_campaign
 
     flat = spring_damper_recording(amplitude_mm_pp=0.0)

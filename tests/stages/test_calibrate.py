@@ -2,10 +2,10 @@
 
 import pandas as pd
 
-from pipeline.generate import write_run
-from pipeline.rig.campaigns import campaign_plan, simulate_run
-from pipeline.stages import calibrate
-from pipeline.stages.base import Context
+from tyrelab.generate import write_run
+from tyrelab.rig.campaigns import campaign_plan, simulate_run
+from tyrelab.stages import calibrate
+from tyrelab.stages.base import Context
 
 
 def _context_with_days(tmp_path, **options):
@@ -49,7 +49,7 @@ def test_failed_day_flags_its_runs(tmp_path):
 
 
 def test_calibration_correction_is_an_option_in_the_fingerprint(tmp_path):
-    from pipeline.stages import state
+    from tyrelab.stages import state
 
     ctx, good, bad = _context_with_days(tmp_path, calibration_correct=True)
     calibrate.run(ctx)

@@ -4,7 +4,7 @@ import subprocess
 import sys
 
 from crashkit import campaign, start_run
-from pipeline.warehouse import query
+from tyrelab.warehouse import query
 
 
 def test_queries_while_the_pipeline_writes(tmp_path):
@@ -19,7 +19,7 @@ def test_queries_while_the_pipeline_writes(tmp_path):
         except Exception as exc:  # noqa: BLE001 - any failure is what the test looks for
             errors.append(f"{type(exc).__name__}: {exc}")
         if cli_ok < 2:
-            out = subprocess.run([sys.executable, "-m", "pipeline.cli", "sql", "--build", str(build), "--format", "csv",
+            out = subprocess.run([sys.executable, "-m", "tyrelab.cli", "sql", "--build", str(build), "--format", "csv",
                                   "SELECT count(*) AS n FROM results"], capture_output=True, text=True)
             assert out.returncode == 0 and out.stdout.split() == ["n", "16"], out.stderr
             cli_ok += 1

@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from crashkit import STAGES, campaign, start_run
-from pipeline.warehouse import query
+from tyrelab.warehouse import query
 
 QUERY = "SELECT run_id, stiffness_kN_per_m, damping_kN_s_per_m FROM results ORDER BY run_id"
 

@@ -6,8 +6,8 @@ from types import SimpleNamespace
 
 import pytest
 
-from pipeline.executor import map_batches
-from pipeline.stages import Context, run_pipeline
+from tyrelab.executor import map_batches
+from tyrelab.stages import Context, run_pipeline
 from synthetic import manifest_row, spring_damper_recording, write_campaign
 
 STAGES = ["ingest", "analyse", "warehouse"]

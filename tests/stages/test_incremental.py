@@ -6,7 +6,7 @@ import time
 import pandas as pd
 import pytest
 
-from pipeline.stages import Context, run_pipeline
+from tyrelab.stages import Context, run_pipeline
 from synthetic import manifest_row, spring_damper_recording, write_campaign
 
 STAGES = ["ingest", "analyse", "warehouse"]
@@ -109,8 +109,8 @@ def test_noop_cli_does_not_import_heavy_modules(campaign, caplog):
     _, ctx = campaign
     run(ctx, caplog)
     code = (
-        "import sys; import pipeline.stages as s; s.ORDER[:] = %r;"
-        "from pipeline.cli import main; main(['run', '--raw', %r, '--build', %r]);"
+        "import sys; import tyrelab.stages as s; s.ORDER[:] = %r;"
+        "from tyrelab.cli import main; main(['run', '--raw', %r, '--build', %r]);"
         "heavy = [m for m in ('matplotlib', 'statsmodels', 'dask', 'scipy') if m in sys.modules];"
         "print('HEAVY', heavy)" % (STAGES, str(ctx.raw), str(ctx.build))
     )
@@ -119,21 +119,23 @@ def test_noop_cli_does_not_import_heavy_modules(campaign, caplog):
 
 
 def test_changed_template_changes_only_the_report_fingerprint(tmp_path, monkeypatch):
-    from pipeline.stages import state
+    from tyrelab.stages import state
 
     reports = tmp_path / "reports"
     reports.mkdir()
     (reports / "page.html.j2").write_text("one")
-    monkeypatch.setattr(state, "CODE_ROOT", tmp_path)
-    before = {s: state.code_fingerprint(f"pipeline.stages.{s}") for s in ("report", "analyse")}
+    real = state.resources.resource_dir
+    monkeypatch.setattr(state.resources, "resource_dir",
+                        lambda package: reports if package == "tyrelab.templates" else real(package))
+    before = {s: state.code_fingerprint(f"tyrelab.stages.{s}") for s in ("report", "analyse")}
     (reports / "page.html.j2").write_text("two")
-    after = {s: state.code_fingerprint(f"pipeline.stages.{s}") for s in ("report", "analyse")}
+    after = {s: state.code_fingerprint(f"tyrelab.stages.{s}") for s in ("report", "analyse")}
     assert before["report"] != after["report"]
     assert before["analyse"] == after["analyse"]
 
 
 def test_build_folder_inside_raw_does_not_make_runs_stale(tmp_path):
-    from pipeline.stages import Context, run_stage
+    from tyrelab.stages import Context, run_stage
     from synthetic import manifest_row, spring_damper_recording, write_campaign
 
     raw = write_campaign(tmp_path / "raw" / "c", [(manifest_row("a", "a.parquet"), spring_damper_recording())]).parent

@@ -2,8 +2,8 @@
 
 import pandas as pd
 
-from pipeline.stages import Context, run_stage
-from pipeline.stages.ingest import discover_campaigns, run_key, tyre_partition
+from tyrelab.stages import Context, run_stage
+from tyrelab.stages.ingest import discover_campaigns, run_key, tyre_partition
 from synthetic import manifest_row, spring_damper_recording, write_campaign
 
 

@@ -11,8 +11,8 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
-from pipeline.cli import main
-from pipeline.stages import Context, run_stage
+from tyrelab.cli import main
+from tyrelab.stages import Context, run_stage
 from synthetic import manifest_row, spring_damper_recording, write_campaign
 
 GOOD = spring_damper_recording(duration_s=20.0)
@@ -134,7 +134,7 @@ def test_cli_exit_code_says_runs_were_quarantined(ingested, capsys):
 
 
 def test_bad_suite_does_not_change_the_good_runs_in_the_warehouse(tmp_path):
-    from pipeline.warehouse import query
+    from tyrelab.warehouse import query
 
     def good_rows(raw, build):
         ctx = Context(raw=raw, build=build, jobs=1)

@@ -7,8 +7,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline.stages import regress
-from pipeline.stages.base import Context
+from tyrelab.stages import regress
+from tyrelab.stages.base import Context
 
 REPO_RAW = Path(__file__).resolve().parents[2] / "raw"
 TABLES = ["table_iii", "table_iv", "table_v", "table_vi", "table_vii", "table_viii", "table_ix", "table_x",

@@ -6,9 +6,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline import published
-from pipeline.stages import simulate
-from pipeline.stages.base import Context
+from tyrelab import published
+from tyrelab.stages import simulate
+from tyrelab.stages.base import Context
 
 
 @pytest.fixture(scope="module")
@@ -82,7 +82,7 @@ def test_iso_every_run(ctx):
 
 
 def test_deterministic_pieces(ctx):
-    from pipeline.vehicle import profiles
+    from tyrelab.vehicle import profiles
 
     a = profiles.slatted_track(seed=simulate.SEED)
     b = profiles.slatted_track(seed=simulate.SEED)

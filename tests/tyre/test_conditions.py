@@ -1,6 +1,6 @@
 import pandas as pd
 
-from pipeline.tyre import conditions as cond
+from tyrelab.tyre import conditions as cond
 
 from tyre_synthetic import make_results, run
 

@@ -2,8 +2,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline.tyre import formula_accuracy as fa
-from pipeline.tyre.stiffness import traction_tyre_stiffness
+from tyrelab.tyre import formula_accuracy as fa
+from tyrelab.tyre.stiffness import traction_tyre_stiffness
 from thesis_tables import table_iii, tyres
 from tyre_synthetic import run
 

@@ -2,7 +2,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline.tyre import regressions as reg
+from tyrelab.tyre import regressions as reg
 from tyre_synthetic import TRUTH, make_results, run
 
 # Thesis Table III rows used as literal published values (thesis §4.3.1).
@@ -134,7 +134,7 @@ def test_surface_effects_matched_percent():
 def test_summary_rates_against_known_values(results):
     by_speed = reg.pressure_regressions(results, reg.STIFFNESS, by="speed")
     rates = reg.factor_regressions(results, "amplitude")
-    from pipeline.published import read_published
+    from tyrelab.published import read_published
 
     t6 = reg.summary_rates(by_speed, rates, reg.STIFFNESS, published=read_published("table_vi")).set_index("factor")
     # rolling dKp of T3 177 and F1 134 -> mean 155.5; speed 0->15 change at 1.38 bar

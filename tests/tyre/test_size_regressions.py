@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from pipeline.tyre import size_regressions as sr
+from tyrelab.tyre import size_regressions as sr
 from thesis_tables import table_iii, tyres
 
 

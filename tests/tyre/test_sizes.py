@@ -1,6 +1,6 @@
 import pytest
 
-from pipeline.tyre.sizes import TyreSizeError, parse_tyre_size
+from tyrelab.tyre.sizes import TyreSizeError, parse_tyre_size
 
 
 @pytest.mark.parametrize(

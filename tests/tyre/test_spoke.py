@@ -2,7 +2,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline.tyre import spoke
+from tyrelab.tyre import spoke
 from tyre_synthetic import run
 
 ALPHA = np.arccos(spoke.H_OVER_R0)

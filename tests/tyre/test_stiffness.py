@@ -1,6 +1,6 @@
 import pytest
 
-from pipeline.tyre.stiffness import estimate_tyre_stiffness, traction_tyre_stiffness, undriven_front_tyre_stiffness
+from tyrelab.tyre.stiffness import estimate_tyre_stiffness, traction_tyre_stiffness, undriven_front_tyre_stiffness
 
 
 def test_formula_by_hand():

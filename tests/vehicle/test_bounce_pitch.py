@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
-from pipeline.published import read_published
-from pipeline.vehicle import bounce_pitch as bp
-from pipeline.vehicle import published_layouts as layouts
+from tyrelab.published import read_published
+from tyrelab.vehicle import bounce_pitch as bp
+from tyrelab.vehicle import published_layouts as layouts
 
 # Table XIX / XX literal thesis data (tractor, M, I, l1, l2, K_rear, K_front per tyre kN/m, f1, f2 printed)
 TABLE_XX = [
@@ -116,9 +116,9 @@ def test_table_xx_printed_frequencies_consistent_with_input_rounding():
     # Recomputed from Table XIX's printed inputs, 16 of 20 frequencies lie within
     # 0.01 Hz and all within 0.0135 Hz; every one lies inside the range that the
     # print rounding of the inputs (0.01 m lever arms, 1 kg, 1 kg m², 1 kN/m) allows.
-    from pipeline.published import read_published
-    from pipeline.vehicle.bounce_pitch import table_xx
-    from pipeline.vehicle.published_layouts import tractors
+    from tyrelab.published import read_published
+    from tyrelab.vehicle.bounce_pitch import table_xx
+    from tyrelab.vehicle.published_layouts import tractors
 
     t = table_xx(tractors(read_published("table_xix")), read_published("table_xx"))
     assert t["thesis_frequency_1_consistent_with_rounding"].all()
@@ -129,7 +129,7 @@ def test_table_xx_printed_frequencies_consistent_with_input_rounding():
 
 
 def test_frequency_rounding_range_brackets_the_nominal_value():
-    from pipeline.vehicle.bounce_pitch import frequency_rounding_range, natural_frequencies
+    from tyrelab.vehicle.bounce_pitch import frequency_rounding_range, natural_frequencies
 
     rng = frequency_rounding_range(3434, 3946, 1.48, 0.81, 311, 314)
     f = natural_frequencies(3434, 3946, 1.48, 0.81, 2e3 * 311, 2e3 * 314)

@@ -5,10 +5,10 @@ import math
 import numpy as np
 import pytest
 
-from pipeline.vehicle import carriage as cm
-from pipeline.vehicle import enveloping as ev
-from pipeline.vehicle import metrics as mt
-from pipeline.vehicle import profiles as pr
+from tyrelab.vehicle import carriage as cm
+from tyrelab.vehicle import enveloping as ev
+from tyrelab.vehicle import metrics as mt
+from tyrelab.vehicle import profiles as pr
 
 # Table XII, 10 km/h light: 2.728 m/s, 1860 kg, 1.72 kNs/m, 388 kN/m (x0.9 on slats)
 CAR = cm.Carriage(1860.0, 0.9 * 388e3, 1720.0)

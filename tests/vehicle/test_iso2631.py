@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy import signal
 
-from pipeline.vehicle import iso2631
+from tyrelab.vehicle import iso2631
 
 # ISO 2631-1:1997 Table 3 (W_k) and field notes
 WK = {0.5: 0.418, 1.0: 0.482, 4.0: 0.967, 6.3: 1.054, 8.0: 1.036, 16.0: 0.768, 80.0: 0.132}

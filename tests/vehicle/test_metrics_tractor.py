@@ -6,9 +6,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline.vehicle import bounce_pitch as bp
-from pipeline.vehicle import metrics as mt
-from pipeline.vehicle.tractor import Tractor, simulate_tractor
+from tyrelab.vehicle import bounce_pitch as bp
+from tyrelab.vehicle import metrics as mt
+from tyrelab.vehicle.tractor import Tractor, simulate_tractor
 
 
 def test_probabilities_match_thesis_table_xiii():

@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from pipeline.vehicle import enveloping as ev
-from pipeline.vehicle import profiles as pr
+from tyrelab.vehicle import enveloping as ev
+from tyrelab.vehicle import profiles as pr
 
 
 def test_iso8608_class_mean_spectrum():

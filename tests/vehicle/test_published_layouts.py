@@ -5,9 +5,9 @@ import math
 import pandas as pd
 import pytest
 
-from pipeline.published import read_published
-from pipeline.vehicle import published_layouts as layouts
-from pipeline.vehicle.metrics import accuracy_table
+from tyrelab.published import read_published
+from tyrelab.vehicle import published_layouts as layouts
+from tyrelab.vehicle.metrics import accuracy_table
 
 
 def test_carriage_table_xii():

@@ -27,13 +27,22 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+__all__ = ["SUFFIXES", "CHANNEL_MAP", "RunFileError", "FormatError", "load_channel_map", "read_mapped"]
+
 #: Suffix -> reader name.
 SUFFIXES = {".mf4": "mdf", ".mdf": "mdf", ".tdms": "tdms"}
 CHANNEL_MAP = "channel_map.json"
 
 
-class FormatError(ValueError):
-    """A recording that cannot be read through the channel map; the message is the reason."""
+class RunFileError(ValueError):
+    """A run file that cannot be used; the message is the one-line reason.
+
+    The one error type of the raw format (v1 files and mapped recordings alike).
+    """
+
+
+#: Former name of :class:`RunFileError` for mapped recordings (kept for callers).
+FormatError = RunFileError
 
 
 def load_channel_map(path: Path) -> dict:

@@ -1,0 +1,1 @@
+"""Table Schemas shipped with tyrelab (installed as ``tyrelab.schemas``; see :mod:`tyrelab.resources`)."""
