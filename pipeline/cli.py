@@ -9,6 +9,7 @@ Verbs (a stable contract; see docs/architecture.md):
 - ``analyze-run``          K and C of one recording, as JSON
 - ``estimate-stiffness``   the empirical formula of thesis §4.5.3
 - ``natural-frequencies``  bounce/pitch frequencies of a tractor (thesis ch. 8)
+- ``export-tyre``          a measured tyre as MF-Tyre ``.tir`` files and K(P), C(P) tables
 
 Exit codes: 0 success; 3 some runs were quarantined; 2 usage or input error.
 """
@@ -16,8 +17,12 @@ Exit codes: 0 success; 3 some runs were quarantined; 2 usage or input error.
 from __future__ import annotations
 
 import argparse
+import dataclasses
+import hashlib
 import json
 import logging
+import math
+import re
 import sys
 from pathlib import Path
 
@@ -121,34 +126,29 @@ def cmd_analyze_run(args) -> int:
     return EXIT_OK
 
 
-def cmd_estimate_stiffness(args) -> int:
-    from .tyre.sizes import TyreSizeError, parse_tyre_size
-    from .tyre.stiffness import estimate_tyre_stiffness
+def _warn(prog: str, warnings) -> None:
+    """Print range warnings on stderr, one line each (the result still goes to stdout)."""
+    for w in warnings:
+        print(f"{prog}: warning: {w}", file=sys.stderr)
 
+
+def cmd_estimate_stiffness(args) -> int:
+    from .tyre.sizes import TyreSizeError
+    from .tyre.stiffness import estimate_stiffness
+
+    prog = "tyrelab estimate-stiffness"
     try:
-        size = parse_tyre_size(args.size)
-        k = estimate_tyre_stiffness(
-            size, args.pressure, args.age, undriven_front=args.front_undriven, water_ballast=args.water_ballast
+        est = estimate_stiffness(
+            args.size, args.pressure, args.age, undriven_front=args.front_undriven, water_ballast=args.water_ballast
         )
     except (TyreSizeError, ValueError) as exc:
-        print(f"tyrelab estimate-stiffness: {exc}", file=sys.stderr)
+        print(f"{prog}: {exc}", file=sys.stderr)
         return EXIT_USAGE
-    out = {
-        "size": size.designation,
-        "section_width_in": size.section_width_in,
-        "rim_diameter_in": size.rim_diameter_in,
-        "pressure_bar": args.pressure,
-        "age_years": args.age,
-        "rule": "front undriven K = 134/(7.5*18) W R P (thesis §8.2)"
-        if args.front_undriven
-        else "K = 172 - 1.77 R + 5.6 A + 0.34 W R P (thesis §4.5.3)",
-        "water_ballast": args.water_ballast,
-        "stiffness_kN_per_m": round(k, 3),
-    }
-    if args.json:
-        print(json.dumps(out, indent=2))
+    _warn(prog, est.warnings)
+    if args.json or args.format == "json":
+        print(json.dumps(est.to_dict(), indent=2, ensure_ascii=False))
     else:
-        print(f"{k:.1f} kN/m")
+        print(f"{est.stiffness_kN_per_m:.1f} kN/m")
     return EXIT_OK
 
 
@@ -156,6 +156,7 @@ def cmd_natural_frequencies(args) -> int:
     from .tyre.sizes import TyreSizeError
     from .vehicle.bounce_pitch import tractor_natural_frequencies
 
+    prog = "tyrelab natural-frequencies"
     try:
         out = tractor_natural_frequencies(
             args.mass, args.pitch_inertia, args.front_distance, args.rear_distance,
@@ -165,9 +166,88 @@ def cmd_natural_frequencies(args) -> int:
             rear_stiffness_kN_per_m=args.rear_stiffness,
         )
     except (TyreSizeError, ValueError) as exc:
-        print(f"tyrelab natural-frequencies: {exc}", file=sys.stderr)
+        print(f"{prog}: {exc}", file=sys.stderr)
         return EXIT_USAGE
-    print(json.dumps(out, indent=2))
+    _warn(prog, out.get("warnings", ()))
+    print(json.dumps(out, indent=2, ensure_ascii=False))
+    return EXIT_OK
+
+
+def _json_safe(obj):
+    """NaN -> None (JSON has no NaN), recursively through dicts and lists."""
+    if isinstance(obj, dict):
+        return {k: _json_safe(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_json_safe(v) for v in obj]
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None
+    return obj
+
+
+def _safe_name(text: str) -> str:
+    """A file-name-safe form of a tyre id (an id may hold any character)."""
+    safe = re.sub(r"[^A-Za-z0-9._-]", "_", str(text)).strip("._") or "tyre"
+    return safe if safe == text else f"{safe}-{hashlib.sha1(str(text).encode()).hexdigest()[:8]}"
+
+
+def cmd_export_tyre(args) -> int:
+    import numpy as np
+
+    from .io import write_text_atomic
+    from .tyre.mf_tyre import measured_tyre, pressure_table, property_file
+    from .tyre.sizes import TyreSizeError
+    from .warehouse import query
+
+    prog = "tyrelab export-tyre"
+    db = Path(args.build) / "warehouse.duckdb"
+    try:
+        tables = {name: query(db, f"SELECT * FROM {name}") for name in
+                  ("tyres", "table_iii", "stiffness_pressure_by_speed", "damping_pressure_by_speed")}
+        runs = query(db, "SELECT * FROM results")
+    except FileNotFoundError as exc:
+        print(f"{prog}: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except Exception as exc:  # noqa: BLE001 - a warehouse without the regress tables
+        print(f"{prog}: {db}: {str(exc).splitlines()[0]} (run 'tyrelab run' first)", file=sys.stderr)
+        return EXIT_USAGE
+    tyre_id = args.tyre_id
+    kind = runs["kind"].fillna("measurement") if "kind" in runs else "measurement"
+    tested = runs.loc[(runs["tyre_id"].astype(str) == tyre_id) & (kind == "measurement"), "pressure_bar"]
+    tested = np.unique(np.round(tested.to_numpy(dtype=float), 3))
+    try:
+        tyre = measured_tyre(tyre_id, tables["tyres"], tables["table_iii"], tables["damping_pressure_by_speed"],
+                             tested, source=f"warehouse {db}")
+        pressures = list(args.pressure or [round(float(np.mean(tyre.pressure_range_bar)), 3)])
+        files = [(p, property_file(tyre, p)) for p in pressures]
+    except (TyreSizeError, ValueError) as exc:
+        print(f"{prog}: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    out = Path(args.out) if args.out else Path(f"{_safe_name(tyre_id)}.tir")
+    if out.suffix.lower() != ".tir":
+        out = out.with_name(out.name + ".tir")
+    written = []
+    for p, text in files:
+        path = out if len(files) == 1 else out.with_name(f"{out.stem}_{p:g}bar.tir")
+        write_text_atomic(text, path)
+        written.append(str(path))
+    grid = sorted(set(tested.tolist()) | set(pressures))
+    table = pressure_table(tyre_id, tables["stiffness_pressure_by_speed"], tables["damping_pressure_by_speed"], grid)
+    write_text_atomic(table.to_csv(index=False), out.with_suffix(".csv"))
+    summary = {
+        "tyre_id": tyre_id,
+        "size": tyre.size.designation,
+        "source": tyre.source,
+        "stiffness_line_kN_per_m": dataclasses.asdict(tyre.stiffness),
+        "damping_line_kN_s_per_m": dataclasses.asdict(tyre.damping) if tyre.damping else None,
+        "damping_speed_km_h": tyre.damping_speed_km_h,
+        "tested_load_kN": tyre.tested_load_kN,
+        "pressure_range_bar": list(tyre.pressure_range_bar),
+        "tir_files": dict(zip([f"{p:g}" for p in pressures], written)),
+        "by_speed": table.to_dict(orient="records"),
+    }
+    write_text_atomic(json.dumps(_json_safe(summary), indent=2, ensure_ascii=False) + "\n", out.with_suffix(".json"))
+    for path in [*written, str(out.with_suffix(".csv")), str(out.with_suffix(".json"))]:
+        print(path)
     return EXIT_OK
 
 
@@ -231,13 +311,17 @@ def build_parser() -> argparse.ArgumentParser:
     a.add_argument("--axle-mass", type=_positive, required=True, help="axle+wheel+tyre mass M_a, kg")
     a.set_defaults(func=cmd_analyze_run)
 
-    e = sub.add_parser("estimate-stiffness", help="rolling tyre stiffness from size, pressure and age (kN/m)")
-    e.add_argument("--size", required=True, help="tyre size, e.g. 13.6R38")
+    e = sub.add_parser("estimate-stiffness", help="rolling tyre stiffness from size, pressure and age (kN/m)",
+                       description="K = 172 - 1.77 R + 5.6 A + 0.34 W R P (thesis §4.5.3); warns on stderr "
+                       "where the tyre or pressure lies outside the thesis' data (Tables II, III, VI).")
+    e.add_argument("--size", required=True, help="tyre size, e.g. 480/70R38, IF 710/70R42 173D, 13.6R38")
     e.add_argument("--pressure", type=_non_negative, required=True, help="inflation pressure, bar")
     e.add_argument("--age", type=_non_negative, default=1.0, help="tyre age, years (default 1)")
     e.add_argument("--front-undriven", action="store_true", help="undriven ribbed front tyre rule (thesis §8.2)")
     e.add_argument("--water-ballast", action="store_true", help="water-ballasted tyre (+25 %%)")
-    e.add_argument("--json", action="store_true", help="print JSON with the inputs")
+    e.add_argument("--json", action="store_true", help="print JSON (same as --format json)")
+    e.add_argument("--format", choices=["text", "json"], default="text",
+                   help="text: K in kN/m; json: inputs, W, R, aspect ratio, construction, K, warnings")
     e.set_defaults(func=cmd_estimate_stiffness)
 
     n = sub.add_parser("natural-frequencies", help="bounce and pitch natural frequencies of a tractor (thesis ch. 8), JSON")
@@ -255,6 +339,16 @@ def build_parser() -> argparse.ArgumentParser:
     n.add_argument("--front-stiffness", type=_positive, default=None, help="override: front stiffness per tyre, kN/m")
     n.add_argument("--rear-stiffness", type=_positive, default=None, help="override: rear stiffness per tyre, kN/m")
     n.set_defaults(func=cmd_natural_frequencies)
+
+    x = sub.add_parser("export-tyre", help="a measured tyre as MF-Tyre .tir file(s) plus K(P), C(P) per speed (CSV, JSON)",
+                       description="Writes FILE.tir (one per --pressure when several: FILE_<P>bar.tir), FILE.csv "
+                       "and FILE.json from the warehouse's fits (or the catalogue's measured coefficients).")
+    x.add_argument("tyre_id", help="tyre id, as in the tyres table")
+    x.add_argument("--build", default="build", help="build folder holding warehouse.duckdb (default build/)")
+    x.add_argument("--pressure", type=_positive, nargs="+", default=None,
+                   help="nominal pressure(s), bar: one .tir each (default: middle of the tested range)")
+    x.add_argument("--out", default=None, help="output .tir path (default <tyre_id>.tir)")
+    x.set_defaults(func=cmd_export_tyre)
     return p
 
 

@@ -19,7 +19,7 @@ def test_natural_frequencies_leyland_with_thesis_stiffnesses(capsys):
             "--rear-tyre", "13.6-38", "--rear-pressure", "1.1", "--front-stiffness", "247", "--rear-stiffness", "306"]
     assert main(argv) == 0
     out = json.loads(capsys.readouterr().out)
-    assert set(out) == {"front_tyre_stiffness_kN_per_m", "rear_tyre_stiffness_kN_per_m", "frequency_1_Hz", "frequency_2_Hz"}
+    assert {"front_tyre_stiffness_kN_per_m", "rear_tyre_stiffness_kN_per_m", "frequency_1_Hz", "frequency_2_Hz"} <= set(out)
     assert out["frequency_1_Hz"] == pytest.approx(2.76, abs=0.01)
     assert out["frequency_2_Hz"] == pytest.approx(3.50, abs=0.01)
 

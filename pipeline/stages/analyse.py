@@ -29,7 +29,7 @@ import pyarrow.parquet as pq
 
 from ..measurement import apparent_mass as am
 from ..measurement import qc
-from ..tyre.sizes import LUG_PITCH_m, parse_tyre_size, rolling_circumference_m
+from ..tyre.sizes import lugs_per_side, tyre_rolling_circumference_m
 from ..executor import map_batches
 from .base import Context, Progress, StageResult, write_quarantine
 from ..rawformat import CHANNELS, check_run, read_run_file
@@ -156,15 +156,16 @@ def analyse_batch(
 def wheel_interference_Hz(speed_km_h: float, tyre: pd.Series | None) -> list[float]:
     """Wheel-rotation and lug-passing frequencies of a run (thesis §2.4.5), Hz.
 
-    Uses the catalogue's ``rolling_circumference_m`` where given, else an
-    estimate from the size; ribbed (undriven front) tyres have no lugs.
+    Uses the catalogue's ``rolling_circumference_m``, else its ``outer_diameter_m``,
+    else an estimate from the size (:func:`tyrelab.tyre.sizes.tyre_rolling_circumference_m`);
+    the catalogue's ``lugs_per_side`` where given; ribbed (undriven front) tyres have no lugs.
     """
     if tyre is None:
         return []
-    circ = tyre.get("rolling_circumference_m")
-    if circ is None or not np.isfinite(float(circ)):
-        circ = rolling_circumference_m(parse_tyre_size(tyre["size"]))
-    lugs = 0 if str(tyre.get("position", "")).endswith("ribbed") else max(int(round(float(circ) / LUG_PITCH_m)), 8)
+    circ = tyre_rolling_circumference_m(tyre["size"], catalogue_m=tyre.get("rolling_circumference_m"),
+                                        outer_diameter_m=tyre.get("outer_diameter_m"))
+    lugs = lugs_per_side(circ, ribbed=str(tyre.get("position", "")).endswith("ribbed"),
+                         catalogue=tyre.get("lugs_per_side"))
     return qc.interference_frequencies_Hz(float(speed_km_h), float(circ), lugs)
 
 

@@ -38,9 +38,11 @@ __all__ = [
     "TyreSize",
     "TyreSizeError",
     "load_index_kg",
+    "lugs_per_side",
     "parse_tyre_size",
     "rolling_circumference_m",
     "speed_symbol_km_h",
+    "tyre_rolling_circumference_m",
 ]
 
 #: Section height / section width of an inch-designated tractor tyre, which prints no aspect
@@ -425,3 +427,55 @@ def rolling_circumference_m(size: TyreSize | str, aspect_ratio: float | None = N
     if not 0.0 < a <= 2.0:
         raise ValueError(f"aspect_ratio {a} is outside (0, 2]")
     return math.pi * (s.rim_diameter_in + 2 * a * s.section_width_in) * 0.0254 * ROLLING_FACTOR
+
+
+def _given(value) -> float | None:
+    """A catalogue cell as a positive float, or None (blank, NaN, text, non-positive)."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        return None
+    return v if math.isfinite(v) and v > 0 else None
+
+
+def tyre_rolling_circumference_m(
+    size: TyreSize | str, *, catalogue_m: float | None = None, outer_diameter_m: float | None = None
+) -> float:
+    """Rolling circumference of a catalogue tyre, m: the best of what the catalogue gives.
+
+    The catalogue's ``rolling_circumference_m`` where given (thesis §4.5.1, or a
+    user's measurement); else its measured ``outer_diameter_m`` times pi times
+    :data:`ROLLING_FACTOR`; else :func:`rolling_circumference_m` from the size.
+
+    Examples
+    --------
+    >>> tyre_rolling_circumference_m("7.50-18", catalogue_m=2.63)
+    2.63
+    >>> round(tyre_rolling_circumference_m("480/70R38", outer_diameter_m=1.65), 3)
+    4.956
+    """
+    if (c := _given(catalogue_m)) is not None:
+        return c
+    if (d := _given(outer_diameter_m)) is not None:
+        return math.pi * d * ROLLING_FACTOR
+    return rolling_circumference_m(size)
+
+
+def lugs_per_side(circumference_m: float, *, ribbed: bool = False, catalogue: float | None = None) -> int:
+    """Lugs on one side of a tyre's tread (lug passing per revolution, thesis §2.4.5).
+
+    The catalogue's ``lugs_per_side`` where given; 0 for a ribbed tyre; else one
+    lug every :data:`LUG_PITCH_m` of circumference, at least 8.
+
+    Examples
+    --------
+    >>> lugs_per_side(4.66), lugs_per_side(4.66, catalogue=22), lugs_per_side(2.63, ribbed=True)
+    (23, 22, 0)
+    """
+    if (n := _given(catalogue)) is not None:
+        return int(round(n))
+    if ribbed:
+        return 0
+    if not (circumference_m > 0):
+        raise ValueError(f"circumference_m {circumference_m} is not positive")
+    return max(int(round(float(circumference_m) / LUG_PITCH_m)), 8)

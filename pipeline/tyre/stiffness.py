@@ -1,12 +1,30 @@
 """Empirical rolling-tyre stiffness from size, age and pressure (thesis §4.5.3, §8.2).
 
 All stiffnesses here are per tyre, in kN/m, the thesis' units; pressure in bar,
-W and R in inches, age in years.
+W and R in inches, age in years. :func:`estimate_stiffness` returns the estimate
+with its inputs and warnings where the tyre or pressure lies outside the data the
+rule rests on (:class:`FormulaDataRange`, from the digitised Tables II, III, VI).
 """
 
 from __future__ import annotations
 
+import functools
+from dataclasses import dataclass, fields
+
+import pandas as pd
+
 from .sizes import TyreSize, parse_tyre_size
+
+__all__ = [
+    "FormulaDataRange",
+    "StiffnessEstimate",
+    "estimate_stiffness",
+    "estimate_tyre_stiffness",
+    "range_warnings",
+    "thesis_data_range",
+    "traction_tyre_stiffness",
+    "undriven_front_tyre_stiffness",
+]
 
 #: Coefficients of K = a + b R + c A + d W R P (thesis §4.5.3 and §4.6).
 FORMULA_INTERCEPT_kN_per_m = 172.0
@@ -97,3 +115,256 @@ def estimate_tyre_stiffness(
         else traction_tyre_stiffness(size, pressure_bar, age_years)
     )
     return k * (WATER_BALLAST_FACTOR if water_ballast else 1.0)
+
+
+# --- the formula on any tyre, with what the thesis' data cover (issue 12) --------------------
+
+#: Traction tyres behind the formula: Table III's rolling rows but the ribbed F1, as for the
+#: fit of ΔK_p on W·R (thesis §4.5.3, Fig. 30).
+_FRONT_RIBBED = "front_ribbed"
+
+
+@dataclass(frozen=True)
+class FormulaDataRange:
+    """Ranges of the thesis' measurements that the stiffness rules rest on.
+
+    Attributes
+    ----------
+    wr_in2 : tuple of float
+        (min, max) W·R of the traction tyres of Table III (sizes as in Table II), in².
+    rim_diameter_in : tuple of float
+        (min, max) rim diameter R of those tyres, in.
+    pressure_bar : tuple of float
+        (min, max) inflation pressure, bar: Table VI's "Pressure" range (Tables II-III
+        print no pressures; Table VI gives the range the measurements spanned).
+    age_years : tuple of float
+        (min, max) tyre age, years: Table II (the Berlin tyres, printed without an
+        age, were new, §4.2: 0).
+    front_wr_in2, front_rim_diameter_in : tuple of float
+        The same for the undriven ribbed front tyre rule (§8.2), which rests on F1 alone.
+    source : str
+        Where the ranges come from.
+    """
+
+    wr_in2: tuple[float, float]
+    rim_diameter_in: tuple[float, float]
+    pressure_bar: tuple[float, float]
+    age_years: tuple[float, float]
+    front_wr_in2: tuple[float, float]
+    front_rim_diameter_in: tuple[float, float]
+    source: str = "thesis Tables II, III (sizes, ages) and VI (pressure)"
+
+    @classmethod
+    def from_tables(
+        cls, table_ii: pd.DataFrame, table_iii: pd.DataFrame, table_vi: pd.DataFrame
+    ) -> "FormulaDataRange":
+        """Ranges from the digitised Tables II, III and VI (:func:`tyrelab.published.read_published`).
+
+        Raises
+        ------
+        ValueError
+            If a table lacks the rows or columns needed.
+        """
+        ii = table_ii.assign(tyre_id=table_ii["tyre_id"].astype(str)).set_index("tyre_id")
+        rolling = table_iii.loc[
+            (table_iii["condition"] == "rolling") & table_iii["pressure_dependence_kN_per_m_bar"].notna()
+        ]
+        ids = [t for t in rolling["tyre_id"].astype(str) if t in ii.index]
+        if not ids:
+            raise ValueError("table_iii has no rolling rows for tyres of table_ii")
+        sizes = {t: parse_tyre_size(str(ii.at[t, "size"])) for t in ids}
+        front = [t for t in ids if ii.at[t, "group"] == _FRONT_RIBBED]
+        traction = [t for t in ids if t not in front]
+        if not traction or not front:
+            raise ValueError("table_ii/table_iii give no traction or no ribbed front tyre")
+
+        def span(values):
+            values = list(values)
+            return (float(min(values)), float(max(values)))
+
+        pressure = table_vi.loc[table_vi["factor"].astype(str).str.strip().str.lower() == "pressure"]
+        if pressure.empty or pressure["range_unit"].iloc[0] != "bar":
+            raise ValueError("table_vi has no 'Pressure' row in bar")
+        ages = pd.to_numeric(ii.loc[traction, "age_years"], errors="coerce").fillna(0.0)  # blank = new (§4.2)
+        return cls(
+            wr_in2=span(sizes[t].width_times_rim_in2 for t in traction),
+            rim_diameter_in=span(sizes[t].rim_diameter_in for t in traction),
+            pressure_bar=(float(pressure["range_low"].iloc[0]), float(pressure["range_high"].iloc[0])),
+            age_years=span(ages),
+            front_wr_in2=span(sizes[t].width_times_rim_in2 for t in front),
+            front_rim_diameter_in=span(sizes[t].rim_diameter_in for t in front),
+        )
+
+
+@functools.lru_cache(maxsize=1)
+def thesis_data_range() -> FormulaDataRange:
+    """:class:`FormulaDataRange` of the tables shipped with tyrelab (read once, cached).
+
+    Reads ``table_ii``, ``table_iii`` and ``table_vi`` through
+    :func:`tyrelab.published.read_published`: the one place the thesis' numbers live.
+    """
+    from ..published import read_published
+
+    return FormulaDataRange.from_tables(
+        read_published("table_ii"), read_published("table_iii"), read_published("table_vi")
+    )
+
+
+def _outside(name: str, value: float, lo: float, hi: float, unit: str, what: str) -> str | None:
+    """One warning if ``value`` lies outside [lo, hi], saying by how much."""
+    if lo <= value <= hi:
+        return None
+    side, by, ref = ("below", lo - value, lo) if value < lo else ("above", value - hi, hi)
+    span = f"{lo:g}" if lo == hi else f"{lo:g}-{hi:g}"
+    return (
+        f"{name} = {value:.4g} {unit} is {side} the thesis' data ({what}: {span} {unit}) "
+        f"by {by:.3g} {unit} ({100 * by / ref:.1f} %)"
+    )
+
+
+def range_warnings(
+    size: str | TyreSize,
+    pressure_bar: float,
+    age_years: float = 1.0,
+    *,
+    undriven_front: bool = False,
+    data_range: FormulaDataRange | None = None,
+) -> tuple[str, ...]:
+    """Where a tyre and pressure lie outside the data a stiffness rule rests on.
+
+    Parameters
+    ----------
+    size : str or TyreSize
+    pressure_bar, age_years : float
+    undriven_front : bool
+        Check against the ribbed front tyre rule's data (F1: W·R and R) instead of the
+        traction tyres' (W·R, R, age and Table VI's pressure range, which is the rear
+        traction tyres'; no published table gives F1's pressures, so none is checked).
+    data_range : FormulaDataRange, optional
+        Default: :func:`thesis_data_range`.
+
+    Returns
+    -------
+    tuple of str
+        One line per quantity outside its range, saying by how much; empty when inside.
+
+    Examples
+    --------
+    >>> range_warnings("13.6R38", 1.2, 2)
+    ()
+    """
+    s = _size(size)
+    r = thesis_data_range() if data_range is None else data_range
+    if undriven_front:
+        checks = [("W·R", s.width_times_rim_in2, r.front_wr_in2, "in²", "the ribbed front tyre F1"),
+                  ("R", s.rim_diameter_in, r.front_rim_diameter_in, "in", "the ribbed front tyre F1")]
+    else:
+        checks = [("W·R", s.width_times_rim_in2, r.wr_in2, "in²", "traction tyres of Tables II-III"),
+                  ("R", s.rim_diameter_in, r.rim_diameter_in, "in", "traction tyres of Tables II-III"),
+                  ("A", float(age_years), r.age_years, "years", "tyre ages of Table II")]
+        checks.append(("P", float(pressure_bar), r.pressure_bar, "bar", "pressure range of Table VI"))
+    out = [w for name, v, (lo, hi), unit, what in checks if (w := _outside(name, v, lo, hi, unit, what))]
+    if s.flexion_class:
+        name = {"IF": "improved flexion", "VF": "very high flexion"}[s.flexion_class]
+        out.append(f"{s.flexion_class} tyre: the thesis measured no {name} tyres, which carry "
+                   f"{s.flexion_load_factor:g} x the load of a standard tyre at the same pressure")
+    return tuple(out)
+
+
+@dataclass(frozen=True)
+class StiffnessEstimate:
+    """An estimated tyre stiffness with its inputs and range warnings.
+
+    Attributes
+    ----------
+    size : TyreSize
+    pressure_bar, age_years : float
+    undriven_front, water_ballast : bool
+    rule : str
+        The formula used, with its thesis reference.
+    stiffness_kN_per_m : float
+        Estimated rolling stiffness K per tyre, kN/m.
+    warnings : tuple of str
+        Where the tyre or pressure lies outside the thesis' data (:func:`range_warnings`).
+
+    Further fields (e.g. an interval) can be added with a default; :meth:`to_dict`
+    includes every field.
+    """
+
+    size: TyreSize
+    pressure_bar: float
+    age_years: float
+    undriven_front: bool
+    water_ballast: bool
+    rule: str
+    stiffness_kN_per_m: float
+    warnings: tuple[str, ...] = ()
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict: the inputs, what the size says, K (rounded to 1e-3) and the warnings."""
+        s = self.size
+        out = {
+            "size": s.designation,
+            "section_width_in": s.section_width_in,
+            "section_width_mm": s.section_width_mm,
+            "rim_diameter_in": s.rim_diameter_in,
+            "wr_in2": s.width_times_rim_in2,
+            "aspect_ratio": s.aspect_ratio,
+            "aspect_ratio_stated": s.aspect_ratio_stated,
+            "construction": s.construction,
+            "flexion_class": s.flexion_class,
+            "load_index": s.load_index,
+            "load_kg": s.load_kg,
+            "speed_symbol": s.speed_symbol,
+            "speed_km_h": s.speed_km_h,
+        }
+        for f in fields(self):
+            if f.name == "size":
+                continue
+            v = getattr(self, f.name)
+            if f.name == "stiffness_kN_per_m":
+                v = round(v, 3)
+            out[f.name] = list(v) if isinstance(v, tuple) else v
+        return out
+
+
+def estimate_stiffness(
+    size: str | TyreSize,
+    pressure_bar: float,
+    age_years: float = 1.0,
+    *,
+    undriven_front: bool = False,
+    water_ballast: bool = False,
+    data_range: FormulaDataRange | None = None,
+) -> StiffnessEstimate:
+    """Estimated rolling tyre stiffness with the range warnings (thesis §4.5.3, §8.2).
+
+    K from :func:`estimate_tyre_stiffness`; the warnings from :func:`range_warnings`
+    say where the tyre or pressure lies outside the data the rule rests on (the rule is
+    still applied: a modern 480/70R38 is just outside the thesis' W·R).
+
+    Examples
+    --------
+    >>> e = estimate_stiffness("480/70R38", 1.2, 2)
+    >>> round(e.stiffness_kN_per_m, 1), len(e.warnings)
+    (408.9, 1)
+    """
+    s = _size(size)
+    if age_years < 0:
+        raise ValueError(f"age_years {age_years} is negative")
+    k = estimate_tyre_stiffness(s, pressure_bar, age_years, undriven_front=undriven_front, water_ballast=water_ballast)
+    rule = (
+        "front undriven K = 134/(7.5*18) W R P (thesis §8.2)"
+        if undriven_front
+        else "K = 172 - 1.77 R + 5.6 A + 0.34 W R P (thesis §4.5.3)"
+    )
+    return StiffnessEstimate(
+        size=s,
+        pressure_bar=float(pressure_bar),
+        age_years=float(age_years),
+        undriven_front=bool(undriven_front),
+        water_ballast=bool(water_ballast),
+        rule=rule,
+        stiffness_kN_per_m=k,
+        warnings=range_warnings(s, pressure_bar, age_years, undriven_front=undriven_front, data_range=data_range),
+    )

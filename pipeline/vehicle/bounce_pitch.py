@@ -23,7 +23,7 @@ import numpy as np
 import pandas as pd
 from scipy import linalg
 
-from ..tyre.stiffness import estimate_tyre_stiffness
+from ..tyre.stiffness import estimate_stiffness
 from .metrics import ratio_error_statistics
 
 __all__ = [
@@ -134,24 +134,24 @@ def tractor_natural_frequencies(
     -------
     dict
         ``front_tyre_stiffness_kN_per_m``, ``rear_tyre_stiffness_kN_per_m`` (per tyre),
-        ``frequency_1_Hz``, ``frequency_2_Hz``.
+        ``frequency_1_Hz``, ``frequency_2_Hz``, ``warnings`` (list of str: where an
+        estimated tyre lies outside the thesis' data,
+        :func:`tyrelab.tyre.stiffness.range_warnings`; none for given stiffnesses).
     """
-    kf = (
-        float(front_stiffness_kN_per_m)
-        if front_stiffness_kN_per_m is not None
-        else estimate_tyre_stiffness(
-            front_size,
-            front_pressure_bar,
-            age_years,
-            undriven_front=not front_traction,
-            water_ballast=front_water_ballast,
-        )
-    )
-    kr = (
-        float(rear_stiffness_kN_per_m)
-        if rear_stiffness_kN_per_m is not None
-        else estimate_tyre_stiffness(rear_size, rear_pressure_bar, age_years, water_ballast=rear_water_ballast)
-    )
+    warnings: list[str] = []
+    if front_stiffness_kN_per_m is not None:
+        kf = float(front_stiffness_kN_per_m)
+    else:
+        est = estimate_stiffness(front_size, front_pressure_bar, age_years, undriven_front=not front_traction,
+                                 water_ballast=front_water_ballast)
+        kf = est.stiffness_kN_per_m
+        warnings += [f"front tyre {est.size.designation}: {w}" for w in est.warnings]
+    if rear_stiffness_kN_per_m is not None:
+        kr = float(rear_stiffness_kN_per_m)
+    else:
+        est = estimate_stiffness(rear_size, rear_pressure_bar, age_years, water_ballast=rear_water_ballast)
+        kr = est.stiffness_kN_per_m
+        warnings += [f"rear tyre {est.size.designation}: {w}" for w in est.warnings]
     f1, f2 = natural_frequencies(
         mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m, 2e3 * kf, 2e3 * kr
     )
@@ -160,6 +160,7 @@ def tractor_natural_frequencies(
         "rear_tyre_stiffness_kN_per_m": kr,
         "frequency_1_Hz": f1,
         "frequency_2_Hz": f2,
+        "warnings": warnings,
     }
 
 

@@ -86,7 +86,9 @@ def test_formula_stiffness_beside_thesis():
 
 def test_tractor_frequencies_dict_and_overrides():
     r = bp.tractor_natural_frequencies(3235, 2669, 1.33, 0.71, "7.50-16", 2.06, "13.6-38", 1.1)
-    assert set(r) == {"front_tyre_stiffness_kN_per_m", "rear_tyre_stiffness_kN_per_m", "frequency_1_Hz", "frequency_2_Hz"}
+    assert set(r) == {"front_tyre_stiffness_kN_per_m", "rear_tyre_stiffness_kN_per_m", "frequency_1_Hz", "frequency_2_Hz",
+                      "warnings"}
+    assert [w.split(":")[0] for w in r["warnings"]] == ["front tyre 7.50-16", "front tyre 7.50-16"]  # smaller than F1
     o = bp.tractor_natural_frequencies(3235, 2669, 1.33, 0.71, "7.50-16", 2.06, "13.6-38", 1.1,
                                        front_stiffness_kN_per_m=247, rear_stiffness_kN_per_m=306)
     assert o["frequency_1_Hz"] == pytest.approx(2.76, abs=0.01) and o["frequency_2_Hz"] == pytest.approx(3.50, abs=0.01)
