@@ -119,3 +119,63 @@ def test_shipped_published_tables_used_when_raw_has_none(tmp_path):
     t3 = c.read_table("table_iii")
     assert t3["thesis_carcass_stiffness_kN_per_m"].notna().sum() >= 30
     assert t3["carcass_stiffness_kN_per_m"].isna().all()
+
+
+def _shifted_results():
+    """T3 as in :func:`_results` but every value off the thesis' by a known amount.
+
+    Table III: rolling K_c 112 + 7, ΔK_p 177 + 10; Table VII: C_c + 0.05 at 10 and 15 km/h.
+    Damping rises 0.01 kN s/m per mm of amplitude (Table VIII); on pasture grass damping
+    rises 30 % (Table IX: +20 %) and stiffness falls 5 % (Table V: -3 %); the stiffness amplitude rate is 0.8 (the thesis' T3 rates differ).
+    """
+    rows = []
+    for v in (0.0, 10.0, 15.0):
+        for p in (0.8, 1.1, 1.4, 1.6):
+            kc, dk = (184, 200) if v == 0 else (112 + 7, 177 + 10)
+            cc, dc = {0.0: (1.2, 0.4), 10.0: (0.67 + 0.05, 0.31), 15.0: (0.67 + 0.05, 0.36)}[v]
+            rows.append(_run("T3", v, p, kc + dk * p, cc + dc * p))
+        for a in (6.0, 20.0, 28.0):
+            rows.append(_run("T3", v, 1.4, 119 + 187 * 1.4 + 0.8 * (a - 14), 1.1 + 0.01 * (a - 14),
+                             amplitude_mm_pp=a, amplitude_measured_mm_pp=a))
+    rows.append(_run("T3", 10.0, 1.4, 0.95 * (119 + 187 * 1.4), 1.3 * (0.72 + 0.31 * 1.4), surface="Pasture Grass"))
+    return pd.DataFrame(rows)
+
+
+COMPARISON_TABLES = ["table_iii", "table_iv", "table_v", "table_vi", "table_vii", "table_viii", "table_ix", "table_x",
+                     "size_regressions", "formula_accuracy"]
+
+
+def assert_differences_are_ours_minus_thesis(t: pd.DataFrame, name: str) -> int:
+    """Every thesis/ours/difference triple holds ours − thesis; returns the non-zero cases seen."""
+    from tyrelab.report.tables import find_pairs
+
+    nonzero = 0
+    pairs = [p for p in find_pairs(t.columns) if p.difference]
+    assert pairs, f"{name}: no thesis/ours/difference columns"
+    for p in pairs:
+        both = t[[p.thesis, p.ours, p.difference]].apply(pd.to_numeric, errors="coerce").dropna()
+        np.testing.assert_allclose(both[p.difference], both[p.ours] - both[p.thesis], atol=1e-9,
+                                   err_msg=f"{name}.{p.difference} is not {p.ours} - {p.thesis}")
+        nonzero += int((both[p.difference].abs() > 1e-9).sum())
+    return nonzero
+
+
+def test_every_comparison_table_gives_ours_minus_thesis_on_non_zero_differences(ctx):
+    ctx.write_table("results", _shifted_results())
+    regress.run(ctx)
+    t3 = ctx.read_table("table_iii").query("tyre_id == 'T3' and condition == 'rolling'").iloc[0]
+    assert t3.carcass_stiffness_kN_per_m_difference == pytest.approx(+7.0)
+    assert t3.pressure_dependence_kN_per_m_bar_difference == pytest.approx(+10.0)
+    t7 = ctx.read_table("table_vii").query("tyre_id == 'T3' and speed_km_h == 15").iloc[0]
+    assert t7.carcass_damping_kN_s_per_m_difference == pytest.approx(+0.05)
+    t6 = ctx.read_table("table_vi").set_index("factor")
+    assert t6.loc["pressure", "value_difference"] == pytest.approx(t6.loc["pressure", "value"] - 190.0)
+    assert t6.loc["pressure", "value_difference"] < 0  # ours 187 (rolling T3) vs the thesis' +190 /bar
+    t5 = ctx.read_table("table_v").set_index("surface")
+    assert t5.loc["pasture_grass", "stiffness_change_percent_difference"] == pytest.approx(-5.0 - (-3.0))
+    t9 = ctx.read_table("table_ix").set_index("surface")
+    assert t9.loc["pasture_grass", "damping_change_percent_difference"] == pytest.approx(30.0 - 20.0)
+    t10 = ctx.read_table("table_x").set_index("factor")
+    assert t10.loc["pressure", "value_difference"] == pytest.approx(t10.loc["pressure", "value"] - 0.4)
+    for name in COMPARISON_TABLES:
+        assert assert_differences_are_ours_minus_thesis(ctx.read_table(name), name) > 0, f"{name}: no non-zero case"
