@@ -1,4 +1,61 @@
+import fcntl
+import logging
+import os
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
+import pytest
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(HERE / "report"))
+
+from small_campaign import build_small_report  # noqa: E402
+
+from tyrelab.stages import Context  # noqa: E402
+
+
+@pytest.fixture(scope="session")
+def full_report(tmp_path_factory) -> Context:
+    """The tiny seeded campaign of ``tests/report/small_campaign.py`` through *every* stage.
+
+    Ingest to report, simulate included, so that the report's chapters 6-8 hold our
+    values. Built once per test session and shared read-only: under pytest-xdist every
+    worker would otherwise build its own, so the first worker to take the lock builds
+    into the session's common temporary folder and the others wait and reuse it.
+    """
+    base = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        base = base.parent  # shared by the workers of this session
+    root = base / "full_report"
+    root.mkdir(exist_ok=True)
+    with open(base / "full_report.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            if not (root / "built").exists():
+                build_small_report(root, skip=())
+                (root / "built").write_text("ok\n")
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
+    return Context(raw=root / "raw", build=root / "build", jobs=1, log=logging.getLogger("tyrelab.test"))
+
+
+_skipped_browser: list[str] = []
+
+
+def pytest_runtest_logreport(report):
+    if report.skipped and "browser" in report.keywords:
+        reason = report.longrepr[-1] if isinstance(report.longrepr, tuple) else str(report.longrepr)
+        _skipped_browser.append(f"{report.nodeid}: {reason}")
+
+
+def pytest_terminal_summary(terminalreporter):
+    """Say loudly when the browser tests did not run: the report was then not opened in Chromium."""
+    if _skipped_browser:
+        tr = terminalreporter
+        tr.section("BROWSER TESTS SKIPPED", sep="!", red=True, bold=True)
+        tr.write_line(f"{len(_skipped_browser)} browser test(s) skipped: the report was NOT opened in Chromium.",
+                      red=True, bold=True)
+        for line in sorted(set(_skipped_browser)):
+            tr.write_line(f"  {line}", red=True)
+        tr.write_line("Install the 'browser' extra (make install) and Chromium (apt-get install chromium).", red=True)

@@ -2,24 +2,21 @@
 
 Skipped, with the reason, when the ``playwright`` package or a Chromium
 binary is missing (CI installs both: ``.ci/run`` apt-installs chromium and
-``make test`` the ``browser`` extra). No browser is downloaded: the test
-drives the system Chromium. The report comes from a tiny synthetic campaign
-run through every stage of :func:`tyrelab.stages.run_pipeline`, simulate
-included, so chapters 6–8 are checked with real results.
+``make test`` the ``browser`` extra); the end of the test run then says so
+in a "BROWSER TESTS SKIPPED" section. No browser is downloaded: the test
+drives the system Chromium. The report is the shared ``full_report``: a tiny
+synthetic campaign run through every stage of :func:`tyrelab.stages.run_pipeline`,
+simulate included, so chapters 6–8 are checked with real results.
 """
 
 from __future__ import annotations
 
 import os
 import shutil
-import sys
 from pathlib import Path
 
 import pytest
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "report"))
-
-from small_campaign import EVIL_TYRE, build_small_report  # noqa: E402
+from small_campaign import EVIL_TYRE
 
 pytestmark = pytest.mark.browser
 
@@ -50,9 +47,9 @@ def browser():
 
 
 @pytest.fixture(scope="module")
-def site(tmp_path_factory) -> Path:
-    ctx = build_small_report(tmp_path_factory.mktemp("browser_report"), skip=())
-    return ctx.build / "reports"
+def site(full_report) -> Path:
+    """The report of the tiny campaign built through every stage (shared, tests/conftest.py)."""
+    return full_report.build / "reports"
 
 
 def test_every_page_opens_cleanly(browser, site, tmp_path):

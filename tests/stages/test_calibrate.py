@@ -1,6 +1,8 @@
 """The calibrate stage flags runs of a miscalibrated day (thesis §3.2.9)."""
 
+import numpy as np
 import pandas as pd
+import pytest
 
 from tyrelab.generate import write_run
 from tyrelab.rig.campaigns import campaign_plan, simulate_run
@@ -56,6 +58,19 @@ def test_calibration_correction_is_an_option_in_the_fingerprint(tmp_path):
     out = ctx.read_table("results").set_index("run_id")
     assert "uncorrected_stiffness_N_per_m" in out.columns  # corrected by the good day's transfer function
     assert out.loc["m_good", "uncorrected_stiffness_N_per_m"] == 4e5
+    # K + jωC divided by the good day's transfer function at the run's 4 Hz, a bin of the
+    # 0.25 Hz calibration spectrum (no interpolation): exact to rounding.
+    tf = ctx.read_table("calibration_tf")
+    at4 = tf[(tf["run_id"] == good["run_id"]) & np.isclose(tf["frequency_Hz"], 4.0)].iloc[0]
+    g = at4["gain"] * np.exp(1j * np.radians(at4["phase_deg"]))
+    assert 1e-6 < abs(g - 1) < 0.03  # a passing day (1 ± 3 %), but not exactly 1: the correction acts
+    w = 2 * np.pi * 4.0
+    z = (4e5 + 1j * w * 2e3) / g
+    assert out.loc["m_good", "stiffness_N_per_m"] == pytest.approx(z.real, rel=1e-9)
+    assert out.loc["m_good", "damping_N_s_per_m"] == pytest.approx(z.imag / w, rel=1e-9)
+    assert out.loc["m_good", "stiffness_kN_per_m"] == pytest.approx(z.real / 1e3, rel=1e-9)
+    # runs of the failed day and of a campaign without calibration are left as they were
+    assert out.loc["m_bad", "stiffness_N_per_m"] == 4e5 and out.loc["m_other_campaign", "stiffness_N_per_m"] == 4e5
     cache = state.HashCache()
     on = state.input_digests(ctx, "calibrate", ["analyse", "calibrate"], cache)
     ctx.calibration_correct = False

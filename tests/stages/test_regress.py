@@ -7,6 +7,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from comparisons import assert_differences_are_ours_minus_thesis
+
 from tyrelab.stages import regress
 from tyrelab.stages.base import Context
 
@@ -143,21 +145,6 @@ def _shifted_results():
 
 COMPARISON_TABLES = ["table_iii", "table_iv", "table_v", "table_vi", "table_vii", "table_viii", "table_ix", "table_x",
                      "size_regressions", "formula_accuracy"]
-
-
-def assert_differences_are_ours_minus_thesis(t: pd.DataFrame, name: str) -> int:
-    """Every thesis/ours/difference triple holds ours − thesis; returns the non-zero cases seen."""
-    from tyrelab.report.tables import find_pairs
-
-    nonzero = 0
-    pairs = [p for p in find_pairs(t.columns) if p.difference]
-    assert pairs, f"{name}: no thesis/ours/difference columns"
-    for p in pairs:
-        both = t[[p.thesis, p.ours, p.difference]].apply(pd.to_numeric, errors="coerce").dropna()
-        np.testing.assert_allclose(both[p.difference], both[p.ours] - both[p.thesis], atol=1e-9,
-                                   err_msg=f"{name}.{p.difference} is not {p.ours} - {p.thesis}")
-        nonzero += int((both[p.difference].abs() > 1e-9).sum())
-    return nonzero
 
 
 def test_every_comparison_table_gives_ours_minus_thesis_on_non_zero_differences(ctx):

@@ -58,9 +58,14 @@ def test_accuracy_table_layout():
     assert len(t) == 20 and list(t.columns) == ["quantity", "statistic", "rolling", "stationary"]
 
 
-def _free_decay(tr, n=12001, z0=0.0, th0=0.0):
-    zeros = np.zeros(2 * n - 1)
-    return simulate_tractor(tr, zeros, zeros, zeros, zeros, 1e-3, lift_off=False)
+def _free_decay(tr, n=12001, step_m=0.0):
+    """Free vibration after the ground under both axles steps up by ``step_m`` at t = 0.
+
+    :func:`simulate_tractor` starts at rest in the static equilibrium, so the step is
+    the same as releasing the tractor ``step_m`` below its (new) equilibrium.
+    """
+    ground, zeros = np.full(2 * n - 1, float(step_m)), np.zeros(2 * n - 1)
+    return simulate_tractor(tr, ground, zeros, ground, zeros, 1e-3, lift_off=False)
 
 
 def test_tractor_modes_match_eigenproblem():
@@ -82,7 +87,25 @@ def test_tractor_modes_match_eigenproblem():
 
 def test_tractor_static_and_longitudinal_models():
     tr = Tractor(5120.0, 6210.0, 1.54, 0.896, 0.838, 8.5e5, 6.6e5, 3e3, 2e3, 9.1e5, 6e3, "maxwell")
-    out = _free_decay(tr, 2001)
+    out = _free_decay(tr, 2001)  # in equilibrium, nothing moves
     assert np.allclose(out["vertical_m_s2"], 0.0) and np.allclose(out["pitch_rad_s2"], 0.0)
     with pytest.raises(ValueError):
         _free_decay(Tractor(1, 1, 1, 1, 1, 1, 1, 1, 1, longitudinal_model="spring"))
+
+
+@pytest.mark.parametrize("model", ["kelvin_voigt", "maxwell"])
+def test_tractor_free_decay_from_a_displacement(model):
+    """Released 10 mm below equilibrium: the first accelerations are the springs' forces
+    over the mass and inertia (no damper force at rest), and the decay settles on the
+    raised ground, level. Damping ratio of bounce ~ (3 + 2) kN s/m / (2 sqrt(1.51e6 N/m
+    x 5120 kg)) = 0.028 at ~2.7 Hz, so after 12 s the oscillation is down to
+    exp(-0.028 x 2 pi x 2.7 x 12) ~ 3e-3 of its start: allowed 1e-2 of the step.
+    """
+    m, inertia, a, b, h = 5120.0, 6210.0, 1.54, 0.896, 0.838
+    kf, kr, step = 8.5e5, 6.6e5, 0.01
+    out = _free_decay(Tractor(m, inertia, a, b, h, kf, kr, 3e3, 2e3, 9.1e5, 6e3, model), 12001, step)
+    assert out["vertical_m_s2"][0] == pytest.approx((kf + kr) * step / m, rel=1e-12)
+    assert out["pitch_rad_s2"][0] == pytest.approx((a * kf - b * kr) * step / inertia, rel=1e-12)
+    assert out["z_m"][0] == 0.0 and np.max(out["z_m"]) > 1.5 * step  # overshoots: lightly damped
+    assert out["z_m"][-1] == pytest.approx(step, abs=1e-2 * step)
+    assert abs(out["theta_rad"][-1]) < 1e-2 * step / (a + b)
