@@ -40,10 +40,29 @@ def test_table_i_structure():
     am = t.loc["apparent_mass"]
     assert am["stiffness_kN_per_m"] == pytest.approx(am["truth_stiffness_kN_per_m"], rel=0.01)
     assert am["damping_kN_s_per_m"] == pytest.approx(3.0, rel=0.05)  # Table I anchor of the truth model
-    # creep: load-deflection far below the dynamic value (330/450 in Table I)
-    assert t.loc["load_deflection", "stiffness_ratio"] == pytest.approx(330 / 450, abs=0.03)
+    # creep: load-deflection far below the dynamic value. The rig's creep spring is *chosen*
+    # from Table I (330/450), so this only checks the plumbing; the method itself is checked
+    # against the series-spring solution at other creep ratios below. The ratio is to our
+    # apparent-mass K (within 1 % of the truth): allowed 1.5 %.
+    assert t.loc["load_deflection", "stiffness_ratio"] == pytest.approx(
+        330 / 450 * am["truth_stiffness_kN_per_m"] / am["stiffness_kN_per_m"], rel=0.015)
     for m in ("free_vibration", "forced_vibration"):
         assert 1.0 < t.loc[m, "stiffness_ratio"] < 1.1  # linkage stiffness in parallel
         # linkage damping included by response methods, below the 1.2 kNs/m upper bound (§3.4)
         assert 0.3 < t.loc[m, "damping_excess_kN_s_per_m"] < 1.2
     assert np.isnan(t.loc["load_deflection", "damping_kN_s_per_m"])
+
+
+@pytest.mark.parametrize("creep_ratio", [0.5, 2.0, 8.0])
+def test_load_deflection_measures_tyre_and_creep_in_series(creep_ratio):
+    """A 120 s ramp with first-order creep (tau 3 s, creep spring ``creep_ratio`` K).
+
+    Past a few tau the deflection is F/K + (F - tau dF/dt)/(creep_ratio K), so the loading
+    branch has the slope of the two springs in series, K creep_ratio/(1 + creep_ratio);
+    the creep transient is e^-8 at the 20 % point where the fit starts, and the noise
+    (20 N, 0.05 mm on ~1700 points) moves the slope by ~0.1 %: allowed 1 %.
+    """
+    K = 450e3
+    ramp = ex.load_ramp(K, creep_ratio=creep_ratio, rng=np.random.default_rng(5))
+    expected = K * creep_ratio / (1 + creep_ratio)
+    assert methods.load_deflection_stiffness(ramp.force_N, ramp.displacement_m) == pytest.approx(expected, rel=0.01)

@@ -50,15 +50,26 @@ def test_amplitude_and_frequency_held_within_thesis_tolerances():
     assert 2 * np.sqrt(2) * x.std() * 1e3 == pytest.approx(14.0, rel=0.1)
 
 
-@pytest.mark.parametrize("run_id", ["T1_sweep_001", "T2_sweep_005", "F1_sweep_009", "AS6_sweep_006",
-                                    "T5_surface_003", "T1_frequency_001", "F1_amplitude_001"])
-def test_virtual_runs_give_back_the_truth(run_id):
+#: Tolerances (K, C) of the demodulated run against the truth. On concrete the errors are
+#: instrument noise and quantisation: over seeds 7-9, |K| <= 0.12 %, |C| <= 0.75 % (C is the
+#: small quadrature part, largest for the lightly damped F1/AS6); allowed 0.5 % and 2 %. On
+#: a rough surface the ground under the tyre moves and is not measured: its component at the
+#: excitation frequency scatters K by ~1.5 % and C by ~10 % (seeds 7-9: +9, +13, -8 %);
+#: allowed 3 % and 20 %.
+CONCRETE, ROUGH = (0.005, 0.02), (0.03, 0.20)
+
+
+@pytest.mark.parametrize("run_id,tol", [("T1_sweep_001", CONCRETE), ("T2_sweep_005", CONCRETE),
+                                        ("F1_sweep_009", CONCRETE), ("AS6_sweep_006", CONCRETE),
+                                        ("T5_surface_003", ROUGH), ("T1_frequency_001", CONCRETE),
+                                        ("F1_amplitude_001", CONCRETE)])
+def test_virtual_runs_give_back_the_truth(run_id, tol):
     plan = campaign_plan("small").set_index("run_id")
     row = dict(plan.loc[run_id], run_id=run_id)
     run, info = simulate_run(row, 7)
     K, C = _analyse(run)
-    assert K == pytest.approx(info["stiffness_N_per_m"], rel=0.02)
-    assert C == pytest.approx(info["damping_N_s_per_m"], rel=0.10)
+    assert K == pytest.approx(info["stiffness_N_per_m"], rel=tol[0])
+    assert C == pytest.approx(info["damping_N_s_per_m"], rel=tol[1])
 
 
 def test_independent_recording_solve_ivp():

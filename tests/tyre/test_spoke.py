@@ -48,10 +48,14 @@ def test_fig45_damping_decreases_monotonically_1_to_20_kmh():
     v = np.linspace(1, 20, 77)
     c = spoke.equivalent_damping(v)
     assert np.all(np.diff(c) < 0)
-    # thesis §5.5.2: measured tyres are 1000-2000x the model (c1 0.25 N/rad, c2 1 Ns/m/rad);
-    # Table VII T1 at 10 km/h, 1.38 bar: 1.63 + 0.44*1.38 kNs/m
-    ratio = (1.63 + 0.44 * 1.38) * 1000 / spoke.equivalent_damping(10.0)
-    assert 1000 <= ratio <= 2500
+    # Fig. 45's coefficients (c1 0.25 N/rad, c2 1 Ns/m/rad) at 10 km/h: viscous 2 alpha c2 plus
+    # the fast-rolling Coulomb limit 2 c1 / (h theta'), which at 10 km/h is within 1e-3 of the
+    # exact average (3e-3 at 5 km/h, 5e-4 at 20 km/h); allowed 2e-3.
+    c10 = spoke.equivalent_damping(10.0)
+    assert c10 == pytest.approx(2 * ALPHA * 1.0 + 0.25 * 2 / (H0 * (10 / 3.6) / spoke.R0_13_6R38_M), rel=2e-3)
+    # thesis §5.5.2 says measured tyres damp 1000-2000x the model; against Table VII's T1 at
+    # 10 km/h, 1.38 bar (1.63 + 0.44 x 1.38 kNs/m) the model as printed gives 2240x.
+    assert (1.63 + 0.44 * 1.38) * 1000 / c10 == pytest.approx(2240, rel=2e-3)
 
 
 def test_fig44_coulomb_has_more_speed_dependence_than_fig45():
