@@ -1,6 +1,7 @@
 # tyrelab — two commands from a fresh clone:
 #   make all    create .venv, install, generate the demo campaign, run every stage, render the report
 #   make test   create .venv, install, run the test suite
+#   make mutation  mutation testing of the physics and statistics (slow: hours; not in make test)
 PYTHON ?= python3
 VENV   ?= .venv
 BIN    := $(VENV)/bin
@@ -11,9 +12,11 @@ RAW    ?= $(DEMO)
 BUILD  ?= build
 # One stamp per (scale, seed): changing SCALE or SEED regenerates the demo campaign.
 STAMP  := $(DEMO)/.generated-$(SCALE)-seed$(SEED)
-EXTRAS ?= dev,dask,formats
+EXTRAS ?= dev,dask,formats,browser
+# Extra arguments of tools/mutation.py, e.g. MUTATION_ARGS="--sample 40 vehicle/iso2631.py".
+MUTATION_ARGS ?=
 
-.PHONY: all install data run test test-all bench clean distclean
+.PHONY: all install data run test test-all mutation bench clean distclean
 
 all: run
 
@@ -41,6 +44,12 @@ test: install
 
 test-all: install
 	$(BIN)/python -m pytest -q
+
+# cosmic-ray on a copy of the package (tools/mutation.py); the score per module is printed at
+# the end and build/mutation/ keeps the sessions (--report, --survivors, --resume).
+mutation: install
+	$(BIN)/python -m pip install --quiet -e '.[$(EXTRAS),mutation]'
+	$(BIN)/python tools/mutation.py $(MUTATION_ARGS)
 
 bench: install
 	$(BIN)/python bench/run_all.py

@@ -185,3 +185,47 @@ def test_demodulation_of_a_chirp_with_known_instantaneous_frequency():
     assert d.stiffness_N_per_m == pytest.approx(k, rel=3e-4)
     assert d.damping_N_s_per_m == pytest.approx(c, rel=1e-3)
     assert d.displacement_amplitude_m == pytest.approx(A, rel=1e-3)
+
+
+def test_excitation_frequency_ignores_content_outside_the_band_and_handles_its_edges():
+    fs = 256.0
+    t = np.arange(int(30 * fs)) / fs
+    # a wheel-rotation component at 0.5 Hz ten times the excitation's amplitude lies below the 1-8 Hz band
+    x = 10 * np.sin(2 * np.pi * 0.5 * t) + np.sin(2 * np.pi * 4.2 * t)
+    assert am.excitation_frequency(x, fs) == pytest.approx(4.2, abs=2e-3)
+    # a tone above the band: the peak sits on the band's last bin, the refinement stays inside
+    top = am.excitation_frequency(np.sin(2 * np.pi * 9.0 * t), fs)
+    assert am.EXCITATION_BAND_Hz[0] <= top <= am.EXCITATION_BAND_Hz[1] + 1 / (2 * 30)
+    assert np.isnan(am.excitation_frequency(np.zeros_like(t), fs))  # nothing in the band: no excitation
+
+
+def test_analytic_band_default_half_width_excludes_a_tone_1_hz_away():
+    fs = 256.0
+    t = np.arange(int(30 * fs)) / fs
+    z = am.analytic_band(3.0 * np.cos(2 * np.pi * 4.0 * t) + 2.0 * np.cos(2 * np.pi * 5.0 * t), fs, 4.0)
+    centre = slice(int(10 * fs), -int(10 * fs))
+    np.testing.assert_allclose(np.abs(z[centre]), 3.0, rtol=1e-3)
+
+
+def test_excitation_blocks_of_a_record_shorter_than_a_block():
+    fs = 256.0
+    n = int(9 * fs)  # 9 s: 3 s edges leave 3 s, less than one 5 s block
+    omega = np.full(n, 2 * np.pi * 4.0)
+    amp, freq = am.excitation_blocks(np.full(n, 2.0), omega, fs)
+    assert amp.shape == freq.shape == (1,)
+    assert amp[0] == pytest.approx(2.0) and freq[0] == pytest.approx(4.0)
+    amp, freq = am.excitation_blocks(np.full(int(23 * fs), 2.0), np.full(int(23 * fs), 2 * np.pi * 4.0), fs)
+    assert freq.shape == (3,) and np.allclose(freq, 4.0)  # (23 - 2 x 3) s = three 5 s blocks
+
+
+def test_welch_vectorised_over_runs_and_results_are_frozen():
+    import dataclasses
+
+    recs = [spring_damper_recording(k, 2000.0, 4.0, seed=i) for i, k in enumerate((2e5, 4e5))]
+    pairs = [split(df) for df in recs]
+    forces = np.array([am.tyre_force(a[0], a[1], b, 600.0) for a, b in pairs])
+    accels = np.array([a.mean(axis=0) for a, _ in pairs])
+    w = am.apparent_mass_welch(forces, accels, 256.0)
+    np.testing.assert_allclose(w.stiffness_N_per_m, [2e5, 4e5], rtol=0.005)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        w.stiffness_N_per_m = 0.0
