@@ -18,11 +18,9 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import hashlib
 import json
 import logging
 import math
-import re
 import sys
 from pathlib import Path
 
@@ -184,16 +182,11 @@ def _json_safe(obj):
     return obj
 
 
-def _safe_name(text: str) -> str:
-    """A file-name-safe form of a tyre id (an id may hold any character)."""
-    safe = re.sub(r"[^A-Za-z0-9._-]", "_", str(text)).strip("._") or "tyre"
-    return safe if safe == text else f"{safe}-{hashlib.sha1(str(text).encode()).hexdigest()[:8]}"
-
-
 def cmd_export_tyre(args) -> int:
     import numpy as np
 
     from .io import write_text_atomic
+    from .stages.ingest import run_key
     from .tyre.mf_tyre import measured_tyre, pressure_table, property_file
     from .tyre.sizes import TyreSizeError
     from .warehouse import query
@@ -203,7 +196,7 @@ def cmd_export_tyre(args) -> int:
     try:
         tables = {name: query(db, f"SELECT * FROM {name}") for name in
                   ("tyres", "table_iii", "stiffness_pressure_by_speed", "damping_pressure_by_speed")}
-        runs = query(db, "SELECT * FROM results")
+        runs = query(db, "SELECT tyre_id, kind, pressure_bar FROM results")
     except FileNotFoundError as exc:
         print(f"{prog}: {exc}", file=sys.stderr)
         return EXIT_USAGE
@@ -222,7 +215,7 @@ def cmd_export_tyre(args) -> int:
     except (TyreSizeError, ValueError) as exc:
         print(f"{prog}: {exc}", file=sys.stderr)
         return EXIT_USAGE
-    out = Path(args.out) if args.out else Path(f"{_safe_name(tyre_id)}.tir")
+    out = Path(args.out) if args.out else Path(f"{run_key(tyre_id)}.tir")
     if out.suffix.lower() != ".tir":
         out = out.with_name(out.name + ".tir")
     written = []

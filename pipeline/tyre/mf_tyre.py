@@ -82,7 +82,13 @@ class PressureLine:
     n: int = 0
 
     def at(self, pressure_bar):
-        """The line at ``pressure_bar``."""
+        """The line at ``pressure_bar``.
+
+        Examples
+        --------
+        >>> float(PressureLine(141.0, 175.0).at(1.2))
+        351.0
+        """
         return self.intercept + self.slope * np.asarray(pressure_bar, dtype=float)
 
     def se_bound(self, pressure_bar):
@@ -292,6 +298,14 @@ def property_file(tyre: MeasuredTyre, pressure_bar: float, *, tool: str = "tyrel
     """Text of an MF-Tyre 6.1 property file (``.tir``) at nominal pressure ``pressure_bar``.
 
     See the module docstring for which keys are measured and which are placeholders.
+
+    Examples
+    --------
+    >>> t = MeasuredTyre("MY1", parse_tyre_size("480/70R38"), PressureLine(120.0, 230.0),
+    ...                  PressureLine(1.1, 0.4), 12.0, 25.0, (0.8, 1.6))
+    >>> text = property_file(t, 1.2)
+    >>> [line.split("$")[0].strip() for line in text.splitlines() if line.startswith(("VERTICAL_", "PFZ1"))]
+    ['VERTICAL_STIFFNESS       = 396000.0', 'VERTICAL_DAMPING         = 1580.0', 'PFZ1                     = 0.696969697']
     """
     lines = [
         "[MDI_HEADER]",

@@ -254,6 +254,10 @@ def range_warnings(
     ()
     """
     s = _size(size)
+    if not pressure_bar >= 0:
+        raise ValueError(f"pressure_bar {pressure_bar} is negative")
+    if not age_years >= 0:
+        raise ValueError(f"age_years {age_years} is negative")
     r = thesis_data_range() if data_range is None else data_range
     if undriven_front:
         checks = [("W·R", s.width_times_rim_in2, r.front_wr_in2, "in²", "the ribbed front tyre F1"),

@@ -133,3 +133,15 @@ def test_measured_tyre_from_catalogue_coefficients_alone():
     with pytest.raises(ValueError, match="pressure_bar"):
         tir_parameters(t, 0)
     assert math.isnan(t.stiffness.intercept_se)
+
+
+def test_default_file_name_is_safe_for_any_tyre_id(small_report, tmp_path, monkeypatch, capsys):
+    from small_campaign import EVIL_TYRE
+
+    monkeypatch.chdir(tmp_path)
+    assert main(["export-tyre", EVIL_TYRE, "--build", str(small_report.build)]) == 0
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert len(names) == 3 and all("<" not in n and "/" not in n for n in names)
+    tir = read_tir((tmp_path / [n for n in names if n.endswith(".tir")][0]).read_text())
+    assert tir["VERTICAL"]["VERTICAL_STIFFNESS"] > 0
+    assert capsys.readouterr().out.count("\n") == 3
