@@ -10,6 +10,7 @@ Verbs (a stable contract; see docs/architecture.md):
 - ``estimate-stiffness``   the empirical formula of thesis §4.5.3
 - ``natural-frequencies``  bounce/pitch frequencies of a tractor (thesis ch. 8)
 - ``export-tyre``          a measured tyre as MF-Tyre ``.tir`` files and K(P), C(P) tables
+- ``ride``                 seat vibration and daily exposure of a tractor scenario (TOML)
 
 Exit codes: 0 success; 3 some runs were quarantined; 2 usage or input error.
 """
@@ -244,6 +245,34 @@ def cmd_export_tyre(args) -> int:
     return EXIT_OK
 
 
+def cmd_ride(args) -> int:
+    from types import SimpleNamespace
+
+    from .report.ride_page import dumps, format_table, write_outputs
+    from .vehicle.ride import result_json, ride_sweep
+    from .vehicle.scenario import ScenarioError, load_scenario
+
+    try:
+        scenario = load_scenario(args.scenario)
+    except ScenarioError as exc:
+        for problem in exc.problems:
+            print(f"tyrelab ride: {exc.path}: {problem}", file=sys.stderr)
+        return EXIT_USAGE
+    ctx = SimpleNamespace(executor=args.executor, jobs=args.jobs, scheduler=args.scheduler)
+    try:
+        results = ride_sweep(scenario, args.front_pressure, args.rear_pressure, args.speeds,
+                             Path(args.build) if args.build else None, ctx, with_spectra=bool(args.out))
+    except ValueError as exc:
+        print(f"tyrelab ride: {args.scenario}: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    doc = result_json(results)
+    if args.out:
+        paths = write_outputs(results, args.out)
+        log.info("ride: wrote %s and %s", paths["json"], paths["html"])
+    sys.stdout.write(dumps(doc) if args.format == "json" else format_table(doc))
+    return EXIT_OK
+
+
 def _positive(text: str) -> float:
     """argparse type: a float > 0."""
     value = float(text)
@@ -342,6 +371,22 @@ def build_parser() -> argparse.ArgumentParser:
                    help="nominal pressure(s), bar: one .tir each (default: middle of the tested range)")
     x.add_argument("--out", default=None, help="output .tir path (default <tyre_id>.tir)")
     x.set_defaults(func=cmd_export_tyre)
+
+    rd = sub.add_parser("ride", help="seat vibration and EU daily exposure of a tractor scenario (TOML)")
+    rd.add_argument("scenario", help="scenario file (schema: tyrelab.schemas scenario.json)")
+    rd.add_argument("--build", default=None, help="build folder whose warehouse holds measured tyres")
+    rd.add_argument("--out", default=None, help="folder to write ride.json and ride.html into")
+    rd.add_argument("--format", choices=["json", "table"], default="json")
+    rd.add_argument("--front-pressure", type=_positive, nargs="+", default=None, metavar="BAR",
+                    help="front pressures to sweep, bar (default: the scenario's)")
+    rd.add_argument("--rear-pressure", type=_positive, nargs="+", default=None, metavar="BAR",
+                    help="rear pressures to sweep, bar (default: the scenario's)")
+    rd.add_argument("--speeds", type=_positive, nargs="+", default=None, metavar="KM_H",
+                    help="speeds, km/h (default: the scenario's)")
+    rd.add_argument("--jobs", type=int, default=1, help="worker processes for a sweep (default 1)")
+    rd.add_argument("--executor", choices=["local", "dask"], default="local")
+    rd.add_argument("--scheduler", default=None, help="dask scheduler address (with --executor dask)")
+    rd.set_defaults(func=cmd_ride)
     return p
 
 

@@ -32,6 +32,7 @@ __all__ = [
     "table_xx",
     "table_xx_statistics",
     "frequency_rounding_range",
+    "mode_shapes",
 ]
 
 
@@ -82,11 +83,63 @@ def natural_frequencies(
         raise ValueError("axle stiffnesses must be positive")
     if l1 < 0 or l2 < 0 or l1 + l2 <= 0:
         raise ValueError("axle distances must be non-negative with a positive wheelbase")
-    stiffness = np.array([[kf + kr, kf * l1 - kr * l2], [kf * l1 - kr * l2, kf * l1**2 + kr * l2**2]])
-    mass = np.diag([m, inertia])
+    stiffness, mass = _matrices(m, inertia, l1, l2, kf, kr)
     omega2 = linalg.eigh(stiffness, mass, eigvals_only=True)
     f = np.sqrt(np.clip(omega2, 0.0, None)) / (2.0 * math.pi)
     return float(f[0]), float(f[1])
+
+
+def _matrices(m, inertia, l1, l2, kf, kr) -> tuple[np.ndarray, np.ndarray]:
+    """Stiffness and mass matrices of the beam on two springs (thesis §8.2), coordinates (z, θ)."""
+    stiffness = np.array([[kf + kr, kf * l1 - kr * l2], [kf * l1 - kr * l2, kf * l1**2 + kr * l2**2]])
+    return stiffness, np.diag([m, inertia])
+
+
+def mode_shapes(
+    mass_kg: float,
+    pitch_inertia_kg_m2: float,
+    front_distance_m: float,
+    rear_distance_m: float,
+    front_stiffness_N_per_m_axle: float,
+    rear_stiffness_N_per_m_axle: float,
+) -> dict:
+    """Bounce and pitch modes: natural frequency and nodal point of each (thesis §8.2).
+
+    The frequencies are those of :func:`natural_frequencies` (same eigenproblem);
+    a mode ``(z, θ)`` moves a point ``x`` ahead of the CG by ``z + x θ``, so its
+    nodal point is at ``x = -z/θ`` (infinite for pure bounce). The mode with the
+    larger ``|z| / (r |θ|)``, ``r = sqrt(I/M)`` the radius of gyration, is called
+    bounce; a tie goes to the lower frequency.
+
+    Returns
+    -------
+    dict
+        ``bounce`` and ``pitch``: ``frequency_Hz``, ``nodal_point_ahead_of_cg_m``
+        (inf when the mode does not pitch).
+
+    Examples
+    --------
+    >>> m = mode_shapes(1000, 250, 1.0, 1.0, 1e5, 1e5)
+    >>> round(m["bounce"]["frequency_Hz"], 4), m["bounce"]["nodal_point_ahead_of_cg_m"]
+    (2.2508, inf)
+    >>> round(m["pitch"]["frequency_Hz"], 4), abs(m["pitch"]["nodal_point_ahead_of_cg_m"])
+    (4.5016, 0.0)
+    """
+    f = natural_frequencies(mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m,
+                            front_stiffness_N_per_m_axle, rear_stiffness_N_per_m_axle)
+    stiffness, mass = _matrices(float(mass_kg), float(pitch_inertia_kg_m2), float(front_distance_m),
+                                float(rear_distance_m), float(front_stiffness_N_per_m_axle),
+                                float(rear_stiffness_N_per_m_axle))
+    _, vecs = linalg.eigh(stiffness, mass)
+    r = math.sqrt(float(pitch_inertia_kg_m2) / float(mass_kg))
+    ratio = [abs(vecs[0, i]) / max(r * abs(vecs[1, i]), 1e-300) for i in (0, 1)]
+    bounce = 0 if ratio[0] >= ratio[1] else 1
+    out = {}
+    for name, i in (("bounce", bounce), ("pitch", 1 - bounce)):
+        z, th = vecs[0, i], vecs[1, i]
+        node = -z / th if abs(th) > 1e-12 * abs(z) else math.inf
+        out[name] = {"frequency_Hz": f[i], "nodal_point_ahead_of_cg_m": float(node) + 0.0}
+    return out
 
 
 def tractor_natural_frequencies(

@@ -1,0 +1,112 @@
+"""Outputs of ``tyrelab ride``: the JSON document, a text table and a self-contained HTML page.
+
+:func:`write_outputs` writes ``ride.json`` and ``ride.html`` atomically into a
+folder; the page inlines its style and SVG figures and carries no time stamp,
+so the same scenario gives the same bytes.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pandas as pd
+
+from .. import __version__, io
+from ..vehicle.ride import RideResult, result_json
+from . import ride_figures as rf
+from .render import environment
+
+__all__ = ["SPEED_COLUMNS", "format_table", "render_page", "write_outputs", "dumps"]
+
+#: Columns of the per-speed table (text and HTML), in order.
+SPEED_COLUMNS = ["speed_km_h", "front_pressure_bar", "rear_pressure_bar", "a_wz_m_s2", "expected_a_wz_m_s2",
+                 "a_wx_m_s2", "expected_a_wx_m_s2", "a_v_m_s2", "vdv_m_s1_75", "crest_factor",
+                 "lift_off_fraction_front", "lift_off_fraction_rear", "a8_m_s2", "hours_to_eav", "hours_to_elv",
+                 "verdict", "simulation"]
+
+_SHORT = {"speed_km_h": "km/h", "front_pressure_bar": "Pf bar", "rear_pressure_bar": "Pr bar", "a_wz_m_s2": "a_wz",
+          "expected_a_wz_m_s2": "(exp.)", "a_wx_m_s2": "a_wx", "expected_a_wx_m_s2": "(exp.)", "a_v_m_s2": "a_v",
+          "vdv_m_s1_75": "VDV", "crest_factor": "CF", "lift_off_fraction_front": "lift F",
+          "lift_off_fraction_rear": "lift R", "a8_m_s2": "A(8)", "hours_to_eav": "h->EAV", "hours_to_elv": "h->ELV",
+          "verdict": "verdict", "simulation": "simulation"}
+
+
+def dumps(doc: dict) -> str:
+    """JSON text of a ride document (indented, keys in insertion order, ends with a newline)."""
+    return json.dumps(doc, indent=2, ensure_ascii=False, allow_nan=False) + "\n"
+
+
+def _rows(doc: dict) -> list[dict]:
+    blocks = doc.get("sweep") or [doc]
+    return [row for b in blocks for row in b["speeds"]]
+
+
+def format_table(doc: dict) -> str:
+    """A plain-text summary of a ride document (what ``--format table`` prints)."""
+    lines = [f"{doc['name']}", f"  track: {doc['track']}; daily exposure {doc['hours_per_day']:g} h"]
+    for axle in ("front", "rear"):
+        t = doc["tyres"][axle]
+        lines.append(f"  {axle:5s} {t['size']} at {t['pressure_bar']:g} bar: K = {t['stiffness_kN_per_m']:.1f} kN/m "
+                     f"({t['stiffness_source']}), C = {t['damping_kN_s_per_m']:.2f} kN s/m ({t['damping_source']})")
+    nf, nodal = doc["natural_frequencies_Hz"], doc["nodal_points_m"]
+    lines.append(f"  bounce {nf['bounce']:.2f} Hz (node {nodal['bounce']:+.2f} m ahead of CG), "
+                 f"pitch {nf['pitch']:.2f} Hz (node {nodal['pitch']:+.2f} m)" if nodal["bounce"] is not None
+                 else f"  bounce {nf['bounce']:.2f} Hz, pitch {nf['pitch']:.2f} Hz")
+    for w in doc.get("warnings", []):
+        lines.append(f"  warning: {w}")
+    df = pd.DataFrame(_rows(doc))
+    cols = [c for c in SPEED_COLUMNS if c in df and (c not in ("front_pressure_bar", "rear_pressure_bar")
+                                                      or "sweep" in doc)]
+    show = df[cols].copy()
+    for c in cols:
+        if c not in ("verdict", "simulation"):
+            show[c] = show[c].map(lambda v: "inf" if v is None else f"{v:.3g}" if abs(v) >= 100 else f"{v:.3f}")
+    show.columns = [_SHORT[c] for c in cols]
+    lines.append(show.to_string(index=False))
+    lines.append("  a_w in m/s² (a_wz W_k, a_wx W_d; exp. = frequency-domain expectation); VDV m/s^1.75; "
+                 "A(8) = max(1.4 a_wx, a_wz) sqrt(T/8 h)")
+    return "\n".join(lines) + "\n"
+
+
+def figures(results: list[RideResult]) -> list[dict]:
+    """The page's figures (caption + inline SVG)."""
+    first = results[0]
+    hours = first.scenario.exposure.hours_per_day
+    speeds = pd.concat([r.speeds for r in results], ignore_index=True)
+    return [
+        {"caption": "Weighted r.m.s. at the seat against speed (dotted: frequency-domain expectation), with the levels "
+                    f"that reach the EU action (EAV) and limit (ELV) values in {hours:g} h.",
+         "svg": rf.aw_against_speed(first.speeds if len(results) == 1 else speeds, hours)},
+        {"caption": "Highest-axis a_w against rear pressure, one line per front pressure.",
+         "svg": rf.aw_against_pressure(speeds) if len(results) > 1 else None},
+        {"caption": "Seat acceleration PSD (0.1 Hz bandwidth) per speed.", "svg": rf.seat_psd(first.spectra)},
+        {"caption": "Seat vertical transmissibility from ground input (both axles, wheelbase delay, no enveloping).",
+         "svg": rf.seat_transmissibility(first.transmissibility)},
+    ]
+
+
+def render_page(results: list[RideResult], doc: dict | None = None) -> str:
+    """The self-contained HTML page of a ride (no time stamp)."""
+    doc = doc or result_json(results)
+    rows = _rows(doc)
+    cols = [c for c in SPEED_COLUMNS if c in rows[0] and (c not in ("front_pressure_bar", "rear_pressure_bar")
+                                                          or "sweep" in doc)]
+    return environment().get_template("ride.html.j2").render(
+        r=doc, description=results[0].scenario.description, columns=cols, rows=rows, figures=figures(results),
+        version=__version__)
+
+
+def write_outputs(results: list[RideResult], out: str | Path) -> dict[str, Path]:
+    """Write ``ride.json`` and ``ride.html`` into ``out`` (created), atomically.
+
+    Returns
+    -------
+    dict
+        ``json`` and ``html`` paths.
+    """
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    doc = result_json(results)
+    return {"json": io.write_text_atomic(dumps(doc), out / "ride.json"),
+            "html": io.write_text_atomic(render_page(results, doc), out / "ride.html")}

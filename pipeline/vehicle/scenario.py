@@ -1,0 +1,548 @@
+"""Ride scenario files: a tractor, its tyres, a track and speeds, in TOML (issue 13).
+
+A scenario is read with the standard library's :mod:`tomllib` and checked
+against ``schemas/scenario.json`` (every key, its type, unit and bounds are
+documented there; :func:`key_table` prints them). Every problem is collected
+and :class:`ScenarioError` lists them all at once, so a user fixes a file in
+one pass. The result is a tree of small frozen dataclasses; nothing is
+computed here (stiffness, profiles and the simulation live in
+:mod:`tyrelab.vehicle.ride`).
+
+Example (``raw/scenarios/modern_tractor.toml`` is a complete one)::
+
+    name = "my tractor"
+    [tractor]
+    mass_kg = 4700
+    pitch_inertia_kg_m2 = 5500
+    front_distance_m = 1.56
+    rear_distance_m = 0.95
+    cg_height_m = 0.95
+    [tyres.front]
+    size = "14.9R28"
+    pressure_bar = 1.6
+    [tyres.rear]
+    size = "18.4R38"
+    pressure_bar = 1.2
+    [surface]
+    kind = "iso8608"
+    class = "C"
+    [exposure]
+    speeds_km_h = [4, 8, 12, 16]
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field, replace
+from functools import cache
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ..schema import load_schema
+from ..tyre.sizes import TyreSizeError, parse_tyre_size
+
+__all__ = [
+    "Scenario",
+    "TractorSpec",
+    "SeatSpec",
+    "TyreSpec",
+    "SurfaceSpec",
+    "ExposureSpec",
+    "SimulationSpec",
+    "ScenarioError",
+    "load_scenario",
+    "parse_scenario",
+    "read_profile_csv",
+    "key_table",
+    "with_overrides",
+]
+
+
+class ScenarioError(ValueError):
+    """A scenario file is wrong; ``problems`` lists every problem (one line each)."""
+
+    def __init__(self, path: str | Path, problems: list[str]):
+        self.path = str(path)
+        self.problems = list(problems)
+        super().__init__("\n".join(f"{self.path}: {p}" for p in self.problems))
+
+
+@dataclass(frozen=True)
+class TractorSpec:
+    """``[tractor]``: SI units as in the key names; longitudinal values per rear tyre."""
+
+    mass_kg: float
+    pitch_inertia_kg_m2: float
+    front_distance_m: float
+    rear_distance_m: float
+    cg_height_m: float
+    longitudinal_model: str = "none"
+    longitudinal_stiffness_kN_per_m: float = 455.0
+    longitudinal_damping_kN_s_per_m: float = 3.0
+
+    @property
+    def wheelbase_m(self) -> float:
+        """Front distance + rear distance, m."""
+        return self.front_distance_m + self.rear_distance_m
+
+
+@dataclass(frozen=True)
+class SeatSpec:
+    """``[seat]``: reference point relative to the CG (m) and its suspension."""
+
+    ahead_of_cg_m: float = 0.0
+    height_above_cg_m: float = 0.0
+    suspension: str = "rigid"
+    natural_frequency_Hz: float | None = None
+    damping_ratio: float | None = None
+
+
+@dataclass(frozen=True)
+class TyreSpec:
+    """``[tyres.front]`` / ``[tyres.rear]``: one tyre of the axle.
+
+    ``stiffness_kN_per_m`` / ``damping_kN_s_per_m`` are None, a float or a tuple
+    (one per scenario speed).
+    """
+
+    size: str
+    pressure_bar: float
+    traction: bool
+    stiffness_kN_per_m: float | tuple | None = None
+    damping_kN_s_per_m: float | tuple | None = None
+    measured_tyre_id: str | None = None
+    water_ballast: bool = False
+    age_years: float = 1.0
+    radius_m: float | None = None
+    footprint_m: float | None = None
+
+
+@dataclass(frozen=True)
+class SurfaceSpec:
+    """``[surface]``; ``profile`` is an absolute path once loaded."""
+
+    kind: str
+    road_class: str | None = None
+    length_m: float = 400.0
+    seed: int = 1
+    dx_m: float = 0.05
+    profile: Path | None = None
+    spectrum_g0_m3: float | None = None
+    spectrum_waviness: float = 2.0
+    spectrum_correlated: bool | None = None
+    enveloping: str = "tapered"
+    lead_in_m: float = 5.0
+
+
+@dataclass(frozen=True)
+class ExposureSpec:
+    """``[exposure]``: speeds (km/h) and daily exposure time (h).
+
+    ``list_speeds_km_h`` are the file's own speeds, which per-speed tyre values
+    refer to (they stay when ``speeds_km_h`` is overridden on the command line).
+    """
+
+    speeds_km_h: tuple[float, ...]
+    hours_per_day: float = 8.0
+    list_speeds_km_h: tuple[float, ...] = ()
+
+    def __post_init__(self):
+        if not self.list_speeds_km_h:
+            object.__setattr__(self, "list_speeds_km_h", tuple(self.speeds_km_h))
+
+
+@dataclass(frozen=True)
+class SimulationSpec:
+    """``[simulation]``: record-length cap (s) and tyre lift-off."""
+
+    duration_s: float | None = None
+    lift_off: bool = True
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """A whole scenario file.
+
+    Attributes
+    ----------
+    name : str
+    tractor : TractorSpec
+    seat : SeatSpec
+    front, rear : TyreSpec
+    surface : SurfaceSpec
+    exposure : ExposureSpec
+    simulation : SimulationSpec
+    path : Path or None
+        The file read (None when built in memory).
+    description : str
+    """
+
+    name: str
+    tractor: TractorSpec
+    front: TyreSpec
+    rear: TyreSpec
+    surface: SurfaceSpec
+    exposure: ExposureSpec
+    seat: SeatSpec = field(default_factory=SeatSpec)
+    simulation: SimulationSpec = field(default_factory=SimulationSpec)
+    path: Path | None = None
+    description: str = ""
+
+
+@cache
+def _sections() -> dict[str, dict]:
+    """Section name -> {field name -> field dict} from ``schemas/scenario.json``."""
+    schema = load_schema("scenario")["sections"]
+    out = {}
+    for name, sec in schema.items():
+        src = schema[sec["same_as"]] if "same_as" in sec else sec
+        out[name] = {"required": sec.get("required", False), "fields": {f["name"]: f for f in src["fields"]}}
+    return out
+
+
+def key_table() -> pd.DataFrame:
+    """Every scenario key with its section, type, unit, default and description.
+
+    Examples
+    --------
+    >>> t = key_table()
+    >>> t.loc[t["key"] == "mass_kg", ["section", "unit"]].values.tolist()
+    [['tractor', 'kg']]
+    """
+    rows = []
+    for sec, spec in _sections().items():
+        for name, f in spec["fields"].items():
+            c = f.get("constraints", {})
+            rows.append({"section": sec, "key": name, "type": f["type"], "unit": f.get("unit", ""),
+                         "required": bool(c.get("required", False)), "default": f.get("default"),
+                         "description": f.get("description", "")})
+    return pd.DataFrame(rows)
+
+
+def _is_number(v) -> bool:
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def _check_value(where: str, f: dict, value, n_speeds: int | None) -> list[str]:
+    """Problems of one value against its field definition."""
+    t = f["type"]
+    c = f.get("constraints", {})
+    unit = f" {f['unit']}" if f.get("unit") and f["unit"] != "1" else ""
+    if t == "string":
+        if not isinstance(value, str):
+            return [f"{where}: expected text, got {value!r}"]
+        if "enum" in c and value not in c["enum"]:
+            return [f"{where}: {value!r} is not one of {', '.join(c['enum'])}"]
+        return []
+    if t == "boolean":
+        return [] if isinstance(value, bool) else [f"{where}: expected true or false, got {value!r}"]
+    if t == "integer":
+        return [] if isinstance(value, int) and not isinstance(value, bool) else [f"{where}: expected an integer, got {value!r}"]
+    if t in ("numbers", "number_or_numbers"):
+        if t == "number_or_numbers" and _is_number(value):
+            values = [value]
+        elif isinstance(value, list) and value and all(_is_number(v) for v in value):
+            values = value
+            if t == "number_or_numbers" and n_speeds is not None and len(value) != n_speeds:
+                return [f"{where}: {len(value)} values but exposure.speeds_km_h has {n_speeds} (give one per speed)"]
+        else:
+            return [f"{where}: expected {'a number or ' if t == 'number_or_numbers' else ''}a list of numbers, got {value!r}"]
+    elif t == "number":
+        if not _is_number(value):
+            return [f"{where}: expected a number, got {value!r}"]
+        values = [value]
+    else:  # pragma: no cover - schema typo
+        raise ValueError(f"schema type {t!r}")
+    problems = []
+    for v in values:
+        if "exclusiveMinimum" in c and not v > c["exclusiveMinimum"]:
+            problems.append(f"{where}: {v}{unit} must be greater than {c['exclusiveMinimum']}")
+        elif "minimum" in c and v < c["minimum"]:
+            problems.append(f"{where}: {v}{unit} is negative" if c["minimum"] == 0 else f"{where}: {v}{unit} is below {c['minimum']}")
+        elif "maximum" in c and v > c["maximum"]:
+            problems.append(f"{where}: {v}{unit} is above {c['maximum']}")
+    return problems[:1]
+
+
+def _section_values(doc: dict, name: str) -> tuple[dict | None, list[str]]:
+    """The table of section ``name`` (dotted) in ``doc``, or None, and type problems."""
+    node = doc
+    for part in name.split("."):
+        if not isinstance(node, dict) or part not in node:
+            return None, []
+        node = node[part]
+    if not isinstance(node, dict):
+        return None, [f"[{name}] must be a table, got {node!r}"]
+    return node, []
+
+
+def _validate(doc: dict, base_dir: Path) -> list[str]:
+    """Every problem of a parsed TOML document (empty list when it is valid)."""
+    problems: list[str] = []
+    sections = _sections()
+    # unknown keys and tables at every level
+    known_top = {k for k in sections[""]["fields"]} | {s.split(".")[0] for s in sections if s}
+    for k in doc:
+        if k not in known_top:
+            problems.append(f"unknown key {k!r} at the top level (known: {', '.join(sorted(known_top))})")
+    if isinstance(doc.get("tyres"), dict):
+        for k in doc["tyres"]:
+            if k not in ("front", "rear"):
+                problems.append(f"unknown table [tyres.{k}] (expected [tyres.front] and [tyres.rear])")
+    speeds = doc.get("exposure", {}).get("speeds_km_h") if isinstance(doc.get("exposure"), dict) else None
+    n_speeds = len(speeds) if isinstance(speeds, list) else None
+    for sec, spec in sections.items():
+        values, p = (doc, []) if sec == "" else _section_values(doc, sec)
+        problems += p
+        if values is None:
+            if spec["required"] and not p:
+                problems.append(f"missing table [{sec}]")
+            continue
+        label = (lambda k: k) if sec == "" else (lambda k, s=sec: f"{s}.{k}")
+        for k, v in values.items():
+            if sec == "" and k in known_top and k not in spec["fields"]:
+                continue  # a table, checked as its own section
+            if k not in spec["fields"]:
+                problems.append(f"unknown key {label(k)!r} (known: {', '.join(spec['fields'])})")
+                continue
+            problems += _check_value(label(k), spec["fields"][k], v, n_speeds)
+        for k, f in spec["fields"].items():
+            if f.get("constraints", {}).get("required") and k not in values:
+                unit = f" ({f['unit']})" if f.get("unit") else ""
+                problems.append(f"missing {label(k)}{unit}")
+    # cross-field rules
+    for axle in ("front", "rear"):
+        t, _ = _section_values(doc, f"tyres.{axle}")
+        if t and isinstance(t.get("size"), str):
+            try:
+                parse_tyre_size(t["size"])
+            except TyreSizeError as exc:
+                problems.append(f"tyres.{axle}.size: {exc}")
+    seat, _ = _section_values(doc, "seat")
+    if seat and seat.get("suspension") == "linear":
+        for k in ("natural_frequency_Hz", "damping_ratio"):
+            if k not in seat:
+                problems.append(f"seat.{k} is required with suspension = \"linear\"")
+    surf, _ = _section_values(doc, "surface")
+    if surf:
+        kind = surf.get("kind")
+        if kind == "iso8608" and "class" not in surf:
+            problems.append("surface.class (A-H) is required with kind = \"iso8608\"")
+        if kind == "profile":
+            if "profile" not in surf:
+                problems.append("surface.profile (a CSV path) is required with kind = \"profile\"")
+            elif isinstance(surf["profile"], str):
+                problems += _profile_problems(base_dir, surf["profile"])
+    return problems
+
+
+def _resolve_inside(base_dir: Path, relative: str) -> tuple[Path | None, str | None]:
+    """``base_dir / relative`` if it stays inside ``base_dir``, else a problem."""
+    rel = Path(relative)
+    if rel.is_absolute():
+        return None, f"surface.profile {relative!r}: give a path relative to the scenario file"
+    full = (base_dir / rel).resolve()
+    if not full.is_relative_to(base_dir.resolve()):
+        return None, f"surface.profile {relative!r} escapes the scenario's folder"
+    return full, None
+
+
+def _profile_problems(base_dir: Path, relative: str) -> list[str]:
+    full, problem = _resolve_inside(base_dir, relative)
+    if problem:
+        return [problem]
+    try:
+        read_profile_csv(full)
+    except ValueError as exc:
+        return [f"surface.profile: {exc}"]
+    return []
+
+
+def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Read a profile CSV: ``distance_m`` and ``height_m`` or ``height_left_m``/``height_right_m``.
+
+    Returns
+    -------
+    distance_m, left_m, right_m : ndarray
+        As written (not resampled); ``left == right`` for a single ``height_m``.
+
+    Raises
+    ------
+    ValueError
+        Naming the file and every problem (missing columns, non-numeric values,
+        distances not strictly increasing, fewer than 16 points).
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"{path}: no such file")
+    try:
+        df = pd.read_csv(path)
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
+        raise ValueError(f"{path}: not a readable CSV ({str(exc).splitlines()[0]})") from None
+    problems = []
+    if "distance_m" not in df:
+        problems.append("no distance_m column")
+    if "height_m" in df:
+        cols = ["height_m", "height_m"]
+    elif "height_left_m" in df and "height_right_m" in df:
+        cols = ["height_left_m", "height_right_m"]
+    else:
+        cols = []
+        problems.append("no height_m column (or height_left_m and height_right_m)")
+    if problems:
+        raise ValueError(f"{path}: {'; '.join(problems)} (columns: {', '.join(map(str, df.columns))})")
+    num = {c: pd.to_numeric(df[c], errors="coerce") for c in {"distance_m", *cols}}
+    for c, v in num.items():
+        if v.isna().any():
+            problems.append(f"{c} has {int(v.isna().sum())} missing or non-numeric values")
+    if problems:
+        raise ValueError(f"{path}: {'; '.join(problems)}")
+    x = num["distance_m"].to_numpy(float)
+    if len(x) < 16:
+        problems.append(f"only {len(x)} points (need at least 16)")
+    elif not np.all(np.diff(x) > 0):
+        problems.append("distance_m is not strictly increasing")
+    if problems:
+        raise ValueError(f"{path}: {'; '.join(problems)}")
+    return x, num[cols[0]].to_numpy(float), num[cols[1]].to_numpy(float)
+
+
+def _speed_values(v):
+    return tuple(float(x) for x in v) if isinstance(v, list) else (None if v is None else float(v))
+
+
+def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
+    t, s, surf, ex = doc["tractor"], doc.get("seat", {}), doc["surface"], doc["exposure"]
+    sim = doc.get("simulation", {})
+
+    def tyre(axle: str) -> TyreSpec:
+        d = doc["tyres"][axle]
+        return TyreSpec(
+            size=d["size"], pressure_bar=float(d["pressure_bar"]), traction=bool(d.get("traction", axle == "rear")),
+            stiffness_kN_per_m=_speed_values(d.get("stiffness_kN_per_m")),
+            damping_kN_s_per_m=_speed_values(d.get("damping_kN_s_per_m")),
+            measured_tyre_id=d.get("measured_tyre_id"), water_ballast=bool(d.get("water_ballast", False)),
+            age_years=float(d.get("age_years", 1.0)), radius_m=d.get("radius_m"), footprint_m=d.get("footprint_m"),
+        )
+
+    profile = _resolve_inside(base_dir, surf["profile"])[0] if "profile" in surf else None
+    return Scenario(
+        name=doc["name"],
+        description=doc.get("description", ""),
+        tractor=TractorSpec(**{k: (v if isinstance(v, str) else float(v)) for k, v in t.items()}),
+        seat=SeatSpec(**{k: (v if isinstance(v, str) else float(v)) for k, v in s.items()}),
+        front=tyre("front"),
+        rear=tyre("rear"),
+        surface=SurfaceSpec(
+            kind=surf["kind"], road_class=surf.get("class"), length_m=float(surf.get("length_m", 400.0)),
+            seed=int(surf.get("seed", 1)), dx_m=float(surf.get("dx_m", 0.05)), profile=profile,
+            spectrum_g0_m3=surf.get("spectrum_g0_m3"), spectrum_waviness=float(surf.get("spectrum_waviness", 2.0)),
+            spectrum_correlated=surf.get("spectrum_correlated"), enveloping=surf.get("enveloping", "tapered"),
+            lead_in_m=float(surf.get("lead_in_m", 5.0)),
+        ),
+        exposure=ExposureSpec(tuple(float(v) for v in ex["speeds_km_h"]), float(ex.get("hours_per_day", 8.0))),
+        simulation=SimulationSpec(sim.get("duration_s"), bool(sim.get("lift_off", True))),
+        path=path,
+    )
+
+
+def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | None = None) -> Scenario:
+    """Parse and check scenario TOML text.
+
+    Parameters
+    ----------
+    text : str
+        TOML text.
+    base_dir : path
+        Folder that relative paths (``surface.profile``) are resolved against and
+        must stay inside.
+    path : path, optional
+        File name used in messages.
+
+    Raises
+    ------
+    ScenarioError
+        With every problem found.
+
+    Examples
+    --------
+    >>> s = parse_scenario('''
+    ... name = "demo"
+    ... [tractor]
+    ... mass_kg = 4700
+    ... pitch_inertia_kg_m2 = 5500
+    ... front_distance_m = 1.56
+    ... rear_distance_m = 0.95
+    ... cg_height_m = 0.95
+    ... [tyres.front]
+    ... size = "14.9R28"
+    ... pressure_bar = 1.6
+    ... [tyres.rear]
+    ... size = "18.4R38"
+    ... pressure_bar = 1.2
+    ... [surface]
+    ... kind = "iso8608"
+    ... class = "C"
+    ... [exposure]
+    ... speeds_km_h = [4, 8]
+    ... ''')
+    >>> s.tractor.wheelbase_m, s.exposure.speeds_km_h, s.front.traction
+    (2.51, (4.0, 8.0), False)
+    """
+    where = str(path) if path is not None else "<scenario>"
+    try:
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise ScenarioError(where, [f"not valid TOML: {exc}"]) from None
+    base = Path(base_dir)
+    problems = _validate(doc, base)
+    if problems:
+        raise ScenarioError(where, problems)
+    return _build(doc, Path(path) if path is not None else None, base)
+
+
+def load_scenario(path: str | Path) -> Scenario:
+    """Read and check a scenario file (see :func:`parse_scenario`).
+
+    Raises
+    ------
+    ScenarioError
+        If the file cannot be read or has problems (all listed).
+    """
+    p = Path(path)
+    try:
+        text = p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ScenarioError(p, [f"cannot read: {exc.strerror if isinstance(exc, OSError) else exc}"]) from None
+    return parse_scenario(text, p.resolve().parent, p)
+
+
+def with_overrides(
+    scenario: Scenario,
+    speeds_km_h: list[float] | None = None,
+    front_pressure_bar: float | None = None,
+    rear_pressure_bar: float | None = None,
+) -> Scenario:
+    """A copy with other speeds and/or pressures (command-line overrides).
+
+    Per-speed stiffness/damping lists keep applying to the scenario's own speeds
+    (:func:`tyrelab.vehicle.ride.per_speed` interpolates them); pressures replace
+    the tyre's pressure only.
+    """
+    s = scenario
+    if speeds_km_h:
+        if any(not (v > 0) for v in speeds_km_h):
+            raise ValueError("speeds_km_h must be positive")
+        s = replace(s, exposure=replace(s.exposure, speeds_km_h=tuple(float(v) for v in speeds_km_h)))
+    if front_pressure_bar is not None:
+        if not front_pressure_bar > 0:
+            raise ValueError("front_pressure_bar must be positive")
+        s = replace(s, front=replace(s.front, pressure_bar=float(front_pressure_bar)))
+    if rear_pressure_bar is not None:
+        if not rear_pressure_bar > 0:
+            raise ValueError("rear_pressure_bar must be positive")
+        s = replace(s, rear=replace(s.rear, pressure_bar=float(rear_pressure_bar)))
+    return s
