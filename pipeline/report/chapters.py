@@ -231,14 +231,40 @@ CHAPTERS: tuple[Chapter, ...] = (
                 FigureSpec("69", "Predicted against measured natural frequencies", "natural_frequencies",
                            ("table_xx",), "simulate"),
             )),
-    Chapter("iso2631", "ISO 2631 — whole-body vibration",
-            "Frequency-weighted rms, vibration dose value and crest factor of every simulated ride "
-            "(ISO 2631-1), with the EU action and limit values.",
+    Chapter("ride", "Ride — whole-body vibration",
+            "What the operator gets: ISO 2631-1 weighted seat vibration and the EU Directive 2002/44/EC daily "
+            "exposure of every ride scenario (tyrelab ride; raw/scenarios/*.toml), and of the ch. 6–7 studies' "
+            "simulated runs, against the action (EAV, 0.5 m/s²) and limit (ELV, 1.15 m/s²) values.",
             (
-                TableSpec("", "Whole-body vibration per simulated ride", "iso2631", "simulate",
-                          columns=("study", "track", "speed_km_h", "load_condition", "characteristics",
-                                   "profile_estimate", "longitudinal", "iso_weighting", "iso_weighted_rms_m_s2",
-                                   "iso_vdv_m_s1_75", "iso_crest_factor", "iso_a8_m_s2", "iso_exceeds_action",
-                                   "iso_exceeds_limit")),
+                FigureSpec("", "Seat a_w (highest axis: a_wz or 1.4·a_wx) against speed per scenario, at the "
+                               "scenario's tyre pressures; lines: the levels that reach EAV and ELV in 8 h",
+                           "ride_aw_speed", ("ride_results",), "simulate"),
+                TableSpec("", "Ride scenarios: seat vibration per speed", "ride_results", "simulate",
+                          ours_sql="SELECT scenario, speed_km_h, front_pressure_bar, rear_pressure_bar, a_wz_m_s2, "
+                                   "expected_a_wz_m_s2, a_wx_m_s2, a_v_m_s2, vdv_m_s1_75, crest_factor, "
+                                   "lift_off_fraction_front, lift_off_fraction_rear, a8_m_s2, hours_to_eav, "
+                                   "hours_to_elv, verdict FROM ride_results WHERE is_nominal "
+                                   "ORDER BY scenario, speed_km_h",
+                          note="A(8) = max(1.4·a_wx, a_wz)·√(T/8 h) (the Directive's highest axis, not the vector "
+                               "sum a_v); expected_a_wz is the frequency-domain expectation of the linear model. "
+                               "Pressure sweeps: tyrelab sql \"SELECT * FROM ride_results\"."),
+                TableSpec("", "Ride scenarios", "ride_scenarios", "simulate",
+                          columns=("scenario", "source", "mass_kg", "front_size", "front_pressure_bar", "rear_size",
+                                   "rear_pressure_bar", "track", "enveloping", "speeds_km_h", "bounce_Hz", "pitch_Hz",
+                                   "pressure_pairs")),
+                FigureSpec("", "Vertical weighted r.m.s. of the ch. 6–7 simulated runs against speed (carriage: at "
+                               "the tyre; tractor: at the CG; mean over load conditions)",
+                           "study_aw_speed", ("iso2631",), "simulate"),
+                TableSpec("", "Whole-body vibration of the ch. 6–7 simulated runs, summarised", "iso2631", "simulate",
+                          ours_sql="SELECT study, COALESCE(track, '') AS track, characteristics, "
+                                   "COALESCE(longitudinal, '') AS longitudinal, COUNT(*) AS runs, "
+                                   "MIN(speed_km_h) AS speed_min_km_h, MAX(speed_km_h) AS speed_max_km_h, "
+                                   "MIN(COALESCE(iso_weighted_rms_m_s2, iso_vertical_weighted_rms_m_s2)) AS a_wz_min_m_s2, "
+                                   "MAX(COALESCE(iso_weighted_rms_m_s2, iso_vertical_weighted_rms_m_s2)) AS a_wz_max_m_s2, "
+                                   "MAX(iso_a8_m_s2) AS a8_max_m_s2, AVG(CAST(iso_exceeds_action AS DOUBLE)) "
+                                   "AS share_above_eav, AVG(CAST(iso_exceeds_limit AS DOUBLE)) AS share_above_elv "
+                                   "FROM iso2631 GROUP BY ALL ORDER BY ALL",
+                          note="Every row of the iso2631 table (tyrelab sql \"SELECT * FROM iso2631\") grouped by "
+                               "study, track, tyre characteristics and longitudinal model."),
             )),
 )

@@ -153,8 +153,10 @@ def study_aw_speed(iso: pd.DataFrame) -> str | None:
     Carriage and tractor records are at the tyre/CG (no seat); lines join the
     mean over load conditions per characteristics (and track for the tractor).
     """
-    if not _has(iso, "study", "speed_km_h", "characteristics", "iso_weighted_rms_m_s2"):
+    if not _has(iso, "study", "speed_km_h", "characteristics"):
         return None
+    iso = iso.assign(a_wz=iso.get("iso_weighted_rms_m_s2", pd.Series(np.nan, index=iso.index)).fillna(
+        iso.get("iso_vertical_weighted_rms_m_s2", pd.Series(np.nan, index=iso.index))))
     studies = [s for s in ("carriage", "tractor") if s in set(iso["study"])]
     if not studies:
         return None
@@ -166,7 +168,7 @@ def study_aw_speed(iso: pd.DataFrame) -> str | None:
         d["series"] = d["characteristics"].astype(str) + (
             " " + d["track"].astype(str) if "track" in d and d["track"].notna().any() else "")
         for k, (series, g) in enumerate(d.groupby("series", sort=True)):
-            m = g.groupby("speed_km_h")["iso_weighted_rms_m_s2"].mean()
+            m = g.groupby("speed_km_h")["a_wz"].mean()
             ax.plot(m.index, m.to_numpy(), marker=MARKERS[k % len(MARKERS)], lw=0.9, label=series)
         _limit_lines(ax, 8.0)
         ax.set_title(f"{study} (vertical, W_k)")

@@ -9,7 +9,12 @@ with tyrelab, schema-checked; the file read is recorded in the ``source`` column
 
 ``carriage_runs``, ``carriage_comparisons``, ``table_xiii``, ``table_xiv``,
 ``tractor_runs``, ``table_xvii``, ``table_xviii``, ``table_xx``,
-``table_xx_statistics``, ``iso2631``, ``profile_spectra``, ``simulate_inputs``.
+``table_xx_statistics``, ``iso2631``, ``profile_spectra``, ``simulate_inputs``, and the ride
+predictions of every scenario (:mod:`tyrelab.vehicle.ride`; the shipped
+``raw/scenarios/*.toml`` and any ``<raw>/scenarios/*.toml``, run through the
+executor): ``ride_scenarios`` (one row per scenario), ``ride_results`` (one row per
+scenario × speed × pressure pair). A wrong scenario is quarantined with its problems;
+the others still run.
 
 Everything is seeded (``SEED``), so the same command gives the same bytes. If the
 warehouse holds ``results`` with rolling T4 stiffness on a flat surface at the
@@ -25,9 +30,9 @@ import time
 import pandas as pd
 
 from .. import published
-from ..vehicle import bounce_pitch, studies
+from ..vehicle import bounce_pitch, ride, studies
 from ..vehicle import published_layouts as layouts
-from .base import Context, StageResult
+from .base import Context, StageResult, write_quarantine
 
 SEED = 5007
 
@@ -153,13 +158,20 @@ def run(ctx: Context) -> StageResult:
         "profile_spectra": spectra,
         "simulate_inputs": sources,
     }
+    # ride scenarios (issue 13)
+    files = ride.scenario_files(ctx.raw)
+    tables["ride_scenarios"], tables["ride_results"], bad = ride.run_scenarios(files, ctx, ctx.build)
+    write_quarantine(ctx, "simulate", [{"campaign": None, "run_id": None, "file": b["file"], "stage": "simulate",
+                                        "reason": b["reason"]} for b in bad])
+
     for name, df in tables.items():
         ctx.write_table(name, df.reset_index(drop=True))
     n_runs = len(cr) + len(trr)
     return StageResult(
         name="simulate",
-        n_in=n_runs,
-        n_ok=n_runs,
+        n_in=n_runs + len(files),
+        n_ok=n_runs + len(files) - len(bad),
+        n_quarantined=len(bad),
         seconds=time.perf_counter() - t0,
-        message=f"{len(tables)} tables; slatted track is a seeded stand-in",
+        message=f"{len(tables)} tables; {len(files) - len(bad)} ride scenarios; slatted track is a seeded stand-in",
     )

@@ -36,8 +36,8 @@ from .. import io, resources
 
 #: Folder of the ``tyrelab`` code, and the name modules are looked up under.
 PACKAGE = "tyrelab"
-#: Built-in raw files every stage may read (tyre catalogue, digitised thesis tables).
-BUILTIN_RAW = [resources.builtin_tyres(), resources.published_dir()]
+#: Built-in raw files every stage may read (tyre catalogue, digitised thesis tables, ride scenarios).
+BUILTIN_RAW = [resources.builtin_tyres(), resources.published_dir(), resources.scenarios_dir()]
 #: Folders of ``build/`` that are not stage outputs tracked here.
 UNTRACKED = {"state", "runs"}
 

@@ -79,6 +79,8 @@ __all__ = [
     "ride_sweep",
     "result_json",
     "results_table",
+    "scenario_files",
+    "run_scenarios",
     "VERDICTS",
 ]
 
@@ -616,6 +618,9 @@ class RideResult:
         ``speed_km_h, frequency_Hz, seat_vertical, seat_longitudinal_per_m`` (|seat
         acceleration / ground acceleration|, and fore-aft per unit ground acceleration).
     track_label, spectrum_source : str
+    track_length_m : float
+        Length of the track without lead-in, m.
+    warnings : list of str
     """
 
     scenario: Scenario
@@ -627,6 +632,7 @@ class RideResult:
     transmissibility: pd.DataFrame
     track_label: str
     spectrum_source: str
+    track_length_m: float = math.nan
     warnings: list = field(default_factory=list)
 
 
@@ -669,34 +675,44 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
     f_grid = np.geomspace(*FIGURE_BAND_HZ, 300)
     rows, spectra, trans = [], [], []
     warnings = [f"tyres.{ax}: {w}" for ax in ("front", "rear") for w in tyres[ax].warnings]
-    nat = nodal = None
-    for i, speed in enumerate(scenario.exposure.speeds_km_h):
+    speeds = scenario.exposure.speeds_km_h
+    runs = []  # per speed: tractor, window, footprints, state space, outputs, method, lift-off flags
+    for i, speed in enumerate(speeds):
         v = speed / 3.6
         tr = build_tractor(scenario, tyres, i)
-        if nat is None:
-            nat, nodal = _modes(tr)
         start, stop = _record_window(track, wb, v, scenario.simulation.duration_s)
         fp = (float(tyres["front"].footprint_m[i]), float(tyres["rear"].footprint_m[i]))
         uf, udf, ur, udr = axle_inputs(track.profile, scenario.surface.enveloping, fp, radii, v, wb, stop)
-        a_m, b_m, c_m, d_m = state_space(tr, seat.ahead_of_cg_m, seat.height_above_cg_m)
-        y = simulate_state_space(a_m, b_m, c_m, d_m, np.vstack([uf[::2], udf[::2], ur[::2], udr[::2]]),
-                                 outputs=(0, 1, 5, 6))
-        w_static = tr.mass_kg * GRAVITY_M_S2 / wb * np.array([tr.rear_distance_m, tr.front_distance_m])
-        off = (y[2] <= -w_static[0], y[3] <= -w_static[1])
-        method = "linear"
-        if scenario.simulation.lift_off and (off[0].any() or off[1].any()):
-            sim = simulate_tractor(tr, uf, udf, ur, udr, DT_S, lift_off=True)
-            y = np.vstack([sim["vertical_m_s2"] + seat.ahead_of_cg_m * sim["pitch_rad_s2"],
-                           sim["longitudinal_m_s2"] - seat.height_above_cg_m * sim["pitch_rad_s2"],
-                           sim["vertical_m_s2"], sim["pitch_rad_s2"], sim["longitudinal_m_s2"]])
-            lift = (float(sim["lift_off_fraction_front"]), float(sim["lift_off_fraction_rear"]))
-            method = "nonlinear (tyre lift-off)"
-        else:
-            lift = (float(off[0].mean()), float(off[1].mean()))
-        seat_z = y[0]
+        ss = state_space(tr, seat.ahead_of_cg_m, seat.height_above_cg_m)
+        y = simulate_state_space(*ss, np.vstack([uf[::2], udf[::2], ur[::2], udr[::2]]), outputs=(0, 1, 5, 6))
+        w_static = _static_axle_loads(tr)
+        off = np.vstack([y[2] <= -w_static[0], y[3] <= -w_static[1]])
+        runs.append({"tr": tr, "v": v, "start": start, "stop": stop, "fp": fp, "ss": ss, "y": y[:2], "off": off,
+                     "method": "linear"})
+    # runs whose tyres would pull: the nonlinear model, batched (vectorised over runs as simulate_tractor is)
+    redo = [k for k, r in enumerate(runs) if scenario.simulation.lift_off and r["off"][:, r["start"]:r["stop"]].any()]
+    if redo:
+        n_max = max(runs[k]["stop"] for k in redo)
+        inputs = [axle_inputs(track.profile, scenario.surface.enveloping, runs[k]["fp"], radii, runs[k]["v"], wb, n_max)
+                  for k in redo]
+        params = {f: np.array([float(getattr(runs[k]["tr"], f)) for k in redo]) for f in _TRACTOR_ARRAYS}
+        sim = simulate_tractor(Tractor(**params, longitudinal_model=scenario.tractor.longitudinal_model),
+                               *[np.array([inp[j] for inp in inputs]) for j in range(4)], DT_S, lift_off=True)
+        for row_i, k in enumerate(redo):
+            r = runs[k]
+            vert, pitch, lon = (sim[c][row_i, :r["stop"]] for c in ("vertical_m_s2", "pitch_rad_s2", "longitudinal_m_s2"))
+            r["y"] = np.vstack([vert + seat.ahead_of_cg_m * pitch, lon - seat.height_above_cg_m * pitch])
+            r["off"] = _lift_off_from_accelerations(r["tr"], vert, pitch, lon)
+            r["method"] = "nonlinear (tyre lift-off)"
+    nat, nodal = _modes(runs[0]["tr"])
+    for i, (speed, r) in enumerate(zip(speeds, runs)):
+        v, start, stop, fp, method = r["v"], r["start"], r["stop"], r["fp"], r["method"]
+        a_m, b_m, c_m, d_m = r["ss"]
+        lift = tuple(float(o[start:stop].mean()) for o in r["off"])
+        seat_z = r["y"][0]
         if seat_ss is not None:
             seat_z = simulate_state_space(*seat_ss, seat_z[None, :])[0]
-        z, x = seat_z[start:stop], y[1][start:stop]
+        z, x = seat_z[start:stop], r["y"][1][start:stop]
         wz = iso2631.weighted_signal(z, FS_HZ, "Wk")
         wx = iso2631.weighted_signal(x, FS_HZ, "Wd")
         a_wz, a_wx = float(np.sqrt(np.mean(wz**2))), float(np.sqrt(np.mean(wx**2)))
@@ -754,8 +770,37 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
         speeds=pd.DataFrame(rows),
         spectra=pd.concat(spectra, ignore_index=True) if spectra else pd.DataFrame(columns=cols),
         transmissibility=pd.concat(trans, ignore_index=True) if trans else pd.DataFrame(columns=cols),
-        track_label=track.profile.label, spectrum_source=track.spectrum_source, warnings=warnings,
+        track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
+        warnings=warnings,
     )
+
+
+_TRACTOR_ARRAYS = ("mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_m", "cg_height_m",
+                   "front_stiffness_N_per_m", "rear_stiffness_N_per_m", "front_damping_N_s_per_m",
+                   "rear_damping_N_s_per_m", "longitudinal_stiffness_N_per_m", "longitudinal_damping_N_s_per_m")
+
+
+def _static_axle_loads(tr: Tractor) -> np.ndarray:
+    """Static front and rear axle loads, N (a dynamic tyre force at minus this is lift-off)."""
+    w = float(tr.mass_kg) * GRAVITY_M_S2 / float(tr.wheelbase_m)
+    return np.array([w * float(tr.rear_distance_m), w * float(tr.front_distance_m)])
+
+
+def _lift_off_from_accelerations(tr: Tractor, vert, pitch, lon) -> np.ndarray:
+    """Per-step lift-off flags (front, rear) of a nonlinear run, from its accelerations.
+
+    ``M z'' = F_f + F_r``, ``I θ'' = a F_f - b F_r + h F_x`` and ``M x'' = F_x`` give the
+    dynamic axle forces; a tyre is off the ground where its force sits at minus the
+    static load (the clamp of :func:`~tyrelab.vehicle.tractor.simulate_tractor`).
+    """
+    m, inertia, h = float(tr.mass_kg), float(tr.pitch_inertia_kg_m2), float(tr.cg_height_m)
+    a, b = float(tr.front_distance_m), float(tr.rear_distance_m)
+    fx = m * lon
+    ff = (b * m * vert + inertia * pitch - h * fx) / (a + b)
+    fr = (a * m * vert - inertia * pitch + h * fx) / (a + b)
+    w = _static_axle_loads(tr)
+    tol = 1e-6 * w
+    return np.vstack([ff <= -w[0] + tol[0], fr <= -w[1] + tol[1]])
 
 
 def _seat_tf(seat_ss, f_Hz) -> np.ndarray:
@@ -783,6 +828,7 @@ def ride_sweep(
     ----------
     scenario : Scenario
     front_pressures_bar, rear_pressures_bar : sequence of float, optional
+        Default: the scenario's ``[sweep]``, else its tyres' pressures.
     speeds_km_h : sequence of float, optional
         Override the scenario's speeds.
     build : Path, optional
@@ -799,8 +845,8 @@ def ride_sweep(
     """
     from ..executor import map_batches
 
-    fronts = list(front_pressures_bar or [scenario.front.pressure_bar])
-    rears = list(rear_pressures_bar or [scenario.rear.pressure_bar])
+    fronts = list(front_pressures_bar or scenario.sweep.front_pressures_bar or [scenario.front.pressure_bar])
+    rears = list(rear_pressures_bar or scenario.sweep.rear_pressures_bar or [scenario.rear.pressure_bar])
     variants = [with_overrides(scenario, speeds_km_h, pf, pr_) for pf in fronts for pr_ in rears]
     items = [(v, build, with_spectra) for v in variants]
     if executor_ctx is None or len(items) == 1:
@@ -864,7 +910,10 @@ def result_json(results: list[RideResult]) -> dict:
 
 
 def results_table(results: list[RideResult], scenario_id: str | None = None) -> pd.DataFrame:
-    """One row per speed × pressure pair (the ``ride_results`` layout)."""
+    """One row per speed × pressure pair (the ``ride_results`` layout).
+
+    ``is_nominal`` marks the pair of the scenario's own tyre pressures.
+    """
     frames = []
     for r in results:
         df = r.speeds.copy()
@@ -875,3 +924,77 @@ def results_table(results: list[RideResult], scenario_id: str | None = None) -> 
         df["rear_stiffness_source"] = r.tyres["rear"].stiffness_source
         frames.append(df)
     return pd.concat(frames, ignore_index=True)
+
+
+# --------------------------------------------------------------------------- pipeline
+def scenario_files(raw: Path | None) -> list[tuple[str, str]]:
+    """``(path, source)`` of every shipped scenario and every ``<raw>/scenarios/*.toml``.
+
+    A file of ``raw`` with the same bytes as a shipped one (the repository's own
+    ``raw/`` folder) is listed once, as shipped.
+    """
+    from .. import resources
+
+    shipped = sorted(resources.scenarios_dir().glob("*.toml"))
+    seen = {p.read_bytes() for p in shipped}
+    out = [(str(p), "shipped") for p in shipped]
+    folder = Path(raw) / "scenarios" if raw is not None else None
+    for p in sorted(folder.glob("*.toml")) if folder is not None and folder.is_dir() else []:
+        if p.read_bytes() not in seen:
+            out.append((str(p), "raw"))
+    return out
+
+
+def _scenario_task(item: tuple) -> dict:
+    """Executor task of the simulate stage: one scenario file, every pressure pair of its sweep."""
+    from .scenario import ScenarioError, load_scenario
+
+    path, source, build = item
+    try:
+        sc = load_scenario(path)
+        results = ride_sweep(sc, build=Path(build) if build else None, with_spectra=False)
+    except (ScenarioError, ValueError) as exc:
+        return {"file": path, "error": str(exc).replace("\n", "; ")}
+    table = results_table(results, sc.name)
+    table["is_nominal"] = (table["front_pressure_bar"] == sc.front.pressure_bar) & \
+        (table["rear_pressure_bar"] == sc.rear.pressure_bar)
+    s = sc.surface
+    row = {
+        "scenario": sc.name, "file": path, "source": source, "description": sc.description,
+        "mass_kg": sc.tractor.mass_kg, "pitch_inertia_kg_m2": sc.tractor.pitch_inertia_kg_m2,
+        "front_distance_m": sc.tractor.front_distance_m, "rear_distance_m": sc.tractor.rear_distance_m,
+        "cg_height_m": sc.tractor.cg_height_m, "longitudinal_model": sc.tractor.longitudinal_model,
+        "seat_ahead_of_cg_m": sc.seat.ahead_of_cg_m, "seat_height_above_cg_m": sc.seat.height_above_cg_m,
+        "seat_suspension": sc.seat.suspension,
+        "front_size": sc.front.size, "front_pressure_bar": sc.front.pressure_bar,
+        "rear_size": sc.rear.size, "rear_pressure_bar": sc.rear.pressure_bar,
+        "surface": s.kind, "road_class": s.road_class, "track": results[0].track_label,
+        "track_length_m": results[0].track_length_m,
+        "seed": s.seed, "enveloping": s.enveloping,
+        "speeds_km_h": ", ".join(f"{v:g}" for v in sc.exposure.speeds_km_h), "hours_per_day": sc.exposure.hours_per_day,
+        "bounce_Hz": results[0].natural_frequencies_Hz["bounce"], "pitch_Hz": results[0].natural_frequencies_Hz["pitch"],
+        "bounce_nodal_point_m": results[0].nodal_points_m["bounce"], "pitch_nodal_point_m": results[0].nodal_points_m["pitch"],
+        "pressure_pairs": len(results), "warnings": "; ".join(sorted({w for r in results for w in r.warnings})),
+    }
+    return {"file": path, "scenario": row, "results": table}
+
+
+def run_scenarios(files: list[tuple[str, str]], ctx=None, build: Path | None = None) -> tuple[pd.DataFrame, pd.DataFrame, list[dict]]:
+    """Run scenario files (through :func:`tyrelab.executor.map_batches` when ``ctx`` is given).
+
+    Returns
+    -------
+    ride_scenarios, ride_results : DataFrame
+        One row per scenario; one row per scenario × speed × pressure pair.
+    problems : list of dict
+        ``file`` and ``reason`` of every scenario refused (the others still run).
+    """
+    from ..executor import map_batches
+
+    items = [(p, src, str(build) if build else None) for p, src in files]
+    out = map_batches(_scenario_task, items, ctx) if ctx is not None else [_scenario_task(i) for i in items]
+    ok = [o for o in out if "error" not in o]
+    problems = [{"file": o["file"], "reason": o["error"]} for o in out if "error" in o]
+    scenarios = pd.DataFrame([o["scenario"] for o in ok])
+    results = pd.concat([o["results"] for o in ok], ignore_index=True) if ok else pd.DataFrame()
+    return scenarios, results, problems

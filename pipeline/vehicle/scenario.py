@@ -52,6 +52,7 @@ __all__ = [
     "SurfaceSpec",
     "ExposureSpec",
     "SimulationSpec",
+    "SweepSpec",
     "ScenarioError",
     "load_scenario",
     "parse_scenario",
@@ -163,6 +164,14 @@ class SimulationSpec:
 
 
 @dataclass(frozen=True)
+class SweepSpec:
+    """``[sweep]``: front and rear pressures (bar) to run every pair of; empty = the tyres' own."""
+
+    front_pressures_bar: tuple[float, ...] = ()
+    rear_pressures_bar: tuple[float, ...] = ()
+
+
+@dataclass(frozen=True)
 class Scenario:
     """A whole scenario file.
 
@@ -175,6 +184,7 @@ class Scenario:
     surface : SurfaceSpec
     exposure : ExposureSpec
     simulation : SimulationSpec
+    sweep : SweepSpec
     path : Path or None
         The file read (None when built in memory).
     description : str
@@ -188,6 +198,7 @@ class Scenario:
     exposure: ExposureSpec
     seat: SeatSpec = field(default_factory=SeatSpec)
     simulation: SimulationSpec = field(default_factory=SimulationSpec)
+    sweep: SweepSpec = field(default_factory=SweepSpec)
     path: Path | None = None
     description: str = ""
 
@@ -285,9 +296,6 @@ def _validate(doc: dict, base_dir: Path) -> list[str]:
     sections = _sections()
     # unknown keys and tables at every level
     known_top = {k for k in sections[""]["fields"]} | {s.split(".")[0] for s in sections if s}
-    for k in doc:
-        if k not in known_top:
-            problems.append(f"unknown key {k!r} at the top level (known: {', '.join(sorted(known_top))})")
     if isinstance(doc.get("tyres"), dict):
         for k in doc["tyres"]:
             if k not in ("front", "rear"):
@@ -306,7 +314,8 @@ def _validate(doc: dict, base_dir: Path) -> list[str]:
             if sec == "" and k in known_top and k not in spec["fields"]:
                 continue  # a table, checked as its own section
             if k not in spec["fields"]:
-                problems.append(f"unknown key {label(k)!r} (known: {', '.join(spec['fields'])})")
+                known = sorted(known_top) if sec == "" else list(spec["fields"])
+                problems.append(f"unknown key {label(k)!r} (known: {', '.join(known)})")
                 continue
             problems += _check_value(label(k), spec["fields"][k], v, n_speeds)
         for k, f in spec["fields"].items():
@@ -417,6 +426,7 @@ def _speed_values(v):
 def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
     t, s, surf, ex = doc["tractor"], doc.get("seat", {}), doc["surface"], doc["exposure"]
     sim = doc.get("simulation", {})
+    sweep = doc.get("sweep", {})
 
     def tyre(axle: str) -> TyreSpec:
         d = doc["tyres"][axle]
@@ -445,6 +455,8 @@ def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
         ),
         exposure=ExposureSpec(tuple(float(v) for v in ex["speeds_km_h"]), float(ex.get("hours_per_day", 8.0))),
         simulation=SimulationSpec(sim.get("duration_s"), bool(sim.get("lift_off", True))),
+        sweep=SweepSpec(tuple(float(v) for v in sweep.get("front_pressures_bar", ())),
+                        tuple(float(v) for v in sweep.get("rear_pressures_bar", ()))),
         path=path,
     )
 

@@ -132,3 +132,30 @@ def test_fig56_spectra_written(ctx):
     assert {"reference (true)", "rolling (surveyed)", "stationary (surveyed)"} <= set(sp["series"])
     ref = sp[sp["series"] == "reference (true)"]
     assert ref["frequency_Hz"].max() <= 10.0 and (ref["psd_m2_s4_per_Hz"] >= 0).all()
+
+
+def test_ride_tables_hold_every_shipped_scenario(ctx):
+    from tyrelab.resources import scenarios_dir
+
+    scen = ctx.read_table("ride_scenarios")
+    assert sorted(scen["file"]) == sorted(str(p) for p in scenarios_dir().glob("*.toml"))
+    res = ctx.read_table("ride_results")
+    assert set(res["scenario"]) == set(scen["scenario"])
+    assert {"a_wz_m_s2", "a_wx_m_s2", "a8_m_s2", "hours_to_elv", "verdict", "expected_a_wz_m_s2"} <= set(res.columns)
+
+
+def test_mf698t_scenario_reproduces_the_chapter_7_runs(ctx):
+    """The shipped MF698T scenario is the ch. 7 study's rolling HH runs of load condition 1: same numbers."""
+    res = ctx.read_table("ride_results")
+    mf = res[res["scenario"].str.startswith("MF698T")].set_index("speed_km_h").sort_index()
+    runs = ctx.read_table("tractor_runs")
+    st = runs[(runs["characteristics"] == "rolling") & (runs["track"] == "HH") & (runs["load_condition"] == 1)
+              & ~runs["sweep"].astype(bool)].set_index("speed_km_h").sort_index()
+    assert list(mf.index) == list(st.index) == [10.0, 12.5, 15.0, 17.5, 20.0]
+    np.testing.assert_allclose(mf["a_wz_m_s2"], st["iso_vertical_weighted_rms_m_s2"], rtol=1e-9)
+    np.testing.assert_allclose(mf["vdv_m_s1_75"], st["iso_vertical_vdv_m_s1_75"], rtol=1e-9)
+    np.testing.assert_allclose(mf["crest_factor"], st["iso_vertical_crest_factor"], rtol=1e-9)
+    np.testing.assert_allclose(mf["a8_m_s2"], st["iso_a8_m_s2"], rtol=1e-9)
+    np.testing.assert_allclose(mf["rear_stiffness_kN_per_m"], st["rear_stiffness_kN_per_m"])
+    # lift-off in the same runs (the study counts over its fixed 31.8 s, the ride over the record)
+    assert ((mf["lift_off_fraction_front"] > 0) == (st["lift_off_fraction_front"] > 0)).all()

@@ -1,0 +1,293 @@
+"""Ride prediction (issue 13): scenario files, the linear model, exposure, the CLI."""
+
+import json
+import math
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from tyrelab import cli
+from tyrelab.vehicle import iso2631, ride
+from tyrelab.vehicle import profiles as pr
+from tyrelab.vehicle.scenario import ScenarioError, load_scenario, parse_scenario
+from tyrelab.vehicle.tractor import Tractor, simulate_tractor
+
+TRACTOR = dict(mass_kg=4700.0, pitch_inertia_kg_m2=5500.0, front_distance_m=1.56, rear_distance_m=0.95, cg_height_m=0.95)
+
+
+def scenario_text(surface: str, speeds="[8]", tractor_extra="", seat="", tyres_extra="", extra="") -> str:
+    body = "\n".join(f"{k} = {v}" for k, v in TRACTOR.items())
+    return f"""
+name = "test tractor"
+[tractor]
+{body}
+{tractor_extra}
+{seat}
+[tyres.front]
+size = "14.9R28"
+pressure_bar = 1.6
+{tyres_extra}
+[tyres.rear]
+size = "18.4R38"
+pressure_bar = 1.2
+[surface]
+{surface}
+[exposure]
+speeds_km_h = {speeds}
+hours_per_day = 6
+{extra}
+"""
+
+
+def write(tmp_path: Path, text: str, name: str = "s.toml") -> Path:
+    p = tmp_path / name
+    p.write_text(text)
+    return p
+
+
+# ------------------------------------------------------------------ checked by: sinusoid
+def steady_state_seat_accel(t: Tractor, f_Hz: float, speed_m_s: float, amplitude_m: float, seat_ahead_m: float):
+    """|seat vertical acceleration| of the bounce-pitch model under a sinusoidal track (rear delayed)."""
+    w = 2 * math.pi * f_Hz
+    m, inertia, a, b = t.mass_kg, t.pitch_inertia_kg_m2, t.front_distance_m, t.rear_distance_m
+    zf = t.front_stiffness_N_per_m + 1j * w * t.front_damping_N_s_per_m   # complex axle stiffnesses
+    zr = t.rear_stiffness_N_per_m + 1j * w * t.rear_damping_N_s_per_m
+    delay = np.exp(-1j * w * (a + b) / speed_m_s)
+    dyn = np.array([[zf + zr - m * w**2, zf * a - zr * b], [zf * a - zr * b, zf * a**2 + zr * b**2 - inertia * w**2]])
+    force = amplitude_m * np.array([zf + zr * delay, zf * a - zr * b * delay])
+    z, th = np.linalg.solve(dyn, force)
+    return abs(-(w**2) * (z + seat_ahead_m * th))
+
+
+def test_sinusoidal_profile_matches_the_steady_state_answer(tmp_path):
+    wavelength, amplitude, speed_km_h = 2.5, 0.004, 9.0
+    x = np.arange(0, 1000.0, 0.05)
+    pd.DataFrame({"distance_m": x, "height_m": amplitude * np.sin(2 * np.pi * x / wavelength)}).to_csv(
+        tmp_path / "sine.csv", index=False)
+    text = scenario_text('kind = "profile"\nprofile = "sine.csv"\nenveloping = "none"', f"[{speed_km_h}]",
+                         'longitudinal_model = "none"', "[seat]\nahead_of_cg_m = -0.4\nsuspension = \"rigid\"")
+    res = ride.ride(load_scenario(write(tmp_path, text)), with_spectra=False)
+    row = res.speeds.iloc[0]
+    assert row["lift_off_fraction_front"] == 0 and row["lift_off_fraction_rear"] == 0
+    assert row["simulation"] == "linear"
+    v = speed_km_h / 3.6
+    f0 = v / wavelength
+    t = ride.build_tractor(res.scenario, res.tyres, 0)
+    expected = steady_state_seat_accel(t, f0, v, amplitude, -0.4) * abs(iso2631.weighting_response(f0, "Wk")) / math.sqrt(2)
+    assert row["a_wz_m_s2"] == pytest.approx(expected, rel=0.02)
+    assert row["expected_a_wz_m_s2"] > 0  # a declared spectrum is needed for a line spectrum's expectation
+
+
+# ------------------------------------------------------------------ checked by: random profile of known spectrum
+def test_random_profile_matches_the_frequency_domain_expectation(tmp_path):
+    g0, dx = 64e-6, 0.05
+    h = pr.spectral_synthesis(20000, dx, g0, np.random.default_rng(3))
+    pd.DataFrame({"distance_m": np.arange(h.size) * dx, "height_m": h}).to_csv(tmp_path / "random.csv", index=False)
+    text = scenario_text(f'kind = "profile"\nprofile = "random.csv"\nspectrum_g0_m3 = {g0}\nenveloping = "tapered"',
+                         "[6, 12]")
+    res = ride.ride(load_scenario(write(tmp_path, text)), with_spectra=False)
+    assert (res.speeds["simulation"] == "linear").all()
+    for _, row in res.speeds.iterrows():
+        assert row["a_wz_m_s2"] == pytest.approx(row["expected_a_wz_m_s2"], rel=0.05)
+        assert row["a_wx_m_s2"] == pytest.approx(row["expected_a_wx_m_s2"], rel=0.05)
+
+
+# ------------------------------------------------------------------ the linear path is the tractor model
+@pytest.mark.parametrize("model,kx,cx", [("none", 0.0, 0.0), ("kelvin_voigt", 9.1e5, 2e3), ("kelvin_voigt", 0.0, 6e3),
+                                         ("maxwell", 9.1e5, 6e3)])
+def test_linear_path_equals_simulate_tractor_without_lift_off(model, kx, cx):
+    t = Tractor(5120, 6210, 1.54, 0.896, 0.838, 9.46e5, 7.28e5, 2.9e3, 2.2e3, kx, cx, model)
+    dt, n = 1e-3, 6001
+    th = np.arange(2 * n - 1) * dt / 2
+    rng = np.random.default_rng(1)
+    freqs, phases = rng.uniform(0.5, 8, 12), rng.uniform(0, 2 * np.pi, 12)
+    ramp = np.clip(th / 0.5, 0, 1) ** 3
+    u = 0.003 * ramp * np.sin(2 * np.pi * freqs[:, None] * th + phases[:, None]).sum(0)
+    ud = np.gradient(u, dt / 2)
+    ur, udr = 0.7 * np.roll(u, 400), 0.7 * np.roll(ud, 400)
+    ur[:400] = udr[:400] = 0
+    sim = simulate_tractor(t, u, ud, ur, udr, dt, lift_off=False)
+    a, b, c, d = ride.state_space(t, 0.3, 1.1)
+    y = ride.simulate_state_space(a, b, c, d, np.vstack([u[::2], ud[::2], ur[::2], udr[::2]]), dt)
+    out = dict(zip(ride.OUTPUTS, y))
+    for key in ("vertical_m_s2", "pitch_rad_s2", "longitudinal_m_s2"):
+        scale = np.sqrt(np.mean(sim[key] ** 2)) + 1e-12
+        assert np.max(np.abs(out[key] - sim[key])) / scale < 2e-3, key
+    seat = sim["vertical_m_s2"] + 0.3 * sim["pitch_rad_s2"]
+    assert np.max(np.abs(out["seat_vertical_m_s2"] - seat)) / np.sqrt(np.mean(seat**2)) < 2e-3
+
+
+def test_frequency_response_is_the_time_path_at_one_frequency():
+    t = Tractor(4700, 5500, 1.56, 0.95, 0.95, 7e5, 8e5, 3e3, 3e3, 9.1e5, 6e3, "maxwell")
+    a, b, c, d = ride.state_space(t, -0.4, 1.0)
+    f = 2.3
+    time = np.arange(40000) * 1e-3
+    u = np.sin(2 * np.pi * f * time)
+    w = np.vstack([u, 2 * np.pi * f * np.cos(2 * np.pi * f * time), np.zeros_like(u), np.zeros_like(u)])
+    y = ride.simulate_state_space(a, b, c, d, w)
+    h = ride.frequency_response(a, b, c, d, [f])[:, :, 0]
+    amp = np.abs(h[:, 0] + 2j * np.pi * f * h[:, 1])
+    tail = y[:, -10000:]
+    assert np.allclose(np.sqrt(2) * np.sqrt(np.mean(tail**2, axis=1)), amp, rtol=1e-3)
+
+
+# ------------------------------------------------------------------ natural frequencies
+def test_natural_frequencies_equal_the_cli(tmp_path, capsys):
+    res = ride.ride(load_scenario(write(tmp_path, scenario_text('kind = "iso8608"\nclass = "B"\nlength_m = 40'))),
+                    with_spectra=False)
+    assert cli.main(["natural-frequencies", "--mass", "4700", "--pitch-inertia", "5500", "--front-distance", "1.56",
+                     "--rear-distance", "0.95", "--front-tyre", "14.9R28", "--front-pressure", "1.6",
+                     "--rear-tyre", "18.4R38", "--rear-pressure", "1.2"]) == 0
+    nf = json.loads(capsys.readouterr().out)
+    got = sorted(res.natural_frequencies_Hz.values())
+    assert got == pytest.approx([nf["frequency_1_Hz"], nf["frequency_2_Hz"]], rel=1e-12)
+    assert res.tyres["front"].stiffness_kN_per_m[0] == pytest.approx(nf["front_tyre_stiffness_kN_per_m"], rel=1e-12)
+
+
+# ------------------------------------------------------------------ exposure arithmetic
+def test_a8_and_hours_are_exact():
+    e = ride.exposure(0.8, 0.7, 6.0)
+    aw = max(0.8, 1.4 * 0.7)
+    assert e["a8_m_s2"] == pytest.approx(aw * math.sqrt(6 / 8), rel=1e-15)
+    assert e["hours_to_eav"] == pytest.approx(8 * (0.5 / aw) ** 2, rel=1e-15)
+    assert e["hours_to_elv"] == pytest.approx(8 * (1.15 / aw) ** 2, rel=1e-15)
+    assert e["a_v_m_s2"] == pytest.approx(math.hypot(0.8, 1.4 * 0.7), rel=1e-15)
+    assert e["verdict"] == "above action value"
+    assert ride.exposure(0.3, 0.1, 8)["verdict"] == "below action value"
+    assert ride.exposure(1.3, 0.1, 8)["verdict"] == "above limit value"
+    with pytest.raises(ValueError, match="hours_per_day"):
+        ride.exposure(0.3, 0.1, 0)
+
+
+def test_rows_carry_the_exposure_of_their_own_a_w(tmp_path):
+    res = ride.ride(load_scenario(write(tmp_path, scenario_text('kind = "iso8608"\nclass = "C"\nlength_m = 60',
+                                                                "[6, 14]"))), with_spectra=False)
+    for _, r in res.speeds.iterrows():
+        aw = max(r["a_wz_m_s2"], 1.4 * r["a_wx_m_s2"])
+        assert r["a8_m_s2"] == pytest.approx(aw * math.sqrt(6 / 8), rel=1e-12)
+        assert r["hours_to_elv"] == pytest.approx(8 * (1.15 / aw) ** 2, rel=1e-12)
+
+
+# ------------------------------------------------------------------ bad scenarios
+BAD = """
+name = "bad"
+colour = "red"
+[tractor]
+pitch_inertia_kg_m2 = -5500
+front_distance_m = 1.56
+rear_distance_m = 0.95
+cg_height_m = 0.95
+wheels = 4
+[tyres.front]
+size = "huge"
+pressure_bar = 1.6
+[tyres.rear]
+size = "18.4R38"
+pressure_bar = 1.2
+[surface]
+kind = "profile"
+profile = "track.csv"
+[exposure]
+speeds_km_h = [4]
+"""
+
+
+def test_a_bad_scenario_lists_every_problem(tmp_path):
+    pd.DataFrame({"x_m": np.arange(20.0), "height_m": 0.0}).to_csv(tmp_path / "track.csv", index=False)
+    with pytest.raises(ScenarioError) as info:
+        load_scenario(write(tmp_path, BAD))
+    text = "\n".join(info.value.problems)
+    for expected in ("unknown key 'colour'", "unknown key 'tractor.wheels'", "missing tractor.mass_kg (kg)",
+                     "tractor.pitch_inertia_kg_m2: -5500", "tyres.front.size: tyre size 'huge' does not parse",
+                     "no distance_m column"):
+        assert expected in text, (expected, text)
+    assert len(info.value.problems) == 6
+
+
+def test_a_profile_outside_the_scenario_folder_is_refused(tmp_path):
+    (tmp_path / "sub").mkdir()
+    text = scenario_text('kind = "profile"\nprofile = "../outside.csv"')
+    with pytest.raises(ScenarioError, match="escapes the scenario's folder"):
+        load_scenario(write(tmp_path / "sub", text))
+    with pytest.raises(ScenarioError, match="missing table \\[surface\\]"):
+        parse_scenario(scenario_text("").replace("[surface]\n", ""))
+    with pytest.raises(ScenarioError, match="not valid TOML"):
+        parse_scenario("name = ")
+
+
+@pytest.mark.parametrize("edit,message", [
+    (lambda s: s.replace("[tractor]", "[tractor]\nmass = 1"), "unknown key 'tractor.mass'"),
+    (lambda s: s.replace("mass_kg = 4700.0", ""), "missing tractor.mass_kg"),
+    (lambda s: s.replace("pitch_inertia_kg_m2 = 5500.0", "pitch_inertia_kg_m2 = -1"), "pitch_inertia_kg_m2: -1"),
+    (lambda s: s.replace('"14.9R28"', '"14.9XR"'), "does not parse"),
+    (lambda s: s.replace('class = "C"', 'class = "Z"'), "not one of A, B"),
+])
+def test_cli_refuses_bad_scenarios_with_exit_2(tmp_path, capsys, edit, message):
+    path = write(tmp_path, edit(scenario_text('kind = "iso8608"\nclass = "C"\nlength_m = 20')))
+    assert cli.main(["ride", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert message in err and "Traceback" not in err and str(path) in err
+
+
+# ------------------------------------------------------------------ the command
+def test_ride_cli_json_fields_and_outputs(tmp_path, capsys):
+    path = write(tmp_path, scenario_text('kind = "iso8608"\nclass = "C"\nlength_m = 50', "[6, 12]",
+                                         'longitudinal_model = "maxwell"',
+                                         "[seat]\nahead_of_cg_m = -0.4\nheight_above_cg_m = 1.0\nsuspension = \"linear\"\n"
+                                         "natural_frequency_Hz = 1.8\ndamping_ratio = 0.3"))
+    assert cli.main(["ride", str(path), "--out", str(tmp_path / "out")]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert set(doc["natural_frequencies_Hz"]) == {"bounce", "pitch"}
+    assert set(doc["nodal_points_m"]) == {"bounce", "pitch"}
+    assert [s["speed_km_h"] for s in doc["speeds"]] == [6, 12]
+    for key in ("a_wz_m_s2", "a_wx_m_s2", "a_v_m_s2", "vdv_m_s1_75", "crest_factor", "lift_off_fraction_front",
+                "lift_off_fraction_rear", "a8_m_s2", "hours_to_eav", "hours_to_elv", "verdict",
+                "expected_a_wz_m_s2", "expected_a_wx_m_s2"):
+        assert key in doc["speeds"][0], key
+    assert doc["tyres"]["front"]["stiffness_source"].startswith("undriven ribbed front rule")
+    assert doc["tyres"]["rear"]["stiffness_source"].startswith("formula")
+    assert doc["tyres"]["front"]["damping_source"].startswith("mean of the thesis")
+    html = (tmp_path / "out" / "ride.html").read_text()
+    assert html.count("<svg") == 3 and "http" not in html.replace("http://www.w3.org", "")
+    assert json.loads((tmp_path / "out" / "ride.json").read_text()) == doc
+    first = html
+    assert cli.main(["ride", str(path), "--out", str(tmp_path / "out"), "--format", "table"]) == 0
+    table = capsys.readouterr().out
+    assert "A(8)" in table and "bounce" in table
+    assert (tmp_path / "out" / "ride.html").read_text() == first  # same input, same bytes
+
+
+def test_pressure_sweep_through_the_executor(tmp_path):
+    sc = load_scenario(write(tmp_path, scenario_text('kind = "iso8608"\nclass = "B"\nlength_m = 30', "[10]")))
+    local = ride.ride_sweep(sc, [1.2, 2.0], [1.0], with_spectra=False)
+    pooled = ride.ride_sweep(sc, [1.2, 2.0], [1.0], executor_ctx=SimpleNamespace(executor="local", jobs=2, scheduler=None),
+                             with_spectra=False)
+    assert [r.tyres["front"].pressure_bar for r in pooled] == [1.2, 2.0]
+    assert ride.results_table(local).equals(ride.results_table(pooled))
+    k = ride.results_table(local)["front_stiffness_kN_per_m"]
+    assert k.iloc[1] > k.iloc[0]  # stiffer at the higher pressure
+    doc = ride.result_json(local)
+    assert len(doc["sweep"]) == 2 and doc["sweep"][1]["front_pressure_bar"] == 2.0
+
+
+def test_per_speed_values_and_overrides(tmp_path):
+    text = scenario_text('kind = "iso8608"\nclass = "B"\nlength_m = 30', "[10, 20]",
+                         tyres_extra="stiffness_kN_per_m = [300, 400]\ndamping_kN_s_per_m = 1.5")
+    sc = load_scenario(write(tmp_path, text))
+    t = ride.resolve_tyres(ride.with_overrides(sc, [15.0]))
+    assert t["front"].stiffness_kN_per_m.tolist() == [350.0] and t["front"].stiffness_source == "override (scenario)"
+    with pytest.raises(ScenarioError, match="2 values but exposure.speeds_km_h has 1"):
+        parse_scenario(text.replace("speeds_km_h = [10, 20]", "speeds_km_h = [10]"))
+
+
+def test_run_scenarios_quarantines_a_bad_file_and_runs_the_rest(tmp_path):
+    good = write(tmp_path, scenario_text('kind = "iso8608"\nclass = "B"\nlength_m = 30', "[10]",
+                                         extra="[sweep]\nrear_pressures_bar = [1.0, 1.4]"), "good.toml")
+    bad = write(tmp_path, "name = 1\n", "bad.toml")
+    scen, res, problems = ride.run_scenarios([(str(good), "raw"), (str(bad), "raw")])
+    assert list(scen["scenario"]) == ["test tractor"] and len(res) == 2
+    assert res["is_nominal"].tolist() == [False, False]  # the sweep does not include 1.2 bar
+    assert problems[0]["file"] == str(bad) and "name: expected text" in problems[0]["reason"]
