@@ -47,7 +47,7 @@ from scipy.linalg import expm
 
 from .. import published
 from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
-from ..tyre.stiffness import estimate_tyre_stiffness
+from ..tyre.stiffness import estimate_stiffness
 from . import bounce_pitch
 from . import enveloping as ev
 from . import iso2631
@@ -173,15 +173,12 @@ def _measured(build: Path | None, table: str, tyre_id: str, pressure_bar: float)
     return rows["speed_km_h"].to_numpy(float), (rows["intercept"] + rows["slope"] * pressure_bar).to_numpy(float)
 
 
-def _formula_stiffness(spec, axle: str) -> tuple[float, str, list[str]]:
-    """Per-tyre formula stiffness (kN/m), its rule and warnings."""
-    k = estimate_tyre_stiffness(spec.size, spec.pressure_bar, spec.age_years, undriven_front=not spec.traction,
-                                water_ballast=spec.water_ballast)
-    rule = ("formula K = 172 - 1.77 R + 5.6 A + 0.34 W R P (thesis §4.5.3)" if spec.traction
-            else "undriven ribbed front rule K = 134/(7.5*18) W R P (thesis §8.2)")
-    if spec.water_ballast:
-        rule += " x1.25 water ballast"
-    return k, rule, []
+def _formula_stiffness(spec) -> tuple[float, str, list[str]]:
+    """Per-tyre formula stiffness (kN/m), its rule and the formula's range warnings."""
+    est = estimate_stiffness(spec.size, spec.pressure_bar, spec.age_years, undriven_front=not spec.traction,
+                             water_ballast=spec.water_ballast)
+    rule = f"formula {est.rule}" + (" x1.25 water ballast" if spec.water_ballast else "")
+    return est.stiffness_kN_per_m, rule, list(est.warnings)
 
 
 def _thesis_damping(pressure_bar: float, speeds_km_h) -> np.ndarray:
@@ -220,7 +217,7 @@ def resolve_tyres(scenario: Scenario, build: Path | None = None) -> dict[str, Ax
             k = np.interp(speeds, sp, val)
             k_src = f"measured tyre {spec.measured_tyre_id}: K = Kc + dKp P per speed (stiffness_pressure_by_speed)"
         else:
-            k0, k_src, warnings = _formula_stiffness(spec, axle)
+            k0, k_src, warnings = _formula_stiffness(spec)
             k = np.full(speeds.shape, k0)
         if spec.damping_kN_s_per_m is not None:
             c, c_src = per_speed(spec.damping_kN_s_per_m, lists, speeds), "override (scenario)"
@@ -235,8 +232,7 @@ def resolve_tyres(scenario: Scenario, build: Path | None = None) -> dict[str, Ax
         if np.any(k <= 0):
             raise ValueError(f"tyres.{axle}: stiffness {k.min():.1f} kN/m is not positive")
         size = parse_tyre_size(spec.size)
-        aspect = getattr(size, "aspect_ratio", None)
-        radius = spec.radius_m or (rolling_circumference_m(size, aspect) if aspect else rolling_circumference_m(size)) / (2 * math.pi)
+        radius = spec.radius_m or rolling_circumference_m(size) / (2 * math.pi)
         if spec.footprint_m is not None:
             fp = np.full(speeds.shape, float(spec.footprint_m))
         else:

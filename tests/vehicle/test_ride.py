@@ -247,8 +247,8 @@ def test_ride_cli_json_fields_and_outputs(tmp_path, capsys):
                 "lift_off_fraction_rear", "a8_m_s2", "hours_to_eav", "hours_to_elv", "verdict",
                 "expected_a_wz_m_s2", "expected_a_wx_m_s2"):
         assert key in doc["speeds"][0], key
-    assert doc["tyres"]["front"]["stiffness_source"].startswith("undriven ribbed front rule")
-    assert doc["tyres"]["rear"]["stiffness_source"].startswith("formula")
+    assert doc["tyres"]["front"]["stiffness_source"].startswith("formula front undriven K = 134")
+    assert doc["tyres"]["rear"]["stiffness_source"].startswith("formula K = 172")
     assert doc["tyres"]["front"]["damping_source"].startswith("mean of the thesis")
     html = (tmp_path / "out" / "ride.html").read_text()
     assert html.count("<svg") == 3 and "http" not in html.replace("http://www.w3.org", "")
@@ -291,3 +291,14 @@ def test_run_scenarios_quarantines_a_bad_file_and_runs_the_rest(tmp_path):
     assert list(scen["scenario"]) == ["test tractor"] and len(res) == 2
     assert res["is_nominal"].tolist() == [False, False]  # the sweep does not include 1.2 bar
     assert problems[0]["file"] == str(bad) and "name: expected text" in problems[0]["reason"]
+
+
+def test_metric_tyres_pass_the_formula_range_warnings_on(tmp_path):
+    from tyrelab.tyre.stiffness import estimate_stiffness
+
+    text = scenario_text('kind = "iso8608"\nclass = "B"\nlength_m = 30', "[10]").replace('"18.4R38"', '"480/70R38"')
+    res = ride.ride(load_scenario(write(tmp_path, text)), with_spectra=False)
+    est = estimate_stiffness("480/70R38", 1.2, 1.0)
+    assert res.tyres["rear"].stiffness_kN_per_m[0] == pytest.approx(est.stiffness_kN_per_m)
+    assert est.warnings and set(est.warnings) <= set(res.tyres["rear"].warnings)
+    assert any("480/70R38" in w or w.startswith("tyres.rear:") for w in ride.result_json([res])["warnings"])
