@@ -60,7 +60,9 @@ def format_table(doc: dict) -> str:
                                                       or "sweep" in doc)]
     show = df[cols].copy()
     for c in cols:
-        if c not in ("verdict", "simulation"):
+        if c in ("speed_km_h", "front_pressure_bar", "rear_pressure_bar"):
+            show[c] = show[c].map(lambda v: f"{v:g}")
+        elif c not in ("verdict", "simulation"):
             show[c] = show[c].map(lambda v: "inf" if v is None else f"{v:.3g}" if abs(v) >= 100 else f"{v:.3f}")
     show.columns = [_SHORT[c] for c in cols]
     lines.append(show.to_string(index=False))

@@ -383,12 +383,12 @@ def simulate_state_space(a, b, c, d, w, dt_s: float = DT_S, outputs=None) -> np.
         if mu[i].imag < 0:
             continue
         factor = 2.0 if mu[i].imag > 0 else 1.0
-        g = g_in[i] @ w
+        g = g_in[i].real @ w[:, :-1] + 1j * (g_in[i].imag @ w[:, :-1])
         q = np.empty(w.shape[1], dtype=complex)
         q[0] = q0[i]
-        q[1:] = signal.lfilter([1.0], [1.0, -mu[i]], g[:-1], zi=[mu[i] * q0[i]])[0]
-        for j in range(y.shape[0]):
-            y[j] += factor * (cv[j, i].real * q.real - cv[j, i].imag * q.imag)
+        q[1:] = signal.lfilter([1.0], [1.0, -mu[i]], g, zi=[mu[i] * q0[i]])[0]
+        y += np.outer(factor * cv[:, i].real, q.real)
+        y -= np.outer(factor * cv[:, i].imag, q.imag)
     return y
 
 

@@ -302,3 +302,25 @@ def test_metric_tyres_pass_the_formula_range_warnings_on(tmp_path):
     assert res.tyres["rear"].stiffness_kN_per_m[0] == pytest.approx(est.stiffness_kN_per_m)
     assert est.warnings and set(est.warnings) <= set(res.tyres["rear"].warnings)
     assert any("480/70R38" in w or w.startswith("tyres.rear:") for w in ride.result_json([res])["warnings"])
+
+
+def test_measured_tyre_from_the_warehouse(tmp_path):
+    import duckdb
+
+    con = duckdb.connect(str(tmp_path / "warehouse.duckdb"))
+    con.execute("CREATE TABLE stiffness_pressure_by_speed AS SELECT * FROM (VALUES ('T9', 0.0, 200.0, 150.0), "
+                "('T9', 10.0, 150.0, 140.0), ('T9', 20.0, 140.0, 130.0)) t(tyre_id, speed_km_h, intercept, slope)")
+    con.execute("CREATE TABLE damping_pressure_by_speed AS SELECT * FROM (VALUES ('T9', 10.0, 1.0, 0.5), "
+                "('T9', 20.0, 0.6, 0.4)) t(tyre_id, speed_km_h, intercept, slope)")
+    con.close()
+    text = scenario_text('kind = "iso8608"\nclass = "B"\nlength_m = 30', "[10, 15]").replace(
+        'size = "18.4R38"', 'size = "18.4R38"\nmeasured_tyre_id = "T9"')
+    sc = load_scenario(write(tmp_path, text))
+    t = ride.resolve_tyres(sc, tmp_path)["rear"]
+    assert t.stiffness_kN_per_m.tolist() == pytest.approx([150 + 140 * 1.2, 0.5 * (150 + 140 * 1.2) + 0.5 * (140 + 130 * 1.2)])
+    assert t.damping_kN_s_per_m.tolist() == pytest.approx([1.6, 0.5 * 1.6 + 0.5 * (0.6 + 0.48)])
+    assert "measured tyre T9" in t.stiffness_source
+    with pytest.raises(ValueError, match="needs --build"):
+        ride.resolve_tyres(sc, None)
+    bad = write(tmp_path, text.replace('"T9"', '"T0"'), "t0.toml")
+    assert cli.main(["ride", str(bad), "--build", str(tmp_path)]) == 2

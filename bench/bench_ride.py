@@ -1,0 +1,95 @@
+"""Ride prediction speed (issue 13): one scenario, a 5 x 5 pressure sweep, and the RK4 baseline.
+
+The shipped ``modern_tractor.toml`` (4 speeds 4-16 km/h x 400 m of an ISO 8608
+class C track, 750 s of simulated driving at 1 ms) is run with
+:func:`tyrelab.vehicle.ride.ride` in this process on one core (BLAS threads
+pinned to 1), then a 5 front x 5 rear pressure sweep of it (100 runs). The
+baseline, in the same process, is the nonlinear RK4 tractor of the ch. 7 study
+(:func:`tyrelab.vehicle.tractor.simulate_tractor`) on the scenario's 16 km/h run,
+the shortest one, against the linear path of ``ride`` on the same run (inputs
+built once for both). Prints wall times, ratios and the largest relative
+difference of the seat vertical acceleration between the two paths.
+
+    .venv/bin/python bench/bench_ride.py [--skip-sweep]
+"""
+
+from __future__ import annotations
+
+import os
+
+for _var in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
+
+import argparse  # noqa: E402
+import json  # noqa: E402
+import time  # noqa: E402
+
+import numpy as np  # noqa: E402
+
+from tyrelab.resources import scenarios_dir  # noqa: E402
+from tyrelab.vehicle import ride  # noqa: E402
+from tyrelab.vehicle.scenario import load_scenario, with_overrides  # noqa: E402
+from tyrelab.vehicle.tractor import simulate_tractor  # noqa: E402
+
+
+CPU: dict[str, float] = {}
+
+
+def _timed(fn, *args, **kw):
+    """(result, wall seconds); the process CPU seconds go to ``CPU[fn name]`` (less load-sensitive)."""
+    c0, t0 = time.process_time(), time.perf_counter()
+    out = fn(*args, **kw)
+    CPU[fn.__name__] = CPU.get(fn.__name__, 0.0) + time.process_time() - c0
+    return out, time.perf_counter() - t0
+
+
+def main(argv=None) -> int:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--skip-sweep", action="store_true", help="only the single scenario and the baseline")
+    args = p.parse_args(argv)
+    sc = load_scenario(scenarios_dir() / "modern_tractor.toml")
+    ride.ride(with_overrides(sc, [16.0]), with_spectra=False)  # warm-up: imports, caches
+    res, t_one = _timed(ride.ride, sc, with_spectra=False)
+    cpu_one = CPU.pop("ride")
+    _, t_one_fig = _timed(ride.ride, sc, with_spectra=True)
+    cpu_one_fig = CPU.pop("ride")
+    out = {"scenario": sc.name, "speeds_km_h": list(sc.exposure.speeds_km_h),
+           "simulated_s": float(res.speeds["duration_s"].sum()),
+           "load_average_1min": round(os.getloadavg()[0], 1),
+           "one_scenario_s": round(t_one, 3), "one_scenario_cpu_s": round(cpu_one, 3),
+           "one_scenario_with_figure_data_s": round(t_one_fig, 3), "with_figure_data_cpu_s": round(cpu_one_fig, 3),
+           "methods": sorted(set(res.speeds["simulation"]))}
+
+    # baseline: RK4 nonlinear model vs the linear path on the 16 km/h run
+    tyres = ride.resolve_tyres(sc)
+    track = ride.build_profile(sc)
+    i = list(sc.exposure.speeds_km_h).index(16.0)
+    tr = ride.build_tractor(sc, tyres, i)
+    v = 16.0 / 3.6
+    wb = sc.tractor.wheelbase_m
+    start, stop = ride._record_window(track, wb, v, None)
+    fp = (float(tyres["front"].footprint_m[i]), float(tyres["rear"].footprint_m[i]))
+    inputs = ride.axle_inputs(track.profile, sc.surface.enveloping, fp, (tyres["front"].radius_m, tyres["rear"].radius_m),
+                              v, wb, stop)
+    ss = ride.state_space(tr, sc.seat.ahead_of_cg_m, sc.seat.height_above_cg_m)
+    lin, t_lin = _timed(ride.simulate_state_space, *ss, np.vstack([u[::2] for u in inputs]), outputs=(0,))
+    rk4, t_rk4 = _timed(simulate_tractor, tr, *inputs, lift_off=True)
+    seat = rk4["vertical_m_s2"] + sc.seat.ahead_of_cg_m * rk4["pitch_rad_s2"]
+    diff = float(np.max(np.abs(lin[0] - seat)) / np.sqrt(np.mean(seat**2)))
+    out.update(baseline_run_s=round(stop / 1000, 1), linear_path_s=round(t_lin, 3), rk4_s=round(t_rk4, 3),
+               linear_path_cpu_s=round(CPU["simulate_state_space"], 3), rk4_cpu_s=round(CPU["simulate_tractor"], 3),
+               rk4_over_linear=round(t_rk4 / t_lin, 1), max_relative_difference=float(f"{diff:.2e}"))
+
+    if not args.skip_sweep:
+        pressures_f = [1.0, 1.3, 1.6, 1.9, 2.2]
+        pressures_r = [0.8, 1.0, 1.2, 1.4, 1.6]
+        sweep, t_sweep = _timed(ride.ride_sweep, sc, pressures_f, pressures_r, with_spectra=False)
+        table = ride.results_table(sweep)
+        out.update(sweep_runs=len(table), sweep_s=round(t_sweep, 2), sweep_cpu_s=round(CPU["ride_sweep"], 2),
+                   sweep_nonlinear_runs=int((table["simulation"] != "linear").sum()))
+    print(json.dumps(out, indent=2))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
