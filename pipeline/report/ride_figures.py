@@ -62,6 +62,9 @@ def seat_psd(spectra: pd.DataFrame) -> str | None:
         ax.set_xlabel("frequency, Hz")
         _plain_log(ax, "x")
     _plain_log(axes[0], "y")
+    top = float(spectra[["seat_vertical_psd_m2_s4_per_Hz", "seat_longitudinal_psd_m2_s4_per_Hz"]].max().max())
+    if top > 0:
+        axes[0].set_ylim(top * 1e-6, top * 3)  # six decades: below is the track's band edge
     axes[0].set_ylabel("PSD, (m/s²)²/Hz")
     axes[0].legend()
     return to_svg(fig)
