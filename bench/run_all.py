@@ -25,6 +25,7 @@ def plan(quick: bool) -> list[list[str]]:
         ["bench_scaling.py", "--sizes", *(["100", "1000"] if quick else ["100", "1000", "10000"])],
     ]
     cmds += [[name] for name in ("bench_carriage.py", "bench_accuracy.py") if (HERE / name).exists()]
+    cmds += [["bench_ride.py", *(["--skip-sweep"] if quick else [])]] if (HERE / "bench_ride.py").exists() else []
     return cmds
 
 

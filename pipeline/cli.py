@@ -267,7 +267,11 @@ def cmd_ride(args) -> int:
         return EXIT_USAGE
     doc = result_json(results)
     if args.out:
-        paths = write_outputs(results, args.out)
+        try:
+            paths = write_outputs(results, args.out)
+        except OSError as exc:
+            print(f"tyrelab ride: --out {args.out}: {exc.strerror or exc}", file=sys.stderr)
+            return EXIT_USAGE
         log.info("ride: wrote %s and %s", paths["json"], paths["html"])
     sys.stdout.write(dumps(doc) if args.format == "json" else format_table(doc))
     return EXIT_OK

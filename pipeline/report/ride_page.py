@@ -17,7 +17,7 @@ from ..vehicle.ride import RideResult, result_json
 from . import ride_figures as rf
 from .render import environment
 
-__all__ = ["SPEED_COLUMNS", "format_table", "render_page", "write_outputs", "dumps"]
+__all__ = ["SPEED_COLUMNS", "format_table", "figures", "render_page", "write_outputs", "dumps"]
 
 #: Columns of the per-speed table (text and HTML), in order.
 SPEED_COLUMNS = ["speed_km_h", "front_pressure_bar", "rear_pressure_bar", "a_wz_m_s2", "expected_a_wz_m_s2",

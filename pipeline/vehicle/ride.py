@@ -61,6 +61,7 @@ from .tractor import Tractor, simulate_tractor
 __all__ = [
     "OUTPUTS",
     "AxleTyres",
+    "Track",
     "RideResult",
     "per_speed",
     "resolve_tyres",

@@ -324,3 +324,22 @@ def test_measured_tyre_from_the_warehouse(tmp_path):
         ride.resolve_tyres(sc, None)
     bad = write(tmp_path, text.replace('"T9"', '"T0"'), "t0.toml")
     assert cli.main(["ride", str(bad), "--build", str(tmp_path)]) == 2
+
+
+def test_scenario_files_lists_shipped_then_new_raw_ones(tmp_path):
+    from tyrelab.resources import scenarios_dir
+
+    (tmp_path / "scenarios").mkdir()
+    shipped = sorted(scenarios_dir().glob("*.toml"))
+    (tmp_path / "scenarios" / "copy.toml").write_bytes(shipped[0].read_bytes())
+    (tmp_path / "scenarios" / "mine.toml").write_text(scenario_text('kind = "iso8608"\nclass = "B"'))
+    files = ride.scenario_files(tmp_path)
+    assert files == [(str(p), "shipped") for p in shipped] + [(str(tmp_path / "scenarios" / "mine.toml"), "raw")]
+
+
+def test_cli_out_that_is_a_file_is_a_usage_error(tmp_path, capsys):
+    path = write(tmp_path, scenario_text('kind = "iso8608"\nclass = "B"\nlength_m = 20'))
+    (tmp_path / "taken").write_text("")
+    assert cli.main(["ride", str(path), "--out", str(tmp_path / "taken")]) == 2
+    err = capsys.readouterr().err
+    assert "--out" in err and "Traceback" not in err
