@@ -8,7 +8,34 @@ The package is organised by thesis chapter:
 - :mod:`tyrelab.tyre`        -- chapters 4-5, stiffness and damping regressions.
 - :mod:`tyrelab.vehicle`     -- chapters 6-8, simulators and ride metrics.
 - :mod:`tyrelab.rig`         -- the virtual dynamic tyre test vehicle.
+- :mod:`tyrelab.rawformat`   -- raw recording format v1 (channels, readers, validator).
 - :mod:`tyrelab.stages`      -- thin I/O stages that call the pure functions.
+
+The library's entry points are importable from here; they and the
+subpackages are imported on first use (PEP 562), so ``import tyrelab`` stays
+cheap.
+
+Examples
+--------
+>>> import tyrelab
+>>> tyrelab.analyze_recording.__module__
+'tyrelab.measurement.recording'
+>>> tyrelab.CHANNELS[:2]
+['accel_left_m_s2', 'accel_right_m_s2']
 """
 
+from ._lazy import attach
+
 __version__ = "0.1.0"
+
+__getattr__, __dir__, __all__ = attach(
+    __name__,
+    submodules=["measurement", "tyre", "vehicle", "rig", "rawformat", "report", "stages", "resources", "warehouse"],
+    attrs={
+        "measurement.recording": ["analyze_recording", "RecordingResult", "WelchEstimate"],
+        "measurement.apparent_mass": ["tyre_force", "stiffness_damping"],
+        "rawformat": ["CHANNELS", "RunFileError", "read_run_file", "check_run"],
+        "warehouse": ["connect_read_only", "query"],
+    },
+    reexport=False,
+)

@@ -27,6 +27,9 @@ from pathlib import Path
 
 from . import __version__
 
+__all__ = ["cmd_generate", "cmd_run", "cmd_stage", "cmd_sql", "cmd_analyze_run", "cmd_estimate_stiffness",
+    "cmd_natural_frequencies", "build_parser", "main"]
+
 EXIT_OK, EXIT_USAGE, EXIT_QUARANTINE = 0, 2, 3
 
 log = logging.getLogger("tyrelab")
@@ -113,11 +116,11 @@ def cmd_sql(args) -> int:
 
 
 def cmd_analyze_run(args) -> int:
-    from .stages.analyse import analyse_recording
+    from .measurement.recording import analyze_recording
     from .rawformat import RunFileError
 
     try:
-        out = analyse_recording(Path(args.file), args.axle_mass)
+        out = analyze_recording(Path(args.file), args.axle_mass).to_dict()
     except RunFileError as exc:
         print(f"tyrelab analyze-run: {args.file}: {exc}", file=sys.stderr)
         return EXIT_USAGE

@@ -22,6 +22,8 @@ import multiprocessing
 from concurrent.futures import ProcessPoolExecutor
 from typing import Any, Callable, Sequence
 
+__all__ = ["EXECUTORS", "map_batches"]
+
 EXECUTORS = ("local", "dask")
 
 

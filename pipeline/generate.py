@@ -24,6 +24,8 @@ from . import __version__, io
 from .rig.campaigns import MANIFEST_COLUMNS, campaign_plan, simulate_run
 from .rig.instrument import RigConfig
 
+__all__ = ["write_run", "generate_campaign"]
+
 
 def write_run(run: pd.DataFrame, path: Path) -> None:
     """Write one run table to Parquet atomically (zstd, byte-stream-split floats)."""

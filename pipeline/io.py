@@ -19,6 +19,8 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
+__all__ = ["atomic_path", "write_parquet_atomic", "write_text_atomic", "file_sha256"]
+
 
 _UMASK = os.umask(0)
 os.umask(_UMASK)

@@ -17,6 +17,8 @@ import pandas as pd
 from . import resources
 from .schema import SCHEMA_DIR, load_schema, validate_frame
 
+__all__ = ["SHIPPED_DIR", "PublishedTableError", "published_dir", "stems", "read_published"]
+
 #: Digitised thesis tables shipped with tyrelab.
 SHIPPED_DIR = resources.published_dir()
 

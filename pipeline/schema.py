@@ -23,6 +23,8 @@ import pandas as pd
 
 from . import resources
 
+__all__ = ["SCHEMA_DIR", "load_schema", "field_names", "row_problems", "validate_frame"]
+
 #: Repository folder holding the schemas (``schemas/`` beside ``pipeline/``).
 SCHEMA_DIR = resources.schemas_dir()
 

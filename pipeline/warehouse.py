@@ -20,6 +20,9 @@ import pyarrow.parquet as pq
 
 from . import io
 
+__all__ = ["READ_ONLY_STATEMENTS", "WriteRefused", "view_name", "build_warehouse", "connect_read_only",
+    "check_read_only", "query"]
+
 log = logging.getLogger("tyrelab")
 
 #: Statement types a query may run; anything else is refused.

@@ -31,6 +31,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import fft, ndimage, signal
 
+__all__ = ["EXCITATION_BAND_Hz", "tyre_force", "stiffness_damping", "apparent_mass_from_kc",
+    "excitation_frequency", "DemodulationResult", "analytic_band", "excitation_blocks",
+    "apparent_mass_demodulation", "welch_segments_at", "WelchResult", "apparent_mass_welch"]
+
 #: Band in which the excitation is searched for, Hz (vibrator range 1.5-6 Hz, thesis §3.2.5).
 EXCITATION_BAND_Hz = (1.0, 8.0)
 

@@ -16,6 +16,10 @@ import numpy as np
 import pandas as pd
 from scipy import signal
 
+__all__ = ["CHECK_BAND_HZ", "GAIN_TOLERANCE", "PHASE_TOLERANCE_DEG", "calibration_transfer_function",
+    "check_calibration", "day_summary", "CALIBRATION_REASON", "flag_failed_days", "correction_factor",
+    "corrected_stiffness_damping"]
+
 CHECK_BAND_HZ = (2.0, 6.0)  # §3.2.9
 GAIN_TOLERANCE = 0.03  # §3.2.9: 1 +- 3 %
 PHASE_TOLERANCE_DEG = 1.0  # §3.2.9: 0 +- 1 degree

@@ -19,6 +19,8 @@ import numpy as np
 import pandas as pd
 from scipy import signal
 
+__all__ = ["METHODS", "TABLE_I_SOURCE", "load_deflection_stiffness", "free_vibration", "half_power", "table_i"]
+
 #: The methods of Table I (§3.4), as named in ``raw/published/table_i.csv``.
 METHODS = ("apparent_mass", "load_deflection", "free_vibration", "forced_vibration")
 #: Where our Table I comes from: virtual experiments, not the campaign's recordings.

@@ -21,6 +21,9 @@ import numpy as np
 
 from . import apparent_mass as am
 
+__all__ = ["MIN_COHERENCE", "MAX_AMPLITUDE_DRIFT", "MAX_FREQUENCY_DRIFT_HZ", "BLOCK_S", "clipped",
+    "interference_frequencies_Hz", "qc_reasons", "plausibility_reasons"]
+
 MIN_COHERENCE = 0.9
 MAX_AMPLITUDE_DRIFT = 0.20  # §3.5: "variation limited to about 20%"
 MAX_FREQUENCY_DRIFT_HZ = 0.1  # §3.5: "maintained within 0.1 Hz"

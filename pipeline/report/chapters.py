@@ -11,6 +11,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+__all__ = ["TableSpec", "FigureSpec", "Chapter", "CHAPTERS"]
+
 
 @dataclass(frozen=True)
 class TableSpec:

@@ -27,6 +27,12 @@ import pandas as pd  # noqa: E402
 from matplotlib.ticker import LogFormatter, NullFormatter  # noqa: E402
 from scipy import signal  # noqa: E402
 
+__all__ = ["RC", "SIZE", "T_TYRES", "NOMINAL_PRESSURE_BAR", "MARKERS", "to_svg", "compact_svg",
+    "stiffness_vs_pressure", "stiffness_vs_speed", "damping_vs_speed", "pressure_dependence_vs_wr",
+    "carcass_stiffness_vs_rim", "predicted_vs_measured", "SPOKE_FIGURES", "spoke_curves", "profile_spectra",
+    "carriage_rms", "carriage_ratio_errors", "acceleration_spectra", "natural_frequencies", "run_spectra",
+    "run_drilldown"]
+
 #: matplotlib settings for every report figure.
 RC = {
     "svg.fonttype": "none",

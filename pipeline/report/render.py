@@ -13,6 +13,8 @@ import pandas as pd
 
 from .. import __version__, resources
 
+__all__ = ["TEMPLATE_DIR", "environment", "format_number", "code_version", "provenance", "UNITS", "column_label"]
+
 #: Templates live in the repository's ``reports/`` folder.
 TEMPLATE_DIR = resources.templates_dir()
 

@@ -28,6 +28,9 @@ from . import figures, tables
 from .chapters import CHAPTERS, Chapter, FigureSpec, TableSpec
 from .render import environment, provenance
 
+__all__ = ["RUNS_PER_TYRE", "MAX_RUN_PAGES", "MAX_PLAIN_ROWS", "Warehouse", "resolve_table", "resolve_figure",
+    "chapter_items", "run_page_name", "read_signals", "run_item", "build_site"]
+
 #: Drill-down pages: runs per tyre, and the cap on the total.
 RUNS_PER_TYRE = 2
 MAX_RUN_PAGES = 60

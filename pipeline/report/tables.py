@@ -26,6 +26,10 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+__all__ = ["REL_TOL", "ABS_TOL", "NUMERIC_KEYS", "HIDDEN", "EXTRAS", "Pair", "Shaped", "find_pairs",
+    "tolerance", "shape_comparison", "compare_frames", "thesis_only", "plain_table", "campaign_summary",
+    "select_runs"]
+
 #: Relative tolerance beyond which a difference is highlighted.
 REL_TOL = 0.05
 #: Absolute floors of the tolerance by column keyword (first match wins).

@@ -35,6 +35,12 @@ import pandas as pd
 from . import truth
 from .instrument import RigConfig
 
+__all__ = ["MANIFEST_COLUMNS", "TRACK_LENGTH_M", "RUN_DURATION_S", "CALIBRATION_DURATION_S",
+    "CALIBRATION_BAND_HZ", "MISCALIBRATED_BEAM_GAIN_ERROR", "FIRST_DAY", "SILSOE_SPEEDS", "BERLIN_SPEEDS",
+    "LOADS_KN", "AMPLITUDES_MM_PP", "FREQUENCIES_HZ", "TORQUE_SPEEDS", "SURFACE_SPEEDS", "duration_s",
+    "pressures", "nominal_pressure", "campaign_plan", "run_seed", "plan_truth", "rms_to_pp_mm", "day_state",
+    "simulate_run"]
+
 MANIFEST_COLUMNS = [
     "run_id", "file", "tyre_id", "speed_km_h", "pressure_bar", "load_kN", "excitation_frequency_Hz",
     "amplitude_mm_pp", "torque_kNm", "surface", "axle_mass_kg", "recorded_on", "kind", "sample_rate_Hz", "notes",

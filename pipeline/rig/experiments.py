@@ -23,6 +23,9 @@ from scipy import signal
 
 from .instrument import G, RigConfig, _system, carriage_mass_kg
 
+__all__ = ["CREEP_STIFFNESS_RATIO", "CREEP_TIME_S", "Recording", "load_ramp", "free_decay",
+    "random_force_response", "suspended_mass_kg"]
+
 #: Creep of the tyre rubber (§3.4, §4.5.1, Fig. 28): a Kelvin element in series
 #: with the tyre spring. Stiffness ratio chosen so that a slow ramp gives the
 #: Table I ratio load-deflection/apparent mass (330/450); time constant a few

@@ -38,6 +38,9 @@ import numpy as np
 import pandas as pd
 from scipy import fft as sfft
 
+__all__ = ["G", "SURFACE_ROUGHNESS_M3", "SLAT_PERIOD_M", "RigConfig", "DayCalibration", "day_calibration",
+    "RunSignals", "carriage_mass_kg", "ground_profile", "simulate_axle", "record", "derived_tyre_force"]
+
 G = 9.80665  # m/s^2
 
 #: raw format v1 run columns (schemas/raw_run.json)

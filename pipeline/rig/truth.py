@@ -30,6 +30,11 @@ import numpy as np
 
 from ..tyre.sizes import DEFAULT_ASPECT_RATIO, parse_tyre_size, rolling_circumference_m
 
+__all__ = ["NOMINAL_FREQUENCY_HZ", "NOMINAL_AMPLITUDE_MM_PP", "NOMINAL_LOAD_KN", "NOMINAL_PRESSURE_BAR",
+    "REFERENCE_SURFACE", "SURFACE_STIFFNESS_CHANGE", "SURFACE_DAMPING_CHANGE", "SURFACES", "TyreParams",
+    "TYRES", "SILSOE_TYRES", "BERLIN_TYRES", "aged", "buffed", "onset_shape", "carcass_stiffness_kN_per_m",
+    "carcass_damping_kN_s_per_m", "tyre_params", "stiffness", "damping", "truth_frame"]
+
 # --------------------------------------------------------------------------- #
 # Nominal conditions (§3.5, §4.3.3)
 NOMINAL_FREQUENCY_HZ = 4.0  # §3.5: "a frequency of 4 Hz"

@@ -1,8 +1,9 @@
 """Analyse: per run, the apparent mass, K and C, amplitude, coherence and QC.
 
 Reads the ``manifest`` table and the per-run Parquet files written by ingest,
-calls the estimators of :mod:`tyrelab.measurement.apparent_mass` on batches
-of equal-length runs (vectorised), and writes the ``results`` table (one row
+calls :func:`tyrelab.measurement.recording.analyse_batch` (the estimators of
+:mod:`tyrelab.measurement.apparent_mass` and the QC) on batches of
+equal-length runs (vectorised), and writes the ``results`` table (one row
 per measurement run; calibration runs are the calibrate stage's).
 
 Both estimators are stored: the thesis' Welch H1 read at the excitation bin
@@ -29,10 +30,15 @@ import pyarrow.parquet as pq
 
 from ..measurement import apparent_mass as am
 from ..measurement import qc
+from ..measurement import recording
+from ..measurement.recording import analyse_batch
 from ..tyre.sizes import lugs_per_side, tyre_rolling_circumference_m
 from ..executor import map_batches
 from .base import Context, Progress, StageResult, write_quarantine
-from ..rawformat import CHANNELS, check_run, read_run_file
+from ..rawformat import CHANNELS
+
+__all__ = ["INPUTS", "ANALYSIS_VERSION", "ESTIMATOR_SOURCE", "BATCH", "CONDITION_COLUMNS", "input_hash",
+    "load_signals", "wheel_interference_Hz", "batches", "analyse_paths", "run"]
 
 #: What the stage reads (see :mod:`tyrelab.stages.state`).
 INPUTS = ["manifest", "tyres"]
@@ -40,7 +46,7 @@ INPUTS = ["manifest", "tyres"]
 ANALYSIS_VERSION = "2"
 #: Source of the estimators and QC; a change re-analyses every run.
 ESTIMATOR_SOURCE = hashlib.sha256(
-    Path(am.__file__).read_bytes() + Path(qc.__file__).read_bytes()
+    Path(am.__file__).read_bytes() + Path(qc.__file__).read_bytes() + Path(recording.__file__).read_bytes()
 ).hexdigest()[:16]
 #: Runs analysed together in one vectorised call.
 BATCH = 32
@@ -72,85 +78,6 @@ def load_signals(paths: list[str]) -> tuple[np.ndarray, np.ndarray]:
     if out is None:
         return np.empty((0, 2, 0), np.float32), np.empty((0, 4, 0), np.float32)
     return out[:, :2], out[:, 2:]
-
-
-def analyse_batch(
-    accel: np.ndarray,
-    beams: np.ndarray,
-    axle_mass_kg: np.ndarray,
-    sample_rate_Hz: float,
-    interference_Hz: list[list[float]] | None = None,
-) -> pd.DataFrame:
-    """Analyse equal-length runs sampled at one rate.
-
-    Parameters
-    ----------
-    accel : ndarray, shape (runs, 2, n)
-        Left and right axle accelerations, m/s², upward positive.
-    beams : ndarray, shape (runs, 4, n)
-        Load-beam forces on the axle, N, upward positive.
-    axle_mass_kg : ndarray, shape (runs,)
-        Axle mass M_a, kg.
-    sample_rate_Hz : float
-        Sampling rate, Hz.
-    interference_Hz : list of list of float, optional
-        Per run, frequencies of the wheel's own excitation (rotation, lug
-        passing) that would bias K and C if they met the excitation
-        (:func:`tyrelab.measurement.qc.interference_frequencies_Hz`).
-
-    Returns
-    -------
-    DataFrame
-        One row per run: measured frequency, H, K, C (both estimators),
-        measured amplitude, coherence and QC (``qc_ok``, ``qc_reasons``), in
-        thesis units.
-    """
-    force = am.tyre_force(accel[:, 0], accel[:, 1], beams, axle_mass_kg)
-    a = accel.mean(axis=1, dtype=float)
-    fe = am.excitation_frequency(a, sample_rate_Hz)
-    found = np.isfinite(fe)
-    cols = {k: np.full(len(fe), np.nan) for k in (
-        "excitation_frequency_measured_Hz",
-        "apparent_mass_real_kg", "apparent_mass_imag_kg", "stiffness_N_per_m", "damping_N_s_per_m",
-        "welch_stiffness_N_per_m", "welch_damping_N_s_per_m", "welch_frequency_Hz", "coherence",
-        "amplitude_measured_mm_pp", "amplitude_measured_rms_mm", "acceleration_amplitude_m_s2",
-    )}
-    if found.any():
-        d = am.apparent_mass_demodulation(force[found], a[found], sample_rate_Hz, fe[found])
-        w = am.apparent_mass_welch(force[found], a[found], sample_rate_Hz, fe[found])
-        cols["excitation_frequency_measured_Hz"][found] = d.frequency_Hz
-        cols["apparent_mass_real_kg"][found] = d.apparent_mass_kg.real
-        cols["apparent_mass_imag_kg"][found] = d.apparent_mass_kg.imag
-        cols["stiffness_N_per_m"][found] = d.stiffness_N_per_m
-        cols["damping_N_s_per_m"][found] = d.damping_N_s_per_m
-        cols["welch_stiffness_N_per_m"][found] = w.stiffness_N_per_m
-        cols["welch_damping_N_s_per_m"][found] = w.damping_N_s_per_m
-        cols["welch_frequency_Hz"][found] = w.frequency_Hz
-        cols["coherence"][found] = w.coherence
-        cols["amplitude_measured_mm_pp"][found] = 2e3 * d.displacement_amplitude_m
-        cols["amplitude_measured_rms_mm"][found] = 1e3 * d.displacement_amplitude_m / np.sqrt(2)
-        cols["acceleration_amplitude_m_s2"][found] = d.acceleration_amplitude_m_s2
-    for q in ("stiffness", "damping", "welch_stiffness", "welch_damping"):
-        unit = "N_per_m" if q.endswith("stiffness") else "N_s_per_m"
-        cols[f"{q}_k{unit}"] = cols[f"{q}_{unit}"] / 1e3
-    t = np.arange(a.shape[-1]) / sample_rate_Hz
-    blocks = [None] * len(fe)
-    if found.any():
-        amp_blocks, freq_blocks = am.excitation_blocks(d.envelope_m_s2, d.angular_frequency_rad_s, sample_rate_Hz)
-        for j, i in enumerate(np.flatnonzero(found)):
-            blocks[i] = (amp_blocks[j], freq_blocks[j])
-    signals = np.concatenate([accel, beams], axis=1)  # (runs, 6, n) in CHANNELS order
-    flags = qc.clipped(signals.reshape(-1, signals.shape[-1])).reshape(len(fe), len(CHANNELS))
-    reasons = []
-    for i in range(len(fe)):
-        reasons.append(qc.qc_reasons(
-            t, a[i], force[i], cols["excitation_frequency_measured_Hz"][i], cols["coherence"][i],
-            interference_Hz=interference_Hz[i] if interference_Hz else None, blocks=blocks[i],
-            clipped_channels=[c for c, flag in zip(CHANNELS, flags[i]) if flag],
-        ) + qc.plausibility_reasons(cols["stiffness_N_per_m"][i], cols["damping_N_s_per_m"][i]))
-    cols["qc_ok"] = np.array([not r for r in reasons], dtype=bool)
-    cols["qc_reasons"] = ["; ".join(r) for r in reasons]
-    return pd.DataFrame(cols)
 
 
 def wheel_interference_Hz(speed_km_h: float, tyre: pd.Series | None) -> list[float]:
@@ -267,51 +194,3 @@ def run(ctx: Context) -> StageResult:
     res.message = f"{len(reuse)} reused, {len(new)} analysed" + (f", {flagged} flagged by QC" if flagged else "")
     res.seconds = time.perf_counter() - t0
     return res
-
-
-def analyse_recording(path, axle_mass_kg: float) -> dict:
-    """Analyse one recording in raw format v1; return a JSON-ready dict.
-
-    Keys: ``file``, ``sample_rate_Hz``, ``duration_s``,
-    ``excitation_frequency_Hz`` (measured), ``stiffness_N_per_m``,
-    ``damping_N_s_per_m``, ``stiffness_kN_per_m``, ``damping_kN_s_per_m``,
-    ``apparent_mass_real_kg``, ``apparent_mass_imag_kg`` (thesis convention),
-    ``amplitude_mm_pp``, ``amplitude_rms_mm``, ``coherence``, ``welch`` (the
-    thesis-method estimate), ``qc_ok``, ``qc_reasons``.
-
-    Raises
-    ------
-    tyrelab.rawformat.RunFileError
-        If the file is unreadable or fails the raw-format checks.
-    """
-    df = read_run_file(path)
-    info = check_run(df, excitation_frequency_Hz=0.0)
-    accel = np.asarray([[df[c].to_numpy(float) for c in CHANNELS[:2]]])
-    beams = np.asarray([[df[c].to_numpy(float) for c in CHANNELS[2:]]])
-    row = analyse_batch(accel, beams, np.array([axle_mass_kg]), info.sample_rate_Hz).iloc[0]
-    reasons = [r for r in row["qc_reasons"].split("; ") if r]
-    num = lambda v: None if not np.isfinite(v) else float(v)  # noqa: E731
-    return {
-        "file": str(path),
-        "sample_rate_Hz": info.sample_rate_Hz,
-        "duration_s": info.duration_s,
-        "axle_mass_kg": axle_mass_kg,
-        "excitation_frequency_Hz": num(row["excitation_frequency_measured_Hz"]),
-        "stiffness_N_per_m": num(row["stiffness_N_per_m"]),
-        "damping_N_s_per_m": num(row["damping_N_s_per_m"]),
-        "stiffness_kN_per_m": num(row["stiffness_kN_per_m"]),
-        "damping_kN_s_per_m": num(row["damping_kN_s_per_m"]),
-        "apparent_mass_real_kg": num(row["apparent_mass_real_kg"]),
-        "apparent_mass_imag_kg": num(row["apparent_mass_imag_kg"]),
-        "amplitude_mm_pp": num(row["amplitude_measured_mm_pp"]),
-        "amplitude_rms_mm": num(row["amplitude_measured_rms_mm"]),
-        "coherence": num(row["coherence"]),
-        "estimator": "phase-locked synchronous demodulation",
-        "welch": {
-            "frequency_Hz": num(row["welch_frequency_Hz"]),
-            "stiffness_N_per_m": num(row["welch_stiffness_N_per_m"]),
-            "damping_N_s_per_m": num(row["welch_damping_N_s_per_m"]),
-        },
-        "qc_ok": not reasons,
-        "qc_reasons": reasons,
-    }

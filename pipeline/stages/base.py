@@ -12,6 +12,8 @@ import pandas as pd
 
 from .. import io
 
+__all__ = ["Context", "StageResult", "Progress", "QUARANTINE_COLUMNS", "write_quarantine"]
+
 log = logging.getLogger("tyrelab")
 
 

@@ -38,6 +38,8 @@ from ..measurement.methods import table_i
 from ..rawformat import ACCEL_CHANNELS, BEAM_CHANNELS, CHANNELS
 from .base import Context, StageResult
 
+__all__ = ["PARAMS", "CALIBRATION_COLUMNS", "TF_COLUMNS", "check_calibration_run", "correct_results", "run"]
+
 #: Context options that change this stage's output (part of its fingerprint).
 PARAMS = ["calibration_correct"]
 

@@ -45,6 +45,9 @@ from ..schema import field_names, load_schema, row_problems, validate_frame
 from ..tyre.sizes import TyreSizeError, parse_tyre_size
 from .base import Context, Progress, StageResult, write_quarantine
 
+__all__ = ["INPUTS", "BUILTIN_TYRES", "INFO_KEYS", "discover_campaigns", "run_key", "tyre_partition",
+    "load_catalogue", "convert_run", "run", "MANIFEST_EXTRA", "manifest_columns"]
+
 #: What the stage reads (see :mod:`tyrelab.stages.state`): every file below ``--raw``.
 INPUTS = ["raw"]
 

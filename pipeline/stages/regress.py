@@ -43,6 +43,8 @@ from ..tyre import size_regressions as sr
 from ..tyre import spoke
 from .base import Context, StageResult
 
+__all__ = ["PUBLISHED", "FACTORS", "read_published", "read_tyres", "compute", "run"]
+
 PUBLISHED = ("table_iii", "table_iv", "table_v", "table_vi", "table_vii", "table_viii", "table_ix", "table_x")
 FACTORS = ("amplitude", "frequency", "load", "torque")
 

@@ -11,6 +11,8 @@ import time
 from ..report.site import build_site
 from .base import Context, StageResult
 
+__all__ = ["CODE_FILES", "run"]
+
 #: The jinja2 templates are code of this stage: a changed template re-renders the report.
 CODE_FILES = ["tyrelab.templates"]
 

@@ -34,6 +34,8 @@ from ..vehicle import bounce_pitch, ride, studies
 from ..vehicle import published_layouts as layouts
 from .base import Context, StageResult, write_quarantine
 
+__all__ = ["SEED", "STEMS", "THESIS_XX_STATISTICS", "run"]
+
 SEED = 5007
 
 #: Published tables the stage reads (stems under ``published/``).

@@ -34,6 +34,10 @@ from pathlib import Path
 
 from .. import io, resources
 
+__all__ = ["PACKAGE", "BUILTIN_RAW", "UNTRACKED", "declarations", "code_fingerprint", "HashCache",
+    "stat_digest", "raw_digest", "raw_extras", "snapshot", "state_path", "load", "input_digests", "why_stale",
+    "record"]
+
 #: Folder of the ``tyrelab`` code, and the name modules are looked up under.
 PACKAGE = "tyrelab"
 #: Built-in raw files every stage may read (tyre catalogue, digitised thesis tables, ride scenarios).

@@ -16,6 +16,8 @@ from .. import io, published
 from ..warehouse import build_warehouse, view_name
 from .base import Context, StageResult
 
+__all__ = ["published_tables", "run"]
+
 
 def published_tables(ctx: Context) -> dict[str, Path]:
     """Convert the published thesis tables to Parquet; return view name -> Parquet path."""

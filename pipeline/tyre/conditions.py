@@ -47,6 +47,12 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+__all__ = ["REFERENCE_SURFACE", "NOMINAL_FREQUENCY_HZ", "FREQUENCY_TOLERANCE_HZ", "NOMINAL_AMPLITUDE_MM_PP",
+    "NOMINAL_TORQUE_KNM", "ROLLING_POOL_KM_H", "STANDARD_PRESSURE_BAR", "SPEED_DECIMALS", "PRESSURE_DECIMALS",
+    "LOAD_DECIMALS", "FACTORS", "RESULTS_COLUMNS", "with_columns", "usable", "on_reference_surface",
+    "at_nominal_torque", "at_nominal_frequency", "at_nominal_amplitude", "nominal", "speed_condition",
+    "table_iii_runs", "regressor", "factor_runs", "hold_constant"]
+
 #: Reference surface (thesis §4.3.7, Tables V and IX are relative to it).
 REFERENCE_SURFACE = "concrete"
 #: Nominal excitation frequency and tolerance, Hz (thesis §3.5).

@@ -30,6 +30,9 @@ from . import conditions as cond
 from .sizes import TyreSizeError, parse_tyre_size
 from .stiffness import traction_tyre_stiffness
 
+__all__ = ["REAR_GRID_BAR", "FRONT_GRID_BAR", "NOT_TRACTION", "THESIS_ACCURACY", "PRED_COLUMNS", "p_within",
+    "predictions_from_table", "predictions_from_recordings", "accuracy_summary"]
+
 REAR_GRID_BAR = (0.8, 1.0, 1.2, 1.4, 1.6)
 FRONT_GRID_BAR = (1.0, 1.25, 1.5, 1.75, 2.0)
 #: Tyres the formula does not apply to (undriven ribbed front tyre, §4.5.3).

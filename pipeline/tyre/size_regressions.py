@@ -26,6 +26,8 @@ import pandas as pd
 from .regressions import fit_line
 from .sizes import TyreSizeError, parse_tyre_size
 
+__all__ = ["THESIS_FITS", "tyre_points", "select", "selection_search", "variants", "size_regressions"]
+
 #: The three printed fits (thesis §4.4.4, §4.5.3).
 THESIS_FITS: dict[str, dict] = {
     "dkp_vs_wr": dict(

@@ -42,6 +42,12 @@ from scipy.optimize import lsq_linear
 from . import conditions as cond
 from .sizes import parse_tyre_size
 
+__all__ = ["R0_13_6R38_M", "H_OVER_R0", "FREQUENCY_HZ", "AMPLITUDE_M", "C_COULOMB_FIG45_N_PER_RAD",
+    "C_VISCOUS_FIG45_N_S_PER_M_PER_RAD", "ASPECT_RATIO_DEFAULT", "unloaded_radius_m", "contact_half_angle",
+    "spoke_rate", "vertical_force", "vertical_force_spokes", "damping_basis", "equivalent_damping",
+    "fit_coefficients", "force_curves", "speed_curves", "frequency_curves", "amplitude_curves",
+    "deflection_curves", "SPOKE_FIT_COLUMNS", "fit_tyres"]
+
 #: Unloaded radius of the 13.6R38 tyre used in the thesis' model, m (§5.5.2).
 R0_13_6R38_M = 0.795
 #: Axle height as a fraction of r0 for a properly inflated tyre (§5.5.2).

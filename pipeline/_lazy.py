@@ -1,0 +1,102 @@
+"""Lazy re-exports for tyrelab's packages (PEP 562), as scipy and lazy_loader do.
+
+``import tyrelab`` or ``import tyrelab.measurement`` must stay cheap: the
+command line imports only what a command needs (a no-op ``tyrelab run``
+imports neither scipy nor matplotlib). A package therefore names its public
+submodules, and each submodule's public names are those of its ``__all__``,
+read from the source without importing it; the submodule is imported on
+first access of one of its names.
+
+Examples
+--------
+>>> import tyrelab.measurement as m
+>>> "analyze_recording" in m.__all__ and "recording" in m.__all__
+True
+>>> m.tyre_force is m.apparent_mass.tyre_force
+True
+"""
+
+from __future__ import annotations
+
+import ast
+import importlib
+import pkgutil
+from importlib.util import find_spec
+from pathlib import Path
+
+__all__ = ["attach", "module_all", "submodule_names", "collisions"]
+
+
+def module_all(module: str) -> list[str]:
+    """The literal ``__all__`` of a module's source (``[]`` if it has none), without importing it."""
+    spec = find_spec(module)
+    if spec is None or spec.origin is None:
+        raise ModuleNotFoundError(f"no module named {module!r}")
+    origin = Path(spec.origin)
+    tree = ast.parse(origin.read_text(encoding="utf-8"), str(origin))
+    for node in tree.body:
+        targets = node.targets if isinstance(node, ast.Assign) else [node.target] if isinstance(node, ast.AnnAssign) else []
+        if any(isinstance(t, ast.Name) and t.id == "__all__" for t in targets) and node.value is not None:
+            return list(ast.literal_eval(node.value))
+    return []
+
+
+def submodule_names(package: str) -> list[str]:
+    """Public submodules of a package (names not starting with ``_``), sorted."""
+    spec = find_spec(package)
+    return sorted(m.name for m in pkgutil.iter_modules(spec.submodule_search_locations) if not m.name.startswith("_"))
+
+
+def collisions(package: str) -> dict[str, list[str]]:
+    """Names exported by more than one submodule of ``package`` -> those submodules."""
+    seen: dict[str, list[str]] = {}
+    for sub in submodule_names(package):
+        for name in module_all(f"{package}.{sub}"):
+            seen.setdefault(name, []).append(sub)
+    return {k: v for k, v in seen.items() if len(v) > 1}
+
+
+def attach(package: str, submodules: list[str] | None = None, attrs: dict[str, list[str]] | None = None,
+           reexport: bool = True):
+    """``__getattr__``, ``__dir__`` and ``__all__`` for a package re-exporting its submodules.
+
+    Parameters
+    ----------
+    package : str
+        The package's ``__name__``.
+    submodules : list of str, optional
+        Submodules, attributes of the package (default: every public
+        submodule found); with ``reexport`` their whole ``__all__`` is
+        re-exported too, the first submodule (in order) winning a name that
+        two export (:func:`collisions` lists them; a test keeps it empty).
+    attrs : dict, optional
+        Further (dotted) submodule -> names to re-export (a curated subset).
+    reexport : bool
+        Re-export every name of each submodule's ``__all__``.
+
+    Returns
+    -------
+    (__getattr__, __dir__, __all__)
+    """
+    if submodules is None:
+        submodules = submodule_names(package)
+    where: dict[str, str] = {}
+    for sub in submodules if reexport else ():
+        for name in module_all(f"{package}.{sub}"):
+            where.setdefault(name, sub)
+    for sub, names in (attrs or {}).items():
+        for name in names:
+            where[name] = sub
+    all_names = sorted(set(submodules) | set(where))
+
+    def __getattr__(name: str):
+        if name in submodules:
+            return importlib.import_module(f"{package}.{name}")
+        if name in where:
+            return getattr(importlib.import_module(f"{package}.{where[name]}"), name)
+        raise AttributeError(f"module {package!r} has no attribute {name!r}")
+
+    def __dir__():
+        return list(all_names)
+
+    return __getattr__, __dir__, all_names
