@@ -16,7 +16,7 @@ EXTRAS ?= dev,dask,formats,browser
 # Extra arguments of tools/mutation.py, e.g. MUTATION_ARGS="--sample 40 vehicle/iso2631.py".
 MUTATION_ARGS ?=
 
-.PHONY: all install data run test test-all mutation bench clean distclean
+.PHONY: all install data run test test-package test-all mutation bench clean distclean
 
 all: run
 
@@ -41,6 +41,10 @@ run: data
 
 test: install
 	$(BIN)/python -m pytest -q -m "not slow" -n auto
+
+# The built wheel in a fresh virtualenv: generate -> run -> sql -> report from an empty folder.
+test-package: install
+	$(BIN)/python -m pytest -q tests/test_wheel.py
 
 test-all: install
 	$(BIN)/python -m pytest -q

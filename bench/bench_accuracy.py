@@ -24,12 +24,12 @@ import sys
 import time
 from pathlib import Path
 
-import numpy as np
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from tyrelab.measurement import apparent_mass as am  # noqa: E402
+from tyrelab.measurement.recording import frame_tyre_force, recording_arrays  # noqa: E402
 from tyrelab.measurement.qc import interference_frequencies_Hz  # noqa: E402
 from tyrelab.rig import truth  # noqa: E402
 from tyrelab.rig.campaigns import campaign_plan, simulate_run  # noqa: E402
@@ -47,10 +47,9 @@ def evaluate(seed: int, noise_scale: float, limit: int | None = None) -> pd.Data
     fs = cfg.sample_rate_Hz
     for r in plan.to_dict("records"):
         run, info = simulate_run(r, seed, cfg)
-        l, rr = run["accel_left_m_s2"].to_numpy(float), run["accel_right_m_s2"].to_numpy(float)
-        beams = np.stack([run[f"load_beam_{i}_N"].to_numpy(float) for i in range(1, 5)])
-        force = am.tyre_force(l, rr, beams, r["axle_mass_kg"])
-        a = (l + rr) / 2
+        accel, _ = recording_arrays(run)
+        force = frame_tyre_force(run, r["axle_mass_kg"])
+        a = accel.mean(axis=0)
         fe = am.excitation_frequency(a, fs)
         d = am.apparent_mass_demodulation(force, a, fs, fe)
         w = am.apparent_mass_welch(force, a, fs, fe)

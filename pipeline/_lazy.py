@@ -68,7 +68,9 @@ def attach(package: str, submodules: list[str] | None = None, attrs: dict[str, l
         Submodules, attributes of the package (default: every public
         submodule found); with ``reexport`` their whole ``__all__`` is
         re-exported too, the first submodule (in order) winning a name that
-        two export (:func:`collisions` lists them; a test keeps it empty).
+        two export (:func:`collisions` lists them; a test keeps it empty). A
+        name that is also a submodule's name (``tyre.size_regressions``) stays
+        the submodule.
     attrs : dict, optional
         Further (dotted) submodule -> names to re-export (a curated subset).
     reexport : bool
@@ -83,7 +85,8 @@ def attach(package: str, submodules: list[str] | None = None, attrs: dict[str, l
     where: dict[str, str] = {}
     for sub in submodules if reexport else ():
         for name in module_all(f"{package}.{sub}"):
-            where.setdefault(name, sub)
+            if name not in submodules:  # the submodule itself wins (the import system sets it)
+                where.setdefault(name, sub)
     for sub, names in (attrs or {}).items():
         for name in names:
             where[name] = sub

@@ -21,8 +21,8 @@ Examples
 --------
 >>> (schemas_dir() / "raw_manifest.json").is_file()
 True
->>> sorted(p.name for p in published_dir().glob("table_ii*.csv"))
-['table_ii.csv']
+>>> sorted(p.name for p in published_dir().glob("table_i*.csv"))[:3]
+['table_i.csv', 'table_ii.csv', 'table_iii.csv']
 """
 
 from __future__ import annotations

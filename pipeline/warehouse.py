@@ -1,16 +1,46 @@
-"""The DuckDB warehouse: a catalogue of views over the Parquet tables.
+"""The DuckDB warehouse ``build/warehouse.duckdb``: the pipeline's tables, portable.
 
 DuckDB allows one read-write process *or* many read-only ones on a database
-file, never both. So the database holds only views over Parquet written by
-the pipeline; it is rebuilt into a new file and renamed over the old one
-(readers that already opened the old file keep it), and every query
-(``tyrelab sql``, the report) opens it read-only. View paths are absolute,
-because DuckDB resolves relative paths against the process' working folder.
+file, never both. So the pipeline writes Parquet, and the warehouse is rebuilt
+from it into a new file renamed over the old one (readers that already opened
+the old file keep it); every query (``tyrelab sql``, the report) opens it
+read-only.
+
+Portability: the tables (``results``, ``table_iii``, ``published_*`` ...) are
+*stored in* the database file, so it answers from any working folder, with the
+stock ``duckdb`` client or ``duckdb.connect(path, read_only=True)``, and keeps
+answering after the build folder is moved or copied. DuckDB resolves a
+relative path in a view against the process' working folder (or the session's
+``file_search_path``, which a database cannot persist), so views over Parquet
+would need absolute paths, which break when the folder moves.
+
+The one exception is ``runs``, every run's signals (the bulk of a build):
+copying them would double the build's size, so ``runs`` stays a view over the
+hive dataset ``parquet/runs/`` with a path *relative to the database's
+folder*. :func:`connect_read_only` (used by ``tyrelab sql``, the report and
+the library) sets ``file_search_path`` to that folder, so ``runs`` works from
+anywhere through tyrelab; with the stock client it works when the working
+folder is the build folder, or after ``SET file_search_path = '<build>'``.
+Sizes and speeds of both layouts: ``docs/benchmarks.md`` (bench/bench_warehouse.py).
+
+Examples
+--------
+>>> import tempfile, pandas as pd
+>>> from pathlib import Path
+>>> from tyrelab import io
+>>> tmp = Path(tempfile.mkdtemp())
+>>> _ = io.write_parquet_atomic(pd.DataFrame({"k": [1, 2, 3]}), tmp / "build" / "parquet" / "t.parquet")
+>>> build_warehouse(tmp / "build" / "warehouse.duckdb", tmp / "build" / "parquet")
+['t']
+>>> moved = (tmp / "build").rename(tmp / "elsewhere")
+>>> int(query(moved / "warehouse.duckdb", "SELECT sum(k) AS s FROM t")["s"].iloc[0])
+6
 """
 
 from __future__ import annotations
 
 import logging
+import os
 import re
 from pathlib import Path
 
@@ -25,6 +55,15 @@ __all__ = ["READ_ONLY_STATEMENTS", "WriteRefused", "view_name", "build_warehouse
 
 log = logging.getLogger("tyrelab")
 
+#: How :func:`build_warehouse` can hold the tables: stored in the file (portable, the
+#: default) or as views over absolute Parquet paths (the former layout; smaller, not
+#: portable; kept for the benchmark).
+STORES = ("tables", "views")
+#: Block size of the database file, bytes. DuckDB's default (256 KiB) gives every
+#: small table whole blocks: 16 KiB blocks make the file ten times smaller and
+#: faster to open (docs/benchmarks.md). Readable by DuckDB >= 1.2.
+BLOCK_SIZE_BYTES = 16384
+
 #: Statement types a query may run; anything else is refused.
 READ_ONLY_STATEMENTS = {"SELECT", "EXPLAIN", "PRAGMA"}
 
@@ -38,12 +77,18 @@ def view_name(stem: str) -> str:
     return re.sub(r"\W", "_", stem).lower()
 
 
-def _quote(path: Path) -> str:
+def _sql_path(path: Path | str) -> str:
     return "'" + str(path).replace("'", "''") + "'"
 
 
-def build_warehouse(db_path: Path, parquet_dir: Path, published: dict[str, Path] | None = None) -> list[str]:
-    """Create the warehouse at ``db_path`` atomically; return the view names.
+def _search_path(con: duckdb.DuckDBPyConnection, folder: Path) -> None:
+    """Resolve relative file paths of this session against ``folder`` (the database's folder)."""
+    con.execute(f"SET file_search_path = {_sql_path(Path(folder).resolve())}")
+
+
+def build_warehouse(db_path: Path, parquet_dir: Path, published: dict[str, Path] | None = None,
+                    store: str = "tables", block_size_bytes: int = BLOCK_SIZE_BYTES) -> list[str]:
+    """Create the warehouse at ``db_path`` atomically; return its table and view names.
 
     Parameters
     ----------
@@ -52,45 +97,87 @@ def build_warehouse(db_path: Path, parquet_dir: Path, published: dict[str, Path]
     parquet_dir : Path
         Folder of ``<table>.parquet`` files and the ``runs/`` hive dataset.
     published : dict, optional
-        View name -> Parquet path of the digitised thesis tables.
+        Table name -> Parquet path of the digitised thesis tables.
+    store : {"tables", "views"}
+        ``"tables"``: every table stored in the file, ``runs`` a view relative
+        to the file's folder (portable). ``"views"``: views over absolute paths.
+    block_size_bytes : int
+        Block size of the file: a power of two from 16384 to 262144.
+
+    Raises
+    ------
+    ValueError
+        If ``store`` is not one of :data:`STORES` or ``block_size_bytes`` is invalid.
     """
+    if store not in STORES:
+        raise ValueError(f"store must be one of {STORES}, got {store!r}")
+    if not (isinstance(block_size_bytes, int) and 16384 <= block_size_bytes <= 262144
+            and block_size_bytes & (block_size_bytes - 1) == 0):
+        raise ValueError(f"block_size_bytes must be a power of two from 16384 to 262144, got {block_size_bytes!r}")
+    db_path = Path(db_path)
     parquet_dir = Path(parquet_dir).resolve()
-    views: dict[str, str] = {}
+    home = db_path.parent.resolve()
+    sources: dict[str, Path] = {}
     for p in sorted(parquet_dir.glob("*.parquet")):
         if not pq.read_schema(p).names:
-            log.warning("warehouse: %s has no columns; no view made", p)
+            log.warning("warehouse: %s has no columns; no table made", p)
             continue
-        views[view_name(p.stem)] = f"SELECT * FROM read_parquet({_quote(p)})"
+        sources[view_name(p.stem)] = p
+    for name, path in (published or {}).items():
+        sources[name] = Path(path).resolve()
+    kind = "TABLE" if store == "tables" else "VIEW"
+    statements = [f'CREATE {kind} "{name}" AS SELECT * FROM read_parquet({_sql_path(p)})' for name, p in sources.items()]
     runs = parquet_dir / "runs"
     if any(runs.glob("*/*.parquet")):
+        pattern = Path(os.path.relpath(runs, home)) if store == "tables" else runs
         # Partition folders are percent-encoded tyre ids (tyrelab.stages.ingest.tyre_partition).
-        views["runs"] = (
-            "SELECT * REPLACE (url_decode(tyre_id) AS tyre_id) FROM read_parquet("
-            f"{_quote(runs / '*' / '*.parquet')}, hive_partitioning = true, "
+        statements.append(
+            'CREATE VIEW "runs" AS SELECT * REPLACE (url_decode(tyre_id) AS tyre_id) FROM read_parquet('
+            f"{_sql_path(pattern / '*' / '*.parquet')}, hive_partitioning = true, "
             "hive_types = {'tyre_id': VARCHAR}, union_by_name = true)"
         )
-    for name, path in (published or {}).items():
-        views[name] = f"SELECT * FROM read_parquet({_quote(Path(path).resolve())})"
+        sources["runs"] = runs
     with io.atomic_path(db_path) as tmp:
         tmp.unlink()  # DuckDB wants to create the file itself
-        con = duckdb.connect(str(tmp))
+        con = duckdb.connect()
         try:
-            for name, sql in views.items():
-                con.execute(f'CREATE VIEW "{name}" AS {sql}')
+            con.execute(f"ATTACH {_sql_path(tmp)} AS warehouse (BLOCK_SIZE {block_size_bytes})")
+            con.execute("USE warehouse")
+            _search_path(con, home)
+            for sql in statements:
+                con.execute(sql)
+            con.execute("USE memory")
+            con.execute("DETACH warehouse")  # checkpoints: everything is in the file
         finally:
             con.close()
         wal = Path(str(tmp) + ".wal")
         if wal.exists():
             wal.unlink()
-    return list(views)
+    return list(sources)
 
 
 def connect_read_only(db_path: Path) -> duckdb.DuckDBPyConnection:
-    """Open the warehouse read-only (many readers may do so while the pipeline writes)."""
+    """Open the warehouse read-only (many readers may do so while the pipeline writes).
+
+    The file is attached (read-only) to a fresh in-memory session: unlike
+    ``duckdb.connect(path)``, which shares one database instance per path
+    within a process, this always sees the file as it is now, even while an
+    earlier reader in the same process holds the file it replaced. Relative
+    paths (the ``runs`` view) resolve against the database's folder, whatever
+    the working folder.
+    """
     db_path = Path(db_path)
     if not db_path.exists():
         raise FileNotFoundError(f"{db_path}: no warehouse yet - run 'tyrelab run' first")
-    return duckdb.connect(str(db_path), read_only=True)
+    con = duckdb.connect()
+    try:
+        con.execute(f"ATTACH {_sql_path(db_path.resolve())} AS warehouse (READ_ONLY)")
+        con.execute("USE warehouse")
+        _search_path(con, db_path.parent)
+    except BaseException:
+        con.close()
+        raise
+    return con
 
 
 def check_read_only(sql: str) -> None:

@@ -50,3 +50,55 @@ def test_warehouse_is_replaced_atomically_while_a_reader_holds_it(tmp_path):
     build_warehouse(db, pq_dir)  # no lock error although a reader has the old file open
     assert query(db, "SELECT count(*) AS n FROM t")["n"].iloc[0] == 3
     reader.close()
+
+
+def test_moved_build_answers_from_another_folder(tmp_path, monkeypatch):
+    """The warehouse is portable: move the build, delete nothing else, query it from elsewhere."""
+    import shutil
+
+    import duckdb
+
+    raw = write_campaign(tmp_path / "raw", [(manifest_row("m1", "m1.parquet"), spring_damper_recording()),
+                                            (manifest_row("m2", "m2.parquet", tyre_id="T2"), spring_damper_recording(seed=2))])
+    ctx = Context(raw=raw, build=tmp_path / "build", jobs=1)
+    for s in ("ingest", "analyse", "warehouse"):
+        run_stage(s, ctx)
+    before = query(ctx.build / "warehouse.duckdb", "SELECT count(*) AS n FROM results")["n"].iloc[0]
+    assert before == 2
+    copied = shutil.copytree(ctx.build, tmp_path / "colleague" / "build-copy")
+    moved = shutil.move(str(ctx.build), str(tmp_path / "server" / "moved-build"))
+    elsewhere = tmp_path / "somewhere" / "else"
+    elsewhere.mkdir(parents=True)
+    monkeypatch.chdir(elsewhere)
+    for build in (copied, moved):
+        con = duckdb.connect(str(build / "warehouse.duckdb") if hasattr(build, "joinpath") else f"{build}/warehouse.duckdb",
+                             read_only=True)
+        try:
+            assert con.execute("SELECT count(*) FROM results").fetchone()[0] == before
+            assert con.execute("SELECT count(*) FROM published_table_ii").fetchone()[0] > 0
+        finally:
+            con.close()
+    # the runs view resolves against the database's folder through tyrelab ...
+    n_runs = query(f"{moved}/warehouse.duckdb", "SELECT count(DISTINCT run_id) AS n FROM runs")["n"].iloc[0]
+    assert n_runs == 2
+    # ... and with the stock client from the build folder
+    monkeypatch.chdir(moved)
+    con = duckdb.connect("warehouse.duckdb", read_only=True)
+    try:
+        assert con.execute("SELECT count(*) FROM runs").fetchone()[0] == 2 * 12800
+    finally:
+        con.close()
+
+
+def test_store_views_is_the_absolute_path_layout(tmp_path):
+    import pytest
+
+    pq_dir = tmp_path / "parquet"
+    io.write_parquet_atomic(pd.DataFrame({"a": [1, 2]}), pq_dir / "t.parquet")
+    build_warehouse(tmp_path / "w.duckdb", pq_dir, store="views")
+    sql = query(tmp_path / "w.duckdb", "SELECT sql FROM duckdb_views() WHERE view_name = 't'")["sql"].iloc[0]
+    assert str(pq_dir.resolve()) in sql
+    with pytest.raises(ValueError, match="store"):
+        build_warehouse(tmp_path / "w.duckdb", pq_dir, store="copy")
+    with pytest.raises(ValueError, match="block_size_bytes"):
+        build_warehouse(tmp_path / "w.duckdb", pq_dir, block_size_bytes=20000)

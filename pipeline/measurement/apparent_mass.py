@@ -31,9 +31,13 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import fft, ndimage, signal
 
-__all__ = ["EXCITATION_BAND_Hz", "tyre_force", "stiffness_damping", "apparent_mass_from_kc",
-    "excitation_frequency", "DemodulationResult", "analytic_band", "excitation_blocks",
-    "apparent_mass_demodulation", "welch_segments_at", "WelchResult", "apparent_mass_welch"]
+from .._validate import band, positive, positive_array, same_last_axis
+
+__all__ = [
+    "EXCITATION_BAND_Hz", "tyre_force", "stiffness_damping", "apparent_mass_from_kc", "excitation_frequency",
+    "DemodulationResult", "analytic_band", "excitation_blocks", "apparent_mass_demodulation", "welch_segments_at",
+    "WelchResult", "apparent_mass_welch", "H1Spectrum", "h1_spectrum",
+]
 
 #: Band in which the excitation is searched for, Hz (vibrator range 1.5-6 Hz, thesis §3.2.5).
 EXCITATION_BAND_Hz = (1.0, 8.0)
@@ -65,9 +69,27 @@ def tyre_force(
     -------
     ndarray, shape (..., n)
         Tyre force on the axle, N, upward positive.
+
+    Raises
+    ------
+    ValueError
+        If ``axle_mass_kg`` is not finite and positive, or the shapes disagree.
+
+    Examples
+    --------
+    An axle of 600 kg accelerating at 1 m/s² upward while the beams carry 100 N:
+
+    >>> tyre_force([1.0], [1.0], [[25.0], [25.0], [25.0], [25.0]], 600.0)
+    array([500.])
     """
-    accel = 0.5 * (np.asarray(accel_left_m_s2, dtype=float) + accel_right_m_s2)
-    mass = np.asarray(axle_mass_kg, dtype=float)[..., np.newaxis]
+    mass = positive_array("axle_mass_kg", axle_mass_kg)[..., np.newaxis]
+    left, right = np.asarray(accel_left_m_s2, dtype=float), np.asarray(accel_right_m_s2)
+    load_beams_N = np.asarray(load_beams_N)
+    if left.shape != right.shape:
+        raise ValueError(f"accel_left_m_s2 and accel_right_m_s2 differ in shape: {left.shape} vs {right.shape}")
+    if load_beams_N.ndim < 2 or load_beams_N.shape[-2] != 4 or load_beams_N.shape[-1] != left.shape[-1]:
+        raise ValueError(f"load_beams_N must have shape (..., 4, {left.shape[-1]}), got {load_beams_N.shape}")
+    accel = 0.5 * (left + right)
     return mass * accel - np.sum(load_beams_N, axis=-2, dtype=float)
 
 
@@ -94,7 +116,7 @@ def stiffness_damping(apparent_mass_kg: complex | np.ndarray, frequency_Hz: floa
     >>> round(float(k)), round(float(c))
     (228027, 2388)
     """
-    omega = 2.0 * np.pi * np.asarray(frequency_Hz, dtype=float)
+    omega = 2.0 * np.pi * positive_array("frequency_Hz", frequency_Hz, allow_nan=True)
     h = np.asarray(apparent_mass_kg, dtype=complex)
     return np.real(-(omega**2) * h), np.real(1j * omega * h)
 
@@ -103,8 +125,14 @@ def apparent_mass_from_kc(stiffness_N_per_m, damping_N_s_per_m, frequency_Hz):
     """Apparent mass (thesis convention) of a Kelvin-Voigt tyre: ``H = -(K + jωC)/ω²``.
 
     The inverse of :func:`stiffness_damping`; used for synthetic cases.
+
+    Examples
+    --------
+    >>> h = apparent_mass_from_kc(228027.0, 2388.0, 3.8)
+    >>> [round(float(v)) for v in stiffness_damping(h, 3.8)]
+    [228027, 2388]
     """
-    omega = 2.0 * np.pi * np.asarray(frequency_Hz, dtype=float)
+    omega = 2.0 * np.pi * positive_array("frequency_Hz", frequency_Hz, allow_nan=True)
     return -(np.asarray(stiffness_N_per_m) + 1j * omega * np.asarray(damping_N_s_per_m)) / omega**2
 
 
@@ -132,7 +160,15 @@ def excitation_frequency(
     -------
     ndarray, shape (...)
         Excitation frequency, Hz (NaN where the band is empty or the signal has no content in it).
+
+    Examples
+    --------
+    >>> t = np.arange(2560) / 256.0
+    >>> round(float(excitation_frequency(np.sin(2 * np.pi * 3.7 * t), 256.0)), 2)
+    3.7
     """
+    sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
+    band_Hz = band("band_Hz", band_Hz)
     x = np.asarray(accel_m_s2, dtype=float)
     n = x.shape[-1]
     nfft = 1 << int(np.ceil(np.log2(2 * n)))
@@ -156,11 +192,18 @@ def excitation_frequency(
 
 
 def _signals(force_N, accel_m_s2, sample_rate_Hz, excitation_frequency_Hz):
-    """Float arrays of force and acceleration, and the excitation frequency (found if None)."""
+    """Float arrays of force and acceleration, and the excitation frequency (found if None), checked."""
+    positive("sample_rate_Hz", sample_rate_Hz)
     f = np.asarray(force_N, dtype=float)
     a = np.asarray(accel_m_s2, dtype=float)
+    if f.shape != a.shape:
+        raise ValueError(f"force_N and accel_m_s2 differ in shape: {f.shape} vs {a.shape}")
+    if a.ndim == 0 or a.shape[-1] < 2:
+        raise ValueError(f"accel_m_s2 needs samples along its last axis, got shape {a.shape}")
     if excitation_frequency_Hz is None:
         excitation_frequency_Hz = excitation_frequency(a, sample_rate_Hz)
+    else:
+        positive_array("excitation_frequency_Hz", excitation_frequency_Hz)
     return f, a, excitation_frequency_Hz
 
 
@@ -214,6 +257,9 @@ def analytic_band(x: np.ndarray, sample_rate_Hz: float, f0, half_band_Hz: float 
     -------
     ndarray of complex, shape (..., n)
     """
+    sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
+    half_band_Hz = positive("half_band_Hz", half_band_Hz)
+    positive_array("f0", f0)
     x = np.asarray(x, dtype=float)
     n = x.shape[-1]
     # Zero-pad by a few impulse-response lengths (~1/half_band) so that the
@@ -266,6 +312,10 @@ def excitation_blocks(
     amplitude, frequency_Hz : ndarray, shape (..., n_blocks)
         Mean amplitude (units of the signal) and mean frequency (Hz) per block.
     """
+    sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
+    block_s = positive("block_s", block_s)
+    if not edge_s >= 0:
+        raise ValueError(f"edge_s must be >= 0, got {edge_s!r}")
     edge = int(round(edge_s * sample_rate_Hz))
     size = max(int(round(block_s * sample_rate_Hz)), 1)
     env = envelope[..., edge : envelope.shape[-1] - edge]
@@ -315,7 +365,14 @@ def apparent_mass_demodulation(
     Returns
     -------
     DemodulationResult
+
+    Raises
+    ------
+    ValueError
+        Naming a non-positive rate, band or frequency, or force and
+        acceleration of different lengths.
     """
+    half_band_Hz = positive("half_band_Hz", half_band_Hz)
     f, a, excitation_frequency_Hz = _signals(force_N, accel_m_s2, sample_rate_Hz, excitation_frequency_Hz)
     cos_phi, sin_phi, omega, envelope = _instantaneous_phase(a, sample_rate_Hz, excitation_frequency_Hz, half_band_Hz)
     n = a.shape[-1]
@@ -357,6 +414,9 @@ def welch_segments_at(x: np.ndarray, sample_rate_Hz: float, frequency_Hz, nperse
     -------
     ndarray of complex, shape (..., n_segments)
     """
+    positive("sample_rate_Hz", sample_rate_Hz)
+    if not (isinstance(nperseg, (int, np.integer)) and 2 <= nperseg <= np.shape(x)[-1]):
+        raise ValueError(f"nperseg must be an integer from 2 to the signal length {np.shape(x)[-1]}, got {nperseg!r}")
     segments = np.lib.stride_tricks.sliding_window_view(x, nperseg, axis=-1)[..., :: nperseg // 2, :]
     window = signal.get_window("hann", nperseg)
     k = np.arange(nperseg)
@@ -408,7 +468,27 @@ def apparent_mass_welch(
     Returns
     -------
     WelchResult
+
+    Raises
+    ------
+    ValueError
+        Naming a non-positive rate, resolution or frequency, or force and
+        acceleration of different lengths.
+
+    Notes
+    -----
+    The same estimator as :func:`h1_spectrum` (``-H1``, acceleration to
+    force), evaluated at one bin by :func:`welch_segments_at` instead of at
+    every bin; a test checks they agree.
+
+    Examples
+    --------
+    >>> apparent_mass_welch(np.ones(64), np.ones(64), 0.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: sample_rate_Hz must be finite and positive, got 0.0
     """
+    resolution_Hz = positive("resolution_Hz", resolution_Hz)
     f, a, excitation_frequency_Hz = _signals(force_N, accel_m_s2, sample_rate_Hz, excitation_frequency_Hz)
     n = a.shape[-1]
     nperseg = min(1 << int(round(np.log2(sample_rate_Hz / resolution_Hz))), 1 << int(np.log2(n)))
@@ -425,3 +505,67 @@ def apparent_mass_welch(
     h = -h_up
     k, c = stiffness_damping(h, fbin)
     return WelchResult(h, fbin, k, c, coherence)
+
+
+@dataclass(frozen=True)
+class H1Spectrum:
+    """Output of :func:`h1_spectrum` (arrays over frequency)."""
+
+    frequency_Hz: np.ndarray  #: bin frequencies, Hz
+    h1: np.ndarray  #: H1 = G_xy / G_xx, the system from x to y (units of y per unit of x)
+    coherence: np.ndarray  #: magnitude-squared coherence of x and y
+    psd_x: np.ndarray  #: G_xx, one-sided PSD of x (units of x squared per Hz)
+
+
+def h1_spectrum(x: np.ndarray, y: np.ndarray, sample_rate_Hz: float, nperseg: int) -> H1Spectrum:
+    """H1 transfer function from ``x`` to ``y`` and their coherence, from Welch spectra.
+
+    ``H1 = G_xy / G_xx`` with ``G_xy = csd(x, y)`` (scipy's ``csd(x, y)`` is
+    ``conj(X) Y``, so this is the system from x to y) and ``G_xx = welch(x)``;
+    coherence ``|G_xy|² / (G_xx G_yy)``. Hann window, 50 % overlap, each
+    segment's mean removed (scipy's defaults; thesis §3.3.1, Fig. 19). The
+    one implementation of the full-spectrum H1: the calibration check
+    (force plate -> derived force), the half-power method (force ->
+    acceleration) and the report's per-run spectra call it.
+
+    Parameters
+    ----------
+    x, y : ndarray, shape (n,)
+        Input and output signals, same length.
+    sample_rate_Hz : float
+        Sampling rate, Hz.
+    nperseg : int
+        Segment length, from 2 to ``n``.
+
+    Returns
+    -------
+    H1Spectrum
+
+    Raises
+    ------
+    ValueError
+        Naming a non-positive rate, a bad ``nperseg`` or signals of different lengths.
+
+    Examples
+    --------
+    A pure gain of 2 has H1 = 2 and coherence 1 at every bin:
+
+    >>> rng = np.random.default_rng(0)
+    >>> x = rng.standard_normal(4096)
+    >>> s = h1_spectrum(x, 2 * x, 256.0, 256)
+    >>> bool(np.allclose(s.h1[1:], 2) and np.allclose(s.coherence[1:], 1))
+    True
+    """
+    sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
+    same_last_axis(x=x, y=y)
+    if not (isinstance(nperseg, (int, np.integer)) and 2 <= nperseg <= x.shape[-1]):
+        raise ValueError(f"nperseg must be an integer from 2 to the signal length {x.shape[-1]}, got {nperseg!r}")
+    f, gxy = signal.csd(x, y, fs=sample_rate_Hz, nperseg=nperseg)
+    _, gxx = signal.welch(x, fs=sample_rate_Hz, nperseg=nperseg)
+    _, gyy = signal.welch(y, fs=sample_rate_Hz, nperseg=nperseg)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        h1 = gxy / gxx
+        coherence = np.abs(gxy) ** 2 / (gxx * gyy)
+    return H1Spectrum(f, h1, coherence, gxx)

@@ -14,7 +14,9 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
-from scipy import signal
+
+from .._validate import band, positive
+from .apparent_mass import h1_spectrum
 
 __all__ = ["CHECK_BAND_HZ", "GAIN_TOLERANCE", "PHASE_TOLERANCE_DEG", "calibration_transfer_function",
     "check_calibration", "day_summary", "CALIBRATION_REASON", "flag_failed_days", "correction_factor",
@@ -29,9 +31,9 @@ def calibration_transfer_function(force_plate_N: np.ndarray, derived_force_N: np
                                   resolution_Hz: float = 0.25, band_Hz: tuple[float, float] = (1.0, 8.0)) -> pd.DataFrame:
     """H1 from force-plate force to derived tyre force.
 
-    ``H1 = csd(fp, ft) / welch(fp)`` (scipy's ``csd(x, y)`` is ``conj(X) Y``, so
-    this is the system from x = force plate to y = derived force); Hann
-    window, 50 % overlap, segments of ``1/resolution_Hz`` seconds.
+    ``H1 = csd(fp, ft) / welch(fp)``, the system from x = force plate to
+    y = derived force (:func:`tyrelab.measurement.apparent_mass.h1_spectrum`);
+    Hann window, 50 % overlap, segments of ``1/resolution_Hz`` seconds.
 
     Parameters
     ----------
@@ -48,17 +50,14 @@ def calibration_transfer_function(force_plate_N: np.ndarray, derived_force_N: np
     DataFrame
         ``frequency_Hz``, ``gain`` (|H|), ``phase_deg`` (angle of H), ``coherence``.
     """
-    x = np.asarray(force_plate_N, dtype=float)
-    y = np.asarray(derived_force_N, dtype=float)
-    nperseg = int(round(sample_rate_Hz / resolution_Hz))
-    f, gxy = signal.csd(x, y, fs=sample_rate_Hz, nperseg=nperseg)
-    _, gxx = signal.welch(x, fs=sample_rate_Hz, nperseg=nperseg)
-    _, gyy = signal.welch(y, fs=sample_rate_Hz, nperseg=nperseg)
-    h = gxy / gxx
-    coh = np.abs(gxy) ** 2 / (gxx * gyy)
-    sel = (f >= band_Hz[0]) & (f <= band_Hz[1])
-    return pd.DataFrame({"frequency_Hz": f[sel], "gain": np.abs(h[sel]),
-                         "phase_deg": np.degrees(np.angle(h[sel])), "coherence": coh[sel]})
+    sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
+    resolution_Hz = positive("resolution_Hz", resolution_Hz)
+    band_Hz = band("band_Hz", band_Hz)
+    s = h1_spectrum(force_plate_N, derived_force_N, sample_rate_Hz, int(round(sample_rate_Hz / resolution_Hz)))
+    sel = (s.frequency_Hz >= band_Hz[0]) & (s.frequency_Hz <= band_Hz[1])
+    h = s.h1[sel]
+    return pd.DataFrame({"frequency_Hz": s.frequency_Hz[sel], "gain": np.abs(h),
+                         "phase_deg": np.degrees(np.angle(h)), "coherence": s.coherence[sel]})
 
 
 def check_calibration(tf: pd.DataFrame, band_Hz: tuple[float, float] = CHECK_BAND_HZ,

@@ -19,6 +19,9 @@ import numpy as np
 import pandas as pd
 from scipy import signal
 
+from .._validate import band, positive, same_last_axis
+from .apparent_mass import h1_spectrum
+
 __all__ = ["METHODS", "TABLE_I_SOURCE", "load_deflection_stiffness", "free_vibration", "half_power", "table_i"]
 
 #: The methods of Table I (§3.4), as named in ``raw/published/table_i.csv``.
@@ -36,6 +39,9 @@ def load_deflection_stiffness(force_N: np.ndarray, deflection_m: np.ndarray, fra
     """
     F = np.asarray(force_N, dtype=float)
     d = np.asarray(deflection_m, dtype=float)
+    same_last_axis(force_N=F, deflection_m=d)
+    if not 0 <= fraction[0] < fraction[1] <= 1:
+        raise ValueError(f"fraction must satisfy 0 <= low < high <= 1, got {fraction!r}")
     i_max = int(np.argmax(F))
     F, d = F[: i_max + 1], d[: i_max + 1]
     sel = (F >= fraction[0] * F.max()) & (F <= fraction[1] * F.max())
@@ -54,8 +60,10 @@ def free_vibration(time_s: np.ndarray, response: np.ndarray, mass_kg: float, n_c
     dict
         ``stiffness_N_per_m``, ``damping_N_s_per_m``, ``natural_frequency_Hz``, ``damping_ratio``.
     """
+    mass_kg = positive("mass_kg", mass_kg)
     t = np.asarray(time_s, dtype=float)
     x = np.asarray(response, dtype=float)
+    same_last_axis(time_s=t, response=x)
     x = x - x[-len(x) // 10:].mean()
     fs = 1.0 / (t[1] - t[0])
     peaks, _ = signal.find_peaks(x, height=0.05 * np.abs(x).max(), distance=max(int(0.12 * fs), 1))
@@ -86,15 +94,23 @@ def half_power(force_N: np.ndarray, accel_m_s2: np.ndarray, sample_rate_Hz: floa
     """K and C from the forced response: resonance peak and half-power bandwidth.
 
     Receptance ``X/F = -H1/w^2`` with ``H1 = csd(F, a)/welch(F)`` (system from
-    force to acceleration); peak frequency ``f_n`` and the -3 dB points
-    (linear interpolation) give ``zeta = (f2 - f1)/(2 f_n)``; ``K = m (2 pi f_n)^2``,
-    ``C = 2 zeta m 2 pi f_n``.
+    force to acceleration, :func:`tyrelab.measurement.apparent_mass.h1_spectrum`);
+    peak frequency ``f_n`` and the -3 dB points (linear interpolation) give
+    ``zeta = (f2 - f1)/(2 f_n)``; ``K = m (2 pi f_n)^2``, ``C = 2 zeta m 2 pi f_n``.
+
+    Raises
+    ------
+    ValueError
+        Naming a non-positive rate, mass or resolution, a bad band, or force
+        and acceleration of different lengths.
     """
-    nperseg = int(round(sample_rate_Hz / resolution_Hz))
-    f, gfa = signal.csd(force_N, accel_m_s2, fs=sample_rate_Hz, nperseg=nperseg)
-    _, gff = signal.welch(force_N, fs=sample_rate_Hz, nperseg=nperseg)
-    sel = (f >= band_Hz[0]) & (f <= band_Hz[1])
-    f, h = f[sel], gfa[sel] / gff[sel]
+    sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
+    mass_kg = positive("mass_kg", mass_kg)
+    resolution_Hz = positive("resolution_Hz", resolution_Hz)
+    band_Hz = band("band_Hz", band_Hz)
+    s = h1_spectrum(force_N, accel_m_s2, sample_rate_Hz, int(round(sample_rate_Hz / resolution_Hz)))
+    sel = (s.frequency_Hz >= band_Hz[0]) & (s.frequency_Hz <= band_Hz[1])
+    f, h = s.frequency_Hz[sel], s.h1[sel]
     r = np.abs(h) / (2 * np.pi * f) ** 2
     k = int(np.argmax(r))
     # parabolic refinement of the peak
@@ -156,6 +172,7 @@ def table_i(
     from ..rig import truth
     from ..rig.instrument import RigConfig, record, simulate_axle, DayCalibration
     from . import apparent_mass as am
+    from .recording import frame_tyre_force, recording_arrays
 
     cfg = RigConfig()
     rng = np.random.default_rng(seed)
@@ -164,9 +181,8 @@ def table_i(
     m = ex.suspended_mass_kg(load_kN)
     sig = simulate_axle(K, C, 50.0, rng, cfg, load_kN=load_kN)
     run = record(sig, DayCalibration(), rng, cfg)
-    l, r = run["accel_left_m_s2"].to_numpy(float), run["accel_right_m_s2"].to_numpy(float)
-    beams = np.stack([run[f"load_beam_{i}_N"].to_numpy(float) for i in range(1, 5)])
-    d = am.apparent_mass_demodulation(am.tyre_force(l, r, beams, cfg.axle_mass_kg), (l + r) / 2, cfg.sample_rate_Hz)
+    accel, _ = recording_arrays(run)
+    d = am.apparent_mass_demodulation(frame_tyre_force(run, cfg.axle_mass_kg), accel.mean(axis=0), cfg.sample_rate_Hz)
     ours = {"apparent_mass": (float(d.stiffness_N_per_m), float(d.damping_N_s_per_m))}
     ramp = ex.load_ramp(K, load_kN * 1e3, rng=rng)
     ours["load_deflection"] = (load_deflection_stiffness(ramp.force_N, ramp.displacement_m), np.nan)

@@ -45,25 +45,16 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from .._validate import positive, positive_array
 from ..rawformat import ACCEL_CHANNELS, BEAM_CHANNELS, CHANNELS, TIME, check_run, read_run_file
 from . import apparent_mass as am
 from . import qc
 
-__all__ = ["WelchEstimate", "RecordingResult", "analyze_recording", "analyse_batch", "recording_arrays"]
+__all__ = ["WelchEstimate", "RecordingResult", "analyze_recording", "analyse_batch", "recording_arrays",
+           "frame_tyre_force"]
 
 #: How ``analyze_recording`` names the estimator of K and C.
 ESTIMATOR = "phase-locked synchronous demodulation"
-
-
-def _check_positive(name: str, value) -> float:
-    """``value`` as a float; ValueError naming ``name`` unless finite and > 0."""
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
-    if not math.isfinite(v) or v <= 0:
-        raise ValueError(f"{name} must be finite and positive, got {value!r}")
-    return v
 
 
 @dataclass(frozen=True)
@@ -157,6 +148,21 @@ def recording_arrays(frame: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
     return accel, beams
 
 
+def frame_tyre_force(frame: pd.DataFrame, axle_mass_kg: float) -> np.ndarray:
+    """Tyre force (N, upward positive) of a raw-format-v1 frame: :func:`~tyrelab.measurement.apparent_mass.tyre_force`.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> frame = pd.DataFrame({"accel_left_m_s2": [1.0], "accel_right_m_s2": [1.0],
+    ...                       **{f"load_beam_{i}_N": [25.0] for i in range(1, 5)}})
+    >>> frame_tyre_force(frame, 600.0)
+    array([500.])
+    """
+    accel, beams = recording_arrays(frame)
+    return am.tyre_force(accel[0], accel[1], beams, axle_mass_kg)
+
+
 def analyse_batch(
     accel: np.ndarray,
     beams: np.ndarray,
@@ -193,17 +199,15 @@ def analyse_batch(
     ValueError
         Naming the argument whose shape or value is wrong.
     """
-    sample_rate_Hz = _check_positive("sample_rate_Hz", sample_rate_Hz)
+    sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
     accel, beams = np.asarray(accel), np.asarray(beams)
     if accel.ndim != 3 or accel.shape[1] != 2:
         raise ValueError(f"accel must have shape (runs, 2, n), got {accel.shape}")
     if beams.shape != (accel.shape[0], 4, accel.shape[2]):
         raise ValueError(f"beams must have shape {(accel.shape[0], 4, accel.shape[2])}, got {beams.shape}")
-    mass = np.asarray(axle_mass_kg, dtype=float)
+    mass = positive_array("axle_mass_kg", axle_mass_kg)
     if mass.shape != (accel.shape[0],):
         raise ValueError(f"axle_mass_kg must have shape ({accel.shape[0]},), got {mass.shape}")
-    if not (np.isfinite(mass) & (mass > 0)).all():
-        raise ValueError(f"axle_mass_kg must be finite and positive, got {mass.tolist()}")
     if interference_Hz is not None and len(interference_Hz) != accel.shape[0]:
         raise ValueError(f"interference_Hz must have one list per run ({accel.shape[0]}), got {len(interference_Hz)}")
     force = am.tyre_force(accel[:, 0], accel[:, 1], beams, mass)
@@ -297,18 +301,20 @@ def analyze_recording(
 
     Examples
     --------
-    >>> analyze_recording("missing.parquet", axle_mass_kg=600.0)
-    Traceback (most recent call last):
-    ...
-    tyrelab.rawformat.mapped.RunFileError: file not found
+    >>> from tyrelab.rawformat import RunFileError
+    >>> try:
+    ...     analyze_recording("missing.parquet", axle_mass_kg=600.0)
+    ... except RunFileError as exc:
+    ...     print(exc)
+    file not found
     >>> analyze_recording("missing.parquet", axle_mass_kg=0.0)
     Traceback (most recent call last):
     ...
     ValueError: axle_mass_kg must be finite and positive, got 0.0
     """
-    mass = _check_positive("axle_mass_kg", axle_mass_kg)
+    mass = positive("axle_mass_kg", axle_mass_kg)
     if sample_rate_Hz is not None:
-        sample_rate_Hz = _check_positive("sample_rate_Hz", sample_rate_Hz)
+        sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
     file = None
     if isinstance(recording, pd.DataFrame):
         frame = recording

@@ -25,7 +25,6 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 from matplotlib.ticker import LogFormatter, NullFormatter  # noqa: E402
-from scipy import signal  # noqa: E402
 
 __all__ = ["RC", "SIZE", "T_TYRES", "NOMINAL_PRESSURE_BAR", "MARKERS", "to_svg", "compact_svg",
     "stiffness_vs_pressure", "stiffness_vs_speed", "damping_vs_speed", "pressure_dependence_vs_wr",
@@ -488,10 +487,12 @@ def run_spectra(signals: pd.DataFrame, axle_mass_kg: float, sample_rate_Hz: floa
                 segment_s: float = 8.0) -> pd.DataFrame:
     """Acceleration PSD, dynamic stiffness and coherence of one recording.
 
-    Tyre force ``f_t = M_a·mean(a_left, a_right) − Σ beams`` (thesis §3.2.8);
-    the apparent mass in the thesis convention is ``H = −f_t/a`` (Welch H1
-    estimate ``−S_af/S_aa``) and the dynamic stiffness is ``−ω²H`` whose real
-    part is K and whose imaginary part over ω is C (docs/architecture.md).
+    Tyre force ``f_t = M_a·mean(a_left, a_right) − Σ beams`` (thesis §3.2.8,
+    :func:`tyrelab.measurement.recording.frame_tyre_force`); the apparent mass
+    in the thesis convention is ``H = −f_t/a`` (Welch H1 estimate
+    ``−S_af/S_aa``, :func:`tyrelab.measurement.apparent_mass.h1_spectrum`) and
+    the dynamic stiffness is ``−ω²H`` whose real part is K and whose imaginary
+    part over ω is C (docs/architecture.md).
 
     Parameters
     ----------
@@ -510,16 +511,17 @@ def run_spectra(signals: pd.DataFrame, axle_mass_kg: float, sample_rate_Hz: floa
         frequency_Hz, accel_psd_m2_s4_per_Hz, dynamic_stiffness_kN_per_m
         (magnitude), coherence; frequencies up to 20 Hz.
     """
-    a = signals[["accel_left_m_s2", "accel_right_m_s2"]].to_numpy(float).mean(axis=1)
-    beams = signals[[c for c in signals.columns if c.startswith("load_beam_")]].to_numpy(float).sum(axis=1)
-    f_t = axle_mass_kg * a - beams
+    from ..measurement.apparent_mass import h1_spectrum
+    from ..measurement.recording import frame_tyre_force, recording_arrays
+
+    a = recording_arrays(signals)[0].mean(axis=0)
+    f_t = frame_tyre_force(signals, axle_mass_kg)
     a, f_t = a - a.mean(), f_t - f_t.mean()
     nper = int(min(len(a), max(64, round(segment_s * sample_rate_Hz))))
-    f, saa = signal.welch(a, fs=sample_rate_Hz, nperseg=nper)
-    _, saf = signal.csd(a, f_t, fs=sample_rate_Hz, nperseg=nper)
-    _, coh = signal.coherence(a, f_t, fs=sample_rate_Hz, nperseg=nper)
+    s = h1_spectrum(a, f_t, sample_rate_Hz, nper)
+    f, saa, coh = s.frequency_Hz, s.psd_x, s.coherence
     with np.errstate(divide="ignore", invalid="ignore"):
-        h = -saf / saa
+        h = -s.h1
         kdyn = -(2 * np.pi * f) ** 2 * h
     keep = (f > 0) & (f <= 20.0)
     return pd.DataFrame({"frequency_Hz": f[keep], "accel_psd_m2_s4_per_Hz": saa[keep],

@@ -38,13 +38,14 @@ import numpy as np
 import pandas as pd
 from scipy import fft as sfft
 
+from ..measurement.recording import frame_tyre_force
+from ..rawformat import ACCEL_CHANNELS, BEAM_CHANNELS, OPTIONAL_CHANNELS, TIME
+
 __all__ = ["G", "SURFACE_ROUGHNESS_M3", "SLAT_PERIOD_M", "RigConfig", "DayCalibration", "day_calibration",
     "RunSignals", "carriage_mass_kg", "ground_profile", "simulate_axle", "record", "derived_tyre_force"]
 
 G = 9.80665  # m/s^2
 
-#: raw format v1 run columns (schemas/raw_run.json)
-CHANNELS = ("accel_left_m_s2", "accel_right_m_s2", "load_beam_1_N", "load_beam_2_N", "load_beam_3_N", "load_beam_4_N")
 
 #: ISO 8608 class geometric means G_d(n0) (m^3) used as stand-ins for the
 #: surfaces of Tables V/IX (the thesis gives no profiles for them; field notes).
@@ -391,8 +392,8 @@ def record(signals: RunSignals, day: DayCalibration, rng: np.random.Generator, c
     s = cfg.noise_scale
     acc = signals.axle_acceleration_m_s2 + G
     roll = 0.03 * signals.axle_acceleration_m_s2
-    out = {"time_s": signals.time_s}
-    for i, (sign, name) in enumerate(((1, "accel_left_m_s2"), (-1, "accel_right_m_s2"))):
+    out = {TIME: signals.time_s}
+    for i, (sign, name) in enumerate(zip((1, -1), ACCEL_CHANNELS)):
         a = acc + sign * roll
         a = day.accel_gain[i] * a + day.accel_offset_m_s2[i] + s * cfg.accel_noise_m_s2 * rng.standard_normal(n)
         out[name] = _adc(a, cfg.accel_range_m_s2).astype(np.float32)
@@ -404,15 +405,16 @@ def record(signals: RunSignals, day: DayCalibration, rng: np.random.Generator, c
     for i in range(4):
         b = shares[i] * fb + preload[i] + pitch[i] * fb_dyn
         b = day.beam_gain[i] * b + day.beam_offset_N[i] + s * cfg.beam_noise_N * rng.standard_normal(n)
-        out[f"load_beam_{i + 1}_N"] = _adc(b, cfg.beam_range_N).astype(np.float32)
+        out[BEAM_CHANNELS[i]] = _adc(b, cfg.beam_range_N).astype(np.float32)
     if force_plate:
         fp = day.force_plate_gain * signals.tyre_force_N + s * cfg.force_plate_noise_N * rng.standard_normal(n)
-        out["force_plate_N"] = _adc(fp, cfg.force_plate_range_N).astype(np.float32)
+        out[OPTIONAL_CHANNELS[0]] = _adc(fp, cfg.force_plate_range_N).astype(np.float32)
     return pd.DataFrame(out)
 
 
 def derived_tyre_force(run: pd.DataFrame, axle_mass_kg: float) -> np.ndarray:
-    """f_t = M_a * mean(accel_left, accel_right) - sum(load beams)  (§3.2.8, raw v1)."""
-    acc = (run["accel_left_m_s2"].to_numpy(np.float64) + run["accel_right_m_s2"].to_numpy(np.float64)) / 2
-    beams = sum(run[f"load_beam_{i}_N"].to_numpy(np.float64) for i in range(1, 5))
-    return axle_mass_kg * acc - beams
+    """f_t = M_a * mean(accel_left, accel_right) - sum(load beams)  (§3.2.8, raw v1).
+
+    :func:`tyrelab.measurement.recording.frame_tyre_force`, the one home of the equation.
+    """
+    return frame_tyre_force(run, axle_mass_kg)

@@ -2,9 +2,10 @@
 
 Each ``raw/published/<stem>.csv`` is validated against
 ``schemas/published/<stem>.json`` and converted to
-``build/parquet/published/<stem>.parquet``; the warehouse then gets a view
-per Parquet table (``results``, ``table_iii`` ...), ``runs`` over the per-run
-dataset, and ``published_<stem>`` per thesis table.
+``build/parquet/published/<stem>.parquet``; the warehouse then stores a table
+per Parquet table (``results``, ``table_iii`` ...) and ``published_<stem>`` per
+thesis table, and gets the view ``runs`` over the per-run dataset, relative to
+the build folder (:mod:`tyrelab.warehouse`: portable).
 """
 
 from __future__ import annotations
@@ -35,4 +36,4 @@ def run(ctx: Context) -> StageResult:
     t0 = time.perf_counter()
     views = build_warehouse(ctx.build / "warehouse.duckdb", ctx.parquet, published_tables(ctx))
     return StageResult("warehouse", n_in=len(views), n_ok=len(views), seconds=time.perf_counter() - t0,
-                       message=f"{len(views)} views in {ctx.build / 'warehouse.duckdb'}")
+                       message=f"{len(views)} tables and views in {ctx.build / 'warehouse.duckdb'}")

@@ -34,14 +34,15 @@ __all__ = [
 
 
 def contact_length(radius_m: float, deflection_m: float) -> float:
-    """Contact-patch length of a tyre pressed onto flat ground, ``2 sqrt(2 R d)``, m.
+    """Contact-patch length of a tyre pressed onto flat ground, ``2 sqrt(2 R d - d²)``, m.
 
-    Chord of a circle of radius ``R`` cut at depth ``d`` (small ``d``).
+    Chord of a circle of radius ``R`` cut at depth ``d`` (``≈ 2 sqrt(2 R d)``
+    for small ``d``).
 
     Examples
     --------
     >>> round(contact_length(0.742, 0.05), 3)
-    0.545
+    0.536
     """
     d = max(float(deflection_m), 0.0)
     return 2.0 * math.sqrt(max(2.0 * radius_m * d - d * d, 0.0))

@@ -229,3 +229,56 @@ def test_welch_vectorised_over_runs_and_results_are_frozen():
     np.testing.assert_allclose(w.stiffness_N_per_m, [2e5, 4e5], rtol=0.005)
     with pytest.raises(dataclasses.FrozenInstanceError):
         w.stiffness_N_per_m = 0.0
+
+# ---------------------------------------------------------------- argument checks (issue 10)
+
+import pytest  # noqa: E402
+
+from tyrelab.measurement import apparent_mass as _am  # noqa: E402
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda x: _am.apparent_mass_welch(x, x, 0.0), "sample_rate_Hz"),
+    (lambda x: _am.apparent_mass_welch(x, x, float("nan")), "sample_rate_Hz"),
+    (lambda x: _am.apparent_mass_welch(x, x, 256.0, resolution_Hz=0.0), "resolution_Hz"),
+    (lambda x: _am.apparent_mass_welch(x, x[:-1], 256.0, 4.0), "force_N and accel_m_s2"),
+    (lambda x: _am.apparent_mass_demodulation(x, x, -256.0), "sample_rate_Hz"),
+    (lambda x: _am.apparent_mass_demodulation(x, x, 256.0, excitation_frequency_Hz=-4.0), "excitation_frequency_Hz"),
+    (lambda x: _am.apparent_mass_demodulation(x, x, 256.0, 4.0, half_band_Hz=0.0), "half_band_Hz"),
+    (lambda x: _am.excitation_frequency(x, 0.0), "sample_rate_Hz"),
+    (lambda x: _am.excitation_frequency(x, 256.0, band_Hz=(8.0, 1.0)), "band_Hz"),
+    (lambda x: _am.tyre_force(x, x, np.stack([x] * 4), 0.0), "axle_mass_kg"),
+    (lambda x: _am.tyre_force(x, x, np.stack([x] * 4), float("inf")), "axle_mass_kg"),
+    (lambda x: _am.tyre_force(x, x, np.stack([x] * 3), 600.0), "load_beams_N"),
+    (lambda x: _am.tyre_force(x, x[:-1], np.stack([x] * 4), 600.0), "accel_left_m_s2 and accel_right_m_s2"),
+    (lambda x: _am.stiffness_damping(-400 - 100j, 0.0), "frequency_Hz"),
+    (lambda x: _am.apparent_mass_from_kc(1e5, 1e3, -1.0), "frequency_Hz"),
+    (lambda x: _am.welch_segments_at(x, 256.0, 4.0, 1), "nperseg"),
+    (lambda x: _am.h1_spectrum(x, x[:-1], 256.0, 64), "mismatched lengths"),
+    (lambda x: _am.h1_spectrum(x, x, 256.0, 10**6), "nperseg"),
+    (lambda x: _am.excitation_blocks(x, x, 256.0, block_s=0.0), "block_s"),
+])
+def test_bad_arguments_raise_value_error_naming_the_parameter(call, name):
+    x = np.sin(np.arange(2048) / 10.0)
+    with pytest.raises(ValueError, match=name):
+        call(x)
+
+
+def test_nan_frequency_means_unknown_not_an_error():
+    k, c = _am.stiffness_damping(np.array([-400 - 100j, -400 - 100j]), np.array([3.8, np.nan]))
+    assert round(float(k[0])) == 228027 and np.isnan(k[1]) and np.isnan(c[1])
+
+
+def test_welch_estimate_is_h1_spectrum_read_at_the_bin():
+    """apparent_mass_welch's one-bin evaluation and h1_spectrum are the same estimator."""
+    rng = np.random.default_rng(5)
+    fs, n = 256.0, 256 * 40
+    t = np.arange(n) / fs
+    a = np.sin(2 * np.pi * 4.0 * t) + 0.1 * rng.standard_normal(n)
+    f = 800.0 * a + 3000.0 * np.cos(2 * np.pi * 4.0 * t) + 50 * rng.standard_normal(n)
+    w = _am.apparent_mass_welch(f, a, fs, 4.0)
+    nperseg = 2048  # what apparent_mass_welch picks at 0.125 Hz resolution
+    s = _am.h1_spectrum(a, f, fs, nperseg)
+    k = int(np.argmin(np.abs(s.frequency_Hz - float(w.frequency_Hz))))
+    assert complex(w.apparent_mass_kg) == pytest.approx(-complex(s.h1[k]), rel=1e-9)
+    assert float(w.coherence) == pytest.approx(float(s.coherence[k]), rel=1e-9)

@@ -102,3 +102,17 @@ def test_import_tyrelab_is_light_and_lazy():
     assert set(tyrelab.__all__) >= {"analyze_recording", "RecordingResult", "CHANNELS", "RunFileError", "measurement"}
     with pytest.raises(AttributeError):
         tyrelab.no_such_thing  # noqa: B018
+
+
+def test_batch_checks_shapes_and_masses():
+    from tyrelab.measurement.recording import analyse_batch
+
+    accel, beams = np.zeros((2, 2, 3000)), np.zeros((2, 4, 3000))
+    with pytest.raises(ValueError, match="beams must have shape"):
+        analyse_batch(accel, beams[:, :3], np.array([600.0, 600.0]), 256.0)
+    with pytest.raises(ValueError, match="axle_mass_kg must have shape"):
+        analyse_batch(accel, beams, np.array([600.0]), 256.0)
+    with pytest.raises(ValueError, match="axle_mass_kg must be finite and positive"):
+        analyse_batch(accel, beams, np.array([600.0, np.nan]), 256.0)
+    with pytest.raises(ValueError, match="interference_Hz"):
+        analyse_batch(accel, beams, np.array([600.0, 600.0]), 256.0, [[1.0]])

@@ -11,6 +11,7 @@ from scipy.integrate import solve_ivp
 
 from tyrelab.generate import generate_campaign
 from tyrelab.measurement import apparent_mass as am
+from tyrelab.rawformat import CHANNELS
 from tyrelab.rig import instrument as ins
 from tyrelab.rig.campaigns import MANIFEST_COLUMNS, campaign_plan, simulate_run
 
@@ -36,7 +37,7 @@ def test_tyre_force_contract_exact_without_instrument_errors():
     expected = 18.3e3 - K * d - C * dd
     assert np.allclose(sig.tyre_force_N[5:-5], expected[5:-5], atol=0.01 * K * d.std())
     run = ins.record(sig, ins.DayCalibration(), np.random.default_rng(2), cfg)
-    assert list(run.columns) == ["time_s", *ins.CHANNELS]
+    assert list(run.columns) == ["time_s", *CHANNELS]
     ft = ins.derived_tyre_force(run, cfg.axle_mass_kg)
     assert np.abs(ft - sig.tyre_force_N).max() < 5.0  # quantisation of 4 beams and 2 accelerometers only
     assert ft.mean() == pytest.approx(18.3e3, rel=1e-3)  # static load on the tyre, upward positive
@@ -123,7 +124,7 @@ def test_generate_small_is_deterministic_and_in_raw_v1(tmp_path):
     assert set(m["kind"]) == {"measurement", "calibration"}
     assert not (tmp_path / "a" / "tyres.csv").exists()
     run = pd.read_parquet(tmp_path / "a" / m.loc[m["kind"] == "calibration", "file"].iloc[0])
-    assert list(run.columns) == ["time_s", *ins.CHANNELS, "force_plate_N"]
+    assert list(run.columns) == ["time_s", *CHANNELS, "force_plate_N"]
     assert s1["runs"] == len(m) and m["run_id"].is_unique
     meta = json.loads((tmp_path / "a" / "generator.json").read_text())
     assert (meta["seed"], meta["scale"], meta["runs"]) == (5, "small", len(m))

@@ -1,0 +1,87 @@
+"""Argument checks shared by tyrelab's pure functions (scipy's habit).
+
+Each raises :class:`ValueError` naming the offending parameter, so a caller's
+mistake reads as one clear line instead of a ``ZeroDivisionError`` or a NaN
+three functions later.
+
+Examples
+--------
+>>> positive("sample_rate_Hz", 256)
+256.0
+>>> positive("sample_rate_Hz", 0.0)
+Traceback (most recent call last):
+...
+ValueError: sample_rate_Hz must be finite and positive, got 0.0
+>>> positive_array("axle_mass_kg", [600.0, -1.0])
+Traceback (most recent call last):
+...
+ValueError: axle_mass_kg must be finite and positive, got [600.0, -1.0]
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+__all__ = ["positive", "positive_array", "finite_array", "same_last_axis", "band"]
+
+
+def positive(name: str, value) -> float:
+    """``value`` as a float; ValueError naming ``name`` unless it is a finite number > 0."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(v) or v <= 0:
+        raise ValueError(f"{name} must be finite and positive, got {value!r}")
+    return v
+
+
+def positive_array(name: str, value, allow_nan: bool = False) -> np.ndarray:
+    """``value`` as a float array; ValueError naming ``name`` unless every element is finite and > 0.
+
+    With ``allow_nan``, NaN ("not known", e.g. no excitation found) passes through.
+    """
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be numbers, got {value!r}") from None
+    ok = np.isfinite(a) & (a > 0)
+    if allow_nan:
+        ok |= np.isnan(a)
+    if not ok.all():
+        shown = a.tolist() if a.size <= 6 else f"{a.size} values, {int((~ok).sum())} bad"
+        raise ValueError(f"{name} must be {'positive (or NaN)' if allow_nan else 'finite and positive'}, got {shown}")
+    return a
+
+
+def finite_array(name: str, value, min_samples: int = 1) -> np.ndarray:
+    """``value`` as a float array with at least ``min_samples`` along the last axis, every sample finite."""
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be numeric samples") from None
+    if a.ndim == 0 or a.shape[-1] < min_samples:
+        raise ValueError(f"{name} needs at least {min_samples} samples along its last axis, got shape {a.shape}")
+    if not np.isfinite(a).all():
+        raise ValueError(f"{name} has non-finite samples")
+    return a
+
+
+def same_last_axis(**arrays: np.ndarray) -> None:
+    """ValueError naming the arrays unless they have the same length along the last axis."""
+    lengths = {k: np.shape(v)[-1] if np.ndim(v) else None for k, v in arrays.items()}
+    if len(set(lengths.values())) > 1:
+        raise ValueError("mismatched lengths: " + ", ".join(f"{k} has {n} samples" for k, n in lengths.items()))
+
+
+def band(name: str, value) -> tuple[float, float]:
+    """``(low, high)`` in Hz with ``0 <= low < high``, finite; ValueError naming ``name`` otherwise."""
+    try:
+        lo, hi = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a (low, high) pair in Hz, got {value!r}") from None
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0 <= lo < hi):
+        raise ValueError(f"{name} must satisfy 0 <= low < high, got {value!r}")
+    return lo, hi
