@@ -19,7 +19,7 @@ Examples
 --------
 >>> import tyrelab
 >>> tyrelab.analyze_recording.__module__
-'tyrelab.measurement.recording'
+'tyrelab.api'
 >>> tyrelab.CHANNELS[:2]
 ['accel_left_m_s2', 'accel_right_m_s2']
 """
@@ -30,9 +30,11 @@ __version__ = "0.1.0"
 
 __getattr__, __dir__, __all__ = attach(
     __name__,
-    submodules=["measurement", "tyre", "vehicle", "rig", "rawformat", "report", "stages", "resources", "warehouse"],
+    submodules=["api", "measurement", "tyre", "vehicle", "rig", "rawformat", "report", "stages", "resources",
+                "warehouse"],
     attrs={
-        "measurement.recording": ["analyze_recording", "RecordingResult", "WelchEstimate"],
+        "api": ["analyze_recording"],
+        "measurement.recording": ["RecordingResult", "WelchEstimate", "analyse_frame"],
         "measurement.apparent_mass": ["tyre_force", "stiffness_damping"],
         "rawformat": ["CHANNELS", "RunFileError", "read_run_file", "check_run"],
         "warehouse": ["connect_read_only", "query"],

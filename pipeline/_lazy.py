@@ -10,7 +10,7 @@ first access of one of its names.
 Examples
 --------
 >>> import tyrelab.measurement as m
->>> "analyze_recording" in m.__all__ and "recording" in m.__all__
+>>> "analyse_frame" in m.__all__ and "recording" in m.__all__
 True
 >>> m.tyre_force is m.apparent_mass.tyre_force
 True
@@ -67,8 +67,8 @@ def attach(package: str, submodules: list[str] | None = None, attrs: dict[str, l
     submodules : list of str, optional
         Submodules, attributes of the package (default: every public
         submodule found); with ``reexport`` their whole ``__all__`` is
-        re-exported too, the first submodule (in order) winning a name that
-        two export (:func:`collisions` lists them; a test keeps it empty). A
+        re-exported too. A name two submodules export is not re-exported
+        (:func:`collisions` lists them; import it from its submodule), and a
         name that is also a submodule's name (``tyre.size_regressions``) stays
         the submodule.
     attrs : dict, optional
@@ -83,10 +83,16 @@ def attach(package: str, submodules: list[str] | None = None, attrs: dict[str, l
     if submodules is None:
         submodules = submodule_names(package)
     where: dict[str, str] = {}
+    ambiguous: set[str] = set()
     for sub in submodules if reexport else ():
         for name in module_all(f"{package}.{sub}"):
-            if name not in submodules:  # the submodule itself wins (the import system sets it)
-                where.setdefault(name, sub)
+            if name in submodules:  # the submodule itself wins (the import system sets it)
+                continue
+            if name in where and where[name] != sub:
+                ambiguous.add(name)
+            where.setdefault(name, sub)
+    for name in ambiguous:  # which one would be a guess: import it from its submodule
+        del where[name]
     for sub, names in (attrs or {}).items():
         for name in names:
             where[name] = sub

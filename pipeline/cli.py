@@ -116,7 +116,7 @@ def cmd_sql(args) -> int:
 
 
 def cmd_analyze_run(args) -> int:
-    from .measurement.recording import analyze_recording
+    from .api import analyze_recording
     from .rawformat import RunFileError
 
     try:

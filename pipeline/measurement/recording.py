@@ -1,10 +1,11 @@
 """K, C and QC of recordings in raw format v1, without the stage machinery.
 
-The library face of the analyse stage: :func:`analyze_recording` takes one
-recording (a run file, or a DataFrame with the raw-format-v1 channels) and
-the axle mass and returns a :class:`RecordingResult`; :func:`analyse_batch`
-does the same work on a batch of equal-length runs in one vectorised call
-(the analyse stage and ``tyrelab analyze-run`` both call it).
+The library face of the analyse stage, pure (no file I/O): :func:`analyse_frame`
+takes one recording as a DataFrame with the raw-format-v1 channels and the
+axle mass and returns a :class:`RecordingResult`; :func:`analyse_batch` does
+the same work on a batch of equal-length runs in one vectorised call (the
+analyse stage and ``tyrelab analyze-run`` both call it).
+:func:`tyrelab.analyze_recording` (:mod:`tyrelab.api`) reads a run file first.
 
 Both estimators are computed: the phase-locked synchronous demodulation
 (K and C used downstream) and the thesis' Welch H1 read at the excitation bin
@@ -26,7 +27,7 @@ at 4 Hz, 14 mm peak to peak, sampled at 256 Hz for 30 s:
 >>> beams = (M * a - f_t) / 4                   # each load beam carries a quarter
 >>> rec = pd.DataFrame({"time_s": t, "accel_left_m_s2": a, "accel_right_m_s2": a,
 ...                     **{f"load_beam_{i}_N": beams for i in range(1, 5)}})
->>> r = analyze_recording(rec, axle_mass_kg=M)
+>>> r = analyse_frame(rec, axle_mass_kg=M)
 >>> round(r.stiffness_kN_per_m), round(r.damping_kN_s_per_m, 2), round(r.excitation_frequency_Hz, 2)
 (250, 2.0, 4.0)
 >>> r.qc_ok, r.qc_reasons
@@ -38,22 +39,20 @@ at 4 Hz, 14 mm peak to peak, sampled at 256 Hz for 30 s:
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 from .._validate import positive, positive_array
-from ..rawformat import ACCEL_CHANNELS, BEAM_CHANNELS, CHANNELS, TIME, check_run, read_run_file
+from ..rawformat import ACCEL_CHANNELS, BEAM_CHANNELS, CHANNELS, TIME, check_run
 from . import apparent_mass as am
 from . import qc
 
-__all__ = ["WelchEstimate", "RecordingResult", "analyze_recording", "analyse_batch", "recording_arrays",
+__all__ = ["WelchEstimate", "RecordingResult", "analyse_frame", "analyse_batch", "recording_arrays",
            "frame_tyre_force"]
 
-#: How ``analyze_recording`` names the estimator of K and C.
+#: How :class:`RecordingResult` names the estimator of K and C.
 ESTIMATOR = "phase-locked synchronous demodulation"
 
 
@@ -258,34 +257,31 @@ def analyse_batch(
     return pd.DataFrame(cols)
 
 
-def analyze_recording(
-    recording: str | os.PathLike | pd.DataFrame,
+def analyse_frame(
+    frame: pd.DataFrame,
     axle_mass_kg: float,
     *,
     sample_rate_Hz: float | None = None,
     interference_Hz: list[float] | None = None,
-    channel_map: dict | None = None,
+    file: str | None = None,
 ) -> RecordingResult:
-    """Stiffness K, damping C and QC of one recording (thesis ch. 3, §3.5).
+    """Stiffness K, damping C and QC of one recording given as a DataFrame (thesis ch. 3, §3.5).
 
     Parameters
     ----------
-    recording : path or DataFrame
-        A run file in raw format v1 (``.parquet``, ``.csv``; ``.mf4``/``.tdms``
-        through ``channel_map``), or a DataFrame with its channels
-        (:data:`tyrelab.rawformat.CHANNELS`; accelerations upward positive,
-        m/s²; load-beam forces on the axle, N). A frame without ``time_s``
-        needs ``sample_rate_Hz``.
+    frame : DataFrame
+        The raw-format-v1 channels (:data:`tyrelab.rawformat.CHANNELS`;
+        accelerations upward positive, m/s²; load-beam forces on the axle, N)
+        and ``time_s``; without ``time_s``, ``sample_rate_Hz`` makes one.
     axle_mass_kg : float
         Mass of axle, wheel and tyre below the load beams M_a, kg (§3.2.8).
     sample_rate_Hz : float, optional
-        Expected sampling rate, Hz: checked against the time base (or used to
-        make one when the frame has no ``time_s``).
+        Expected sampling rate, Hz, checked against the time base.
     interference_Hz : list of float, optional
         Frequencies of the wheel's own excitation (rotation, lug passing) for
-        the QC check of rolling runs (:func:`tyrelab.measurement.qc.interference_frequencies_Hz`).
-    channel_map : dict, optional
-        Channel map for ``.mf4``/``.tdms`` files (:mod:`tyrelab.rawformat.mapped`).
+        the QC of rolling runs (:func:`tyrelab.measurement.qc.interference_frequencies_Hz`).
+    file : str, optional
+        Where the frame was read from, kept in the result.
 
     Returns
     -------
@@ -295,38 +291,27 @@ def analyze_recording(
     ------
     ValueError
         If ``axle_mass_kg`` or ``sample_rate_Hz`` is not finite and positive,
-        or ``recording`` is neither a path nor a DataFrame.
+        ``frame`` is not a DataFrame, or it has no ``time_s`` and no ``sample_rate_Hz``.
     tyrelab.rawformat.RunFileError
-        If the recording is unreadable or fails the raw-format checks.
+        If the channels fail the raw-format checks (missing channel, NaN,
+        irregular or out-of-range sampling, too short).
 
     Examples
     --------
-    >>> from tyrelab.rawformat import RunFileError
-    >>> try:
-    ...     analyze_recording("missing.parquet", axle_mass_kg=600.0)
-    ... except RunFileError as exc:
-    ...     print(exc)
-    file not found
-    >>> analyze_recording("missing.parquet", axle_mass_kg=0.0)
+    >>> analyse_frame(pd.DataFrame(), axle_mass_kg=-600.0)
     Traceback (most recent call last):
     ...
-    ValueError: axle_mass_kg must be finite and positive, got 0.0
+    ValueError: axle_mass_kg must be finite and positive, got -600.0
     """
     mass = positive("axle_mass_kg", axle_mass_kg)
     if sample_rate_Hz is not None:
         sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
-    file = None
-    if isinstance(recording, pd.DataFrame):
-        frame = recording
-        if TIME not in frame.columns:
-            if sample_rate_Hz is None:
-                raise ValueError("sample_rate_Hz is needed for a recording without a time_s column")
-            frame = frame.assign(**{TIME: np.arange(len(frame)) / sample_rate_Hz})
-    elif isinstance(recording, (str, os.PathLike)):
-        file = str(recording)
-        frame = read_run_file(Path(recording), channel_map=channel_map)
-    else:
-        raise ValueError(f"recording must be a path or a pandas DataFrame, got {type(recording).__name__}")
+    if not isinstance(frame, pd.DataFrame):
+        raise ValueError(f"frame must be a pandas DataFrame, got {type(frame).__name__}")
+    if TIME not in frame.columns:
+        if sample_rate_Hz is None:
+            raise ValueError("sample_rate_Hz is needed for a recording without a time_s column")
+        frame = frame.assign(**{TIME: np.arange(len(frame)) / sample_rate_Hz})
     info = check_run(frame, excitation_frequency_Hz=0.0, sample_rate_Hz=sample_rate_Hz)
     accel, beams = recording_arrays(frame)
     row = analyse_batch(accel[np.newaxis], beams[np.newaxis], np.array([mass]), info.sample_rate_Hz,

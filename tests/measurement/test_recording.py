@@ -1,4 +1,4 @@
-"""The library entry point: tyrelab.analyze_recording, without the stage machinery."""
+"""The library entry point: tyrelab.analyze_recording (tyrelab.api), and the pure analyse_frame under it."""
 
 import json
 import subprocess
@@ -9,7 +9,8 @@ import pandas as pd
 import pytest
 
 import tyrelab
-from tyrelab.measurement.recording import RecordingResult, analyze_recording
+from tyrelab.api import analyze_recording
+from tyrelab.measurement.recording import RecordingResult, analyse_frame
 from tyrelab.rawformat import RunFileError
 from synthetic import spring_damper_recording
 
@@ -43,6 +44,7 @@ def test_file_and_frame_agree_and_json_keys_are_the_cli_contract(tmp_path, capsy
     from_file = analyze_recording(path, 600.0)
     from_frame = analyze_recording(rec, 600.0)
     assert from_file.stiffness_N_per_m == from_frame.stiffness_N_per_m and from_file.file == str(path)
+    assert analyse_frame(rec, 600.0) == from_frame and from_frame.file is None
     d = from_file.to_dict()
     assert set(d) == ANALYZE_RUN_KEYS
     json.dumps(d)  # JSON-ready
@@ -76,6 +78,8 @@ def test_bad_axle_mass_names_the_parameter(mass):
 def test_bad_inputs_are_value_or_run_file_errors(tmp_path):
     with pytest.raises(ValueError, match="recording"):
         analyze_recording(42, 600.0)
+    with pytest.raises(ValueError, match="frame must be a pandas DataFrame"):
+        analyse_frame({"time_s": [0.0]}, 600.0)
     with pytest.raises(ValueError, match="sample_rate_Hz"):
         analyze_recording(spring_damper_recording(duration_s=12.0), 600.0, sample_rate_Hz=0.0)
     with pytest.raises(RunFileError, match="missing channel"):
@@ -98,7 +102,7 @@ def test_import_tyrelab_is_light_and_lazy():
         "if m in sys.modules]; f = tyrelab.analyze_recording; print(heavy, f.__module__, 'scipy' in sys.modules)"
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
-    assert out == ["[]", "tyrelab.measurement.recording", "True"]
+    assert out == ["[]", "tyrelab.api", "True"]
     assert set(tyrelab.__all__) >= {"analyze_recording", "RecordingResult", "CHANNELS", "RunFileError", "measurement"}
     with pytest.raises(AttributeError):
         tyrelab.no_such_thing  # noqa: B018
