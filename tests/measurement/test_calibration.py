@@ -35,6 +35,14 @@ def test_gain_error_detected():
     assert cal.check_calibration(cal.calibration_transfer_function(fp, 1.02 * fp, FS))["pass"]
 
 
+def test_limits_are_inclusive():
+    """§3.2.9: within 1 ± 3 % and 0 ± 1°, limits included (tolerances chosen so the errors are exact in binary)."""
+    tf = pd.DataFrame({"frequency_Hz": [2.0, 4.0, 6.0], "gain": [1.0, 1.5, 1.0], "phase_deg": [0.0, -2.0, 0.0]})
+    assert cal.check_calibration(tf, gain_tolerance=0.5, phase_tolerance_deg=2.0)["pass"]
+    assert not cal.check_calibration(tf, gain_tolerance=0.25, phase_tolerance_deg=2.0)["pass"]
+    assert not cal.check_calibration(tf, gain_tolerance=0.5, phase_tolerance_deg=1.0)["pass"]
+
+
 def test_virtual_days_good_and_miscalibrated():
     plan = campaign_plan("small")
     rows = plan[plan["kind"] == "calibration"].to_dict("records")
