@@ -113,3 +113,12 @@ def test_fit_tyres_from_results_and_unfittable_tyre():
     assert not p5.loc[5.0, "used_in_fit"] and abs(p5.loc[5.0, "error_percent"]) < 0.1   # out of sample
     new = fits.set_index("tyre_id").loc["NEW"]
     assert new.status == "fewer than 2 distinct speeds"
+
+
+def test_figure_grids_are_those_of_the_thesis_figures():
+    fc = spoke.force_curves()  # Fig. 43: Coulomb friction of 1 N/rad alone
+    assert (fc["c_coulomb_N_per_rad"] == 1.0).all() and (fc["c_viscous_N_s_per_m_per_rad"] == 0.0).all()
+    v = spoke.speed_curves().query("model == 'coulomb'")["speed_km_h"].to_numpy()
+    assert v[0] == 0.1 and v[-1] == 20.0 and np.all(np.diff(v) > 0)  # Figs 44-45: 0.1-20 km/h, increasing
+    for curves in (spoke.frequency_curves(), spoke.amplitude_curves(), spoke.deflection_curves()):
+        assert sorted(set(curves["speed_km_h"])) == [1.0, 5.0, 10.0, 15.0, 20.0]  # Figs 46-48
