@@ -116,9 +116,16 @@ def test_fit_tyres_from_results_and_unfittable_tyre():
 
 
 def test_figure_grids_are_those_of_the_thesis_figures():
-    fc = spoke.force_curves()  # Fig. 43: Coulomb friction of 1 N/rad alone
+    fc = spoke.force_curves()  # Fig. 43: Coulomb friction of 1 N/rad alone at 0.5-20 km/h
     assert (fc["c_coulomb_N_per_rad"] == 1.0).all() and (fc["c_viscous_N_s_per_m_per_rad"] == 0.0).all()
+    assert sorted(set(fc["speed_km_h"])) == [0.5, 1, 2, 5, 10, 20]
     v = spoke.speed_curves().query("model == 'coulomb'")["speed_km_h"].to_numpy()
-    assert v[0] == 0.1 and v[-1] == 20.0 and np.all(np.diff(v) > 0)  # Figs 44-45: 0.1-20 km/h, increasing
+    np.testing.assert_array_equal(v[:6], [0.1, 0.2, 0.3, 0.5, 0.75, 1.0])  # Figs 44-45: 0.1-20 km/h
+    assert v[-1] == 20.0 and np.all(np.diff(v[5:]) == 0.5)
     for curves in (spoke.frequency_curves(), spoke.amplitude_curves(), spoke.deflection_curves()):
         assert sorted(set(curves["speed_km_h"])) == [1.0, 5.0, 10.0, 15.0, 20.0]  # Figs 46-48
+    # Fig. 48's abscissa is the deflection 1 - h/r0 in %; 8 % is the thesis' h = 0.92 r0 of the other figures
+    d = spoke.deflection_curves().query("speed_km_h == 10")
+    np.testing.assert_allclose(d["deflection_percent"], np.arange(2.0, 15.01, 0.5))
+    at8 = d.loc[np.isclose(d["deflection_percent"], 8.0), "damping_N_s_per_m"].iloc[0]
+    assert at8 == pytest.approx(float(spoke.equivalent_damping(10.0)), rel=1e-9)
