@@ -102,6 +102,7 @@ def test_factor_regressions_amplitude_rate():
     k = rates.query("response == 'stiffness_kN_per_m'").set_index("speed_km_h")
     assert k.loc[0.0, "slope"] == pytest.approx(-15.5) and k.loc[10.0, "slope"] == pytest.approx(-1.09)
     assert k.loc[0.0, "held_pressure_bar"] == pytest.approx(1.38)
+    assert list(rates.columns[:6]) == ["tyre_id", "speed_km_h", "response", "factor", "factor_unit", "rate_unit"]
     c = rates.query("response == 'damping_kN_s_per_m' and speed_km_h == 10").iloc[0]
     assert c.slope == pytest.approx(0.018) and c.rate_unit == "kNs/m per mm"
     t4 = reg.amplitude_table(rates, pd.DataFrame({"tyre_id": ["F1"], "speed_km_h": [10],
@@ -144,8 +145,10 @@ def test_summary_rates_against_known_values(results):
     assert t6.loc["rolling_speed_10_15", "value"] == pytest.approx(0.0, abs=1e-9)
     assert t6.loc["pressure", "thesis_value"] == 190.0  # from raw/published/table_vi.csv
     assert t6.loc["load", "thesis_value"] == 0.0  # "(none)"
-    bare = reg.summary_rates(by_speed, rates, reg.STIFFNESS).set_index("factor")
+    bare = reg.summary_rates(by_speed, rates, reg.STIFFNESS)
     assert bare["thesis_value"].isna().all()  # no thesis numbers live in the code
+    assert list(bare.columns[:7]) == ["factor", "measured_range", "unit", "thesis_value", "thesis_change_text",
+                                      "value", "value_difference"]  # the documented layout
 
 
 def test_measured_scatter_around_one_set_level_is_not_a_sweep():
