@@ -32,8 +32,34 @@ def test_fit_line_analytic():
     s = np.sqrt((res**2).sum() / 3)
     assert f["slope_se"] == pytest.approx(s / np.sqrt(sxx))
     from scipy.stats import t
-    assert f["slope_ci_high"] - f["slope"] == pytest.approx(t.ppf(0.975, 3) * s / np.sqrt(sxx))
+    half = t.ppf(0.975, 3) * s / np.sqrt(sxx)
+    assert (f["slope_ci_low"], f["slope_ci_high"]) == pytest.approx((slope - half, slope + half))
+    se_b = s * np.sqrt(1 / 5 + x.mean() ** 2 / sxx)  # intercept standard error, closed form
+    assert f["intercept_se"] == pytest.approx(se_b)
+    assert (f["intercept_ci_low"], f["intercept_ci_high"]) == pytest.approx(
+        (f["intercept"] - t.ppf(0.975, 3) * se_b, f["intercept"] + t.ppf(0.975, 3) * se_b))
     assert f["n"] == 5 and f["r_squared"] > 0.99 and f["reason"] is None
+
+
+def test_fit_mean_t_interval():
+    from scipy.stats import t
+
+    y = [1.0, 2.0, 4.0, 7.0]
+    m = reg.fit_mean(y)
+    sd = float(np.std(y, ddof=1))
+    half = t.ppf(0.975, 3) * sd / 2
+    assert m["mean"] == 3.5 and m["sd"] == pytest.approx(sd) and m["se"] == pytest.approx(sd / 2)
+    assert (m["ci_low"], m["ci_high"]) == pytest.approx((3.5 - half, 3.5 + half))
+
+
+def test_pooled_runs_say_so_in_the_note():
+    # three pressures, each at its own load: no load level varies the pressure, so the runs are pooled
+    rows = [run("T9", 10.0, p, 100 + 200 * p, 1.0, load_kN=load) for p, load in ((0.8, 16.0), (1.1, 18.3), (1.4, 22.6))]
+    fit = reg.pressure_regressions(pd.DataFrame(rows))
+    r = fit.query("tyre_id == 'T9' and condition == 'rolling'").iloc[0]
+    assert r.note == "pooled over load_kN (no single level varies the regressor)"
+    assert r.slope == pytest.approx(200.0)
+    assert fit.query("tyre_id == 'T9' and condition == 'stationary'")["note"].isna().all()
 
 
 def test_fit_line_degenerate():

@@ -105,3 +105,16 @@ def test_batched_equals_single():
     b = cm.simulate_nonlinear(cars, np.vstack([u, u]), np.vstack([ud, ud]), 1e-3)
     s = cm.simulate_nonlinear(cm.Carriage(2300.0, 2.9e5, 1600.0, 0.0, 150.0), u, ud, 1e-3)
     np.testing.assert_allclose(b["a_m_s2"][1], s["a_m_s2"], rtol=1e-12, atol=1e-12)
+
+
+def test_linear_carriage_starting_in_equilibrium_on_raised_ground_stays_put():
+    """z0 = u0 = 10 mm, at rest, ground level: the initial state is the static equilibrium.
+
+    The first-order-hold state is shifted by the input at t = 0; getting that shift's sign
+    wrong starts the carriage 2 x 10 mm off and it rings at ~2 Hz.
+    """
+    n = 4000
+    u = np.full(n, 0.01)
+    out = cm.simulate_linear(CAR, u, np.zeros(n), 1e-3, z0_m=0.01)
+    np.testing.assert_allclose(out["z_m"], 0.01, atol=1e-12)
+    np.testing.assert_allclose(out["a_m_s2"], 0.0, atol=1e-9)
