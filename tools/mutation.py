@@ -61,6 +61,7 @@ MODULES: dict[str, list[str]] = {
     "vehicle/bounce_pitch.py": ["tests/vehicle/test_bounce_pitch.py"],
     "vehicle/carriage.py": ["tests/vehicle/test_carriage.py"],
     "vehicle/tractor.py": ["tests/vehicle/test_metrics_tractor.py"],
+    "vehicle/ride.py": ["tests/vehicle/test_ride.py"],
 }
 
 #: Operators kept (cosmic-ray operator names). One mutant per site and kind, in the spirit
