@@ -49,7 +49,7 @@ MODULES: dict[str, list[str]] = {
     "measurement/calibration.py": ["tests/measurement/test_calibration.py", "tests/stages/test_calibrate.py"],
     "measurement/methods.py": ["tests/measurement/test_methods.py"],
     "measurement/qc.py": ["tests/measurement/test_qc.py"],
-    "tyre/conditions.py": ["tests/tyre/test_conditions.py"],
+    "tyre/conditions.py": ["tests/tyre/test_conditions.py", "tests/tyre/test_regressions.py"],
     "tyre/formula_accuracy.py": ["tests/tyre/test_formula_accuracy.py"],
     "tyre/regressions.py": ["tests/tyre/test_regressions.py", "tests/stages/test_regress.py::"
                             "test_every_comparison_table_gives_ours_minus_thesis_on_non_zero_differences"],

@@ -138,3 +138,26 @@ def test_frequency_rounding_range_brackets_the_nominal_value():
     assert rng[0, 0] < f[0] < rng[0, 1] and rng[1, 0] < f[1] < rng[1, 1]
     # a 0.005 m lever-arm rounding alone moves f2 by ~0.008 Hz
     assert rng[1, 1] - rng[1, 0] > 0.016
+
+
+def test_argument_checks_at_their_boundaries():
+    assert all(np.isfinite(bp.natural_frequencies(1.0, 1.0, 1.0, 1.0, 1e3, 1e3)))  # a 1 kg body is a body
+    with pytest.raises(ValueError):
+        bp.natural_frequencies(1000, 250, 1.0, 1.0, 0.0, 1e5)  # a zero axle stiffness has no frequency
+    with pytest.raises(ValueError):
+        bp.natural_frequencies(1000, 250, -0.1, 1.0, 1e5, 1e5)  # one negative lever arm is enough
+
+
+def test_tractor_frequencies_use_two_tyres_per_axle():
+    f = bp.tractor_natural_frequencies(3434, 3946, 1.48, 0.81, "7.50-16", 2.0, "13.6-38", 1.2,
+                                       front_stiffness_kN_per_m=311.0, rear_stiffness_kN_per_m=314.0)
+    f1, f2 = bp.natural_frequencies(3434, 3946, 1.48, 0.81, 2 * 311e3, 2 * 314e3)
+    assert (f["frequency_1_Hz"], f["frequency_2_Hz"]) == pytest.approx((f1, f2), rel=1e-12)
+
+
+def test_table_xx_ratio_errors_of_both_frequencies():
+    t = bp.table_xx(layouts.tractors(read_published("table_xix")), read_published("table_xx"))
+    for i in (1, 2):
+        np.testing.assert_allclose(t[f"ours_ratio_error_{i}"], t[f"ours_frequency_{i}_Hz"] / t[f"measured_frequency_{i}_Hz"])
+        np.testing.assert_allclose(t[f"thesis_ratio_error_{i}"],
+                                   t[f"thesis_frequency_{i}_Hz"] / t[f"measured_frequency_{i}_Hz"])

@@ -118,3 +118,17 @@ def test_linear_carriage_starting_in_equilibrium_on_raised_ground_stays_put():
     out = cm.simulate_linear(CAR, u, np.zeros(n), 1e-3, z0_m=0.01)
     np.testing.assert_allclose(out["z_m"], 0.01, atol=1e-12)
     np.testing.assert_allclose(out["a_m_s2"], 0.0, atol=1e-9)
+
+
+def test_lift_off_changes_nothing_while_the_tyre_stays_on_the_ground():
+    """A 2 mm ripple at 2 Hz: the dynamic tyre force stays far below the static load M g,
+    so allowing lift-off must give the same run bit for bit, and no time off the ground."""
+    n = 4001
+    t = np.arange(n) * 5e-4
+    u = 0.002 * np.sin(2 * np.pi * 2.0 * t)
+    ud = 0.002 * 2 * np.pi * 2.0 * np.cos(2 * np.pi * 2.0 * t)
+    on = cm.simulate_nonlinear(CAR, u, ud, 1e-3, lift_off=True)
+    off = cm.simulate_nonlinear(CAR, u, ud, 1e-3, lift_off=False)
+    assert np.max(np.abs(CAR.stiffness_N_per_m * 0.002 * 3)) < CAR.mass_kg * cm.GRAVITY_M_S2  # stays in contact
+    np.testing.assert_array_equal(on["a_m_s2"], off["a_m_s2"])
+    assert on["lift_off_fraction"] == 0.0

@@ -109,3 +109,51 @@ def test_tractor_free_decay_from_a_displacement(model):
     assert out["z_m"][0] == 0.0 and np.max(out["z_m"]) > 1.5 * step  # overshoots: lightly damped
     assert out["z_m"][-1] == pytest.approx(step, abs=1e-2 * step)
     assert abs(out["theta_rad"][-1]) < 1e-2 * step / (a + b)
+
+
+def test_tractor_rk4_against_the_exact_linear_response_to_a_bump():
+    """Without lift-off or longitudinal compliance the tractor is a linear 4-state system.
+
+    Reference: its state equations written here and integrated by :func:`scipy.signal.lsim`
+    (exact for inputs linear between samples) over a 20 mm sin² bump of 0.2 s under the
+    front, then the rear axle. Expected difference: lsim's linear interpolation of the
+    bump's rate, ~4e-5 of the peak at 1 ms (RK4's own error is O(dt^4)); allowed 2e-4.
+    Feeding RK4's midpoint stage the previous input sample instead costs 5e-3.
+    """
+    from scipy import signal
+
+    m, inertia, a, b, h = 5120.0, 6210.0, 1.54, 0.896, 0.838
+    kf, kr, cf, cr = 8.5e5, 6.6e5, 3e3, 2e3
+    dt, n = 1e-3, 3001
+    th = np.arange(2 * n - 1) * dt / 2
+
+    def bump(t, t0):
+        s = np.clip((t - t0) / 0.2, 0, 1)
+        rate = np.where((s > 0) & (s < 1), 0.02 * np.sin(2 * np.pi * s) * np.pi / 0.2, 0.0)
+        return 0.02 * np.sin(np.pi * s) ** 2, rate
+
+    uf, udf = bump(th, 0.1)
+    ur, udr = bump(th, 0.1 + (a + b) / 3.0)  # 3 m/s
+    out = simulate_tractor(Tractor(m, inertia, a, b, h, kf, kr, cf, cr, 0.0, 0.0, "none"), uf, udf, ur, udr, dt,
+                           lift_off=False)
+    A = np.array([[0, 0, 1, 0], [0, 0, 0, 1],
+                  [-(kf + kr) / m, (-kf * a + kr * b) / m, -(cf + cr) / m, (-cf * a + cr * b) / m],
+                  [(-a * kf + b * kr) / inertia, -(a * a * kf + b * b * kr) / inertia,
+                   (-a * cf + b * cr) / inertia, -(a * a * cf + b * b * cr) / inertia]])
+    B = np.array([[0, 0, 0, 0], [0, 0, 0, 0], [kf / m, cf / m, kr / m, cr / m],
+                  [a * kf / inertia, a * cf / inertia, -b * kr / inertia, -b * cr / inertia]])
+    U = np.column_stack([uf[::2], udf[::2], ur[::2], udr[::2]])
+    _, y, _ = signal.lsim((A, B, np.eye(4), np.zeros((4, 4))), U, th[::2])
+    for got, ref in ((out["z_m"], y[:, 0]), (out["theta_rad"], y[:, 1])):
+        assert np.max(np.abs(got - ref)) < 2e-4 * np.max(np.abs(ref))
+    np.testing.assert_array_equal(out["longitudinal_m_s2"], 0.0)
+
+
+def test_default_tractor_has_no_longitudinal_force():
+    tr = Tractor(5120.0, 6210.0, 1.54, 0.896, 0.838, 8.5e5, 6.6e5, 3e3, 2e3)
+    n = 2001
+    t = np.arange(2 * n - 1) * 5e-4
+    u = np.where(t < 0.2, 0.01 * np.sin(np.pi * t / 0.2) ** 2, 0.0)
+    out = simulate_tractor(tr, u, np.gradient(u, 5e-4), np.zeros_like(u), np.zeros_like(u), 1e-3, lift_off=False)
+    assert tr.longitudinal_stiffness_N_per_m == 0.0 and tr.longitudinal_damping_N_s_per_m == 0.0
+    np.testing.assert_array_equal(out["longitudinal_m_s2"], 0.0)
