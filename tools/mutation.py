@@ -56,7 +56,7 @@ MODULES: dict[str, list[str]] = {
     "tyre/size_regressions.py": ["tests/tyre/test_size_regressions.py"],
     "tyre/sizes.py": ["tests/tyre/test_sizes.py"],
     "tyre/spoke.py": ["tests/tyre/test_spoke.py"],
-    "tyre/stiffness.py": ["tests/tyre/test_stiffness.py"],
+    "tyre/stiffness.py": ["tests/tyre/test_stiffness.py", "tests/tyre/test_stiffness_estimate.py"],
     "vehicle/iso2631.py": ["tests/vehicle/test_iso2631.py"],
     "vehicle/bounce_pitch.py": ["tests/vehicle/test_bounce_pitch.py"],
     "vehicle/carriage.py": ["tests/vehicle/test_carriage.py"],

@@ -32,3 +32,9 @@ def test_table_xx_formula_stiffnesses_within_3_kN_per_m():
     # formula (rounded coefficients); we reproduce them within 3 kN/m.
     for size, p, printed in [("13.6-38", 1.1, 306), ("12-38", 1.3, 314), ("13.6R38", 1.2, 323), ("13.6/12-36", 1.5, 365)]:
         assert traction_tyre_stiffness(size, p, 1) == pytest.approx(printed, abs=3)
+
+
+def test_default_is_the_traction_tyre_rule():
+    # undriven ribbed fronts are the exception (§8.2); by default a tyre is a traction tyre (§4.5.3)
+    assert estimate_tyre_stiffness("13.6R38", 1.2, 3) == pytest.approx(traction_tyre_stiffness("13.6R38", 1.2, 3))
+    assert estimate_tyre_stiffness("7.50-18", 1.0) != pytest.approx(undriven_front_tyre_stiffness("7.50-18", 1.0))

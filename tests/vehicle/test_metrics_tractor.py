@@ -157,3 +157,29 @@ def test_default_tractor_has_no_longitudinal_force():
     out = simulate_tractor(tr, u, np.gradient(u, 5e-4), np.zeros_like(u), np.zeros_like(u), 1e-3, lift_off=False)
     assert tr.longitudinal_stiffness_N_per_m == 0.0 and tr.longitudinal_damping_N_s_per_m == 0.0
     np.testing.assert_array_equal(out["longitudinal_m_s2"], 0.0)
+
+
+def test_tractor_in_free_fall_off_a_ledge():
+    """The ground under both axles drops 0.5 m at t = 0: with lift-off both tyres leave it at
+    once (their forces floor at minus the static axle loads W b/(a+b) and W a/(a+b)), so the
+    body falls at exactly g without pitching until it lands, 0.32 s later."""
+    m, inertia, a, b = 5120.0, 6210.0, 1.54, 0.896
+    n = 201
+    drop, zeros = np.full(2 * n - 1, -0.5), np.zeros(2 * n - 1)
+    out = simulate_tractor(Tractor(m, inertia, a, b, 0.838, 8.5e5, 6.6e5, 3e3, 2e3), drop, zeros, drop, zeros, 1e-3)
+    from tyrelab.vehicle.tractor import GRAVITY_M_S2
+
+    np.testing.assert_allclose(out["vertical_m_s2"], -GRAVITY_M_S2, rtol=1e-12)
+    np.testing.assert_allclose(out["pitch_rad_s2"], 0.0, atol=1e-12)
+    assert out["lift_off_fraction_front"] == out["lift_off_fraction_rear"] == 1.0
+
+
+def test_maxwell_without_a_damper_is_no_longitudinal_element():
+    n = 2001
+    t = np.arange(2 * n - 1) * 5e-4
+    u = np.where(t < 0.2, 0.01 * np.sin(np.pi * t / 0.2) ** 2, 0.0)
+    ud = np.gradient(u, 5e-4)
+    runs = [simulate_tractor(Tractor(5120.0, 6210.0, 1.54, 0.896, 0.838, 8.5e5, 6.6e5, 3e3, 2e3, kx, cx, model),
+                             u, ud, np.zeros_like(u), np.zeros_like(u), 1e-3, lift_off=False)
+            for kx, cx, model in ((9.1e5, 0.0, "maxwell"), (0.0, 0.0, "none"))]
+    np.testing.assert_array_equal(runs[0]["pitch_rad_s2"], runs[1]["pitch_rad_s2"])
