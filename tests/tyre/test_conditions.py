@@ -50,3 +50,27 @@ def test_hold_constant_pools_when_no_level_varies_x():
     df = pd.DataFrame({"x": [1, 2, 3], "load_kN": [16.0, 18.0, 22.0]})
     sub, levels, note = cond.hold_constant(df, "x", ["load_kN"])
     assert len(sub) == 3 and levels == {"load_kN": None} and "pooled" in note
+
+
+def test_nominal_windows_include_their_edges_and_missing_torque_is_none():
+    base = dict(tyre_id="T1", speed=10.0, pressure=1.0, k=300.0, c=1.0)
+    amps = [9.9, 10.0, 14.0, 18.0, 18.1]  # §3.5: 10-18 mm peak-to-peak
+    df = pd.DataFrame([run(**base, amplitude_mm_pp=a) for a in amps] + [run(**base, torque_kNm=float("nan"))])
+    assert cond.nominal(df).tolist() == [False, True, True, True, False, True]
+
+
+def test_speed_condition_pool_ends_at_15_km_h():
+    assert cond.speed_condition([9.9, 10.0, 15.0, 15.5, 16.0]).tolist() == [None, "rolling", "rolling", None, None]
+
+
+def test_hold_constant_pooling_needs_variation_overall_and_none_within_a_level():
+    # a level with two distinct x is an experiment: held, not pooled
+    df = pd.DataFrame({"x": [1, 2, 3], "load_kN": [18.3, 18.3, 22.6]})
+    sub, levels, note = cond.hold_constant(df, "x", ["load_kN"])
+    assert levels == {"load_kN": 18.3} and len(sub) == 2 and note == ""
+    # two x, each at its own load: pooled
+    sub, levels, note = cond.hold_constant(pd.DataFrame({"x": [1, 2], "load_kN": [16.0, 22.0]}), "x", ["load_kN"])
+    assert len(sub) == 2 and levels == {"load_kN": None} and "pooled" in note
+    # one x at two loads: nothing varies x, nothing to pool for
+    sub, levels, note = cond.hold_constant(pd.DataFrame({"x": [1, 1], "load_kN": [16.0, 22.0]}), "x", ["load_kN"])
+    assert len(sub) == 1 and note == ""
