@@ -152,6 +152,11 @@ def run_module(module: str, workdir: Path, resume: bool, sample: int | None = No
     name = _name(module)
     session, config, tree = (workdir / f"{name}.{ext}" for ext in ("sqlite", "toml", "tree"))
     resume = resume and session.exists() and tree.exists()
+    if resume and (tree / "tyrelab" / module).read_bytes() == (REPO / "pipeline" / module).read_bytes():
+        _copy_tree(tree)  # the module is as the session knows it: the rest of the package may be newer
+    elif resume:
+        print(f"mutation: {module} changed since its session began: starting it afresh", flush=True)
+        resume = False
     if not resume:
         session.unlink(missing_ok=True)
         _copy_tree(tree)
