@@ -81,7 +81,7 @@ KEPT_OPERATORS = re.compile(
 )
 
 #: Seconds a mutant's test run may take, as a multiple of the unmutated run (plus a floor).
-TIMEOUT_FACTOR, TIMEOUT_FLOOR_S = 4.0, 30.0
+TIMEOUT_FACTOR, TIMEOUT_FLOOR_S = 4.0, 120.0
 
 
 def _copy_tree(tree: Path) -> Path:
