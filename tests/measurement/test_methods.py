@@ -25,8 +25,10 @@ def test_half_power_and_load_deflection_without_linkage_or_creep():
     K, C = 500e3, 3.0e3
     rf = ex.random_force_response(K, C, cfg=cfg)
     hp = methods.half_power(rf.force_N, rf.acceleration_m_s2, cfg.sample_rate_Hz, ex.suspended_mass_kg(18.3))
-    assert hp["stiffness_N_per_m"] == pytest.approx(K, rel=0.03)
-    assert hp["damping_N_s_per_m"] == pytest.approx(C, rel=0.10)
+    # on the rig (axle on the load beams under the carriage) the method reads the suspended
+    # system, not the tyre alone: over seeds 0-4, K -2.0 to -2.7 %, C -1.6 to -5.1 %
+    assert hp["stiffness_N_per_m"] == pytest.approx(K, rel=0.035)
+    assert hp["damping_N_s_per_m"] == pytest.approx(C, rel=0.06)
     ramp = ex.load_ramp(K, creep_ratio=1e9)
     assert methods.load_deflection_stiffness(ramp.force_N, ramp.displacement_m) == pytest.approx(K, rel=0.01)
 
@@ -66,3 +68,21 @@ def test_load_deflection_measures_tyre_and_creep_in_series(creep_ratio):
     ramp = ex.load_ramp(K, creep_ratio=creep_ratio, rng=np.random.default_rng(5))
     expected = K * creep_ratio / (1 + creep_ratio)
     assert methods.load_deflection_stiffness(ramp.force_N, ramp.displacement_m) == pytest.approx(expected, rel=0.01)
+
+
+def test_half_power_on_a_single_degree_of_freedom():
+    """Random force on m, K, C alone (lsim), 20 min at 64 Hz.
+
+    The receptance peaks at w_n sqrt(1 - 2 zeta^2): K reads -2 zeta^2 = -0.5 % low
+    (zeta = 0.049); the Welch estimate (0.01 Hz bins, 23 averages) scatters K by ~0.3 %
+    and C by ~0.5 %: allowed 1 % and 1.5 %.
+    """
+    from scipy import signal
+
+    m, K, C, fs = 1865.0, 500e3, 3.0e3, 64.0
+    n = int(1200 * fs)
+    force = np.random.default_rng(0).standard_normal(n) * 1e3
+    _, accel, _ = signal.lsim(signal.lti([1.0, 0.0, 0.0], [m, C, K]), force, np.arange(n) / fs)
+    hp = methods.half_power(force, accel, fs, m)
+    assert hp["stiffness_N_per_m"] == pytest.approx(K, rel=0.01)
+    assert hp["damping_N_s_per_m"] == pytest.approx(C, rel=0.015)
