@@ -1,3 +1,5 @@
+import math
+
 import pytest
 
 from tyrelab.tyre.sizes import TyreSizeError, parse_tyre_size
@@ -183,3 +185,21 @@ def test_parsed_size_is_frozen():
     s = parse_tyre_size("480/70R38")
     with pytest.raises(AttributeError):
         s.aspect_ratio = 0.5
+
+
+def test_load_index_and_speed_symbol_tables_against_the_standard():
+    # ISO 4000-1 / ETRTO: LI 90-99 (common on tractor fronts) and every tenth index, as printed
+    assert [load_index_kg(n) for n in range(90, 100)] == [600, 615, 630, 650, 670, 690, 710, 730, 750, 775]
+    assert [load_index_kg(n) for n in range(60, 180, 10)] == [250, 335, 450, 600, 800, 1060, 1400, 1900, 2500,
+                                                              3350, 4500, 6000]
+    assert {s: speed_symbol_km_h(s) for s in "BCDEFGJKLMNPQRSTUHVWY"} == {
+        "B": 50, "C": 60, "D": 65, "E": 70, "F": 80, "G": 90, "J": 100, "K": 110, "L": 120, "M": 130, "N": 140,
+        "P": 150, "Q": 160, "R": 170, "S": 180, "T": 190, "U": 200, "H": 210, "V": 240, "W": 270, "Y": 300}
+
+
+def test_catalogue_circumference_then_outer_diameter_then_size():
+    from tyrelab.tyre.sizes import ROLLING_FACTOR, tyre_rolling_circumference_m
+
+    assert tyre_rolling_circumference_m("480/70R38", catalogue_m=4.9, outer_diameter_m=1.65) == 4.9
+    assert tyre_rolling_circumference_m("480/70R38", outer_diameter_m=1.65) == pytest.approx(math.pi * 1.65 * ROLLING_FACTOR)
+    assert tyre_rolling_circumference_m("480/70R38", outer_diameter_m=float("nan")) == rolling_circumference_m("480/70R38")
