@@ -78,3 +78,33 @@ def test_wheel_excitation_near_excitation_flagged():
     reasons = qc_reasons(T, _sine(), _sine(), 4.0, 0.99, interference_Hz=fi)
     assert any(r.startswith("wheel excitation") for r in reasons)
     assert qc_reasons(T, _sine(), _sine(), 4.0, 0.99, interference_Hz=interference_frequencies_Hz(10.0, 4.66, 23)) == []
+
+
+def test_interference_frequencies_and_tolerance():
+    from tyrelab.measurement.qc import interference_frequencies_Hz
+
+    f_rot = 10 / 3.6 / 4.66
+    got = interference_frequencies_Hz(10.0, 4.66, 23)  # rotation, 2 harmonics, half lug and lug passing
+    assert got == pytest.approx([f_rot, 2 * f_rot, 3 * f_rot, 23 * f_rot, 46 * f_rot])
+    assert interference_frequencies_Hz(10.0, 0.0) == [] and interference_frequencies_Hz(0.0, 4.66) == []
+    # within 0.15 Hz of the excitation flags, 0.2 Hz away does not
+    assert qc_reasons(T, _sine(), _sine(), 4.0, 0.99, interference_Hz=[4.2]) == []
+    assert any(r.startswith("wheel excitation") for r in qc_reasons(T, _sine(), _sine(), 4.0, 0.99, interference_Hz=[4.1]))
+
+
+def test_reasons_name_the_limits_and_values_in_their_units():
+    from tyrelab.measurement.qc import plausibility_reasons
+
+    a = (1 + 1.0 * T / T[-1]) * _sine()
+    drift = [r for r in qc_reasons(T, a, a, 4.0, 0.99) if r.startswith("amplitude drift")][0]
+    assert drift.endswith("% > 20 %")  # thesis §3.5: amplitude within ±20 %
+    assert plausibility_reasons(250e3, 2000.0) == []
+    assert plausibility_reasons(0.5, 2000.0) == []  # 0.5 N/m is tiny but positive
+    k, c = plausibility_reasons(-2e3, -1500.0)
+    assert k == "non-positive stiffness K = -2.0 kN/m" and c.startswith("non-positive damping C = -1.50 kN s/m")
+
+
+def test_clipped_of_one_channel_is_a_bool_and_of_several_an_array():
+    assert clipped(np.array([])) is False
+    flags = clipped(np.vstack([np.clip(_sine(4.0), -3.0, 3.0), _sine(4.0)]))
+    assert flags.tolist() == [True, False]
