@@ -53,3 +53,27 @@ def test_empty_table_gives_rows_with_reasons():
     import pandas as pd
     out = sr.size_regressions(pd.DataFrame(columns=table_iii().columns), None, "ours")
     assert len(out) == 3 and out["slope"].isna().all()
+
+
+def test_findings_name_the_numbers_the_variants_and_the_closest_selection():
+    points = sr.tyre_points(table_iii(), tyres())
+    out = sr.size_regressions(table_iii(), tyres(), "published").set_index("fit")
+    assert "slope 0.334 (printed 0.34)" in out.loc["dkp_vs_wr", "finding"]
+    var = sr.variants(points, "kc_vs_rim")
+    assert list(var["variant"]) == ["rolling, printed exclusions", "stationary, printed exclusions",
+                                    "pooled, printed exclusions", "rolling, through the origin"]
+    search = sr.selection_search(points, "kc_vs_rim", max_excluded=3)
+    # sorted: reproducing selections first, then by |slope - printed| / |printed| + |r² - printed|
+    d = (search["slope"] + 1.77).abs() / 1.77 + (search["r_squared"] - 0.70).abs()
+    np.testing.assert_allclose(search["distance"], d)
+    rest = search.loc[~search["matches_printed"], "distance"].to_numpy()
+    assert np.all(np.diff(rest) >= 0)
+    if not search["matches_printed"].any():
+        assert f"closest: {search.iloc[0].change} " in out.loc["kc_vs_rim", "finding"]
+
+
+def test_a_fit_matches_only_within_the_printed_precision():
+    spec = sr.THESIS_FITS["dkp_vs_wr"]
+    assert sr._matches({"intercept": 0.3, "slope": 0.34, "r_squared": 0.82}, spec)
+    assert not sr._matches({"intercept": 0.3, "slope": 0.34, "r_squared": 0.70}, spec)
+    assert not sr._matches({"intercept": 0.3, "slope": 0.36, "r_squared": 0.82}, spec)
