@@ -47,3 +47,18 @@ def test_predictions_from_recordings_use_measured_pressures():
     pred = fa.predictions_from_recordings(pd.DataFrame(rows), ours, tyres())
     assert list(pred.pressure_bar) == [0.8, 1.2, 1.6] and set(pred.tyre_id) == {"T3"}
     assert pred.stationary_error_percent.iloc[0] == pytest.approx(100 * ((184 + 160) / (112 + 177 * 0.8) - 1))
+
+
+def test_accuracy_of_a_single_prediction_has_a_mean_but_no_sd_and_no_warning():
+    import warnings
+
+    import numpy as np
+    import pandas as pd
+
+    from tyrelab.tyre import formula_accuracy as fa
+
+    pred = pd.DataFrame({"tyre_id": ["T1"], "formula_error_percent": [4.0], "stationary_error_percent": [np.nan]})
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        s = fa.accuracy_summary(pred, "test").set_index("method")
+    assert s.loc["formula", "mean_error_percent"] == 4.0 and np.isnan(s.loc["formula", "sd_error_percent"])
