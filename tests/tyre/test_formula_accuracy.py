@@ -62,3 +62,16 @@ def test_accuracy_of_a_single_prediction_has_a_mean_but_no_sd_and_no_warning():
         warnings.simplefilter("error")
         s = fa.accuracy_summary(pred, "test").set_index("method")
     assert s.loc["formula", "mean_error_percent"] == 4.0 and np.isnan(s.loc["formula", "sd_error_percent"])
+
+
+def test_pressure_grids_and_error_percent():
+    # rear tyres on 0.8-1.6 bar, front traction tyres on 1.0-2.0 bar (thesis §4.5.3); error = 100 (f - m) / m
+    kc, dk = 172 - 1.77 * 38 + 5.6 * 4, 0.34 * 13.6 * 38
+    t = pd.DataFrame({"tyre_id": ["R", "F"], "size": ["13.6R38", "13.6R38"], "condition": ["rolling", "rolling"],
+                      "carcass_stiffness_kN_per_m": [1.25 * kc, 1.25 * kc],
+                      "pressure_dependence_kN_per_m_bar": [1.25 * dk, 1.25 * dk]})
+    tyres_ = pd.DataFrame({"tyre_id": ["R", "F"], "age_years": [4, 4], "position": ["rear", "front"]})
+    pred = fa.predictions_from_table(t, tyres_).set_index("tyre_id")
+    assert list(pred.loc["R", "pressure_bar"]) == [0.8, 1.0, 1.2, 1.4, 1.6]
+    assert list(pred.loc["F", "pressure_bar"]) == [1.0, 1.25, 1.5, 1.75, 2.0]
+    np.testing.assert_allclose(pred["formula_error_percent"], 100 * (1 / 1.25 - 1))  # -20 %
