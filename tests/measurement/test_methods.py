@@ -14,10 +14,16 @@ def test_free_vibration_analytic_sdof():
     z = c / (2 * np.sqrt(k * m))
     wd = wn * np.sqrt(1 - z**2)
     t = np.arange(0, 6, 1 / 256)
-    x = 0.01 * np.exp(-z * wn * t) * np.cos(wd * t)
-    out = methods.free_vibration(t, x, m)
-    assert out["stiffness_N_per_m"] == pytest.approx(k, rel=0.01)
-    assert out["damping_N_s_per_m"] == pytest.approx(c, rel=0.03)
+    # Peaks refined by a parabola through three samples: the peak times, hence K, are good to
+    # ~2e-5 (without the refinement ~1e-3); the decrement reads C 0.26-0.43 % low (the mean
+    # removed is the tail's, not exactly zero). Allowed: 1e-4 on K, 1 % on C.
+    for phase in (0.0, 0.3):
+        x = 0.01 * np.exp(-z * wn * t) * np.cos(wd * t + phase)
+        out = methods.free_vibration(t, x, m)
+        assert out["stiffness_N_per_m"] == pytest.approx(k, rel=1e-4)
+        assert out["damping_N_s_per_m"] == pytest.approx(c, rel=0.01)
+    with pytest.raises(ValueError, match="too few decay cycles"):
+        methods.free_vibration(t[:200], 0.01 * np.exp(-z * wn * t[:200]) * np.cos(wd * t[:200]), m)  # two peaks
 
 
 def test_half_power_and_load_deflection_without_linkage_or_creep():
@@ -42,6 +48,9 @@ def test_table_i_structure():
     am = t.loc["apparent_mass"]
     assert am["stiffness_kN_per_m"] == pytest.approx(am["truth_stiffness_kN_per_m"], rel=0.01)
     assert am["damping_kN_s_per_m"] == pytest.approx(3.0, rel=0.05)  # Table I anchor of the truth model
+    from tyrelab.rig import truth
+
+    assert am["truth_stiffness_kN_per_m"] == pytest.approx(truth.stiffness("T1", 1.38, 0.0, 18.25) / 1e3)  # stationary
     # creep: load-deflection far below the dynamic value. The rig's creep spring is *chosen*
     # from Table I (330/450), so this only checks the plumbing; the method itself is checked
     # against the series-spring solution at other creep ratios below. The ratio is to our
