@@ -150,6 +150,9 @@ def correction_factor(tf: pd.DataFrame, frequency_Hz: float) -> complex:
     Correction of §3.6: divide a measured tyre force (or apparent mass, or
     ``K + jωC``) by this factor. Gain and phase are interpolated linearly.
     """
+    frequency_Hz = positive("frequency_Hz", frequency_Hz)
+    if tf.empty:
+        raise ValueError("tf is empty: no calibration transfer function to correct by")
     g = float(np.interp(frequency_Hz, tf["frequency_Hz"], tf["gain"]))
     p = float(np.interp(frequency_Hz, tf["frequency_Hz"], tf["phase_deg"]))
     return g * np.exp(1j * np.radians(p))

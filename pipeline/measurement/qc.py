@@ -78,7 +78,12 @@ def interference_frequencies_Hz(speed_km_h: float, circumference_m: float, lugs_
     for traction tyres half the lug passing frequency (``lugs_per_side`` per
     revolution) and the lug passing frequency. Empty for a stationary tyre.
     """
-    if speed_km_h <= 0 or circumference_m <= 0:
+    for name, value in (("speed_km_h", speed_km_h), ("circumference_m", circumference_m)):
+        if not np.isfinite(value) or value < 0:
+            raise ValueError(f"{name} must be finite and >= 0, got {value!r}")
+    if lugs_per_side < 0 or harmonics < 0:
+        raise ValueError(f"lugs_per_side and harmonics must be >= 0, got {lugs_per_side!r}, {harmonics!r}")
+    if speed_km_h == 0 or circumference_m == 0:
         return []
     f_rot = speed_km_h / 3.6 / circumference_m
     out = [k * f_rot for k in range(1, harmonics + 1)]

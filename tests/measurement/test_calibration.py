@@ -77,3 +77,17 @@ def test_correction_by_calibration():
     z = (300e3 + 1j * w * 1.5e3) * 1.02 * np.exp(1j * np.radians(0.5))
     k, c = cal.corrected_stiffness_damping(z.real, z.imag / w, 4.0, tf)
     assert (k, c) == pytest.approx((300e3, 1.5e3), rel=1e-9)
+
+
+def test_correction_factor_checks_its_arguments():
+    import pandas as pd
+    import pytest
+
+    from tyrelab.measurement.calibration import correction_factor
+
+    tf = pd.DataFrame({"frequency_Hz": [2.0, 6.0], "gain": [1.0, 1.02], "phase_deg": [0.0, 1.0]})
+    assert abs(correction_factor(tf, 4.0)) == pytest.approx(1.01)
+    with pytest.raises(ValueError, match="frequency_Hz"):
+        correction_factor(tf, 0.0)
+    with pytest.raises(ValueError, match="tf is empty"):
+        correction_factor(tf.iloc[:0], 4.0)

@@ -108,3 +108,15 @@ def test_clipped_of_one_channel_is_a_bool_and_of_several_an_array():
     assert clipped(np.array([])) is False
     flags = clipped(np.vstack([np.clip(_sine(4.0), -3.0, 3.0), _sine(4.0)]))
     assert flags.tolist() == [True, False]
+
+def test_interference_arguments_are_checked():
+    import pytest
+
+    from tyrelab.measurement.qc import interference_frequencies_Hz
+
+    assert interference_frequencies_Hz(0.0, 4.66, 20) == []
+    assert interference_frequencies_Hz(16.776, 4.66, 0, harmonics=1) == pytest.approx([1.0])
+    for args, name in (((-5.0, 4.66), "speed_km_h"), ((5.0, float("nan")), "circumference_m"),
+                       ((5.0, 4.66, -1), "lugs_per_side")):
+        with pytest.raises(ValueError, match=name):
+            interference_frequencies_Hz(*args)
