@@ -16,6 +16,8 @@ import math
 
 import numpy as np
 
+from .._validate import positive
+
 __all__ = [
     "WEIGHTINGS",
     "weighting_response",
@@ -104,6 +106,7 @@ def weighting_ba(name: str, fs_Hz: float) -> tuple[np.ndarray, np.ndarray]:
     -------
     (b, a) : tuple of ndarray
     """
+    fs_Hz = positive("fs_Hz", fs_Hz)
     from scipy import signal
 
     num, den = _polys(name)
@@ -130,6 +133,7 @@ def weighted_signal(acceleration_m_s2, fs_Hz: float, name: str = "Wk") -> np.nda
     ndarray
         Weighted acceleration, m/s^2, same length.
     """
+    fs_Hz = positive("fs_Hz", fs_Hz)
     a = np.asarray(acceleration_m_s2, dtype=float)
     a = a - a.mean()
     n = a.size
@@ -155,6 +159,7 @@ def vibration_dose_value(weighted_m_s2, fs_Hz: float) -> float:
     fs_Hz : float
         Sampling rate, Hz.
     """
+    fs_Hz = positive("fs_Hz", fs_Hz)
     aw = np.asarray(weighted_m_s2, dtype=float)
     return float((np.sum(aw**4) / fs_Hz) ** 0.25)
 

@@ -17,6 +17,8 @@ import numpy as np
 import pandas as pd
 from scipy import signal, stats
 
+from .._validate import positive
+
 __all__ = [
     "rms",
     "acceleration_psd",
@@ -58,6 +60,7 @@ def acceleration_psd(x, fs_Hz: float, bandwidth_Hz: float = 0.1) -> tuple[np.nda
     f_Hz, psd : ndarray
         Frequencies (Hz) and PSD (unit^2/Hz).
     """
+    fs_Hz = positive("fs_Hz", fs_Hz)
     a = np.asarray(x, dtype=float)
     nperseg = min(a.size, int(round(fs_Hz / bandwidth_Hz)))
     return signal.welch(a, fs=fs_Hz, window="hann", nperseg=nperseg, noverlap=nperseg // 2, detrend="constant")
@@ -162,6 +165,7 @@ def envelope(x, fs_Hz: float, centre_Hz: float, cutoff_Hz: float = 0.5) -> np.nd
     ndarray
         Envelope, same unit and length as ``x``. A sine of amplitude A gives A.
     """
+    fs_Hz = positive("fs_Hz", fs_Hz)
     a = np.asarray(x, dtype=float)
     a = a - a.mean()
     t = np.arange(a.size) / fs_Hz
@@ -179,6 +183,7 @@ def envelope_similarity(env_x, env_y, fs_Hz: float, max_lag_s: float = 1.0) -> f
     ``|tau| <= max_lag_s``, envelopes mean-removed (so independent envelopes give ≈ 0
     and identical ones 1, as the thesis describes).
     """
+    fs_Hz = positive("fs_Hz", fs_Hz)
     x = np.asarray(env_x, dtype=float)
     y = np.asarray(env_y, dtype=float)
     n = min(x.size, y.size)
@@ -201,6 +206,7 @@ def envelope_error(env_predicted, env_measured) -> float:
 
 def record_metrics(x, fs_Hz: float, bandwidth_Hz: float = 0.1, f_low_Hz: float = 0.5, f_high_Hz: float = 10.0) -> dict:
     """rms and dominant-peak measures of one acceleration record (thesis §6.4)."""
+    fs_Hz = positive("fs_Hz", fs_Hz)
     f, p = acceleration_psd(x, fs_Hz, bandwidth_Hz)
     return {"rms": rms(x), **spectral_peak(f, p, f_low_Hz, f_high_Hz)}
 

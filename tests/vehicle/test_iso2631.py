@@ -149,3 +149,16 @@ def test_crest_factor_of_silence_is_nan_without_a_warning():
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         assert math.isnan(iso2631.crest_factor(np.zeros(8)))
+
+
+def test_sampling_rate_is_checked():
+    import numpy as np
+    import pytest
+
+    from tyrelab.vehicle import iso2631, metrics
+
+    for call in (lambda: iso2631.weighted_rms(np.ones(100), 0.0), lambda: iso2631.vibration_dose_value(np.ones(9), -1.0),
+                 lambda: metrics.acceleration_psd(np.ones(100), float("nan")),
+                 lambda: metrics.envelope(np.ones(100), 0.0, 3.0)):
+        with pytest.raises(ValueError, match="fs_Hz must be finite and positive"):
+            call()
