@@ -52,7 +52,7 @@ def _context(args):
 def cmd_generate(args) -> int:
     from .generate import generate_campaign
 
-    summary = generate_campaign(Path(args.out), scale=args.scale, seed=args.seed)
+    summary = generate_campaign(Path(args.out), scale=args.scale, seed=args.seed, scatter=args.scatter)
     log.info("generate: %s", json.dumps(summary, default=str))
     return EXIT_OK
 
@@ -150,7 +150,10 @@ def cmd_estimate_stiffness(args) -> int:
     if args.json or args.format == "json":
         print(json.dumps(est.to_dict(), indent=2, ensure_ascii=False))
     else:
-        print(f"{est.stiffness_kN_per_m:.1f} kN/m")
+        pi = est.prediction_interval_kN_per_m
+        print(f"{est.stiffness_kN_per_m:.1f} kN/m" + (
+            f" (95 % prediction interval {pi[0]:.1f} to {pi[1]:.1f} kN/m)" if pi else " (no prediction interval: "
+            + est.prediction_interval_basis.removeprefix("none: ") + ")"))
     return EXIT_OK
 
 
@@ -165,7 +168,8 @@ def cmd_natural_frequencies(args) -> int:
             args.front_tyre, args.front_pressure, args.rear_tyre, args.rear_pressure,
             front_traction=args.front_traction, front_water_ballast=args.front_water_ballast,
             age_years=args.age, front_stiffness_kN_per_m=args.front_stiffness,
-            rear_stiffness_kN_per_m=args.rear_stiffness,
+            rear_stiffness_kN_per_m=args.rear_stiffness, front_stiffness_u_kN_per_m=args.front_stiffness_u,
+            rear_stiffness_u_kN_per_m=args.rear_stiffness_u,
         )
     except (TyreSizeError, ValueError) as exc:
         print(f"{prog}: {exc}", file=sys.stderr)
@@ -309,6 +313,9 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--out", required=True, help="campaign folder to write")
     g.add_argument("--scale", choices=["small", "full"], default="small")
     g.add_argument("--seed", type=int, default=1991)
+    g.add_argument("--no-scatter", dest="scatter", action="store_false",
+                   help="no run-to-run / day-to-day tyre scatter (thesis §3.6 repeatability is on by default: "
+                        "K 2 %% + 1.5 %% per day, C 4 %% + 3 %% per day, standard deviations)")
     g.set_defaults(func=cmd_generate)
 
     def io_options(sp):
@@ -367,6 +374,11 @@ def build_parser() -> argparse.ArgumentParser:
     n.add_argument("--age", type=_non_negative, default=1.0, help="tyre age, years (default 1, thesis §8.2)")
     n.add_argument("--front-stiffness", type=_positive, default=None, help="override: front stiffness per tyre, kN/m")
     n.add_argument("--rear-stiffness", type=_positive, default=None, help="override: rear stiffness per tyre, kN/m")
+    n.add_argument("--front-stiffness-u", type=float, default=None,
+                   help="standard uncertainty of the front stiffness per tyre, kN/m (default: the formula's, or 0 "
+                        "for a given stiffness)")
+    n.add_argument("--rear-stiffness-u", type=float, default=None,
+                   help="standard uncertainty of the rear stiffness per tyre, kN/m (default: as for the front)")
     n.set_defaults(func=cmd_natural_frequencies)
 
     x = sub.add_parser("export-tyre", help="a measured tyre as MF-Tyre .tir file(s) plus K(P), C(P) per speed (CSV, JSON)",

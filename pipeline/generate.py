@@ -12,6 +12,7 @@ without timestamps, the manifest with fixed float formatting.
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import time
 from pathlib import Path
@@ -22,7 +23,7 @@ import pyarrow.parquet as pq
 
 from . import __version__, io
 from .rig.campaigns import MANIFEST_COLUMNS, campaign_plan, simulate_run
-from .rig.instrument import RigConfig
+from .rig.instrument import NO_SCATTER, RigConfig
 
 __all__ = ["write_run", "generate_campaign"]
 
@@ -35,7 +36,7 @@ def write_run(run: pd.DataFrame, path: Path) -> None:
         pq.write_table(table, tmp, compression="zstd", use_byte_stream_split=True, write_statistics=True)
 
 
-def generate_campaign(out: Path, scale: str = "small", seed: int = 1991) -> dict:
+def generate_campaign(out: Path, scale: str = "small", seed: int = 1991, scatter: bool = True) -> dict:
     """Simulate and write a virtual campaign folder.
 
     Parameters
@@ -47,6 +48,12 @@ def generate_campaign(out: Path, scale: str = "small", seed: int = 1991) -> dict
         ``full``: the thesis programme (see :mod:`tyrelab.rig.campaigns`).
     seed : int
         Campaign seed.
+    scatter : bool
+        The tyre's run-to-run and day-to-day scatter of thesis §3.6
+        (:class:`tyrelab.rig.instrument.RigConfig` ``run_scatter``,
+        ``day_scatter``; the default). False (``--no-scatter``): every run's
+        tyre is exactly the truth model, for estimator benchmarks and
+        truth-recovery tests.
 
     Returns
     -------
@@ -56,7 +63,7 @@ def generate_campaign(out: Path, scale: str = "small", seed: int = 1991) -> dict
     """
     t0 = time.perf_counter()
     out = Path(out)
-    cfg = RigConfig()
+    cfg = RigConfig() if scatter else dataclasses.replace(RigConfig(), **NO_SCATTER)
     plan = campaign_plan(scale, cfg)
     (out / "runs").mkdir(parents=True, exist_ok=True)
     amplitudes = []
@@ -72,10 +79,11 @@ def generate_campaign(out: Path, scale: str = "small", seed: int = 1991) -> dict
                          out / "manifest.csv")
     # Provenance for the report (no timestamp: the same command gives the same bytes).
     meta = {"generator": "tyrelab virtual dynamic tyre test vehicle (tyrelab.rig)", "scale": scale, "seed": seed,
+            "scatter": {"run": list(cfg.run_scatter), "day": list(cfg.day_scatter)},
             "tyrelab_version": __version__, "runs": int(len(plan))}
     io.write_text_atomic(json.dumps(meta, indent=2, sort_keys=True) + "\n", out / "generator.json")
     return {
-        "out": str(out), "scale": scale, "seed": seed, "runs": int(len(plan)),
+        "out": str(out), "scale": scale, "seed": seed, "scatter": bool(scatter), "runs": int(len(plan)),
         "measurement_runs": int((~cal).sum()), "calibration_runs": int(cal.sum()),
         "days": int(plan["recorded_on"].nunique()), "seconds": round(time.perf_counter() - t0, 2),
     }

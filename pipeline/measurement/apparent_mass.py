@@ -219,6 +219,12 @@ class DemodulationResult:
     acceleration_amplitude_m_s2: np.ndarray  #: mean axle acceleration amplitude (peak), m/s²
     envelope_m_s2: np.ndarray  #: (..., n) instantaneous amplitude of the excitation, m/s²
     angular_frequency_rad_s: np.ndarray  #: (..., n) instantaneous angular frequency (1 s mean), rad/s
+    #: (...) the denominator ``D`` of ``K + jωC = N / D`` (Hann-weighted, demodulated ``a/ω²``), m;
+    #: input of :mod:`tyrelab.measurement.uncertainty`
+    denominator_m: np.ndarray | None = None
+    #: (..., n_probes) the force left over by the fitted tyre, demodulated like ``N`` at the
+    #: :data:`PROBE_OFFSETS` around the excitation, N: the noise the estimate sits in
+    residual_probes_N: np.ndarray | None = None
 
 
 def _band_weights(freqs: np.ndarray, f0: np.ndarray, half_band_Hz: float) -> np.ndarray:
@@ -234,7 +240,8 @@ def _band_weights(freqs: np.ndarray, f0: np.ndarray, half_band_Hz: float) -> np.
     return np.where(d <= flat, 1.0, np.where(d < 1.0, taper, 0.0))
 
 
-def analytic_band(x: np.ndarray, sample_rate_Hz: float, f0, half_band_Hz: float = 0.5) -> np.ndarray:
+def analytic_band(x: np.ndarray, sample_rate_Hz: float, f0, half_band_Hz: float = 0.5,
+                  integrate_twice: bool = False) -> np.ndarray:
     """Analytic signal of the band ``f0 ± half_band`` of ``x`` (zero phase).
 
     One real FFT, the one-sided spectrum weighted by a raised-cosine band and
@@ -252,6 +259,9 @@ def analytic_band(x: np.ndarray, sample_rate_Hz: float, f0, half_band_Hz: float 
         Band centre, Hz.
     half_band_Hz : float
         Half-width of the band, Hz.
+    integrate_twice : bool
+        Divide each bin by ``-(2πf)²``: the band of the double integral
+        (displacement from acceleration), exact however the frequency wanders.
 
     Returns
     -------
@@ -273,7 +283,11 @@ def analytic_band(x: np.ndarray, sample_rate_Hz: float, f0, half_band_Hz: float 
     lo = max(int(np.floor((np.min(f0) - half_band_Hz) / df)), 0)
     hi = min(int(np.ceil((np.max(f0) + half_band_Hz) / df)) + 1, spectrum.shape[-1])
     one_sided = np.zeros(x.shape[:-1] + (nfft,), dtype=complex)
-    one_sided[..., lo:hi] = 2.0 * spectrum[..., lo:hi] * _band_weights(np.arange(lo, hi) * df, f0, half_band_Hz)
+    bins = np.arange(lo, hi) * df
+    weights = _band_weights(bins, f0, half_band_Hz)
+    if integrate_twice:
+        weights = weights * np.where(bins > 0, -1.0 / (2 * np.pi * np.where(bins > 0, bins, 1.0)) ** 2, 0.0)
+    one_sided[..., lo:hi] = 2.0 * spectrum[..., lo:hi] * weights
     return fft.ifft(one_sided, axis=-1, overwrite_x=True)[..., :n]
 
 
@@ -294,6 +308,41 @@ def _instantaneous_phase(accel: np.ndarray, sample_rate_Hz: float, f0, half_band
 def _demodulate(x: np.ndarray, cos_phi: np.ndarray, sin_phi: np.ndarray) -> np.ndarray:
     """``Σ x exp(-jφ)`` along the last axis, as two fused real sums (no complex temporaries)."""
     return np.einsum("...n,...n->...", x, cos_phi) - 1j * np.einsum("...n,...n->...", x, sin_phi)
+
+
+#: Offsets of the noise probes around the excitation, in units of 2/T (T the record length): the
+#: Hann taper's main lobe is ±2/T wide, so probes 2/T apart are nearly independent and the nearest
+#: (4/T away) sees none of the excitation. 16 probes, within ±0.36 Hz of it for a 50 s run.
+PROBE_OFFSETS = tuple(m for m in range(-9, 10) if abs(m) >= 2)
+
+
+def _tyre_residual(force: np.ndarray, xi: np.ndarray, omega: np.ndarray, w: np.ndarray) -> np.ndarray:
+    """The force a Kelvin-Voigt tyre whose K and C follow the vibration amplitude does not explain.
+
+    Least squares (weights ``w``) of ``f`` on ``Re ξ``, ``−ω Im ξ`` and the
+    same times ``a(t) = |ξ|²/mean|ξ|² − 1``: within a run the amplitude wanders
+    (§3.5: by up to 20 %) and K and C follow it (thesis Tables IV, VIII), which
+    is a change of the measurand over the run, not noise around it.
+    """
+    amp2 = np.abs(xi) ** 2
+    a = amp2 / np.sum(w * amp2, axis=-1, keepdims=True) * np.sum(w) - 1.0
+    g = np.stack([xi.real, -omega * xi.imag], axis=-2)
+    g = np.concatenate([g, g * a[..., np.newaxis, :]], axis=-2)  # (..., 4, n)
+    gw = g * w
+    gram = np.einsum("...in,...jn->...ij", gw, g)
+    rhs = np.einsum("...in,...n->...i", gw, force)
+    beta = np.linalg.solve(gram, rhs[..., np.newaxis])[..., 0]
+    return force - np.einsum("...i,...in->...n", beta, g)
+
+
+def _probe_sums(x: np.ndarray, cos_phi: np.ndarray, sin_phi: np.ndarray) -> np.ndarray:
+    """``Σ x exp(-j(φ + 2π Δ_m t))`` for the :data:`PROBE_OFFSETS` ``Δ_m`` (multiples of 2/T), shape (..., n_probes).
+
+    With ``T = n/fs`` the offsets are DFT bins of the demodulated signal: one FFT per row.
+    """
+    n = x.shape[-1]
+    spectrum = fft.fft(x * cos_phi - 1j * (x * sin_phi), axis=-1)
+    return spectrum[..., (2 * np.asarray(PROBE_OFFSETS)) % n]
 
 
 def excitation_blocks(
@@ -377,19 +426,24 @@ def apparent_mass_demodulation(
     cos_phi, sin_phi, omega, envelope = _instantaneous_phase(a, sample_rate_Hz, excitation_frequency_Hz, half_band_Hz)
     n = a.shape[-1]
     w = np.hanning(n)
-    wf = w * (f - f.mean(axis=-1, keepdims=True))
+    fc = f - f.mean(axis=-1, keepdims=True)
     wa = w * (a - a.mean(axis=-1, keepdims=True))
-    num = _demodulate(wf, cos_phi, sin_phi)
+    num = _demodulate(w * fc, cos_phi, sin_phi)
     den = _demodulate(wa / omega**2, cos_phi, sin_phi)
+    # for the uncertainty: minus the displacement of the excitation band (analytic, by double integration
+    # in the frequency domain), the regressor of the tyre model whose residual the probes measure
+    xi = -analytic_band(a, sample_rate_Hz, excitation_frequency_Hz, half_band_Hz, integrate_twice=True)
     dynamic_stiffness = num / den  # K + jωC, upward-positive recording convention
     weight = w * envelope
     omega_mean = np.sum(weight * omega, axis=-1) / np.sum(weight, axis=-1)
     freq = omega_mean / (2 * np.pi)
     h = -dynamic_stiffness / omega_mean**2
     k, c = stiffness_damping(h, freq)
+    residual = _tyre_residual(fc, xi, omega, w)
     accel_amp = 2.0 * np.abs(_demodulate(wa, cos_phi, sin_phi)) / np.sum(w, axis=-1)
     disp_amp = 2.0 * np.abs(den) / np.sum(w, axis=-1)
-    return DemodulationResult(h, freq, k, c, disp_amp, accel_amp, envelope, omega)
+    return DemodulationResult(h, freq, k, c, disp_amp, accel_amp, envelope, omega, den,
+                              _probe_sums(w * residual, cos_phi, sin_phi))
 
 
 def welch_segments_at(x: np.ndarray, sample_rate_Hz: float, frequency_Hz, nperseg: int) -> np.ndarray:

@@ -48,6 +48,7 @@ from .._validate import positive, positive_array
 from ..rawformat import ACCEL_CHANNELS, BEAM_CHANNELS, CHANNELS, TIME, check_run
 from . import apparent_mass as am
 from . import qc
+from . import uncertainty as unc
 
 __all__ = ["WelchEstimate", "RecordingResult", "analyse_frame", "analyse_batch", "recording_arrays",
            "frame_tyre_force"]
@@ -87,6 +88,14 @@ class RecordingResult:
     qc_reasons: tuple[str, ...] = ()  #: why the run should not be used (empty: QC passed)
     file: str | None = None  #: the run file, when read from one
     estimator: str = field(default=ESTIMATOR)
+    #: standard uncertainties of K (N/m) and C (N s/m) and their 95 % intervals [low, high]
+    #: (issue 14; one recording has no day check: the §3.2.9 limits, docs/uncertainty.md)
+    stiffness_u_N_per_m: float = math.nan
+    damping_u_N_s_per_m: float = math.nan
+    stiffness_ci95_N_per_m: tuple[float, float] = (math.nan, math.nan)
+    damping_ci95_N_s_per_m: tuple[float, float] = (math.nan, math.nan)
+    #: the budget: type A parts, degrees of freedom, coverage factor, level, instrument source
+    uncertainty: dict = field(default_factory=dict)
 
     @property
     def qc_ok(self) -> bool:
@@ -132,6 +141,11 @@ class RecordingResult:
                 "stiffness_N_per_m": num(self.welch.stiffness_N_per_m),
                 "damping_N_s_per_m": num(self.welch.damping_N_s_per_m),
             },
+            "stiffness_u_N_per_m": num(self.stiffness_u_N_per_m),
+            "damping_u_N_s_per_m": num(self.damping_u_N_s_per_m),
+            "stiffness_ci95_N_per_m": [num(v) for v in self.stiffness_ci95_N_per_m],
+            "damping_ci95_N_s_per_m": [num(v) for v in self.damping_ci95_N_s_per_m],
+            "uncertainty": {k: (num(v) if isinstance(v, float) else v) for k, v in self.uncertainty.items()},
             "qc_ok": self.qc_ok,
             "qc_reasons": list(self.qc_reasons),
         }
@@ -218,6 +232,7 @@ def analyse_batch(
         "apparent_mass_real_kg", "apparent_mass_imag_kg", "stiffness_N_per_m", "damping_N_s_per_m",
         "welch_stiffness_N_per_m", "welch_damping_N_s_per_m", "welch_frequency_Hz", "coherence",
         "amplitude_measured_mm_pp", "amplitude_measured_rms_mm", "acceleration_amplitude_m_s2",
+        *unc.UNCERTAINTY_COLUMNS,
     )}
     if found.any():
         d = am.apparent_mass_demodulation(force[found], a[found], sample_rate_Hz, fe[found])
@@ -234,6 +249,11 @@ def analyse_batch(
         cols["amplitude_measured_mm_pp"][found] = 2e3 * d.displacement_amplitude_m
         cols["amplitude_measured_rms_mm"][found] = 1e3 * d.displacement_amplitude_m / np.sqrt(2)
         cols["acceleration_amplitude_m_s2"][found] = d.acceleration_amplitude_m_s2
+        # per-run uncertainty (issue 14): the run's own residual near the excitation and the §3.2.9
+        # limits (the calibrate stage replaces the limits by the day's check where there is one)
+        u = unc.run_uncertainty(d, [unc.limits_budget(m) for m in mass[found]], mass[found])
+        for name, values in u.columns().items():
+            cols[name][found] = values
     for q in ("stiffness", "damping", "welch_stiffness", "welch_damping"):
         unit = "N_per_m" if q.endswith("stiffness") else "N_s_per_m"
         cols[f"{q}_k{unit}"] = cols[f"{q}_{unit}"] / 1e3
@@ -254,6 +274,7 @@ def analyse_batch(
         ) + qc.plausibility_reasons(cols["stiffness_N_per_m"][i], cols["damping_N_s_per_m"][i]))
     cols["qc_ok"] = np.array([not r for r in reasons], dtype=bool)
     cols["qc_reasons"] = ["; ".join(r) for r in reasons]
+    cols["uncertainty_source"] = np.where(found, unc.limits_budget().source, "")
     return pd.DataFrame(cols)
 
 
@@ -331,4 +352,15 @@ def analyse_frame(
                             float(row["welch_damping_N_s_per_m"])),
         qc_reasons=tuple(r for r in row["qc_reasons"].split("; ") if r),
         file=file,
+        stiffness_u_N_per_m=float(row["stiffness_u_N_per_m"]),
+        damping_u_N_s_per_m=float(row["damping_u_N_s_per_m"]),
+        stiffness_ci95_N_per_m=(float(row["stiffness_ci95_low_N_per_m"]), float(row["stiffness_ci95_high_N_per_m"])),
+        damping_ci95_N_s_per_m=(float(row["damping_ci95_low_N_s_per_m"]), float(row["damping_ci95_high_N_s_per_m"])),
+        uncertainty={
+            "stiffness_u_stat_N_per_m": float(row["stiffness_u_stat_N_per_m"]),
+            "damping_u_stat_N_s_per_m": float(row["damping_u_stat_N_s_per_m"]),
+            "dof_stat": float(row["uncertainty_dof_stat"]), "dof": float(row["uncertainty_dof"]),
+            "coverage_factor": float(row["coverage_factor"]), "level": unc.LEVEL,
+            "instrument": str(row["uncertainty_source"]),
+        },
     )

@@ -114,7 +114,11 @@ def _spoke(table: str, number: str, caption: str) -> FigureSpec:
 CHAPTERS: tuple[Chapter, ...] = (
     Chapter("ch3-measurement", "Chapter 3 — measurement and calibration",
             "Apparent-mass method (§3.2–3.5): each run's K and C from the tyre force and axle acceleration "
-            "at the excitation frequency; the force plate checks the load-beam calibration every day.",
+            "at the excitation frequency; the force plate checks the load-beam calibration every day. "
+            "Every run's K and C carry a standard uncertainty and a 95 % interval (results columns "
+            "stiffness_ci95_low/high_N_per_m, damping_ci95_low/high_N_s_per_m, shown on each run's page): "
+            "the run's own residual force near the excitation, combined (GUM) with the day's force-plate "
+            "check, or with the §3.2.9 limits (±3 %, ±1°) on a day without one (docs/uncertainty.md).",
             (
                 TableSpec("I", "Stiffness and damping by measurement method", "table_i", "calibrate",
                           "published_table_i"),
@@ -123,7 +127,16 @@ CHAPTERS: tuple[Chapter, ...] = (
             )),
     Chapter("ch4-stiffness", "Chapter 4 — tyre stiffness",
             "Stiffness K = K_c + ΔK_p·P fitted per tyre (§4.3); effects of amplitude, surface and the "
-            "other factors; size regressions and the empirical formula (§4.5).",
+            "other factors; size regressions and the empirical formula (§4.5). Our coefficients carry their "
+            "95 % confidence intervals (below each value), fitted by least squares weighted by the runs' "
+            "uncertainties and the tyre's run-to-run scatter where these differ (docs/uncertainty.md). "
+            "The virtual rig now repeats a tyre as §3.6 describes (run to run 2 % in K and 4 % in C, day to "
+            "day 1.5 % and 3 %, standard deviations), so our r² are below 1 like the thesis'. Differences "
+            "that remain: our scatter is one Gaussian model for every tyre, while the thesis' r² mix real "
+            "scatter, tyre-to-tyre differences and experiments of different sizes; the virtual tyre follows "
+            "straight lines in pressure exactly, so our r² only measure the scatter; and our coefficients "
+            "come back from the generator within their intervals, not exactly (a small campaign has three "
+            "pressures per line, so the intervals are wide).",
             (
                 TableSpec("III", "Carcass stiffness K_c (kN/m) and pressure dependence ΔK_p (kN/m per bar)",
                           "table_iii", "regress", "published_table_iii"),

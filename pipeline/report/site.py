@@ -140,6 +140,12 @@ def run_item(wh: Warehouse, row: pd.Series) -> dict:
         "excitation_frequency_measured_Hz", "amplitude_mm_pp", "amplitude_measured_mm_pp", "surface",
         "recorded_on", "stiffness_kN_per_m", "damping_kN_s_per_m", "welch_stiffness_kN_per_m",
         "welch_damping_kN_s_per_m", "coherence", "qc_ok") if c in row.index]
+    for name, unit in (("stiffness", "N_per_m"), ("damping", "N_s_per_m")):
+        lo, hi = row.get(f"{name}_ci95_low_{unit}"), row.get(f"{name}_ci95_high_{unit}")
+        if lo is not None and hi is not None and pd.notna(lo) and pd.notna(hi):
+            k_unit = "kN/m" if name == "stiffness" else "kN s/m"
+            facts.append((f"{name} 95 % interval", f"{lo / 1e3:.4g} to {hi / 1e3:.4g} {k_unit} "
+                                                   f"({row.get('uncertainty_source', '')})"))
     reasons = [r for r in str(row.get("qc_reasons") or "").split("; ") if r and r != "nan"]
     return {
         "run_id": row["run_id"], "facts": facts, "qc_reasons": reasons,

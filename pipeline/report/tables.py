@@ -78,7 +78,8 @@ class Shaped:
     extras : list of str
         Further plain columns.
     rows : list of dict
-        Per row: ``cells`` (key/extra column -> value) and ``pairs`` (list of
+        Per row: ``cells`` (key/extra column -> value), ``intervals`` (per pair, the
+        95 % interval of ours as text, :func:`interval_text`) and ``pairs`` (list of
         (thesis, ours, difference, off) per pair).
     n_off : int
         Number of highlighted differences.
@@ -183,8 +184,25 @@ def shape_comparison(df: pd.DataFrame, extras: tuple[str, ...] = EXTRAS) -> Shap
             off = bool(np.isfinite(d) and np.isfinite(t) and abs(d) > tolerance(t, p.label))
             shaped.n_off += off
             row_pairs.append((t, o, d, off))
-        shaped.rows.append({"cells": cells, "pairs": row_pairs})
+        shaped.rows.append({"cells": cells, "pairs": row_pairs, "intervals": [interval_text(rec, p.ours) for p in pairs]})
     return shaped
+
+
+def interval_text(rec: dict, column: str) -> str:
+    """``[low, high]`` of ``<column>_ci_low``/``_ci_high`` (a fit's 95 % interval), or ``""`` if none.
+
+    Examples
+    --------
+    >>> interval_text({"k_ci_low": 140.04, "k_ci_high": 151.2}, "k")
+    '[140.0, 151.2]'
+    >>> interval_text({"k": 1.0}, "k")
+    ''
+    """
+    lo, hi = _num(rec.get(f"{column}_ci_low")), _num(rec.get(f"{column}_ci_high"))
+    if not (np.isfinite(lo) and np.isfinite(hi)):
+        return ""
+    digits = max(0, 2 - int(np.floor(np.log10(max(abs(hi - lo), 1e-12)))))
+    return f"[{lo:.{digits}f}, {hi:.{digits}f}]"
 
 
 def _key_text(s: pd.Series) -> pd.Series:

@@ -232,15 +232,23 @@ def rms_to_pp_mm(x_rms_m: float) -> float:
     return 2 * math.sqrt(2) * x_rms_m * 1e3
 
 
-def day_state(seed: int, recorded_on: str, beam_gain_error: float = 0.0):
-    """Instrument state of a recording day, seeded from (seed, day)."""
+def day_state(seed: int, recorded_on: str, beam_gain_error: float = 0.0, cfg: RigConfig = RigConfig()):
+    """Instrument state of a recording day, seeded from (seed, day); ``cfg.day_scatter`` is the tyre's
+    day-to-day factor (thesis §3.6, ``ambient_*_factor``)."""
     from .instrument import day_calibration
 
     rng = np.random.default_rng(run_seed(seed, f"day:{recorded_on}"))
-    return day_calibration(rng, beam_gain_error=beam_gain_error)
+    return day_calibration(rng, beam_gain_error=beam_gain_error, ambient_sd=tuple(cfg.day_scatter))
 
 
-def simulate_run(row, seed: int, cfg: RigConfig = RigConfig()) -> tuple[pd.DataFrame, dict]:
+def run_scatter(seed: int, run_id: str, cfg: RigConfig = RigConfig()) -> tuple[float, float]:
+    """Run-to-run factors on K and C (thesis §3.6, ``cfg.run_scatter``), from their own seed stream
+    (so the recording's noise is the same with and without scatter)."""
+    z = np.random.default_rng(run_seed(seed, f"scatter:{run_id}")).standard_normal(2)
+    return 1.0 + cfg.run_scatter[0] * float(z[0]), 1.0 + cfg.run_scatter[1] * float(z[1])
+
+
+def simulate_run(row, seed: int, cfg: RigConfig = RigConfig(), keep_signals: bool = False) -> tuple[pd.DataFrame, dict]:
     """Simulate one planned run and record it in raw format v1.
 
     Parameters
@@ -250,6 +258,8 @@ def simulate_run(row, seed: int, cfg: RigConfig = RigConfig()) -> tuple[pd.DataF
     seed : int
         Campaign seed; the run's generator is seeded from (seed, run_id).
     cfg : RigConfig
+    keep_signals : bool
+        Also return the physical signals (:class:`~tyrelab.rig.instrument.RunSignals`) as ``info["signals"]``.
 
     Returns
     -------
@@ -257,7 +267,9 @@ def simulate_run(row, seed: int, cfg: RigConfig = RigConfig()) -> tuple[pd.DataF
         ``time_s``, the two accelerometers, four load beams (and
         ``force_plate_N`` for calibration runs), float32 channels.
     info : dict
-        ``stiffness_N_per_m``, ``damping_N_s_per_m`` (the truth used),
+        ``stiffness_N_per_m``, ``damping_N_s_per_m`` (the truth used: the
+        truth model's K, C at the run's conditions times the day's and the
+        run's scatter factors of ``cfg``, thesis §3.6),
         ``amplitude_mm_pp`` (of the simulated axle displacement).
     """
     from .instrument import record, simulate_axle
@@ -265,7 +277,7 @@ def simulate_run(row, seed: int, cfg: RigConfig = RigConfig()) -> tuple[pd.DataF
     get = row.get if hasattr(row, "get") else (lambda k, d=None: getattr(row, k, d))
     tyre = truth.tyre_params(get("tyre_id"))
     rng = np.random.default_rng(run_seed(seed, get("run_id")))
-    day = day_state(seed, get("recorded_on"), float(get("plan_beam_gain_error", 0.0) or 0.0))
+    day = day_state(seed, get("recorded_on"), float(get("plan_beam_gain_error", 0.0) or 0.0), cfg)
     kind = get("kind", "measurement")
     v = float(get("speed_km_h"))
     cond = dict(pressure_bar=float(get("pressure_bar")), speed_km_h=v, load_kN=float(get("load_kN")),
@@ -279,8 +291,9 @@ def simulate_run(row, seed: int, cfg: RigConfig = RigConfig()) -> tuple[pd.DataF
     else:
         f = float(get("excitation_frequency_Hz"))
         a = float(get("amplitude_mm_pp"))
-        K = truth.stiffness(tyre, amplitude_mm_pp=a, frequency_Hz=f, **cond) * day.ambient_stiffness_factor
-        C = truth.damping(tyre, amplitude_mm_pp=a, frequency_Hz=f, **cond) * day.ambient_damping_factor
+        fk, fc = run_scatter(seed, get("run_id"), cfg)
+        K = truth.stiffness(tyre, amplitude_mm_pp=a, frequency_Hz=f, **cond) * day.ambient_stiffness_factor * fk
+        C = truth.damping(tyre, amplitude_mm_pp=a, frequency_Hz=f, **cond) * day.ambient_damping_factor * fc
         sig = simulate_axle(K, C, float(get("plan_duration_s", duration_s(v))), rng, cfg,
                             load_kN=cond["load_kN"], frequency_Hz=f, amplitude_mm_pp=a, speed_km_h=v,
                             surface=cond["surface"], circumference_m=tyre.circumference_m,
@@ -289,4 +302,6 @@ def simulate_run(row, seed: int, cfg: RigConfig = RigConfig()) -> tuple[pd.DataF
     x = sig.axle_displacement_m
     info = {"stiffness_N_per_m": K, "damping_N_s_per_m": C,
             "amplitude_mm_pp": rms_to_pp_mm(float(np.std(x)))}
+    if keep_signals:
+        info["signals"] = sig
     return run, info

@@ -41,11 +41,15 @@ from scipy import fft as sfft
 from ..measurement.recording import frame_tyre_force
 from ..rawformat import ACCEL_CHANNELS, BEAM_CHANNELS, OPTIONAL_CHANNELS, TIME
 
-__all__ = ["G", "SURFACE_ROUGHNESS_M3", "SLAT_PERIOD_M", "RigConfig", "DayCalibration", "day_calibration",
-    "RunSignals", "carriage_mass_kg", "ground_profile", "simulate_axle", "record", "derived_tyre_force"]
+__all__ = ["G", "SURFACE_ROUGHNESS_M3", "SLAT_PERIOD_M", "HUM_Hz", "NO_SCATTER", "RigConfig", "DayCalibration",
+    "day_calibration", "RunSignals", "carriage_mass_kg", "ground_profile", "simulate_axle", "record",
+    "derived_tyre_force"]
 
 G = 9.80665  # m/s^2
 
+
+#: Mains frequency of the hum artefact, Hz (UK, where the thesis' vehicle ran).
+HUM_Hz = 50.0
 
 #: ISO 8608 class geometric means G_d(n0) (m^3) used as stand-ins for the
 #: surfaces of Tables V/IX (the thesis gives no profiles for them; field notes).
@@ -97,6 +101,40 @@ class RigConfig:
     runout_m, lug_fraction : float
         Wheel run-out (first harmonic, §2.4.5) and lug excitation amplitude per
         mm of lug height.
+    startup_s : float
+        Stress artefact (0 = off): the vibrator starts and stops inside the
+        recording; the commanded amplitude ramps up over the first and down
+        over the last ``startup_s`` seconds (raised cosine).
+    drive_harmonics : (float, float)
+        Stress artefact: 2nd and 3rd harmonic of the commanded axle motion,
+        fractions of the fundamental amplitude.
+    hum_accel_m_s2, hum_beam_N : float
+        Stress artefact: 50 Hz mains hum amplitude on each accelerometer and
+        each load-beam channel.
+    accel_drift_m_s2 : float
+        Stress artefact: accelerometer offset drift over the run (each end its
+        own slow random drift of about this size).
+    cubic_fraction : float
+        Stress artefact, non-linear tyre: a hardening force
+        ``−β K d³ / d₀²`` (``d₀`` the commanded displacement amplitude); its
+        first harmonic adds ``¾ β (A/d₀)²`` to the stiffness at amplitude A.
+    lug_stiffness_modulation : float
+        Stress artefact: the stiffness of a rolling traction tyre varies with
+        the lug under the contact patch, ``K (1 + m sin θ_lug)``.
+    run_scatter, day_scatter : (float, float)
+        Repeatability of the tyre itself (thesis §3.6): relative standard
+        deviations of K and C from run to run (each run's tyre differs from
+        the truth model by a factor ``1 + sd·N(0,1)``) and from day to day (a
+        factor common to the runs of a day, "variations in the ambient
+        conditions"). §3.6: repeats within a few minutes "are generally
+        repeatable to less than 10 kN/m in stiffness (~4 %) and to 0.2 kNs/m
+        in damping (~8 %)"; read as ±2 standard deviations: 2 % and 4 %.
+        Between series "the variations ... can be a little greater": a day
+        factor of 1.5 % and 3 % (total 2.5 % and 5 %). ``tyrelab generate
+        --no-scatter`` (:data:`NO_SCATTER`) sets both to zero for estimator
+        benchmarks and truth-recovery tests. The run's recorded truth
+        (``simulate_run``'s ``info``) includes the factors: it is the K and C
+        the tyre had during that run.
     """
 
     axle_mass_kg: float = 600.0
@@ -121,6 +159,19 @@ class RigConfig:
     runout_m: float = 1.0e-3
     lug_fraction: float = 0.01e-3
     pad_s: float = 6.0
+    startup_s: float = 0.0
+    drive_harmonics: tuple[float, float] = (0.0, 0.0)
+    hum_accel_m_s2: float = 0.0
+    hum_beam_N: float = 0.0
+    accel_drift_m_s2: float = 0.0
+    cubic_fraction: float = 0.0
+    lug_stiffness_modulation: float = 0.0
+    run_scatter: tuple[float, float] = (0.02, 0.04)
+    day_scatter: tuple[float, float] = (0.015, 0.03)
+
+
+#: Overrides of :class:`RigConfig` without the tyre's run-to-run and day-to-day scatter.
+NO_SCATTER = {"run_scatter": (0.0, 0.0), "day_scatter": (0.0, 0.0)}
 
 
 @dataclass(frozen=True)
@@ -177,6 +228,7 @@ class RunSignals:
     tyre_force_N: np.ndarray  # f_t, ground force on axle incl. static load
     beam_force_N: np.ndarray  # sum of the beam forces on the axle
     drive_force_N: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    excitation_phase_rad: np.ndarray = field(default_factory=lambda: np.zeros(0))  # commanded phase (sinusoid)
 
 
 def _slow_wander(rng: np.random.Generator, t: np.ndarray, sd: float, limit: float, period_s: float) -> np.ndarray:
@@ -325,6 +377,12 @@ def simulate_axle(
         f_w = frequency_Hz + _slow_wander(rng, t, cfg.frequency_wander_Hz, 0.09, cfg.wander_period_s)
         phase = 2 * np.pi * np.cumsum(f_w) * dt + rng.uniform(0, 2 * np.pi)
         x_cmd = amp * a_w * np.sin(phase)
+        if any(cfg.drive_harmonics):
+            for order, h in zip((2, 3), cfg.drive_harmonics):
+                x_cmd = x_cmd + h * amp * a_w * np.sin(order * phase + rng.uniform(0, 2 * np.pi))
+        if cfg.startup_s > 0:
+            ramp = _taper(n_keep, int(round(cfg.startup_s * fs)))
+            x_cmd = x_cmd * np.concatenate([np.zeros(n_pad0), ramp, np.zeros(n - n_pad0 - n_keep)])
         X_cmd = sfft.rfft(x_cmd * taper)
     else:
         f = omega / (2 * np.pi)
@@ -343,6 +401,13 @@ def simulate_axle(
     d1 = sfft.irfft(X - Z, n)
     d_rms = float(np.sqrt(np.mean(d1**2))) or 1.0
     nl = -cfg.nonlinear_fraction * K * (d1**2 - np.mean(d1**2)) / d_rms * taper
+    if cfg.cubic_fraction and random_band_Hz is None:
+        d0 = amplitude_mm_pp / 2 * 1e-3
+        nl = nl - cfg.cubic_fraction * K * d1**3 / d0**2 * taper
+    if cfg.lug_stiffness_modulation and traction and lug_height_mm > 0 and speed_km_h > 0:
+        n_lugs = max(int(round(circumference_m / 0.2)), 8)
+        theta = 2 * np.pi * n_lugs * (speed_km_h / 3.6) * t / circumference_m + rng.uniform(0, 2 * np.pi)
+        nl = nl - cfg.lug_stiffness_modulation * K * np.sin(theta) * d1 * taper
     N = sfft.rfft(nl)
     X = X + N * a22 / det
     if n % 2 == 0:  # no derivative at Nyquist
@@ -367,6 +432,7 @@ def simulate_axle(
         tyre_force_N=f_t[sl],
         beam_force_N=f_b[sl],
         drive_force_N=fd[sl],
+        excitation_phase_rad=phase[sl] if random_band_Hz is None else np.zeros(0),
     )
 
 
@@ -396,6 +462,10 @@ def record(signals: RunSignals, day: DayCalibration, rng: np.random.Generator, c
     for i, (sign, name) in enumerate(zip((1, -1), ACCEL_CHANNELS)):
         a = acc + sign * roll
         a = day.accel_gain[i] * a + day.accel_offset_m_s2[i] + s * cfg.accel_noise_m_s2 * rng.standard_normal(n)
+        if cfg.hum_accel_m_s2:
+            a = a + cfg.hum_accel_m_s2 * np.sin(2 * np.pi * HUM_Hz * signals.time_s + rng.uniform(0, 2 * np.pi))
+        if cfg.accel_drift_m_s2:
+            a = a + _slow_wander(rng, signals.time_s, cfg.accel_drift_m_s2, 3 * cfg.accel_drift_m_s2, 60.0)
         out[name] = _adc(a, cfg.accel_range_m_s2).astype(np.float32)
     fb = signals.beam_force_N
     fb_dyn = fb - fb.mean()
@@ -405,6 +475,8 @@ def record(signals: RunSignals, day: DayCalibration, rng: np.random.Generator, c
     for i in range(4):
         b = shares[i] * fb + preload[i] + pitch[i] * fb_dyn
         b = day.beam_gain[i] * b + day.beam_offset_N[i] + s * cfg.beam_noise_N * rng.standard_normal(n)
+        if cfg.hum_beam_N:
+            b = b + cfg.hum_beam_N * np.sin(2 * np.pi * HUM_Hz * signals.time_s + rng.uniform(0, 2 * np.pi))
         out[BEAM_CHANNELS[i]] = _adc(b, cfg.beam_range_N).astype(np.float32)
     if force_plate:
         fp = day.force_plate_gain * signals.tyre_force_N + s * cfg.force_plate_noise_N * rng.standard_normal(n)

@@ -31,6 +31,7 @@ import pyarrow.parquet as pq
 from ..measurement import apparent_mass as am
 from ..measurement import qc
 from ..measurement import recording
+from ..measurement import uncertainty as unc
 from ..measurement.recording import analyse_batch
 from ..tyre.sizes import lugs_per_side, tyre_rolling_circumference_m
 from ..executor import map_batches
@@ -47,6 +48,7 @@ ANALYSIS_VERSION = "2"
 #: Source of the estimators and QC; a change re-analyses every run.
 ESTIMATOR_SOURCE = hashlib.sha256(
     Path(am.__file__).read_bytes() + Path(qc.__file__).read_bytes() + Path(recording.__file__).read_bytes()
+    + Path(unc.__file__).read_bytes()
 ).hexdigest()[:16]
 #: Runs analysed together in one vectorised call.
 BATCH = 32

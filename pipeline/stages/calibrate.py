@@ -19,6 +19,12 @@ runs on *passing* days are corrected by the day's transfer function at the
 run's measured frequency; the uncorrected values are kept in
 ``uncorrected_stiffness_N_per_m`` / ``uncorrected_damping_N_s_per_m``.
 
+Uncertainty (issue 14, docs/uncertainty.md): analyse gives every run the
+§3.2.9 limits as its instrument uncertainty; here runs of a day whose check
+passed get the day's budget instead (:func:`tyrelab.measurement.uncertainty.day_budget`:
+the day's phase at the run's frequency, the channel gains), combined again
+with the run's own type A part; ``uncertainty_source`` names the day.
+
 Also writes ``table_i`` (thesis Table I: apparent mass vs load-deflection,
 free and forced vibration, from virtual experiments; :mod:`tyrelab.measurement.methods`).
 """
@@ -33,6 +39,7 @@ import pyarrow.parquet as pq
 
 from .. import published
 from ..measurement import calibration as cal
+from ..measurement import uncertainty as unc
 from ..measurement.apparent_mass import tyre_force
 from ..measurement.methods import table_i
 from ..rawformat import ACCEL_CHANNELS, BEAM_CHANNELS, CHANNELS
@@ -94,17 +101,64 @@ def correct_results(results: pd.DataFrame, tfs: pd.DataFrame, checks: pd.DataFra
     return out
 
 
+def welch_averages(n_samples: int, sample_rate_Hz: float, resolution_Hz: float = 0.25) -> int:
+    """Number of 50 %-overlapping segments :func:`~tyrelab.measurement.calibration.calibration_transfer_function` averages."""
+    nperseg = int(round(sample_rate_Hz / resolution_Hz))
+    return max((int(n_samples) - nperseg) // (nperseg // 2) + 1, 1)
+
+
+def day_uncertainty(results: pd.DataFrame, tfs: pd.DataFrame, checks: pd.DataFrame, averages: dict,
+                    corrected: bool) -> pd.DataFrame:
+    """Recombine the uncertainty of runs on passing days with their day's budget (see module docstring)."""
+    out = results.copy()
+    needed = {"stiffness_u_stat_N_per_m", "damping_u_stat_N_s_per_m", "uncertainty_dof_stat"}
+    if out.empty or not needed <= set(out.columns):
+        return out
+    ok = (out["excitation_frequency_measured_Hz"].notna() & out["stiffness_u_stat_N_per_m"].notna()).to_numpy()
+
+    def recombine(idx, budgets, source):
+        rows = out.iloc[idx]
+        u = unc.combine(rows["stiffness_N_per_m"].to_numpy(float), rows["damping_N_s_per_m"].to_numpy(float),
+                        rows["excitation_frequency_measured_Hz"].to_numpy(float),
+                        rows["stiffness_u_stat_N_per_m"].to_numpy(float), rows["damping_u_stat_N_s_per_m"].to_numpy(float),
+                        rows["uncertainty_dof_stat"].to_numpy(float), budgets, rows["axle_mass_kg"].to_numpy(float))
+        for name, values in u.columns().items():
+            out.iloc[idx, out.columns.get_loc(name)] = values
+        out.iloc[idx, out.columns.get_loc("uncertainty_source")] = source
+
+    # every run first with the §3.2.9 limits (idempotent: a day that no longer passes loses its budget)
+    idx = np.flatnonzero(ok)
+    if len(idx):
+        recombine(idx, [unc.limits_budget(m) for m in out.iloc[idx]["axle_mass_kg"].to_numpy(float)],
+                  unc.limits_budget().source)
+    if checks.empty or tfs.empty:
+        return out
+    good = checks[checks["pass"].astype(bool) & checks["day_pass"].astype(bool)].drop_duplicates(["campaign", "day"])
+    for r in good.itertuples(index=False):
+        tf = tfs[tfs["run_id"] == r.run_id]
+        sel = (out["campaign"].astype(str) == str(r.campaign)) & (out["recorded_on"].astype(str) == str(r.day))
+        idx = np.flatnonzero(sel.to_numpy() & ok)
+        if tf.empty or not len(idx):
+            continue
+        f = out.iloc[idx]["excitation_frequency_measured_Hz"].to_numpy(float)
+        source = f"calibration {r.day}"
+        recombine(idx, [unc.day_budget(tf, fi, averages.get(r.run_id, 1), corrected, source) for fi in f], source)
+    return out
+
+
 def run(ctx: Context) -> StageResult:
     """Check every calibration run; flag results of failed days; write the tables."""
     t0 = time.perf_counter()
     res = StageResult("calibrate")
     manifest = ctx.read_table("manifest") if ctx.has_table("manifest") else pd.DataFrame()
-    rows, tfs = [], []
+    rows, tfs, averages = [], [], {}
     if not manifest.empty and "kind" in manifest:
         cal_runs = manifest[manifest["kind"].fillna("measurement") == "calibration"]
         res.n_in = len(cal_runs)
         for _, r in cal_runs.sort_values("run_id").iterrows():
-            check, tf = check_calibration_run(r["run_path"], float(r["axle_mass_kg"]), _sample_rate(r))
+            fs = _sample_rate(r)
+            check, tf = check_calibration_run(r["run_path"], float(r["axle_mass_kg"]), fs)
+            averages[r["run_id"]] = welch_averages(r.get("n_samples", 0) or 0, fs)
             day = str(r["recorded_on"])
             rows.append({"campaign": str(r.get("campaign", "")), "day": day, "run_id": r["run_id"],
                          "tyre_id": r["tyre_id"], **check})
@@ -134,6 +188,7 @@ def run(ctx: Context) -> StageResult:
             dkeys = ("campaign", "day") if "campaign" in results else ("day",)
             if ctx.calibration_correct:
                 results = correct_results(results, tf_all, checks)
+            results = day_uncertainty(results, tf_all, checks, averages, bool(ctx.calibration_correct))
             results = cal.flag_failed_days(results, days, keys, dkeys)
             n_flagged = int(results["qc_reasons"].str.contains("calibration failed on", regex=False).sum())
             ctx.write_table("results", results)

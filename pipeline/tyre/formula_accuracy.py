@@ -22,9 +22,14 @@ rim is ≤ 30 in. Ages come from ``tyres.age_years``; a missing age is taken as
 
 from __future__ import annotations
 
+import functools
+import math
+from dataclasses import dataclass
+
 import numpy as np
 import pandas as pd
 from scipy.stats import norm
+from scipy.stats import t as student_t
 
 from . import conditions as cond
 from .sizes import TyreSizeError, parse_tyre_size
@@ -206,3 +211,70 @@ def accuracy_summary(pred: pd.DataFrame, source: str) -> pd.DataFrame:
             thesis_p_within_10_percent_from_printed_moments=p_within(tm, ts),
         ))
     return pd.DataFrame(rows)
+
+
+@dataclass(frozen=True)
+class FormulaErrorModel:
+    """How far the empirical formula misses a measured rolling stiffness (prediction intervals).
+
+    From the formula's errors ``e = 100 (F − M)/M`` (%) on the published Table III
+    rolling lines (:func:`predictions_from_table`, the thesis' own data, §4.5.3):
+    their mean and standard deviation over ``n`` tyre × pressure points of
+    ``n_tyres`` tyres. A new tyre's measured stiffness ``M`` lies, with
+    probability ``level``, where its error is within
+    ``mean ± t_{n_tyres−1} sd √(1 + 1/n_tyres)`` (a normal prediction interval; the
+    points of one tyre are not independent, so the tyres count for the degrees of
+    freedom): ``M ∈ [F/(1 + e_hi/100), F/(1 + e_lo/100)]``.
+    """
+
+    mean_error_percent: float
+    sd_error_percent: float
+    n: int
+    n_tyres: int
+    source: str = "thesis Table III rolling lines, Table II sizes and ages (formula_accuracy.predictions_from_table)"
+
+    def coverage_factor(self, level: float = 0.95) -> float:
+        """Student t factor for ``level`` with ``n_tyres − 1`` degrees of freedom."""
+        if not 0 < level < 1:
+            raise ValueError(f"level must be in (0, 1), got {level!r}")
+        return float(student_t.ppf(0.5 + level / 2, max(self.n_tyres - 1, 1)))
+
+    def interval(self, predicted_kN_per_m: float, level: float = 0.95) -> tuple[float, float]:
+        """Prediction interval (kN/m) of the measured stiffness of a tyre the formula gives ``predicted_kN_per_m``.
+
+        Examples
+        --------
+        >>> m = FormulaErrorModel(3.0, 10.0, 56, 14)
+        >>> lo, hi = m.interval(300.0)
+        >>> round(lo), round(hi)
+        (239, 372)
+        """
+        if not predicted_kN_per_m > 0:
+            raise ValueError(f"predicted_kN_per_m must be positive, got {predicted_kN_per_m!r}")
+        half = self.coverage_factor(level) * self.sd_error_percent * math.sqrt(1 + 1 / self.n_tyres)
+        e_lo, e_hi = self.mean_error_percent - half, self.mean_error_percent + half
+        return predicted_kN_per_m / (1 + e_hi / 100), predicted_kN_per_m / (1 + e_lo / 100)
+
+    def standard_uncertainty(self, predicted_kN_per_m: float) -> float:
+        """Standard uncertainty (kN/m) of the stiffness: the 95 % interval's half-width over its t factor."""
+        lo, hi = self.interval(predicted_kN_per_m)
+        return (hi - lo) / (2 * self.coverage_factor())
+
+
+def formula_error_model(table: pd.DataFrame, tyres: pd.DataFrame | None) -> FormulaErrorModel:
+    """:class:`FormulaErrorModel` from a Table III-like table and a tyres table."""
+    pred = predictions_from_table(table, tyres)
+    e = pred["formula_error_percent"].to_numpy(float)
+    ok = np.isfinite(e)
+    if ok.sum() < 3:
+        raise ValueError("too few formula predictions to estimate its error")
+    return FormulaErrorModel(float(e[ok].mean()), float(e[ok].std(ddof=1)), int(ok.sum()),
+                             int(pred.loc[ok, "tyre_id"].nunique()))
+
+
+@functools.lru_cache(maxsize=1)
+def published_formula_error() -> FormulaErrorModel:
+    """:func:`formula_error_model` of the thesis' published Tables II and III (read once, cached)."""
+    from ..published import read_published
+
+    return formula_error_model(read_published("table_iii"), read_published("table_ii"))

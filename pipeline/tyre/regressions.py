@@ -1,7 +1,16 @@
 """Stiffness and damping regressions of thesis chapters 4 and 5 (Tables III–X).
 
-Every fit is an ordinary least-squares line from :mod:`statsmodels` and is
-reported with estimate, standard error, 95 % confidence interval, r² and n.
+Every fit is a least-squares line from :mod:`statsmodels` and is reported with
+estimate, standard error, 95 % confidence interval, r² and n. Where the runs
+carry their own standard uncertainties (``results.stiffness_u_N_per_m``,
+``damping_u_N_s_per_m``, issue 14) and these differ, the line is weighted
+least squares with weights ``1/(u_i² + τ²)``: ``u_i`` the run's measurement
+uncertainty and ``τ`` the tyre's own run-to-run scatter (thesis §3.6), which
+no single run can see, estimated so that the weighted residuals have their
+expected size (Paule–Mandel). Runs whose uncertainty is large next to the
+scatter count less; when the scatter dominates, the weights are nearly equal
+and the fit is the ordinary one. ``weighting`` and ``between_run_sd`` say
+which was used.
 Run selection follows :mod:`tyrelab.tyre.conditions` (the one place that says
 which runs are "nominal"). Functions return tidy DataFrames in thesis units:
 stiffness kN/m, damping kNs/m, pressure bar, speed km/h, amplitude mm p-p.
@@ -34,13 +43,47 @@ _RESPONSE_UNIT = {STIFFNESS: "kN/m", DAMPING: "kNs/m"}
 FIT_COLUMNS = [
     "n", "n_distinct_x", "intercept", "intercept_se", "intercept_ci_low", "intercept_ci_high",
     "slope", "slope_se", "slope_ci_low", "slope_ci_high", "slope_p_value", "r_squared", "reason",
+    "weighting", "between_run_sd",
 ]
+#: Runs' standard uncertainties, per response column (N/m and N s/m; the responses are in kN).
+RESPONSE_UNCERTAINTY = {STIFFNESS: "stiffness_u_N_per_m", DAMPING: "damping_u_N_s_per_m"}
+#: Weights count only when the runs' uncertainties differ by more than this ratio (max/min).
+WLS_MIN_SPREAD = 1.5
 
 
-def fit_line(x, y, *, alpha: float = 0.05) -> dict:
-    """Least-squares line ``y = intercept + slope x`` with its statistics (statsmodels OLS).
+def between_run_variance(x, y, u) -> float:
+    """Paule–Mandel τ²: the extra variance that makes Σ (y − ŷ)²/(u² + τ²) = n − 2 for a line.
 
-    r² is the thesis' coefficient of determination Σ(ŷ−ȳ)²/Σ(y−ȳ)² (§4.3.1).
+    0 when the runs' own uncertainties already explain the residuals.
+
+    Examples
+    --------
+    >>> x = np.array([1.0, 2, 3, 4]); y = np.array([1.0, 2.2, 2.8, 4.1])
+    >>> round(between_run_variance(x, y, np.full(4, 0.01)), 4) > 0, between_run_variance(x, y, np.full(4, 1.0))
+    (True, 0.0)
+    """
+    x, y, u = (np.asarray(v, dtype=float) for v in (x, y, u))
+    design = np.column_stack([np.ones_like(x), x])
+
+    def chi2(tau2):
+        w = 1.0 / (u**2 + tau2)
+        beta = np.linalg.lstsq(design * np.sqrt(w)[:, None], y * np.sqrt(w), rcond=None)[0]
+        return float(np.sum(w * (y - design @ beta) ** 2))
+
+    target = len(y) - 2
+    if target <= 0 or chi2(0.0) <= target:
+        return 0.0
+    lo, hi = 0.0, float(np.var(y)) * 10 + 1e-30
+    for _ in range(100):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if chi2(mid) > target else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def fit_line(x, y, *, alpha: float = 0.05, u=None) -> dict:
+    """Least-squares line ``y = intercept + slope x`` with its statistics (statsmodels OLS or WLS).
+
+    r² is the thesis' coefficient of determination Σ(ŷ−ȳ)²/Σ(y−ȳ)² (§4.3.1), unweighted.
 
     Parameters
     ----------
@@ -48,6 +91,11 @@ def fit_line(x, y, *, alpha: float = 0.05) -> dict:
         Regressor and response; rows where either is NaN are dropped.
     alpha : float
         1 − confidence level of the intervals (0.05 → 95 %).
+    u : array-like, optional
+        Standard uncertainties of ``y`` (same units). When every point has one and
+        they differ by more than :data:`WLS_MIN_SPREAD`, the fit is WLS with weights
+        ``1/(u² + τ²)`` (:func:`between_run_variance`); the residual scale is then
+        estimated from the data as for OLS.
 
     Returns
     -------
@@ -58,26 +106,38 @@ def fit_line(x, y, *, alpha: float = 0.05) -> dict:
     """
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
+    uu = np.full(x.shape, np.nan) if u is None else np.asarray(u, dtype=float)
     ok = np.isfinite(x) & np.isfinite(y)
-    x, y = x[ok], y[ok]
+    x, y, uu = x[ok], y[ok], uu[ok]
     out = dict.fromkeys(FIT_COLUMNS, np.nan)
+    out["weighting"] = "OLS"
     out["n"] = int(len(x))
     out["n_distinct_x"] = int(len(np.unique(np.round(x, 9))))
     out["reason"] = None
     if out["n_distinct_x"] < 2:
         out["reason"] = f"fewer than 2 distinct regressor values (n={out['n']}, distinct={out['n_distinct_x']})"
         return out
+    weighted = (len(uu) > 2 and np.all(np.isfinite(uu)) and np.all(uu > 0)
+                and uu.max() / uu.min() > WLS_MIN_SPREAD)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        res = sm.OLS(y, sm.add_constant(x, has_constant="add")).fit()
+        design = sm.add_constant(x, has_constant="add")
+        if weighted:
+            tau2 = between_run_variance(x, y, uu)
+            res = sm.WLS(y, design, weights=1.0 / (uu**2 + tau2)).fit()
+            out["weighting"] = "WLS 1/(u² + τ²)"
+            out["between_run_sd"] = float(np.sqrt(tau2))
+        else:
+            res = sm.OLS(y, design).fit()
         ci = np.asarray(res.conf_int(alpha))
         bse = np.asarray(res.bse)
         p = np.asarray(res.pvalues)
     has_df = res.df_resid > 0
+    fitted = design @ np.asarray(res.params)
     out.update(
         intercept=float(res.params[0]),
         slope=float(res.params[1]),
-        r_squared=float(res.rsquared) if np.var(y) > 0 else np.nan,
+        r_squared=float(np.sum((fitted - y.mean()) ** 2) / np.sum((y - y.mean()) ** 2)) if np.var(y) > 0 else np.nan,
         intercept_se=float(bse[0]) if has_df else np.nan,
         slope_se=float(bse[1]) if has_df else np.nan,
         intercept_ci_low=float(ci[0, 0]) if has_df else np.nan,
@@ -146,7 +206,9 @@ def _fit_groups(runs, keys, grid, response, hold, prefer, design: str = "x") -> 
         sub = sub.loc[sub[response].notna()] if response in sub else sub
         sub, levels, note = cond.hold_constant(sub, design, hold, prefer=prefer)
         one_level = len(sub) > 0 and sub[design].round(6).nunique() < 2
-        fit = fit_line(sub["x"], sub[response]) if len(sub) and not one_level else fit_line([], [])
+        u_col = RESPONSE_UNCERTAINTY.get(response)
+        u = sub[u_col] / 1e3 if u_col in sub else None  # N -> kN, as the responses
+        fit = fit_line(sub["x"], sub[response], u=u) if len(sub) and not one_level else fit_line([], [])
         if len(sub) == 0:
             fit["reason"] = "no runs under the selection convention (tyrelab.tyre.conditions)"
         elif one_level:

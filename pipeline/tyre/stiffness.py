@@ -290,6 +290,15 @@ class StiffnessEstimate:
         Estimated rolling stiffness K per tyre, kN/m.
     warnings : tuple of str
         Where the tyre or pressure lies outside the thesis' data (:func:`range_warnings`).
+    prediction_interval_kN_per_m : (float, float) or None
+        95 % prediction interval of the tyre's measured rolling stiffness, kN/m, from
+        the formula's errors on the thesis' published data
+        (:func:`tyrelab.tyre.formula_accuracy.published_formula_error`); None for the
+        undriven front tyre rule, which rests on one tyre (F1) and has no spread to use.
+    stiffness_u_kN_per_m : float or None
+        Standard uncertainty of the estimate, kN/m (the interval's half-width over its t factor).
+    prediction_interval_basis : str
+        What the interval rests on, or why there is none.
 
     Further fields (e.g. an interval) can be added with a default; :meth:`to_dict`
     includes every field.
@@ -303,6 +312,9 @@ class StiffnessEstimate:
     rule: str
     stiffness_kN_per_m: float
     warnings: tuple[str, ...] = ()
+    prediction_interval_kN_per_m: tuple[float, float] | None = None
+    stiffness_u_kN_per_m: float | None = None
+    prediction_interval_basis: str = ""
 
     def to_dict(self) -> dict:
         """JSON-ready dict: the inputs, what the size says, K (rounded to 1e-3) and the warnings."""
@@ -326,8 +338,10 @@ class StiffnessEstimate:
             if f.name == "size":
                 continue
             v = getattr(self, f.name)
-            if f.name == "stiffness_kN_per_m":
+            if f.name in ("stiffness_kN_per_m", "stiffness_u_kN_per_m") and v is not None:
                 v = round(v, 3)
+            if f.name == "prediction_interval_kN_per_m" and v is not None:
+                v = tuple(round(x, 3) for x in v)
             out[f.name] = list(v) if isinstance(v, tuple) else v
         return out
 
@@ -362,6 +376,17 @@ def estimate_stiffness(
         if undriven_front
         else "K = 172 - 1.77 R + 5.6 A + 0.34 W R P (thesis §4.5.3)"
     )
+    if undriven_front:
+        interval, u, basis = None, None, "none: the undriven front tyre rule rests on one tyre (F1), no spread to use"
+    else:
+        from .formula_accuracy import published_formula_error
+
+        model = published_formula_error()
+        interval, u = model.interval(k), model.standard_uncertainty(k)
+        basis = (f"95 % prediction interval from the formula's errors on the thesis' data: mean "
+                 f"{model.mean_error_percent:.1f} %, sd {model.sd_error_percent:.1f} % over {model.n} points of "
+                 f"{model.n_tyres} tyres (Table III rolling lines; t with {model.n_tyres - 1} degrees of freedom)"
+                 + ("; water ballast scales it by 1.25 (its own uncertainty is not known)" if water_ballast else ""))
     return StiffnessEstimate(
         size=s,
         pressure_bar=float(pressure_bar),
@@ -371,4 +396,7 @@ def estimate_stiffness(
         rule=rule,
         stiffness_kN_per_m=k,
         warnings=range_warnings(s, pressure_bar, age_years, undriven_front=undriven_front, data_range=data_range),
+        prediction_interval_kN_per_m=interval,
+        stiffness_u_kN_per_m=u,
+        prediction_interval_basis=basis,
     )

@@ -158,6 +158,8 @@ def tractor_natural_frequencies(
     age_years: float = 1.0,
     front_stiffness_kN_per_m: float | None = None,
     rear_stiffness_kN_per_m: float | None = None,
+    front_stiffness_u_kN_per_m: float | None = None,
+    rear_stiffness_u_kN_per_m: float | None = None,
 ) -> dict:
     """Natural frequencies of a tractor from its tyre sizes and pressures (thesis §8.2).
 
@@ -182,6 +184,11 @@ def tractor_natural_frequencies(
         Tyre age in years (default 1, as thesis §8.2 assumes).
     front_stiffness_kN_per_m, rear_stiffness_kN_per_m : float, optional
         Per-tyre stiffnesses that override the formula.
+    front_stiffness_u_kN_per_m, rear_stiffness_u_kN_per_m : float, optional
+        Standard uncertainties of the per-tyre stiffnesses, kN/m. Default: the
+        formula's (:attr:`~tyrelab.tyre.stiffness.StiffnessEstimate.stiffness_u_kN_per_m`,
+        from its prediction interval on the thesis' data) for an estimated
+        stiffness, 0 for a given one; the undriven front rule has none (0).
 
     Returns
     -------
@@ -189,32 +196,102 @@ def tractor_natural_frequencies(
         ``front_tyre_stiffness_kN_per_m``, ``rear_tyre_stiffness_kN_per_m`` (per tyre),
         ``frequency_1_Hz``, ``frequency_2_Hz``, ``warnings`` (list of str: where an
         estimated tyre lies outside the thesis' data,
-        :func:`tyrelab.tyre.stiffness.range_warnings`; none for given stiffnesses).
+        :func:`tyrelab.tyre.stiffness.range_warnings`; none for given stiffnesses);
+        the stiffness uncertainties ``front_tyre_stiffness_u_kN_per_m``,
+        ``rear_tyre_stiffness_u_kN_per_m`` and the frequencies' ``frequency_1_u_Hz``,
+        ``frequency_2_u_Hz``, ``frequency_1_Hz_ci95``, ``frequency_2_Hz_ci95`` ([low, high])
+        from them (:func:`frequency_uncertainty`, ``frequency_interval_method``).
     """
     warnings: list[str] = []
+    uf, ur = 0.0, 0.0
     if front_stiffness_kN_per_m is not None:
         kf = float(front_stiffness_kN_per_m)
     else:
         est = estimate_stiffness(front_size, front_pressure_bar, age_years, undriven_front=not front_traction,
                                  water_ballast=front_water_ballast)
         kf = est.stiffness_kN_per_m
+        uf = est.stiffness_u_kN_per_m or 0.0
         warnings += [f"front tyre {est.size.designation}: {w}" for w in est.warnings]
     if rear_stiffness_kN_per_m is not None:
         kr = float(rear_stiffness_kN_per_m)
     else:
         est = estimate_stiffness(rear_size, rear_pressure_bar, age_years, water_ballast=rear_water_ballast)
         kr = est.stiffness_kN_per_m
+        ur = est.stiffness_u_kN_per_m or 0.0
         warnings += [f"rear tyre {est.size.designation}: {w}" for w in est.warnings]
+    for name, value in (("front_stiffness_u_kN_per_m", front_stiffness_u_kN_per_m),
+                        ("rear_stiffness_u_kN_per_m", rear_stiffness_u_kN_per_m)):
+        if value is not None and not (np.isfinite(value) and value >= 0):
+            raise ValueError(f"{name} must be a non-negative number, got {value!r}")
+    uf = uf if front_stiffness_u_kN_per_m is None else float(front_stiffness_u_kN_per_m)
+    ur = ur if rear_stiffness_u_kN_per_m is None else float(rear_stiffness_u_kN_per_m)
     f1, f2 = natural_frequencies(
         mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m, 2e3 * kf, 2e3 * kr
     )
+    (u1, u2), (ci1, ci2) = frequency_uncertainty(mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m,
+                                                 kf, kr, uf, ur)
     return {
         "front_tyre_stiffness_kN_per_m": kf,
         "rear_tyre_stiffness_kN_per_m": kr,
         "frequency_1_Hz": f1,
         "frequency_2_Hz": f2,
+        "front_tyre_stiffness_u_kN_per_m": uf,
+        "rear_tyre_stiffness_u_kN_per_m": ur,
+        "frequency_1_u_Hz": u1,
+        "frequency_2_u_Hz": u2,
+        "frequency_1_Hz_ci95": list(ci1),
+        "frequency_2_Hz_ci95": list(ci2),
+        "frequency_interval_method": FREQUENCY_INTERVAL_METHOD,
         "warnings": warnings,
     }
+
+
+#: How :func:`frequency_uncertainty` carries the tyre stiffness uncertainty into the frequencies.
+FREQUENCY_INTERVAL_METHOD = (
+    "first order (GUM): sensitivities of both frequencies to the front and rear tyre stiffness by "
+    "central differences, independent tyres, interval f ± 1.96 u(f)"
+)
+
+
+def frequency_uncertainty(mass_kg: float, pitch_inertia_kg_m2: float, front_distance_m: float, rear_distance_m: float,
+                          front_tyre_kN_per_m: float, rear_tyre_kN_per_m: float, front_u_kN_per_m: float,
+                          rear_u_kN_per_m: float) -> tuple[tuple[float, float], tuple[tuple[float, float], ...]]:
+    """Standard uncertainties and 95 % intervals of the two natural frequencies from the tyre stiffnesses'.
+
+    First order (GUM 5.1.2): ``u²(f_i) = Σ_j (∂f_i/∂K_j)² u²(K_j)`` over the front and
+    rear per-tyre stiffness, derivatives by central differences (±1 % of K); the
+    interval is ``f_i ± 1.96 u(f_i)`` (a normal distribution: the stiffness
+    uncertainties have many degrees of freedom or none stated).
+
+    Returns
+    -------
+    (u1_Hz, u2_Hz), ((lo1, hi1), (lo2, hi2))
+
+    Examples
+    --------
+    >>> (u1, u2), _ = frequency_uncertainty(3235, 2669, 1.33, 0.71, 247, 306, 0.0, 0.0)
+    >>> u1, u2
+    (0.0, 0.0)
+    """
+    k = np.array([front_tyre_kN_per_m, rear_tyre_kN_per_m], dtype=float)
+    u = np.array([front_u_kN_per_m, rear_u_kN_per_m], dtype=float)
+
+    def freqs(kk):
+        return np.array(natural_frequencies(mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m,
+                                            2e3 * kk[0], 2e3 * kk[1]))
+
+    f0 = freqs(k)
+    var = np.zeros(2)
+    for j in range(2):
+        if u[j] == 0:
+            continue
+        step = 0.01 * k[j]
+        up, down = k.copy(), k.copy()
+        up[j] += step
+        down[j] -= step
+        var += ((freqs(up) - freqs(down)) / (2 * step) * u[j]) ** 2
+    uf = np.sqrt(var)
+    return (float(uf[0]), float(uf[1])), tuple((float(f - 1.96 * s), float(f + 1.96 * s)) for f, s in zip(f0, uf))
 
 
 #: Half the last printed digit of each Table XIX / XX input: mass 1 kg, inertia 1 kg m²,

@@ -29,8 +29,13 @@ def _context_with_days(tmp_path, **options):
         "campaign": "c1", "run_id": ["m_good", "m_bad", "m_other_campaign"],
         "recorded_on": [good["recorded_on"], bad["recorded_on"], bad["recorded_on"]],
         "stiffness_N_per_m": 4e5, "damping_N_s_per_m": 2e3, "excitation_frequency_measured_Hz": 4.0,
-        "qc_ok": True, "qc_reasons": "",
+        "qc_ok": True, "qc_reasons": "", "axle_mass_kg": 600.0,
+        "stiffness_u_stat_N_per_m": 100.0, "damping_u_stat_N_s_per_m": 10.0, "uncertainty_dof_stat": 7.0,
     })
+    for name in unc_columns():
+        if name not in results:
+            results[name] = float("nan")
+    results["uncertainty_source"] = "§3.2.9 limits"
     results.loc[2, "campaign"] = "c2"
     ctx.write_table("results", results)
     return ctx, good, bad
@@ -48,6 +53,31 @@ def test_failed_day_flags_its_runs(tmp_path):
     assert out.loc["m_bad", "qc_reasons"] == f"calibration failed on {bad['recorded_on']}"
     assert "1 failed" in res.message
 
+
+
+def unc_columns():
+    from tyrelab.measurement.uncertainty import UNCERTAINTY_COLUMNS
+
+    return UNCERTAINTY_COLUMNS
+
+
+def test_passing_day_replaces_the_limits_by_its_own_budget(tmp_path):
+    """Issue 14: a run of a day whose check passed gets that day's (much smaller) instrument uncertainty."""
+    ctx, good, bad = _context_with_days(tmp_path)
+    calibrate.run(ctx)
+    out = ctx.read_table("results").set_index("run_id")
+    assert out.loc["m_good", "uncertainty_source"] == f"calibration {good['recorded_on']}"
+    assert out.loc["m_bad", "uncertainty_source"] == "§3.2.9 limits"  # failed day: no budget of its own
+    assert out.loc["m_other_campaign", "uncertainty_source"] == "§3.2.9 limits"
+    u_good, u_bad = out.loc["m_good", "stiffness_u_N_per_m"], out.loc["m_bad", "stiffness_u_N_per_m"]
+    assert 100.0 < u_good < 0.2 * u_bad  # limits: 1.7 % of 400 kN/m; the day: type A + 0.17 % gains
+    for run in ("m_good", "m_bad"):
+        row = out.loc[run]
+        half = row["coverage_factor"] * row["stiffness_u_N_per_m"]
+        assert row["stiffness_ci95_low_N_per_m"] == pytest.approx(4e5 - half)
+        assert row["stiffness_ci95_high_N_per_m"] == pytest.approx(4e5 + half)
+    calibrate.run(ctx)  # idempotent
+    pd.testing.assert_frame_equal(out, ctx.read_table("results").set_index("run_id"))
 
 
 def test_calibration_correction_is_an_option_in_the_fingerprint(tmp_path):

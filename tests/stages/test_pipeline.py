@@ -104,6 +104,13 @@ def test_analyze_run_json(built, capsys):
     assert out["damping_N_s_per_m"] == pytest.approx(C_C + DC * 1.2, rel=0.03)
     assert out["excitation_frequency_Hz"] == pytest.approx(4.0, abs=0.01)
     assert set(out) >= {"excitation_frequency_Hz", "stiffness_N_per_m", "damping_N_s_per_m", "amplitude_mm_pp", "coherence"}
+    # issue 14: 95 % intervals and standard uncertainties; one recording has no day check -> §3.2.9 limits
+    lo, hi = out["stiffness_ci95_N_per_m"]
+    assert lo < out["stiffness_N_per_m"] < hi and lo < K_C + DK_P * 1.2 < hi
+    lo, hi = out["damping_ci95_N_s_per_m"]
+    assert lo < out["damping_N_s_per_m"] < hi
+    assert 0.005 < out["stiffness_u_N_per_m"] / out["stiffness_N_per_m"] < 0.05  # the ±3 % gain limit dominates
+    assert out["damping_u_N_s_per_m"] > 0 and out["uncertainty"]["instrument"] == "§3.2.9 limits"
 
 
 def test_analyze_run_bad_file_is_one_line(tmp_path, capsys):
@@ -116,6 +123,6 @@ def test_analyze_run_bad_file_is_one_line(tmp_path, capsys):
 
 def test_estimate_stiffness_cli(capsys):
     assert main(["estimate-stiffness", "--size", "13.6-38", "--pressure", "1.1", "--age", "1"]) == 0
-    assert capsys.readouterr().out.strip() == "303.6 kN/m"
+    assert capsys.readouterr().out.strip().startswith("303.6 kN/m (95 % prediction interval")  # issue 14
     assert main(["estimate-stiffness", "--size", "banana", "--pressure", "1.1"]) == 2
     assert "does not parse" in capsys.readouterr().err
