@@ -28,7 +28,7 @@ import pandas as pd
 
 __all__ = ["REL_TOL", "ABS_TOL", "NUMERIC_KEYS", "HIDDEN", "EXTRAS", "Pair", "Shaped", "find_pairs",
     "tolerance", "shape_comparison", "compare_frames", "thesis_only", "plain_table", "campaign_summary",
-    "select_runs"]
+    "select_runs", "interval_text"]
 
 #: Relative tolerance beyond which a difference is highlighted.
 REL_TOL = 0.05

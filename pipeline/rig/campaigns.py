@@ -39,7 +39,7 @@ __all__ = ["MANIFEST_COLUMNS", "TRACK_LENGTH_M", "RUN_DURATION_S", "CALIBRATION_
     "CALIBRATION_BAND_HZ", "MISCALIBRATED_BEAM_GAIN_ERROR", "FIRST_DAY", "SILSOE_SPEEDS", "BERLIN_SPEEDS",
     "LOADS_KN", "AMPLITUDES_MM_PP", "FREQUENCIES_HZ", "TORQUE_SPEEDS", "SURFACE_SPEEDS", "duration_s",
     "pressures", "nominal_pressure", "campaign_plan", "run_seed", "plan_truth", "rms_to_pp_mm", "day_state",
-    "simulate_run"]
+    "simulate_run", "run_scatter"]
 
 MANIFEST_COLUMNS = [
     "run_id", "file", "tyre_id", "speed_km_h", "pressure_bar", "load_kN", "excitation_frequency_Hz",

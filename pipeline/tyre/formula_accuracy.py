@@ -36,7 +36,7 @@ from .sizes import TyreSizeError, parse_tyre_size
 from .stiffness import traction_tyre_stiffness
 
 __all__ = ["REAR_GRID_BAR", "FRONT_GRID_BAR", "NOT_TRACTION", "THESIS_ACCURACY", "PRED_COLUMNS", "p_within",
-    "predictions_from_table", "predictions_from_recordings", "accuracy_summary"]
+    "predictions_from_table", "predictions_from_recordings", "accuracy_summary", "FormulaErrorModel", "formula_error_model", "published_formula_error"]
 
 REAR_GRID_BAR = (0.8, 1.0, 1.2, 1.4, 1.6)
 FRONT_GRID_BAR = (1.0, 1.25, 1.5, 1.75, 2.0)

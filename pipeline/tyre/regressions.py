@@ -33,7 +33,7 @@ from . import conditions as cond
 
 __all__ = ["STIFFNESS", "DAMPING", "FIT_COLUMNS", "fit_line", "fit_mean", "measured_tyres",
     "pressure_regressions", "factor_regressions", "surface_effects", "compare_with_thesis", "table_iii",
-    "table_vii", "amplitude_table", "surface_table", "SUMMARY_FACTORS", "summary_rates"]
+    "table_vii", "amplitude_table", "surface_table", "SUMMARY_FACTORS", "summary_rates", "RESPONSE_UNCERTAINTY", "WLS_MIN_SPREAD", "between_run_variance"]
 
 STIFFNESS = "stiffness_kN_per_m"
 DAMPING = "damping_kN_s_per_m"

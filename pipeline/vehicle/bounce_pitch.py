@@ -32,8 +32,7 @@ __all__ = [
     "table_xx",
     "table_xx_statistics",
     "frequency_rounding_range",
-    "mode_shapes",
-]
+    "mode_shapes", "FREQUENCY_INTERVAL_METHOD", "frequency_uncertainty"]
 
 
 def natural_frequencies(

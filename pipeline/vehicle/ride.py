@@ -36,6 +36,7 @@ SI inside; km/h, kN/m and bar at the edges, as in the key names.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -114,6 +115,10 @@ class AxleTyres:
         Contact length used by the enveloping filter, one per speed, m.
     warnings : list of str
         The formula's out-of-range warnings and similar notes.
+    stiffness_u_kN_per_m : float
+        Standard uncertainty of the per-tyre stiffness, kN/m: the formula's (its
+        prediction interval on the thesis' data, issue 14); 0 for an override or a
+        measured tyre (not propagated).
     """
 
     size: str
@@ -125,6 +130,7 @@ class AxleTyres:
     radius_m: float
     footprint_m: np.ndarray
     warnings: tuple[str, ...] = ()
+    stiffness_u_kN_per_m: float = 0.0
 
 
 def per_speed(values, list_speeds_km_h, speeds_km_h) -> np.ndarray:
@@ -174,12 +180,12 @@ def _measured(build: Path | None, table: str, tyre_id: str, pressure_bar: float)
     return rows["speed_km_h"].to_numpy(float), (rows["intercept"] + rows["slope"] * pressure_bar).to_numpy(float)
 
 
-def _formula_stiffness(spec) -> tuple[float, str, list[str]]:
-    """Per-tyre formula stiffness (kN/m), its rule and the formula's range warnings."""
+def _formula_stiffness(spec) -> tuple[float, str, list[str], float]:
+    """Per-tyre formula stiffness (kN/m), its rule, the formula's range warnings and its standard uncertainty."""
     est = estimate_stiffness(spec.size, spec.pressure_bar, spec.age_years, undriven_front=not spec.traction,
                              water_ballast=spec.water_ballast)
     rule = f"formula {est.rule}" + (" x1.25 water ballast" if spec.water_ballast else "")
-    return est.stiffness_kN_per_m, rule, list(est.warnings)
+    return est.stiffness_kN_per_m, rule, list(est.warnings), est.stiffness_u_kN_per_m or 0.0
 
 
 def _thesis_damping(pressure_bar: float, speeds_km_h) -> np.ndarray:
@@ -211,6 +217,7 @@ def resolve_tyres(scenario: Scenario, build: Path | None = None) -> dict[str, Ax
     out = {}
     for axle, spec in (("front", scenario.front), ("rear", scenario.rear)):
         warnings: list[str] = []
+        k_u = 0.0
         if spec.stiffness_kN_per_m is not None:
             k, k_src = per_speed(spec.stiffness_kN_per_m, lists, speeds), "override (scenario)"
         elif spec.measured_tyre_id:
@@ -218,7 +225,7 @@ def resolve_tyres(scenario: Scenario, build: Path | None = None) -> dict[str, Ax
             k = np.interp(speeds, sp, val)
             k_src = f"measured tyre {spec.measured_tyre_id}: K = Kc + dKp P per speed (stiffness_pressure_by_speed)"
         else:
-            k0, k_src, warnings = _formula_stiffness(spec)
+            k0, k_src, warnings, k_u = _formula_stiffness(spec)
             k = np.full(speeds.shape, k0)
         if spec.damping_kN_s_per_m is not None:
             c, c_src = per_speed(spec.damping_kN_s_per_m, lists, speeds), "override (scenario)"
@@ -239,7 +246,7 @@ def resolve_tyres(scenario: Scenario, build: Path | None = None) -> dict[str, Ax
         else:
             fp = np.array([ev.contact_length(radius, load_n[axle] / (1e3 * kk)) for kk in k])
         out[axle] = AxleTyres(spec.size, spec.pressure_bar, k, np.maximum(c, 0.0), k_src, c_src, float(radius), fp,
-                              tuple(warnings))
+                              tuple(warnings), float(k_u))
     return out
 
 
@@ -631,6 +638,8 @@ class RideResult:
     spectrum_source: str
     track_length_m: float = math.nan
     warnings: list = field(default_factory=list)
+    #: ``bounce``/``pitch`` -> [low, high], 95 %, from the tyres' stiffness uncertainty (:func:`_mode_intervals`)
+    natural_frequency_intervals_Hz: dict = field(default_factory=dict)
 
 
 def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float | None) -> tuple[int, int]:
@@ -638,6 +647,26 @@ def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float
     start = int(math.ceil((track.lead_in_m - wheelbase_m) / (v * DT_S))) if track.lead_in_m > wheelbase_m else 0
     length = track.length_m / v if duration_s is None else min(duration_s, track.length_m / v)
     return start, start + int(round(length / DT_S))
+
+
+def _mode_intervals(tr: Tractor, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: float) -> dict:
+    """95 % intervals of the bounce and pitch frequencies from the tyre stiffness uncertainties.
+
+    First order as :func:`tyrelab.vehicle.bounce_pitch.frequency_uncertainty`
+    (central differences, independent axles, ``f ± 1.96 u``); an axle is two tyres.
+    """
+    base, _ = _modes(tr)
+    var = dict.fromkeys(base, 0.0)
+    for attr, u in (("front_stiffness_N_per_m", 2e3 * u_front_tyre_kN_per_m),
+                    ("rear_stiffness_N_per_m", 2e3 * u_rear_tyre_kN_per_m)):
+        if not u > 0:
+            continue
+        k = getattr(tr, attr)
+        up, _ = _modes(dataclasses.replace(tr, **{attr: 1.01 * k}))
+        down, _ = _modes(dataclasses.replace(tr, **{attr: 0.99 * k}))
+        for m in var:
+            var[m] += ((up[m] - down[m]) / (0.02 * k) * u) ** 2
+    return {m: [base[m] - 1.96 * math.sqrt(var[m]), base[m] + 1.96 * math.sqrt(var[m])] for m in base}
 
 
 def _modes(tr: Tractor) -> tuple[dict, dict]:
@@ -702,6 +731,7 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
             r["off"] = _lift_off_from_accelerations(r["tr"], vert, pitch, lon)
             r["method"] = "nonlinear (tyre lift-off)"
     nat, nodal = _modes(runs[0]["tr"])
+    nat_ci = _mode_intervals(runs[0]["tr"], tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
     for i, (speed, r) in enumerate(zip(speeds, runs)):
         v, start, stop, fp, method = r["v"], r["start"], r["stop"], r["fp"], r["method"]
         a_m, b_m, c_m, d_m = r["ss"]
@@ -768,7 +798,7 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
         spectra=pd.concat(spectra, ignore_index=True) if spectra else pd.DataFrame(columns=cols),
         transmissibility=pd.concat(trans, ignore_index=True) if trans else pd.DataFrame(columns=cols),
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
-        warnings=warnings,
+        warnings=warnings, natural_frequency_intervals_Hz=nat_ci,
     )
 
 
@@ -867,6 +897,7 @@ def _tyre_json(t: AxleTyres) -> dict:
         "stiffness_kN_per_m": _clean(t.stiffness_kN_per_m[0]), "damping_kN_s_per_m": _clean(t.damping_kN_s_per_m[0]),
         "stiffness_source": t.stiffness_source, "damping_source": t.damping_source,
         "rolling_radius_m": _clean(t.radius_m), "footprint_m": _clean(t.footprint_m[0]), "warnings": list(t.warnings),
+        "stiffness_u_kN_per_m": _clean(t.stiffness_u_kN_per_m),
     }
 
 
@@ -876,7 +907,8 @@ def result_json(results: list[RideResult]) -> dict:
     Top-level keys: ``name``, ``scenario``, ``track``, ``spectrum_source``,
     ``hours_per_day``, ``tyres`` (``front``/``rear``: size, pressure, stiffness and
     damping per tyre at the first speed, their sources, radius, footprint,
-    warnings), ``natural_frequencies_Hz`` (``bounce``, ``pitch``),
+    warnings, ``stiffness_u_kN_per_m``), ``natural_frequencies_Hz`` (``bounce``, ``pitch``)
+    and ``natural_frequencies_Hz_ci95`` (their 95 % intervals from the tyre stiffness uncertainty),
     ``nodal_points_m`` (ahead of the CG), ``speeds`` (one object per speed:
     ``speed_km_h``, pressures and tyre values used, ``a_wz_m_s2`` (W_k),
     ``a_wx_m_s2`` (W_d), ``expected_a_wz_m_s2``/``expected_a_wx_m_s2`` (frequency
@@ -891,6 +923,7 @@ def result_json(results: list[RideResult]) -> dict:
         return {
             "tyres": {ax: _tyre_json(r.tyres[ax]) for ax in ("front", "rear")},
             "natural_frequencies_Hz": {k: _clean(v) for k, v in r.natural_frequencies_Hz.items()},
+            "natural_frequencies_Hz_ci95": {k: [_clean(x) for x in v] for k, v in r.natural_frequency_intervals_Hz.items()},
             "nodal_points_m": {k: _clean(v) for k, v in r.nodal_points_m.items()},
             "speeds": [{k: _clean(v) for k, v in row.items()} for row in r.speeds.to_dict(orient="records")],
         }

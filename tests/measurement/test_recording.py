@@ -20,6 +20,8 @@ ANALYZE_RUN_KEYS = {
     "damping_N_s_per_m", "stiffness_kN_per_m", "damping_kN_s_per_m", "apparent_mass_real_kg",
     "apparent_mass_imag_kg", "amplitude_mm_pp", "amplitude_rms_mm", "coherence", "estimator", "welch",
     "qc_ok", "qc_reasons",
+    # issue 14: every K and C with its uncertainty
+    "stiffness_u_N_per_m", "damping_u_N_s_per_m", "stiffness_ci95_N_per_m", "damping_ci95_N_s_per_m", "uncertainty",
 }
 
 
