@@ -12,7 +12,8 @@ Verbs (a stable contract; see docs/architecture.md):
 - ``export-tyre``          a measured tyre as MF-Tyre ``.tir`` files and K(P), C(P) tables
 - ``ride``                 seat vibration and daily exposure of a tractor scenario (TOML)
 
-Exit codes: 0 success; 3 some runs were quarantined; 2 usage or input error.
+Exit codes: 0 success; 3 some runs (or a manifest/catalogue) were quarantined; 2 usage or input
+error (also: the build is locked by another writer, an OS error); 130 interrupted.
 """
 
 from __future__ import annotations
@@ -31,6 +32,8 @@ __all__ = ["cmd_generate", "cmd_run", "cmd_stage", "cmd_sql", "cmd_analyze_run",
     "cmd_natural_frequencies", "build_parser", "main"]
 
 EXIT_OK, EXIT_USAGE, EXIT_QUARANTINE = 0, 2, 3
+#: Exit code after Ctrl-C or SIGTERM (128 + SIGINT, as shells report it).
+EXIT_INTERRUPTED = 130
 
 log = logging.getLogger("tyrelab")
 
@@ -70,6 +73,26 @@ def _check_raw(args, need_campaign: bool) -> str | None:
     return None
 
 
+def os_error_line(exc: OSError) -> str:
+    """One line for an OS error: ``<file>: <what the system said>``."""
+    what = exc.strerror or (str(exc).splitlines()[0] if str(exc) else type(exc).__name__)
+    return f"{exc.filename}: {what}" if getattr(exc, "filename", None) else what
+
+
+def _writing(args, label: str, work) -> int:
+    """Run ``work()`` holding the build's write lock; a second writer, or an OS error, is one line and exit 2."""
+    from .buildlock import BuildLock, BuildLocked
+
+    try:
+        with BuildLock(args.build, f"tyrelab {label}"):
+            return work()
+    except BuildLocked as exc:
+        print(f"tyrelab {label}: {exc}", file=sys.stderr)
+    except OSError as exc:
+        print(f"tyrelab {label}: {os_error_line(exc)}", file=sys.stderr)
+    return EXIT_USAGE
+
+
 def cmd_run(args) -> int:
     from .stages import run_pipeline
 
@@ -77,8 +100,12 @@ def cmd_run(args) -> int:
     if problem:
         print(f"tyrelab run: {problem}", file=sys.stderr)
         return EXIT_USAGE
-    results = run_pipeline(_context(args))
-    return EXIT_QUARANTINE if any(r.n_quarantined for r in results) else EXIT_OK
+
+    def work() -> int:
+        results = run_pipeline(_context(args))
+        return EXIT_QUARANTINE if any(r.n_quarantined or r.n_rejected for r in results) else EXIT_OK
+
+    return _writing(args, "run", work)
 
 
 def cmd_stage(args) -> int:
@@ -88,30 +115,34 @@ def cmd_stage(args) -> int:
     if problem:
         print(f"tyrelab {args.stage}: {problem}", file=sys.stderr)
         return EXIT_USAGE
-    result = run_stage(args.stage, _context(args))
-    return EXIT_QUARANTINE if result.n_quarantined else EXIT_OK
+
+    def work() -> int:
+        result = run_stage(args.stage, _context(args))
+        return EXIT_QUARANTINE if result.n_quarantined or result.n_rejected else EXIT_OK
+
+    return _writing(args, args.stage, work)
 
 
 def cmd_sql(args) -> int:
-    from .warehouse import WriteRefused, query
+    from .warehouse import WriteRefused, query_all
 
     try:
-        df = query(Path(args.build) / "warehouse.duckdb", args.query)
-    except WriteRefused as exc:
-        print(f"tyrelab sql: {exc}", file=sys.stderr)
-        return EXIT_USAGE
-    except FileNotFoundError as exc:
+        frames = query_all(Path(args.build) / "warehouse.duckdb", args.query)
+    except (WriteRefused, FileNotFoundError) as exc:
         print(f"tyrelab sql: {exc}", file=sys.stderr)
         return EXIT_USAGE
     except Exception as exc:  # noqa: BLE001 - DuckDB errors are the user's query errors
         print(f"tyrelab sql: {type(exc).__name__}: {str(exc).splitlines()[0]}", file=sys.stderr)
         return EXIT_USAGE
-    if args.format == "csv":
-        sys.stdout.write(df.to_csv(index=False))
-    elif args.format == "json":
-        sys.stdout.write(df.to_json(orient="records", date_format="iso", double_precision=15) + "\n")
-    else:
-        sys.stdout.write(df.to_string(index=False) + "\n")
+    # Several statements: each result is printed, in order (a blank line between tables/CSV,
+    # one JSON array per line).
+    for i, df in enumerate(frames):
+        if args.format == "json":
+            sys.stdout.write(df.to_json(orient="records", date_format="iso", double_precision=15) + "\n")
+            continue
+        if i:
+            sys.stdout.write("\n")
+        sys.stdout.write(df.to_csv(index=False) if args.format == "csv" else df.to_string(index=False) + "\n")
     return EXIT_OK
 
 
@@ -409,13 +440,36 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+def _terminate(signum, frame):  # pragma: no cover - exercised in a subprocess
+    raise KeyboardInterrupt
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Entry point of the ``tyrelab`` console script."""
+    """Entry point of the ``tyrelab`` console script.
+
+    Ctrl-C (SIGINT) or SIGTERM ends a command with one line and exit 130, without a
+    traceback; ``finally`` blocks and ``atexit`` handlers still run, so temporary
+    files, worker pools and their ``pymp-*`` folders are cleaned up.
+    """
     args = build_parser().parse_args(argv)
     logging.basicConfig(
         level=logging.WARNING if args.quiet else logging.INFO, format="%(message)s", stream=sys.stderr
     )
-    return args.func(args)
+    import signal
+    import threading
+
+    if threading.current_thread() is threading.main_thread():
+        previous = signal.signal(signal.SIGTERM, _terminate)
+    else:  # pragma: no cover
+        previous = None
+    try:
+        return args.func(args)
+    except KeyboardInterrupt:
+        print(f"tyrelab {args.command}: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    finally:
+        if previous is not None:
+            signal.signal(signal.SIGTERM, previous)
 
 
 if __name__ == "__main__":  # pragma: no cover

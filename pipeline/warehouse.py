@@ -39,6 +39,7 @@ Examples
 
 from __future__ import annotations
 
+import errno
 import logging
 import os
 import re
@@ -50,8 +51,8 @@ import pyarrow.parquet as pq
 
 from . import io
 
-__all__ = ["READ_ONLY_STATEMENTS", "WriteRefused", "view_name", "build_warehouse", "connect_read_only",
-    "check_read_only", "query"]
+__all__ = ["READ_ONLY_STATEMENTS", "SANDBOX_SETTINGS", "WriteRefused", "view_name", "build_warehouse",
+    "connect_read_only", "check_read_only", "query", "query_all"]
 
 log = logging.getLogger("tyrelab")
 
@@ -64,8 +65,22 @@ STORES = ("tables", "views")
 #: faster to open (docs/benchmarks.md). Readable by DuckDB >= 1.2.
 BLOCK_SIZE_BYTES = 16384
 
-#: Statement types a query may run; anything else is refused.
-READ_ONLY_STATEMENTS = {"SELECT", "EXPLAIN", "PRAGMA"}
+#: Statement types a query may run; anything else is refused. DuckDB parses ``WITH``,
+#: ``DESCRIBE``, ``SHOW``, ``SUMMARIZE``, ``FROM …`` and ``VALUES`` as SELECT statements;
+#: ``EXPLAIN`` is refused because ``EXPLAIN ANALYZE`` executes the statement it explains
+#: (``EXPLAIN ANALYZE COPY … TO`` writes a file).
+READ_ONLY_STATEMENTS = {"SELECT"}
+
+#: DuckDB settings of a read-only connection, applied in this order after the warehouse is
+#: attached: no extension is installed or loaded behind the user's back (no network traffic
+#: from ``read_csv('https://…')``), no file outside the build's ``parquet/`` folder is opened,
+#: and the configuration is then locked so that no statement can ``SET`` it back.
+SANDBOX_SETTINGS = (
+    ("autoinstall_known_extensions", "false"),
+    ("autoload_known_extensions", "false"),
+    ("enable_external_access", "false"),
+    ("lock_configuration", "true"),
+)
 
 
 class WriteRefused(ValueError):
@@ -148,40 +163,67 @@ def build_warehouse(db_path: Path, parquet_dir: Path, published: dict[str, Path]
                 con.execute(sql)
             con.execute("USE memory")
             con.execute("DETACH warehouse")  # checkpoints: everything is in the file
+        except duckdb.Error as exc:  # e.g. a file-size limit or a full disk: never an empty warehouse
+            raise OSError(errno.EIO, f"cannot write the warehouse ({str(exc).splitlines()[0]})", str(db_path)) from None
         finally:
             con.close()
         wal = Path(str(tmp) + ".wal")
         if wal.exists():
             wal.unlink()
+        check = duckdb.connect()
+        try:
+            check.execute(f"ATTACH {_sql_path(tmp)} AS warehouse (READ_ONLY)")
+            made = check.execute(
+                "SELECT (SELECT count(*) FROM duckdb_tables() WHERE database_name = 'warehouse')"
+                " + (SELECT count(*) FROM duckdb_views() WHERE database_name = 'warehouse' AND NOT internal)"
+            ).fetchone()[0]
+        except duckdb.Error as exc:
+            raise OSError(errno.EIO, f"the warehouse written is unreadable ({str(exc).splitlines()[0]})",
+                          str(db_path)) from None
+        finally:
+            check.close()
+        if made != len(statements):
+            raise OSError(errno.EIO, f"the warehouse written holds {made} of {len(statements)} tables", str(db_path))
     return list(sources)
 
 
 def connect_read_only(db_path: Path) -> duckdb.DuckDBPyConnection:
-    """Open the warehouse read-only (many readers may do so while the pipeline writes).
+    """Open the warehouse read-only and sandboxed (many readers may do so while the pipeline writes).
 
     The file is attached (read-only) to a fresh in-memory session: unlike
     ``duckdb.connect(path)``, which shares one database instance per path
     within a process, this always sees the file as it is now, even while an
     earlier reader in the same process holds the file it replaced. Relative
     paths (the ``runs`` view) resolve against the database's folder, whatever
-    the working folder.
+    the working folder. The session then may read files only below the
+    warehouse's ``parquet/`` folder (``allowed_directories`` with
+    ``enable_external_access = false``), never installs or autoloads an
+    extension, and its configuration is locked (:data:`SANDBOX_SETTINGS`).
     """
     db_path = Path(db_path)
-    if not db_path.exists():
-        raise FileNotFoundError(f"{db_path}: no warehouse yet - run 'tyrelab run' first")
+    if not db_path.is_file():
+        what = "no warehouse yet - run 'tyrelab run' first" if not db_path.exists() else "not a regular file"
+        raise FileNotFoundError(f"{db_path}: {what}")
     con = duckdb.connect()
     try:
         con.execute(f"ATTACH {_sql_path(db_path.resolve())} AS warehouse (READ_ONLY)")
         con.execute("USE warehouse")
         _search_path(con, db_path.parent)
+        allowed = str(db_path.resolve().parent / "parquet") + "/"
+        con.execute(f"SET allowed_directories = [{_sql_path(allowed)}]")
+        for name, value in SANDBOX_SETTINGS:
+            con.execute(f"SET {name} = {value}")
     except BaseException:
         con.close()
         raise
     return con
 
 
-def check_read_only(sql: str) -> None:
-    """Refuse any statement that is not a query.
+def check_read_only(sql: str) -> list[str]:
+    """Refuse anything but queries; return the statements, one string each.
+
+    Allowed: SELECT statements (including ``WITH``, ``DESCRIBE``, ``SHOW``,
+    ``SUMMARIZE``, ``FROM …``, ``VALUES``); several are allowed, separated by ``;``.
 
     Raises
     ------
@@ -198,15 +240,22 @@ def check_read_only(sql: str) -> None:
         kind = st.type.name
         if kind not in READ_ONLY_STATEMENTS:
             raise WriteRefused(
-                f"refused: {kind} statements write to the warehouse; 'tyrelab sql' runs read-only queries (SELECT)"
+                f"refused: {kind} statement; 'tyrelab sql' runs only queries "
+                "(SELECT, WITH, DESCRIBE, SHOW, SUMMARIZE, FROM, VALUES)"
             )
+    return [st.query.strip().rstrip(";").strip() for st in statements]
+
+
+def query_all(db_path: Path, sql: str) -> list[pd.DataFrame]:
+    """Run one or several read-only statements (``;``-separated); return one DataFrame each."""
+    statements = check_read_only(sql)
+    con = connect_read_only(db_path)
+    try:
+        return [con.execute(st).df() for st in statements]
+    finally:
+        con.close()
 
 
 def query(db_path: Path, sql: str) -> pd.DataFrame:
-    """Run a read-only query against the warehouse and return a DataFrame."""
-    check_read_only(sql)
-    con = connect_read_only(db_path)
-    try:
-        return con.execute(sql).df()
-    finally:
-        con.close()
+    """Run a read-only query against the warehouse and return a DataFrame (of the last statement)."""
+    return query_all(db_path, sql)[-1]

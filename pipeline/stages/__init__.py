@@ -25,7 +25,8 @@ def run_stage(name: str, ctx: Context) -> StageResult:
     cache = state.HashCache(prev.get("hash_cache"))
     code = state.code_fingerprint(f"{__name__}.{name}")
     inputs = state.input_digests(ctx, name, ORDER, cache)
-    reason = state.why_stale(ctx, name, code, inputs)
+    later = ORDER[ORDER.index(name) + 1:] if name in ORDER else []
+    reason = state.why_stale(ctx, name, code, inputs, later, cache)
     if reason is None:
         result = StageResult(name, skipped=True, message="inputs unchanged", **prev.get("counts", {}))
         ctx.log.info("%s", result.summary())
@@ -34,7 +35,8 @@ def run_stage(name: str, ctx: Context) -> StageResult:
     before = state.snapshot(ctx.build)
     module = importlib.import_module(f"{__name__}.{name}")
     result = module.run(ctx)
-    counts = {"n_in": result.n_in, "n_ok": result.n_ok, "n_quarantined": result.n_quarantined}
+    counts = {"n_in": result.n_in, "n_ok": result.n_ok, "n_quarantined": result.n_quarantined,
+              "n_rejected": result.n_rejected}
     state.record(ctx, name, code, inputs, before, cache, counts)
     ctx.log.info("%s", result.summary())
     return result

@@ -157,6 +157,8 @@ def run(ctx: Context) -> StageResult:
         if not previous.empty and "input_hash" in previous
         else pd.DataFrame()
     )
+    if not reuse.empty:  # the same run and data may now sit in another campaign folder
+        reuse = reuse.assign(campaign=reuse["run_id"].map(runs.set_index("run_id")["campaign"]))
     todo = runs[~runs["input_hash"].isin(set(reuse["input_hash"]) if not reuse.empty else set())]
     res.n_in = len(runs)
     chunks = batches(todo)

@@ -88,6 +88,9 @@ class StageResult:
     n_in: int = 0
     n_ok: int = 0
     n_quarantined: int = 0
+    #: Input files refused as a whole (a manifest or tyre catalogue that cannot be read or lacks
+    #: columns): no run of theirs went through, so the exit code is non-zero.
+    n_rejected: int = 0
     seconds: float = 0.0
     skipped: bool = False
     message: str = ""
@@ -100,6 +103,8 @@ class StageResult:
             f"{self.name}: {self.n_in} in, {self.n_ok} ok, "
             f"{self.n_quarantined} quarantined, {self.seconds:.1f} s"
         )
+        if self.n_rejected:
+            text += f", {self.n_rejected} file(s) rejected"
         return f"{text}; {self.message}" if self.message else text
 
 

@@ -79,6 +79,24 @@ def _sample_rate(row: pd.Series) -> float:
     return float(fs)
 
 
+def undo_correction(results: pd.DataFrame) -> pd.DataFrame:
+    """``results`` as analyse wrote them: K and C from ``uncorrected_*`` where a previous
+    calibrate run corrected them, without those columns. Makes the stage idempotent: it may
+    rerun on its own output (after an interruption, or with ``--calibration-correct`` toggled)
+    and gives the same bytes as on analyse's output."""
+    cols = {"stiffness_N_per_m": "uncorrected_stiffness_N_per_m", "damping_N_s_per_m": "uncorrected_damping_N_s_per_m"}
+    if not set(cols.values()) & set(results.columns):
+        return results
+    out = results.copy()
+    for value, kept in cols.items():
+        if kept in out:
+            mask = out[kept].notna()
+            out.loc[mask, value] = out.loc[mask, kept]
+    out["stiffness_kN_per_m"] = out["stiffness_N_per_m"] / 1e3
+    out["damping_kN_s_per_m"] = out["damping_N_s_per_m"] / 1e3
+    return out.drop(columns=[c for c in cols.values() if c in out])
+
+
 def correct_results(results: pd.DataFrame, tfs: pd.DataFrame, checks: pd.DataFrame) -> pd.DataFrame:
     """§3.6 option: correct K, C of runs on passing days by that day's transfer function."""
     out = results.copy()
@@ -182,7 +200,7 @@ def run(ctx: Context) -> StageResult:
     failed_days = sorted(days.loc[~days["day_pass"].astype(bool), "day"]) if len(days) else []
     n_flagged = 0
     if ctx.has_table("results"):
-        results = ctx.read_table("results")
+        results = undo_correction(ctx.read_table("results"))
         if not results.empty and "recorded_on" in results:
             keys = ("campaign", "recorded_on") if "campaign" in results else ("recorded_on",)
             dkeys = ("campaign", "day") if "campaign" in results else ("day",)

@@ -18,8 +18,12 @@ Each stage gets a *fingerprint* stored in ``build/state/<stage>.json``:
   before and after it ran) with their content hashes.
 
 A stage is skipped when its code and input digests equal the recorded ones
-and its outputs exist. The state file is written only after the stage's
-outputs, so a crash leaves the previous state and the stage simply reruns.
+and its outputs exist with the bytes it wrote (outputs that a later stage also
+writes, such as ``results`` rewritten by calibrate, are checked against the later
+stage's record instead). The state file is written only after the stage's
+outputs; a stage interrupted while writing, or whose finished output another
+stage overwrote since, finds an output changed and reruns, so a re-run after
+any interruption converges to the bytes of a clean build.
 Content hashes are cached by (size, mtime) in the state, so a no-op run
 hashes nothing.
 """
@@ -240,8 +244,13 @@ def input_digests(ctx, stage: str, order: list[str], cache: HashCache) -> dict[s
     return digests
 
 
-def why_stale(ctx, stage: str, code: str, inputs: dict[str, str]) -> str | None:
-    """Why ``stage`` must run (one phrase), or None if it is up to date."""
+def why_stale(ctx, stage: str, code: str, inputs: dict[str, str], later: list[str] | None = None,
+              cache: "HashCache | None" = None) -> str | None:
+    """Why ``stage`` must run (one phrase), or None if it is up to date.
+
+    ``later`` names the stages after it (their outputs are theirs to check);
+    ``cache`` hashes the outputs (by size and mtime).
+    """
     if ctx.force:
         return "--force"
     prev = load(ctx.build, stage)
@@ -255,9 +264,19 @@ def why_stale(ctx, stage: str, code: str, inputs: dict[str, str]) -> str | None:
         names = [Path(k).name if k.startswith("raw:") or "/" in k else k for k in changed]
         more = f" and {len(names) - 3} more" if len(names) > 3 else ""
         return "input(s) changed: " + ", ".join(names[:3]) + more
-    missing = [rel for rel in prev.get("outputs", {}) if not (ctx.build / rel).exists()]
+    outputs = prev.get("outputs", {})
+    missing = [rel for rel in outputs if not (ctx.build / rel).exists()]
     if missing:
         return "output(s) missing: " + ", ".join(missing[:3])
+    # Outputs must still be the bytes this stage wrote, unless a later stage rewrites them too
+    # (calibrate rewrites analyse's ``results``): then the last writer checks them. A stage
+    # interrupted after some outputs, or an earlier stage that re-ran and overwrote a table
+    # this stage had finished (``tyrelab analyse --force`` after ``run``), makes it rerun.
+    cache = cache or HashCache()
+    handed_on = set().union(*(load(ctx.build, s).get("outputs", {}) for s in (later or [])))
+    changed = [rel for rel, sha in outputs.items() if rel not in handed_on and cache.digest(ctx.build / rel) != sha]
+    if changed:
+        return "output(s) changed since this stage wrote them: " + ", ".join(changed[:3])
     return None
 
 
