@@ -156,6 +156,9 @@ def cmd_analyze_run(args) -> int:
         print(f"tyrelab analyze-run: {args.file}: {exc}", file=sys.stderr)
         return EXIT_USAGE
     print(json.dumps(out, indent=2))
+    if out["stiffness_N_per_m"] is None and not out["qc_ok"]:  # e.g. excitation outside the band: refused
+        print(f"tyrelab analyze-run: {args.file}: {'; '.join(out['qc_reasons'])}", file=sys.stderr)
+        return EXIT_QUARANTINE
     return EXIT_OK
 
 
@@ -315,17 +318,27 @@ def cmd_ride(args) -> int:
     return EXIT_OK
 
 
+def _finite(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"{text} is not a finite number")
+    return value
+
+
 def _positive(text: str) -> float:
-    """argparse type: a float > 0."""
-    value = float(text)
+    """argparse type: a finite float > 0."""
+    value = _finite(text)
     if not value > 0:
         raise argparse.ArgumentTypeError(f"{text} is not a positive number")
     return value
 
 
 def _non_negative(text: str) -> float:
-    """argparse type: a float >= 0."""
-    value = float(text)
+    """argparse type: a finite float >= 0."""
+    value = _finite(text)
     if not value >= 0:
         raise argparse.ArgumentTypeError(f"{text} is negative")
     return value

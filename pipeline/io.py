@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import contextlib
 import hashlib
+import logging
 import os
+import stat
 import tempfile
 from pathlib import Path
 from typing import Iterator
@@ -72,3 +74,44 @@ def file_sha256(path: str | os.PathLike, chunk: int = 1 << 20) -> str:
         while block := fh.read(chunk):
             h.update(block)
     return h.hexdigest()
+
+
+_KINDS = ((stat.S_ISDIR, "folder"), (stat.S_ISFIFO, "named pipe (FIFO)"), (stat.S_ISCHR, "character device"),
+          (stat.S_ISBLK, "block device"), (stat.S_ISSOCK, "socket"), (stat.S_ISLNK, "symbolic link"))
+_warned: set[str] = set()
+
+
+def file_kind(mode: int) -> str:
+    """What a ``st_mode`` is, in words: ``"regular file"``, ``"folder"``, ``"named pipe (FIFO)"``, ...
+
+    Examples
+    --------
+    >>> import stat
+    >>> file_kind(stat.S_IFIFO | 0o644)
+    'named pipe (FIFO)'
+    """
+    return next((name for test, name in _KINDS if test(mode)), "regular file" if stat.S_ISREG(mode) else "special file")
+
+
+def regular_files(folder: str | os.PathLike, exclude: str | os.PathLike | None = None):
+    """Regular files below ``folder`` (sorted folders; hidden folders and ``exclude`` skipped).
+
+    Named pipes, devices and sockets are skipped with a warning (once per path and
+    process): opening a FIFO would block the pipeline for ever. Dangling symlinks are
+    skipped silently. Symlinks are followed (``stat``), as reading them would.
+    """
+    skip = Path(exclude).resolve() if exclude is not None else None
+    for dirpath, dirnames, filenames in os.walk(folder):
+        dirnames[:] = sorted(d for d in dirnames
+                             if not d.startswith(".") and (skip is None or (Path(dirpath) / d).resolve() != skip))
+        for f in sorted(filenames):
+            p = Path(dirpath) / f
+            try:
+                mode = os.stat(p).st_mode
+            except OSError:
+                continue
+            if stat.S_ISREG(mode):
+                yield p
+            elif str(p) not in _warned:
+                _warned.add(str(p))
+                logging.getLogger("tyrelab").warning("%s: skipped: a %s, not a regular file", p, file_kind(mode))

@@ -38,7 +38,7 @@ def published_dir(raw: Path | None = None) -> Path:
 
 def stems(raw: Path | None = None) -> list[str]:
     """Names of the available published tables, e.g. ``["table_i", ..., "table_xx"]``."""
-    return sorted(p.stem for p in published_dir(raw).glob("*.csv"))
+    return sorted(p.stem for p in published_dir(raw).glob("*.csv") if p.is_file())  # not a FIFO: it would block
 
 
 def read_published(stem: str, raw: Path | None = None, strict: bool = True) -> pd.DataFrame:

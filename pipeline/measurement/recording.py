@@ -51,7 +51,7 @@ from . import qc
 from . import uncertainty as unc
 
 __all__ = ["WelchEstimate", "RecordingResult", "analyse_frame", "analyse_batch", "recording_arrays",
-           "frame_tyre_force"]
+           "frame_tyre_force", "dominant_frequency_Hz"]
 
 #: How :class:`RecordingResult` names the estimator of K and C.
 ESTIMATOR = "phase-locked synchronous demodulation"
@@ -278,6 +278,32 @@ def analyse_batch(
     return pd.DataFrame(cols)
 
 
+def dominant_frequency_Hz(accel_m_s2: np.ndarray, sample_rate_Hz: float, low_Hz: float = 0.25,
+                          high_Hz: float = 50.0) -> float:
+    """Frequency of the strongest axle motion between ``low_Hz`` and ``high_Hz`` (or Nyquist), Hz.
+
+    The Hann-windowed acceleration spectrum divided by f² (the velocity spectrum), so that
+    neither low-frequency drift nor the wheel's lug vibration outweighs a vibrator excitation.
+    :func:`analyse_frame` uses it to refuse an excitation outside
+    :data:`tyrelab.measurement.apparent_mass.EXCITATION_BAND_Hz`, whose own peak would then be noise.
+
+    Examples
+    --------
+    >>> t = np.arange(4096) / 256.0
+    >>> round(dominant_frequency_Hz(np.sin(2 * np.pi * 12.0 * t), 256.0), 2)
+    12.0
+    """
+    positive("sample_rate_Hz", sample_rate_Hz)
+    a = np.asarray(accel_m_s2, dtype=float)
+    a = a - a.mean()
+    power = np.abs(np.fft.rfft(a * np.hanning(a.size))) ** 2
+    f = np.fft.rfftfreq(a.size, 1.0 / sample_rate_Hz)
+    sel = (f >= low_Hz) & (f <= min(high_Hz, sample_rate_Hz / 2))
+    if not sel.any() or not power[sel].any():
+        return float("nan")
+    return float(f[sel][np.argmax(power[sel] / f[sel] ** 2)])
+
+
 def analyse_frame(
     frame: pd.DataFrame,
     axle_mass_kg: float,
@@ -337,6 +363,15 @@ def analyse_frame(
     accel, beams = recording_arrays(frame)
     row = analyse_batch(accel[np.newaxis], beams[np.newaxis], np.array([mass]), info.sample_rate_Hz,
                         [list(interference_Hz)] if interference_Hz else None).iloc[0]
+    lo, hi = am.EXCITATION_BAND_Hz
+    dominant = dominant_frequency_Hz(accel.mean(axis=0), info.sample_rate_Hz)
+    if np.isfinite(dominant) and not lo <= dominant <= hi:
+        # The band's own peak would be noise: no K, C or H, and the reason names the band.
+        row = row.copy()
+        row[[c for c in row.index if c not in ("qc_ok", "qc_reasons")]] = np.nan
+        row["excitation_frequency_measured_Hz"] = dominant
+        row["qc_reasons"] = (f"excitation at {dominant:.2f} Hz is outside the analysis band {lo:g}-{hi:g} Hz: "
+                             "K and C are not estimated")
     return RecordingResult(
         sample_rate_Hz=info.sample_rate_Hz,
         duration_s=info.duration_s,

@@ -89,9 +89,9 @@ def read_run_file(path: Path, columns: list[str] | None = None, channel_map: dic
         corrupt or of an unknown type.
     """
     path = Path(path)
-    if not path.is_file():
-        raise RunFileError("file not found")
-    size = path.stat().st_size
+    from .files import regular_file  # a folder, FIFO or device is named (a FIFO would block the read)
+
+    size = regular_file(path).st_size
     if size > MAX_RUN_FILE_BYTES:
         raise RunFileError(f"file is {size / 1e9:.1f} GB, larger than the {MAX_RUN_FILE_BYTES / 1e6:.0f} MB limit")
     if size == 0:

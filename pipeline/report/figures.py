@@ -22,6 +22,7 @@ import matplotlib
 matplotlib.use("Agg")
 
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.text  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 from matplotlib.ticker import LogFormatter, NullFormatter  # noqa: E402
@@ -71,6 +72,11 @@ def to_svg(fig: matplotlib.figure.Figure) -> str:
         comments), with a ``role="img"`` attribute for accessibility.
     """
     buf = io.StringIO()
+    # Labels carry ids from the user's data (tyre ids, sources): a ``$`` in them is text, not
+    # mathtext (``$\\undefinedmacro{$`` would otherwise make savefig raise). No figure uses mathtext.
+    for text in fig.findobj(matplotlib.text.Text):
+        if "$" in text.get_text():
+            text.set_parse_math(False)
     with plt.rc_context(RC):
         fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})
     plt.close(fig)

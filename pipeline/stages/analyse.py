@@ -39,7 +39,7 @@ from .base import Context, Progress, StageResult, write_quarantine
 from ..rawformat import CHANNELS
 
 __all__ = ["INPUTS", "ANALYSIS_VERSION", "ESTIMATOR_SOURCE", "BATCH", "CONDITION_COLUMNS", "input_hash",
-    "load_signals", "wheel_interference_Hz", "batches", "analyse_paths", "run"]
+    "load_signals", "wheel_interference_Hz", "batches", "analyse_paths", "run", "empty_results"]
 
 #: What the stage reads (see :mod:`tyrelab.stages.state`).
 INPUTS = ["manifest", "tyres"]
@@ -145,7 +145,7 @@ def run(ctx: Context) -> StageResult:
     res = StageResult("analyse")
     manifest = ctx.read_table("manifest") if ctx.has_table("manifest") else pd.DataFrame()
     if manifest.empty:
-        ctx.write_table("results", pd.DataFrame())
+        ctx.write_table("results", empty_results())  # an empty view with its columns, not no view
         write_quarantine(ctx, "analyse", [])
         res.seconds = time.perf_counter() - t0
         return res
@@ -198,3 +198,12 @@ def run(ctx: Context) -> StageResult:
     res.message = f"{len(reuse)} reused, {len(new)} analysed" + (f", {flagged} flagged by QC" if flagged else "")
     res.seconds = time.perf_counter() - t0
     return res
+
+
+def empty_results() -> pd.DataFrame:
+    """The ``results`` table with no run: its columns (as :func:`run` writes them), no rows."""
+    rows = analyse_batch(np.zeros((0, 2, 1024), np.float32), np.zeros((0, 4, 1024), np.float32), np.zeros(0), 256.0)
+    text = {"campaign", "run_id", "tyre_id", "kind", "surface", "recorded_on"}
+    cond = {c: pd.Series(dtype="string" if c in text else float) for c in CONDITION_COLUMNS}
+    return pd.DataFrame({**cond, **{c: rows[c] for c in rows.columns}, "rolling": pd.Series(dtype=bool),
+                         "input_hash": pd.Series(dtype="string")})

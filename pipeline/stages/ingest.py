@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import logging
 import re
 import time
 import urllib.parse
@@ -40,6 +41,7 @@ import pyarrow.parquet as pq
 from .. import io, resources
 from .. import rawformat as rf
 from ..rawformat import CHANNEL_MAP, CHANNELS, MAX_RUN_FILE_BYTES, RUN_SUFFIXES, RunFileError, check_run, read_run_file
+from ..rawformat.files import confined_run_path, read_delimited
 from ..executor import map_batches
 from ..schema import field_names, load_schema, row_problems, validate_frame
 from ..tyre.sizes import TyreSizeError, parse_tyre_size
@@ -53,6 +55,10 @@ INPUTS = ["raw"]
 
 #: The built-in tyre catalogue (thesis Table II).
 BUILTIN_TYRES = resources.builtin_tyres()
+
+#: Longest hive partition folder name (``tyre_id=<percent-encoded id>``), bytes: file systems
+#: allow 255; a longer tyre id is quarantined rather than crash the write.
+MAX_PARTITION_BYTES = 240
 
 #: Sampling facts ingest adds to the ``manifest`` table, in this column order.
 INFO_KEYS = ("sample_rate_Hz", "n_samples", "duration_s")
@@ -94,10 +100,13 @@ def load_catalogue(raw: Path, campaigns: list[Path]) -> tuple[pd.DataFrame, list
     schema = load_schema("tyres")
     for src in sources:
         try:
-            df = pd.read_csv(src, dtype=str, keep_default_na=False, na_values=[""])
-        except Exception as exc:  # noqa: BLE001 - any unreadable catalogue is reported, not fatal
-            problems.append(f"{src}: unreadable tyre catalogue ({type(exc).__name__}: {exc})")
+            table = read_delimited(src, schema)
+        except RunFileError as exc:
+            problems.append(f"{src}: unreadable tyre catalogue ({exc})")
             continue
+        df = table.frame
+        if table.notes:
+            logging.getLogger("tyrelab").info("%s: %s", src, table.describe())
         issues = [p for p in validate_frame(df, {**schema, "additionalFields": True}) if "size" not in p]
         if "tyre_id" not in df.columns or "size" not in df.columns:
             problems.append(f"{src}: tyre catalogue needs columns tyre_id and size")
@@ -139,11 +148,15 @@ def _row_hash(row: pd.Series) -> str:
     return hashlib.sha256(json.dumps({k: str(v) for k, v in row.items()}, sort_keys=True).encode()).hexdigest()
 
 
-def _read_manifest(path: Path) -> pd.DataFrame:
+def _read_manifest(path: Path, schema: dict, logger) -> pd.DataFrame:
+    """The manifest as strings; separator, decimal mark, BOM and line ends detected (one line if refused)."""
     try:
-        return pd.read_csv(path, dtype=str, keep_default_na=False, na_values=[""])
-    except Exception as exc:  # noqa: BLE001 - reported as a one-line error
-        raise RunFileError(f"unreadable manifest ({type(exc).__name__}: {str(exc).strip()[:120]})") from None
+        table = read_delimited(path, schema)
+    except RunFileError as exc:
+        raise RunFileError(f"unreadable manifest: {exc}") from None
+    if table.notes:
+        logger.warning("%s: %s", path, table.describe())
+    return table.frame
 
 
 def convert_run(task: dict) -> dict:
@@ -169,7 +182,10 @@ def convert_run(task: dict) -> dict:
     if task["size"] > MAX_RUN_FILE_BYTES:
         sha = "too-large"  # rejected by size below, never read
     else:
-        sha = io.file_sha256(src)
+        try:
+            sha = io.file_sha256(src)
+        except OSError as exc:  # e.g. no read permission: quarantined like any bad run
+            return {"run_id": task["run_id"], "sha256": "unreadable", "reason": f"cannot read ({exc.strerror or exc})"}
     done = {"run_id": task["run_id"], "sha256": sha}
     if prev and prev["sha256"] == sha and prev["row"] == task["row"] and prev["out"] == str(out) and out.exists():
         return {**done, "info": prev["info"], "converted": False}
@@ -196,6 +212,7 @@ class _Plan:
 
     todo: list = field(default_factory=list)  # (campaign, manifest row)
     quarantine: list = field(default_factory=list)
+    rejected: int = 0  # manifests or catalogues refused as a whole
 
 
 def _quarantine_entry(ctx: Context, campaign: Path, run_id, file, reason: str, plan: _Plan) -> None:
@@ -214,13 +231,16 @@ def _plan(ctx: Context, schema: dict, campaigns: list[Path], sizes_ok: dict) -> 
         manifest_path = campaign / "manifest.csv"
         reject = lambda run_id, file, reason: _quarantine_entry(ctx, campaign, run_id, file, reason, plan)  # noqa: E731
         try:
-            manifest = _read_manifest(manifest_path)
+            manifest = _read_manifest(manifest_path, schema, ctx.log)
         except RunFileError as exc:
             reject(None, None, str(exc))
+            plan.rejected += 1
             continue
         missing = [c for c in field_names(schema, required_only=True) if c not in manifest.columns]
         if missing:
-            reject(None, None, f"manifest lacks column(s) {', '.join(missing)}")
+            found = ", ".join(map(repr, manifest.columns[:6])) + (" …" if len(manifest.columns) > 6 else "")
+            reject(None, None, f"manifest lacks column(s) {', '.join(missing)} (found {found})")
+            plan.rejected += 1
             continue
         listed = set()
         _, by_row = row_problems(manifest, schema)
@@ -236,6 +256,9 @@ def _plan(ctx: Context, schema: dict, campaigns: list[Path], sizes_ok: dict) -> 
                 reject(run_id, row["file"], f"unknown tyre_id {row['tyre_id']!r} (not in any tyres.csv)")
             elif not sizes_ok[row["tyre_id"]]:
                 reject(run_id, row["file"], f"tyre {row['tyre_id']!r} has a size that does not parse")
+            elif len(tyre_partition(row["tyre_id"]).encode()) > MAX_PARTITION_BYTES:
+                reject(run_id, row["file"], f"tyre_id is {len(row['tyre_id'])} characters long: too long for a folder "
+                                            f"name ({MAX_PARTITION_BYTES} bytes once percent-encoded)")
             else:
                 plan.todo.append((campaign, row))
             if run_id is not None:
@@ -248,9 +271,11 @@ def _plan(ctx: Context, schema: dict, campaigns: list[Path], sizes_ok: dict) -> 
 
 
 def _run_files(campaign: Path):
-    """Files of a campaign folder (and its sub-folders without their own manifest) that look like runs."""
-    for f in campaign.rglob("*"):
-        if f.suffix.lower() not in RUN_SUFFIXES or f.name in ("manifest.csv", "tyres.csv") or not f.is_file():
+    """Regular files of a campaign folder (and its sub-folders without their own manifest) that look like runs.
+
+    Special files (FIFOs, devices) are skipped with a warning by :func:`tyrelab.io.regular_files`."""
+    for f in io.regular_files(campaign):
+        if f.suffix.lower() not in RUN_SUFFIXES or f.name in ("manifest.csv", "tyres.csv"):
             continue
         if any((p / "manifest.csv").is_file() for p in f.parents if p != campaign and campaign in p.parents):
             continue
@@ -279,19 +304,23 @@ def run(ctx: Context) -> StageResult:
     for problem in cat_problems:
         src, _, reason = problem.partition(": ")
         _quarantine_entry(ctx, Path(src).parent, None, Path(src).name, reason, plan)
+        plan.rejected += reason.startswith(("unreadable tyre catalogue", "tyre catalogue needs columns"))
     sizes_ok = dict(zip(catalogue["tyre_id"], catalogue["size_ok"]))
     found = _plan(ctx, schema, campaigns, sizes_ok)
     plan.todo, plan.quarantine = found.todo, plan.quarantine + found.quarantine
+    plan.rejected += found.rejected
 
     state = {} if ctx.force else _load_run_state(ctx)
     runs_dir = ctx.parquet / "runs"
     tasks, rows = [], {}
     for campaign, row in plan.todo:
-        run_id, src = row["run_id"], campaign / row["file"]
+        run_id = row["run_id"]
         out = runs_dir / tyre_partition(row["tyre_id"]) / f"{run_key(run_id)}.parquet"
         row_hash, prev = _row_hash(row), state.get(run_id)
-        if not src.is_file():
-            _quarantine_entry(ctx, campaign, run_id, row["file"], "file not found", plan)
+        try:  # inside the campaign after symlinks, a regular file: checked before anything opens it
+            src = confined_run_path(campaign, row["file"])
+        except RunFileError as exc:
+            _quarantine_entry(ctx, campaign, run_id, row["file"], str(exc), plan)
             continue
         st = src.stat()
         cmap = campaign / CHANNEL_MAP
@@ -334,6 +363,7 @@ def run(ctx: Context) -> StageResult:
 
     result.n_ok = len(records)
     result.n_quarantined = sum(1 for q in plan.quarantine if q["run_id"] is not None)
+    result.n_rejected = plan.rejected
     result.n_in = result.n_ok + result.n_quarantined
     unlisted = sum(1 for q in plan.quarantine if q["run_id"] is None)
     converted = sum(1 for d in done.values() if d.get("converted"))

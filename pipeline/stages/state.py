@@ -37,6 +37,7 @@ import os
 from pathlib import Path
 
 from .. import io, resources
+from ..buildlock import LOCK_NAME
 
 __all__ = ["PACKAGE", "BUILTIN_RAW", "UNTRACKED", "declarations", "code_fingerprint", "HashCache",
     "stat_digest", "raw_digest", "raw_extras", "snapshot", "state_path", "load", "input_digests", "why_stale",
@@ -171,13 +172,11 @@ def stat_digest(paths) -> str:
 
 
 def _files_below(folder: Path, exclude: Path | None = None):
-    """Files below ``folder``, skipping hidden folders and ``exclude`` (a build folder inside raw)."""
-    skip = Path(exclude).resolve() if exclude is not None else None
-    for dirpath, dirnames, filenames in os.walk(folder):
-        dirnames[:] = sorted(d for d in dirnames
-                             if not d.startswith(".") and (skip is None or (Path(dirpath) / d).resolve() != skip))
-        for f in filenames:
-            yield Path(dirpath) / f
+    """Regular files below ``folder``, skipping hidden folders and ``exclude`` (a build folder inside raw).
+
+    Named pipes and devices are skipped with a warning (:func:`tyrelab.io.regular_files`):
+    hashing a FIFO would block the run for ever."""
+    yield from io.regular_files(folder, exclude)
 
 
 def raw_digest(raw: Path, exclude: Path | None = None) -> str:
@@ -202,7 +201,7 @@ def snapshot(build: Path) -> dict[str, tuple[int, int]]:
     snap = {}
     for p in _files_below(build) if build.is_dir() else []:
         rel = p.relative_to(build)
-        if not UNTRACKED.intersection(rel.parts[:2]) and not p.name.endswith(".tmp"):
+        if not UNTRACKED.intersection(rel.parts[:2]) and not p.name.endswith(".tmp") and p.name != LOCK_NAME:
             st = p.stat()
             snap[str(rel)] = (st.st_size, st.st_mtime_ns)
     return snap

@@ -1,0 +1,155 @@
+"""analyze-run band checks and OS errors as one line (issue 11, defects 4, 8, 10, 11)."""
+
+import json
+import os
+import resource
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import pytest
+
+from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tyrelab.cli import main
+from tyrelab.warehouse import query
+
+GOOD = spring_damper_recording(duration_s=20.0)
+#: ``tyrelab`` with ``run`` restricted to the stages these tests need (the others take minutes).
+PY = [sys.executable, "-c", "import sys, tyrelab.stages as s; s.ORDER[:] = ['ingest', 'analyse', 'warehouse']\n"
+      "from tyrelab.cli import main; sys.exit(main(sys.argv[1:]))"]
+
+
+# -- 10. analyze-run ---------------------------------------------------------------------------------
+
+@pytest.mark.parametrize("f0", [0.5, 12.0])
+def test_analyze_run_refuses_an_excitation_outside_the_band(tmp_path, capsys, f0):
+    path = tmp_path / "run.csv"
+    spring_damper_recording(frequency_Hz=f0, duration_s=40.0, accel_noise_m_s2=0.02, force_noise_N=20).to_csv(path, index=False)
+    assert main(["analyze-run", str(path), "--axle-mass", "600"]) == 3
+    out = json.loads(capsys.readouterr().out)
+    assert out["qc_ok"] is False and out["stiffness_kN_per_m"] is None and out["damping_kN_s_per_m"] is None
+    assert out["welch"]["stiffness_N_per_m"] is None
+    assert any("outside the analysis band 1-8 Hz" in r for r in out["qc_reasons"])
+    assert out["excitation_frequency_Hz"] == pytest.approx(f0, abs=0.05)
+
+
+def test_analyze_run_in_band_is_unchanged(tmp_path, capsys):
+    path = tmp_path / "run.csv"
+    GOOD.to_csv(path, index=False)
+    assert main(["analyze-run", str(path), "--axle-mass", "600"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["qc_ok"] and out["stiffness_kN_per_m"] == pytest.approx(250, rel=0.01)
+
+
+@pytest.mark.parametrize("value", ["inf", "nan", "-inf", "0", "-600"])
+def test_numbers_must_be_finite_and_positive(tmp_path, capsys, value):
+    path = tmp_path / "run.csv"
+    GOOD.to_csv(path, index=False)
+    with pytest.raises(SystemExit) as info:
+        main(["analyze-run", str(path), "--axle-mass", value])
+    assert info.value.code == 2 and "--axle-mass" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("make, words", [
+    (lambda p: p.mkdir(), "is a folder"), (lambda p: os.mkfifo(p), "named pipe (FIFO)"), (lambda p: None, "file not found")])
+def test_analyze_run_names_what_the_path_is(tmp_path, capsys, make, words):
+    path = tmp_path / "run.csv"
+    make(path)
+    assert main(["analyze-run", str(path), "--axle-mass", "600"]) == 2
+    assert words in capsys.readouterr().err
+
+
+# -- 8. OS errors: one line, the right exit code ----------------------------------------------------
+
+def can_drop_dac() -> bool:
+    return os.geteuid() != 0 or shutil.which("setpriv") is not None
+
+
+def unprivileged(cmd):
+    """``cmd`` without the capabilities that let root read and write any file."""
+    if os.geteuid() != 0:
+        return cmd
+    if not shutil.which("setpriv"):
+        pytest.skip("running as root without setpriv: cannot drop CAP_DAC_OVERRIDE")
+    return ["setpriv", "--bounding-set", "-dac_override,-dac_read_search", *cmd]
+
+
+def run_cli(cmd, **kw):
+    return subprocess.run(cmd, capture_output=True, text=True, timeout=300, **kw)
+
+
+def test_a_run_file_without_read_permission_is_quarantined(tmp_path):
+    raw = write_campaign(tmp_path / "raw", [(manifest_row("ok", "ok.parquet"), GOOD),
+                                            (manifest_row("locked", "locked.parquet"), GOOD)])
+    (raw / "locked.parquet").chmod(0)
+    out = run_cli(unprivileged([*PY, "run", "--raw", str(raw), "--build", str(tmp_path / "b"), "--jobs", "1"]))
+    assert out.returncode == 3, out.stderr
+    assert "Traceback" not in out.stderr
+    db = tmp_path / "b" / "warehouse.duckdb"
+    assert query(db, "SELECT run_id FROM results")["run_id"].tolist() == ["ok"]
+    reason = query(db, "SELECT reason FROM quarantine WHERE run_id = 'locked'")["reason"].iloc[0]
+    assert "Permission denied" in reason
+
+
+def test_a_build_folder_without_write_permission_is_one_line(tmp_path):
+    raw = write_campaign(tmp_path / "raw", [(manifest_row("ok", "ok.parquet"), GOOD)])
+    build = tmp_path / "b"
+    build.mkdir()
+    build.chmod(0o555)
+    out = run_cli(unprivileged([*PY, "run", "--raw", str(raw), "--build", str(build), "--jobs", "1"]))
+    assert out.returncode == 2 and "Traceback" not in out.stderr
+    assert out.stderr.strip().splitlines()[-1].startswith("tyrelab run: ") and "Permission denied" in out.stderr
+
+
+def limited(limit_bytes):
+    def preexec():
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit_bytes, limit_bytes))
+    return preexec
+
+
+def test_a_file_size_limit_is_one_line_and_the_next_run_repairs(tmp_path):
+    raw = write_campaign(tmp_path / "raw", [(manifest_row(f"r{i}", f"r{i}.parquet"), GOOD) for i in range(3)])
+    build = tmp_path / "b"
+    args = ["--raw", str(raw), "--build", str(build), "--jobs", "1"]
+    for stage in ("ingest", "analyse"):
+        assert run_cli([*PY, stage, *args]).returncode == 0
+    # the warehouse write fails: exit 2 with one line, no empty warehouse left as if it were good
+    out = run_cli([*PY, "warehouse", *args], preexec_fn=limited(64 * 1024))
+    assert out.returncode == 2 and "Traceback" not in out.stderr, out.stderr
+    assert "File too large" in out.stderr.strip().splitlines()[-1]
+    out = run_cli([*PY, "warehouse", *args])
+    assert out.returncode == 0, out.stderr
+    assert "recomputing" in out.stderr
+    assert len(query(build / "warehouse.duckdb", "SELECT * FROM results")) == 3
+    # a Parquet write that fails half-way (ingest) is one line too
+    out = run_cli([*PY, "ingest", "--force", *args], preexec_fn=limited(2 * 1024))
+    assert out.returncode == 2 and "Traceback" not in out.stderr, out.stderr
+    assert out.stderr.strip().splitlines()[-1].startswith("tyrelab ingest: ")
+    out = run_cli([*PY, "run", *args])  # nothing was half-written: the build is as it was
+    assert out.returncode == 0, out.stderr
+    assert len(query(build / "warehouse.duckdb", "SELECT * FROM results")) == 3
+
+
+# -- 11. Ctrl-C / SIGTERM leave no pymp-* folder ------------------------------------------------------
+
+def test_sigterm_leaves_no_temporary_folders(tmp_path):
+    raw = write_campaign(tmp_path / "raw", [(manifest_row(f"r{i}", f"r{i}.parquet", pressure_bar=1 + i / 10),
+                                             spring_damper_recording(duration_s=40.0, seed=i)) for i in range(12)])
+    tmp = tmp_path / "tmp"
+    tmp.mkdir()
+    env = {**os.environ, "TMPDIR": str(tmp)}
+    proc = subprocess.Popen([*PY, "run", "--raw", str(raw), "--build", str(tmp_path / "b"), "--jobs", "2"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    deadline = time.monotonic() + 120
+    while not list(tmp.glob("pymp-*")):
+        assert time.monotonic() < deadline and proc.poll() is None
+        time.sleep(0.05)
+    time.sleep(2.0)  # workers started (a worker still being spawned may print the stdlib's own traceback)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130 and "Traceback" not in err, err
+    assert not list(tmp.iterdir())
