@@ -19,7 +19,7 @@ Examples
 ...         try:
 ...             BuildLock(d, "second").acquire()
 ...         except BuildLocked as exc:
-...             print("refused:", "held by pid" in str(exc))
+...             print("refused:", "being written by pid" in str(exc))
 refused: True
 """
 

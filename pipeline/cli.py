@@ -85,6 +85,9 @@ def _writing(args, label: str, work) -> int:
 
     try:
         with BuildLock(args.build, f"tyrelab {label}"):
+            from . import io
+
+            io.remove_stale_temporaries(args.build)  # left by a killed writer: we are the only one now
             return work()
     except BuildLocked as exc:
         print(f"tyrelab {label}: {exc}", file=sys.stderr)

@@ -48,6 +48,20 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
             tmp_path.unlink()
 
 
+def remove_stale_temporaries(folder: str | os.PathLike) -> int:
+    """Delete the temporary files :func:`atomic_path` leaves when its process is killed; return how many.
+
+    Call only while holding the folder's write lock (:class:`tyrelab.buildlock.BuildLock`):
+    then no other writer's temporary file can be among them.
+    """
+    n = 0
+    for p in Path(folder).rglob(".*.tmp*") if Path(folder).is_dir() else []:
+        if p.is_file() and (p.name.endswith(".tmp") or p.name.endswith(".tmp.wal")):
+            p.unlink()
+            n += 1
+    return n
+
+
 def write_parquet_atomic(df: pd.DataFrame, path: str | os.PathLike) -> Path:
     """Write ``df`` to Parquet at ``path`` atomically; return the path.
 

@@ -188,3 +188,15 @@ def test_results_name_the_current_campaign(tmp_path):
     run_pipeline(ctx, STAGES)
     assert ctx.read_table("results")["campaign"].tolist() == [str(b.resolve())]
     assert query(ctx.build / "warehouse.duckdb", "SELECT campaign FROM results")["campaign"].tolist() == [str(b.resolve())]
+
+
+def test_a_copied_build_reads_only_itself(tmp_path):
+    raw = write_campaign(tmp_path / "raw", [(manifest_row("s1", "s1.parquet"), GOOD)])
+    ctx, _ = build(raw, tmp_path, "orig")
+    copy = tmp_path / "copy"
+    shutil.copytree(ctx.build, copy)
+    ctx2 = Context(raw=raw, build=copy, jobs=1)
+    ran = {r.name: r.skipped for r in run_pipeline(ctx2, STAGES)}
+    assert ran["warehouse"] is False  # its views named the original folder
+    shutil.rmtree(ctx.build)
+    assert query(copy / "warehouse.duckdb", "SELECT run_id FROM results")["run_id"].tolist() == ["s1"]
