@@ -142,11 +142,16 @@ def test_fifos_below_raw_are_skipped_with_a_warning(tmp_path):
     os.mkfifo(camp / "pipe.parquet")
     os.mkfifo(camp / "notes.txt")
     os.mkfifo(raw / "tyres.csv")
+    (raw / "scenarios").mkdir()
+    os.mkfifo(raw / "scenarios" / "ride.toml")
     (camp / "dir.parquet").mkdir()
     out = tyrelab("run", "--raw", raw, "--build", tmp_path / "b", "--jobs", "1", timeout=300)
     assert out.returncode == 3, out.stderr
     assert "Traceback" not in out.stderr
-    for name in ("notes.txt", "tyres.csv"):
+    from tyrelab.vehicle.ride import scenario_files
+
+    assert all(source == "shipped" for _, source in scenario_files(raw))  # the FIFO is not read
+    for name in ("notes.txt", "tyres.csv", "ride.toml"):
         assert any(name in line and "named pipe (FIFO)" in line and "skipped" in line for line in out.stderr.splitlines())
     q = query(tmp_path / "b" / "warehouse.duckdb", "SELECT run_id, reason FROM quarantine").set_index("run_id")["reason"]
     assert "named pipe (FIFO), not a regular file" in q["pipe"]
