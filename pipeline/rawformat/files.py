@@ -144,8 +144,11 @@ def read_delimited(path: str | os.PathLike, schema: dict) -> DelimitedTable:
     st = regular_file(path)
     if st.st_size > MAX_TABLE_BYTES:
         raise RunFileError(f"file is {st.st_size / 1e6:.0f} MB, larger than the {MAX_TABLE_BYTES / 1e6:.0f} MB limit")
-    with open(path, "rb") as fh:
-        data = fh.read(MAX_TABLE_BYTES + 1)
+    try:
+        with open(path, "rb") as fh:
+            data = fh.read(MAX_TABLE_BYTES + 1)
+    except OSError as exc:  # e.g. no read permission
+        raise RunFileError(f"cannot read ({exc.strerror or exc})") from None
     text, notes = _decode(data)
     lines = text.splitlines()
     header = next((line for line in lines if line.strip()), "")

@@ -83,12 +83,15 @@ def run_cli(cmd, **kw):
 
 
 def test_a_run_file_without_read_permission_is_quarantined(tmp_path):
-    raw = write_campaign(tmp_path / "raw", [(manifest_row("ok", "ok.parquet"), GOOD),
-                                            (manifest_row("locked", "locked.parquet"), GOOD)])
+    raw = write_campaign(tmp_path / "raw" / "c", [(manifest_row("ok", "ok.parquet"), GOOD),
+                                                  (manifest_row("locked", "locked.parquet"), GOOD)])
     (raw / "locked.parquet").chmod(0)
-    out = run_cli(unprivileged([*PY, "run", "--raw", str(raw), "--build", str(tmp_path / "b"), "--jobs", "1"]))
+    other = write_campaign(tmp_path / "raw" / "d", [(manifest_row("d1", "d1.parquet"), GOOD)])
+    (other / "manifest.csv").chmod(0)  # an unreadable manifest: that campaign is rejected, the other goes through
+    out = run_cli(unprivileged([*PY, "run", "--raw", str(raw.parent), "--build", str(tmp_path / "b"), "--jobs", "1"]))
     assert out.returncode == 3, out.stderr
     assert "Traceback" not in out.stderr
+    assert any(str(other / "manifest.csv") in line and "Permission denied" in line for line in out.stderr.splitlines())
     db = tmp_path / "b" / "warehouse.duckdb"
     assert query(db, "SELECT run_id FROM results")["run_id"].tolist() == ["ok"]
     reason = query(db, "SELECT reason FROM quarantine WHERE run_id = 'locked'")["reason"].iloc[0]
