@@ -209,8 +209,10 @@ def connect_read_only(db_path: Path) -> duckdb.DuckDBPyConnection:
         con.execute(f"ATTACH {_sql_path(db_path.resolve())} AS warehouse (READ_ONLY)")
         con.execute("USE warehouse")
         _search_path(con, db_path.parent)
-        allowed = str(db_path.resolve().parent / "parquet") + "/"
-        con.execute(f"SET allowed_directories = [{_sql_path(allowed)}]")
+        # The build's Parquet folder, absolute and as the ``runs`` view names it (relative to the
+        # database's folder, through ``file_search_path``); ``..`` cannot climb out of either.
+        allowed = [str(db_path.resolve().parent / "parquet") + "/", "parquet/"]
+        con.execute(f"SET allowed_directories = [{', '.join(map(_sql_path, allowed))}]")
         for name, value in SANDBOX_SETTINGS:
             con.execute(f"SET {name} = {value}")
     except BaseException:
