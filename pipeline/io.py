@@ -12,6 +12,7 @@ import contextlib
 import hashlib
 import logging
 import os
+import re
 import stat
 import tempfile
 from pathlib import Path
@@ -56,10 +57,15 @@ def remove_stale_temporaries(folder: str | os.PathLike) -> int:
     """
     n = 0
     for p in Path(folder).rglob(".*.tmp*") if Path(folder).is_dir() else []:
-        if p.is_file() and (p.name.endswith(".tmp") or p.name.endswith(".tmp.wal")):
+        if _TEMPORARY.match(p.name) and p.is_file() and not p.is_symlink():
             p.unlink()
             n += 1
     return n
+
+
+#: Names :func:`atomic_path` gives its temporary files (``mkstemp``'s 8 random characters),
+#: and DuckDB's write-ahead log beside one.
+_TEMPORARY = re.compile(r"^\..+\.[A-Za-z0-9_]{8}\.tmp(\.wal)?$")
 
 
 def write_parquet_atomic(df: pd.DataFrame, path: str | os.PathLike) -> Path:
