@@ -141,7 +141,7 @@ def test_a_file_size_limit_is_one_line_and_the_next_run_repairs(tmp_path):
 
 def test_sigterm_leaves_no_temporary_folders(tmp_path):
     raw = write_campaign(tmp_path / "raw", [(manifest_row(f"r{i}", f"r{i}.parquet", pressure_bar=1 + i / 10),
-                                             spring_damper_recording(duration_s=40.0, seed=i)) for i in range(12)])
+                                             spring_damper_recording(duration_s=60.0, seed=i)) for i in range(40)])
     tmp = Path(tempfile.mkdtemp(prefix="t11"))  # short: the forkserver's socket path must fit AF_UNIX's 108 bytes
     env = {**os.environ, "TMPDIR": str(tmp)}
     proc = subprocess.Popen([*PY, "run", "--raw", str(raw), "--build", str(tmp_path / "b"), "--jobs", "2"],
@@ -150,7 +150,7 @@ def test_sigterm_leaves_no_temporary_folders(tmp_path):
     while not list(tmp.glob("pymp-*")):
         assert time.monotonic() < deadline and proc.poll() is None, proc.stderr.read() if proc.poll() else ""
         time.sleep(0.05)
-    time.sleep(2.0)  # workers started (a worker still being spawned may print the stdlib's own traceback)
+    time.sleep(0.5)  # workers started (a worker still being spawned may print the stdlib's own traceback)
     proc.send_signal(signal.SIGTERM)
     _, err = proc.communicate(timeout=120)
     assert proc.returncode == 130 and "Traceback" not in err, err
