@@ -157,6 +157,10 @@ def run_module(module: str, workdir: Path, resume: bool, sample: int | None = No
     elif resume:
         print(f"mutation: {module} changed since its session began: starting it afresh", flush=True)
         resume = False
+        if sample is None:  # as many as the old session tested, not the whole module
+            with sqlite3.connect(session) as con:
+                sample = con.execute("SELECT count(*) FROM work_results WHERE lower(worker_outcome) != 'skipped'"
+                                     ).fetchone()[0] or None
     if not resume:
         session.unlink(missing_ok=True)
         _copy_tree(tree)
