@@ -46,6 +46,7 @@ def test_demodulation_recovers_pure_spring_damper(freq, k, c):
     assert d.stiffness_N_per_m == pytest.approx(k, rel=0.005)
     assert d.damping_N_s_per_m == pytest.approx(c, rel=0.005)
     assert d.displacement_amplitude_m == pytest.approx(0.007, rel=0.005)
+    assert d.acceleration_amplitude_m_s2 == pytest.approx(0.007 * (2 * np.pi * freq) ** 2, rel=0.005)
 
 
 def test_damping_sign_is_positive_for_a_dissipative_tyre():

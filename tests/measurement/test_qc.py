@@ -120,3 +120,8 @@ def test_interference_arguments_are_checked():
                        ((5.0, 4.66, -1), "lugs_per_side")):
         with pytest.raises(ValueError, match=name):
             interference_frequencies_Hz(*args)
+
+def test_zero_stiffness_is_not_plausible():
+    from tyrelab.measurement.qc import plausibility_reasons
+
+    assert plausibility_reasons(0.0, 2000.0) == ["non-positive stiffness K = 0.0 kN/m"]
