@@ -265,6 +265,16 @@ def markdown(workdir: Path, modules: list[str]) -> str:
         scored = killed + len(surv) - len(eq)
         score = f"{100.0 * killed / scored:.0f} %" if scored else "–"
         lines.append(f"| `{module}` | {killed + len(surv)} | {killed} | {len(surv) - len(eq)} | {len(eq)} | {score} |")
+    lines += ["", "| module | line | surviving mutant (operator: mutated line) |", "|---|---|---|"]
+    for module in modules:
+        session = workdir / f"{_name(module)}.sqlite"
+        if not session.exists():
+            continue
+        for sv in survivors(session):
+            if not any(e["module"] == module and e["operator"] == sv["operator"] and e["mutant"] == sv["mutant"]
+                       for e in equivalents):
+                lines.append(f"| `{module}` | {sv['line']} | {sv['operator'].removeprefix('core/')}: "
+                             f"`{sv['mutant'].replace('|', '¦')}` |")
     lines += ["", "| module | mutant (operator: mutated line) | why equivalent |", "|---|---|---|"]
     for e in equivalents:
         lines.append(f"| `{e['module']}` | {e['operator'].removeprefix('core/')}: `{e['mutant']}` | {e['why']} |")
