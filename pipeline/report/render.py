@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import os
 import subprocess
 from datetime import datetime, timezone
 from pathlib import Path
@@ -60,6 +61,15 @@ def code_version() -> str:
     return f"{__version__}" + (f" ({sha})" if sha else "")
 
 
+def generated_at() -> datetime:
+    """Time of the build: now, or ``SOURCE_DATE_EPOCH`` (seconds, UTC) when set, for reproducible builds
+    (https://reproducible-builds.org/specs/source-date-epoch/)."""
+    epoch = os.environ.get("SOURCE_DATE_EPOCH", "").strip()
+    if epoch.isdigit():
+        return datetime.fromtimestamp(int(epoch), tz=timezone.utc)
+    return datetime.now(timezone.utc)
+
+
 def provenance(raw: Path, dataset: dict) -> dict:
     """Data set, generator seed or raw source, code version and time for a page footer.
 
@@ -77,7 +87,7 @@ def provenance(raw: Path, dataset: dict) -> dict:
         "seeds": dataset.get("seeds", []),
         "digest": dataset.get("digest", "–"),
         "code_version": code_version(),
-        "generated_at": datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC"),
+        "generated_at": generated_at().strftime("%Y-%m-%d %H:%M UTC"),
     }
 
 

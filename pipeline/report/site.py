@@ -11,6 +11,14 @@ the pure functions of :mod:`tyrelab.report.tables` and
 
 Everything is inline (CSS, SVG); links are relative, so the folder opens from
 the file system and can be mailed as a zip.
+
+Figures are the expensive part. :func:`build_site` first lists every figure of
+the site as a :class:`FigureTask` (the drawing function and exactly the data it
+draws: its warehouse tables, or a run's row and the content digest of its
+signal file), then reuses the ones a cache already holds under the digest of
+that task and draws the others in parallel (:func:`tyrelab.executor.map_batches`),
+and only then renders the pages. A figure is therefore redrawn only when its own
+inputs (or the code) changed, and the site is the same bytes either way.
 """
 
 from __future__ import annotations
@@ -18,12 +26,17 @@ from __future__ import annotations
 import hashlib
 import json
 import re
+from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
+from types import SimpleNamespace
 
 import pandas as pd
 
 from .. import io
-from ..warehouse import query
+from ..executor import map_batches
+from ..stages.state import digest
+from ..warehouse import check_read_only, connect_read_only
 from . import figures, tables
 from .chapters import CHAPTERS, Chapter, FigureSpec, TableSpec
 from .render import environment, provenance
@@ -39,25 +52,38 @@ MAX_PLAIN_ROWS = 40
 
 
 class Warehouse:
-    """Read-only access to the warehouse with a per-build cache of whole tables."""
+    """Read-only access to the warehouse with a per-build cache of whole tables (one connection)."""
 
     def __init__(self, db: Path):
         self.db = Path(db)
-        self.names = set(query(self.db, "SELECT table_name FROM information_schema.tables")["table_name"])
+        self._con = None
+        self.names = set(self.sql("SELECT table_name FROM information_schema.tables")["table_name"])
         self._cache: dict[str, pd.DataFrame] = {}
 
     def __contains__(self, name: str) -> bool:
         return name in self.names
 
+    def __getstate__(self):  # picklable: reconnects in the other process
+        return {**self.__dict__, "_con": None}
+
     def table(self, name: str) -> pd.DataFrame:
         """Table ``name`` as a DataFrame (empty when it does not exist)."""
         if name not in self._cache:
-            self._cache[name] = query(self.db, f'SELECT * FROM "{name}"') if name in self.names else pd.DataFrame()
+            self._cache[name] = self.sql(f'SELECT * FROM "{name}"') if name in self.names else pd.DataFrame()
         return self._cache[name]
 
     def sql(self, text: str) -> pd.DataFrame:
-        """Run a read-only query."""
-        return query(self.db, text)
+        """Run a read-only query (:func:`tyrelab.warehouse.query`'s checks, on one open connection)."""
+        check_read_only(text)
+        if self._con is None:
+            self._con = connect_read_only(self.db)
+        return self._con.execute(text).df()
+
+    def close(self) -> None:
+        """Close the connection."""
+        if self._con is not None:
+            self._con.close()
+            self._con = None
 
 
 def _missing(stage: str, what: str) -> str:
@@ -96,16 +122,102 @@ def resolve_table(wh: Warehouse, spec: TableSpec) -> dict:
     return item
 
 
-def resolve_figure(wh: Warehouse, spec: FigureSpec) -> dict:
-    """Draw one :class:`FigureSpec` into a template item (``svg`` None with a note when no data)."""
-    svg = getattr(figures, spec.function)(*(wh.table(n) for n in spec.inputs), **spec.kwargs)
+@dataclass
+class FigureTask:
+    """One figure to draw: ``figures.<function>(*args, **kwargs)``, or a run's drill-down.
+
+    ``kind`` is ``"figure"`` (``args`` are the warehouse tables) or ``"run"``
+    (``args`` is ``(row, db)``: the run's result row and the warehouse, the
+    signals are read by the worker). ``inputs`` is what the figure depends on,
+    hashed into :attr:`key` (for a run: the row and the SHA-256 of its signal
+    file instead of the signals themselves).
+    """
+
+    kind: str
+    function: str
+    args: tuple
+    kwargs: dict = field(default_factory=dict)
+    inputs: tuple = ()
+
+    @cached_property
+    def key(self) -> str:
+        """Digest of the drawing function and everything it draws."""
+        return digest([self.kind, self.function, self.kwargs, list(self.inputs)])
+
+
+def draw(task: FigureTask) -> str | None:
+    """Draw one :class:`FigureTask`; the SVG markup or None (runs in a worker process)."""
+    if task.kind == "run":
+        row, db = task.args
+        return run_figure(Warehouse(db) if Path(db).exists() else None, row)
+    return getattr(figures, task.function)(*task.args, **task.kwargs)
+
+
+class FigureSet:
+    """The figures of a site: requested first, drawn together (reused from ``cache``), then looked up.
+
+    Parameters
+    ----------
+    cache : tyrelab.stages.state.ItemCache, optional
+        Where drawn figures are kept by :attr:`FigureTask.key`; None draws every figure.
+    jobs : int
+        Worker processes for the figures to draw.
+    """
+
+    def __init__(self, cache=None, jobs: int = 1):
+        self.cache, self.jobs = cache, jobs
+        self.tasks: dict[str, FigureTask] = {}
+        self.names: dict = {}
+        self.svgs: dict[str, str | None] = {}
+        self.drawn = 0
+
+    def request(self, name, task: FigureTask) -> str:
+        """Register ``task`` under ``name`` (a spec or a run id); return its key."""
+        self.tasks.setdefault(task.key, task)
+        self.names[name] = task.key
+        return task.key
+
+    def draw_all(self) -> None:
+        """Take what the cache holds, draw the rest in parallel."""
+        todo = []
+        for key, task in self.tasks.items():
+            hit, svg = self.cache.get(self.cache.key("figure", key)) if self.cache else (False, None)
+            if hit:
+                self.svgs[key] = svg
+            else:
+                todo.append(key)
+        ctx = SimpleNamespace(executor="local", jobs=self.jobs, scheduler=None)
+        for key, svg in zip(todo, map_batches(draw, [self.tasks[k] for k in todo], ctx)):
+            self.svgs[key] = svg
+            if self.cache:
+                self.cache.put(self.cache.key("figure", key), svg)
+        self.drawn = len(todo)
+
+    def __getitem__(self, name) -> str | None:
+        """The SVG of the figure requested under ``name``."""
+        return self.svgs[self.names[name]]
+
+
+def figure_task(wh: Warehouse, spec: FigureSpec) -> FigureTask:
+    """The :class:`FigureTask` of a chapter figure: its function, kwargs and input tables."""
+    tables_ = tuple(wh.table(n) for n in spec.inputs)
+    return FigureTask("figure", spec.function, tables_, dict(spec.kwargs), tables_)
+
+
+def resolve_figure(wh: Warehouse, spec: FigureSpec, figs: FigureSet | None = None) -> dict:
+    """One :class:`FigureSpec` as a template item (``svg`` None with a note when no data).
+
+    With ``figs`` the figure must have been requested and drawn there; without, it is drawn now.
+    """
+    svg = figs[("spec", id(spec))] if figs is not None else draw(figure_task(wh, spec))
     note = "" if svg else _missing(spec.stage, f"The data of Fig. {spec.number} ({spec.inputs[0]}) are")
     return {"kind": "figure", "spec": spec, "svg": svg, "note": note}
 
 
-def chapter_items(wh: Warehouse, chapter: Chapter) -> list[dict]:
+def chapter_items(wh: Warehouse, chapter: Chapter, figs: FigureSet | None = None) -> list[dict]:
     """All tables and figures of one chapter page."""
-    return [resolve_table(wh, it) if isinstance(it, TableSpec) else resolve_figure(wh, it) for it in chapter.items]
+    return [resolve_table(wh, it) if isinstance(it, TableSpec) else resolve_figure(wh, it, figs)
+            for it in chapter.items]
 
 
 def run_page_name(run_id: str) -> str:
@@ -119,14 +231,14 @@ def read_signals(wh: Warehouse, row: pd.Series) -> pd.DataFrame:
     path = row.get("run_path")
     if isinstance(path, str) and Path(path).exists():
         return pd.read_parquet(path)
-    if "runs" in wh:
+    if wh is not None and "runs" in wh:
         rid = str(row["run_id"]).replace("'", "''")
         return wh.sql(f"SELECT * FROM runs WHERE run_id = '{rid}' ORDER BY time_s")
     return pd.DataFrame()
 
 
-def run_item(wh: Warehouse, row: pd.Series) -> dict:
-    """Figures and facts for one run's drill-down page."""
+def run_figure(wh: Warehouse | None, row: pd.Series) -> str | None:
+    """The drill-down figure of one run (signals read from its file, else from the warehouse)."""
     signals = read_signals(wh, row)
     fs = row.get("sample_rate_Hz")
     if (fs is None or pd.isna(fs)) and "time_s" in signals and len(signals) > 1:
@@ -135,6 +247,18 @@ def run_item(wh: Warehouse, row: pd.Series) -> dict:
     f_exc = float(f_exc) if f_exc is not None and pd.notna(f_exc) else None
     spectra = figures.run_spectra(signals, float(row["axle_mass_kg"]), float(fs)) if len(signals) > 64 else pd.DataFrame()
     k = row.get("stiffness_kN_per_m")
+    return figures.run_drilldown(signals, spectra, f_exc, float(k) if k is not None and pd.notna(k) else None)
+
+
+def run_task(wh: Warehouse, row: pd.Series) -> FigureTask:
+    """The :class:`FigureTask` of a run's drill-down: its row and the digest of its signal file."""
+    path = row.get("run_path")
+    source = io.file_sha256(path) if isinstance(path, str) and Path(path).exists() else f"warehouse:{wh.db}:{id(wh)}"
+    return FigureTask("run", "run_drilldown", (row, wh.db), {}, (row.to_dict(), source))
+
+
+def run_item(wh: Warehouse, row: pd.Series, figs: FigureSet | None = None) -> dict:
+    """Figures and facts for one run's drill-down page."""
     facts = [(c, row.get(c)) for c in (
         "tyre_id", "kind", "speed_km_h", "pressure_bar", "load_kN", "excitation_frequency_Hz",
         "excitation_frequency_measured_Hz", "amplitude_mm_pp", "amplitude_measured_mm_pp", "surface",
@@ -150,7 +274,7 @@ def run_item(wh: Warehouse, row: pd.Series) -> dict:
     return {
         "run_id": row["run_id"], "facts": facts, "qc_reasons": reasons,
         "file": row.get("file"), "campaign": row.get("campaign"),
-        "figure": figures.run_drilldown(signals, spectra, f_exc, float(k) if k is not None and pd.notna(k) else None),
+        "figure": figs[("run", row["run_id"])] if figs is not None else run_figure(wh, row),
     }
 
 
@@ -168,7 +292,7 @@ def _dataset(manifest: pd.DataFrame, raw: Path) -> dict:
     return {"campaigns": campaigns, "seeds": seeds, "digest": digest, "raw": str(raw)}
 
 
-def build_site(db: Path, out: Path, raw: Path) -> dict:
+def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1) -> dict:
     """Render every page of the report into ``out``.
 
     Parameters
@@ -179,12 +303,18 @@ def build_site(db: Path, out: Path, raw: Path) -> dict:
         Output folder, normally ``build/reports``.
     raw : Path
         Raw data folder, for the provenance footer.
+    cache : tyrelab.stages.state.ItemCache, optional
+        Figures kept by the digest of their inputs (see the module docstring);
+        None draws every figure.
+    jobs : int
+        Worker processes drawing the figures not in ``cache``.
 
     Returns
     -------
     dict
         ``pages`` (paths written), ``bytes`` (total size of the site),
-        ``tables``, ``comparison_tables``, ``missing`` (notes of what is not produced yet).
+        ``tables``, ``comparison_tables``, ``missing`` (notes of what is not produced yet),
+        ``figures`` (figures on the site) and ``drawn`` (of them, drawn this time).
     """
     out = Path(out)
     wh = Warehouse(db)
@@ -200,12 +330,27 @@ def build_site(db: Path, out: Path, raw: Path) -> dict:
 
     def write(template: str, path: Path, root: str = "", **kw) -> None:
         html = env.get_template(template).render(prov=prov, nav=nav, root=root, **kw)
-        io.write_text_atomic(html, path)
+        if not path.is_file() or path.read_text(encoding="utf-8") != html:  # unchanged pages keep their mtime
+            io.write_text_atomic(html, path)
         pages.append(path)
+
+    selected = tables.select_runs(results, RUNS_PER_TYRE, MAX_RUN_PAGES)
+    if not selected.empty:
+        extra = [c for c in ("run_id", "sample_rate_Hz", "run_path", "file") if c in manifest.columns]
+        selected = selected.merge(manifest[extra], on="run_id", how="left", suffixes=("", "_manifest"))
+
+    figs = FigureSet(cache, jobs)
+    for chapter in CHAPTERS:
+        for it in chapter.items:
+            if isinstance(it, FigureSpec):
+                figs.request(("spec", id(it)), figure_task(wh, it))
+    for _, row in selected.iterrows():
+        figs.request(("run", row["run_id"]), run_task(wh, row))
+    figs.draw_all()
 
     contents = []
     for chapter in CHAPTERS:
-        items = chapter_items(wh, chapter)
+        items = chapter_items(wh, chapter, figs)
         for it in items:
             n_tables += it["kind"] == "table"
             n_comparison += it.get("mode") == "comparison"
@@ -214,15 +359,11 @@ def build_site(db: Path, out: Path, raw: Path) -> dict:
         contents.append({"chapter": chapter, "items": items})
         write("chapter.html.j2", out / f"{chapter.slug}.html", title=chapter.title, chapter=chapter, items=items)
 
-    selected = tables.select_runs(results, RUNS_PER_TYRE, MAX_RUN_PAGES)
-    if not selected.empty:
-        extra = [c for c in ("run_id", "sample_rate_Hz", "run_path", "file") if c in manifest.columns]
-        selected = selected.merge(manifest[extra], on="run_id", how="left", suffixes=("", "_manifest"))
     run_dir = out / "runs"
     listed = []
     for _, row in selected.iterrows():
         name = run_page_name(row["run_id"])
-        write("run.html.j2", run_dir / name, root="../", title=f"Run {row['run_id']}", run=run_item(wh, row))
+        write("run.html.j2", run_dir / name, root="../", title=f"Run {row['run_id']}", run=run_item(wh, row, figs))
         listed.append({"href": f"runs/{name}", "run_id": row["run_id"], "tyre_id": row.get("tyre_id"),
                        "qc_ok": row.get("qc_ok"), "qc_reasons": row.get("qc_reasons")})
     keep = {p.name for p in pages if p.parent == run_dir}
@@ -238,5 +379,7 @@ def build_site(db: Path, out: Path, raw: Path) -> dict:
           contents=contents,
           quarantine=tables.plain_table(quarantine, ["campaign", "file", "run_id", "stage", "reason"], 100),
           flagged=tables.plain_table(flagged, ["run_id", "tyre_id", "speed_km_h", "pressure_bar", "qc_reasons"], 100))
+    wh.close()
     size = sum(p.stat().st_size for p in out.rglob("*") if p.is_file())
-    return {"pages": pages, "bytes": size, "tables": n_tables, "comparison_tables": n_comparison, "missing": missing}
+    return {"pages": pages, "bytes": size, "tables": n_tables, "comparison_tables": n_comparison, "missing": missing,
+            "figures": len(figs.tasks), "drawn": figs.drawn}

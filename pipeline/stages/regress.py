@@ -27,7 +27,15 @@ table                          contents
 
 Every tyre with measurement runs has rows (null estimates and a ``reason``
 where it cannot be fitted); tyres only in the thesis keep their thesis values
-with null estimates of ours. Always recomputes: it takes about a second.
+with null estimates of ours.
+
+Incremental: the fits that read one tyre's runs (Table III, per-speed K and C, the
+one-factor rates, the spoke fit) are kept per tyre in ``build/cache/regress`` under
+the digest of that tyre's ``results`` rows and catalogue row
+(:class:`tyrelab.stages.state.ItemCache`), so one new run refits its tyre only; the
+across-tyre tables (surface effects, summaries, size regressions, formula accuracy)
+are recomputed from the per-tyre fits whenever the stage runs, and the parts that
+read only the published tables are kept under the digest of those tables.
 """
 
 from __future__ import annotations
@@ -42,6 +50,7 @@ from ..tyre import regressions as reg
 from ..tyre import size_regressions as sr
 from ..tyre import spoke
 from .base import Context, StageResult
+from .state import ItemCache
 
 __all__ = ["PUBLISHED", "FACTORS", "read_published", "read_tyres", "compute", "run"]
 
@@ -63,20 +72,89 @@ def read_tyres(ctx: Context) -> pd.DataFrame | None:
     return pd.read_csv(path) if path.exists() else None
 
 
-def compute(results: pd.DataFrame, tyres: pd.DataFrame | None,
-            published: dict[str, pd.DataFrame | None]) -> dict[str, pd.DataFrame]:
-    """All regress tables from in-memory inputs (no I/O); see the module docstring."""
-    out: dict[str, pd.DataFrame] = {}
-    tyre_ids = reg.measured_tyres(results)
+def tyre_fits(results: pd.DataFrame, tyre_ids: list[str], tyres: pd.DataFrame | None) -> dict[str, pd.DataFrame]:
+    """The fits that read one tyre's runs only: Table III and per-speed K and C vs pressure, the
+    one-factor rates, the spoke-model fit (:mod:`tyrelab.tyre.conditions` selects runs row by row)."""
+    rates = pd.concat([reg.factor_regressions(results, f) for f in FACTORS], ignore_index=True)
+    fit, points = spoke.fit_tyres(results, tyres)
+    return {
+        "k_cond": reg.pressure_regressions(results, reg.STIFFNESS, by="condition", tyre_ids=tyre_ids),
+        "k_speed": reg.pressure_regressions(results, reg.STIFFNESS, by="speed", tyre_ids=tyre_ids),
+        "c_speed": reg.pressure_regressions(results, reg.DAMPING, by="speed", tyre_ids=tyre_ids),
+        "rates": rates, "spoke_fit": fit, "spoke_fit_points": points,
+    }
 
-    k_cond = reg.pressure_regressions(results, reg.STIFFNESS, by="condition", tyre_ids=tyre_ids)
+
+def all_tyre_fits(results: pd.DataFrame, tyres: pd.DataFrame | None, cache=None) -> dict[str, pd.DataFrame]:
+    """:func:`tyre_fits` of every measured tyre, each computed from its own runs (reused from
+    ``cache`` when that tyre's runs and catalogue row are unchanged), in the all-tyre order."""
+    tyre_ids = reg.measured_tyres(results)
+    if not tyre_ids:
+        return tyre_fits(results, tyre_ids, tyres)
+    ids = results["tyre_id"].astype(str)
+    parts = []
+    for t in tyre_ids:
+        own = results.loc[ids == t]
+        row = tyres.loc[tyres["tyre_id"].astype(str) == t] if tyres is not None and "tyre_id" in tyres else None
+        compute_one = lambda own=own, t=t, row=row: tyre_fits(own, [t], row)  # noqa: E731
+        parts.append(cache.get_or_compute(cache.key("tyre", t, own, row), compute_one) if cache else compute_one())
+    out = {name: _text_columns(pd.concat([p[name] for p in parts], ignore_index=True)) for name in parts[0]}
+    # factor_regressions orders rows by factor, response, then tyre: restore that order
+    rates = out["rates"]
+    if not rates.empty:
+        order = pd.DataFrame({"f": rates["factor"].map({f: i for i, f in enumerate(FACTORS)}),
+                              "r": rates["response"].map({reg.STIFFNESS: 0, reg.DAMPING: 1})})
+        out["rates"] = rates.loc[order.sort_values(["f", "r"], kind="stable").index].reset_index(drop=True)
+    return out
+
+
+def _text_columns(df: pd.DataFrame) -> pd.DataFrame:
+    """Give text columns the string dtype the all-tyre computation gives them: a tyre whose
+    ``reason`` is all missing has an object column, which would make the concatenation object."""
+    for c in df.columns:
+        if df[c].dtype == object:
+            values = df[c].dropna()
+            if len(values) and all(isinstance(v, str) for v in values):
+                df[c] = df[c].astype("str")
+    return df
+
+
+def _published_source(table: pd.DataFrame, tyres: pd.DataFrame | None) -> dict:
+    """Size regressions, selection search and formula accuracy of the printed Table III."""
+    searches = []
+    if not table.empty:
+        points = sr.tyre_points(table, tyres)
+        searches = [sr.selection_search(points, name).head(25).assign(source="published") for name in sr.THESIS_FITS]
+    p = fa.predictions_from_table(table, tyres, source="published")
+    return {"size": sr.size_regressions(table, tyres, "published"), "searches": searches, "predictions": p,
+            "accuracy": fa.accuracy_summary(p, "published")}
+
+
+def _spoke_curves() -> dict[str, pd.DataFrame]:
+    """Figs 43-48 of the spoke model (no data: they change only with the code)."""
+    return {"spoke_force": spoke.force_curves(), "spoke_speed": spoke.speed_curves(),
+            "spoke_frequency": spoke.frequency_curves(), "spoke_amplitude": spoke.amplitude_curves(),
+            "spoke_deflection": spoke.deflection_curves()}
+
+
+def compute(results: pd.DataFrame, tyres: pd.DataFrame | None,
+            published: dict[str, pd.DataFrame | None], cache=None) -> dict[str, pd.DataFrame]:
+    """All regress tables from in-memory inputs (no I/O); see the module docstring.
+
+    ``cache`` (a :class:`tyrelab.stages.state.ItemCache`) keeps the per-tyre fits and the parts
+    that read only the published tables; the across-tyre tables are recomputed from them.
+    """
+    memo = (lambda kind, inputs, fn: cache.get_or_compute(cache.key(kind, *inputs), fn)) if cache else \
+        (lambda kind, inputs, fn: fn())
+    out: dict[str, pd.DataFrame] = {}
+    fits = all_tyre_fits(results, tyres, cache)
+    k_cond, c_speed, rates = fits["k_cond"], fits["c_speed"], fits["rates"]
+
     out["table_iii"] = reg.table_iii(k_cond, published.get("table_iii"))
-    out["stiffness_pressure_by_speed"] = reg.pressure_regressions(results, reg.STIFFNESS, by="speed", tyre_ids=tyre_ids)
-    c_speed = reg.pressure_regressions(results, reg.DAMPING, by="speed", tyre_ids=tyre_ids)
+    out["stiffness_pressure_by_speed"] = fits["k_speed"]
     out["damping_pressure_by_speed"] = c_speed
     out["table_vii"] = reg.table_vii(c_speed, published.get("table_vii"))
 
-    rates = pd.concat([reg.factor_regressions(results, f) for f in FACTORS], ignore_index=True)
     out["factor_regressions"] = rates
     out["table_iv"] = reg.amplitude_table(rates, published.get("table_iv"), reg.STIFFNESS)
     out["table_viii"] = reg.amplitude_table(rates, published.get("table_viii"), reg.DAMPING)
@@ -95,18 +173,18 @@ def compute(results: pd.DataFrame, tyres: pd.DataFrame | None,
     ours_iii = k_cond.rename(columns={"intercept": "carcass_stiffness_kN_per_m",
                                       "slope": "pressure_dependence_kN_per_m_bar"})
     pub_iii = published.get("table_iii")
-    sources = [("ours", ours_iii)] + ([("published", pub_iii)] if pub_iii is not None else [])
-    size_rows, searches, preds, acc = [], [], [], []
-    for source, table in sources:
-        size_rows.append(sr.size_regressions(table, tyres, source))
-        if not table.empty:
-            points = sr.tyre_points(table, tyres)
-            for name in sr.THESIS_FITS:
-                searches.append(sr.selection_search(points, name).head(25).assign(source=source))
-        p = (fa.predictions_from_table(table, tyres, source=source) if source == "published"
-             else fa.predictions_from_recordings(results, ours_iii, tyres))
-        preds.append(p)
-        acc.append(fa.accuracy_summary(p, source))
+    size_rows, searches, preds, acc = [sr.size_regressions(ours_iii, tyres, "ours")], [], [], []
+    if not ours_iii.empty:
+        points = sr.tyre_points(ours_iii, tyres)
+        searches = [sr.selection_search(points, name).head(25).assign(source="ours") for name in sr.THESIS_FITS]
+    preds.append(fa.predictions_from_recordings(results, ours_iii, tyres))
+    acc.append(fa.accuracy_summary(preds[-1], "ours"))
+    if pub_iii is not None:
+        pub = memo("published", (pub_iii, tyres), lambda: _published_source(pub_iii, tyres))
+        size_rows.append(pub["size"])
+        searches += pub["searches"]
+        preds.append(pub["predictions"])
+        acc.append(pub["accuracy"])
     out["size_regressions"] = pd.concat(size_rows, ignore_index=True)
     out["size_regression_search"] = pd.concat(searches, ignore_index=True) if searches else pd.DataFrame(
         columns=["fit", "condition", "change", "n", "intercept", "slope", "r_squared", "matches_printed",
@@ -114,12 +192,8 @@ def compute(results: pd.DataFrame, tyres: pd.DataFrame | None,
     out["formula_predictions"] = pd.concat(preds, ignore_index=True)
     out["formula_accuracy"] = pd.concat(acc, ignore_index=True)
 
-    out["spoke_force"] = spoke.force_curves()
-    out["spoke_speed"] = spoke.speed_curves()
-    out["spoke_frequency"] = spoke.frequency_curves()
-    out["spoke_amplitude"] = spoke.amplitude_curves()
-    out["spoke_deflection"] = spoke.deflection_curves()
-    out["spoke_fit"], out["spoke_fit_points"] = spoke.fit_tyres(results, tyres)
+    out.update(memo("spoke_curves", (), _spoke_curves))
+    out["spoke_fit"], out["spoke_fit_points"] = fits["spoke_fit"], fits["spoke_fit_points"]
     return out
 
 
@@ -130,7 +204,9 @@ def run(ctx: Context) -> StageResult:
     results = ctx.read_table("results") if ctx.has_table("results") else pd.DataFrame()
     if not results.empty and "tyre_id" in results:
         results["tyre_id"] = results["tyre_id"].astype(str)
-    tables = compute(results, read_tyres(ctx), read_published(ctx))
+    cache = ItemCache(ctx, "regress")
+    tables = compute(results, read_tyres(ctx), read_published(ctx), cache)
+    cache.prune()
     for name, df in tables.items():
         ctx.write_table(name, df.reset_index(drop=True))
     t3 = tables["table_iii"]
@@ -138,7 +214,7 @@ def run(ctx: Context) -> StageResult:
     res.n_in = len(results)
     res.n_ok = len(results.loc[results["qc_ok"].fillna(False).astype(bool)]) if "qc_ok" in results else 0
     sz = tables["size_regressions"].set_index(["source", "fit"])
-    msg = [f"{len(tables)} tables", f"{fitted} tyres with Table III fits"]
+    msg = [f"{len(tables)} tables", f"{fitted} tyres with Table III fits", f"per-tyre fits {cache.summary('tyre')}"]
     if ("published", "dkp_vs_wr") in sz.index:
         r = sz.loc[("published", "dkp_vs_wr")]
         msg.append(f"published dKp~W.R gradient {r['slope']:.3f}, r2 {r['r_squared']:.3f}")

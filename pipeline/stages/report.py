@@ -1,7 +1,10 @@
 """Report: render the static site ``build/reports/`` from the warehouse (read-only).
 
 All the work is in :mod:`tyrelab.report.site`; this stage only times it and
-summarises what was written.
+summarises what was written. Figures are kept in ``build/cache/report`` by the
+digest of their inputs (:class:`tyrelab.stages.state.ItemCache`), so a new run
+redraws only the figures whose data changed; the rest are drawn by ``--jobs``
+worker processes.
 """
 
 from __future__ import annotations
@@ -10,6 +13,7 @@ import time
 
 from ..report.site import build_site
 from .base import Context, StageResult
+from .state import ItemCache
 
 __all__ = ["CODE_FILES", "run"]
 
@@ -21,11 +25,14 @@ def run(ctx: Context) -> StageResult:
     """Render every report page into ``build/reports``."""
     t0 = time.perf_counter()
     out = ctx.build / "reports"
-    info = build_site(ctx.build / "warehouse.duckdb", out, ctx.raw)
+    cache = ItemCache(ctx, "report")
+    info = build_site(ctx.build / "warehouse.duckdb", out, ctx.raw, cache=cache, jobs=ctx.jobs)
+    cache.prune()
     for note in info["missing"]:
         ctx.log.info("report: %s", note)
     n = len(info["pages"])
     return StageResult(
         "report", n_in=info["tables"], n_ok=n, seconds=time.perf_counter() - t0,
-        message=f"{n} pages, {info['comparison_tables']} thesis comparisons, {info['bytes'] / 1e6:.2f} MB in {out}",
+        message=f"{n} pages, {info['comparison_tables']} thesis comparisons, {info['figures']} figures "
+                f"({info['drawn']} drawn, the others unchanged), {info['bytes'] / 1e6:.2f} MB in {out}",
     )

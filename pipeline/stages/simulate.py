@@ -37,6 +37,10 @@ from .base import Context, StageResult, write_quarantine
 __all__ = ["SEED", "STEMS", "THESIS_XX_STATISTICS", "run"]
 
 SEED = 5007
+#: What the stage reads (see :mod:`tyrelab.stages.state`): the published tables, the ride
+#: scenarios and the per-speed fits a scenario's ``measured_tyre_id`` reads (through the
+#: warehouse). Nothing else: a new recording that leaves these fits alone does not re-run it.
+INPUTS = ["published", "scenarios", "stiffness_pressure_by_speed", "damping_pressure_by_speed"]
 
 #: Published tables the stage reads (stems under ``published/``).
 STEMS = ("table_xii", "table_xiii", "table_xiv", "table_xv", "table_xvi", "table_xvii", "table_xviii", "table_xix", "table_xx")

@@ -9,7 +9,9 @@ Each stage gets a *fingerprint* stored in ``build/state/<stage>.json``:
   module-level literal ``INPUTS = [...]`` in the stage module: table names
   (``"manifest"`` is ``build/parquet/manifest.parquet``, hashed by content) or
   ``"raw"`` (every file below ``--raw`` by path, size and mtime — ingest then
-  re-hashes the content of each changed file itself). A stage without
+  re-hashes the content of each changed file itself), ``"published"`` (the
+  digitised thesis tables :mod:`tyrelab.published` resolves, by content) or
+  ``"scenarios"`` (the shipped and ``<raw>/scenarios`` ride scenarios, by content). A stage without
   ``INPUTS`` depends on every file written by the stages before it in
   :data:`tyrelab.stages.ORDER`, and on the raw files outside campaign folders
   (``published/``, ``tyres.csv``). Context options named in a stage's
@@ -34,6 +36,7 @@ import ast
 import hashlib
 import json
 import os
+import pickle
 from pathlib import Path
 
 from .. import io, resources
@@ -47,8 +50,8 @@ __all__ = ["PACKAGE", "BUILTIN_RAW", "UNTRACKED", "declarations", "code_fingerpr
 PACKAGE = "tyrelab"
 #: Built-in raw files every stage may read (tyre catalogue, digitised thesis tables, ride scenarios).
 BUILTIN_RAW = [resources.builtin_tyres(), resources.published_dir(), resources.scenarios_dir()]
-#: Folders of ``build/`` that are not stage outputs tracked here.
-UNTRACKED = {"state", "runs"}
+#: Folders of ``build/`` that are not stage outputs tracked here (``cache``: :class:`ItemCache`).
+UNTRACKED = {"state", "runs", "cache"}
 
 
 def _sha(data: bytes) -> str:
@@ -196,6 +199,14 @@ def raw_extras(raw: Path, exclude: Path | None = None) -> list[Path]:
     return sorted(set(out))
 
 
+def published_digests(raw: Path, cache: HashCache) -> dict[str, str]:
+    """Content digest of each published table a stage reads (``<raw>/published`` or the shipped copy)."""
+    from .. import published  # light: the resolver only (no pandas work at import)
+
+    folder = published.published_dir(raw)
+    return {f"published:{p}": cache.digest(p) for p in sorted(folder.glob("*.csv"))}
+
+
 def snapshot(build: Path) -> dict[str, tuple[int, int]]:
     """(size, mtime) of every file of ``build/`` except state and the per-run dataset."""
     snap = {}
@@ -230,6 +241,12 @@ def input_digests(ctx, stage: str, order: list[str], cache: HashCache) -> dict[s
         for name in declared:
             if name == "raw":
                 digests["raw"] = raw_digest(ctx.raw, exclude=ctx.build)
+            elif name == "published":
+                digests.update(published_digests(ctx.raw, cache))
+            elif name == "scenarios":
+                for folder in (resources.scenarios_dir(), Path(ctx.raw) / "scenarios"):
+                    for p in sorted(folder.glob("*.toml")) if folder.is_dir() else []:
+                        digests[f"scenario:{p}"] = cache.digest(p)
             else:
                 digests[name] = cache.digest(ctx.table(name))
         return digests
@@ -294,3 +311,137 @@ def record(ctx, stage: str, code: str, inputs: dict[str, str], before: dict, cac
     state = {"stage": stage, "code": code, "inputs": inputs, "outputs": outputs,
              "counts": counts or {}, "hash_cache": cache.used}
     io.write_text_atomic(json.dumps(state, indent=1, sort_keys=True), state_path(ctx.build, stage))
+
+
+# ------------------------------------------------------------------ per-item work inside a stage
+
+
+def digest(obj) -> str:
+    """SHA-256 of a value's content: DataFrames, Series, arrays, mappings, sequences, scalars.
+
+    Two values with the same digest give the same result in every computation
+    of the pipeline (floats are hashed exactly, column names and dtypes count).
+
+    Examples
+    --------
+    >>> digest({"a": 1.0, "b": [1, 2]}) == digest({"b": [1, 2], "a": 1.0})
+    True
+    >>> digest(0.1) == digest(0.2), digest(1) == digest(1.0)
+    (False, False)
+    """
+    h = hashlib.sha256()
+    _feed(h, obj)
+    return h.hexdigest()
+
+
+def _feed(h, obj) -> None:
+    import numpy as np
+    import pandas as pd
+
+    if isinstance(obj, pd.DataFrame):
+        h.update(b"D" + repr([(str(c), str(t)) for c, t in obj.dtypes.items()]).encode())
+        h.update(pd.util.hash_pandas_object(obj, index=False).to_numpy().tobytes() if len(obj.columns) else b"")
+        h.update(repr(len(obj)).encode())
+    elif isinstance(obj, pd.Series):
+        h.update(b"S" + f"{obj.name}|{obj.dtype}".encode())
+        h.update(pd.util.hash_pandas_object(obj, index=False).to_numpy().tobytes())
+    elif isinstance(obj, np.ndarray):
+        h.update(b"A" + f"{obj.dtype}|{obj.shape}".encode() + np.ascontiguousarray(obj).tobytes())
+    elif isinstance(obj, dict):
+        h.update(b"{")
+        for k in sorted(obj, key=repr):
+            h.update(repr(k).encode() + b":")
+            _feed(h, obj[k])
+        h.update(b"}")
+    elif isinstance(obj, (list, tuple)):
+        h.update(b"[" if isinstance(obj, list) else b"(")
+        for v in obj:
+            _feed(h, v)
+            h.update(b",")
+        h.update(b"]")
+    else:
+        if isinstance(obj, np.generic):
+            obj = obj.item()
+        h.update(f"{type(obj).__name__}:{obj!r};".encode())
+
+
+class ItemCache:
+    """Results of the items of one stage (a tyre's fits, a simulated case, a figure), by input digest.
+
+    A stage that recomputes only what changed asks for each item with the
+    digest of everything the item depends on (:func:`digest` of its inputs) and
+    the stage's code fingerprint; a hit returns the stored result, a miss
+    computes and stores it. The dependency is recorded, not guessed: an item is
+    reused only when its own inputs and the code are unchanged, so the stage's
+    outputs equal a clean rebuild's. Entries live in ``build/cache/<stage>/``
+    (pickles written atomically; not stage outputs), ``--force`` ignores them,
+    and :meth:`prune` drops those the last run did not use.
+
+    Parameters
+    ----------
+    ctx : Context
+        The run (``build``, ``force``).
+    stage : str
+        Stage name (folder of the entries).
+    code : str, optional
+        Code fingerprint; default :func:`code_fingerprint` of the stage module.
+    """
+
+    def __init__(self, ctx, stage: str, code: str | None = None):
+        self.folder = Path(ctx.build) / "cache" / stage
+        self.code = code if code is not None else code_fingerprint(f"{PACKAGE}.stages.{stage}")
+        self.force = bool(getattr(ctx, "force", False))
+        self.used: set[str] = set()
+        self.hits = 0
+        self.misses = 0
+        self.counts: dict[str, list[int]] = {}  # kind -> [reused, computed]
+
+    def key(self, kind: str, *inputs) -> str:
+        """Key of one item: its kind, the code fingerprint and the digest of its inputs."""
+        return f"{kind}-{digest([self.code, kind, *inputs])[:40]}"
+
+    def get(self, key: str):
+        """``(True, value)`` for a stored item, else ``(False, None)``."""
+        self.used.add(key)
+        path = self.folder / f"{key}.pkl"
+        if self.force or not path.is_file():
+            return False, None
+        try:
+            with open(path, "rb") as fh:
+                value = pickle.load(fh)
+        except (OSError, EOFError, pickle.UnpicklingError, AttributeError, ImportError, IndexError, ValueError):
+            return False, None  # unreadable entry: recompute
+        self.hits += 1
+        self.counts.setdefault(key.rsplit("-", 1)[0], [0, 0])[0] += 1
+        return True, value
+
+    def put(self, key: str, value) -> None:
+        """Store an item (atomically)."""
+        self.used.add(key)
+        self.misses += 1
+        self.counts.setdefault(key.rsplit("-", 1)[0], [0, 0])[1] += 1
+        with io.atomic_path(self.folder / f"{key}.pkl") as tmp:
+            with open(tmp, "wb") as fh:
+                pickle.dump(value, fh, protocol=pickle.HIGHEST_PROTOCOL)
+
+    def get_or_compute(self, key: str, compute):
+        """The stored item ``key``, or ``compute()`` stored under it."""
+        hit, value = self.get(key)
+        if not hit:
+            value = compute()
+            self.put(key, value)
+        return value
+
+    def prune(self) -> int:
+        """Delete the entries this run did not use; return how many."""
+        n = 0
+        for p in self.folder.glob("*.pkl") if self.folder.is_dir() else []:
+            if p.stem not in self.used:
+                p.unlink(missing_ok=True)
+                n += 1
+        return n
+
+    def summary(self, kind: str | None = None) -> str:
+        """``"12 reused, 3 computed"`` (of the items of ``kind`` only, if given)."""
+        hits, misses = self.counts.get(kind, [0, 0]) if kind else (self.hits, self.misses)
+        return f"{hits} reused, {misses} computed"

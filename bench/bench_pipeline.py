@@ -1,0 +1,195 @@
+"""The whole pipeline on the demo campaigns: first run, no-op and small incremental changes.
+
+Usage::
+
+    python bench/bench_pipeline.py [--scales small full] [--data DIR] [--noop-repeats 3]
+
+For each scale a seeded demo campaign is generated once into ``--data`` (reused by
+later invocations, so before/after comparisons read the same bytes; not timed).
+The raw folder of the benchmark is a hard-linked copy of it, and these scenarios
+run one after the other on one build folder, each as a fresh ``python`` process
+(so the wall time includes interpreter start-up and imports, as ``tyrelab run``):
+
+``first``           clean build, every stage;
+``noop``            nothing changed (median of ``--noop-repeats``);
+``add_one_run``     one T1 run (a copy of an existing recording) in a new campaign folder;
+``change_one_row``  one manifest row's load changed (one T3 run);
+``remove_one_run``  the campaign folder of ``add_one_run`` removed again;
+``edit_published``  one value of a published table changed (``<raw>/published/table_xii.csv``:
+                    the rolling damping of one carriage condition; see :mod:`tyrelab.published`).
+
+Each scenario records the wall time and the CPU time (user + system, the
+process and its workers) and, per stage, the wall and CPU seconds spent in
+:func:`tyrelab.stages.run_stage` (fingerprint check included) and whether it ran.
+The machine's load average at the start is recorded too: on a shared machine
+wall times are noisy (other processes take the cores); CPU seconds are the
+steadier measure of the work done. Compare ratios and medians. Prints one JSON object.
+"""
+
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import os
+import resource
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+
+#: Child process: run every stage, time each, print one JSON line.
+CHILD = """
+import json, resource, sys, time
+def cpu():
+    s, c = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    return s.ru_utime + s.ru_stime + c.ru_utime + c.ru_stime
+t0 = time.perf_counter()
+from tyrelab.stages import ORDER, Context, run_stage
+ctx = Context(raw={raw!r}, build={build!r}, jobs={jobs})
+t_import = time.perf_counter() - t0
+stages = {{}}
+for name in ORDER:
+    t, c = time.perf_counter(), cpu()
+    r = run_stage(name, ctx)
+    stages[name] = {{"seconds": round(time.perf_counter() - t, 3), "cpu_s": round(cpu() - c, 3), "ran": not r.skipped}}
+print(json.dumps({{"import_s": round(t_import, 3), "stages": stages}}))
+"""
+
+SEED = 1991
+
+
+def campaign(data: Path, scale: str) -> Path:
+    """The demo campaign of ``scale`` (generated into ``data`` once)."""
+    out = data / scale / "campaign"
+    if not (out / "generator.json").exists():
+        shutil.rmtree(out, ignore_errors=True)
+        subprocess.run([sys.executable, "-m", "tyrelab.cli", "-q", "generate", "--out", str(out), "--scale", scale,
+                        "--seed", str(SEED)], check=True)
+    return out
+
+
+def run_once(raw: Path, build: Path, jobs: int) -> dict:
+    """One pipeline run in a fresh process: wall time and per-stage seconds."""
+    code = CHILD.format(raw=str(raw), build=str(build), jobs=jobs)
+    c0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    c1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if out.returncode != 0:
+        raise RuntimeError(f"pipeline run failed:\n{out.stderr[-3000:]}")
+    res = json.loads(out.stdout.strip().splitlines()[-1])
+    res["wall_s"] = round(wall, 3)
+    res["cpu_s"] = round(c1.ru_utime + c1.ru_stime - c0.ru_utime - c0.ru_stime, 3)
+    res["ran"] = [n for n, s in res["stages"].items() if s["ran"]]
+    return res
+
+
+def _read_manifest(path: Path) -> tuple[list[str], list[dict]]:
+    with open(path, newline="") as fh:
+        reader = csv.DictReader(fh)
+        return list(reader.fieldnames or []), list(reader)
+
+
+def _write_manifest(path: Path, fields: list[str], rows: list[dict]) -> None:
+    """Write a manifest as a new file (never through a hard link to the cached data)."""
+    tmp = path.with_suffix(".tmp")
+    with open(tmp, "w", newline="") as fh:
+        w = csv.DictWriter(fh, fieldnames=fields)
+        w.writeheader()
+        w.writerows(rows)
+    os.replace(tmp, path)
+
+
+def add_one_run(raw: Path, main: Path) -> Path:
+    """A new campaign folder with one copy of a T1 measurement run (new run id)."""
+    fields, rows = _read_manifest(main / "manifest.csv")
+    row = next(r for r in rows if r["tyre_id"] == "T1" and r["kind"] == "measurement")
+    folder = raw / "added"
+    (folder / "runs").mkdir(parents=True)
+    new = dict(row, run_id="T1_added_001", file="runs/T1_added_001" + Path(row["file"]).suffix)
+    shutil.copyfile(main / row["file"], folder / new["file"])
+    _write_manifest(folder / "manifest.csv", fields, [new])
+    return folder
+
+
+def change_one_row(main: Path) -> str:
+    """Change the load of one T3 measurement run (+0.5 kN); return its run id."""
+    fields, rows = _read_manifest(main / "manifest.csv")
+    row = next(r for r in rows if r["tyre_id"] == "T3" and r["kind"] == "measurement")
+    row["load_kN"] = f"{float(row['load_kN']) + 0.5:g}"
+    _write_manifest(main / "manifest.csv", fields, rows)
+    return row["run_id"]
+
+
+def edit_published(raw: Path) -> str:
+    """Copy the shipped published tables into ``<raw>/published`` with one value of Table XII changed."""
+    from tyrelab import resources
+
+    target = raw / "published"
+    shutil.copytree(resources.published_dir(), target)
+    path = target / "table_xii.csv"
+    with open(path, newline="") as fh:
+        reader = csv.DictReader(fh)
+        fields, rows = list(reader.fieldnames or []), list(reader)
+    col = "damping_kN_s_per_m"
+    row = next(r for r in rows if r.get(col))
+    row[col] = f"{float(row[col]) * 1.1:.3f}"
+    _write_manifest(path, fields, rows)
+    return f"table_xii {col} of the first row x1.1"
+
+
+def bench_scale(scale: str, data: Path, work: Path, jobs: int, noop_repeats: int) -> dict:
+    """Every scenario on one scale (see the module docstring)."""
+    src = campaign(data, scale)
+    raw, build = work / scale / "raw", work / scale / "build"
+    shutil.rmtree(work / scale, ignore_errors=True)
+    shutil.copytree(src, raw / "campaign", copy_function=os.link)
+    main = raw / "campaign"
+    _, rows = _read_manifest(main / "manifest.csv")
+    out: dict = {"runs": len(rows)}
+    out["first"] = run_once(raw, build, jobs)
+    noops = [run_once(raw, build, jobs) for _ in range(noop_repeats)]
+    out["noop"] = {"wall_s": statistics.median(n["wall_s"] for n in noops), "all_wall_s": [n["wall_s"] for n in noops],
+                   "cpu_s": statistics.median(n["cpu_s"] for n in noops),
+                   "ran": sorted({s for n in noops for s in n["ran"]}), "stages": noops[0]["stages"],
+                   "import_s": noops[0]["import_s"]}
+    added = add_one_run(raw, main)
+    out["add_one_run"] = run_once(raw, build, jobs)
+    changed = change_one_row(main)
+    out["change_one_row"] = dict(run_once(raw, build, jobs), changed=changed)
+    shutil.rmtree(added)
+    out["remove_one_run"] = run_once(raw, build, jobs)
+    what = edit_published(raw)
+    out["edit_published"] = dict(run_once(raw, build, jobs), changed=what)
+    return out
+
+
+def main(argv=None) -> dict:
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("--scales", nargs="+", choices=["small", "full"], default=["small", "full"])
+    p.add_argument("--data", type=Path, default=Path(tempfile.gettempdir()) / "tyrelab-bench-data",
+                   help="where the generated campaigns are kept between invocations")
+    p.add_argument("--work", type=Path, default=None, help="raw/build folders (default: a temporary folder)")
+    p.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
+    p.add_argument("--noop-repeats", type=int, default=3)
+    p.add_argument("--label", default="", help="free text stored in the JSON (e.g. before/after)")
+    args = p.parse_args(argv)
+    result = {"benchmark": "pipeline", "label": args.label, "cores": os.cpu_count(), "jobs": args.jobs,
+              "load_average_at_start": [round(x, 2) for x in os.getloadavg()], "scales": {}}
+    with tempfile.TemporaryDirectory() as tmp:
+        work = args.work or Path(tmp)
+        for scale in args.scales:
+            result["scales"][scale] = bench_scale(scale, args.data, work, args.jobs, args.noop_repeats)
+    print(json.dumps(result))
+    return result
+
+
+if __name__ == "__main__":
+    main()
