@@ -176,12 +176,9 @@ def simulate_linear(
     n = w.shape[1]
     q = np.empty((2, n), dtype=complex)
     q0 = inv @ xi0
-    powers = np.arange(n)
-    for i in range(2):
-        p = signal.lfilter([1.0], [1.0, -mu[i]], g[i])
-        q[i, 0] = 0.0
-        q[i, 1:] = p[:-1]
-        q[i] += q0[i] * mu[i] ** powers
+    for i in range(2):  # q[k+1] = mu q[k] + g[k] from q[0] = q0 (the initial state as lfilter's zi)
+        q[i, 0] = q0[i]
+        q[i, 1:] = signal.lfilter([1.0], [1.0, -mu[i]], g[i, :-1], zi=[mu[i] * q0[i]])[0]
     y = (cd @ (vecs @ q)).real + dd @ w
     return {"z_m": y[0], "v_m_s": y[1], "a_m_s2": y[2]}
 

@@ -18,8 +18,18 @@ The rear wheel sees the front wheel's input delayed by wheelbase/speed. The thes
 model was a 7-DOF ADAMS model with front-axle roll (§7.3); in the pitch plane the
 vertical, longitudinal and pitch motions are independent of roll, lateral and yaw
 (Stayner, Collins and Lines 1984), so the pitch-plane model carries the same
-information for Tables XVII/XVIII. Fixed-step RK4 at 1 ms, vectorised over runs.
-SI units.
+information for Tables XVII/XVIII. SI units.
+
+Two solution paths, chosen per run by :func:`simulate_tractor` (``method="auto"``):
+
+* while both axles stay in contact the model is linear (the longitudinal element
+  acts only in contact, which then always holds): :func:`linear_response` is its
+  exact discretisation for inputs linear between the ``dt/2`` samples (first-order
+  hold, :func:`tyrelab.vehicle.ride.simulate_state_space` on
+  :func:`tyrelab.vehicle.ride.state_space`, the carriage's method);
+* a run whose linear solution lifts a tyre off (total tyre force would pull) is
+  integrated again by the nonlinear fixed-step RK4 at ``dt`` (the thesis used
+  Runge-Kutta-Nystrom at about 1 ms), vectorised over those runs.
 """
 
 from __future__ import annotations
@@ -30,7 +40,12 @@ import numpy as np
 
 from .carriage import GRAVITY_M_S2
 
-__all__ = ["Tractor", "simulate_tractor", "LONGITUDINAL_MODELS"]
+__all__ = ["Tractor", "simulate_tractor", "linear_response", "LONGITUDINAL_MODELS", "METHODS"]
+
+#: Solution paths of :func:`simulate_tractor`.
+METHODS = ("auto", "rk4")
+#: Outputs of one run.
+_OUTPUTS = ("vertical_m_s2", "pitch_rad_s2", "longitudinal_m_s2", "z_m", "theta_rad")
 
 #: Rear longitudinal element: none, Kelvin-Voigt (parallel) or Maxwell (series).
 LONGITUDINAL_MODELS = ("none", "kelvin_voigt", "maxwell")
@@ -77,7 +92,107 @@ class Tractor:
         return np.asarray(self.front_distance_m) + np.asarray(self.rear_distance_m)
 
 
+def _params(tractor: Tractor, runs: int) -> dict[str, np.ndarray]:
+    return {k: np.broadcast_to(np.asarray(getattr(tractor, k), float), (runs,)) for k in (
+        "mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_m", "cg_height_m",
+        "front_stiffness_N_per_m", "rear_stiffness_N_per_m", "front_damping_N_s_per_m", "rear_damping_N_s_per_m",
+        "longitudinal_stiffness_N_per_m", "longitudinal_damping_N_s_per_m")}  # fmt: skip
+
+
+def linear_response(tractor: Tractor, inputs: np.ndarray, dt_s: float) -> dict[str, np.ndarray]:
+    """Exact response of one run (scalar ``tractor``) in permanent contact, from rest.
+
+    The linear model is :func:`tyrelab.vehicle.ride.state_space` and its exact (first-order
+    hold) solution :func:`tyrelab.vehicle.ride.simulate_state_space`, with ``z`` and ``θ``
+    added as outputs.
+
+    Parameters
+    ----------
+    tractor : Tractor
+        Scalar parameters of one run.
+    inputs : ndarray, shape (4, n)
+        ``u_f, u_f', u_r, u_r'`` at the sample times (step ``dt_s``), linear in between.
+    dt_s : float
+        Sample step, s.
+
+    Returns
+    -------
+    dict
+        The per-sample outputs of :func:`simulate_tractor` plus ``front_force_N`` and
+        ``rear_force_N`` (dynamic axle forces, from which lift-off is judged).
+    """
+    from .ride import simulate_state_space, state_space  # ride imports this module
+
+    a, b, c, d = state_space(tractor)
+    n = a.shape[0]
+    c = np.vstack([c[2:5], np.eye(n)[:2], c[5:7]])  # vertical, pitch, longitudinal, z, θ (states 0, 1), forces
+    d = np.vstack([d[2:5], np.zeros((2, d.shape[1])), d[5:7]])
+    y = simulate_state_space(a, b, c, d, inputs, dt_s)
+    y[3:5, 0] = 0.0  # at rest at the first sample exactly (the modal transform leaves ~1e-22)
+    return dict(zip(_OUTPUTS + ("front_force_N", "rear_force_N"), y))
+
+
 def simulate_tractor(
+    tractor: Tractor,
+    front_half,
+    front_rate_half,
+    rear_half,
+    rear_rate_half,
+    dt_s: float = 1e-3,
+    lift_off: bool = True,
+    gravity_m_s2: float = GRAVITY_M_S2,
+    method: str = "auto",
+) -> dict[str, np.ndarray]:
+    """Simulate the pitch-plane tractor: exact where the model is linear, RK4 where a tyre lifts off.
+
+    Parameters and returns as :func:`_simulate_rk4`; ``method="rk4"`` integrates every run
+    with RK4, ``"auto"`` (default) solves each run exactly in the linear model
+    (:func:`linear_response`, on the ``dt/2`` samples) and integrates only the runs
+    where a tyre would lift off (``lift_off``) with RK4. ``method_used`` says which per run.
+    """
+    if method not in METHODS:
+        raise ValueError(f"method {method!r}: expected one of {METHODS}")
+    if tractor.longitudinal_model not in LONGITUDINAL_MODELS:
+        raise ValueError(f"longitudinal_model {tractor.longitudinal_model!r}: expected {LONGITUDINAL_MODELS}")
+    uf, udf, ur, udr = (np.atleast_2d(np.asarray(v, float)) for v in (front_half, front_rate_half, rear_half, rear_rate_half))
+    squeeze = np.ndim(front_half) == 1
+    if uf.shape[1] % 2 == 0:
+        raise ValueError("inputs must be sampled at dt/2 (odd length)")
+    runs, n = uf.shape[0], (uf.shape[1] + 1) // 2
+    out = {k: np.empty((runs, n)) for k in _OUTPUTS}
+    out["lift_off_fraction_front"] = np.zeros(runs)
+    out["lift_off_fraction_rear"] = np.zeros(runs)
+    used = np.array(["rk4"] * runs, dtype=object)
+    todo = list(range(runs))
+    if method == "auto":
+        p = _params(tractor, runs)
+        w = gravity_m_s2 * p["mass_kg"]
+        wb = p["front_distance_m"] + p["rear_distance_m"]
+        todo = []
+        for i in range(runs):
+            one = Tractor(**{k: float(v[i]) for k, v in p.items()}, longitudinal_model=tractor.longitudinal_model)
+            lin = linear_response(one, np.stack([uf[i], udf[i], ur[i], udr[i]]), dt_s / 2)
+            floor_f, floor_r = -w[i] * p["rear_distance_m"][i] / wb[i], -w[i] * p["front_distance_m"][i] / wb[i]
+            # the RK4 judges contact at the half steps too: so does this check
+            if lift_off and (lin["front_force_N"].min() <= floor_f or lin["rear_force_N"].min() <= floor_r):
+                todo.append(i)
+                continue
+            for k in _OUTPUTS:
+                out[k][i] = lin[k][::2]
+            used[i] = "exact"
+    if todo:
+        sub = Tractor(**{k: v[todo] for k, v in _params(tractor, runs).items()},
+                      longitudinal_model=tractor.longitudinal_model)
+        nl = _simulate_rk4(sub, uf[todo], udf[todo], ur[todo], udr[todo], dt_s, lift_off, gravity_m_s2)
+        for k, v in nl.items():
+            out[k][todo] = v
+    out["method_used"] = used
+    if squeeze:
+        out = {k: v[0] for k, v in out.items()}
+    return out
+
+
+def _simulate_rk4(
     tractor: Tractor,
     front_half,
     front_rate_half,
@@ -115,10 +230,7 @@ def simulate_tractor(
     if uf.shape[1] % 2 == 0:
         raise ValueError("inputs must be sampled at dt/2 (odd length)")
     runs = uf.shape[0]
-    p = {k: np.broadcast_to(np.asarray(getattr(tractor, k), float), (runs,)) for k in (
-        "mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_m", "cg_height_m",
-        "front_stiffness_N_per_m", "rear_stiffness_N_per_m", "front_damping_N_s_per_m", "rear_damping_N_s_per_m",
-        "longitudinal_stiffness_N_per_m", "longitudinal_damping_N_s_per_m")}  # fmt: skip
+    p = _params(tractor, runs)
     m, inertia, a, b, h = (p[k] for k in ("mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_m", "cg_height_m"))
     kf, kr, cf, cr = (p[k] for k in ("front_stiffness_N_per_m", "rear_stiffness_N_per_m", "front_damping_N_s_per_m", "rear_damping_N_s_per_m"))
     kx, cx = p["longitudinal_stiffness_N_per_m"], p["longitudinal_damping_N_s_per_m"]
