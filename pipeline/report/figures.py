@@ -2,7 +2,8 @@
 
 Each function mirrors one thesis figure (numbers in the names and captions)
 and returns a small ``<svg>`` element ready to inline into an HTML page:
-matplotlib's Agg backend, text kept as text (``svg.fonttype='none'``, so the
+:class:`matplotlib.figure.Figure` objects made directly (no pyplot state, no
+backend switch: the SVG backend is used by ``savefig``), text kept as text (``svg.fonttype='none'``, so the
 browser renders it with its own sans-serif font and nothing is embedded), a
 fixed ``svg.hashsalt`` and no ``Date`` metadata so the output is
 deterministic. A function returns ``None`` when its input holds nothing to
@@ -18,14 +19,11 @@ import io
 import re
 
 import matplotlib
-
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import matplotlib.text  # noqa: E402
-import numpy as np  # noqa: E402
-import pandas as pd  # noqa: E402
-from matplotlib.ticker import LogFormatter, NullFormatter  # noqa: E402
+import matplotlib.text
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
+from matplotlib.ticker import LogFormatter, NullFormatter, NullLocator
 
 __all__ = ["RC", "SIZE", "T_TYRES", "NOMINAL_PRESSURE_BAR", "MARKERS", "to_svg", "compact_svg",
     "stiffness_vs_pressure", "stiffness_vs_speed", "damping_vs_speed", "pressure_dependence_vs_wr",
@@ -58,8 +56,8 @@ NOMINAL_PRESSURE_BAR = 1.38
 MARKERS = ("o", "s", "^", "v", "D", "x", "+", "*")
 
 
-def to_svg(fig: matplotlib.figure.Figure) -> str:
-    """Serialise ``fig`` as a bare, deterministic ``<svg>`` element and close it.
+def to_svg(fig: Figure) -> str:
+    """Serialise ``fig`` as a bare, deterministic ``<svg>`` element.
 
     Parameters
     ----------
@@ -77,9 +75,8 @@ def to_svg(fig: matplotlib.figure.Figure) -> str:
     for text in fig.findobj(matplotlib.text.Text):
         if "$" in text.get_text():
             text.set_parse_math(False)
-    with plt.rc_context(RC):
+    with matplotlib.rc_context(RC):
         fig.savefig(buf, format="svg", metadata={"Date": None, "Creator": None})
-    plt.close(fig)
     return compact_svg(buf.getvalue())
 
 
@@ -103,15 +100,20 @@ def compact_svg(text: str) -> str:
 
 
 def _figure(nrows: int = 1, ncols: int = 1, size=SIZE, layout: str | None = "constrained", **kw):
-    with plt.rc_context(RC):
-        return plt.subplots(nrows, ncols, figsize=size, layout=layout, **kw)
+    """A :class:`matplotlib.figure.Figure` and its axes, made directly: no pyplot figure manager
+    to create and close per figure, no global backend switch at import."""
+    with matplotlib.rc_context(RC):
+        fig = Figure(figsize=size, layout=layout)
+        return fig, fig.subplots(nrows, ncols, **kw)
 
 
 def _plain_log(ax, axis: str = "y") -> None:
-    """Log-axis tick labels as plain text (``1e-05``): no mathtext to parse, faster and smaller."""
+    """Log-axis tick labels as plain text (``1e-05``) and no minor ticks: no mathtext to parse,
+    a few tick artists instead of dozens, faster and smaller."""
     target = ax.yaxis if axis == "y" else ax.xaxis
     target.set_major_formatter(LogFormatter(labelOnlyBase=True))
     target.set_minor_formatter(NullFormatter())
+    target.set_minor_locator(NullLocator())  # no minor ticks: each is an artist laid out and drawn
 
 
 def _has(df: pd.DataFrame | None, *cols: str) -> bool:

@@ -26,6 +26,7 @@ values were measured immediately before the carriage runs, §6.3); see
 from __future__ import annotations
 
 import time
+from pathlib import Path
 
 import pandas as pd
 
@@ -33,6 +34,7 @@ from .. import published
 from ..vehicle import bounce_pitch, ride, studies
 from ..vehicle import published_layouts as layouts
 from .base import Context, StageResult, write_quarantine
+from .state import ItemCache
 
 __all__ = ["SEED", "STEMS", "THESIS_XX_STATISTICS", "run"]
 
@@ -79,15 +81,53 @@ def _side_by_side(ours: pd.DataFrame, thesis: pd.DataFrame, keys: list[str]) -> 
     return out[cols].reset_index(drop=True)
 
 
+def _ride(ctx: Context, files: list[tuple[str, str]], cache: ItemCache):
+    """:func:`tyrelab.vehicle.ride.run_scenarios`, each scenario kept under the digest of what it
+    reads: its file, and the per-speed fits of the warehouse only if it names a measured tyre
+    (``measured_tyre_id``, the one way a scenario reads them)."""
+    fits = [ctx.read_table(t) if ctx.has_table(t) else None for t in INPUTS[2:]]
+    keys = []
+    for path, source in files:
+        text = Path(path).read_bytes()
+        keys.append(cache.key("ride", path, source, str(ctx.build), text, *(fits if b"measured_tyre_id" in text else [])))
+    done = {k: v for k in keys for hit, v in [cache.get(k)] if hit}
+    todo = [(f, k) for f, k in zip(files, keys) if k not in done]
+    if todo:
+        scenarios, results, bad = ride.run_scenarios([f for f, _ in todo], ctx, ctx.build)
+        if len(scenarios) and scenarios["scenario"].duplicated().any():  # rows not attributable: no reuse
+            return ride.run_scenarios(files, ctx, ctx.build)
+        for (path, _), k in zip([f for f, _ in todo], [k for _, k in todo]):
+            failed = [b for b in bad if b["file"] == path]
+            mine = scenarios[scenarios["file"] == path] if len(scenarios) else scenarios
+            name = mine["scenario"].iloc[0] if len(mine) else None
+            rows = results[results["scenario"] == name] if name is not None and len(results) else results.iloc[0:0]
+            done[k] = (mine, rows, failed)
+            cache.put(k, done[k])
+    parts = [done[k] for k in keys]
+    frames = [p for p in parts if not p[2]]
+    scenarios = pd.concat([p[0] for p in frames], ignore_index=True) if frames else pd.DataFrame()
+    results = pd.concat([p[1] for p in frames], ignore_index=True) if frames else pd.DataFrame()
+    return scenarios, results, [b for p in parts for b in p[2]]
+
+
+def _carriage_tables(car: dict) -> dict:
+    """The parts of :func:`tyrelab.vehicle.studies.carriage_study` the stage writes (not the records)."""
+    return {k: car[k] for k in ("runs", "comparisons", "table_xiii", "table_xiv", "spectra", "acceleration_spectra")}
+
+
 def run(ctx: Context) -> StageResult:
     """Run the chapter 6-8 simulations and write their tables (see module docstring)."""
     t0 = time.perf_counter()
     pub, sources = _read(ctx)
     xii = layouts.carriage_rolling(pub["table_xii"])
     stationary = layouts.carriage_stationary(pub["table_xii"])
+    # each study is kept under the digest of exactly what it reads (ItemCache): a new recording or
+    # a changed ride scenario re-runs neither, a changed Table XII only the carriage
+    cache = ItemCache(ctx, "simulate")
 
     # chapter 6: carriage
-    car = studies.carriage_study(xii, stationary, seed=SEED)
+    car = cache.get_or_compute(cache.key("carriage", xii, stationary, SEED),
+                               lambda: _carriage_tables(studies.carriage_study(xii, stationary, seed=SEED)))
     xiii = _side_by_side(
         car["table_xiii"].rename(columns={"rolling": "ours_rolling", "stationary": "ours_stationary"}),
         layouts.carriage_accuracy(pub["table_xiii"]),
@@ -100,7 +140,9 @@ def run(ctx: Context) -> StageResult:
     )
 
     # chapter 7: tractor
-    tr = studies.tractor_study(layouts.tractor_mass(pub["table_xv"]), layouts.tractor_tyres(pub["table_xvi"]), seed=SEED)
+    mass, tyres = layouts.tractor_mass(pub["table_xv"]), layouts.tractor_tyres(pub["table_xvi"])
+    tr = cache.get_or_compute(cache.key("tractor", mass, tyres, SEED),
+                              lambda: studies.tractor_study(mass, tyres, seed=SEED))
     xvii = _side_by_side(tr["table_xvii"], layouts.tractor_accuracy(pub["table_xvii"]), ["track", "quantity", "statistic"])
     thesis_xviii = layouts.longitudinal_sweep(pub["table_xviii"])
     xviii = tr["table_xviii"].merge(
@@ -166,12 +208,13 @@ def run(ctx: Context) -> StageResult:
     }
     # ride scenarios (issue 13)
     files = ride.scenario_files(ctx.raw)
-    tables["ride_scenarios"], tables["ride_results"], bad = ride.run_scenarios(files, ctx, ctx.build)
+    tables["ride_scenarios"], tables["ride_results"], bad = _ride(ctx, files, cache)
     write_quarantine(ctx, "simulate", [{"campaign": None, "run_id": None, "file": b["file"], "stage": "simulate",
                                         "reason": b["reason"]} for b in bad])
 
     for name, df in tables.items():
         ctx.write_table(name, df.reset_index(drop=True))
+    cache.prune()
     n_runs = len(cr) + len(trr)
     return StageResult(
         name="simulate",
@@ -179,5 +222,6 @@ def run(ctx: Context) -> StageResult:
         n_ok=n_runs + len(files) - len(bad),
         n_quarantined=len(bad),
         seconds=time.perf_counter() - t0,
-        message=f"{len(tables)} tables; {len(files) - len(bad)} ride scenarios; slatted track is a seeded stand-in",
+        message=f"{len(tables)} tables; {len(files) - len(bad)} ride scenarios; studies {cache.summary()}; "
+                "slatted track is a seeded stand-in",
     )
