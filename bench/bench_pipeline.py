@@ -23,7 +23,10 @@ process and its workers) and, per stage, the wall and CPU seconds spent in
 :func:`tyrelab.stages.run_stage` (fingerprint check included) and whether it ran.
 The machine's load average at the start is recorded too: on a shared machine
 wall times are noisy (other processes take the cores); CPU seconds are the
-steadier measure of the work done. Compare ratios and medians. Prints one JSON object.
+steadier measure of the work done, but they count only the pipeline process
+(and children it reaps): the process-pool workers that the executor starts
+through the forkserver (ingest conversion, analyse batches, report figures, ride
+scenarios) are not in them. Compare ratios and medians. Prints one JSON object.
 """
 
 from __future__ import annotations

@@ -1,7 +1,8 @@
 """Run every benchmark in bench/ and print their JSON/text output (``make bench``).
 
 Usage: ``python bench/run_all.py [--quick]``. ``--quick`` uses small sizes
-(200 -> 50 analysis runs; scaling 100 and 1000 runs only) for a smoke run.
+(200 -> 50 analysis runs; scaling 100 and 1000 runs only; the pipeline on the small
+campaign only) for a smoke run.
 Each benchmark runs in its own process, one after the other (no contention).
 Benchmarks owned by other parts of the project (``bench_carriage.py``,
 ``bench_accuracy.py``) are run if present.
@@ -24,6 +25,7 @@ def plan(quick: bool) -> list[list[str]]:
         ["bench_analysis.py", "--runs", "50" if quick else "200"],
         ["bench_scaling.py", "--sizes", *(["100", "1000"] if quick else ["100", "1000", "10000"])],
     ]
+    cmds.append(["bench_pipeline.py", "--scales", "small"] if quick else ["bench_pipeline.py"])
     cmds += [[name] for name in ("bench_carriage.py", "bench_accuracy.py") if (HERE / name).exists()]
     cmds += [["bench_ride.py", *(["--skip-sweep"] if quick else [])]] if (HERE / "bench_ride.py").exists() else []
     return cmds
