@@ -73,7 +73,7 @@ def main(argv=None) -> int:
                               v, wb, stop)
     ss = ride.state_space(tr, sc.seat.ahead_of_cg_m, sc.seat.height_above_cg_m)
     lin, t_lin = _timed(ride.simulate_state_space, *ss, np.vstack([u[::2] for u in inputs]), outputs=(0,))
-    rk4, t_rk4 = _timed(simulate_tractor, tr, *inputs, lift_off=True)
+    rk4, t_rk4 = _timed(simulate_tractor, tr, *inputs, lift_off=True, method="rk4")
     seat = rk4["vertical_m_s2"] + sc.seat.ahead_of_cg_m * rk4["pitch_rad_s2"]
     diff = float(np.max(np.abs(lin[0] - seat)) / np.sqrt(np.mean(seat**2)))
     out.update(baseline_run_s=round(stop / 1000, 1), linear_path_s=round(t_lin, 3), rk4_s=round(t_rk4, 3),

@@ -723,7 +723,8 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
                   for k in redo]
         params = {f: np.array([float(getattr(runs[k]["tr"], f)) for k in redo]) for f in _TRACTOR_ARRAYS}
         sim = simulate_tractor(Tractor(**params, longitudinal_model=scenario.tractor.longitudinal_model),
-                               *[np.array([inp[j] for inp in inputs]) for j in range(4)], DT_S, lift_off=True)
+                               *[np.array([inp[j] for inp in inputs]) for j in range(4)], DT_S, lift_off=True,
+                               method="rk4")  # these runs lift off: the linear attempt of "auto" would be wasted
         for row_i, k in enumerate(redo):
             r = runs[k]
             vert, pitch, lon = (sim[c][row_i, :r["stop"]] for c in ("vertical_m_s2", "pitch_rad_s2", "longitudinal_m_s2"))
