@@ -70,11 +70,45 @@ def map_batches(
             done(i)
         return results
     mp = multiprocessing.get_context("forkserver")
-    with ProcessPoolExecutor(max_workers=jobs, mp_context=mp) as pool:
+    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=mp, initializer=_leave_interrupts_to_the_parent)
+    try:
         for i, r in enumerate(pool.map(fn, batches, chunksize=1)):
             results.append(r)
             done(i)
+    except BaseException:
+        _abandon(pool)
+        raise
+    pool.shutdown(wait=True)
     return results
+
+
+def _leave_interrupts_to_the_parent() -> None:
+    """Worker initializer: ignore SIGINT.
+
+    Ctrl-C in a terminal signals the whole process group; the parent turns it into one
+    line and exit 130 and ends the workers itself (:func:`_abandon`), so a worker must
+    not print its own ``KeyboardInterrupt`` traceback.
+    """
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+def _abandon(pool: ProcessPoolExecutor) -> None:
+    """End a pool at once after an error or an interrupt in the parent.
+
+    ``shutdown(wait=True)`` (what ``with`` does) would first run every queued batch to the
+    end — minutes for a large campaign after Ctrl-C. Queued batches are cancelled and the
+    running workers terminated (SIGTERM, default action: they end silently), then joined,
+    so no worker outlives the command or finds its parent gone while starting up.
+    """
+    processes = list((getattr(pool, "_processes", None) or {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for proc in processes:
+        if proc.is_alive():
+            proc.terminate()
+    for proc in processes:
+        proc.join(timeout=10)
 
 
 def _map_dask(fn: Callable[[Any], Any], batches: list[Any], ctx, done: Callable[[int], None]) -> list[Any]:

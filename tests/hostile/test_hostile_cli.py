@@ -157,3 +157,29 @@ def test_sigterm_leaves_no_temporary_folders(tmp_path):
     left = list(tmp.iterdir())
     shutil.rmtree(tmp)
     assert not left
+
+
+def test_ctrl_c_to_the_whole_process_group_prints_one_line(tmp_path):
+    """A terminal's Ctrl-C signals the command *and* its pool workers: one line, exit 130.
+
+    The workers ignore SIGINT and are ended by the parent, so none prints its own
+    ``KeyboardInterrupt`` traceback, and the parent does not first run every queued run.
+    """
+    raw = write_campaign(tmp_path / "raw", [(manifest_row(f"r{i}", f"r{i}.parquet", pressure_bar=1 + i / 10),
+                                             spring_damper_recording(duration_s=60.0, seed=i)) for i in range(40)])
+    tmp = Path(tempfile.mkdtemp(prefix="t11"))
+    env = {**os.environ, "TMPDIR": str(tmp)}
+    proc = subprocess.Popen([*PY, "run", "--raw", str(raw), "--build", str(tmp_path / "b"), "--jobs", "2"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
+                            start_new_session=True)
+    deadline = time.monotonic() + 120
+    while not list(tmp.glob("pymp-*")):
+        assert time.monotonic() < deadline and proc.poll() is None, proc.stderr.read() if proc.poll() else ""
+        time.sleep(0.05)
+    time.sleep(1.0)
+    os.killpg(proc.pid, signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    shutil.rmtree(tmp, ignore_errors=True)
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err and "KeyboardInterrupt" not in err, err
+    assert err.strip().splitlines()[-1].endswith("interrupted")
