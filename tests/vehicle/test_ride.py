@@ -343,3 +343,28 @@ def test_cli_out_that_is_a_file_is_a_usage_error(tmp_path, capsys):
     assert cli.main(["ride", str(path), "--out", str(tmp_path / "taken")]) == 2
     err = capsys.readouterr().err
     assert "--out" in err and "Traceback" not in err
+
+
+def test_scenario_row_gives_the_modes_at_its_own_pressures(tmp_path):
+    """The ride_scenarios row's natural frequencies and nodal points are those of the scenario's own
+    (nominal) pressures, whether its [sweep] lists them second or not at all, not the first pair's."""
+    base = scenario_text('kind = "iso8608"\nclass = "A"\nlength_m = 12', "[10]")
+    second = write(tmp_path, base + "[sweep]\nfront_pressures_bar = [0.8, 1.6]\n", "second.toml")
+    absent = write(tmp_path, base.replace('name = "test tractor"', 'name = "absent"')
+                   + "[sweep]\nfront_pressures_bar = [0.8, 2.4]\n", "absent.toml")
+    scen, res, problems = ride.run_scenarios([(str(second), "raw"), (str(absent), "raw")])
+    assert not problems and len(res) == 4
+    # the modes at 1.6/1.2 bar from the tyres alone (bounce_pitch through the CLI's own path)
+    nominal = ride.ride(load_scenario(write(tmp_path, base, "nominal.toml")), with_spectra=False)
+    low = res[(res["scenario"] == "test tractor") & (res["front_pressure_bar"] == 0.8)]
+    for name in ("test tractor", "absent"):
+        row = scen[scen["scenario"] == name].iloc[0]
+        for mode in ("bounce", "pitch"):
+            assert row[f"{mode}_Hz"] == pytest.approx(nominal.natural_frequencies_Hz[mode], rel=1e-12)
+            assert row[f"{mode}_nodal_point_m"] == pytest.approx(nominal.nodal_points_m[mode], rel=1e-12)
+    # and the first pair's (0.8 bar front: a softer front tyre) differ by far more than rounding
+    # (bounce -1.0 %, pitch -29 %: the pitch mode leans on the front axle)
+    for mode, least in (("bounce", 0.005), ("pitch", 0.2)):
+        assert low[f"{mode}_Hz"].iloc[0] < (1 - least) * nominal.natural_frequencies_Hz[mode], mode
+    nominal_rows = res[res["is_nominal"]]
+    assert nominal_rows["bounce_Hz"].tolist() == pytest.approx([nominal.natural_frequencies_Hz["bounce"]])
