@@ -37,6 +37,19 @@ def test_published_table_iii_accuracy():
     assert r.formula_kN_per_m == pytest.approx(traction_tyre_stiffness("13.6R38", 1.2, 4))
     assert r.stationary_kN_per_m == pytest.approx(184 + 200 * 1.2)
     assert np.isfinite(s.loc["formula", "mean_error_percent"])
+    # the printed §4.5.3 figures beside ours, and every difference ours - thesis (non-zero here)
+    printed = {"formula": (3.0, 10.0, 0.65, 56), "stationary": (17.0, 24.0, 0.25, None)}
+    for method, (mean, sd, p, n) in printed.items():
+        row = s.loc[method]
+        assert (row.thesis_mean_error_percent, row.thesis_sd_error_percent, row.thesis_p_within_10_percent) == (mean, sd, p)
+        assert row.thesis_n == n or (n is None and pd.isna(row.thesis_n))
+        assert row.thesis_p_within_10_percent_from_printed_moments == pytest.approx(fa.p_within(mean, sd), rel=1e-12)
+        # ours is the normal-theory P (the column the report pairs it with is not found by name)
+        assert row.p_within_10_percent_difference == pytest.approx(row.p_within_10_percent_normal - p, abs=1e-12)
+        assert abs(row.p_within_10_percent_difference) > 1e-3
+    from comparisons import assert_differences_are_ours_minus_thesis
+
+    assert assert_differences_are_ours_minus_thesis(s.reset_index(), "formula accuracy") >= 4
 
 
 def test_predictions_from_recordings_use_measured_pressures():
@@ -47,6 +60,12 @@ def test_predictions_from_recordings_use_measured_pressures():
     pred = fa.predictions_from_recordings(pd.DataFrame(rows), ours, tyres())
     assert list(pred.pressure_bar) == [0.8, 1.2, 1.6] and set(pred.tyre_id) == {"T3"}
     assert pred.stationary_error_percent.iloc[0] == pytest.approx(100 * ((184 + 160) / (112 + 177 * 0.8) - 1))
+    # the formula from the tyres table's size and age of T3 (13.6R38, 4 years, Table II)
+    t3 = tyres().set_index("tyre_id").loc["T3"]
+    assert (t3["size"], t3["age_years"]) == ("13.6R38", 4)
+    np.testing.assert_allclose(pred.formula_kN_per_m, [traction_tyre_stiffness("13.6R38", p, 4) for p in (0.8, 1.2, 1.6)],
+                               rtol=1e-12)
+    assert not pred.age_assumed.any()
 
 
 def test_accuracy_of_a_single_prediction_has_a_mean_but_no_sd_and_no_warning():
