@@ -114,6 +114,11 @@ def _name(module: str) -> str:
     return module.replace("/", ".").removesuffix(".py")
 
 
+def _mutant_key(work_item) -> tuple:
+    """Sort key of a work item that does not depend on its (random) job id."""
+    return tuple((tuple(m.start_pos), tuple(m.end_pos), m.operator_name, m.occurrence) for m in work_item.mutations)
+
+
 def select(session: Path, sample: int | None, seed: int = 2631) -> None:
     """Skip the mutants of operators not in ``KEPT_OPERATORS`` and, with ``sample``, all but a
     seeded random sample of ``sample`` of the rest (cosmic-ray's own filters do the same:
@@ -122,7 +127,9 @@ def select(session: Path, sample: int | None, seed: int = 2631) -> None:
     from cosmic_ray.work_item import WorkerOutcome, WorkResult
 
     with use_db(str(session), WorkDB.Mode.open) as db:
-        items = sorted(db.pending_work_items, key=lambda w: w.job_id)
+        # job ids are random uuids: order by what the mutant is, so that the same seed picks the
+        # same mutants in every session of the same source
+        items = sorted(db.pending_work_items, key=_mutant_key)
         kept = [w for w in items if all(KEPT_OPERATORS.match(m.operator_name) for m in w.mutations)]
         kept_ids = {w.job_id for w in kept}
         chosen = set(kept_ids)

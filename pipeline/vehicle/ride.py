@@ -984,6 +984,12 @@ def _scenario_task(item: tuple) -> dict:
     try:
         sc = load_scenario(path)
         results = ride_sweep(sc, build=Path(build) if build else None, with_spectra=False)
+        # the scenario row's modes are those at the scenario's own pressures, which a [sweep] need not
+        # list first, or at all: from the nominal pair's result, else from the nominal tyres
+        nominal = [r for r in results if r.tyres["front"].pressure_bar == sc.front.pressure_bar
+                   and r.tyres["rear"].pressure_bar == sc.rear.pressure_bar]
+        nat, nodal = ((nominal[0].natural_frequencies_Hz, nominal[0].nodal_points_m) if nominal else
+                      _modes(build_tractor(sc, resolve_tyres(sc, Path(build) if build else None), 0)))
     except (ScenarioError, ValueError) as exc:
         return {"file": path, "error": str(exc).replace("\n", "; ")}
     table = results_table(results, sc.name)
@@ -1003,8 +1009,8 @@ def _scenario_task(item: tuple) -> dict:
         "track_length_m": results[0].track_length_m,
         "seed": s.seed, "enveloping": s.enveloping,
         "speeds_km_h": ", ".join(f"{v:g}" for v in sc.exposure.speeds_km_h), "hours_per_day": sc.exposure.hours_per_day,
-        "bounce_Hz": results[0].natural_frequencies_Hz["bounce"], "pitch_Hz": results[0].natural_frequencies_Hz["pitch"],
-        "bounce_nodal_point_m": results[0].nodal_points_m["bounce"], "pitch_nodal_point_m": results[0].nodal_points_m["pitch"],
+        "bounce_Hz": nat["bounce"], "pitch_Hz": nat["pitch"],
+        "bounce_nodal_point_m": nodal["bounce"], "pitch_nodal_point_m": nodal["pitch"],
         "pressure_pairs": len(results), "warnings": "; ".join(sorted({w for r in results for w in r.warnings})),
     }
     return {"file": path, "scenario": row, "results": table}

@@ -165,14 +165,19 @@ def test_table_xx_ratio_errors_of_both_frequencies():
                                    t[f"thesis_frequency_{i}_Hz"] / t[f"measured_frequency_{i}_Hz"])
 
 
-def test_mode_shapes_nodal_points_are_mass_orthogonal():
+@pytest.mark.parametrize("inertia", [3946.0, 4 * 3946.0])
+def test_mode_shapes_nodal_points_are_mass_orthogonal(inertia):
     """MF590 (Table XIX): the two modes are M-orthogonal, m z1 z2 + I th1 th2 = 0, so the
     nodal points x = -z/th multiply to -I/m; the bounce mode (mostly translation) has its
-    node beyond the radius of gyration r = sqrt(I/m), the pitch mode within it."""
-    m, inertia, l1, l2, kf, kr = 3434, 3946, 1.48, 0.81, 2 * 311e3, 2 * 314e3
+    node beyond the radius of gyration r = sqrt(I/m), the pitch mode within it. With four
+    times the pitch inertia the pitch mode is the lower one (1.6 Hz against bounce 3.1 Hz):
+    the names follow the shapes, not the order of the frequencies."""
+    m, l1, l2, kf, kr = 3434, 1.48, 0.81, 2 * 311e3, 2 * 314e3
     modes = bp.mode_shapes(m, inertia, l1, l2, kf, kr)
     xb, xp = modes["bounce"]["nodal_point_ahead_of_cg_m"], modes["pitch"]["nodal_point_ahead_of_cg_m"]
     assert xb * xp == pytest.approx(-inertia / m, rel=1e-9)
     assert abs(xb) > math.sqrt(inertia / m) > abs(xp)
     f = bp.natural_frequencies(m, inertia, l1, l2, kf, kr)
     assert sorted([modes["bounce"]["frequency_Hz"], modes["pitch"]["frequency_Hz"]]) == pytest.approx(sorted(f))
+    lower = "bounce" if inertia < 10000 else "pitch"
+    assert modes[lower]["frequency_Hz"] == pytest.approx(min(f), rel=1e-12)

@@ -343,3 +343,96 @@ def test_cli_out_that_is_a_file_is_a_usage_error(tmp_path, capsys):
     assert cli.main(["ride", str(path), "--out", str(tmp_path / "taken")]) == 2
     err = capsys.readouterr().err
     assert "--out" in err and "Traceback" not in err
+
+
+def test_scenario_row_gives_the_modes_at_its_own_pressures(tmp_path):
+    """The ride_scenarios row's natural frequencies and nodal points are those of the scenario's own
+    (nominal) pressures, whether its [sweep] lists them second or not at all, not the first pair's."""
+    base = scenario_text('kind = "iso8608"\nclass = "A"\nlength_m = 12', "[10]")
+    second = write(tmp_path, base + "[sweep]\nfront_pressures_bar = [0.8, 1.6]\n", "second.toml")
+    absent = write(tmp_path, base.replace('name = "test tractor"', 'name = "absent"')
+                   + "[sweep]\nfront_pressures_bar = [0.8, 2.4]\n", "absent.toml")
+    scen, res, problems = ride.run_scenarios([(str(second), "raw"), (str(absent), "raw")])
+    assert not problems and len(res) == 4
+    # the modes at 1.6/1.2 bar from the tyres alone (bounce_pitch through the CLI's own path)
+    nominal = ride.ride(load_scenario(write(tmp_path, base, "nominal.toml")), with_spectra=False)
+    low = res[(res["scenario"] == "test tractor") & (res["front_pressure_bar"] == 0.8)]
+    for name in ("test tractor", "absent"):
+        row = scen[scen["scenario"] == name].iloc[0]
+        for mode in ("bounce", "pitch"):
+            assert row[f"{mode}_Hz"] == pytest.approx(nominal.natural_frequencies_Hz[mode], rel=1e-12)
+            assert row[f"{mode}_nodal_point_m"] == pytest.approx(nominal.nodal_points_m[mode], rel=1e-12)
+    # and the first pair's (0.8 bar front: a softer front tyre) differ by far more than rounding
+    # (bounce -1.0 %, pitch -29 %: the pitch mode leans on the front axle)
+    for mode, least in (("bounce", 0.005), ("pitch", 0.2)):
+        assert low[f"{mode}_Hz"].iloc[0] < (1 - least) * nominal.natural_frequencies_Hz[mode], mode
+    nominal_rows = res[res["is_nominal"]]
+    assert nominal_rows["bounce_Hz"].tolist() == pytest.approx([nominal.natural_frequencies_Hz["bounce"]])
+
+
+def _profile_scenario(tmp_path, length_m: float, name: str, extra_surface: str = "") -> Path:
+    """A scenario on a random profile of ``length_m`` (5 cm spacing) with no declared spectrum."""
+    dx = 0.05
+    h = pr.spectral_synthesis(int(round(length_m / dx)) + 1, dx, 16e-6, np.random.default_rng(5))
+    pd.DataFrame({"distance_m": np.arange(h.size) * dx, "height_m": h}).to_csv(tmp_path / f"{name}.csv", index=False)
+    return write(tmp_path, scenario_text(f'kind = "profile"\nprofile = "{name}.csv"\n{extra_surface}', "[10]"),
+                 f"{name}.toml")
+
+
+@pytest.mark.parametrize("length_m,segment_m", [(100.0, 25.0), (300.0, 51.2)])
+def test_a_track_without_declared_spectrum_uses_its_own_welch_spectrum(tmp_path, length_m, segment_m):
+    """The frequency-domain expectation of a profile without a declared spectrum uses the track's Welch
+    spectrum: segments of 51.2 m (resolution 0.0195 cycles/m, 0.054 Hz at 10 km/h, well below W_k's
+    0.5 Hz band) but at most a quarter of the track, so that a short track still averages seven
+    half-overlapping segments. The lowest wavenumber of the spectrum is its first Welch bin,
+    1/segment, exactly."""
+    track = ride.build_profile(load_scenario(_profile_scenario(tmp_path, length_m, f"t{length_m:g}")))
+    n, g = track.spectrum
+    assert track.length_m == pytest.approx(length_m, abs=0.051)  # the CSV's grid, to a sample
+    assert n[0] == pytest.approx(1.0 / segment_m, rel=1e-9)
+    assert n[-1] == pytest.approx(0.5 / 0.05, rel=1e-9)  # up to Nyquist
+    assert "Welch" in track.spectrum_source and np.all(g > 0)
+
+
+def test_tyre_footprint_is_the_chord_at_the_static_deflection(tmp_path):
+    """Footprint of each tyre: the chord 2 sqrt(2 R d - d^2) at the static deflection d = W / K of its
+    own load, W = m g b / (a + b) / 2 on a front tyre (m g a / (a + b) / 2 on a rear one)."""
+    sc = load_scenario(write(tmp_path, scenario_text('kind = "iso8608"\nclass = "A"\nlength_m = 10', "[10]")))
+    tyres = ride.resolve_tyres(sc)
+    m, a, b, g = TRACTOR["mass_kg"], TRACTOR["front_distance_m"], TRACTOR["rear_distance_m"], 9.81  # the model's g
+    for axle, arm in (("front", b), ("rear", a)):
+        t = tyres[axle]
+        d = m * g * arm / (a + b) / 2 / (1e3 * t.stiffness_kN_per_m[0])
+        assert 0.005 < d < 0.08, (axle, d)  # a loaded tractor tyre deflects centimetres
+        chord = 2 * math.sqrt(2 * t.radius_m * d - d * d)
+        assert t.footprint_m[0] == pytest.approx(chord, rel=1e-12), axle
+
+
+def test_record_is_the_track_or_the_duration_whichever_is_shorter(tmp_path):
+    """The record starts with the front axle on the track and lasts track length / speed, or
+    ``simulation.duration_s`` when that is shorter (a longer one cannot run off the track's end)."""
+    sc = load_scenario(write(tmp_path, scenario_text('kind = "iso8608"\nclass = "A"\nlength_m = 30', "[10]")))
+    track = ride.build_profile(sc)
+    wb, v = sc.tractor.wheelbase_m, 10 / 3.6
+    start, stop = ride._record_window(track, wb, v, None)
+    assert start == math.ceil((track.lead_in_m - wb) / (v * ride.DT_S))
+    assert (stop - start) * ride.DT_S == pytest.approx(track.length_m / v, abs=ride.DT_S)
+    assert track.length_m == pytest.approx(30, abs=0.1)
+    assert ride._record_window(track, wb, v, 100.0) == (start, stop)
+    s2, e2 = ride._record_window(track, wb, v, 4.0)
+    assert s2 == start and (e2 - s2) * ride.DT_S == pytest.approx(4.0, abs=1e-9)
+
+
+def test_rear_tyre_envelopes_the_track_with_its_own_radius():
+    """Equal footprints but different radii (rigid tread band): the rear input is the track enveloped
+    by the rear tyre's radius, not a copy of the front's."""
+    rng = np.random.default_rng(2)
+    dx = 0.05
+    h = pr.spectral_synthesis(1200, dx, 64e-6, rng)
+    track = pr.Profile(np.arange(h.size) * dx, h, h, "test", {})
+    fp, radii, v, wb, n = (0.3, 0.3), (0.5, 0.9), 3.0, 2.5, 2000
+    uf, udf, ur, udr = ride.axle_inputs(track, "rigid_band", fp, radii, v, wb, n)
+    front_only = ride.axle_inputs(track, "rigid_band", fp, (0.5, 0.5), v, wb, n)
+    rear_only = ride.axle_inputs(track, "rigid_band", fp, (0.9, 0.9), v, wb, n)
+    assert np.array_equal(udf, front_only[1]) and np.array_equal(udr, rear_only[3])
+    assert np.max(np.abs(ur - front_only[2])) > 1e-4  # a 0.9 m tyre bridges more than a 0.5 m one
