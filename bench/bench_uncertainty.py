@@ -70,7 +70,9 @@ def evaluate_run(row: dict, seed: int) -> dict:
     cal_run, _ = simulate_run(cal_row, seed, cfg)
     ca, cb = _channels(cal_run)
     derived = tyre_force(ca[0, 0], ca[0, 1], cb[0], cal_row["axle_mass_kg"])
-    tf = cal.calibration_transfer_function(cal_run["force_plate_N"].to_numpy(float), derived, cfg.sample_rate_Hz)
+    inertial = cal_row["axle_mass_kg"] * 0.5 * (ca[0, 0] + ca[0, 1])
+    tf = cal.calibration_transfer_function(cal_run["force_plate_N"].to_numpy(float), derived, cfg.sample_rate_Hz,
+                                           inertial_force_N=inertial)
     passed = cal.check_calibration(tf)["pass"]
     f = float(out["excitation_frequency_measured_Hz"])
     budget = (unc.day_budget(tf, f, welch_averages(len(cal_run), cfg.sample_rate_Hz)) if passed

@@ -28,7 +28,8 @@ PHASE_TOLERANCE_DEG = 1.0  # §3.2.9: 0 +- 1 degree
 
 
 def calibration_transfer_function(force_plate_N: np.ndarray, derived_force_N: np.ndarray, sample_rate_Hz: float,
-                                  resolution_Hz: float = 0.25, band_Hz: tuple[float, float] = (1.0, 8.0)) -> pd.DataFrame:
+                                  resolution_Hz: float = 0.25, band_Hz: tuple[float, float] = (1.0, 8.0),
+                                  inertial_force_N: np.ndarray | None = None) -> pd.DataFrame:
     """H1 from force-plate force to derived tyre force.
 
     ``H1 = csd(fp, ft) / welch(fp)``, the system from x = force plate to
@@ -44,11 +45,20 @@ def calibration_transfer_function(force_plate_N: np.ndarray, derived_force_N: np
         Frequency resolution, Hz.
     band_Hz : (float, float)
         Frequencies returned, Hz (the excitation band).
+    inertial_force_N : ndarray, optional
+        The axle's inertial force ``M_a * mean(acc)``, N. When given, the
+        ratio ``R = M_a a / f_t`` (H1 from the force plate to it) is returned
+        as ``inertial_ratio_re``, ``inertial_ratio_im``: a gain mismatch
+        ``δa − δb`` between accelerometers and load beams turns the check's
+        transfer function into ``1 + δb + (δa − δb) R``, so its phase moves by
+        ``(δa − δb) Im R`` although the force path has no phase error
+        (:func:`tyrelab.measurement.uncertainty.day_budget`).
 
     Returns
     -------
     DataFrame
-        ``frequency_Hz``, ``gain`` (|H|), ``phase_deg`` (angle of H), ``coherence``.
+        ``frequency_Hz``, ``gain`` (|H|), ``phase_deg`` (angle of H), ``coherence``
+        (and ``inertial_ratio_re``, ``inertial_ratio_im`` with ``inertial_force_N``).
     """
     sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
     resolution_Hz = positive("resolution_Hz", resolution_Hz)
@@ -56,8 +66,12 @@ def calibration_transfer_function(force_plate_N: np.ndarray, derived_force_N: np
     s = h1_spectrum(force_plate_N, derived_force_N, sample_rate_Hz, int(round(sample_rate_Hz / resolution_Hz)))
     sel = (s.frequency_Hz >= band_Hz[0]) & (s.frequency_Hz <= band_Hz[1])
     h = s.h1[sel]
-    return pd.DataFrame({"frequency_Hz": s.frequency_Hz[sel], "gain": np.abs(h),
-                         "phase_deg": np.degrees(np.angle(h)), "coherence": s.coherence[sel]})
+    out = pd.DataFrame({"frequency_Hz": s.frequency_Hz[sel], "gain": np.abs(h),
+                        "phase_deg": np.degrees(np.angle(h)), "coherence": s.coherence[sel]})
+    if inertial_force_N is not None:
+        r = h1_spectrum(force_plate_N, inertial_force_N, sample_rate_Hz, int(round(sample_rate_Hz / resolution_Hz))).h1[sel]
+        out["inertial_ratio_re"], out["inertial_ratio_im"] = r.real, r.imag
+    return out
 
 
 def check_calibration(tf: pd.DataFrame, band_Hz: tuple[float, float] = CHECK_BAND_HZ,

@@ -40,7 +40,7 @@ import pandas as pd
 from scipy import stats
 
 __all__ = [
-    "ACCEL_GAIN_U", "AXLE_MASS_U_FRACTION", "BEAM_GAIN_U", "UNCERTAINTY_COLUMNS", "GAIN_LIMIT", "PHASE_LIMIT_DEG", "LEVEL",
+    "ACCEL_GAIN_U", "AXLE_MASS_U_FRACTION", "BEAM_GAIN_U", "HANN_BIN_CORRELATION", "UNCERTAINTY_COLUMNS", "GAIN_LIMIT", "PHASE_LIMIT_DEG", "LEVEL",
     "InstrumentBudget", "RunUncertainty", "residual_uncertainty", "limits_budget", "day_budget", "combine",
     "coverage_factor", "instrument_terms", "run_uncertainty",
 ]
@@ -66,6 +66,10 @@ ACCEL_GAIN_U = 0.002 / math.sqrt(2)
 #: transducer" check (documented choice: 0.2 %). The four beams share the load about equally, so
 #: their sum has 0.2 %/2.
 BEAM_GAIN_U = 0.002 / 2
+#: Correlation of the phase errors of neighbouring bins (lag 1, lag 2) of the check's Welch H1 estimate. A Hann
+#: window mixes each DFT bin with its neighbours by −1/4, 1/2, −1/4, so the complex noise of neighbouring bins
+#: correlates by −2/3 and of bins two apart by 1/6; a cross-spectrum (product of two such) by their squares.
+HANN_BIN_CORRELATION = ((2 / 3) ** 2, (1 / 6) ** 2)
 #: Standard uncertainty of the axle mass M_a as a fraction of it (documented choice: 0.5 %, ±3 kg of
 #: the "typically about 600 kg" of §3.2.8). Used only without a force-plate check: the check measures
 #: the derived force, ``M_a a`` included, so a passing check bounds the axle-mass error.
@@ -121,6 +125,16 @@ def limits_budget(axle_mass_kg: float = 600.0) -> InstrumentBudget:
                             0.0, 0.0, AXLE_MASS_U_FRACTION * axle_mass_kg, "§3.2.9 limits")
 
 
+def _band_correlation(n: int) -> np.ndarray:
+    """Correlation matrix of the check's per-bin phase errors (:data:`HANN_BIN_CORRELATION`)."""
+    lag = np.abs(np.subtract.outer(np.arange(n), np.arange(n)))
+    corr = np.zeros((n, n))
+    corr[lag == 0] = 1.0
+    for m, rho in enumerate(HANN_BIN_CORRELATION, start=1):
+        corr[lag == m] = rho
+    return corr
+
+
 def day_budget(tf: pd.DataFrame, frequency_Hz: float, n_averages: float, corrected: bool = False,
                source: str = "calibration") -> InstrumentBudget:
     """Budget of a run on a day whose force-plate check passed (§3.2.9, §3.6).
@@ -129,7 +143,8 @@ def day_budget(tf: pd.DataFrame, frequency_Hz: float, n_averages: float, correct
     ----------
     tf : DataFrame
         ``frequency_Hz``, ``gain``, ``phase_deg``, ``coherence`` of the day's
-        check (:func:`tyrelab.measurement.calibration.calibration_transfer_function`).
+        check (:func:`tyrelab.measurement.calibration.calibration_transfer_function`),
+        optionally ``inertial_ratio_re``, ``inertial_ratio_im`` (``R = M_a a / f_t``).
     frequency_Hz : float
         The run's measured excitation frequency, Hz.
     n_averages : float
@@ -137,22 +152,41 @@ def day_budget(tf: pd.DataFrame, frequency_Hz: float, n_averages: float, correct
     corrected : bool
         Whether the run's K, C were divided by the transfer function (§3.6
         option). If not, and the day's phase at ``frequency_Hz`` is resolved
-        (more than twice its standard error), it is an uncorrected systematic
-        error and enters as an uncertainty of its own size (root sum of
-        squares, GUM F.2.4.5).
+        (below), it is an uncorrected systematic error of the force path and
+        enters as an uncertainty of its own size (root sum of squares, GUM F.2.4.5).
 
     Returns
     -------
     InstrumentBudget
         Phase: a straight line through the day's phase over the 2–6 Hz check
         band (the force path's phase is smooth in frequency: amplifier
-        filters), each bin weighted by its H1 random error
-        ``√(1−γ²)/(|γ|√(2 n_d))`` rad (Bendat & Piersol); the line's standard
-        error at ``frequency_Hz`` and, uncorrected and resolved, its value there. Gains: the channel
-        sensitivities :data:`ACCEL_GAIN_U`, :data:`BEAM_GAIN_U` (a passing
-        check keeps their combination within 3 %; it cannot tell the
-        accelerometers, which also divide the force, from the beams). No
-        axle-mass term (the check bounds it).
+        filters), generalised least squares with each bin's H1 random error
+        ``√(1−γ²)/(|γ|√(2 n_d))`` rad (Bendat & Piersol) and the correlation of
+        neighbouring Hann-windowed bins (:data:`HANN_BIN_CORRELATION`); the
+        line's standard error ``σ`` at ``frequency_Hz`` and, uncorrected and
+        resolved, its value ``φ̂`` there. Resolved means ``|φ̂| > 2 √(σ² + u_g²)``:
+        besides its random error, the check's phase carries the accelerometer
+        and load-beam gain mismatch, ``(δa − δb) Im R`` with ``u_g =
+        √(u_a² + u_b²) |Im R|`` (``R`` from ``tf``; 0 without it), which the
+        budget already holds as the channel-gain terms. A phase the check
+        does not resolve beyond those two is no evidence of a force-path
+        phase error, and counting it would count the gains (or the noise)
+        twice. Gains: the channel sensitivities :data:`ACCEL_GAIN_U`,
+        :data:`BEAM_GAIN_U` (a passing check keeps their combination within
+        3 %; it cannot tell the accelerometers, which also divide the force,
+        from the beams). No axle-mass term (the check bounds it).
+
+    Examples
+    --------
+    A check whose phase is within its noise leaves the line's standard error
+    (0.079°); a resolved 0.5° enters with its size:
+
+    >>> f = np.arange(2.0, 6.01, 0.25)
+    >>> tf = pd.DataFrame({"frequency_Hz": f, "gain": 1.0, "phase_deg": 0.001 * np.cos(f), "coherence": 0.999})
+    >>> round(math.degrees(day_budget(tf, 4.0, 29).phase_rad), 3)
+    0.079
+    >>> round(math.degrees(day_budget(tf.assign(phase_deg=0.5), 4.0, 29).phase_rad), 3)
+    0.506
     """
     if tf is None or len(tf) == 0:
         raise ValueError("tf must hold the day's transfer function")
@@ -169,15 +203,18 @@ def day_budget(tf: pd.DataFrame, frequency_Hz: float, n_averages: float, correct
     coh = np.clip(tf["coherence"].to_numpy(float)[band], 1e-6, 1.0)
     sd = np.sqrt(1.0 - coh) / (np.sqrt(coh) * math.sqrt(2.0 * n_averages))  # rad, per bin
     sd = np.maximum(sd, 1e-9)
-    # straight line through the band, weighted by 1/sd²; its value and standard error at the run's frequency
+    # straight line through the band by generalised least squares; its value and standard error at the run's frequency
     design = np.column_stack([np.ones_like(fb), fb - frequency_Hz])
-    wts = 1.0 / sd**2
-    cov = np.linalg.inv(design.T @ (design * wts[:, None]))
-    coef = cov @ (design.T @ (wts * phase))
+    v_inv = np.linalg.inv(_band_correlation(fb.size) * np.outer(sd, sd))
+    cov = np.linalg.inv(design.T @ v_inv @ design)
+    coef = cov @ (design.T @ v_inv @ phase)
     random = math.sqrt(cov[0, 0])
-    # an uncorrected phase counts only when the check resolves it (|φ| > 2 u): a phase within its
-    # own random error is no evidence of a systematic error, and adding it would count the noise twice
-    bias_p = 0.0 if corrected or abs(coef[0]) <= 2 * random else float(coef[0])
+    u_gain_phase = 0.0
+    if {"inertial_ratio_re", "inertial_ratio_im"} <= set(tf.columns):
+        im_r = tf["inertial_ratio_im"].to_numpy(float)[band]
+        u_gain_phase = math.hypot(ACCEL_GAIN_U, BEAM_GAIN_U) * abs(float(np.interp(frequency_Hz, fb, im_r)))
+    resolved = abs(coef[0]) > 2 * math.hypot(random, u_gain_phase)
+    bias_p = float(coef[0]) if resolved and not corrected else 0.0
     return InstrumentBudget(0.0, math.sqrt(random**2 + bias_p**2), ACCEL_GAIN_U, BEAM_GAIN_U, 0.0, source)
 
 

@@ -52,7 +52,8 @@ PARAMS = ["calibration_correct"]
 
 CALIBRATION_COLUMNS = ["campaign", "day", "run_id", "tyre_id", "pass", "day_pass", "max_gain_error_pct",
                        "max_phase_error_deg", "mean_gain", "mean_phase_deg", "reason"]
-TF_COLUMNS = ["campaign", "day", "run_id", "frequency_Hz", "gain", "phase_deg", "coherence"]
+TF_COLUMNS = ["campaign", "day", "run_id", "frequency_Hz", "gain", "phase_deg", "coherence", "inertial_ratio_re",
+              "inertial_ratio_im"]
 
 
 def check_calibration_run(path: str, axle_mass_kg: float, sample_rate_Hz: float) -> tuple[dict, pd.DataFrame]:
@@ -63,7 +64,8 @@ def check_calibration_run(path: str, axle_mass_kg: float, sample_rate_Hz: float)
     col = {c: t.column(c).to_numpy().astype(np.float64) for c in [*CHANNELS, "force_plate_N"]}
     derived = tyre_force(col[ACCEL_CHANNELS[0]], col[ACCEL_CHANNELS[1]], np.stack([col[c] for c in BEAM_CHANNELS]),
                          axle_mass_kg)
-    tf = cal.calibration_transfer_function(col["force_plate_N"], derived, sample_rate_Hz)
+    inertial = axle_mass_kg * 0.5 * (col[ACCEL_CHANNELS[0]] + col[ACCEL_CHANNELS[1]])
+    tf = cal.calibration_transfer_function(col["force_plate_N"], derived, sample_rate_Hz, inertial_force_N=inertial)
     check = cal.check_calibration(tf)
     check["reason"] = "" if check["pass"] else (
         f"gain error {check['max_gain_error_pct']:.1f} % / phase error {check['max_phase_error_deg']:.2f} deg "

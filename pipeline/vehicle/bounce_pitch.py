@@ -371,6 +371,13 @@ def table_xx(tractors: pd.DataFrame, published: pd.DataFrame | None = None) -> p
     DataFrame
         One row per tractor and stiffness source with ``thesis_*`` and ``ours_*``
         stiffnesses and frequencies, ``*_from_thesis_stiffness_Hz`` and differences.
+        Formula rows also carry the formula's per-tyre stiffness uncertainties
+        ``ours_{front,rear}_stiffness_u_kN_per_m`` (its prediction interval,
+        :mod:`tyrelab.tyre.stiffness`; 0 for the undriven front rule, which rests
+        on one tyre) and the frequencies' ``ours_frequency_{1,2}_u_Hz`` and 95 %
+        intervals ``ours_frequency_{1,2}_ci95_{low,high}_Hz``
+        (:func:`frequency_uncertainty`); the measured-stiffness rows have none
+        (the thesis states no uncertainty for them): NaN.
     """
     rows = []
     pub = published if published is not None else pd.DataFrame()
@@ -428,7 +435,13 @@ def table_xx(tractors: pd.DataFrame, published: pd.DataFrame | None = None) -> p
                     ours_front_stiffness_kN_per_m=ours["front_tyre_stiffness_kN_per_m"],
                     ours_frequency_1_Hz=ours["frequency_1_Hz"],
                     ours_frequency_2_Hz=ours["frequency_2_Hz"],
+                    ours_front_stiffness_u_kN_per_m=ours["front_tyre_stiffness_u_kN_per_m"],
+                    ours_rear_stiffness_u_kN_per_m=ours["rear_tyre_stiffness_u_kN_per_m"],
                 )
+                for i in (1, 2):
+                    low, high = ours[f"frequency_{i}_Hz_ci95"]
+                    row.update({f"ours_frequency_{i}_u_Hz": ours[f"frequency_{i}_u_Hz"],
+                                f"ours_frequency_{i}_ci95_low_Hz": low, f"ours_frequency_{i}_ci95_high_Hz": high})
             else:
                 # No formula: our stiffness is the thesis' measured stationary stiffness.
                 row.update(

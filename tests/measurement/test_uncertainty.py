@@ -100,6 +100,33 @@ def test_day_budget_reads_the_days_phase_and_its_random_error():
         un.day_budget(tf, 4.0, 0)
 
 
+def test_day_budget_does_not_count_a_phase_the_channel_gains_explain():
+    # a check phase of 0.02 deg with a negligible random error: resolved when nothing explains it ...
+    f = np.arange(1.0, 8.01, 0.25)
+    tf = pd.DataFrame({"frequency_Hz": f, "gain": 1.0, "phase_deg": 0.02, "coherence": 1 - 1e-9})
+    alone = un.day_budget(tf, 4.0, 29)
+    assert math.degrees(alone.phase_rad) == pytest.approx(0.02, rel=0.01)
+    # ... but a gain mismatch dA - dB of 0.17 % times Im R = -0.4 moves the check's phase by 0.04 deg (1 sd):
+    # that is the channel-gain terms of the budget, not a phase of the force path
+    with_r = un.day_budget(tf.assign(inertial_ratio_re=1.5, inertial_ratio_im=-0.4), 4.0, 29)
+    assert math.degrees(with_r.phase_rad) < 0.001
+    assert with_r.accel_gain == un.ACCEL_GAIN_U and with_r.beam_gain == un.BEAM_GAIN_U
+    # a phase well beyond both is a force-path phase and counts with its size
+    big = un.day_budget(tf.assign(phase_deg=0.3, inertial_ratio_re=1.5, inertial_ratio_im=-0.4), 4.0, 29)
+    assert math.degrees(big.phase_rad) == pytest.approx(0.3, rel=0.01)
+
+
+def test_day_budget_line_error_counts_the_correlation_of_hann_bins():
+    # correlated neighbouring bins carry less information than independent ones: the GLS standard error is
+    # larger than the independent-bin one, sqrt(1 + 2 (4/9 + 1/36)) = 1.37 times for the band's mean
+    f = np.arange(1.0, 8.01, 0.25)
+    tf = pd.DataFrame({"frequency_Hz": f, "gain": 1.0, "phase_deg": 0.0, "coherence": 0.99})
+    sd = math.sqrt(0.01) / (math.sqrt(0.99) * math.sqrt(2 * 29))
+    n = int(((f >= 2) & (f <= 6)).sum())
+    ratio = un.day_budget(tf, 4.0, 29).phase_rad / (sd / math.sqrt(n))
+    assert 1.2 < ratio < 1.45
+
+
 def test_combined_interval_contains_the_estimate_and_uses_student_t():
     r = un.combine(230e3, 2400.0, 4.0, 1000.0, 50.0, 7.0, un.InstrumentBudget(0.0, 0.0))
     assert float(r.stiffness_u_N_per_m) == pytest.approx(1000.0)

@@ -27,9 +27,11 @@ def test_intervals_hold_the_truth_on_a_small_stress_sample():
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(strict=True, reason="measured K 96.0 %, C 97.3 % (just above 97 %); QC-passed runs 97.8 % / "
-                                       "100 %: the intervals are conservative (docs/benchmarks.md)")
 def test_coverage_within_93_to_97_percent():
+    # the criterion on the benchmark's 480 runs (~100 s on 2 cores): measured K 96.0 %, C 96.7 %.
+    # Not at a smaller size: with n runs the coverage's binomial standard error is sqrt(0.95 * 0.05 / n), 1.0 % at
+    # 480 and 1.7 % at 160 runs, against a band of 4 % (160 runs measured K 92.5 %, 240 runs C 97.5 %).
     df = evaluate(runs_per_cell=30, seed=1991, jobs=2)
+    assert len(df) == 480
     assert 0.93 <= df["K_in"].mean() <= 0.97
     assert 0.93 <= df["C_in"].mean() <= 0.97

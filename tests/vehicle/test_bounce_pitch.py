@@ -84,6 +84,22 @@ def test_formula_stiffness_beside_thesis():
     assert f.loc["Deutz Intrac 2004A", "difference_front_stiffness_kN_per_m"] == pytest.approx(16.3, abs=0.1)
 
 
+def test_table_xx_formula_rows_carry_frequency_intervals():
+    t = bp.table_xx(layouts.tractors(read_published("table_xix")), read_published("table_xx"))
+    f = t[t["stiffness_source"] == "formula"].set_index("tractor")
+    for i in (1, 2):
+        lo, hi, mid, u = (f[f"ours_frequency_{i}_{c}"] for c in ("ci95_low_Hz", "ci95_high_Hz", "Hz", "u_Hz"))
+        assert ((lo <= mid) & (mid <= hi)).all()
+        assert np.allclose(hi - lo, 2 * 1.96 * u)
+    # every rear tyre is a traction tyre with the formula's uncertainty (~8 % of K); 4wd fronts too
+    assert (f["ours_rear_stiffness_u_kN_per_m"] / f["ours_rear_stiffness_kN_per_m"]).between(0.05, 0.12).all()
+    assert f.loc["Deutz Intrac 2004A", "ours_front_stiffness_u_kN_per_m"] > 0
+    assert f.loc["Leyland 272", "ours_front_stiffness_u_kN_per_m"] == 0.0  # undriven front rule: one tyre, no interval
+    # the measured stationary stiffnesses state no uncertainty: no interval rather than a zero-width one
+    m = t[t["stiffness_source"] == "stationary_free_vibration"]
+    assert m["ours_frequency_1_ci95_low_Hz"].isna().all() and m["ours_rear_stiffness_u_kN_per_m"].isna().all()
+
+
 def test_tractor_frequencies_dict_and_overrides():
     r = bp.tractor_natural_frequencies(3235, 2669, 1.33, 0.71, "7.50-16", 2.06, "13.6-38", 1.1)
     assert set(r) == {"front_tyre_stiffness_kN_per_m", "rear_tyre_stiffness_kN_per_m", "frequency_1_Hz", "frequency_2_Hz",
