@@ -189,16 +189,30 @@ def shape_comparison(df: pd.DataFrame, extras: tuple[str, ...] = EXTRAS) -> Shap
 
 
 def interval_text(rec: dict, column: str) -> str:
-    """``[low, high]`` of ``<column>_ci_low``/``_ci_high`` (a fit's 95 % interval), or ``""`` if none.
+    """The 95 % interval of ``column`` as ``[low, high]``, or ``""`` if the row has none.
+
+    Read from ``<column>_ci_low``/``_ci_high`` (a fit's interval), or, for a column named
+    ``<stem>_<unit>``, from ``<stem>_ci95_low_<unit>``/``<stem>_ci95_high_<unit>`` (a
+    prediction's interval, e.g. Table XX's ``ours_frequency_1_ci95_low_Hz``).
 
     Examples
     --------
     >>> interval_text({"k_ci_low": 140.04, "k_ci_high": 151.2}, "k")
     '[140.0, 151.2]'
+    >>> interval_text({"f_1_Hz": 2.75, "f_1_ci95_low_Hz": 2.551, "f_1_ci95_high_Hz": 2.962}, "f_1_Hz")
+    '[2.551, 2.962]'
     >>> interval_text({"k": 1.0}, "k")
     ''
     """
-    lo, hi = _num(rec.get(f"{column}_ci_low")), _num(rec.get(f"{column}_ci_high"))
+    low, high = f"{column}_ci_low", f"{column}_ci_high"
+    if low not in rec:
+        parts = column.split("_")
+        for i in range(len(parts) - 1, 0, -1):
+            stem, unit = "_".join(parts[:i]), "_".join(parts[i:])
+            if f"{stem}_ci95_low_{unit}" in rec:
+                low, high = f"{stem}_ci95_low_{unit}", f"{stem}_ci95_high_{unit}"
+                break
+    lo, hi = _num(rec.get(low)), _num(rec.get(high))
     if not (np.isfinite(lo) and np.isfinite(hi)):
         return ""
     digits = max(0, 2 - int(np.floor(np.log10(max(abs(hi - lo), 1e-12)))))

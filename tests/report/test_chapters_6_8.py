@@ -36,10 +36,23 @@ def _rendered_rows(page: str, number: str) -> list[list[tuple[str, str, str]]]:
     rows = []
     for tr in re.findall(r"<tr>(.*?)</tr>", body, re.S):
         cells = re.findall(r'<td class="([^"]*)">(.*?)</td>', tr, re.S)
-        triples = [(htmllib.unescape(cells[i][1]), htmllib.unescape(cells[i + 1][1]), htmllib.unescape(cells[i + 2][1]))
+        triples = [(htmllib.unescape(cells[i][1]), htmllib.unescape(_CI.sub("", cells[i + 1][1])),
+                    htmllib.unescape(cells[i + 2][1]), _interval(cells[i + 1][1]))
                    for i, (cls, _) in enumerate(cells) if "thesis" in cls.split()]
         rows.append(triples)
     return rows
+
+
+_CI = re.compile(r'<br><small class="ci"[^>]*>(.*?)</small>', re.S)
+
+
+def _interval(cell: str) -> tuple[float, float] | None:
+    """The ``[low, high]`` shown below a value, as numbers, or None."""
+    m = _CI.search(cell)
+    if not m:
+        return None
+    low, high = (float(x) for x in m.group(1).strip("[] ").split(","))
+    return low, high
 
 
 def _fmt(v) -> str:
@@ -57,7 +70,7 @@ def test_chapter_tables_show_our_simulated_values_and_ours_minus_thesis(full_rep
     for (_, rec), shown in zip(ours_table.iterrows(), rendered):
         assert len(shown) == len(pairs)
         row_filled = True
-        for p, (thesis_txt, ours_txt, diff_txt) in zip(pairs, shown):
+        for p, (thesis_txt, ours_txt, diff_txt, _) in zip(pairs, shown):
             ours, thesis = pd.to_numeric(rec[p.ours], errors="coerce"), pd.to_numeric(rec[p.thesis], errors="coerce")
             assert ours_txt == _fmt(ours), f"{table}.{p.ours}: shows {ours_txt}, stage wrote {ours}"
             assert thesis_txt == _fmt(thesis), f"{table}.{p.thesis}: shows {thesis_txt}, thesis {thesis}"
@@ -78,3 +91,23 @@ def test_chapter_6_to_8_values_are_the_simulations_not_the_thesis(full_report):
     xx = pd.read_parquet(full_report.build / "parquet" / "table_xx.parquet")
     ours = [c for c in xx.columns if c.startswith("ours_")]
     assert ours and xx[ours].notna().any().all()
+
+
+def test_table_xx_shows_the_formula_rows_95_percent_intervals(full_report):
+    """Issue 14: every formula row of Table XX shows the interval the simulate stage wrote."""
+    xx = pd.read_parquet(full_report.build / "parquet" / "table_xx.parquet")
+    rendered = _rendered_rows((full_report.build / "reports" / "ch8-frequencies.html").read_text(encoding="utf-8"), "xx")
+    pairs = find_pairs(xx.columns)
+    shown_any = 0
+    for (_, rec), shown in zip(xx.iterrows(), rendered):
+        for p, (_, _, _, interval) in zip(pairs, shown):
+            stem, unit = p.ours.rsplit("_", 1)
+            low, high = rec.get(f"{stem}_ci95_low_{unit}"), rec.get(f"{stem}_ci95_high_{unit}")
+            if low is None or not np.isfinite(low):
+                assert interval is None, f"{p.ours}: an interval shown where the stage wrote none"
+                continue
+            assert interval is not None, f"{p.ours}: the stage's interval [{low}, {high}] is not shown"
+            assert interval[0] == pytest.approx(low, abs=6e-3) and interval[1] == pytest.approx(high, abs=6e-3)
+            assert interval[0] <= rec[p.ours] <= interval[1]
+            shown_any += 1
+    assert shown_any >= 2
