@@ -40,6 +40,35 @@ def full_report(tmp_path_factory) -> Context:
     return Context(raw=root / "raw", build=root / "build", jobs=1, log=logging.getLogger("tyrelab.test"))
 
 
+#: Test files with the longest tests (``pytest --durations``), collected first and in this
+#: order, so that pytest-xdist, which hands out tests round-robin in collection order, starts
+#: them at once on different workers instead of leaving one for the end of the run.
+LONG_FIRST = (
+    "stages/test_incremental_identical.py",
+    "report/test_chapters_6_8.py",  # builds the shared full_report while the other worker goes on
+    "test_end_to_end.py",
+    "stages/test_concurrency.py",
+    "stages/test_executor.py",
+    "stages/test_build_lock.py",
+    "stages/test_random_kill.py",
+    "hostile/test_hostile_cli.py",
+    "stages/test_crash_safety.py",
+)
+
+
+def pytest_collection_modifyitems(config, items):
+    """Put the tests of :data:`LONG_FIRST` first (a stable sort: the rest keep their order)."""
+    rank = {name: i for i, name in enumerate(LONG_FIRST)}
+
+    def key(item) -> int:
+        path = Path(str(item.path)).resolve()
+        if HERE not in path.parents:
+            return len(rank)
+        return rank.get(path.relative_to(HERE).as_posix(), len(rank))
+
+    items.sort(key=key)
+
+
 _skipped_browser: list[str] = []
 
 
