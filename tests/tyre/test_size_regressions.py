@@ -30,6 +30,17 @@ def test_published_table_iii_reproduces_wr_gradient_and_r2():
     assert wr.reproduces_printed and "not a slipped 29.7" in wr.finding
     assert wr.intercept == pytest.approx(0.53, abs=0.01)
     assert "AS11 13.6R38 vs 13.6-38" in wr.finding and "no effect" in wr.finding
+    # the finding prints the fit's own numbers, the intercept with its interval where one is printed
+    assert wr.finding.startswith(
+        f"reproduced: slope {wr.slope:.3g} (printed 0.34); r² {wr.r_squared:.3g} (printed 0.82); intercept "
+        f"{wr.intercept:.3g} [95 % CI {wr.intercept_ci_low:.3g}, {wr.intercept_ci_high:.3g}] (printed 0.297); n=16. ")
+    age = out.loc["kc_vs_age"]
+    assert age.finding.startswith(f"NOT reproduced: slope {age.slope:.3g} (printed 5.6); n=5. ")  # no intercept printed
+    # with the printed gradient the least-squares intercept is mean(y) - 0.34 mean(x): 29.7 lies that far above
+    sub = sr.select(sr.tyre_points(table_iii(), tyres()), sr.THESIS_FITS["dkp_vs_wr"])
+    given = sub["pressure_dependence_kN_per_m_bar"].mean() - 0.34 * sub["wr_in2"].mean()
+    assert f"intercept is {given:.2g} kN/m/bar; an intercept of 29.7 would put the line {29.7 - given:.0f} kN/m/bar " \
+        "above" in wr.finding and abs(given) > 1  # (+/- differ by 2|given|)
 
 
 def test_published_rim_fit_coefficients_close_but_r2_not():
@@ -77,3 +88,20 @@ def test_a_fit_matches_only_within_the_printed_precision():
     assert sr._matches({"intercept": 0.3, "slope": 0.34, "r_squared": 0.82}, spec)
     assert not sr._matches({"intercept": 0.3, "slope": 0.34, "r_squared": 0.70}, spec)
     assert not sr._matches({"intercept": 0.3, "slope": 0.36, "r_squared": 0.82}, spec)
+
+
+def test_selection_search_fits_are_the_least_squares_lines():
+    """The search's closed-form fits are fit_line's (ordinary least squares) on the same tyres."""
+    from tyrelab.tyre.regressions import fit_line
+
+    points = sr.tyre_points(table_iii(), tyres())
+    spec = sr.THESIS_FITS["kc_vs_rim"]
+    base = sr.select(points, spec)
+    search = sr.selection_search(points, "kc_vs_rim", max_excluded=1)
+    assert len(search) == base["tyre_id"].nunique() + 1 + len(spec["exclude"])
+    for row in search.loc[search["change"].str.startswith(("as printed", "also excluding"))].itertuples():
+        ex = row.change.removeprefix("also excluding ").split(",") if row.change != "as printed" else []
+        sub = base.loc[~base["tyre_id"].isin(ex)]
+        f = fit_line(sub[spec["x"]], sub[spec["y"]])
+        assert (row.intercept, row.slope, row.r_squared) == pytest.approx((f["intercept"], f["slope"], f["r_squared"]),
+                                                                         rel=1e-9), row.change
