@@ -36,6 +36,7 @@ def test_published_table_iii_reproduces_wr_gradient_and_r2():
         f"{wr.intercept:.3g} [95 % CI {wr.intercept_ci_low:.3g}, {wr.intercept_ci_high:.3g}] (printed 0.297); n=16. ")
     age = out.loc["kc_vs_age"]
     assert age.finding.startswith(f"NOT reproduced: slope {age.slope:.3g} (printed 5.6); n=5. ")  # no intercept printed
+    assert "29.7" not in age.finding and "29.7" not in out.loc["kc_vs_rim", "finding"]  # a ΔK_p argument only
     # with the printed gradient the least-squares intercept is mean(y) - 0.34 mean(x): 29.7 lies that far above
     sub = sr.select(sr.tyre_points(table_iii(), tyres()), sr.THESIS_FITS["dkp_vs_wr"])
     given = sub["pressure_dependence_kN_per_m_bar"].mean() - 0.34 * sub["wr_in2"].mean()
