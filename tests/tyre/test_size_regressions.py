@@ -50,6 +50,24 @@ def test_published_rim_fit_coefficients_close_but_r2_not():
     assert r.intercept == pytest.approx(172, abs=1) and r.slope == pytest.approx(-1.77, abs=0.05)
     assert r.r_squared == pytest.approx(0.63, abs=0.01)          # printed 0.70
     assert not r.reproduces_printed and "NOT reproduced" in r.finding
+    # the printed values of §4.5.3 beside ours, differences ours - thesis
+    assert (r.thesis_intercept, r.thesis_slope, r.thesis_r_squared) == (172.0, -1.77, 0.70)
+    from comparisons import assert_differences_are_ours_minus_thesis
+
+    assert assert_differences_are_ours_minus_thesis(out.reset_index(), "size regressions") >= 5
+
+
+def test_a_selection_with_one_size_is_not_computable():
+    """Two tyres of the same size: n = 2 but one distinct W R and rim, so no line (slope NaN) and a finding
+    that says why, not a 'NOT reproduced' with NaN numbers."""
+    import pandas as pd
+
+    t = pd.DataFrame({"tyre_id": ["A", "B"], "condition": "rolling", "size": "13.6R38",
+                      "carcass_stiffness_kN_per_m": [100.0, 110.0], "pressure_dependence_kN_per_m_bar": [150.0, 160.0]})
+    out = sr.size_regressions(t, pd.DataFrame({"tyre_id": ["A", "B"], "age_years": [2, 2]}), "test").set_index("fit")
+    assert out.loc["dkp_vs_wr", "n"] == 2 and np.isnan(out.loc["dkp_vs_wr", "slope"])
+    for fit in out.index:
+        assert out.loc[fit, "finding"].startswith("not computable: fewer than 2 distinct regressor values"), fit
 
 
 def test_published_age_fit_is_4_6_not_5_6():
