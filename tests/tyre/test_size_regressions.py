@@ -111,6 +111,8 @@ def test_a_fit_matches_only_within_the_printed_precision():
 
 def test_selection_search_fits_are_the_least_squares_lines():
     """The search's closed-form fits are fit_line's (ordinary least squares) on the same tyres."""
+    import pandas as pd
+
     from tyrelab.tyre.regressions import fit_line
 
     points = sr.tyre_points(table_iii(), tyres())
@@ -118,9 +120,38 @@ def test_selection_search_fits_are_the_least_squares_lines():
     base = sr.select(points, spec)
     search = sr.selection_search(points, "kc_vs_rim", max_excluded=1)
     assert len(search) == base["tyre_id"].nunique() + 1 + len(spec["exclude"])
-    for row in search.loc[search["change"].str.startswith(("as printed", "also excluding"))].itertuples():
-        ex = row.change.removeprefix("also excluding ").split(",") if row.change != "as printed" else []
-        sub = base.loc[~base["tyre_id"].isin(ex)]
+    every = sr.select(points, spec, exclude=())
+    for row in search.itertuples():
+        if row.change.startswith("including "):  # an excluded tyre put back
+            sub = pd.concat([base, every.loc[every["tyre_id"] == row.change.removeprefix("including ")]])
+            assert len(sub) == len(base) + 1, row.change
+        else:
+            ex = row.change.removeprefix("also excluding ").split(",") if row.change != "as printed" else []
+            sub = base.loc[~base["tyre_id"].isin(ex)]
         f = fit_line(sub[spec["x"]], sub[spec["y"]])
         assert (row.intercept, row.slope, row.r_squared) == pytest.approx((f["intercept"], f["slope"], f["r_squared"]),
                                                                          rel=1e-9), row.change
+    # the variants: the printed selection under other conditions (fit_line), and through the origin
+    var = sr.variants(points, "kc_vs_rim").set_index("variant")
+    for cond in ("rolling", "stationary", "pooled"):
+        sub = sr.select(points, spec, condition=cond)
+        f = fit_line(sub[spec["x"]], sub[spec["y"]])
+        assert var.loc[f"{cond}, printed exclusions", "slope"] == pytest.approx(f["slope"], rel=1e-12)
+    x, y = base[spec["x"]].to_numpy(float), base[spec["y"]].to_numpy(float)
+    origin = var.loc["rolling, through the origin"]
+    assert origin.intercept == 0.0 and origin.slope == pytest.approx(x @ y / (x @ x), rel=1e-12)
+
+
+def test_quick_fit_of_two_points_and_of_degenerate_data():
+    """Two points one unit apart give their line; no spread in x gives no line, and constant y gives
+    no r², both quietly (no 0/0 warnings)."""
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        f = sr._quick_fit([2.0, 3.0], [10.0, 12.0])
+        assert (f["intercept"], f["slope"], f["r_squared"]) == pytest.approx((6.0, 2.0, 1.0), rel=1e-12)
+        f = sr._quick_fit([2.0, 2.0, 2.0], [1.0, 2.0, 3.0])
+        assert np.isnan(f["slope"]) and np.isnan(f["intercept"]) and np.isnan(f["r_squared"])
+        f = sr._quick_fit([1.0, 2.0, 3.0], [5.0, 5.0, 5.0])
+        assert f["slope"] == 0.0 and f["intercept"] == 5.0 and np.isnan(f["r_squared"])
