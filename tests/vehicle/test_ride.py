@@ -492,3 +492,38 @@ def test_ground_response_is_quasi_static_at_low_frequency():
     w2 = (2 * np.pi * f[0]) ** 2
     assert abs(g[2]) / w2 == pytest.approx(1.0, abs=1e-4)
     assert abs(g[3]) / w2 < 1e-2
+
+
+def test_json_numbers_are_rounded_to_six_decimals_and_the_transmissibility_grid(tmp_path):
+    """result_json rounds every number to 6 decimals (non-finite: null); the transmissibility is given on
+    300 log-spaced frequencies over FIGURE_BAND_HZ per speed (the contract of docs/simulation.md, "Outputs")."""
+    res = ride.ride(load_scenario(write(tmp_path, scenario_text('kind = "iso8608"\nclass = "A"\nlength_m = 10',
+                                                                "[10]"))))
+    doc = ride.result_json([res])
+    for mode in ("bounce", "pitch"):
+        raw = res.natural_frequencies_Hz[mode]
+        assert doc["natural_frequencies_Hz"][mode] == round(raw, 6) and round(raw, 6) != round(raw, 7)
+    assert doc["speeds"][0]["a_wz_m_s2"] == round(float(res.speeds["a_wz_m_s2"].iloc[0]), 6)
+    assert ride._clean(float("nan")) is None and ride._clean(np.float64(np.inf)) is None
+    f = res.transmissibility["frequency_Hz"].to_numpy()
+    assert f.size == 300 and (f[0], f[-1]) == pytest.approx(ride.FIGURE_BAND_HZ, rel=1e-12)
+    np.testing.assert_allclose(f[1:] / f[:-1], (ride.FIGURE_BAND_HZ[1] / ride.FIGURE_BAND_HZ[0]) ** (1 / 299), rtol=1e-9)
+
+
+def test_natural_frequency_intervals_with_one_tyre_given_and_one_from_the_formula(tmp_path):
+    """A front stiffness given without uncertainty and the rear from the formula: the 95 % intervals come from
+    the rear tyre's uncertainty alone, as bounce_pitch.frequency_uncertainty's first-order ones."""
+    from tyrelab.vehicle.bounce_pitch import frequency_uncertainty
+
+    text = scenario_text('kind = "iso8608"\nclass = "A"\nlength_m = 10', "[10]", tyres_extra="stiffness_kN_per_m = 300")
+    res = ride.ride(load_scenario(write(tmp_path, text)), with_spectra=False)
+    kf, kr = res.tyres["front"].stiffness_kN_per_m[0], res.tyres["rear"].stiffness_kN_per_m[0]
+    assert res.tyres["front"].stiffness_u_kN_per_m == 0 and res.tyres["rear"].stiffness_u_kN_per_m > 0
+    (u1, u2), _ = frequency_uncertainty(*(TRACTOR[k] for k in ("mass_kg", "pitch_inertia_kg_m2", "front_distance_m",
+                                                                "rear_distance_m")),
+                                        kf, kr, 0.0, res.tyres["rear"].stiffness_u_kN_per_m)
+    nat, ci = res.natural_frequencies_Hz, res.natural_frequency_intervals_Hz
+    lower, upper = sorted(nat, key=nat.get)
+    for mode, u in ((lower, u1), (upper, u2)):
+        assert u > 0
+        assert ci[mode] == pytest.approx([nat[mode] - 1.96 * u, nat[mode] + 1.96 * u], rel=1e-4)
