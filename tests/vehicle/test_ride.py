@@ -527,3 +527,25 @@ def test_natural_frequency_intervals_with_one_tyre_given_and_one_from_the_formul
     for mode, u in ((lower, u1), (upper, u2)):
         assert u > 0
         assert ci[mode] == pytest.approx([nat[mode] - 1.96 * u, nat[mode] + 1.96 * u], rel=1e-4)
+
+
+def test_seat_filter_is_the_base_excited_transmissibility():
+    """|T| of a seat on a spring and damper: 1 far below its frequency, sqrt(1 + (2 zeta)^2) / (2 zeta) at
+    it (1.84 for zeta = 0.3), and 2 zeta f_n / f (plus the spring's (f_n/f)^2) far above."""
+    fn, z = 1.8, 0.3
+    f = np.array([0.01, fn, 40.0])
+    t = ride.frequency_response(*ride.seat_filter(fn, z), f)[0, 0]
+    r = f / fn
+    exact = np.abs((1 + 2j * z * r) / (1 - r**2 + 2j * z * r))
+    np.testing.assert_allclose(np.abs(t), exact, rtol=1e-9)
+    assert abs(t[0]) == pytest.approx(1.0, abs=1e-3) and abs(t[1]) == pytest.approx(math.sqrt(1 + 0.36) / 0.6, rel=1e-9)
+
+
+def test_iso8608_track_spectrum_is_half_the_class_mean_with_waviness_two(tmp_path):
+    """ISO 8608 class B: geometric mean G_d(n0 = 0.1 cycles/m) = 64e-6 m^3, G_d(n) = G_d(n0) (n/n0)^-2; the
+    axle mean of two independent tracks has half of it (the frequency-domain path's input)."""
+    sc = load_scenario(write(tmp_path, scenario_text('kind = "iso8608"\nclass = "B"\nlength_m = 10', "[10]")))
+    n, g = ride.build_profile(sc).spectrum
+    assert pr.ISO8608_CLASS_G0_M3["B"] == pytest.approx(64e-6, rel=1e-12)
+    np.testing.assert_allclose(g, 0.5 * 64e-6 * (n / 0.1) ** -2.0, rtol=1e-12)
+    assert n[0] < 0.1 < n[-1]
