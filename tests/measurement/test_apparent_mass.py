@@ -299,3 +299,16 @@ def test_segment_length_may_be_the_whole_record():
     assert h.frequency_Hz.size == n // 2 + 1 and h.h1[k] == pytest.approx(3.0, rel=1e-9)
     assert _am.welch_segments_at(x, fs, 8.0, n).shape[-1] == 1
     assert _am.h1_spectrum(x, x, fs, 2).frequency_Hz.size == 2
+
+
+def test_analytic_band_filters_linearly_not_circularly():
+    """The band-pass is applied by FFT on a zero-padded record, so a 21x burst in the record's last 2 s
+    must not wrap onto its start: the output over the record is the same as for the record followed by a
+    minute of zeros (linear convolution either way). Left over: the band filter's tail beyond the padding
+    (8/half_band s), 1e-4 of the burst -> allowed 2.5e-4 (half the padding: 8e-4)."""
+    fs = 256.0
+    t = np.arange(int(40 * fs)) / fs
+    x = np.sin(2 * np.pi * 4.0 * t) * (1 + 20 * (t >= 38))  # whole cycles: zero mean either way
+    z = _am.analytic_band(x, fs, 4.0)
+    ref = _am.analytic_band(np.concatenate([x, np.zeros(int(60 * fs))]), fs, 4.0)[: x.size]
+    assert np.max(np.abs(z - ref)[: int(20 * fs)]) < 2.5e-4 * 21
