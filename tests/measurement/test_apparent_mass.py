@@ -252,6 +252,8 @@ from tyrelab.measurement import apparent_mass as _am  # noqa: E402
     (lambda x: _am.tyre_force(x, x, np.stack([x] * 4), 0.0), "axle_mass_kg"),
     (lambda x: _am.tyre_force(x, x, np.stack([x] * 4), float("inf")), "axle_mass_kg"),
     (lambda x: _am.tyre_force(x, x, np.stack([x] * 3), 600.0), "load_beams_N"),
+    (lambda x: _am.tyre_force(x, x, x, 600.0), "load_beams_N"),  # one-dimensional: no beam axis
+    (lambda x: _am.tyre_force(x, x, np.stack([x[:-1]] * 4), 600.0), "load_beams_N"),
     (lambda x: _am.tyre_force(x, x[:-1], np.stack([x] * 4), 600.0), "accel_left_m_s2 and accel_right_m_s2"),
     (lambda x: _am.stiffness_damping(-400 - 100j, 0.0), "frequency_Hz"),
     (lambda x: _am.apparent_mass_from_kc(1e5, 1e3, -1.0), "frequency_Hz"),
@@ -284,3 +286,29 @@ def test_welch_estimate_is_h1_spectrum_read_at_the_bin():
     k = int(np.argmin(np.abs(s.frequency_Hz - float(w.frequency_Hz))))
     assert complex(w.apparent_mass_kg) == pytest.approx(-complex(s.h1[k]), rel=1e-9)
     assert float(w.coherence) == pytest.approx(float(s.coherence[k]), rel=1e-9)
+
+
+def test_segment_length_may_be_the_whole_record():
+    """nperseg from 2 to n inclusive (h1_spectrum, welch_segments_at): one segment of the whole record is
+    a periodogram, and on a tone at a bin it reads the gain exactly."""
+    fs, n = 256.0, 1024
+    t = np.arange(n) / fs
+    x = np.sin(2 * np.pi * 8.0 * t)  # 32 cycles: bin 32 of a 1024-point segment
+    h = _am.h1_spectrum(x, 3.0 * x, fs, n)
+    k = int(np.argmin(np.abs(h.frequency_Hz - 8.0)))
+    assert h.frequency_Hz.size == n // 2 + 1 and h.h1[k] == pytest.approx(3.0, rel=1e-9)
+    assert _am.welch_segments_at(x, fs, 8.0, n).shape[-1] == 1
+    assert _am.h1_spectrum(x, x, fs, 2).frequency_Hz.size == 2
+
+
+def test_analytic_band_filters_linearly_not_circularly():
+    """The band-pass is applied by FFT on a zero-padded record, so a 21x burst in the record's last 2 s
+    must not wrap onto its start: the output over the record is the same as for the record followed by a
+    minute of zeros (linear convolution either way). Left over: the band filter's tail beyond the padding
+    (8/half_band s), 1e-4 of the burst -> allowed 2.5e-4 (half the padding: 8e-4)."""
+    fs = 256.0
+    t = np.arange(int(40 * fs)) / fs
+    x = np.sin(2 * np.pi * 4.0 * t) * (1 + 20 * (t >= 38))  # whole cycles: zero mean either way
+    z = _am.analytic_band(x, fs, 4.0)
+    ref = _am.analytic_band(np.concatenate([x, np.zeros(int(60 * fs))]), fs, 4.0)[: x.size]
+    assert np.max(np.abs(z - ref)[: int(20 * fs)]) < 2.5e-4 * 21

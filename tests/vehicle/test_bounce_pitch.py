@@ -197,3 +197,17 @@ def test_mode_shapes_nodal_points_are_mass_orthogonal(inertia):
     assert sorted([modes["bounce"]["frequency_Hz"], modes["pitch"]["frequency_Hz"]]) == pytest.approx(sorted(f))
     lower = "bounce" if inertia < 10000 else "pitch"
     assert modes[lower]["frequency_Hz"] == pytest.approx(min(f), rel=1e-12)
+
+
+def test_print_rounding_is_half_the_last_printed_digit():
+    """PRINT_ROUNDING: every Table XIX input and Table XX stiffness is a whole number of 2 x its half-width
+    (the printed last digit), and not all of them of ten times it (the digit is really printed)."""
+    xix, xx = read_published("table_xix"), read_published("table_xx")
+    columns = {"mass": xix["mass_kg"], "pitch_inertia": xix["pitch_inertia_kg_m2"],
+               "front_distance": xix["front_distance_m"], "rear_distance": xix["rear_distance_m"],
+               "front_stiffness_kN_per_m": xx["front_stiffness_kN_per_m"], "rear_stiffness_kN_per_m": xx["rear_stiffness_kN_per_m"]}
+    assert set(columns) == set(bp.PRINT_ROUNDING)
+    for name, values in columns.items():
+        steps = values.to_numpy(float) / (2 * bp.PRINT_ROUNDING[name])
+        np.testing.assert_allclose(steps, np.round(steps), atol=1e-6, err_msg=name)
+        assert np.any(np.abs(steps / 10 - np.round(steps / 10)) > 1e-6), name

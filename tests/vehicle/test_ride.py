@@ -436,3 +436,116 @@ def test_rear_tyre_envelopes_the_track_with_its_own_radius():
     rear_only = ride.axle_inputs(track, "rigid_band", fp, (0.9, 0.9), v, wb, n)
     assert np.array_equal(udf, front_only[1]) and np.array_equal(udr, rear_only[3])
     assert np.max(np.abs(ur - front_only[2])) > 1e-4  # a 0.9 m tyre bridges more than a 0.5 m one
+
+
+@pytest.mark.parametrize("wavelength_m,amplitude_m,lifted", [(0.8, 0.008, "front"), (1.255, 0.013, "rear")])
+def test_one_axle_lifting_off_sends_the_run_to_the_nonlinear_model(tmp_path, wavelength_m, amplitude_m, lifted):
+    """A sinusoidal track at 10 km/h that starts abruptly after the lead-in: the start-up transient on
+    top of the steady response (0.8 m waves, 3.5 Hz: front force 57 % of its static load; 1.255 m,
+    2.2 Hz: rear 76 %) pulls one axle's linear tyre force below minus its static load, the other's
+    not. The run goes to the nonlinear model and only that axle spends time off the ground."""
+    x = np.arange(0, 30.0, 0.05)
+    pd.DataFrame({"distance_m": x, "height_m": amplitude_m * np.sin(2 * np.pi * x / wavelength_m)}).to_csv(
+        tmp_path / "sine.csv", index=False)
+    text = scenario_text('kind = "profile"\nprofile = "sine.csv"\nenveloping = "none"', "[10]", 'longitudinal_model = "none"')
+    sc = load_scenario(write(tmp_path, text))
+    t = ride.build_tractor(sc, ride.resolve_tyres(sc), 0)
+    v = 10 / 3.6
+    track = ride.build_profile(sc)
+    _, stop = ride._record_window(track, t.wheelbase_m, v, None)
+    u = ride.axle_inputs(track.profile, "none", (0.3, 0.3), (0.7, 0.9), v, t.wheelbase_m, stop)
+    y = ride.simulate_state_space(*ride.state_space(t), np.vstack([w[::2] for w in u]))
+    forces = dict(zip(ride.OUTPUTS, y))
+    static = dict(zip(("front", "rear"), t.mass_kg * 9.81 * np.array([t.rear_distance_m, t.front_distance_m])
+                      / t.wheelbase_m))
+    other = "rear" if lifted == "front" else "front"
+    assert forces[f"{lifted}_force_N"].min() < -static[lifted]
+    assert forces[f"{other}_force_N"].min() > -0.95 * static[other]
+    row = ride.ride(sc, with_spectra=False).speeds.iloc[0]
+    assert row["simulation"] == "nonlinear (tyre lift-off)"
+    assert row[f"lift_off_fraction_{lifted}"] > 0.002 and row[f"lift_off_fraction_{other}"] == 0
+
+
+def test_build_tractor_puts_two_tyres_on_each_axle(tmp_path):
+    """Axle values are two tyres' in SI (kN -> N); the longitudinal tyre values only with a longitudinal model."""
+    text = scenario_text('kind = "iso8608"\nclass = "A"\nlength_m = 10', "[10, 20]",
+                         'longitudinal_model = "kelvin_voigt"\nlongitudinal_stiffness_kN_per_m = 400\n'
+                         'longitudinal_damping_kN_s_per_m = 2.5',
+                         tyres_extra="stiffness_kN_per_m = [300, 400]\ndamping_kN_s_per_m = 1.5")
+    sc = load_scenario(write(tmp_path, text))
+    tyres = ride.resolve_tyres(sc)
+    t = ride.build_tractor(sc, tyres, 1)
+    assert (t.front_stiffness_N_per_m, t.front_damping_N_s_per_m) == (800e3, 3e3)
+    assert t.rear_stiffness_N_per_m == pytest.approx(2e3 * tyres["rear"].stiffness_kN_per_m[1], rel=1e-15)
+    assert (t.longitudinal_stiffness_N_per_m, t.longitudinal_damping_N_s_per_m) == (800e3, 5e3)
+    none = ride.build_tractor(load_scenario(write(tmp_path, text.replace('"kelvin_voigt"', '"none"'), "n.toml")), tyres, 0)
+    assert (none.longitudinal_stiffness_N_per_m, none.longitudinal_damping_N_s_per_m) == (0.0, 0.0)
+
+
+def test_ground_response_is_quasi_static_at_low_frequency():
+    """Far below the body modes the tractor follows the ground: the CG's vertical acceleration per metre of
+    profile is (j w)^2 (both axles, delay phase w L / v = 0.006 rad at 0.001 Hz, 10 km/h: error ~2e-5),
+    and it pitches by nothing."""
+    t = Tractor(4700, 5500, 1.56, 0.95, 0.95, 7e5, 8e5, 3e3, 3e3, 0.0, 0.0, "none")
+    f = np.array([0.001])
+    g = ride.ground_response(ride.frequency_response(*ride.state_space(t), f), f, 10 / 3.6, t.wheelbase_m)[:, 0]
+    w2 = (2 * np.pi * f[0]) ** 2
+    assert abs(g[2]) / w2 == pytest.approx(1.0, abs=1e-4)
+    assert abs(g[3]) / w2 < 1e-2
+
+
+def test_json_numbers_are_rounded_to_six_decimals_and_the_transmissibility_grid(tmp_path):
+    """result_json rounds every number to 6 decimals (non-finite: null); the transmissibility is given on
+    300 log-spaced frequencies over FIGURE_BAND_HZ per speed (the contract of docs/simulation.md, "Outputs")."""
+    res = ride.ride(load_scenario(write(tmp_path, scenario_text('kind = "iso8608"\nclass = "A"\nlength_m = 10',
+                                                                "[10]"))))
+    doc = ride.result_json([res])
+    for mode in ("bounce", "pitch"):
+        raw = res.natural_frequencies_Hz[mode]
+        assert doc["natural_frequencies_Hz"][mode] == round(raw, 6) and round(raw, 6) != round(raw, 7)
+    assert doc["speeds"][0]["a_wz_m_s2"] == round(float(res.speeds["a_wz_m_s2"].iloc[0]), 6)
+    assert ride._clean(float("nan")) is None and ride._clean(np.float64(np.inf)) is None
+    f = res.transmissibility["frequency_Hz"].to_numpy()
+    assert f.size == 300 and (f[0], f[-1]) == pytest.approx(ride.FIGURE_BAND_HZ, rel=1e-12)
+    np.testing.assert_allclose(f[1:] / f[:-1], (ride.FIGURE_BAND_HZ[1] / ride.FIGURE_BAND_HZ[0]) ** (1 / 299), rtol=1e-9)
+
+
+def test_natural_frequency_intervals_with_one_tyre_given_and_one_from_the_formula(tmp_path):
+    """A front stiffness given without uncertainty and the rear from the formula: the 95 % intervals come from
+    the rear tyre's uncertainty alone, as bounce_pitch.frequency_uncertainty's first-order ones."""
+    from tyrelab.vehicle.bounce_pitch import frequency_uncertainty
+
+    text = scenario_text('kind = "iso8608"\nclass = "A"\nlength_m = 10', "[10]", tyres_extra="stiffness_kN_per_m = 300")
+    res = ride.ride(load_scenario(write(tmp_path, text)), with_spectra=False)
+    kf, kr = res.tyres["front"].stiffness_kN_per_m[0], res.tyres["rear"].stiffness_kN_per_m[0]
+    assert res.tyres["front"].stiffness_u_kN_per_m == 0 and res.tyres["rear"].stiffness_u_kN_per_m > 0
+    (u1, u2), _ = frequency_uncertainty(*(TRACTOR[k] for k in ("mass_kg", "pitch_inertia_kg_m2", "front_distance_m",
+                                                                "rear_distance_m")),
+                                        kf, kr, 0.0, res.tyres["rear"].stiffness_u_kN_per_m)
+    nat, ci = res.natural_frequencies_Hz, res.natural_frequency_intervals_Hz
+    lower, upper = sorted(nat, key=nat.get)
+    for mode, u in ((lower, u1), (upper, u2)):
+        assert u > 0
+        assert ci[mode] == pytest.approx([nat[mode] - 1.96 * u, nat[mode] + 1.96 * u], rel=1e-4)
+
+
+def test_seat_filter_is_the_base_excited_transmissibility():
+    """|T| of a seat on a spring and damper: 1 far below its frequency, sqrt(1 + (2 zeta)^2) / (2 zeta) at
+    it (1.84 for zeta = 0.3), and 2 zeta f_n / f (plus the spring's (f_n/f)^2) far above."""
+    fn, z = 1.8, 0.3
+    f = np.array([0.01, fn, 40.0])
+    t = ride.frequency_response(*ride.seat_filter(fn, z), f)[0, 0]
+    r = f / fn
+    exact = np.abs((1 + 2j * z * r) / (1 - r**2 + 2j * z * r))
+    np.testing.assert_allclose(np.abs(t), exact, rtol=1e-9)
+    assert abs(t[0]) == pytest.approx(1.0, abs=1e-3) and abs(t[1]) == pytest.approx(math.sqrt(1 + 0.36) / 0.6, rel=1e-9)
+
+
+def test_iso8608_track_spectrum_is_half_the_class_mean_with_waviness_two(tmp_path):
+    """ISO 8608 class B: geometric mean G_d(n0 = 0.1 cycles/m) = 64e-6 m^3, G_d(n) = G_d(n0) (n/n0)^-2; the
+    axle mean of two independent tracks has half of it (the frequency-domain path's input)."""
+    sc = load_scenario(write(tmp_path, scenario_text('kind = "iso8608"\nclass = "B"\nlength_m = 10', "[10]")))
+    n, g = ride.build_profile(sc).spectrum
+    assert pr.ISO8608_CLASS_G0_M3["B"] == pytest.approx(64e-6, rel=1e-12)
+    np.testing.assert_allclose(g, 0.5 * 64e-6 * (n / 0.1) ** -2.0, rtol=1e-12)
+    assert n[0] < 0.1 < n[-1]
