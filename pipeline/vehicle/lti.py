@@ -56,8 +56,11 @@ class FohSystem:
         """Number of states."""
         return int(self.mu.size)
 
-    def run(self, w, x0=None) -> np.ndarray:
+    def run(self, w, x0=None, keep_modes: bool = False):
         """Outputs at the samples of ``w`` (shape ``(m, N)``), from state ``x0`` (default rest).
+
+        With ``keep_modes`` also the modal trajectories, from which :meth:`state_at` gives
+        the state at any sample without computing every state at every sample.
 
         Examples
         --------
@@ -80,6 +83,7 @@ class FohSystem:
                 raise ValueError(f"x0: expected shape ({self.n_states},), got {x0.shape}")
             q0 = self.inv @ (x0 - self.gamma2 @ w[:, 0])
         y = self.dd @ w
+        modes = []
         for i in range(self.n_states):  # modal recursion q_{k+1} = mu q_k + g_k; a conjugate pair counted once, twice
             mu = self.mu[i]
             if mu.imag < 0:
@@ -91,7 +95,26 @@ class FohSystem:
             q[1:] = signal.lfilter([1.0], [1.0, -mu], g, zi=[mu * q0[i]])[0]
             y += np.outer(factor * self.cv[:, i].real, q.real)
             y -= np.outer(factor * self.cv[:, i].imag, q.imag)
-        return y
+            if keep_modes:
+                modes.append((i, factor, q))
+        return (y, (modes, w)) if keep_modes else y
+
+    def state_at(self, kept, k: int) -> np.ndarray:
+        """State ``x_k = V q_k + Γ2 w_k`` at sample ``k`` of a :meth:`run` with ``keep_modes``
+        (``kept`` its second return value).
+
+        Examples
+        --------
+        >>> s = discretise([[-1.0]], [[1.0]], [[1.0]], [[0.0]], 1e-3)
+        >>> y, kept = s.run(np.ones((1, 1001)), keep_modes=True)
+        >>> bool(abs(s.state_at(kept, 1000)[0] - y[0, 1000]) < 1e-15)
+        True
+        """
+        modes, w = kept
+        x = self.gamma2 @ w[:, k]
+        for i, factor, q in modes:
+            x = x + factor * (self.vecs[:, i].real * q[k].real - self.vecs[:, i].imag * q[k].imag)
+        return x
 
 
 def discretise(a, b, c, d, dt_s: float) -> FohSystem:

@@ -100,9 +100,11 @@ _PARAMS = ("mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_
 #: run returns from RK4 to the exact path (50 ms at 1 ms: a tyre that bounces off the next slat
 #: soon after touching down stays on RK4).
 CALM_STEPS = 50
-#: Switched path: samples of one exact segment between checks for lift-off (after the first,
-#: whole-record, attempt), so the cost per return to the exact path does not grow with the record.
-EXACT_CHUNK = 2048
+#: Switched path: samples of the first exact segment after a return from RK4, doubled for each
+#: further segment in contact up to ``EXACT_CHUNK_MAX`` (after the first, whole-record, attempt),
+#: so the cost of a return to the exact path follows the length it stays in contact.
+EXACT_CHUNK = 256
+EXACT_CHUNK_MAX = 4096
 
 
 def _params(tractor: Tractor, runs: int) -> dict[str, np.ndarray]:
@@ -126,14 +128,15 @@ def _scalar(p: dict[str, np.ndarray], models: np.ndarray, i: int) -> Tractor:
 
 def _exact_system(tractor: Tractor, dt_s: float):
     """The linear model of one run, discretised: outputs vertical, pitch, longitudinal, front and
-    rear dynamic tyre force, then every state (:func:`tyrelab.vehicle.ride.state_names`)."""
+    rear dynamic tyre force, ``z`` and ``θ``; and its states' names
+    (:func:`tyrelab.vehicle.ride.state_names`)."""
     from . import lti
     from .ride import state_names, state_space  # ride imports this module
 
     a, b, c, d = state_space(tractor)
     n = a.shape[0]
-    c = np.vstack([c[2:7], np.eye(n)])
-    d = np.vstack([d[2:7], np.zeros((n, d.shape[1]))])
+    c = np.vstack([c[2:7], np.eye(n)[:2]])  # z, θ are states 0 and 1
+    d = np.vstack([d[2:7], np.zeros((2, d.shape[1]))])
     return lti.discretise(a, b, c, d, dt_s), state_names(tractor)
 
 
@@ -204,7 +207,7 @@ class _Exact:
         pos = k0
         while True:
             stop = self.n - 1 if chunk is None else min(self.n - 1, pos + chunk)
-            y = self.system.run(self.inputs[:, 2 * pos:2 * stop + 1], x)
+            y, kept = self.system.run(self.inputs[:, 2 * pos:2 * stop + 1], x, keep_modes=True)
             if x is None:
                 y[5:7, 0] = 0.0  # at rest at the first sample exactly (the modal transform leaves ~1e-22)
             # the RK4 judges contact at the half steps too: so does this check
@@ -214,10 +217,11 @@ class _Exact:
             for key, r in zip(_OUTPUTS, (0, 1, 2, 5, 6)):
                 out[key][row, pos:end] = y[r, 0:2 * m:2]
             if len(hit):
-                return end, _from_states(y[5:, 2 * m], self.names, self.h, y_prev)
+                return end, _from_states(self.system.state_at(kept, 2 * m), self.names, self.h, y_prev)
             if end == self.n:
                 return self.n, None
-            x, pos = y[5:, -1], stop
+            x, pos = self.system.state_at(kept, 2 * (stop - pos)), stop
+            chunk = min(2 * chunk, EXACT_CHUNK_MAX) if chunk else None  # in contact for the whole chunk: look further
 
 
 class _Rhs:
