@@ -20,16 +20,20 @@ vertical, longitudinal and pitch motions are independent of roll, lateral and ya
 (Stayner, Collins and Lines 1984), so the pitch-plane model carries the same
 information for Tables XVII/XVIII. SI units.
 
-Two solution paths, chosen per run by :func:`simulate_tractor` (``method="auto"``):
+Two solution paths, switched within a run by :func:`simulate_tractor` (``method="auto"``):
 
 * while both axles stay in contact the model is linear (the longitudinal element
   acts only in contact, which then always holds): :func:`linear_response` is its
   exact discretisation for inputs linear between the ``dt/2`` samples (first-order
-  hold, :func:`tyrelab.vehicle.ride.simulate_state_space` on
-  :func:`tyrelab.vehicle.ride.state_space`, the carriage's method);
-* a run whose linear solution lifts a tyre off (total tyre force would pull) is
-  integrated again by the nonlinear fixed-step RK4 at ``dt`` (the thesis used
-  Runge-Kutta-Nystrom at about 1 ms), vectorised over those runs.
+  hold, :mod:`tyrelab.vehicle.lti` on :func:`tyrelab.vehicle.ride.state_space`, the
+  carriage's method);
+* across a lift-off (the exact solution's total tyre force would pull at a half step) the
+  run goes back to its last sample in contact and continues with the nonlinear fixed-step
+  RK4 at ``dt`` (the thesis used Runge-Kutta-Nystrom at about 1 ms) until both tyres have
+  stayed on the ground for :data:`CALM_STEPS` steps, then exactly again from the RK4
+  state (``method_used`` ``"exact+rk4"``). The RK4 parts of all runs of a batch advance
+  together, vectorised, each run at its own sample; the longitudinal model may differ
+  per run, so a whole study is one batch.
 """
 
 from __future__ import annotations
@@ -40,7 +44,7 @@ import numpy as np
 
 from .carriage import GRAVITY_M_S2
 
-__all__ = ["Tractor", "simulate_tractor", "linear_response", "LONGITUDINAL_MODELS", "METHODS"]
+__all__ = ["Tractor", "simulate_tractor", "linear_response", "LONGITUDINAL_MODELS", "METHODS", "CALM_STEPS"]
 
 #: Solution paths of :func:`simulate_tractor`.
 METHODS = ("auto", "rk4")
