@@ -101,9 +101,9 @@ _PARAMS = ("mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_
            "longitudinal_stiffness_N_per_m", "longitudinal_damping_N_s_per_m")
 
 #: Switched path: steps (of ``dt``) both tyres must stay in contact, at every RK4 stage, before a
-#: run returns from RK4 to the exact path (50 ms at 1 ms: a tyre that bounces off the next slat
-#: soon after touching down stays on RK4).
-CALM_STEPS = 50
+#: run returns from RK4 to the exact path (20 ms at 1 ms: a tyre that bounces straight off again
+#: stays on RK4; on the ch. 7 batch 10-20 steps cost least, 5 and 50 about 10-30 % more CPU).
+CALM_STEPS = 20
 #: Switched path: samples of the first exact segment after a return from RK4, doubled for each
 #: further segment in contact up to ``EXACT_CHUNK_MAX`` (after the first, whole-record, attempt),
 #: so the cost of a return to the exact path follows the length it stays in contact.
@@ -367,7 +367,7 @@ def _run_switched(p, models, uf, udf, ur, udr, dt_s, lift_off, gravity_m_s2, swi
     idx = np.array([s[0] for s in switched])
     exact = [s[1] for s in switched]
     rhs = _Rhs({k: v[idx] for k, v in p.items()}, np.asarray(models)[idx], lift_off, gravity_m_s2)
-    uf, udf, ur, udr = (v[idx] for v in (uf, udf, ur, udr))
+    inputs = np.stack([v[idx] for v in (uf, udf, ur, udr)], axis=-1)  # (runs, 2n - 1, 4): one gather a stage
     count, n = idx.size, (uf.shape[1] + 1) // 2
     rows = np.arange(count)
     y = np.array([s[3] for s in switched]).T  # (7, count)
@@ -375,35 +375,36 @@ def _run_switched(p, models, uf, udf, ur, udr, dt_s, lift_off, gravity_m_s2, swi
     calm = np.zeros(count, dtype=int)
     active = np.ones(count, dtype=bool)
     off_f, off_r = np.zeros(count), np.zeros(count)
-    res = {key: out[key][idx] for key in _OUTPUTS}  # filled here, written back at the end
+    res = np.stack([out[key][idx] for key in _OUTPUTS])  # (5, count, n), written back at the end
+    views = {key: res[i] for i, key in enumerate(_OUTPUTS)}
     last, hstep = 2 * n - 2, dt_s
     while active.any():
         j = 2 * k
-        j1, j2 = np.minimum(j + 1, last), np.minimum(j + 2, last)
-        k1, lf, lr = rhs(y, uf[rows, j], udf[rows, j], ur[rows, j], udr[rows, j])
+        w0 = inputs[rows, j].T
+        w1 = inputs[rows, np.minimum(j + 1, last)].T
+        w2 = inputs[rows, np.minimum(j + 2, last)].T
+        k1, lf, lr = rhs(y, *w0)
         act = np.flatnonzero(active)
-        ka = k[act]
-        for key, v in zip(_OUTPUTS, (k1[3], k1[4], k1[5], y[0], y[1])):
-            res[key][act, ka] = v[act]
+        res[:, act, k[act]] = np.stack([k1[3], k1[4], k1[5], y[0], y[1]])[:, act]
         off_f[act] += lf[act]
         off_r[act] += lr[act]
         end = active & (k == n - 1)
         step = active & ~end
-        k2, lf2, lr2 = rhs(y + 0.5 * hstep * k1, uf[rows, j1], udf[rows, j1], ur[rows, j1], udr[rows, j1])
-        k3, lf3, lr3 = rhs(y + 0.5 * hstep * k2, uf[rows, j1], udf[rows, j1], ur[rows, j1], udr[rows, j1])
-        k4, lf4, lr4 = rhs(y + hstep * k3, uf[rows, j2], udf[rows, j2], ur[rows, j2], udr[rows, j2])
+        k2, lf2, lr2 = rhs(y + 0.5 * hstep * k1, *w1)
+        k3, lf3, lr3 = rhs(y + 0.5 * hstep * k2, *w1)
+        k4, lf4, lr4 = rhs(y + hstep * k3, *w2)
         y = np.where(step, y + hstep / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4), y)
         k = k + step
         calm = np.where(lf | lr | lf2 | lr2 | lf3 | lr3 | lf4 | lr4, 0, calm + 1)
         active &= ~end
         for r in np.flatnonzero(step & (calm >= CALM_STEPS)):  # back in contact for a while: exact again
-            kr, y7 = exact[r].solve(int(k[r]), y[:, r], res, r, lift_off, chunk=EXACT_CHUNK)
+            kr, y7 = exact[r].solve(int(k[r]), y[:, r], views, r, lift_off, chunk=EXACT_CHUNK)
             if y7 is None:
                 active[r] = False
             else:
                 k[r], y[:, r], calm[r] = kr, y7, 0
-    for key in _OUTPUTS:
-        out[key][idx] = res[key]
+    for i, key in enumerate(_OUTPUTS):
+        out[key][idx] = res[i]
     out["lift_off_fraction_front"][idx] = off_f / n
     out["lift_off_fraction_rear"][idx] = off_r / n
 
