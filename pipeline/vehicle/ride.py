@@ -15,9 +15,10 @@ weighted accelerations and the EU Directive 2002/44/EC daily exposure:
    ``x' = A x + B w``, ``y = C x + D w`` with inputs ``w = [u_f, u_f', u_r, u_r']``.
    The time path runs it exactly for piecewise-linear inputs (first-order hold,
    modal decomposition, one :func:`scipy.signal.lfilter` per mode); a run whose
-   tyre force would pull (lift-off) is re-run with the nonlinear RK4
-   :func:`~tyrelab.vehicle.tractor.simulate_tractor`, so the numbers are those
-   of the ch. 7 study. The seat suspension is a base-excited single-DOF filter on
+   tyre force would pull (lift-off) is re-run with
+   :func:`~tyrelab.vehicle.tractor.simulate_tractor` (exact in contact, the
+   nonlinear RK4 across the lift-off intervals), so the numbers are those of the
+   ch. 7 study. The seat suspension is a base-excited single-DOF filter on
    the seat-point vertical acceleration (no feedback on the tractor).
 3. **Frequency-domain path** (:func:`frequency_response`, :func:`expected_rms`):
    the same ``(A, B, C, D)`` gives the seat's complex response to ground input
