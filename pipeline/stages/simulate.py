@@ -16,6 +16,12 @@ executor): ``ride_scenarios`` (one row per scenario), ``ride_results`` (one row 
 scenario × speed × pressure pair). A wrong scenario is quarantined with its problems;
 the others still run.
 
+The carriage (ch. 6) and tractor (ch. 7) studies are cached as a whole under the digest of
+the tables each reads; those not cached run side by side through
+:func:`tyrelab.executor.map_batches` (``--jobs``/``--executor``). The tractor runs are
+exact while both axles are in contact and RK4 across lift-off, ``tractor_runs.method_used``
+(``exact`` or ``exact+rk4``) says which.
+
 Everything is seeded (``SEED``), so the same command gives the same bytes. If the
 warehouse holds ``results`` with rolling T4 stiffness on a flat surface at the
 Table XII conditions, those are *not* substituted automatically (the Table XII
