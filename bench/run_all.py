@@ -28,6 +28,7 @@ def plan(quick: bool) -> list[list[str]]:
     cmds.append(["bench_pipeline.py", "--scales", "small"] if quick else ["bench_pipeline.py"])
     cmds += [[name] for name in ("bench_carriage.py", "bench_accuracy.py") if (HERE / name).exists()]
     cmds += [["bench_ride.py", *(["--skip-sweep"] if quick else [])]] if (HERE / "bench_ride.py").exists() else []
+    cmds += [["bench_simulate.py", *([] if quick else ["--stage"])]] if (HERE / "bench_simulate.py").exists() else []
     return cmds
 
 

@@ -16,6 +16,12 @@ executor): ``ride_scenarios`` (one row per scenario), ``ride_results`` (one row 
 scenario × speed × pressure pair). A wrong scenario is quarantined with its problems;
 the others still run.
 
+The carriage (ch. 6) and tractor (ch. 7) studies are cached as a whole under the digest of
+the tables each reads; those not cached run side by side through
+:func:`tyrelab.executor.map_batches` (``--jobs``/``--executor``). The tractor runs are
+exact while both axles are in contact and RK4 across lift-off, ``tractor_runs.method_used``
+(``exact`` or ``exact+rk4``) says which.
+
 Everything is seeded (``SEED``), so the same command gives the same bytes. If the
 warehouse holds ``results`` with rolling T4 stiffness on a flat surface at the
 Table XII conditions, those are *not* substituted automatically (the Table XII
@@ -31,6 +37,7 @@ from pathlib import Path
 import pandas as pd
 
 from .. import published
+from ..executor import map_batches
 from ..vehicle import bounce_pitch, ride, studies
 from ..vehicle import published_layouts as layouts
 from .base import Context, StageResult, write_quarantine
@@ -115,6 +122,14 @@ def _carriage_tables(car: dict) -> dict:
     return {k: car[k] for k in ("runs", "comparisons", "table_xiii", "table_xiv", "spectra", "acceleration_spectra")}
 
 
+def _study(item: tuple) -> dict:
+    """Executor task: one chapter 6/7 study (module level, picklable), the tables the stage keeps."""
+    name, (first, second) = item
+    if name == "carriage":
+        return _carriage_tables(studies.carriage_study(first, second, seed=SEED))
+    return studies.tractor_study(first, second, seed=SEED)
+
+
 def run(ctx: Context) -> StageResult:
     """Run the chapter 6-8 simulations and write their tables (see module docstring)."""
     t0 = time.perf_counter()
@@ -125,9 +140,17 @@ def run(ctx: Context) -> StageResult:
     # a changed ride scenario re-runs neither, a changed Table XII only the carriage
     cache = ItemCache(ctx, "simulate")
 
+    # chapters 6 and 7: the studies not in the cache run side by side (tyrelab.executor.map_batches)
+    mass, tyres = layouts.tractor_mass(pub["table_xv"]), layouts.tractor_tyres(pub["table_xvi"])
+    keys = {"carriage": cache.key("carriage", xii, stationary, SEED), "tractor": cache.key("tractor", mass, tyres, SEED)}
+    done = {name: v for name, k in keys.items() for hit, v in [cache.get(k)] if hit}
+    todo = [(name, (xii, stationary) if name == "carriage" else (mass, tyres)) for name in keys if name not in done]
+    for (name, _), value in zip(todo, map_batches(_study, todo, ctx)):
+        cache.put(keys[name], value)
+        done[name] = value
+    car, tr = done["carriage"], done["tractor"]
+
     # chapter 6: carriage
-    car = cache.get_or_compute(cache.key("carriage", xii, stationary, SEED),
-                               lambda: _carriage_tables(studies.carriage_study(xii, stationary, seed=SEED)))
     xiii = _side_by_side(
         car["table_xiii"].rename(columns={"rolling": "ours_rolling", "stationary": "ours_stationary"}),
         layouts.carriage_accuracy(pub["table_xiii"]),
@@ -140,9 +163,6 @@ def run(ctx: Context) -> StageResult:
     )
 
     # chapter 7: tractor
-    mass, tyres = layouts.tractor_mass(pub["table_xv"]), layouts.tractor_tyres(pub["table_xvi"])
-    tr = cache.get_or_compute(cache.key("tractor", mass, tyres, SEED),
-                              lambda: studies.tractor_study(mass, tyres, seed=SEED))
     xvii = _side_by_side(tr["table_xvii"], layouts.tractor_accuracy(pub["table_xvii"]), ["track", "quantity", "statistic"])
     thesis_xviii = layouts.longitudinal_sweep(pub["table_xviii"])
     xviii = tr["table_xviii"].merge(

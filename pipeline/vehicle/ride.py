@@ -15,9 +15,10 @@ weighted accelerations and the EU Directive 2002/44/EC daily exposure:
    ``x' = A x + B w``, ``y = C x + D w`` with inputs ``w = [u_f, u_f', u_r, u_r']``.
    The time path runs it exactly for piecewise-linear inputs (first-order hold,
    modal decomposition, one :func:`scipy.signal.lfilter` per mode); a run whose
-   tyre force would pull (lift-off) is re-run with the nonlinear RK4
-   :func:`~tyrelab.vehicle.tractor.simulate_tractor`, so the numbers are those
-   of the ch. 7 study. The seat suspension is a base-excited single-DOF filter on
+   tyre force would pull (lift-off) is re-run with
+   :func:`~tyrelab.vehicle.tractor.simulate_tractor` (exact in contact, the
+   nonlinear RK4 across the lift-off intervals), so the numbers are those of the
+   ch. 7 study. The seat suspension is a base-excited single-DOF filter on
    the seat-point vertical acceleration (no feedback on the tractor).
 3. **Frequency-domain path** (:func:`frequency_response`, :func:`expected_rms`):
    the same ``(A, B, C, D)`` gives the seat's complex response to ground input
@@ -44,7 +45,6 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 from scipy import signal
-from scipy.linalg import expm
 
 from .. import published
 from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
@@ -52,6 +52,7 @@ from ..tyre.stiffness import estimate_stiffness
 from . import bounce_pitch
 from . import enveloping as ev
 from . import iso2631
+from . import lti
 from . import metrics as mt
 from . import profiles as pr
 from .carriage import GRAVITY_M_S2
@@ -67,6 +68,7 @@ __all__ = [
     "per_speed",
     "resolve_tyres",
     "build_tractor",
+    "state_names",
     "state_space",
     "simulate_state_space",
     "seat_filter",
@@ -267,6 +269,29 @@ def build_tractor(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Tr
 
 
 # --------------------------------------------------------------------------- linear model
+def state_names(tractor: Tractor) -> list[str]:
+    """States of :func:`state_space` for a scalar ``tractor``, in order.
+
+    ``z, θ`` ("th"), ``x`` (Kelvin-Voigt with ``k_x > 0`` only), ``z', θ'`` ("vz", "vth"),
+    ``x'`` ("vx", any longitudinal element) and ``q = d - s`` (Maxwell). A Maxwell element
+    without spring or damper carries no force (as in
+    :func:`tyrelab.vehicle.tractor.simulate_tractor`) and adds no state.
+
+    Examples
+    --------
+    >>> state_names(Tractor(1000, 250, 1.0, 1.0, 0.5, 1e5, 1e5, 0.0, 0.0, 1e5, 1e3, "maxwell"))
+    ['z', 'th', 'vz', 'vth', 'vx', 'q']
+    """
+    kx, cx = float(tractor.longitudinal_stiffness_N_per_m), float(tractor.longitudinal_damping_N_s_per_m)
+    model = str(tractor.longitudinal_model)
+    if model == "maxwell" and not (kx > 0 and cx > 0):
+        model = "none"
+    names = ["z", "th"] + (["x"] if model == "kelvin_voigt" and kx > 0 else []) + ["vz", "vth"]
+    names += ["vx"] if model != "none" else []
+    names += ["q"] if model == "maxwell" else []
+    return names
+
+
 def state_space(tractor: Tractor, seat_ahead_m: float = 0.0, seat_height_m: float = 0.0):
     """Linear pitch-plane tractor (both axles in contact) as ``(A, B, C, D)``.
 
@@ -302,12 +327,8 @@ def state_space(tractor: Tractor, seat_ahead_m: float = 0.0, seat_height_m: floa
     kf, kr = float(tractor.front_stiffness_N_per_m), float(tractor.rear_stiffness_N_per_m)
     cf, cr = float(tractor.front_damping_N_s_per_m), float(tractor.rear_damping_N_s_per_m)
     kx, cx = float(tractor.longitudinal_stiffness_N_per_m), float(tractor.longitudinal_damping_N_s_per_m)
-    model = tractor.longitudinal_model
-    if model == "maxwell" and not (kx > 0 and cx > 0):
-        model = "none"  # simulate_tractor: a Maxwell element without spring or damper carries no force
-    names = ["z", "th"] + (["x"] if model == "kelvin_voigt" and kx > 0 else []) + ["vz", "vth"]
-    names += ["vx"] if model != "none" else []
-    names += ["q"] if model == "maxwell" else []
+    names = state_names(tractor)
+    model = "maxwell" if "q" in names else "kelvin_voigt" if "vx" in names else "none"
     n = len(names)
     pos = {k: i for i, k in enumerate(names)} | {"uf": n, "udf": n + 1, "ur": n + 2, "udr": n + 3}
 
@@ -341,7 +362,8 @@ def simulate_state_space(a, b, c, d, w, dt_s: float = DT_S, outputs=None) -> np.
 
     First-order hold (:func:`scipy.signal.cont2discrete`, ``method="foh"``), the
     discrete system diagonalised and each mode run with :func:`scipy.signal.lfilter`
-    (the method of :func:`tyrelab.vehicle.carriage.simulate_linear`, for any size).
+    (the method of :func:`tyrelab.vehicle.carriage.simulate_linear`, for any size;
+    :func:`tyrelab.vehicle.lti.discretise` and :meth:`~tyrelab.vehicle.lti.FohSystem.run`).
 
     Parameters
     ----------
@@ -369,35 +391,7 @@ def simulate_state_space(a, b, c, d, w, dt_s: float = DT_S, outputs=None) -> np.
     a, b, c, d = (np.atleast_2d(np.asarray(v, float)) for v in (a, b, c, d))
     if outputs is not None:
         c, d = c[list(outputs)], d[list(outputs)]
-    w = np.atleast_2d(np.asarray(w, float))
-    n, m = b.shape
-    # first-order hold as scipy.signal.cont2discrete(method="foh") builds it, from one expm:
-    # xi_{k+1} = Ad xi_k + Bd w_k, y_k = C xi_k + (D + C Gamma2) w_k, xi_k = x_k - Gamma2 w_k
-    em = np.zeros((n + 2 * m, n + 2 * m))
-    em[:n, :n] = a * dt_s
-    em[:n, n:n + m] = b * dt_s
-    em[n:n + m, n + m:] = np.eye(m)
-    ms = expm(em)
-    ad, gamma1, gamma2 = ms[:n, :n], ms[:n, n:n + m], ms[:n, n + m:]
-    bd = gamma1 - gamma2 + ad @ gamma2
-    dd = d + c @ gamma2
-    mu, vecs = np.linalg.eig(ad)
-    inv = np.linalg.inv(vecs)
-    cv = c @ vecs
-    g_in = inv @ bd
-    q0 = inv @ (-gamma2 @ w[:, 0])
-    y = dd @ w
-    for i in range(n):  # modal recursion q_{k+1} = mu q_k + g_k; a conjugate pair counted once, twice
-        if mu[i].imag < 0:
-            continue
-        factor = 2.0 if mu[i].imag > 0 else 1.0
-        g = g_in[i].real @ w[:, :-1] + 1j * (g_in[i].imag @ w[:, :-1])
-        q = np.empty(w.shape[1], dtype=complex)
-        q[0] = q0[i]
-        q[1:] = signal.lfilter([1.0], [1.0, -mu[i]], g, zi=[mu[i] * q0[i]])[0]
-        y += np.outer(factor * cv[:, i].real, q.real)
-        y -= np.outer(factor * cv[:, i].imag, q.imag)
-    return y
+    return lti.discretise(a, b, c, d, dt_s).run(w)
 
 
 def seat_filter(natural_frequency_Hz: float, damping_ratio: float):
@@ -724,7 +718,7 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
         params = {f: np.array([float(getattr(runs[k]["tr"], f)) for k in redo]) for f in _TRACTOR_ARRAYS}
         sim = simulate_tractor(Tractor(**params, longitudinal_model=scenario.tractor.longitudinal_model),
                                *[np.array([inp[j] for inp in inputs]) for j in range(4)], DT_S, lift_off=True,
-                               method="rk4")  # these runs lift off: the linear attempt of "auto" would be wasted
+                               method="auto")  # exact in contact, RK4 across the lift-off intervals (as the ch. 7 study)
         for row_i, k in enumerate(redo):
             r = runs[k]
             vert, pitch, lon = (sim[c][row_i, :r["stop"]] for c in ("vertical_m_s2", "pitch_rad_s2", "longitudinal_m_s2"))

@@ -423,70 +423,73 @@ def tractor_study(
     n_steps = int(round(duration_s / DT_S)) + 1 + int(round(LEAD_IN_M / (10 / 3.6 * DT_S)))
     results = []
     input_cache: dict = {}
-    for model in ("none", "kelvin_voigt", "maxwell"):
-        group = [s for s in specs if s[1].get("longitudinal_model", "none") == model]
-        if not group:
-            continue
-        arrs = [[], [], [], []]
-        for label, kw, prof, farm in group:
-            v = label["speed_km_h"] / 3.6
-            wb = kw["front_distance_m"] + kw["rear_distance_m"]
-            key = (id(prof), v, wb)
-            if key not in input_cache:
-                radii = {"front": 0.0 if farm else FRONT_7_50_18_RADIUS_M, "rear": 0.0 if farm else T4_ROLLING_RADIUS_M}
-                input_cache[key] = _tractor_inputs(prof, radii, {"front": 0.25, "rear": 0.45}, v, wb, n_steps)
-            for a_, b_ in zip(arrs, input_cache[key]):
-                a_.append(b_)
-        params = {k: np.array([g[1].get(k, 0.0) for g in group], float) for k in (
-            "mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_m", "cg_height_m",
-            "front_stiffness_N_per_m", "rear_stiffness_N_per_m", "front_damping_N_s_per_m", "rear_damping_N_s_per_m",
-            "longitudinal_stiffness_N_per_m", "longitudinal_damping_N_s_per_m")}  # fmt: skip
-        sim = simulate_tractor(Tractor(**params, longitudinal_model=model), *[np.array(a_) for a_ in arrs], DT_S)
-        for i, (label, kw, prof, farm) in enumerate(group):
-            v = label["speed_km_h"] / 3.6
-            wb = kw["front_distance_m"] + kw["rear_distance_m"]
-            start = int(math.ceil((LEAD_IN_M - wb) / (v * DT_S))) if LEAD_IN_M > wb else 0
-            length = min(duration_s, (prof.x_m[-1] - 2 * LEAD_IN_M) / v) if label["track"] == "SBT" else duration_s
-            stop = start + int(round(length / DT_S))
-            vert = sim["vertical_m_s2"][i, start:stop]
-            pitch = sim["pitch_rad_s2"][i, start:stop]
-            lon = sim["longitudinal_m_s2"][i, start:stop]
-            fv, pv = mt.acceleration_psd(vert, FS_HZ, 0.1)
-            fp, pp = mt.acceleration_psd(pitch, FS_HZ, 0.1)
-            peaks = mt.spectral_peaks(fv, pv, 3)
-            two = mt.spectral_peaks(fv, pv, 2)
-            iso_z = iso2631.evaluate(vert, FS_HZ, "z")
-            iso_x = iso2631.evaluate(lon, FS_HZ, "x")
-            results.append(
-                {
-                    "sweep": False,
-                    **label,
-                    "front_stiffness_kN_per_m": kw["front_stiffness_N_per_m"] / 2e3,
-                    "rear_stiffness_kN_per_m": kw["rear_stiffness_N_per_m"] / 2e3,
-                    "front_damping_kN_s_per_m": kw["front_damping_N_s_per_m"] / 2e3,
-                    "rear_damping_kN_s_per_m": kw["rear_damping_N_s_per_m"] / 2e3,
-                    "longitudinal_stiffness_kN_per_m": kw.get("longitudinal_stiffness_N_per_m", 0.0) / 2e3,
-                    "longitudinal_damping_kN_s_per_m": kw.get("longitudinal_damping_N_s_per_m", 0.0) / 2e3,
-                    "profile": prof.label,
-                    "duration_s": vert.size / FS_HZ,
-                    "vertical_rms_m_s2": mt.band_rms(fv, pv, 0.5, 10.0),
-                    "pitch_rms_rad_s2": mt.band_rms(fp, pp, 0.5, 10.0),
-                    "first_peak_Hz": two[0],
-                    "second_peak_Hz": two[1],
-                    "peak_1_Hz": peaks[0],
-                    "peak_2_Hz": peaks[1],
-                    "peak_3_Hz": peaks[2],
-                    "lift_off_fraction_front": float(sim["lift_off_fraction_front"][i]),
-                    "lift_off_fraction_rear": float(sim["lift_off_fraction_rear"][i]),
-                    "iso_vertical_weighted_rms_m_s2": iso_z["weighted_rms_m_s2"],
-                    "iso_longitudinal_weighted_rms_m_s2": iso_x["weighted_rms_m_s2"],
-                    "iso_vertical_vdv_m_s1_75": iso_z["vdv_m_s1_75"],
-                    "iso_vertical_crest_factor": iso_z["crest_factor"],
-                    "iso_a8_m_s2": max(iso_z["a8_m_s2"], iso_x["a8_m_s2"]),
-                    "iso_exceeds_action": bool(max(iso_z["a8_m_s2"], iso_x["a8_m_s2"]) > iso2631.EU_ACTION_A8_M_S2),
-                    "iso_exceeds_limit": bool(max(iso_z["a8_m_s2"], iso_x["a8_m_s2"]) > iso2631.EU_LIMIT_A8_M_S2),
-                }
-            )
+    # one batch for every run (the longitudinal model per run), in the order of the models
+    group = [s for model in ("none", "kelvin_voigt", "maxwell") for s in specs
+             if s[1].get("longitudinal_model", "none") == model]
+    input_keys = []
+    for label, kw, prof, farm in group:
+        v = label["speed_km_h"] / 3.6
+        wb = kw["front_distance_m"] + kw["rear_distance_m"]
+        key = (id(prof), v, wb)
+        if key not in input_cache:
+            radii = {"front": 0.0 if farm else FRONT_7_50_18_RADIUS_M, "rear": 0.0 if farm else T4_ROLLING_RADIUS_M}
+            input_cache[key] = _tractor_inputs(prof, radii, {"front": 0.25, "rear": 0.45}, v, wb, n_steps)
+        input_keys.append(key)
+    arrs = [np.array([input_cache[key][j] for key in input_keys]) for j in range(4)]
+    del input_cache
+    params = {k: np.array([g[1].get(k, 0.0) for g in group], float) for k in (
+        "mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_m", "cg_height_m",
+        "front_stiffness_N_per_m", "rear_stiffness_N_per_m", "front_damping_N_s_per_m", "rear_damping_N_s_per_m",
+        "longitudinal_stiffness_N_per_m", "longitudinal_damping_N_s_per_m")}  # fmt: skip
+    models = np.array([g[1].get("longitudinal_model", "none") for g in group], dtype=object)
+    sim = simulate_tractor(Tractor(**params, longitudinal_model=models), *arrs, DT_S)
+    del arrs
+    for i, (label, kw, prof, farm) in enumerate(group):
+        v = label["speed_km_h"] / 3.6
+        wb = kw["front_distance_m"] + kw["rear_distance_m"]
+        start = int(math.ceil((LEAD_IN_M - wb) / (v * DT_S))) if LEAD_IN_M > wb else 0
+        length = min(duration_s, (prof.x_m[-1] - 2 * LEAD_IN_M) / v) if label["track"] == "SBT" else duration_s
+        stop = start + int(round(length / DT_S))
+        vert = sim["vertical_m_s2"][i, start:stop]
+        pitch = sim["pitch_rad_s2"][i, start:stop]
+        lon = sim["longitudinal_m_s2"][i, start:stop]
+        fv, pv = mt.acceleration_psd(vert, FS_HZ, 0.1)
+        fp, pp = mt.acceleration_psd(pitch, FS_HZ, 0.1)
+        peaks = mt.spectral_peaks(fv, pv, 3)
+        two = mt.spectral_peaks(fv, pv, 2)
+        iso_z = iso2631.evaluate(vert, FS_HZ, "z")
+        iso_x = iso2631.evaluate(lon, FS_HZ, "x")
+        results.append(
+            {
+                "sweep": False,
+                **label,
+                "front_stiffness_kN_per_m": kw["front_stiffness_N_per_m"] / 2e3,
+                "rear_stiffness_kN_per_m": kw["rear_stiffness_N_per_m"] / 2e3,
+                "front_damping_kN_s_per_m": kw["front_damping_N_s_per_m"] / 2e3,
+                "rear_damping_kN_s_per_m": kw["rear_damping_N_s_per_m"] / 2e3,
+                "longitudinal_stiffness_kN_per_m": kw.get("longitudinal_stiffness_N_per_m", 0.0) / 2e3,
+                "longitudinal_damping_kN_s_per_m": kw.get("longitudinal_damping_N_s_per_m", 0.0) / 2e3,
+                "profile": prof.label,
+                "duration_s": vert.size / FS_HZ,
+                "vertical_rms_m_s2": mt.band_rms(fv, pv, 0.5, 10.0),
+                "pitch_rms_rad_s2": mt.band_rms(fp, pp, 0.5, 10.0),
+                "first_peak_Hz": two[0],
+                "second_peak_Hz": two[1],
+                "peak_1_Hz": peaks[0],
+                "peak_2_Hz": peaks[1],
+                "peak_3_Hz": peaks[2],
+                "lift_off_fraction_front": float(sim["lift_off_fraction_front"][i]),
+                "lift_off_fraction_rear": float(sim["lift_off_fraction_rear"][i]),
+                "iso_vertical_weighted_rms_m_s2": iso_z["weighted_rms_m_s2"],
+                "iso_longitudinal_weighted_rms_m_s2": iso_x["weighted_rms_m_s2"],
+                "iso_vertical_vdv_m_s1_75": iso_z["vdv_m_s1_75"],
+                "iso_vertical_crest_factor": iso_z["crest_factor"],
+                "iso_a8_m_s2": max(iso_z["a8_m_s2"], iso_x["a8_m_s2"]),
+                "iso_exceeds_action": bool(max(iso_z["a8_m_s2"], iso_x["a8_m_s2"]) > iso2631.EU_ACTION_A8_M_S2),
+                "iso_exceeds_limit": bool(max(iso_z["a8_m_s2"], iso_x["a8_m_s2"]) > iso2631.EU_LIMIT_A8_M_S2),
+                "method_used": str(sim["method_used"][i]),
+            }
+        )
     runs = pd.DataFrame(results)
     main = runs[~runs["sweep"].astype(bool)]
     keys = ["load_condition", "track", "speed_km_h"]

@@ -159,3 +159,12 @@ def test_mf698t_scenario_reproduces_the_chapter_7_runs(ctx):
     np.testing.assert_allclose(mf["rear_stiffness_kN_per_m"], st["rear_stiffness_kN_per_m"])
     # lift-off in the same runs (the study counts over its fixed 31.8 s, the ride over the record)
     assert ((mf["lift_off_fraction_front"] > 0) == (st["lift_off_fraction_front"] > 0)).all()
+
+
+def test_tractor_runs_record_their_solution_path(ctx):
+    """Runs that lift a tyre were switched (exact in contact, RK4 across lift-off); the others exact."""
+    runs = ctx.read_table("tractor_runs")
+    lifted = (runs["lift_off_fraction_front"] > 0) | (runs["lift_off_fraction_rear"] > 0)
+    assert set(runs.loc[lifted, "method_used"]) == {"exact+rk4"}
+    assert set(runs.loc[~lifted, "method_used"]) <= {"exact", "exact+rk4"}
+    assert (runs["method_used"] == "exact").any() and lifted.any()
