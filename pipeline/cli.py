@@ -66,7 +66,7 @@ def _check_raw(args, need_campaign: bool) -> str | None:
     if not raw.is_dir():
         return f"--raw {raw}: no such folder"
     if need_campaign:
-        from .stages.ingest import discover_campaigns
+        from .io import discover_campaigns  # light: the ingest stage is imported only if it runs
 
         if not discover_campaigns(raw):
             return f"--raw {raw}: no campaign (no manifest.csv in it or below it)"

@@ -16,13 +16,12 @@ import re
 import stat
 import tempfile
 from pathlib import Path
-from typing import Iterator
+from typing import TYPE_CHECKING, Iterator
 
-import pandas as pd
-import pyarrow as pa
-import pyarrow.parquet as pq
+if TYPE_CHECKING:  # pandas/pyarrow are imported where used: a no-op run never needs them
+    import pandas as pd
 
-__all__ = ["atomic_path", "write_parquet_atomic", "write_text_atomic", "file_sha256"]
+__all__ = ["atomic_path", "write_parquet_atomic", "write_text_atomic", "file_sha256", "discover_campaigns"]
 
 
 _UMASK = os.umask(0)
@@ -74,6 +73,9 @@ def write_parquet_atomic(df: pd.DataFrame, path: str | os.PathLike) -> Path:
     The index is not stored. Output is deterministic for the same frame
     (no creation timestamps are written by pyarrow).
     """
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
     table = pa.Table.from_pandas(df, preserve_index=False)
     with atomic_path(path) as tmp:
         pq.write_table(table, tmp, compression="zstd")
@@ -113,15 +115,21 @@ def file_kind(mode: int) -> str:
     return next((name for test, name in _KINDS if test(mode)), "regular file" if stat.S_ISREG(mode) else "special file")
 
 
-def regular_files(folder: str | os.PathLike, exclude: str | os.PathLike | None = None):
+def regular_files(folder: str | os.PathLike, exclude: str | os.PathLike | None = None,
+                  skip_folders_with: str | None = None):
     """Regular files below ``folder`` (sorted folders; hidden folders and ``exclude`` skipped).
 
     Named pipes, devices and sockets are skipped with a warning (once per path and
     process): opening a FIFO would block the pipeline for ever. Dangling symlinks are
     skipped silently. Symlinks are followed (``stat``), as reading them would.
+    With ``skip_folders_with`` (a name, e.g. ``"manifest.csv"``), a folder holding an
+    entry of that name is skipped with everything below it.
     """
     skip = Path(exclude).resolve() if exclude is not None else None
     for dirpath, dirnames, filenames in os.walk(folder):
+        if skip_folders_with is not None and (skip_folders_with in filenames or skip_folders_with in dirnames):
+            dirnames[:] = []
+            continue
         dirnames[:] = sorted(d for d in dirnames
                              if not d.startswith(".") and (skip is None or (Path(dirpath) / d).resolve() != skip))
         for f in sorted(filenames):
@@ -135,3 +143,23 @@ def regular_files(folder: str | os.PathLike, exclude: str | os.PathLike | None =
             elif str(p) not in _warned:
                 _warned.add(str(p))
                 logging.getLogger("tyrelab").warning("%s: skipped: a %s, not a regular file", p, file_kind(mode))
+
+
+def discover_campaigns(raw: str | os.PathLike) -> list[Path]:
+    """Campaign folders: ``raw`` itself if it holds ``manifest.csv``, else every folder below that does.
+
+    Here (not in the ingest stage) so that the command line can check ``--raw`` without importing
+    the stage and its libraries; :func:`tyrelab.stages.ingest.discover_campaigns` is this function.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     (Path(d) / "b").mkdir(); _ = (Path(d) / "b" / "manifest.csv").write_text("run_id")
+    ...     [p.name for p in discover_campaigns(d)]
+    ['b']
+    """
+    raw = Path(raw)
+    if (raw / "manifest.csv").is_file():
+        return [raw]
+    return sorted(p.parent for p in raw.rglob("manifest.csv") if p.is_file())

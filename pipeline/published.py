@@ -11,11 +11,12 @@ from __future__ import annotations
 
 import logging
 from pathlib import Path
-
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from . import resources
-from .schema import SCHEMA_DIR, load_schema, validate_frame
+
+if TYPE_CHECKING:  # imported where used: resolving the folder needs no pandas
+    import pandas as pd
 
 __all__ = ["SHIPPED_DIR", "PublishedTableError", "published_dir", "stems", "read_published"]
 
@@ -61,6 +62,10 @@ def read_published(stem: str, raw: Path | None = None, strict: bool = True) -> p
     path = published_dir(raw) / f"{stem}.csv"
     if not path.is_file():
         raise PublishedTableError(f"{path}: published table not found")
+    import pandas as pd
+
+    from .schema import SCHEMA_DIR, load_schema, validate_frame  # pandas and numpy
+
     df = pd.read_csv(path, keep_default_na=False, na_values=[""])
     if (SCHEMA_DIR / "published" / f"{stem}.json").exists():
         problems = validate_frame(df, load_schema(f"published/{stem}"))

@@ -41,14 +41,19 @@ from . import figures, tables
 from .chapters import CHAPTERS, Chapter, FigureSpec, TableSpec
 from .render import environment, provenance
 
-__all__ = ["RUNS_PER_TYRE", "MAX_RUN_PAGES", "MAX_PLAIN_ROWS", "Warehouse", "resolve_table", "resolve_figure",
-    "chapter_items", "run_page_name", "read_signals", "run_item", "build_site"]
+__all__ = ["RUNS_PER_TYRE", "MAX_RUN_PAGES", "MAX_PLAIN_ROWS", "POOL_MIN_FIGURES", "Warehouse", "resolve_table",
+    "resolve_figure", "chapter_items", "run_page_name", "read_signals", "run_item", "build_site"]
 
 #: Drill-down pages: runs per tyre, and the cap on the total.
 RUNS_PER_TYRE = 2
 MAX_RUN_PAGES = 60
 #: Rows shown of a plain (non-comparison) table.
 MAX_PLAIN_ROWS = 40
+#: Fewer figures to draw than this are drawn in this process, more by ``jobs`` worker processes.
+#: A figure takes ~0.2 s here, where matplotlib is loaded already; a new worker first spends ~2 s
+#: importing matplotlib, pandas and this module (measured on the small demo campaign's one-run
+#: change: 7 figures, report 8.4 s wall with 2 workers, 4.0 s in the process; docs/benchmarks.md).
+POOL_MIN_FIGURES = 16
 
 
 class Warehouse:
@@ -161,7 +166,8 @@ class FigureSet:
     cache : tyrelab.stages.state.ItemCache, optional
         Where drawn figures are kept by :attr:`FigureTask.key`; None draws every figure.
     jobs : int
-        Worker processes for the figures to draw.
+        Worker processes for the figures to draw (when there are at least
+        :data:`POOL_MIN_FIGURES` of them; fewer are drawn in this process).
     """
 
     def __init__(self, cache=None, jobs: int = 1):
@@ -186,7 +192,7 @@ class FigureSet:
                 self.svgs[key] = svg
             else:
                 todo.append(key)
-        ctx = SimpleNamespace(executor="local", jobs=self.jobs, scheduler=None)
+        ctx = SimpleNamespace(executor="local", jobs=self.jobs if len(todo) >= POOL_MIN_FIGURES else 1, scheduler=None)
         for key, svg in zip(todo, map_batches(draw, [self.tasks[k] for k in todo], ctx)):
             self.svgs[key] = svg
             if self.cache:

@@ -23,11 +23,13 @@ def run_stage(name: str, ctx: Context) -> StageResult:
     """
     prev = state.load(ctx.build, name)
     cache = state.HashCache(prev.get("hash_cache"))
+    state.load_code_index(ctx.build)
     code = state.code_fingerprint(f"{__name__}.{name}")
     inputs = state.input_digests(ctx, name, ORDER, cache)
     later = ORDER[ORDER.index(name) + 1:] if name in ORDER else []
     reason = state.why_stale(ctx, name, code, inputs, later, cache)
     if reason is None:
+        state.save_code_index(ctx.build)
         result = StageResult(name, skipped=True, message="inputs unchanged", **prev.get("counts", {}))
         ctx.log.info("%s", result.summary())
         return result
@@ -38,6 +40,7 @@ def run_stage(name: str, ctx: Context) -> StageResult:
     counts = {"n_in": result.n_in, "n_ok": result.n_ok, "n_quarantined": result.n_quarantined,
               "n_rejected": result.n_rejected}
     state.record(ctx, name, code, inputs, before, cache, counts)
+    state.save_code_index(ctx.build)
     ctx.log.info("%s", result.summary())
     return result
 
@@ -64,15 +67,36 @@ def run_pipeline(ctx: Context, stages: list[str] | None = None) -> list[StageRes
 
 
 def _passed_qc(ctx: Context) -> int | str:
-    """Runs with ``qc_ok`` in the final ``results`` (after calibrate's flags)."""
-    if not ctx.has_table("results"):
+    """Runs with ``qc_ok`` in the final ``results`` (after calibrate's flags).
+
+    The count is kept in ``build/state/passed_qc.json`` with the size, mtime and inode of the
+    ``results`` file it was counted from, so a no-op run does not import pyarrow to recount.
+    """
+    import json
+
+    from .. import io
+
+    path = ctx.table("results")
+    try:
+        st = path.stat()
+    except FileNotFoundError:
         return "-"
+    key = [st.st_size, st.st_mtime_ns, st.st_ino]
+    memo = ctx.state / "passed_qc.json"
+    try:
+        kept = json.loads(memo.read_text())
+        if kept.get("results") == key:
+            return kept["passed_qc"]
+    except (OSError, ValueError, AttributeError, KeyError):
+        pass
     import pyarrow.parquet as pq
 
-    schema = pq.read_schema(ctx.table("results"))
-    if "qc_ok" not in schema.names:
-        return "-"
-    return int(pq.read_table(ctx.table("results"), columns=["qc_ok"]).column("qc_ok").to_numpy(zero_copy_only=False).sum())
+    schema = pq.read_schema(path)
+    n = "-" if "qc_ok" not in schema.names else int(
+        pq.read_table(path, columns=["qc_ok"]).column("qc_ok").to_numpy(zero_copy_only=False).sum())
+    if ctx.state.is_dir():
+        io.write_text_atomic(json.dumps({"results": key, "passed_qc": n}), memo)
+    return n
 
 
 __all__ = ["Context", "StageResult", "ORDER", "run_stage", "run_pipeline"]

@@ -7,10 +7,12 @@ import os
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from .. import io
+
+if TYPE_CHECKING:  # imported where used: a no-op run never needs pandas
+    import pandas as pd
 
 __all__ = ["Context", "StageResult", "Progress", "QUARANTINE_COLUMNS", "write_quarantine"]
 
@@ -73,6 +75,8 @@ class Context:
 
     def read_table(self, name: str) -> pd.DataFrame:
         """Read table ``name`` into a DataFrame."""
+        import pandas as pd
+
         return pd.read_parquet(self.table(name))
 
     def write_table(self, name: str, df: pd.DataFrame) -> Path:
@@ -144,6 +148,8 @@ QUARANTINE_COLUMNS = ["campaign", "run_id", "file", "stage", "reason"]
 
 def write_quarantine(ctx: Context, stage: str, entries: list[dict]) -> None:
     """Replace the quarantine rows of ``stage`` with ``entries`` (other stages' rows are kept)."""
+    import pandas as pd
+
     old = ctx.read_table("quarantine") if ctx.has_table("quarantine") else pd.DataFrame(columns=QUARANTINE_COLUMNS)
     old = old[old["stage"] != stage]
     new = pd.DataFrame(entries, columns=QUARANTINE_COLUMNS)

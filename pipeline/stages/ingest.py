@@ -39,6 +39,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from .. import io, resources
+from ..io import discover_campaigns
 from .. import rawformat as rf
 from ..rawformat import CHANNEL_MAP, CHANNELS, MAX_RUN_FILE_BYTES, RUN_SUFFIXES, RunFileError, check_run, read_run_file
 from ..rawformat.files import confined_run_path, read_delimited
@@ -62,14 +63,6 @@ MAX_PARTITION_BYTES = 240
 
 #: Sampling facts ingest adds to the ``manifest`` table, in this column order.
 INFO_KEYS = ("sample_rate_Hz", "n_samples", "duration_s")
-
-
-def discover_campaigns(raw: Path) -> list[Path]:
-    """Campaign folders: ``raw`` itself if it holds ``manifest.csv``, else every folder below that does."""
-    raw = Path(raw)
-    if (raw / "manifest.csv").is_file():
-        return [raw]
-    return sorted(p.parent for p in raw.rglob("manifest.csv") if p.is_file())
 
 
 def run_key(run_id: str) -> str:

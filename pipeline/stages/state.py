@@ -44,7 +44,7 @@ from ..buildlock import LOCK_NAME
 
 __all__ = ["PACKAGE", "BUILTIN_RAW", "UNTRACKED", "declarations", "code_fingerprint", "HashCache",
     "stat_digest", "raw_digest", "raw_extras", "snapshot", "state_path", "load", "input_digests", "why_stale",
-    "record"]
+    "record", "load_code_index", "save_code_index"]
 
 #: Folder of the ``tyrelab`` code, and the name modules are looked up under.
 PACKAGE = "tyrelab"
@@ -70,9 +70,50 @@ def _module_file(name: str) -> Path | None:
     return None
 
 
+#: Per process: ``(path, size, mtime_ns, inode) -> (source bytes, their SHA-256)``.
+_SOURCES: dict[tuple, tuple[bytes, str]] = {}
+#: ``(module, SHA-256 of its source) -> (imported tyrelab modules, top-level literals)``: what
+#: :func:`_parse` found in that exact source. Kept in ``build/state/code-index.pickle`` between
+#: runs (:func:`load_code_index`), so a no-op run parses no Python file.
+_PARSED: dict[tuple[str, str], tuple[frozenset, dict]] = {}
+_PARSED_SAVED = 0  # entries of _PARSED when last loaded or saved
+_PARSED_USED: set[tuple[str, str]] = set()  # entries this process looked up
+_INDEX_LOADED: set[str] = set()  # build folders whose index this process has read
+#: File name of the kept parse results in ``build/state``, and how many entries it may hold
+#: before those this process did not use are dropped.
+CODE_INDEX = "code-index.pickle"
+CODE_INDEX_MAX = 2000
+
+
+def _source(path: Path) -> tuple[bytes, str]:
+    """The bytes of a source file and their SHA-256, read once per process while the file's
+    size, mtime and inode stay the same (the digest is always of the bytes read)."""
+    st = path.stat()
+    key = (str(path), st.st_size, st.st_mtime_ns, st.st_ino)
+    hit = _SOURCES.get(key)
+    if hit is None:
+        data = path.read_bytes()
+        hit = _SOURCES[key] = (data, _sha(data))
+    return hit
+
+
 def _imports(path: Path, module: str) -> tuple[set[str], dict]:
-    """``tyrelab`` modules imported by a module, and its literal top-level assignments."""
-    tree = ast.parse(path.read_text(encoding="utf-8"))
+    """``tyrelab`` modules imported by a module, and its literal top-level assignments.
+
+    Parsed once per distinct source content (:data:`_PARSED`, keyed by the SHA-256 of the bytes,
+    so an edited file is always parsed again)."""
+    data, sha = _source(path)
+    _PARSED_USED.add((module, sha))
+    hit = _PARSED.get((module, sha))
+    if hit is None:
+        found, literals = _parse(data, path, module)
+        hit = _PARSED[(module, sha)] = (frozenset(found), literals)
+    return set(hit[0]), dict(hit[1])
+
+
+def _parse(data: bytes, path: Path, module: str) -> tuple[set[str], dict]:
+    """:func:`_imports` of a module's source ``data``, by :mod:`ast`."""
+    tree = ast.parse(data.decode("utf-8"))
     package = module if path.name == "__init__.py" else module.rpartition(".")[0]
     found, literals = set(), {}
     for node in ast.walk(tree):
@@ -102,6 +143,39 @@ def _imports(path: Path, module: str) -> tuple[set[str], dict]:
     return found, literals
 
 
+def load_code_index(build: Path) -> None:
+    """Merge the parse results kept in ``build/state`` into this process's (:data:`_PARSED`).
+
+    An unreadable or foreign index is ignored: its entries are only a cache of :mod:`ast`
+    results keyed by the SHA-256 of the source they came from.
+    """
+    global _PARSED_SAVED
+    if str(build) in _INDEX_LOADED:
+        return
+    _INDEX_LOADED.add(str(build))
+    try:
+        with open(Path(build) / "state" / CODE_INDEX, "rb") as fh:
+            stored = pickle.load(fh)
+    except (OSError, EOFError, pickle.UnpicklingError, AttributeError, ImportError, IndexError, ValueError):
+        return
+    if isinstance(stored, dict):
+        for k, v in stored.items():
+            _PARSED.setdefault(k, v)
+    _PARSED_SAVED = len(_PARSED)
+
+
+def save_code_index(build: Path) -> None:
+    """Write :data:`_PARSED` to ``build/state`` if it grew since it was loaded or saved."""
+    global _PARSED_SAVED
+    if len(_PARSED) == _PARSED_SAVED or not (Path(build) / "state").is_dir():
+        return
+    live = _PARSED if len(_PARSED) <= CODE_INDEX_MAX else {k: _PARSED[k] for k in _PARSED_USED if k in _PARSED}
+    with io.atomic_path(Path(build) / "state" / CODE_INDEX) as tmp:
+        with open(tmp, "wb") as fh:
+            pickle.dump(live, fh, protocol=pickle.HIGHEST_PROTOCOL)
+    _PARSED_SAVED = len(_PARSED)
+
+
 def declarations(stage_module: str) -> dict:
     """Module-level literals of a stage module (``INPUTS``, ...), read without importing it."""
     path = _module_file(stage_module)
@@ -126,7 +200,7 @@ def code_fingerprint(stage_module: str) -> str:
     h = hashlib.sha256()
     for name in sorted(seen):
         if seen[name].name:
-            h.update(name.encode() + b"\0" + seen[name].read_bytes() + b"\0")
+            h.update(name.encode() + b"\0" + _source(seen[name])[0] + b"\0")
     schemas = resources.schemas_dir()
     for p in sorted(schemas.rglob("*.json")):
         h.update(str(p.relative_to(schemas)).encode() + b"\0" + p.read_bytes())
@@ -189,13 +263,16 @@ def raw_digest(raw: Path, exclude: Path | None = None) -> str:
 
 
 def raw_extras(raw: Path, exclude: Path | None = None) -> list[Path]:
-    """Raw files outside campaign folders (``published/``, ``tyres.csv``, ...), plus the built-in ones."""
-    campaigns = {p.parent for p in Path(raw).rglob("manifest.csv")} if Path(raw).is_dir() else set()
+    """Raw files outside campaign folders (``published/``, ``tyres.csv``, ...), plus the built-in ones.
+
+    A campaign folder is one holding ``manifest.csv``: it is not entered (one walk, no second
+    search for manifests)."""
     out = []
     for src in [Path(raw), *BUILTIN_RAW]:
-        for p in _files_below(src, exclude) if src.is_dir() else ([src] if src.exists() else []):
-            if not any(c == p.parent or c in p.parents for c in campaigns):
-                out.append(p)
+        if src.is_dir():
+            out.extend(io.regular_files(src, exclude, skip_folders_with="manifest.csv"))
+        elif src.exists():
+            out.append(src)
     return sorted(set(out))
 
 

@@ -27,7 +27,10 @@ import warnings
 
 import numpy as np
 import pandas as pd
-import statsmodels.api as sm
+# The two estimators and add_constant from their modules: ``statsmodels.api`` imports much more
+# (formulas, patsy, every model family) and costs ~0.4 s more per process.
+from statsmodels.regression.linear_model import OLS, WLS
+from statsmodels.tools.tools import add_constant
 
 from . import conditions as cond
 
@@ -121,14 +124,14 @@ def fit_line(x, y, *, alpha: float = 0.05, u=None) -> dict:
                 and uu.max() / uu.min() > WLS_MIN_SPREAD)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        design = sm.add_constant(x, has_constant="add")
+        design = add_constant(x, has_constant="add")
         if weighted:
             tau2 = between_run_variance(x, y, uu)
-            res = sm.WLS(y, design, weights=1.0 / (uu**2 + tau2)).fit()
+            res = WLS(y, design, weights=1.0 / (uu**2 + tau2)).fit()
             out["weighting"] = "WLS 1/(u² + τ²)"
             out["between_run_sd"] = float(np.sqrt(tau2))
         else:
-            res = sm.OLS(y, design).fit()
+            res = OLS(y, design).fit()
         ci = np.asarray(res.conf_int(alpha))
         bse = np.asarray(res.bse)
         p = np.asarray(res.pvalues)
@@ -172,7 +175,7 @@ def fit_mean(y, *, alpha: float = 0.05) -> dict:
         return out
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        res = sm.OLS(y, np.ones((len(y), 1))).fit()
+        res = OLS(y, np.ones((len(y), 1))).fit()
     ci = np.asarray(res.conf_int(alpha))
     out.update(se=float(np.asarray(res.bse)[0]), ci_low=float(ci[0, 0]), ci_high=float(ci[0, 1]),
                sd=float(y.std(ddof=1)))

@@ -155,11 +155,17 @@ def selection_search(points: pd.DataFrame, name: str, *, max_excluded: int = 3,
     cond = condition or spec["condition"]
     base = select(points, spec, condition=cond)
     ids = sorted(base["tyre_id"].unique())
+    # The many subsets as boolean masks over numpy arrays (same rows in the same order as
+    # ``base.loc[~base["tyre_id"].isin(ex)]``, so the same sums, bit for bit).
+    codes = base["tyre_id"].map({t: i for i, t in enumerate(ids)}).to_numpy(dtype=np.int64) if ids else \
+        np.zeros(len(base), dtype=np.int64)
+    xs, ys = np.asarray(base[spec["x"]], dtype=float), np.asarray(base[spec["y"]], dtype=float)
     rows = []
     for k in range(0, max_excluded + 1):
-        for ex in itertools.combinations(ids, k):
-            sub = base.loc[~base["tyre_id"].isin(ex)]
-            f = _quick_fit(sub[spec["x"]], sub[spec["y"]])
+        for ex_codes in itertools.combinations(range(len(ids)), k):
+            ex = tuple(ids[i] for i in ex_codes)
+            keep = ~np.isin(codes, ex_codes) if ex_codes else np.ones(len(codes), dtype=bool)
+            f = _quick_fit(xs[keep], ys[keep])
             rows.append(dict(fit=name, condition=cond,
                              change=("as printed" if not ex else "also excluding " + ",".join(ex)),
                              n=f["n"], intercept=f["intercept"], slope=f["slope"], r_squared=f["r_squared"]))

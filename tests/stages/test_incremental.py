@@ -111,7 +111,7 @@ def test_noop_cli_does_not_import_heavy_modules(campaign, caplog):
     code = (
         "import sys; import tyrelab.stages as s; s.ORDER[:] = %r;"
         "from tyrelab.cli import main; main(['run', '--raw', %r, '--build', %r]);"
-        "heavy = [m for m in ('matplotlib', 'statsmodels', 'dask', 'scipy') if m in sys.modules];"
+        "heavy = [m for m in ('matplotlib', 'statsmodels', 'dask', 'scipy', 'pandas', 'pyarrow') if m in sys.modules];"
         "print('HEAVY', heavy)" % (STAGES, str(ctx.raw), str(ctx.build))
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)

@@ -155,3 +155,26 @@ def test_quick_fit_of_two_points_and_of_degenerate_data():
         assert np.isnan(f["slope"]) and np.isnan(f["intercept"]) and np.isnan(f["r_squared"])
         f = sr._quick_fit([1.0, 2.0, 3.0], [5.0, 5.0, 5.0])
         assert f["slope"] == 0.0 and f["intercept"] == 5.0 and np.isnan(f["r_squared"])
+
+
+def test_selection_search_equals_the_pandas_subset_loop():
+    """The masked numpy search gives the rows of excluding each combination with pandas, bit for bit."""
+    import itertools
+
+    points = sr.tyre_points(table_iii(), tyres())
+    spec = sr.THESIS_FITS["kc_vs_rim"]
+    base = sr.select(points, spec)
+    ids = sorted(base["tyre_id"].unique())
+    expected = []
+    for k in range(3):
+        for ex in itertools.combinations(ids, k):
+            sub = base.loc[~base["tyre_id"].isin(ex)]
+            f = sr._quick_fit(sub[spec["x"]], sub[spec["y"]])
+            expected.append(("as printed" if not ex else "also excluding " + ",".join(ex), f["n"], f["slope"],
+                             f["intercept"], f["r_squared"]))
+    got = sr.selection_search(points, "kc_vs_rim", max_excluded=2)
+    rows = {r.change: (r.change, r.n, r.slope, r.intercept, r.r_squared) for r in got.itertuples()}
+    assert len(expected) > 20
+    for e in expected:
+        assert rows[e[0]][:2] == e[:2]
+        np.testing.assert_array_equal(rows[e[0]][2:], e[2:])
