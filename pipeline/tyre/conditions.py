@@ -283,10 +283,10 @@ def hold_constant(
     for level, sub_keys in keys.groupby(cols, sort=True):
         level = level if isinstance(level, tuple) else (level,)
         idx = sub_keys.index
-        sub = runs.loc[idx]
-        distinct = sub[x].round(6).nunique()
+        sub_x = runs[x].loc[idx]  # only the regressor: taking every column of a wide table is slow
+        distinct = sub_x.round(6).nunique()
         distance = sum(abs(v - prefer[c]) for c, v in zip(cols, level) if c in prefer)
-        score = (distinct, len(sub), -distance, -sum(level))
+        score = (distinct, len(sub_x), -distance, -sum(level))
         if best is None or score > best[0]:
             best = (score, level, idx)
     (distinct, _, _, _), level, idx = best

@@ -203,6 +203,10 @@ def _fit_groups(runs, keys, grid, response, hold, prefer, design: str = "x") -> 
     regressor around one set level is never mistaken for a sweep.
     """
     rows = []
+    # Only the columns used below: every row selection of a wide ``results`` table (dozens of
+    # text columns) would otherwise copy all of them, which is most of the time of the fits.
+    used = dict.fromkeys([*keys, response, design, "x", *hold, RESPONSE_UNCERTAINTY.get(response)])
+    runs = runs[[c for c in used if c is not None and c in runs.columns]]
     groups = dict(tuple(runs.groupby(keys, sort=True))) if not runs.empty else {}
     for key in grid.itertuples(index=False, name=None):
         sub = groups.get(key if len(keys) > 1 else key[0], runs.iloc[0:0])
