@@ -195,3 +195,20 @@ def test_print_rounding_is_half_the_last_printed_digit():
         steps = values.to_numpy(float) / (2 * bp.PRINT_ROUNDING[name])
         np.testing.assert_allclose(steps, np.round(steps), atol=1e-6, err_msg=name)
         assert np.any(np.abs(steps / 10 - np.round(steps / 10)) > 1e-6), name
+
+
+def test_frequency_uncertainty_is_first_order_about_the_two_tyre_axle_frequencies():
+    """Intervals f ± 1.96 u centred on the frequencies of axles of two tyres (2e3 N/m per kN/m of one tyre),
+    u = |df/dk| u_k from central differences of 1 % (truncation ~1e-4 of the derivative: allowed 1e-3)."""
+    args, kf, kr, uf, ur = (3235.0, 2669.0, 1.33, 0.71), 247.0, 306.0, 15.0, 20.0
+    (u1, u2), ci = bp.frequency_uncertainty(*args, kf, kr, uf, ur)
+    f0 = bp.natural_frequencies(*args, 2e3 * kf, 2e3 * kr)
+    h = 1e-4
+    dfront = (np.array(bp.natural_frequencies(*args, 2e3 * kf * (1 + h), 2e3 * kr))
+              - np.array(bp.natural_frequencies(*args, 2e3 * kf * (1 - h), 2e3 * kr))) / (2 * h * kf)
+    drear = (np.array(bp.natural_frequencies(*args, 2e3 * kf, 2e3 * kr * (1 + h)))
+             - np.array(bp.natural_frequencies(*args, 2e3 * kf, 2e3 * kr * (1 - h)))) / (2 * h * kr)
+    expected = np.hypot(dfront * uf, drear * ur)
+    assert (u1, u2) == pytest.approx(tuple(expected), rel=1e-3)
+    for (lo, hi), f, u in zip(ci, f0, (u1, u2)):
+        assert (lo + hi) / 2 == pytest.approx(f, rel=1e-12) and hi - lo == pytest.approx(2 * 1.96 * u, rel=1e-12)
