@@ -212,3 +212,18 @@ def test_frequency_uncertainty_is_first_order_about_the_two_tyre_axle_frequencie
     assert (u1, u2) == pytest.approx(tuple(expected), rel=1e-3)
     for (lo, hi), f, u in zip(ci, f0, (u1, u2)):
         assert (lo + hi) / 2 == pytest.approx(f, rel=1e-12) and hi - lo == pytest.approx(2 * 1.96 * u, rel=1e-12)
+
+
+def test_frequency_rounding_range_spans_the_corners_of_the_rounding_box():
+    """The range is min/max of the two-tyre axle frequencies over the 64 corners value ± half-width."""
+    import itertools
+
+    x = dict(mass=3434.0, pitch_inertia=3946.0, front_distance=1.48, rear_distance=0.81,
+             front_stiffness_kN_per_m=311.0, rear_stiffness_kN_per_m=314.0)
+    half = bp.PRINT_ROUNDING
+    f = np.array([bp.natural_frequencies(*(x[n] + s * half[n] for n, s in zip(list(x)[:4], sg[:4])),
+                                         2e3 * (x["front_stiffness_kN_per_m"] + sg[4] * half["front_stiffness_kN_per_m"]),
+                                         2e3 * (x["rear_stiffness_kN_per_m"] + sg[5] * half["rear_stiffness_kN_per_m"]))
+                  for sg in itertools.product((-1, 1), repeat=6)])
+    rng = bp.frequency_rounding_range(*x.values())
+    np.testing.assert_allclose(rng, [[f[:, 0].min(), f[:, 0].max()], [f[:, 1].min(), f[:, 1].max()]], rtol=1e-12)
