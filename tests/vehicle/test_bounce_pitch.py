@@ -227,3 +227,30 @@ def test_frequency_rounding_range_spans_the_corners_of_the_rounding_box():
                   for sg in itertools.product((-1, 1), repeat=6)])
     rng = bp.frequency_rounding_range(*x.values())
     np.testing.assert_allclose(rng, [[f[:, 0].min(), f[:, 0].max()], [f[:, 1].min(), f[:, 1].max()]], rtol=1e-12)
+
+
+def test_table_xx_recomputes_from_the_thesis_stiffness_of_two_tyres_per_axle():
+    """frequency_i_from_thesis_stiffness_Hz: Table XIX's body on axles of two tyres of the printed Table XX stiffness."""
+    from tyrelab.vehicle.published_layouts import tractors
+
+    t = bp.table_xx(tractors(read_published("table_xix")), read_published("table_xx"))
+    xix = read_published("table_xix").set_index("tractor")
+    for row in t.itertuples():
+        b = xix.loc[row.tractor]
+        f = bp.natural_frequencies(b.mass_kg, b.pitch_inertia_kg_m2, b.front_distance_m, b.rear_distance_m,
+                                   2e3 * row.thesis_front_stiffness_kN_per_m, 2e3 * row.thesis_rear_stiffness_kN_per_m)
+        assert (row.frequency_1_from_thesis_stiffness_Hz, row.frequency_2_from_thesis_stiffness_Hz) == pytest.approx(
+            f, rel=1e-12), row.tractor
+
+
+def test_lever_arms_either_negative_refused_zero_allowed_and_no_negative_zero():
+    with pytest.raises(ValueError):
+        bp.natural_frequencies(1000, 250, 1.0, -0.1, 1e5, 1e5)  # the rear arm negative alone
+    assert all(np.isfinite(bp.natural_frequencies(1000, 250, 1.0, 0.0, 1e5, 1e5)))  # CG over the rear axle
+    # symmetric body: the pitch mode turns about the CG, nodal point 0.0 (not -0.0 in a table or JSON)
+    node = bp.mode_shapes(1000, 250, 1.0, 1.0, 1e5, 1e5)["pitch"]["nodal_point_ahead_of_cg_m"]
+    assert node == 0.0 and math.copysign(1.0, node) == 1.0
+    # an uncertainty of exactly 1 kN/m on one tyre counts like any other
+    (u1, u2), _ = bp.frequency_uncertainty(3235.0, 2669.0, 1.33, 0.71, 247.0, 306.0, 1.0, 0.0)
+    (v1, v2), _ = bp.frequency_uncertainty(3235.0, 2669.0, 1.33, 0.71, 247.0, 306.0, 2.0, 0.0)
+    assert u1 > 0 and (u1, u2) == pytest.approx((v1 / 2, v2 / 2), rel=1e-12)
