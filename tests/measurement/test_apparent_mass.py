@@ -198,6 +198,10 @@ def test_excitation_frequency_ignores_content_outside_the_band_and_handles_its_e
     # band's last bin, the parabolic refinement uses the two bins inside and stays in the band
     top = am.excitation_frequency(np.sin(2 * np.pi * 8.03 * t), fs)
     assert 7.95 <= top <= am.EXCITATION_BAND_Hz[1] + 1 / (2 * 2 * 30)
+    # a tone on the band's first frequency (a bin: the band is inclusive) reads within half a
+    # zero-padded bin of it (the refinement's clip), not a bin and a half up
+    low = am.excitation_frequency(np.sin(2 * np.pi * am.EXCITATION_BAND_Hz[0] * t), fs)
+    assert am.EXCITATION_BAND_Hz[0] <= low <= am.EXCITATION_BAND_Hz[0] + 1 / (2 * 2 * 30)
     assert np.isnan(am.excitation_frequency(np.zeros_like(t), fs))  # nothing in the band: no excitation
 
 
