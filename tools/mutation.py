@@ -45,7 +45,8 @@ REPO = Path(__file__).resolve().parents[1]
 
 #: Module (relative to pipeline/) -> test files that exercise it.
 MODULES: dict[str, list[str]] = {
-    "measurement/apparent_mass.py": ["tests/measurement/test_apparent_mass.py", "tests/measurement/test_qc.py"],
+    "measurement/apparent_mass.py": ["tests/measurement/test_apparent_mass.py", "tests/measurement/test_qc.py",
+                                     "tests/measurement/test_uncertainty.py"],  # the residual probes
     "measurement/calibration.py": ["tests/measurement/test_calibration.py", "tests/stages/test_calibrate.py"],
     "measurement/methods.py": ["tests/measurement/test_methods.py"],
     "measurement/qc.py": ["tests/measurement/test_qc.py"],

@@ -198,6 +198,10 @@ def test_excitation_frequency_ignores_content_outside_the_band_and_handles_its_e
     # band's last bin, the parabolic refinement uses the two bins inside and stays in the band
     top = am.excitation_frequency(np.sin(2 * np.pi * 8.03 * t), fs)
     assert 7.95 <= top <= am.EXCITATION_BAND_Hz[1] + 1 / (2 * 2 * 30)
+    # a tone on the band's first frequency (a bin: the band is inclusive) reads within half a
+    # zero-padded bin of it (the refinement's clip), not a bin and a half up
+    low = am.excitation_frequency(np.sin(2 * np.pi * am.EXCITATION_BAND_Hz[0] * t), fs)
+    assert am.EXCITATION_BAND_Hz[0] <= low <= am.EXCITATION_BAND_Hz[0] + 1 / (2 * 2 * 30)
     assert np.isnan(am.excitation_frequency(np.zeros_like(t), fs))  # nothing in the band: no excitation
 
 
@@ -312,3 +316,36 @@ def test_analytic_band_filters_linearly_not_circularly():
     z = _am.analytic_band(x, fs, 4.0)
     ref = _am.analytic_band(np.concatenate([x, np.zeros(int(60 * fs))]), fs, 4.0)[: x.size]
     assert np.max(np.abs(z - ref)[: int(20 * fs)]) < 2.5e-4 * 21
+
+
+def test_excitation_blocks_drop_the_start_up_and_average_each_run():
+    """Default edge: 3 s dropped at both ends (the band-pass start-up of analytic_band), then whole 5 s
+    blocks: 36 s at 100 Hz give six blocks; each run (row) averaged on its own."""
+    fs, n = 100.0, 3600
+    t = np.arange(n) / fs
+    env = np.vstack([1.0 + 0.01 * t, 2.0 + 0 * t])
+    omega = 2 * np.pi * np.vstack([4.0 + 0 * t, 3.0 + 0.001 * t])
+    amp, freq = am.excitation_blocks(env, omega, fs)
+    assert amp.shape == freq.shape == (2, 6)
+    starts = 3.0 + 5.0 * np.arange(6)
+    np.testing.assert_allclose(amp[0], 1.0 + 0.01 * (starts + 2.495), rtol=1e-12)
+    np.testing.assert_allclose(amp[1], 2.0, rtol=1e-12)
+    np.testing.assert_allclose(freq[1], 3.0 + 0.001 * (starts + 2.495), rtol=1e-12)
+
+
+def test_excitation_frequency_of_rows_with_no_room_in_the_band_is_nan_per_row():
+    x = np.ones((3, 64))
+    f = am.excitation_frequency(x, 256.0, band_Hz=(4.0, 4.5))  # 4 Hz bins: fewer than three in the band
+    assert f.shape == (3,) and np.isnan(f).all()
+
+
+def test_welch_reads_an_excitation_above_nyquist_at_the_nyquist_bin():
+    """A frequency above fs/2 cannot be in the record: the estimate is read at the last bin, fs/2."""
+    fs, n = 64.0, 4096
+    rng = np.random.default_rng(4)
+    a = rng.standard_normal(n)
+    f = np.convolve(a, [0.5, 0.3, 0.2], mode="same")
+    high = am.apparent_mass_welch(f, a, fs, 40.0)
+    nyq = am.apparent_mass_welch(f, a, fs, fs / 2)
+    assert high.frequency_Hz == nyq.frequency_Hz == fs / 2
+    assert high.apparent_mass_kg == nyq.apparent_mass_kg

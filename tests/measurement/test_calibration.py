@@ -104,3 +104,24 @@ def test_correction_factor_checks_its_arguments():
         correction_factor(tf, 0.0)
     with pytest.raises(ValueError, match="tf is empty"):
         correction_factor(tf.iloc[:0], 4.0)
+
+
+def test_default_limits_band_and_percent_of_the_check():
+    """§3.2.9 defaults: gain 1 ± 3 %, phase 0 ± 1°, judged over 2-6 Hz inclusive; the transfer function is
+    returned over the 1-8 Hz excitation band, ends included."""
+    f = np.array([1.5, 2.0, 4.0, 6.0, 6.5])
+
+    def check(gain_at, phase_at):
+        g, p = np.ones(f.size), np.zeros(f.size)
+        g[gain_at[0]], p[phase_at[0]] = gain_at[1], phase_at[1]
+        return cal.check_calibration(pd.DataFrame({"frequency_Hz": f, "gain": g, "phase_deg": p}))
+
+    assert check((2, 1.025), (2, 0.9))["pass"]
+    assert not check((2, 1.035), (2, 0.0))["pass"] and not check((2, 1.0), (2, 1.1))["pass"]
+    assert not check((1, 1.04), (1, 0.0))["pass"] and not check((3, 1.0), (3, -1.5))["pass"]  # the band's ends count
+    assert check((0, 1.5), (4, 10.0))["pass"]  # outside 2-6 Hz nothing counts
+    c = check((2, 1.04), (2, 0.0))
+    assert c["max_gain_error_pct"] == pytest.approx(4.0, rel=1e-9) and c["mean_gain"] == pytest.approx(3.04 / 3, rel=1e-12)  # over 2, 4 and 6 Hz
+    tf = cal.calibration_transfer_function(_random(), _random(), FS)
+    assert (tf["frequency_Hz"].iloc[0], tf["frequency_Hz"].iloc[-1]) == (1.0, 8.0)
+    assert np.allclose(np.diff(tf["frequency_Hz"]), 0.25)

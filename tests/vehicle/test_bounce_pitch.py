@@ -211,3 +211,62 @@ def test_print_rounding_is_half_the_last_printed_digit():
         steps = values.to_numpy(float) / (2 * bp.PRINT_ROUNDING[name])
         np.testing.assert_allclose(steps, np.round(steps), atol=1e-6, err_msg=name)
         assert np.any(np.abs(steps / 10 - np.round(steps / 10)) > 1e-6), name
+
+
+def test_frequency_uncertainty_is_first_order_about_the_two_tyre_axle_frequencies():
+    """Intervals f ± 1.96 u centred on the frequencies of axles of two tyres (2e3 N/m per kN/m of one tyre),
+    u = |df/dk| u_k from central differences of 1 % (truncation ~1e-4 of the derivative: allowed 1e-3)."""
+    args, kf, kr, uf, ur = (3235.0, 2669.0, 1.33, 0.71), 247.0, 306.0, 15.0, 20.0
+    (u1, u2), ci = bp.frequency_uncertainty(*args, kf, kr, uf, ur)
+    f0 = bp.natural_frequencies(*args, 2e3 * kf, 2e3 * kr)
+    h = 1e-4
+    dfront = (np.array(bp.natural_frequencies(*args, 2e3 * kf * (1 + h), 2e3 * kr))
+              - np.array(bp.natural_frequencies(*args, 2e3 * kf * (1 - h), 2e3 * kr))) / (2 * h * kf)
+    drear = (np.array(bp.natural_frequencies(*args, 2e3 * kf, 2e3 * kr * (1 + h)))
+             - np.array(bp.natural_frequencies(*args, 2e3 * kf, 2e3 * kr * (1 - h)))) / (2 * h * kr)
+    expected = np.hypot(dfront * uf, drear * ur)
+    assert (u1, u2) == pytest.approx(tuple(expected), rel=1e-3)
+    for (lo, hi), f, u in zip(ci, f0, (u1, u2)):
+        assert (lo + hi) / 2 == pytest.approx(f, rel=1e-12) and hi - lo == pytest.approx(2 * 1.96 * u, rel=1e-12)
+
+
+def test_frequency_rounding_range_spans_the_corners_of_the_rounding_box():
+    """The range is min/max of the two-tyre axle frequencies over the 64 corners value ± half-width."""
+    import itertools
+
+    x = dict(mass=3434.0, pitch_inertia=3946.0, front_distance=1.48, rear_distance=0.81,
+             front_stiffness_kN_per_m=311.0, rear_stiffness_kN_per_m=314.0)
+    half = bp.PRINT_ROUNDING
+    f = np.array([bp.natural_frequencies(*(x[n] + s * half[n] for n, s in zip(list(x)[:4], sg[:4])),
+                                         2e3 * (x["front_stiffness_kN_per_m"] + sg[4] * half["front_stiffness_kN_per_m"]),
+                                         2e3 * (x["rear_stiffness_kN_per_m"] + sg[5] * half["rear_stiffness_kN_per_m"]))
+                  for sg in itertools.product((-1, 1), repeat=6)])
+    rng = bp.frequency_rounding_range(*x.values())
+    np.testing.assert_allclose(rng, [[f[:, 0].min(), f[:, 0].max()], [f[:, 1].min(), f[:, 1].max()]], rtol=1e-12)
+
+
+def test_table_xx_recomputes_from_the_thesis_stiffness_of_two_tyres_per_axle():
+    """frequency_i_from_thesis_stiffness_Hz: Table XIX's body on axles of two tyres of the printed Table XX stiffness."""
+    from tyrelab.vehicle.published_layouts import tractors
+
+    t = bp.table_xx(tractors(read_published("table_xix")), read_published("table_xx"))
+    xix = read_published("table_xix").set_index("tractor")
+    for row in t.itertuples():
+        b = xix.loc[row.tractor]
+        f = bp.natural_frequencies(b.mass_kg, b.pitch_inertia_kg_m2, b.front_distance_m, b.rear_distance_m,
+                                   2e3 * row.thesis_front_stiffness_kN_per_m, 2e3 * row.thesis_rear_stiffness_kN_per_m)
+        assert (row.frequency_1_from_thesis_stiffness_Hz, row.frequency_2_from_thesis_stiffness_Hz) == pytest.approx(
+            f, rel=1e-12), row.tractor
+
+
+def test_lever_arms_either_negative_refused_zero_allowed_and_no_negative_zero():
+    with pytest.raises(ValueError):
+        bp.natural_frequencies(1000, 250, 1.0, -0.1, 1e5, 1e5)  # the rear arm negative alone
+    assert all(np.isfinite(bp.natural_frequencies(1000, 250, 1.0, 0.0, 1e5, 1e5)))  # CG over the rear axle
+    # symmetric body: the pitch mode turns about the CG, nodal point 0.0 (not -0.0 in a table or JSON)
+    node = bp.mode_shapes(1000, 250, 1.0, 1.0, 1e5, 1e5)["pitch"]["nodal_point_ahead_of_cg_m"]
+    assert node == 0.0 and math.copysign(1.0, node) == 1.0
+    # an uncertainty of exactly 1 kN/m on one tyre counts like any other
+    (u1, u2), _ = bp.frequency_uncertainty(3235.0, 2669.0, 1.33, 0.71, 247.0, 306.0, 1.0, 0.0)
+    (v1, v2), _ = bp.frequency_uncertainty(3235.0, 2669.0, 1.33, 0.71, 247.0, 306.0, 2.0, 0.0)
+    assert u1 > 0 and (u1, u2) == pytest.approx((v1 / 2, v2 / 2), rel=1e-12)
