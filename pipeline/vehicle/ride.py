@@ -491,7 +491,9 @@ def build_profile(scenario: Scenario) -> Track:
     else:
         x, left, right = read_profile_csv(s.profile)
         dx = float(np.median(np.diff(x)))
-        grid = x[0] + np.arange(int(math.floor((x[-1] - x[0]) / dx)) + 1) * dx
+        # the CSV's own grid: (end - start)/dx is a whole number up to the rounding of the
+        # distances written in the file, which must not drop the last sample
+        grid = x[0] + np.arange(int(math.floor((x[-1] - x[0]) / dx + 1e-6)) + 1) * dx
         prof = pr.Profile(grid - grid[0], np.interp(grid, x, left), np.interp(grid, x, right),
                           f"profile {Path(s.profile).name}", {"kind": "profile"})
         spectrum, source = None, ""
