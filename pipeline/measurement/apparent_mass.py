@@ -375,7 +375,11 @@ def _probe_sums(x: np.ndarray, cos_phi: np.ndarray, sin_phi: np.ndarray) -> np.n
     With ``T = n/fs`` the offsets are DFT bins of the demodulated signal: one FFT per row.
     """
     n = x.shape[-1]
-    spectrum = fft.fft(x * cos_phi - 1j * (x * sin_phi), axis=-1)
+    z = np.empty(x.shape, dtype=complex)  # x cos φ - j x sin φ, built in place
+    np.multiply(x, cos_phi, out=z.real)
+    np.multiply(x, sin_phi, out=z.imag)
+    np.negative(z.imag, out=z.imag)
+    spectrum = fft.fft(z, axis=-1, overwrite_x=True)
     return spectrum[..., (2 * np.asarray(PROBE_OFFSETS)) % n]
 
 
@@ -490,7 +494,8 @@ def _demodulation_block(f: np.ndarray, a: np.ndarray, sample_rate_Hz: float, exc
     den = _demodulate(wa / omega**2, cos_phi, sin_phi)
     # for the uncertainty: minus the displacement of the excitation band (analytic, by double integration
     # in the frequency domain), the regressor of the tyre model whose residual the probes measure
-    xi = -_analytic_from_spectrum(spectrum, n, sample_rate_Hz, excitation_frequency_Hz, half_band_Hz, True)
+    xi = _analytic_from_spectrum(spectrum, n, sample_rate_Hz, excitation_frequency_Hz, half_band_Hz, True)
+    np.negative(xi, out=xi)
     dynamic_stiffness = num / den  # K + jωC, upward-positive recording convention
     weight = w * envelope
     omega_mean = np.sum(weight * omega, axis=-1) / np.sum(weight, axis=-1)
