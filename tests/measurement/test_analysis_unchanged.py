@@ -68,6 +68,14 @@ def test_results_unchanged(results, run_id):
             assert (bool(got) if isinstance(want, bool) else got) == want, col
 
 
+def test_empty_batch_gives_the_results_columns(results):
+    """A batch of no runs (the empty ``results`` view) still yields every column."""
+    from tyrelab.stages.analyse import empty_results
+
+    empty = empty_results()
+    assert len(empty) == 0 and sorted(empty.columns) == sorted(results.columns)
+
+
 # Generated with the code of commit d0feb5f (before the change), 17 significant digits.
 EXPECTED = {
     'T2_sweep_003': {
@@ -335,3 +343,4 @@ EXPECTED = {
         'rolling': True,
     },
 }
+
