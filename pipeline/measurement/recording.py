@@ -263,8 +263,9 @@ def analyse_batch(
         amp_blocks, freq_blocks = am.excitation_blocks(d.envelope_m_s2, d.angular_frequency_rad_s, sample_rate_Hz)
         for j, i in enumerate(np.flatnonzero(found)):
             blocks[i] = (amp_blocks[j], freq_blocks[j])
-    signals = np.concatenate([accel, beams], axis=1)  # (runs, 6, n) in CHANNELS order
-    flags = qc.clipped(signals.reshape(-1, signals.shape[-1])).reshape(len(fe), len(CHANNELS))
+    # (runs, 6) in CHANNELS order; each row is screened on its own, so no (runs, 6, n) copy is needed
+    flags = np.concatenate([qc.clipped(x.reshape(-1, x.shape[-1])).reshape(x.shape[:2]) for x in (accel, beams)],
+                           axis=1)
     reasons = []
     for i in range(len(fe)):
         reasons.append(qc.qc_reasons(
