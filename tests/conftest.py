@@ -66,7 +66,7 @@ def pytest_collection_modifyitems(config, items):
             return len(rank)
         return rank.get(path.relative_to(HERE).as_posix(), len(rank))
 
-    if not os.environ.get("NO_LONG_FIRST"): items.sort(key=key)
+    items.sort(key=key)
 
 
 _skipped_browser: list[str] = []
