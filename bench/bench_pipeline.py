@@ -53,6 +53,8 @@ def cpu():
     s, c = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
     return s.ru_utime + s.ru_stime + c.ru_utime + c.ru_stime
 t0 = time.perf_counter()
+from tyrelab.executor import single_threaded_blas
+single_threaded_blas()  # as the tyrelab command does
 from tyrelab.stages import ORDER, Context, run_stage
 ctx = Context(raw={raw!r}, build={build!r}, jobs={jobs})
 t_import = time.perf_counter() - t0

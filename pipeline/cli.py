@@ -467,6 +467,9 @@ def main(argv: list[str] | None = None) -> int:
     traceback; ``finally`` blocks and ``atexit`` handlers still run, so temporary
     files, worker pools and their ``pymp-*`` folders are cleaned up.
     """
+    from .executor import single_threaded_blas
+
+    single_threaded_blas()  # before anything imports numpy (see its docstring)
     args = build_parser().parse_args(argv)
     logging.basicConfig(
         level=logging.WARNING if args.quiet else logging.INFO, format="%(message)s", stream=sys.stderr

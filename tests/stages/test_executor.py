@@ -83,3 +83,28 @@ def test_on_done_with_dask(cluster):
     seen = []
     assert map_batches(square, [3, 1, 2], ctx, on_done=seen.append) == [9, 1, 4]
     assert sorted(seen) == [0, 1, 2]
+
+
+def test_single_threaded_blas_keeps_what_the_user_set(monkeypatch):
+    from tyrelab.executor import BLAS_THREAD_VARIABLES, single_threaded_blas
+
+    for var in BLAS_THREAD_VARIABLES:
+        monkeypatch.delenv(var, raising=False)
+    monkeypatch.setenv("OMP_NUM_THREADS", "3")
+    single_threaded_blas()
+    assert os.environ["OMP_NUM_THREADS"] == "3"
+    assert os.environ["OPENBLAS_NUM_THREADS"] == os.environ["MKL_NUM_THREADS"] == "1"
+
+
+def test_the_tyrelab_command_defaults_blas_to_one_thread():
+    """The command sets the default before parsing its arguments (before numpy is imported);
+    worker processes inherit it with the environment."""
+    import subprocess
+    import sys
+
+    code = ("import os, sys\nfor v in ('OMP_NUM_THREADS', 'OPENBLAS_NUM_THREADS', 'MKL_NUM_THREADS'): os.environ.pop(v, None)\n"
+            "import tyrelab.cli as c\n"
+            "try:\n    c.main(['--help'])\nexcept SystemExit:\n    pass\n"
+            "import numpy\nprint(os.environ['OPENBLAS_NUM_THREADS'])\n")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert out.stdout.strip().splitlines()[-1] == "1", out.stderr
