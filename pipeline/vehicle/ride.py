@@ -58,7 +58,7 @@ from . import profiles as pr
 from .carriage import GRAVITY_M_S2
 from .scenario import Scenario, read_profile_csv, with_overrides
 from .studies import DT_S, _half_inputs
-from .tractor import Tractor, simulate_tractor
+from .tractor import PARAMETERS, Tractor, simulate_tractor
 
 __all__ = [
     "OUTPUTS",
@@ -717,7 +717,7 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
         n_max = max(runs[k]["stop"] for k in redo)
         inputs = [axle_inputs(track.profile, scenario.surface.enveloping, runs[k]["fp"], radii, runs[k]["v"], wb, n_max)
                   for k in redo]
-        params = {f: np.array([float(getattr(runs[k]["tr"], f)) for k in redo]) for f in _TRACTOR_ARRAYS}
+        params = {f: np.array([float(getattr(runs[k]["tr"], f)) for k in redo]) for f in PARAMETERS}
         sim = simulate_tractor(Tractor(**params, longitudinal_model=scenario.tractor.longitudinal_model),
                                *[np.array([inp[j] for inp in inputs]) for j in range(4)], DT_S, lift_off=True,
                                method="auto")  # exact in contact, RK4 across the lift-off intervals (as the ch. 7 study)
@@ -797,11 +797,6 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
         warnings=warnings, natural_frequency_intervals_Hz=nat_ci,
     )
-
-
-_TRACTOR_ARRAYS = ("mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_m", "cg_height_m",
-                   "front_stiffness_N_per_m", "rear_stiffness_N_per_m", "front_damping_N_s_per_m",
-                   "rear_damping_N_s_per_m", "longitudinal_stiffness_N_per_m", "longitudinal_damping_N_s_per_m")
 
 
 def _static_axle_loads(tr: Tractor) -> np.ndarray:

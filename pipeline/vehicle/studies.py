@@ -38,7 +38,7 @@ from . import enveloping as ev
 from . import iso2631
 from . import metrics as mt
 from . import profiles as pr
-from .tractor import Tractor, simulate_tractor
+from .tractor import PARAMETERS, Tractor, simulate_tractor
 
 __all__ = [
     "T4_ROLLING_RADIUS_M",
@@ -437,10 +437,7 @@ def tractor_study(
         input_keys.append(key)
     arrs = [np.array([input_cache[key][j] for key in input_keys]) for j in range(4)]
     del input_cache
-    params = {k: np.array([g[1].get(k, 0.0) for g in group], float) for k in (
-        "mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_m", "cg_height_m",
-        "front_stiffness_N_per_m", "rear_stiffness_N_per_m", "front_damping_N_s_per_m", "rear_damping_N_s_per_m",
-        "longitudinal_stiffness_N_per_m", "longitudinal_damping_N_s_per_m")}  # fmt: skip
+    params = {k: np.array([g[1].get(k, 0.0) for g in group], float) for k in PARAMETERS}
     models = np.array([g[1].get("longitudinal_model", "none") for g in group], dtype=object)
     sim = simulate_tractor(Tractor(**params, longitudinal_model=models), *arrs, DT_S)
     del arrs

@@ -38,13 +38,13 @@ Two solution paths, switched within a run by :func:`simulate_tractor` (``method=
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
 from .carriage import GRAVITY_M_S2
 
-__all__ = ["Tractor", "simulate_tractor", "linear_response", "LONGITUDINAL_MODELS", "METHODS", "CALM_STEPS"]
+__all__ = ["Tractor", "simulate_tractor", "linear_response", "LONGITUDINAL_MODELS", "METHODS", "CALM_STEPS", "PARAMETERS"]
 
 #: Solution paths of :func:`simulate_tractor`.
 METHODS = ("auto", "rk4")
@@ -96,9 +96,8 @@ class Tractor:
         return np.asarray(self.front_distance_m) + np.asarray(self.rear_distance_m)
 
 
-_PARAMS = ("mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_m", "cg_height_m",
-           "front_stiffness_N_per_m", "rear_stiffness_N_per_m", "front_damping_N_s_per_m", "rear_damping_N_s_per_m",
-           "longitudinal_stiffness_N_per_m", "longitudinal_damping_N_s_per_m")
+#: The numeric parameters of :class:`Tractor`, in field order (all but ``longitudinal_model``).
+PARAMETERS = tuple(f.name for f in fields(Tractor) if f.name != "longitudinal_model")
 
 #: Switched path: steps (of ``dt``) both tyres must stay in contact, at every RK4 stage, before a
 #: run returns from RK4 to the exact path (20 ms at 1 ms: a tyre that bounces straight off again
@@ -112,7 +111,7 @@ EXACT_CHUNK_MAX = 4096
 
 
 def _params(tractor: Tractor, runs: int) -> dict[str, np.ndarray]:
-    return {k: np.broadcast_to(np.asarray(getattr(tractor, k), float), (runs,)) for k in _PARAMS}
+    return {k: np.broadcast_to(np.asarray(getattr(tractor, k), float), (runs,)) for k in PARAMETERS}
 
 
 def _models(tractor: Tractor, runs: int) -> np.ndarray:
@@ -233,8 +232,8 @@ class _Rhs:
 
     def __init__(self, p: dict[str, np.ndarray], models: np.ndarray, lift_off: bool, gravity_m_s2: float):
         runs = models.size
-        self.m, self.inertia, self.a, self.b, self.h = (p[k] for k in _PARAMS[:5])
-        self.kf, self.kr, self.cf, self.cr, self.kx, self.cx = (p[k] for k in _PARAMS[5:])
+        self.m, self.inertia, self.a, self.b, self.h = (p[k] for k in PARAMETERS[:5])
+        self.kf, self.kr, self.cf, self.cr, self.kx, self.cx = (p[k] for k in PARAMETERS[5:])
         w = self.m * gravity_m_s2
         self.wf = -w * self.b / (self.a + self.b) if lift_off else np.full(runs, -np.inf)
         self.wr = -w * self.a / (self.a + self.b) if lift_off else np.full(runs, -np.inf)
@@ -363,9 +362,13 @@ def simulate_tractor(
 
 
 def _run_switched(p, models, uf, udf, ur, udr, dt_s, lift_off, gravity_m_s2, switched, out) -> None:
-    """RK4 across the lift-off intervals of the ``switched`` runs, the exact path in between."""
+    """RK4 across the lift-off intervals of the ``switched`` runs, the exact path in between.
+
+    ``switched``: per run (index, exact path, sample where RK4 takes over, RK4 state there); a run
+    whose exact path is None stays on RK4 to the end (:func:`_simulate_rk4`)."""
     idx = np.array([s[0] for s in switched])
     exact = [s[1] for s in switched]
+    returns = np.array([e is not None for e in exact])
     rhs = _Rhs({k: v[idx] for k, v in p.items()}, np.asarray(models)[idx], lift_off, gravity_m_s2)
     inputs = np.stack([v[idx] for v in (uf, udf, ur, udr)], axis=-1)  # (runs, 2n - 1, 4): one gather a stage
     count, n = idx.size, (uf.shape[1] + 1) // 2
@@ -397,7 +400,7 @@ def _run_switched(p, models, uf, udf, ur, udr, dt_s, lift_off, gravity_m_s2, swi
         k = k + step
         calm = np.where(lf | lr | lf2 | lr2 | lf3 | lr3 | lf4 | lr4, 0, calm + 1)
         active &= ~end
-        for r in np.flatnonzero(step & (calm >= CALM_STEPS)):  # back in contact for a while: exact again
+        for r in np.flatnonzero(step & (calm >= CALM_STEPS) & returns):  # back in contact for a while: exact again
             kr, y7 = exact[r].solve(int(k[r]), y[:, r], views, r, lift_off, chunk=EXACT_CHUNK)
             if y7 is None:
                 active[r] = False
@@ -421,38 +424,19 @@ def _simulate_rk4(
 ) -> dict[str, np.ndarray]:
     """Integrate the pitch-plane tractor with fixed-step RK4 (every run, every step).
 
-    Parameters and returns as :func:`simulate_tractor` (without ``method_used``).
+    Parameters and returns as :func:`simulate_tractor` (without ``method_used``): the RK4
+    loop of the switched path (:func:`_run_switched`), every run from rest at the first
+    sample and none returning to the exact path.
     """
     uf, udf, ur, udr = (np.atleast_2d(np.asarray(v, float)) for v in (front_half, front_rate_half, rear_half, rear_rate_half))
     squeeze = np.ndim(front_half) == 1
     if uf.shape[1] % 2 == 0:
         raise ValueError("inputs must be sampled at dt/2 (odd length)")
-    runs = uf.shape[0]
-    rhs = _Rhs(_params(tractor, runs), _models(tractor, runs), lift_off, gravity_m_s2)
-    n = (uf.shape[1] + 1) // 2
-    y = np.zeros((7, runs))
+    runs, n = uf.shape[0], (uf.shape[1] + 1) // 2
     out = {k: np.empty((runs, n)) for k in _OUTPUTS}
-    off_f = np.zeros(runs)
-    off_r = np.zeros(runs)
-    hstep = dt_s
-    for i in range(n):
-        j = 2 * i
-        k1, lf, lr = rhs(y, uf[:, j], udf[:, j], ur[:, j], udr[:, j])
-        out["vertical_m_s2"][:, i] = k1[3]
-        out["pitch_rad_s2"][:, i] = k1[4]
-        out["longitudinal_m_s2"][:, i] = k1[5]
-        out["z_m"][:, i] = y[0]
-        out["theta_rad"][:, i] = y[1]
-        off_f += lf
-        off_r += lr
-        if i == n - 1:
-            break
-        k2, _, _ = rhs(y + 0.5 * hstep * k1, uf[:, j + 1], udf[:, j + 1], ur[:, j + 1], udr[:, j + 1])
-        k3, _, _ = rhs(y + 0.5 * hstep * k2, uf[:, j + 1], udf[:, j + 1], ur[:, j + 1], udr[:, j + 1])
-        k4, _, _ = rhs(y + hstep * k3, uf[:, j + 2], udf[:, j + 2], ur[:, j + 2], udr[:, j + 2])
-        y = y + hstep / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
-    out["lift_off_fraction_front"] = off_f / n
-    out["lift_off_fraction_rear"] = off_r / n
-    if squeeze:
-        out = {k: v[0] for k, v in out.items()}
-    return out
+    out["lift_off_fraction_front"] = np.zeros(runs)
+    out["lift_off_fraction_rear"] = np.zeros(runs)
+    from_rest = [(i, None, 0, np.zeros(7)) for i in range(runs)]
+    _run_switched(_params(tractor, runs), _models(tractor, runs), uf, udf, ur, udr, dt_s, lift_off, gravity_m_s2,
+                  from_rest, out)
+    return {k: v[0] for k, v in out.items()} if squeeze else out
