@@ -29,7 +29,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import integrate, interpolate, signal
+from scipy import integrate, interpolate
+
+from . import lti
 
 __all__ = [
     "GRAVITY_M_S2",
@@ -143,10 +145,9 @@ def simulate_linear(
 ) -> dict[str, np.ndarray]:
     """Exact discretisation of the linear carriage (thesis §6.3 model).
 
-    First-order hold (:func:`scipy.signal.cont2discrete`, ``method="foh"``) on both
-    inputs: exact when ``u`` and ``u'`` vary linearly over each step. The discrete
-    system is diagonalised and each mode run with :func:`scipy.signal.lfilter`, so
-    the cost is a few vectorised passes.
+    First-order hold on both inputs (:func:`tyrelab.vehicle.lti.discretise`: exact when
+    ``u`` and ``u'`` vary linearly over each step; the discrete system diagonalised and
+    each mode run with :func:`scipy.signal.lfilter`, a few vectorised passes).
 
     Parameters
     ----------
@@ -165,21 +166,8 @@ def simulate_linear(
         ``z_m``, ``v_m_s``, ``a_m_s2`` arrays like ``u_m``.
     """
     a, b, c, d = state_space(carriage)
-    ad, bd, cd, dd, _ = signal.cont2discrete((a, b, c, d), dt_s, method="foh")
     w = np.vstack([np.asarray(u_m, float), np.asarray(u_dot_m_s, float)])  # (2, n)
-    # foh state xi_k = x_k - Gamma2 w_k; Dd - D = C Gamma2 recovers Gamma2 from the z, z' rows
-    gamma2 = (dd - d)[:2]
-    xi0 = np.array([z0_m, v0_m_s]) - gamma2 @ w[:, 0]
-    mu, vecs = np.linalg.eig(ad)
-    inv = np.linalg.inv(vecs)
-    g = inv @ bd @ w  # modal forcing, (2, n) complex
-    n = w.shape[1]
-    q = np.empty((2, n), dtype=complex)
-    q0 = inv @ xi0
-    for i in range(2):  # q[k+1] = mu q[k] + g[k] from q[0] = q0 (the initial state as lfilter's zi)
-        q[i, 0] = q0[i]
-        q[i, 1:] = signal.lfilter([1.0], [1.0, -mu[i]], g[i, :-1], zi=[mu[i] * q0[i]])[0]
-    y = (cd @ (vecs @ q)).real + dd @ w
+    y = lti.discretise(a, b, c, d, dt_s).run(w, x0=np.array([z0_m, v0_m_s], float))
     return {"z_m": y[0], "v_m_s": y[1], "a_m_s2": y[2]}
 
 

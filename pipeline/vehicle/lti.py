@@ -1,10 +1,9 @@
 """Exact (first-order-hold) solution of linear time-invariant systems, restartable.
 
 ``x' = A x + B w``, ``y = C x + D w`` with inputs ``w`` linear between samples ``dt``
-apart (first-order hold, as :func:`scipy.signal.cont2discrete` with ``method="foh"``
-builds it, from one matrix exponential). The discrete system is diagonalised once
-(:func:`discretise`) and each mode run with :func:`scipy.signal.lfilter`
-(:meth:`FohSystem.run`), from rest or from any state, so a caller can solve a record in
+apart (first-order hold, :func:`scipy.signal.cont2discrete` with ``method="foh"``). The
+discrete system is diagonalised once (:func:`discretise`) and each mode run with
+:func:`scipy.signal.lfilter` (:meth:`FohSystem.run`), from rest or from any state, so a caller can solve a record in
 segments (the tractor's switch between this exact path and RK4 across tyre lift-off,
 :func:`tyrelab.vehicle.tractor.simulate_tractor`). SI units are the caller's.
 """
@@ -15,7 +14,6 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy import signal
-from scipy.linalg import expm
 
 __all__ = ["FohSystem", "discretise"]
 
@@ -145,13 +143,8 @@ def discretise(a, b, c, d, dt_s: float) -> FohSystem:
         raise ValueError(f"dt_s must be positive, got {dt_s}")
     a, b, c, d = (np.atleast_2d(np.asarray(v, float)) for v in (a, b, c, d))
     n, m = b.shape
-    em = np.zeros((n + 2 * m, n + 2 * m))
-    em[:n, :n] = a * dt_s
-    em[:n, n:n + m] = b * dt_s
-    em[n:n + m, n + m:] = np.eye(m)
-    ms = expm(em)
-    ad, gamma1, gamma2 = ms[:n, :n], ms[:n, n:n + m], ms[:n, n + m:]
-    bd = gamma1 - gamma2 + ad @ gamma2
+    # with C = I and D = 0 the discrete D is Γ2 itself (scipy: D_d = D + C Γ2)
+    ad, bd, _, gamma2, _ = signal.cont2discrete((a, b, np.eye(n), np.zeros((n, m))), dt_s, method="foh")
     mu, vecs = np.linalg.eig(ad)
     inv = np.linalg.inv(vecs)
     return FohSystem(mu=mu, vecs=vecs, inv=inv, g_in=inv @ bd, gamma2=gamma2, cv=c @ vecs, dd=d + c @ gamma2,
