@@ -287,14 +287,20 @@ def _band_spectrum(x: np.ndarray, sample_rate_Hz: float, half_band_Hz: float) ->
     # filtering is linear, not circular: the record's ends do not wrap onto
     # each other. The first and last ~3 s then carry the filter's start-up
     # (the Hann weighting of the demodulation makes them count little).
-    nfft = fft.next_fast_len(n + 2 * int(np.ceil(4.0 * sample_rate_Hz / half_band_Hz)), real=True)
+    nfft = _padded_length(n, sample_rate_Hz, half_band_Hz)
     return fft.rfft(x - x.mean(axis=-1, keepdims=True), n=nfft, axis=-1), n
+
+
+def _padded_length(n: int, sample_rate_Hz: float, half_band_Hz: float) -> int:
+    """FFT length of :func:`_band_spectrum` for ``n`` samples: the signal and a few
+    impulse-response lengths (~1/half_band) of zeros on either side, rounded up to a fast size."""
+    return fft.next_fast_len(n + 2 * int(np.ceil(4.0 * sample_rate_Hz / half_band_Hz)), real=True)
 
 
 def _analytic_from_spectrum(spectrum: np.ndarray, n: int, sample_rate_Hz: float, f0, half_band_Hz: float,
                             integrate_twice: bool = False) -> np.ndarray:
     """:func:`analytic_band` from the spectrum of :func:`_band_spectrum` (arguments already checked)."""
-    nfft = fft.next_fast_len(n + 2 * int(np.ceil(4.0 * sample_rate_Hz / half_band_Hz)), real=True)
+    nfft = _padded_length(n, sample_rate_Hz, half_band_Hz)
     df = sample_rate_Hz / nfft
     f0 = np.asarray(f0, dtype=float)
     lo = max(int(np.floor((np.min(f0) - half_band_Hz) / df)), 0)
