@@ -32,18 +32,20 @@ free and forced vibration, from virtual experiments; :mod:`tyrelab.measurement.m
 from __future__ import annotations
 
 import time
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pyarrow.parquet as pq
 
-from .. import published
+from .. import io, published
 from ..measurement import calibration as cal
 from ..measurement import uncertainty as unc
 from ..measurement.apparent_mass import tyre_force
 from ..measurement.methods import table_i
 from ..rawformat import ACCEL_CHANNELS, BEAM_CHANNELS, CHANNELS
 from .base import Context, StageResult
+from .state import ItemCache
 
 __all__ = ["PARAMS", "CALIBRATION_COLUMNS", "TF_COLUMNS", "check_calibration_run", "correct_results", "run"]
 
@@ -172,12 +174,17 @@ def run(ctx: Context) -> StageResult:
     res = StageResult("calibrate")
     manifest = ctx.read_table("manifest") if ctx.has_table("manifest") else pd.DataFrame()
     rows, tfs, averages = [], [], {}
+    # each check is kept under the digest of the converted run file it read, its axle mass and
+    # sample rate (ItemCache): an added measurement run re-checks no calibration run
+    cache = ItemCache(ctx, "calibrate")
     if not manifest.empty and "kind" in manifest:
         cal_runs = manifest[manifest["kind"].fillna("measurement") == "calibration"]
         res.n_in = len(cal_runs)
         for _, r in cal_runs.sort_values("run_id").iterrows():
             fs = _sample_rate(r)
-            check, tf = check_calibration_run(r["run_path"], float(r["axle_mass_kg"]), fs)
+            path, mass = r["run_path"], float(r["axle_mass_kg"])
+            key = cache.key("check", io.file_sha256(Path(path)), mass, fs)
+            check, tf = cache.get_or_compute(key, lambda: check_calibration_run(path, mass, fs))
             averages[r["run_id"]] = welch_averages(r.get("n_samples", 0) or 0, fs)
             day = str(r["recorded_on"])
             rows.append({"campaign": str(r.get("campaign", "")), "day": day, "run_id": r["run_id"],
@@ -213,7 +220,9 @@ def run(ctx: Context) -> StageResult:
             n_flagged = int(results["qc_reasons"].str.contains("calibration failed on", regex=False).sum())
             ctx.write_table("results", results)
     # Table I compares measurement methods on virtual experiments (see methods.table_i).
-    ctx.write_table("table_i", table_i(published.read_published("table_i", ctx.raw)))
+    published_i = published.read_published("table_i", ctx.raw)
+    ctx.write_table("table_i", cache.get_or_compute(cache.key("table_i", published_i), lambda: table_i(published_i)))
+    cache.prune()
     res.message = (f"{len(days)} days, {len(failed_days)} failed" + (f" ({', '.join(failed_days)})" if failed_days else "")
                    + (f"; {n_flagged} runs flagged" if n_flagged else ""))
     for d in failed_days:
