@@ -26,7 +26,7 @@ import time
 from dataclasses import dataclass, field
 from typing import Callable
 
-__all__ = ["WatchOptions", "WatchRun", "watch"]
+__all__ = ["WatchOptions", "WatchRun", "watch", "preload"]
 
 log = logging.getLogger("tyrelab")
 
@@ -132,11 +132,28 @@ def watch(ctx, options: WatchOptions | None = None, *, run: Callable | None = No
                     log.info("watch: the raw folder changed; running")
                 runs.append(_one_run(ctx, run, PublishedTableError))
                 done = now
+                if len(runs) == 1:
+                    preload()
                 if ctx.force:  # --force is for the first run; later runs recompute what changed
                     ctx = dataclasses.replace(ctx, force=False)
                 continue  # look again at once: files may have arrived during the run
         sleep(options.interval_s)
     return runs
+
+
+def preload() -> list[str]:
+    """Import every stage module (and so the libraries each uses); return their names.
+
+    :func:`watch` calls it after its first run, which may have been a no-op that
+    imported nothing, so that the first change it sees pays no imports.
+    """
+    import importlib
+
+    from .stages import ORDER
+
+    for name in ORDER:
+        importlib.import_module(f"{__package__}.stages.{name}")
+    return list(ORDER)
 
 
 def _one_run(ctx, run, input_errors) -> WatchRun:

@@ -137,6 +137,19 @@ def _run_table(df: pd.DataFrame, run_id: str, channels: tuple[str, ...]) -> pa.T
     return pa.table(cols)
 
 
+def run_file_options(columns: list[str]) -> dict:
+    """``pyarrow.parquet.write_table`` options of a converted run file.
+
+    The samples are stored BYTE_STREAM_SPLIT (the bytes of each float grouped by
+    significance, which zstd compresses as well as the default encoding) and without
+    dictionary encoding, which pyarrow would first try on every float column and give
+    up on: writing a run takes ~2.5x less CPU, reading its six channels no more, and
+    the file is no larger (docs/benchmarks.md). ``run_id`` stays dictionary-encoded.
+    """
+    return {"compression": "zstd", "use_dictionary": ["run_id"],
+            "column_encoding": {c: "BYTE_STREAM_SPLIT" for c in columns if c != "run_id"}}
+
+
 def _row_hash(row: pd.Series) -> str:
     return hashlib.sha256(json.dumps({k: str(v) for k, v in row.items()}, sort_keys=True).encode()).hexdigest()
 
@@ -187,7 +200,8 @@ def convert_run(task: dict) -> dict:
         df = read_run_file(src, channel_map=cmap)
         ri = check_run(df, task["excitation_frequency_Hz"], task["sample_rate_Hz"])
         with io.atomic_path(out) as tmp:
-            pq.write_table(_run_table(df, task["run_id"], ri.channels), tmp, compression="zstd")
+            table = _run_table(df, task["run_id"], ri.channels)
+            pq.write_table(table, tmp, **run_file_options(table.column_names))
     except RunFileError as exc:
         return {**done, "reason": str(exc)}
     info = {"sample_rate_Hz": ri.sample_rate_Hz, "n_samples": ri.n_samples, "duration_s": ri.duration_s}
