@@ -14,7 +14,7 @@ Files are hashed, checked and converted in parallel by
 Incremental: the stage is skipped when no file below ``--raw`` changed size or
 mtime (``INPUTS = ["raw"]``, see :mod:`tyrelab.stages.state`); otherwise a run
 whose file bytes (SHA-256, re-hashed only when size or mtime changed) and
-manifest row are unchanged is not re-read, and outputs of runs that
+manifest row are unchanged, and that this code converted, is not re-read, and outputs of runs that
 disappeared from the raw folder are removed. Per-run state
 (``build/state/ingest_runs.json``) is written after the outputs it describes.
 
@@ -47,6 +47,7 @@ from ..executor import map_batches
 from ..schema import field_names, load_schema, row_problems, validate_frame
 from ..tyre.sizes import TyreSizeError, parse_tyre_size
 from .base import Context, Progress, StageResult, write_quarantine
+from .state import code_fingerprint
 
 __all__ = ["INPUTS", "BUILTIN_TYRES", "INFO_KEYS", "discover_campaigns", "run_key", "tyre_partition",
     "load_catalogue", "convert_run", "run", "MANIFEST_EXTRA", "manifest_columns"]
@@ -317,7 +318,9 @@ def run(ctx: Context) -> StageResult:
     plan.todo, plan.quarantine = found.todo, plan.quarantine + found.quarantine
     plan.rejected += found.rejected
 
-    state = {} if ctx.force else _load_run_state(ctx)
+    # a run converted by other code is converted again: its file must be what this code writes
+    code = code_fingerprint(__name__)
+    state = {} if ctx.force else {k: v for k, v in _load_run_state(ctx).items() if v.get("code") == code}
     runs_dir = ctx.parquet / "runs"
     tasks, rows = [], {}
     for campaign, row in plan.todo:
@@ -356,7 +359,7 @@ def run(ctx: Context) -> StageResult:
             _quarantine_entry(ctx, campaign, t["run_id"], row["file"], d["reason"], plan)
             continue
         new_state[t["run_id"]] = {"size": st.st_size, "mtime_ns": st.st_mtime_ns, "sha256": d["sha256"],
-                                  "row": row_hash, "out": str(out), "info": d["info"]}
+                                  "row": row_hash, "out": str(out), "info": d["info"], "code": code}
         rec = {c: row.get(c) for c in manifest_columns(schema, row)}
         rec.update(campaign=str(campaign), sha256=d["sha256"], row_hash=row_hash, run_path=str(out))
         rec.update((k, d["info"][k]) for k in INFO_KEYS)  # fixed order: same bytes however info was obtained
