@@ -96,7 +96,7 @@ def map_batches(
             results.append(fn(b))
             done(i)
         return results
-    mp = multiprocessing.get_context("forkserver")
+    mp = _worker_context()
     pool = ProcessPoolExecutor(max_workers=jobs, mp_context=mp, initializer=_leave_interrupts_to_the_parent)
     try:
         for i, r in enumerate(pool.map(fn, batches, chunksize=1)):
@@ -107,6 +107,76 @@ def map_batches(
         raise
     pool.shutdown(wait=True)
     return results
+
+
+#: Modules of the functions the stages hand to :func:`map_batches` (and so the libraries their
+#: workers use). The worker server imports them once, when it starts, and every worker is forked
+#: from it with them loaded: without this each worker of each stage imported pandas, pyarrow,
+#: scipy or matplotlib itself (0.5-1.5 s of CPU per worker and stage) before its first batch.
+#: The last one only tells the parent that the others are imported.
+WORKER_PRELOAD = ("tyrelab.stages.ingest", "tyrelab.stages.analyse", "tyrelab.stages.simulate",
+                  "tyrelab.vehicle.ride", "tyrelab.report.site", "tyrelab._worker_ready")
+#: Environment variable naming the file :mod:`tyrelab._worker_ready` creates in the server.
+READY_VARIABLE = "TYRELAB_WORKER_SERVER_READY"
+#: Longest wait for the server's imports, s (then the pool starts anyway).
+READY_TIMEOUT_S = 300.0
+
+
+def _worker_context():
+    """The ``forkserver`` context, its server started with :data:`WORKER_PRELOAD` imported.
+
+    The server is started once per process, by its first pool, and kept for the next ones.
+    It is started with SIGINT ignored (a terminal's Ctrl-C reaches the whole process group;
+    the server must not print a traceback from the middle of an import), and the parent
+    waits until its imports are done before asking it for workers: a pool abandoned while
+    its workers were still queued behind the imports left workers that failed to start,
+    each printing a traceback. Ctrl-C during the wait stops the parent before any worker
+    was asked for.
+    """
+    mp = multiprocessing.get_context("forkserver")
+    from multiprocessing import forkserver
+
+    server = getattr(forkserver, "_forkserver", None)
+    if server is not None and getattr(server, "_forkserver_pid", None) is not None:
+        return mp  # running (or started by someone else with their own preload)
+    mp.set_forkserver_preload(list(WORKER_PRELOAD))
+    import signal
+    import threading
+    import time
+
+    from multiprocessing import util
+
+    # in the process's own pymp-* folder, which multiprocessing removes at exit: a server that
+    # finishes its imports after an interrupted parent has gone finds no folder to write into
+    ready = os.path.join(util.get_temp_dir(), f"worker-server-ready-{os.getpid()}")
+    main = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+    os.environ[READY_VARIABLE] = ready
+    try:
+        forkserver.ensure_running()
+    finally:
+        del os.environ[READY_VARIABLE]
+        if main:
+            signal.signal(signal.SIGINT, previous)
+    pid = getattr(server, "_forkserver_pid", None)
+    deadline = time.monotonic() + READY_TIMEOUT_S
+    try:
+        while not os.path.exists(ready) and time.monotonic() < deadline:
+            if pid is not None and _exited(pid):
+                break  # the server died: the pool will start another and say why
+            time.sleep(0.005)
+    finally:
+        if os.path.exists(ready):
+            os.unlink(ready)
+    return mp
+
+
+def _exited(pid: int) -> bool:
+    """Whether child ``pid`` has ended, without reaping it (multiprocessing reaps its server itself)."""
+    try:
+        return os.waitid(os.P_PID, pid, os.WEXITED | os.WNOHANG | os.WNOWAIT) is not None
+    except (ChildProcessError, AttributeError):  # not our child, or no waitid on this system
+        return False
 
 
 def _leave_interrupts_to_the_parent() -> None:
