@@ -23,7 +23,8 @@ import os
 from concurrent.futures import ProcessPoolExecutor
 from typing import Any, Callable, Sequence
 
-__all__ = ["EXECUTORS", "BLAS_THREAD_VARIABLES", "map_batches", "single_threaded_blas"]
+__all__ = ["EXECUTORS", "BLAS_THREAD_VARIABLES", "WORKER_PRELOAD", "map_batches", "single_threaded_blas",
+           "start_worker_server"]
 
 EXECUTORS = ("local", "dask")
 
@@ -122,30 +123,30 @@ READY_VARIABLE = "TYRELAB_WORKER_SERVER_READY"
 READY_TIMEOUT_S = 300.0
 
 
-def _worker_context():
-    """The ``forkserver`` context, its server started with :data:`WORKER_PRELOAD` imported.
+#: Path of the marker file of a worker server started but not yet seen ready, else None.
+_ready_marker: str | None = None
 
-    The server is started once per process, by its first pool, and kept for the next ones.
-    It is started with SIGINT ignored (a terminal's Ctrl-C reaches the whole process group;
-    the server must not print a traceback from the middle of an import), and the parent
-    waits until its imports are done before asking it for workers: a pool abandoned while
-    its workers were still queued behind the imports left workers that failed to start,
-    each printing a traceback. Ctrl-C during the wait stops the parent before any worker
-    was asked for.
+
+def start_worker_server() -> None:
+    """Start the worker server now, without waiting for its imports (idempotent).
+
+    Its imports (:data:`WORKER_PRELOAD`) then run on another core while the caller goes on;
+    the first pool waits for them. ``tyrelab run`` calls it when a stage runs for the
+    first time (or with ``--force``) with ``--jobs`` above 1, before importing the stage:
+    a first run uses worker pools in most stages. The server is started with SIGINT
+    ignored: a terminal's Ctrl-C reaches the whole process group, and the server must not
+    print a traceback from the middle of an import.
     """
-    mp = multiprocessing.get_context("forkserver")
-    from multiprocessing import forkserver
+    global _ready_marker
+    from multiprocessing import forkserver, util
 
     server = getattr(forkserver, "_forkserver", None)
-    if server is not None and getattr(server, "_forkserver_pid", None) is not None:
-        return mp  # running (or started by someone else with their own preload)
-    mp.set_forkserver_preload(list(WORKER_PRELOAD))
+    if server is None or getattr(server, "_forkserver_pid", None) is not None:
+        return  # running (or started by someone else, with their own preload)
     import signal
     import threading
-    import time
 
-    from multiprocessing import util
-
+    multiprocessing.get_context("forkserver").set_forkserver_preload(list(WORKER_PRELOAD))
     # in the process's own pymp-* folder, which multiprocessing removes at exit: a server that
     # finishes its imports after an interrupted parent has gone finds no folder to write into
     ready = os.path.join(util.get_temp_dir(), f"worker-server-ready-{os.getpid()}")
@@ -158,17 +159,37 @@ def _worker_context():
         del os.environ[READY_VARIABLE]
         if main:
             signal.signal(signal.SIGINT, previous)
-    pid = getattr(server, "_forkserver_pid", None)
-    deadline = time.monotonic() + READY_TIMEOUT_S
-    try:
-        while not os.path.exists(ready) and time.monotonic() < deadline:
-            if pid is not None and _exited(pid):
-                break  # the server died: the pool will start another and say why
-            time.sleep(0.005)
-    finally:
-        if os.path.exists(ready):
-            os.unlink(ready)
-    return mp
+    _ready_marker = ready
+
+
+def _worker_context():
+    """The ``forkserver`` context, its server running with :data:`WORKER_PRELOAD` imported.
+
+    Starts the server (:func:`start_worker_server`) if needed and waits until its imports
+    are done before asking it for workers: a pool abandoned (Ctrl-C, SIGTERM) while its
+    workers were still queued behind the imports left workers that failed to start, each
+    printing a traceback. An interrupt during the wait stops the parent before any worker
+    was asked for.
+    """
+    global _ready_marker
+    import time
+    from multiprocessing import forkserver
+
+    start_worker_server()
+    ready = _ready_marker
+    if ready is not None:
+        pid = getattr(getattr(forkserver, "_forkserver", None), "_forkserver_pid", None)
+        deadline = time.monotonic() + READY_TIMEOUT_S
+        try:
+            while not os.path.exists(ready) and time.monotonic() < deadline:
+                if pid is not None and _exited(pid):
+                    break  # the server died: the pool will start another and say why
+                time.sleep(0.005)
+        finally:
+            _ready_marker = None  # waited once: a server that died or timed out is not waited for again
+            if os.path.exists(ready):
+                os.unlink(ready)
+    return multiprocessing.get_context("forkserver")
 
 
 def _exited(pid: int) -> bool:
