@@ -130,7 +130,10 @@ def load_catalogue(raw: Path, campaigns: list[Path]) -> tuple[pd.DataFrame, list
 
 
 def _run_table(df: pd.DataFrame, run_id: str, channels: tuple[str, ...]) -> pa.Table:
-    cols = {"run_id": pa.array(np.full(len(df), run_id, dtype=object), pa.string()).dictionary_encode()}
+    # one dictionary entry and all-zero indices: what ``dictionary_encode`` of a column of equal
+    # strings gives, without first making a Python string object per sample
+    cols = {"run_id": pa.DictionaryArray.from_arrays(pa.array(np.zeros(len(df), dtype=np.int32)),
+                                                     pa.array([run_id], pa.string()))}
     cols["time_s"] = pa.array(df["time_s"].to_numpy(dtype=np.float64))
     for c in channels:
         if c != "time_s":
