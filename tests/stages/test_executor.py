@@ -108,3 +108,22 @@ def test_the_tyrelab_command_defaults_blas_to_one_thread():
             "import numpy\nprint(os.environ['OPENBLAS_NUM_THREADS'])\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.stdout.strip().splitlines()[-1] == "1", out.stderr
+
+
+def _preloaded(_):
+    import sys
+
+    return "tyrelab.stages.analyse" in sys.modules and "tyrelab.report.site" in sys.modules
+
+
+def test_workers_start_with_the_stage_modules_imported():
+    """Workers are forked from a server that imported the stages' worker modules once."""
+    from multiprocessing import forkserver
+
+    from tyrelab import executor
+    from tyrelab.stages import Context
+
+    server = forkserver._forkserver
+    if server._forkserver_pid is not None and "tyrelab._worker_ready" not in (server._preload_modules or []):
+        pytest.skip("a forkserver without tyrelab's preload was started earlier in this process")
+    assert executor.map_batches(_preloaded, [1, 2], Context(jobs=2)) == [True, True]
