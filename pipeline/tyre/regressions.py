@@ -194,6 +194,13 @@ def measured_tyres(results: pd.DataFrame) -> list[str]:
     return sorted(results.loc[kind == "measurement", "tyre_id"].dropna().astype(str).unique())
 
 
+def _floats(runs: pd.DataFrame, column: str | None) -> np.ndarray | None:
+    """Column as a float array (non-numbers NaN), or None when absent."""
+    if column is None or column not in runs.columns:
+        return None
+    return pd.to_numeric(runs[column], errors="coerce").to_numpy(dtype=float, na_value=np.nan)
+
+
 def _fit_groups(runs, keys, grid, response, hold, prefer, design: str = "x") -> pd.DataFrame:
     """Fit ``response ~ x`` per group of ``keys``; ``grid`` lists the groups to report.
 
@@ -201,26 +208,37 @@ def _fit_groups(runs, keys, grid, response, hold, prefer, design: str = "x") -> 
     condition): the held level is chosen, and a group counts as an experiment
     on x, by its distinct *design* values, so that the scatter of a measured
     regressor around one set level is never mistaken for a sweep.
+
+    The runs are grouped once (positions per group) and every group is fitted on
+    arrays (:func:`conditions.hold_level`, :func:`fit_line`): no per-group DataFrame.
     """
     rows = []
-    # Only the columns used below: every row selection of a wide ``results`` table (dozens of
-    # text columns) would otherwise copy all of them, which is most of the time of the fits.
-    used = dict.fromkeys([*keys, response, design, "x", *hold, RESPONSE_UNCERTAINTY.get(response)])
-    runs = runs[[c for c in used if c is not None and c in runs.columns]]
-    groups = dict(tuple(runs.groupby(keys, sort=True))) if not runs.empty else {}
+    u_col = RESPONSE_UNCERTAINTY.get(response)
+    cols = [c for c in hold if c in runs.columns]
+    groups = runs.groupby(keys, sort=True).indices if not runs.empty else {}
+    x_all, y_all, d_all = _floats(runs, "x"), _floats(runs, response), _floats(runs, design)
+    u_all = _floats(runs, u_col)
+    u_all = u_all / 1e3 if u_all is not None else None  # N -> kN, as the responses
+    levels_all = cond.hold_levels(runs, cols) if cols and not runs.empty else None
+    none_held = {c: None for c in hold}
+    empty = np.empty(0, dtype=np.intp)
     for key in grid.itertuples(index=False, name=None):
-        sub = groups.get(key if len(keys) > 1 else key[0], runs.iloc[0:0])
-        sub = sub.loc[sub[response].notna()] if response in sub else sub
-        sub, levels, note = cond.hold_constant(sub, design, hold, prefer=prefer)
-        one_level = len(sub) > 0 and sub[design].round(6).nunique() < 2
-        u_col = RESPONSE_UNCERTAINTY.get(response)
-        u = sub[u_col] / 1e3 if u_col in sub else None  # N -> kN, as the responses
-        fit = fit_line(sub["x"], sub[response], u=u) if len(sub) and not one_level else fit_line([], [])
-        if len(sub) == 0:
+        pos = groups.get(key if len(keys) > 1 else key[0], empty)
+        if len(pos) and y_all is not None:
+            pos = pos[~np.isnan(y_all[pos])]
+        levels, note = none_held, ""
+        if len(pos) and levels_all is not None:
+            keep, levels, note = cond.hold_level(d_all[pos], levels_all[pos], cols, hold, prefer)
+            pos = pos if keep is None else pos[keep]
+        n = len(pos)
+        one_level = n > 0 and cond.n_distinct(np.round(d_all[pos], 6)) < 2
+        u = u_all[pos] if u_all is not None else None
+        fit = fit_line(x_all[pos], y_all[pos], u=u) if n and not one_level else fit_line([], [])
+        if n == 0:
             fit["reason"] = "no runs under the selection convention (tyrelab.tyre.conditions)"
         elif one_level:
-            fit["n"] = int(len(sub))
-            fit["reason"] = f"fewer than 2 distinct set levels of the regressor (n={len(sub)}): the runs do not vary it"
+            fit["n"] = int(n)
+            fit["reason"] = f"fewer than 2 distinct set levels of the regressor (n={n}): the runs do not vary it"
         row = dict(zip(keys, key))
         row.update(fit)
         for c in hold:
