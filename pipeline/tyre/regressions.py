@@ -79,7 +79,10 @@ def between_run_variance(x, y, u) -> float:
     lo, hi = 0.0, float(np.var(y)) * 10 + 1e-30
     for _ in range(100):
         mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if chi2(mid) > target else (lo, mid)
+        step = (mid, hi) if chi2(mid) > target else (lo, mid)
+        if step == (lo, hi):
+            break  # converged to adjacent floats: every further step repeats this one
+        lo, hi = step
     return 0.5 * (lo + hi)
 
 
