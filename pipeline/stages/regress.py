@@ -42,6 +42,7 @@ from __future__ import annotations
 
 import time
 
+import numpy as np
 import pandas as pd
 
 from .. import published
@@ -52,7 +53,8 @@ from ..tyre import spoke
 from .base import Context, StageResult
 from .state import ItemCache
 
-__all__ = ["PUBLISHED", "FACTORS", "read_published", "read_tyres", "compute", "run"]
+__all__ = ["PUBLISHED", "FACTORS", "read_published", "read_tyres", "tyre_fits", "tyre_fits_each", "all_tyre_fits",
+           "compute", "run"]
 
 PUBLISHED = ("table_iii", "table_iv", "table_v", "table_vi", "table_vii", "table_viii", "table_ix", "table_x")
 FACTORS = ("amplitude", "frequency", "load", "torque")
@@ -85,19 +87,58 @@ def tyre_fits(results: pd.DataFrame, tyre_ids: list[str], tyres: pd.DataFrame | 
     }
 
 
+def tyre_fits_each(results: pd.DataFrame, tyre_ids: list[str], tyres: pd.DataFrame | None) -> dict[str, dict]:
+    """:func:`tyre_fits` of each tyre of ``tyre_ids`` on its own, all tyres in one pass.
+
+    ``out[tyre]`` equals ``tyre_fits(<results rows of tyre>, [tyre], <tyres row of tyre>)``: the
+    runs are selected and grouped once for all tyres (:func:`tyrelab.tyre.regressions.pressure_regressions_each`,
+    :func:`~tyrelab.tyre.regressions.factor_regressions_each`, :func:`tyrelab.tyre.spoke.fit_tyres_each`)
+    and every fit reads its own tyre's runs only.
+    """
+    tyre_ids = [str(t) for t in tyre_ids]
+    k_cond = reg.pressure_regressions_each(results, (reg.STIFFNESS,), by="condition", tyre_ids=tyre_ids)
+    by_speed = reg.pressure_regressions_each(results, (reg.STIFFNESS, reg.DAMPING), by="speed", tyre_ids=tyre_ids)
+    rates = [reg.factor_regressions_each(results, f, tyre_ids=tyre_ids) for f in FACTORS]
+    catalogue = tyres if tyres is not None and "tyre_id" in tyres else None
+    spokes = spoke.fit_tyres_each(results, catalogue, tyre_ids=tyre_ids)
+    return {t: {"k_cond": k_cond[t][reg.STIFFNESS], "k_speed": by_speed[t][reg.STIFFNESS],
+                "c_speed": by_speed[t][reg.DAMPING], "rates": pd.concat([r[t] for r in rates], ignore_index=True),
+                "spoke_fit": spokes[t][0], "spoke_fit_points": spokes[t][1]} for t in tyre_ids}
+
+
 def all_tyre_fits(results: pd.DataFrame, tyres: pd.DataFrame | None, cache=None) -> dict[str, pd.DataFrame]:
     """:func:`tyre_fits` of every measured tyre, each computed from its own runs (reused from
-    ``cache`` when that tyre's runs and catalogue row are unchanged), in the all-tyre order."""
+    ``cache`` when that tyre's runs and catalogue row are unchanged), in the all-tyre order.
+
+    The runs are grouped by tyre once; the tyres not in the cache are fitted together in one
+    pass (:func:`tyre_fits_each`: the same per-tyre tables as one :func:`tyre_fits` per tyre).
+    """
     tyre_ids = reg.measured_tyres(results)
     if not tyre_ids:
         return tyre_fits(results, tyre_ids, tyres)
-    ids = results["tyre_id"].astype(str)
-    parts = []
+    rows_of = results.groupby(results["tyre_id"].astype(str), sort=False).indices
+    cat_of = tyres.groupby(tyres["tyre_id"].astype(str), sort=False).indices \
+        if tyres is not None and "tyre_id" in tyres else None
+    parts, keys, todo = {}, {}, []
     for t in tyre_ids:
-        own = results.loc[ids == t]
-        row = tyres.loc[tyres["tyre_id"].astype(str) == t] if tyres is not None and "tyre_id" in tyres else None
-        compute_one = lambda own=own, t=t, row=row: tyre_fits(own, [t], row)  # noqa: E731
-        parts.append(cache.get_or_compute(cache.key("tyre", t, own, row), compute_one) if cache else compute_one())
+        if cache is None:
+            todo.append(t)
+            continue
+        own = results.iloc[rows_of[t]]
+        row = None if cat_of is None else tyres.iloc[cat_of.get(t, np.empty(0, dtype=np.intp))]
+        keys[t] = cache.key("tyre", t, own, row)
+        hit, value = cache.get(keys[t])
+        if hit:
+            parts[t] = value
+        else:
+            todo.append(t)
+    if todo:
+        mine = np.sort(np.concatenate([rows_of[t] for t in todo]))
+        for t, value in tyre_fits_each(results.iloc[mine], todo, tyres).items():
+            parts[t] = value
+            if cache is not None:
+                cache.put(keys[t], value)
+    parts = [parts[t] for t in tyre_ids]
     out = {name: _text_columns(pd.concat([p[name] for p in parts], ignore_index=True)) for name in parts[0]}
     # factor_regressions orders rows by factor, response, then tyre: restore that order
     rates = out["rates"]

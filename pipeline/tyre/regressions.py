@@ -35,7 +35,8 @@ from statsmodels.tools.tools import add_constant
 from . import conditions as cond
 
 __all__ = ["STIFFNESS", "DAMPING", "FIT_COLUMNS", "fit_line", "fit_mean", "measured_tyres",
-    "pressure_regressions", "factor_regressions", "surface_effects", "compare_with_thesis", "table_iii",
+    "pressure_regressions", "pressure_regressions_each", "factor_regressions", "factor_regressions_each",
+    "surface_effects", "compare_with_thesis", "table_iii",
     "table_vii", "amplitude_table", "surface_table", "SUMMARY_FACTORS", "summary_rates", "RESPONSE_UNCERTAINTY", "WLS_MIN_SPREAD", "between_run_variance"]
 
 STIFFNESS = "stiffness_kN_per_m"
@@ -205,7 +206,17 @@ def _floats(runs: pd.DataFrame, column: str | None) -> np.ndarray | None:
 
 
 def _fit_groups(runs, keys, grid, response, hold, prefer, design: str = "x") -> pd.DataFrame:
-    """Fit ``response ~ x`` per group of ``keys``; ``grid`` lists the groups to report.
+    """Fit ``response ~ x`` per group of ``keys`` (:func:`_fit_rows`) as one DataFrame."""
+    return _fit_frame(_fit_rows(runs, keys, grid, response, hold, prefer, design), keys, hold)
+
+
+def _fit_frame(rows: list[dict], keys, hold) -> pd.DataFrame:
+    """The DataFrame of :func:`_fit_rows` (columns in their fixed order)."""
+    return pd.DataFrame(rows, columns=list(keys) + FIT_COLUMNS + [f"held_{c}" for c in hold] + ["note"])
+
+
+def _fit_rows(runs, keys, grid, response, hold, prefer, design: str = "x") -> list[dict]:
+    """Fit ``response ~ x`` per group of ``keys``; ``grid`` lists the groups to report (one row each).
 
     ``design`` is the column of the experiment's set levels (the nominal
     condition): the held level is chosen, and a group counts as an experiment
@@ -248,8 +259,16 @@ def _fit_groups(runs, keys, grid, response, hold, prefer, design: str = "x") -> 
             row[f"held_{c}"] = levels.get(c)
         row["note"] = note or None
         rows.append(row)
-    cols = list(keys) + FIT_COLUMNS + [f"held_{c}" for c in hold] + ["note"]
-    return pd.DataFrame(rows, columns=cols)
+    return rows
+
+
+def _by_tyre(rows: list[dict], tyre_ids) -> dict[str, list[dict]]:
+    """The rows of each tyre of ``tyre_ids`` (in their order; rows of other tyres dropped)."""
+    out: dict[str, list[dict]] = {t: [] for t in tyre_ids}
+    for row in rows:
+        if row["tyre_id"] in out:
+            out[row["tyre_id"]].append(row)
+    return out
 
 
 def pressure_regressions(
@@ -282,6 +301,16 @@ def pressure_regressions(
         (intercept = carcass value, slope = pressure dependence per bar),
         ``held_load_kN``, ``note``.
     """
+    runs, keys, grid = _pressure_runs(results, by, tyre_ids)
+    return _fit_groups(runs, keys, grid, response, *_PRESSURE_HOLD)
+
+
+#: Held condition of the pressure regressions and its preferred level.
+_PRESSURE_HOLD = (["load_kN"], {"load_kN": 0.0})
+
+
+def _pressure_runs(results: pd.DataFrame, by: str, tyre_ids) -> tuple[pd.DataFrame, list[str], pd.DataFrame]:
+    """Runs (with regressor ``x``), group keys and grid of :func:`pressure_regressions`."""
     results = cond.with_columns(results)
     tyre_ids = measured_tyres(results) if tyre_ids is None else list(tyre_ids)
     if by == "condition":
@@ -302,7 +331,32 @@ def pressure_regressions(
         raise ValueError(f"by must be 'condition' or 'speed', not {by!r}")
     runs = runs.assign(x=pd.to_numeric(runs.get("pressure_bar"), errors="coerce"), tyre_id=runs["tyre_id"].astype(str)) \
         if not runs.empty else runs.assign(x=np.nan)
-    return _fit_groups(runs, ["tyre_id", key], grid, response, ["load_kN"], {"load_kN": 0.0})
+    return runs, ["tyre_id", key], grid
+
+
+def pressure_regressions_each(
+    results: pd.DataFrame, responses=(STIFFNESS, DAMPING), *, by: str = "condition", tyre_ids: list[str],
+) -> dict[str, dict[str, pd.DataFrame]]:
+    """:func:`pressure_regressions` of each tyre on its own, all tyres in one pass.
+
+    ``out[tyre][response]`` equals ``pressure_regressions(<results rows of tyre>, response, by=by,
+    tyre_ids=[tyre])``: the runs are selected and grouped once and every fit reads its
+    group's runs only.
+
+    Examples
+    --------
+    >>> pressure_regressions_each(pd.DataFrame(), tyre_ids=["T1"])["T1"][STIFFNESS]["n"].tolist()
+    [0, 0]
+    """
+    tyre_ids = [str(t) for t in tyre_ids]
+    runs, keys, grid = _pressure_runs(results, by, tyre_ids)
+    out: dict[str, dict[str, pd.DataFrame]] = {t: {} for t in tyre_ids}
+    for response in responses:
+        for t, rows in _by_tyre(_fit_rows(runs, keys, grid, response, *_PRESSURE_HOLD), tyre_ids).items():
+            out[t][response] = _fit_frame(rows, keys, _PRESSURE_HOLD[0])
+    return out
+
+
 
 
 def factor_regressions(
@@ -327,6 +381,19 @@ def factor_regressions(
         ``tyre_id, speed_km_h, response, factor, factor_unit, rate_unit``, the fit
         (slope = rate), ``held_pressure_bar``, ``held_load_kN``, ``note``.
     """
+    runs, grid, hold = _factor_runs(results, factor)
+    rows = {response: _fit_rows(runs, _FACTOR_KEYS, grid, response, hold, _FACTOR_PREFER, design="x_design")
+            for response in responses}
+    return _factor_frame(rows, factor, hold)
+
+
+_FACTOR_KEYS = ["tyre_id", "speed_km_h"]
+#: Preferred levels of the conditions held constant in the one-factor regressions.
+_FACTOR_PREFER = {"pressure_bar": cond.STANDARD_PRESSURE_BAR, "load_kN": 0.0}
+
+
+def _factor_runs(results: pd.DataFrame, factor: str) -> tuple[pd.DataFrame, pd.DataFrame, list[str]]:
+    """Runs (with ``x`` and ``x_design``), grid and held columns of :func:`factor_regressions`."""
     results = cond.with_columns(results)
     runs = cond.factor_runs(results, factor) if not results.empty else results.assign(x=np.nan)
     runs = runs.copy()
@@ -334,14 +401,18 @@ def factor_regressions(
         runs["speed_km_h"] = _speed(runs["speed_km_h"])
         runs["tyre_id"] = runs["tyre_id"].astype(str)
     runs["x_design"] = pd.to_numeric(runs[cond.FACTORS[factor][0]], errors="coerce") if not runs.empty else np.nan
-    unit = cond.FACTORS[factor][2]
     hold = [c for c in ("pressure_bar", "load_kN") if c != cond.FACTORS[factor][0]]
-    grid = runs[["tyre_id", "speed_km_h"]].drop_duplicates().sort_values(["tyre_id", "speed_km_h"]) \
-        if not runs.empty else pd.DataFrame(columns=["tyre_id", "speed_km_h"])
+    grid = runs[_FACTOR_KEYS].drop_duplicates().sort_values(_FACTOR_KEYS) \
+        if not runs.empty else pd.DataFrame(columns=_FACTOR_KEYS)
+    return runs, grid, hold
+
+
+def _factor_frame(rows: dict[str, list[dict]], factor: str, hold: list[str]) -> pd.DataFrame:
+    """The :func:`factor_regressions` table of the fit rows of each response."""
+    unit = cond.FACTORS[factor][2]
     out = []
-    for response in responses:
-        f = _fit_groups(runs, ["tyre_id", "speed_km_h"], grid, response, hold,
-                        {"pressure_bar": cond.STANDARD_PRESSURE_BAR, "load_kN": 0.0}, design="x_design")
+    for response, fit_rows in rows.items():
+        f = _fit_frame(fit_rows, _FACTOR_KEYS, hold)
         f.insert(2, "response", response)
         f.insert(3, "factor", factor)
         f.insert(4, "factor_unit", unit)
@@ -351,6 +422,28 @@ def factor_regressions(
                 f[c] = np.nan
         out.append(f)
     return pd.concat(out, ignore_index=True) if out else pd.DataFrame()
+
+
+def factor_regressions_each(
+    results: pd.DataFrame, factor: str, responses=(STIFFNESS, DAMPING), *, tyre_ids: list[str],
+) -> dict[str, pd.DataFrame]:
+    """:func:`factor_regressions` of each tyre on its own, all tyres in one pass.
+
+    ``out[tyre]`` equals ``factor_regressions(<results rows of tyre>, factor, responses)``:
+    the runs are selected and grouped once and every fit reads its group's runs only.
+
+    Examples
+    --------
+    >>> len(factor_regressions_each(pd.DataFrame(), "load", tyre_ids=["T1"])["T1"])
+    0
+    """
+    if factor not in cond.FACTORS:
+        raise ValueError(f"factor must be one of {sorted(cond.FACTORS)}, not {factor!r}")
+    tyre_ids = [str(t) for t in tyre_ids]
+    runs, grid, hold = _factor_runs(results, factor)
+    rows = {response: _by_tyre(_fit_rows(runs, _FACTOR_KEYS, grid, response, hold, _FACTOR_PREFER,
+                                         design="x_design"), tyre_ids) for response in responses}
+    return {t: _factor_frame({r: rows[r][t] for r in responses}, factor, hold) for t in tyre_ids}
 
 
 def surface_effects(results: pd.DataFrame, response: str = STIFFNESS) -> tuple[pd.DataFrame, pd.DataFrame]:
