@@ -309,7 +309,7 @@ def pressure_regressions(
 _PRESSURE_HOLD = (["load_kN"], {"load_kN": 0.0})
 
 
-def _pressure_runs(results: pd.DataFrame, by: str, tyre_ids) -> tuple[pd.DataFrame, list[str], pd.DataFrame]:
+def _pressure_runs(results: pd.DataFrame, by: str, tyre_ids) -> tuple[pd.DataFrame, list, pd.DataFrame]:
     """Runs (with regressor ``x``), group keys and grid of :func:`pressure_regressions`."""
     results = cond.with_columns(results)
     tyre_ids = measured_tyres(results) if tyre_ids is None else list(tyre_ids)
@@ -355,8 +355,6 @@ def pressure_regressions_each(
         for t, rows in _by_tyre(_fit_rows(runs, keys, grid, response, *_PRESSURE_HOLD), tyre_ids).items():
             out[t][response] = _fit_frame(rows, keys, _PRESSURE_HOLD[0])
     return out
-
-
 
 
 def factor_regressions(

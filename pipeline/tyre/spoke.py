@@ -397,7 +397,8 @@ def fit_tyres(results: pd.DataFrame, tyres: pd.DataFrame | None = None, *,
 
 
 def fit_tyres_each(results: pd.DataFrame, tyres: pd.DataFrame | None = None, *, tyre_ids: list[str],
-                   min_speed_km_h: float = 10.0, h_over_r0: float = H_OVER_R0) -> dict[str, tuple[pd.DataFrame, pd.DataFrame]]:
+                   min_speed_km_h: float = 10.0,
+                   h_over_r0: float = H_OVER_R0) -> dict[str, tuple[pd.DataFrame, pd.DataFrame]]:
     """:func:`fit_tyres` of each tyre on its own, all tyres in one pass.
 
     ``out[tyre]`` equals ``fit_tyres(<results rows of tyre>, <tyres row of tyre>)``: the
