@@ -162,13 +162,20 @@ def _text_columns(df: pd.DataFrame) -> pd.DataFrame:
 
 def _published_source(table: pd.DataFrame, tyres: pd.DataFrame | None) -> dict:
     """Size regressions, selection search and formula accuracy of the printed Table III."""
-    searches = []
+    size, searches = _size_fits(table, tyres, "published")
+    p = fa.predictions_from_table(table, tyres, source="published")
+    return {"size": size, "searches": searches, "predictions": p, "accuracy": fa.accuracy_summary(p, "published")}
+
+
+def _size_fits(table: pd.DataFrame, tyres: pd.DataFrame | None, source: str) -> tuple[pd.DataFrame, list]:
+    """Size regressions of one Table III and the 25 best selections of each fit's search (each
+    search done once: the size regressions' findings reuse it)."""
+    full = {}
     if not table.empty:
         points = sr.tyre_points(table, tyres)
-        searches = [sr.selection_search(points, name).head(25).assign(source="published") for name in sr.THESIS_FITS]
-    p = fa.predictions_from_table(table, tyres, source="published")
-    return {"size": sr.size_regressions(table, tyres, "published"), "searches": searches, "predictions": p,
-            "accuracy": fa.accuracy_summary(p, "published")}
+        full = {name: sr.selection_search(points, name) for name in sr.THESIS_FITS}
+    searches = [full[name].head(25).assign(source=source) for name in full]
+    return sr.size_regressions(table, tyres, source, searches=full), searches
 
 
 def _spoke_curves() -> dict[str, pd.DataFrame]:
@@ -214,10 +221,8 @@ def compute(results: pd.DataFrame, tyres: pd.DataFrame | None,
     ours_iii = k_cond.rename(columns={"intercept": "carcass_stiffness_kN_per_m",
                                       "slope": "pressure_dependence_kN_per_m_bar"})
     pub_iii = published.get("table_iii")
-    size_rows, searches, preds, acc = [sr.size_regressions(ours_iii, tyres, "ours")], [], [], []
-    if not ours_iii.empty:
-        points = sr.tyre_points(ours_iii, tyres)
-        searches = [sr.selection_search(points, name).head(25).assign(source="ours") for name in sr.THESIS_FITS]
+    size_ours, searches = _size_fits(ours_iii, tyres, "ours")
+    size_rows, preds, acc = [size_ours], [], []
     preds.append(fa.predictions_from_recordings(results, ours_iii, tyres))
     acc.append(fa.accuracy_summary(preds[-1], "ours"))
     if pub_iii is not None:

@@ -69,9 +69,12 @@ def between_run_variance(x, y, u) -> float:
     x, y, u = (np.asarray(v, dtype=float) for v in (x, y, u))
     design = np.column_stack([np.ones_like(x), x])
 
+    u2 = u**2
+
     def chi2(tau2):
-        w = 1.0 / (u**2 + tau2)
-        beta = np.linalg.lstsq(design * np.sqrt(w)[:, None], y * np.sqrt(w), rcond=None)[0]
+        w = 1.0 / (u2 + tau2)
+        sw = np.sqrt(w)
+        beta = np.linalg.lstsq(design * sw[:, None], y * sw, rcond=None)[0]
         return float(np.sum(w * (y - design @ beta) ** 2))
 
     target = len(y) - 2
