@@ -31,8 +31,9 @@ with null estimates of ours.
 
 Incremental: the fits that read one tyre's runs (Table III, per-speed K and C, the
 one-factor rates, the spoke fit) are kept per tyre in ``build/cache/regress`` under
-the digest of that tyre's ``results`` rows and catalogue row
-(:class:`tyrelab.stages.state.ItemCache`), so one new run refits its tyre only; the
+the digest of that tyre's ``results`` rows (the columns they read,
+:data:`FIT_INPUT_COLUMNS`) and catalogue row (:class:`tyrelab.stages.state.ItemCache`),
+so one new run refits its tyre only, and the tyres to refit are fitted in one pass; the
 across-tyre tables (surface effects, summaries, size regressions, formula accuracy)
 are recomputed from the per-tyre fits whenever the stage runs, and the parts that
 read only the published tables are kept under the digest of those tables.
@@ -46,6 +47,7 @@ import numpy as np
 import pandas as pd
 
 from .. import published
+from ..tyre import conditions as cond
 from ..tyre import formula_accuracy as fa
 from ..tyre import regressions as reg
 from ..tyre import size_regressions as sr
@@ -53,9 +55,13 @@ from ..tyre import spoke
 from .base import Context, StageResult
 from .state import ItemCache
 
-__all__ = ["PUBLISHED", "FACTORS", "read_published", "read_tyres", "tyre_fits", "tyre_fits_each", "all_tyre_fits",
+__all__ = ["FIT_INPUT_COLUMNS", "PUBLISHED", "FACTORS", "read_published", "read_tyres", "tyre_fits", "tyre_fits_each", "all_tyre_fits",
            "compute", "run"]
 
+#: The ``results`` columns the per-tyre fits read (:mod:`tyrelab.tyre.conditions` and the
+#: runs' uncertainties): the fits are given only these, and a tyre's cache key is the digest
+#: of exactly these, so a change elsewhere in a run's row (e.g. its campaign) refits nothing.
+FIT_INPUT_COLUMNS = (*cond.RESULTS_COLUMNS, *reg.RESPONSE_UNCERTAINTY.values())
 PUBLISHED = ("table_iii", "table_iv", "table_v", "table_vi", "table_vii", "table_viii", "table_ix", "table_x")
 FACTORS = ("amplitude", "frequency", "load", "torque")
 
@@ -110,12 +116,14 @@ def all_tyre_fits(results: pd.DataFrame, tyres: pd.DataFrame | None, cache=None)
     """:func:`tyre_fits` of every measured tyre, each computed from its own runs (reused from
     ``cache`` when that tyre's runs and catalogue row are unchanged), in the all-tyre order.
 
-    The runs are grouped by tyre once; the tyres not in the cache are fitted together in one
-    pass (:func:`tyre_fits_each`: the same per-tyre tables as one :func:`tyre_fits` per tyre).
+    The fits read the :data:`FIT_INPUT_COLUMNS` of ``results`` only (a tyre's cache key is their
+    digest). The runs are grouped by tyre once; the tyres not in the cache are fitted together
+    in one pass (:func:`tyre_fits_each`: the same per-tyre tables as one :func:`tyre_fits` per tyre).
     """
     tyre_ids = reg.measured_tyres(results)
     if not tyre_ids:
         return tyre_fits(results, tyre_ids, tyres)
+    results = results[[c for c in FIT_INPUT_COLUMNS if c in results.columns]]
     rows_of = results.groupby(results["tyre_id"].astype(str), sort=False).indices
     cat_of = tyres.groupby(tyres["tyre_id"].astype(str), sort=False).indices \
         if tyres is not None and "tyre_id" in tyres else None
