@@ -411,16 +411,21 @@ def _factor_runs(results: pd.DataFrame, factor: str) -> tuple[pd.DataFrame, pd.D
 def _factor_frame(rows: dict[str, list[dict]], factor: str, hold: list[str]) -> pd.DataFrame:
     """The :func:`factor_regressions` table of the fit rows of each response."""
     unit = cond.FACTORS[factor][2]
+    held = [f"held_{c}" for c in hold]
     out = []
     for response, fit_rows in rows.items():
-        f = _fit_frame(fit_rows, _FACTOR_KEYS, hold)
-        f.insert(2, "response", response)
-        f.insert(3, "factor", factor)
-        f.insert(4, "factor_unit", unit)
-        f.insert(5, "rate_unit", f"{_RESPONSE_UNIT.get(response, response)} per {unit}")
-        for c in ("held_pressure_bar", "held_load_kN"):
-            if c not in f:
-                f[c] = np.nan
+        extra = {"response": response, "factor": factor, "factor_unit": unit,
+                 "rate_unit": f"{_RESPONSE_UNIT.get(response, response)} per {unit}"}
+        absent = {c: np.nan for c in ("held_pressure_bar", "held_load_kN") if c not in held}
+        if fit_rows:  # the constant columns inferred from the rows: the dtypes of inserting them
+            f = pd.DataFrame([{**r, **extra, **absent} for r in fit_rows],
+                             columns=_FACTOR_KEYS + list(extra) + FIT_COLUMNS + held + ["note"] + list(absent))
+        else:  # no rows: inserted columns keep the dtypes an insert gives an empty frame
+            f = _fit_frame(fit_rows, _FACTOR_KEYS, hold)
+            for i, (c, v) in enumerate(extra.items()):
+                f.insert(2 + i, c, v)
+            for c, v in absent.items():
+                f[c] = v
         out.append(f)
     return pd.concat(out, ignore_index=True) if out else pd.DataFrame()
 
