@@ -228,46 +228,101 @@ class _Exact:
 
 
 class _Rhs:
-    """Right-hand side of the nonlinear tractor, vectorised over runs (per-run longitudinal model)."""
+    """Right-hand side of the nonlinear tractor for a batch of runs, into preallocated buffers.
 
-    def __init__(self, p: dict[str, np.ndarray], models: np.ndarray, lift_off: bool, gravity_m_s2: float):
+    A batch is tens of runs, so the cost is the number of numpy calls, not the arithmetic: the
+    front and rear axles are one (2, runs) array each call (``[a, -b]`` the levers: ``u_r - z +
+    b θ`` is ``u_r - z - (-b) θ`` exactly), each longitudinal model is worked out on its own
+    contiguous slice of runs (the runs must come grouped by model, :func:`_run_switched` sorts
+    them), results go into buffers (``out=``), scalars are arrays (a Python float operand costs a
+    numpy call 60 % more). The floating-point operations and their order are those of the
+    equations in the module docstring written out plainly (tests/vehicle/test_tractor_switching.py
+    checks bit-identity against that form).
+    """
+
+    def __init__(self, p: dict[str, np.ndarray], models: np.ndarray, lift_off: bool, gravity_m_s2: float, dt_s: float):
         runs = models.size
-        self.m, self.inertia, self.a, self.b, self.h = (p[k] for k in PARAMETERS[:5])
-        self.kf, self.kr, self.cf, self.cr, self.kx, self.cx = (p[k] for k in PARAMETERS[5:])
-        w = self.m * gravity_m_s2
-        self.wf = -w * self.b / (self.a + self.b) if lift_off else np.full(runs, -np.inf)
-        self.wr = -w * self.a / (self.a + self.b) if lift_off else np.full(runs, -np.inf)
-        self.maxwell_rate = np.divide(self.kx, self.cx, out=np.zeros(runs), where=self.cx > 0)
-        self.maxwell_active = (self.kx > 0) & (self.cx > 0)
-        kinds = set(models.tolist())
-        self.kind = kinds.pop() if len(kinds) == 1 else "mixed"
-        self.kv, self.mw = models == "kelvin_voigt", models == "maxwell"
-        self.zeros = np.zeros(runs)
+        m, inertia, a, b, h = (np.ascontiguousarray(p[k]) for k in PARAMETERS[:5])
+        kf, kr, cf, cr, kx, cx = (np.ascontiguousarray(p[k]) for k in PARAMETERS[5:])
+        w = m * gravity_m_s2
+        wf = -w * b / (a + b) if lift_off else np.full(runs, -np.inf)
+        wr = -w * a / (a + b) if lift_off else np.full(runs, -np.inf)
+        self.m, self.inertia, self.h = m, inertia, h
+        self.wr = wr
+        self.lever, self.ab = np.stack([a, -b]), np.stack([a, b])
+        self.stiffness, self.damping, self.floors = np.stack([kf, kr]), np.stack([cf, cr]), np.stack([wf, wr])
+        maxwell_rate = np.divide(kx, cx, out=np.zeros(runs), where=cx > 0)
+        maxwell_active = (kx > 0) & (cx > 0)
+        models = np.asarray(models)
+        self.slices = {}
+        for kind in ("kelvin_voigt", "maxwell"):
+            at = np.flatnonzero(models == kind)
+            if at.size:
+                if at[-1] - at[0] + 1 != at.size:
+                    raise ValueError("longitudinal_model: the runs of a batch must be grouped by model")
+                self.slices[kind] = slice(int(at[0]), int(at[-1]) + 1)
+        kv = self.slices.get("kelvin_voigt", slice(0, 0))
+        mw = self.slices.get("maxwell", slice(0, 0))
+        self.kv = (kx[kv], cx[kv], h[kv])
+        self.mw = (-kx[mw], maxwell_active[mw], maxwell_rate[mw])
+        self.e1, self.e2, self.e3, self.force = np.empty((4, 2, runs))
+        self.d, self.fx, self.t1, self.t2 = np.empty((4, runs))
+        self.fx[:] = 0.0  # no longitudinal element: no force
+        self.contact = np.empty(runs, dtype=bool)
 
-    def __call__(self, y, uf, udf, ur, udr):
+    def __call__(self, y: np.ndarray, w: np.ndarray, k: np.ndarray, lifted: np.ndarray) -> None:
+        """``k`` = derivative of the state ``y`` (7, runs) under inputs ``w`` = ``[u_f, u_r, u_f',
+        u_r']`` (4, runs); ``lifted`` = ``[F_f <= -W_f, F_r <= -W_r]`` (front, rear off the ground).
+        ``k[6]`` (Maxwell ``s'``) is written for the Maxwell runs only: it must hold 0 elsewhere."""
+        add, sub, mul, div = np.add, np.subtract, np.multiply, np.divide
         z, th, x, vz, vth, vx, s = y
-        a, b, h = self.a, self.b, self.h
-        ff = np.maximum(self.kf * (uf - z - a * th) + self.cf * (udf - vz - a * vth), self.wf)
-        fr = np.maximum(self.kr * (ur - z + b * th) + self.cr * (udr - vz + b * vth), self.wr)
-        d = x + h * th
-        contact = fr > self.wr
-        if self.kind == "kelvin_voigt":
-            fx = -(self.kx * d + self.cx * (vx + h * vth)) * contact
-            ds = self.zeros
-        elif self.kind == "maxwell":
-            fx = -self.kx * (d - s) * self.maxwell_active * contact
-            ds = self.maxwell_rate * (d - s)
-        elif self.kind == "none":
-            fx = self.zeros
-            ds = self.zeros
-        else:
-            fx = np.where(self.kv, -(self.kx * d + self.cx * (vx + h * vth)),
-                          np.where(self.mw, -self.kx * (d - s) * self.maxwell_active, 0.0)) * contact
-            ds = np.where(self.mw, self.maxwell_rate * (d - s), 0.0)
-        az = (ff + fr) / self.m
-        ath = (a * ff - b * fr + h * fx) / self.inertia
-        ax = fx / self.m
-        return np.array([vz, vth, vx, az, ath, ax, ds]), ff <= self.wf, fr <= self.wr
+        e1, e2, e3, force, d, fx, t1, t2 = self.e1, self.e2, self.e3, self.force, self.d, self.fx, self.t1, self.t2
+        contact, lever = self.contact, self.lever
+        # [F_f, F_r] = max(K (u - z -+ lever θ) + C (u' - z' -+ lever θ'), floors)
+        sub(w[0:2], z, e1)
+        mul(lever, th, e2)
+        sub(e1, e2, e1)
+        mul(self.stiffness, e1, e1)
+        sub(w[2:4], vz, e2)
+        mul(lever, vth, e3)
+        sub(e2, e3, e2)
+        mul(self.damping, e2, e2)
+        add(e1, e2, force)
+        np.maximum(force, self.floors, out=force)
+        np.less_equal(force, self.floors, out=lifted)
+        np.greater(force[1], self.wr, out=contact)
+        # rear contact fore-aft d = x + h θ
+        mul(self.h, th, d)
+        add(x, d, d)
+        sl = self.slices.get("kelvin_voigt")
+        if sl is not None:  # F_x = -(k_x d + c_x (x' + h θ')) while in contact
+            kx, cx, h = self.kv
+            f1, f2 = t1[sl], t2[sl]
+            mul(kx, d[sl], f1)
+            mul(h, vth[sl], f2)
+            add(vx[sl], f2, f2)
+            mul(cx, f2, f2)
+            add(f1, f2, f1)
+            np.negative(f1, f1)
+            mul(f1, contact[sl], fx[sl])
+        sl = self.slices.get("maxwell")
+        if sl is not None:  # F_x = -k_x (d - s) while in contact, c_x s' = k_x (d - s)
+            neg_kx, active, rate = self.mw
+            f1, f2 = t1[sl], t2[sl]
+            sub(d[sl], s[sl], f2)
+            mul(neg_kx, f2, f1)
+            mul(f1, active, f1)
+            mul(f1, contact[sl], fx[sl])
+            mul(rate, f2, k[6, sl])
+        np.copyto(k[0:3], y[3:6])
+        add(force[0], force[1], k[3])
+        div(k[3], self.m, k[3])  # z'' = (F_f + F_r) / M
+        mul(self.ab, force, e1)
+        sub(e1[0], e1[1], k[4])
+        mul(self.h, fx, t1)
+        add(k[4], t1, k[4])
+        div(k[4], self.inertia, k[4])  # θ'' = (a F_f - b F_r + h F_x) / I
+        div(fx, self.m, k[5])  # x'' = F_x / M
 
 
 def simulate_tractor(
@@ -365,51 +420,106 @@ def _run_switched(p, models, uf, udf, ur, udr, dt_s, lift_off, gravity_m_s2, swi
     """RK4 across the lift-off intervals of the ``switched`` runs, the exact path in between.
 
     ``switched``: per run (index, exact path, sample where RK4 takes over, RK4 state there); a run
-    whose exact path is None stays on RK4 to the end (:func:`_simulate_rk4`)."""
+    whose exact path is None stays on RK4 to the end (:func:`_simulate_rk4`). All runs advance
+    together, each at its own sample; a run that has ended (or gone back to the exact path for
+    good) is still computed, its results go nowhere."""
+    models = np.asarray(models)
+    order = {m: i for i, m in enumerate(LONGITUDINAL_MODELS)}
+    switched = sorted(switched, key=lambda s: order[str(models[s[0]])])  # grouped by model (_Rhs), stable
     idx = np.array([s[0] for s in switched])
     exact = [s[1] for s in switched]
     returns = np.array([e is not None for e in exact])
-    rhs = _Rhs({k: v[idx] for k, v in p.items()}, np.asarray(models)[idx], lift_off, gravity_m_s2)
-    inputs = np.stack([v[idx] for v in (uf, udf, ur, udr)], axis=-1)  # (runs, 2n - 1, 4): one gather a stage
     count, n = idx.size, (uf.shape[1] + 1) // 2
+    rhs = _Rhs({k: v[idx] for k, v in p.items()}, models[idx], lift_off, gravity_m_s2, dt_s)
+    # inputs [u_f, u_r, u_f', u_r'] of every run, each padded with its last sample twice (the
+    # stages past the last sample read it, as a clamped index would), flat: one gather a step
+    width = 2 * n + 1
+    inputs = np.empty((4, count, width))
+    for row, v in enumerate((uf, ur, udf, udr)):
+        inputs[row, :, : 2 * n - 1] = v[idx]
+        inputs[row, :, 2 * n - 1:] = inputs[row, :, 2 * n - 2: 2 * n - 1]
+    inputs = inputs.reshape(4, count * width)
     rows = np.arange(count)
-    y = np.array([s[3] for s in switched]).T  # (7, count)
-    k = np.array([s[2] for s in switched])
+    at = np.empty((3, count), dtype=np.intp)  # the three half samples a step reads, flat
+    at_flat = at.reshape(-1)
+    first = rows * width + np.arange(3)[:, None]
+    w = np.empty((4, 3, count))
+    w_flat = w.reshape(4, 3 * count)
+    w1, w2, w3 = w[:, 0], w[:, 1], w[:, 2]
+    # results: (5, count, n + 1), the last column a sink for the runs that no longer record
+    res = np.empty((5, count, n + 1))
+    for i, key in enumerate(_OUTPUTS):
+        res[i, :, :n] = out[key][idx]
+    views = {key: res[i, :, :n] for i, key in enumerate(_OUTPUTS)}
+    res_flat = res.reshape(5, count * (n + 1))
+    res_start, sink = rows * (n + 1), rows * (n + 1) + n
+    pos = np.empty(count, dtype=np.intp)
+    y = np.array([s[3] for s in switched], float).T.copy()  # (7, count)
+    k = np.array([s[2] for s in switched], dtype=np.intp)
     calm = np.zeros(count, dtype=int)
     active = np.ones(count, dtype=bool)
-    off_f, off_r = np.zeros(count), np.zeros(count)
-    res = np.stack([out[key][idx] for key in _OUTPUTS])  # (5, count, n), written back at the end
-    views = {key: res[i] for i, key in enumerate(_OUTPUTS)}
-    last, hstep = 2 * n - 2, dt_s
+    off = np.zeros((2, count))  # samples off the ground, front and rear
+    k1, k2, k3, k4, yb, yc, yd, acc, acc2, y_new = np.zeros((10, 7, count))
+    lifted = np.empty((4, 2, count), dtype=bool)
+    lifted_any = lifted.reshape(8, count)
+    lifted_now = np.empty((2, count), dtype=bool)
+    step, idle, back = np.empty((3, count), dtype=bool)
+    any_lift = np.empty(count, dtype=bool)
+    hstep, half, sixth = (np.full((7, count), v) for v in (dt_s, 0.5 * dt_s, dt_s / 6.0))
+    add, mul = np.add, np.multiply
+    last = n - 1
     while active.any():
-        j = 2 * k
-        w0 = inputs[rows, j].T
-        w1 = inputs[rows, np.minimum(j + 1, last)].T
-        w2 = inputs[rows, np.minimum(j + 2, last)].T
-        k1, lf, lr = rhs(y, *w0)
-        act = np.flatnonzero(active)
-        res[:, act, k[act]] = np.stack([k1[3], k1[4], k1[5], y[0], y[1]])[:, act]
-        off_f[act] += lf[act]
-        off_r[act] += lr[act]
-        end = active & (k == n - 1)
-        step = active & ~end
-        k2, lf2, lr2 = rhs(y + 0.5 * hstep * k1, *w1)
-        k3, lf3, lr3 = rhs(y + 0.5 * hstep * k2, *w1)
-        k4, lf4, lr4 = rhs(y + hstep * k3, *w2)
-        y = np.where(step, y + hstep / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4), y)
-        k = k + step
-        calm = np.where(lf | lr | lf2 | lr2 | lf3 | lr3 | lf4 | lr4, 0, calm + 1)
-        active &= ~end
-        for r in np.flatnonzero(step & (calm >= CALM_STEPS) & returns):  # back in contact for a while: exact again
-            kr, y7 = exact[r].solve(int(k[r]), y[:, r], views, r, lift_off, chunk=EXACT_CHUNK)
-            if y7 is None:
-                active[r] = False
-            else:
-                k[r], y[:, r], calm[r] = kr, y7, 0
+        add(k, k, at[0])
+        add(first, at[0], at)
+        np.take(inputs, at_flat, axis=1, out=w_flat, mode="clip")
+        rhs(y, w1, k1, lifted[0])
+        # record sample k of the runs still recording
+        add(res_start, k, pos)
+        np.logical_not(active, out=idle)
+        np.copyto(pos, sink, where=idle)
+        res_flat[0:3, pos] = k1[3:6]
+        res_flat[3:5, pos] = y[0:2]
+        np.logical_and(lifted[0], active, out=lifted_now)
+        add(off, lifted_now, off)
+        np.not_equal(k, last, out=step)
+        np.logical_and(step, active, out=step)
+        mul(half, k1, acc)
+        add(y, acc, yb)
+        rhs(yb, w2, k2, lifted[1])
+        mul(half, k2, acc)
+        add(y, acc, yc)
+        rhs(yc, w2, k3, lifted[2])
+        mul(hstep, k3, acc)
+        add(y, acc, yd)
+        rhs(yd, w3, k4, lifted[3])
+        # y + h/6 (k1 + 2 k2 + 2 k3 + k4), summed left to right
+        add(k2, k2, acc)
+        add(k1, acc, acc)
+        add(k3, k3, acc2)
+        add(acc, acc2, acc)
+        add(acc, k4, acc)
+        mul(sixth, acc, acc)
+        add(y, acc, y_new)
+        np.copyto(y, y_new, where=step)
+        add(k, step, k)
+        np.logical_or.reduce(lifted_any, axis=0, out=any_lift)
+        add(calm, 1, calm)
+        np.copyto(calm, 0, where=any_lift)
+        np.copyto(active, step)
+        np.greater_equal(calm, CALM_STEPS, out=back)
+        np.logical_and(back, step, out=back)
+        np.logical_and(back, returns, out=back)
+        if back.any():
+            for r in np.flatnonzero(back):  # back in contact for a while: exact again
+                kr, y7 = exact[r].solve(int(k[r]), y[:, r], views, r, lift_off, chunk=EXACT_CHUNK)
+                if y7 is None:
+                    active[r] = False
+                else:
+                    k[r], y[:, r], calm[r] = kr, y7, 0
     for i, key in enumerate(_OUTPUTS):
-        out[key][idx] = res[i]
-    out["lift_off_fraction_front"][idx] = off_f / n
-    out["lift_off_fraction_rear"][idx] = off_r / n
+        out[key][idx] = views[key]
+    out["lift_off_fraction_front"][idx] = off[0] / n
+    out["lift_off_fraction_rear"][idx] = off[1] / n
 
 
 def _simulate_rk4(
