@@ -270,59 +270,71 @@ class _Rhs:
         self.fx[:] = 0.0  # no longitudinal element: no force
         self.contact = np.empty(runs, dtype=bool)
 
-    def __call__(self, y: np.ndarray, w: np.ndarray, k: np.ndarray, lifted: np.ndarray) -> None:
-        """``k`` = derivative of the state ``y`` (7, runs) under inputs ``w`` = ``[u_f, u_r, u_f',
-        u_r']`` (4, runs); ``lifted`` = ``[F_f <= -W_f, F_r <= -W_r]`` (front, rear off the ground).
-        ``k[6]`` (Maxwell ``s'``) is written for the Maxwell runs only: it must hold 0 elsewhere."""
-        add, sub, mul, div = np.add, np.subtract, np.multiply, np.divide
+    def bind(self, y: np.ndarray, w: np.ndarray, k: np.ndarray, lifted: np.ndarray):
+        """A function of no arguments that writes ``k`` = the derivative of the state ``y`` (7, runs)
+        under inputs ``w`` = ``[u_f, u_r, u_f', u_r']`` (4, runs), and ``lifted`` = ``[F_f <= -W_f,
+        F_r <= -W_r]`` (front, rear off the ground), from the arrays' values at the call (every view
+        taken once, here). ``k[6]`` (Maxwell ``s'``) is written for the Maxwell runs only: it must
+        hold 0 elsewhere."""
+        add, sub, mul, div, maximum, less_equal, greater, negative, copyto = (
+            np.add, np.subtract, np.multiply, np.divide, np.maximum, np.less_equal, np.greater, np.negative, np.copyto)
         z, th, x, vz, vth, vx, s = y
         e1, e2, e3, force, d, fx, t1, t2 = self.e1, self.e2, self.e3, self.force, self.d, self.fx, self.t1, self.t2
-        contact, lever = self.contact, self.lever
-        # [F_f, F_r] = max(K (u - z -+ lever θ) + C (u' - z' -+ lever θ'), floors)
-        sub(w[0:2], z, e1)
-        mul(lever, th, e2)
-        sub(e1, e2, e1)
-        mul(self.stiffness, e1, e1)
-        sub(w[2:4], vz, e2)
-        mul(lever, vth, e3)
-        sub(e2, e3, e2)
-        mul(self.damping, e2, e2)
-        add(e1, e2, force)
-        np.maximum(force, self.floors, out=force)
-        np.less_equal(force, self.floors, out=lifted)
-        np.greater(force[1], self.wr, out=contact)
-        # rear contact fore-aft d = x + h θ
-        mul(self.h, th, d)
-        add(x, d, d)
-        sl = self.slices.get("kelvin_voigt")
-        if sl is not None:  # F_x = -(k_x d + c_x (x' + h θ')) while in contact
-            kx, cx, h = self.kv
-            f1, f2 = t1[sl], t2[sl]
-            mul(kx, d[sl], f1)
-            mul(h, vth[sl], f2)
-            add(vx[sl], f2, f2)
-            mul(cx, f2, f2)
-            add(f1, f2, f1)
-            np.negative(f1, f1)
-            mul(f1, contact[sl], fx[sl])
-        sl = self.slices.get("maxwell")
-        if sl is not None:  # F_x = -k_x (d - s) while in contact, c_x s' = k_x (d - s)
-            neg_kx, active, rate = self.mw
-            f1, f2 = t1[sl], t2[sl]
-            sub(d[sl], s[sl], f2)
-            mul(neg_kx, f2, f1)
-            mul(f1, active, f1)
-            mul(f1, contact[sl], fx[sl])
-            mul(rate, f2, k[6, sl])
-        np.copyto(k[0:3], y[3:6])
-        add(force[0], force[1], k[3])
-        div(k[3], self.m, k[3])  # z'' = (F_f + F_r) / M
-        mul(self.ab, force, e1)
-        sub(e1[0], e1[1], k[4])
-        mul(self.h, fx, t1)
-        add(k[4], t1, k[4])
-        div(k[4], self.inertia, k[4])  # θ'' = (a F_f - b F_r + h F_x) / I
-        div(fx, self.m, k[5])  # x'' = F_x / M
+        contact, lever, stiffness, damping, floors, wr = self.contact, self.lever, self.stiffness, self.damping, self.floors, self.wr
+        m, inertia, h, ab = self.m, self.inertia, self.h, self.ab
+        u, ud, force_f, force_r, e1_f, e1_r = w[0:2], w[2:4], force[0], force[1], e1[0], e1[1]
+        k_vel, y_vel, k_z, k_th, k_x = k[0:3], y[3:6], k[3], k[4], k[5]
+        kv = self.slices.get("kelvin_voigt")
+        if kv is not None:
+            kv_kx, kv_cx, kv_h = self.kv
+            kv_f1, kv_f2, kv_d, kv_vth, kv_vx, kv_contact, kv_fx = (a[kv] for a in (t1, t2, d, vth, vx, contact, fx))
+        mw = self.slices.get("maxwell")
+        if mw is not None:
+            mw_neg_kx, mw_active, mw_rate = self.mw
+            mw_f1, mw_f2, mw_d, mw_s, mw_contact, mw_fx, mw_ds = (a[mw] for a in (t1, t2, d, s, contact, fx, k[6]))
+
+        def rhs() -> None:
+            # [F_f, F_r] = max(K (u - z -+ lever θ) + C (u' - z' -+ lever θ'), floors)
+            sub(u, z, e1)
+            mul(lever, th, e2)
+            sub(e1, e2, e1)
+            mul(stiffness, e1, e1)
+            sub(ud, vz, e2)
+            mul(lever, vth, e3)
+            sub(e2, e3, e2)
+            mul(damping, e2, e2)
+            add(e1, e2, force)
+            maximum(force, floors, out=force)  # (a positional out is deprecated for maximum, and slow)
+            less_equal(force, floors, out=lifted)
+            greater(force_r, wr, out=contact)
+            # rear contact fore-aft d = x + h θ
+            mul(h, th, d)
+            add(x, d, d)
+            if kv is not None:  # F_x = -(k_x d + c_x (x' + h θ')) while in contact
+                mul(kv_kx, kv_d, kv_f1)
+                mul(kv_h, kv_vth, kv_f2)
+                add(kv_vx, kv_f2, kv_f2)
+                mul(kv_cx, kv_f2, kv_f2)
+                add(kv_f1, kv_f2, kv_f1)
+                negative(kv_f1, kv_f1)
+                mul(kv_f1, kv_contact, kv_fx)
+            if mw is not None:  # F_x = -k_x (d - s) while in contact, c_x s' = k_x (d - s)
+                sub(mw_d, mw_s, mw_f2)
+                mul(mw_neg_kx, mw_f2, mw_f1)
+                mul(mw_f1, mw_active, mw_f1)
+                mul(mw_f1, mw_contact, mw_fx)
+                mul(mw_rate, mw_f2, mw_ds)
+            copyto(k_vel, y_vel)
+            add(force_f, force_r, k_z)
+            div(k_z, m, k_z)  # z'' = (F_f + F_r) / M
+            mul(ab, force, e1)
+            sub(e1_f, e1_r, k_th)
+            mul(h, fx, t1)
+            add(k_th, t1, k_th)
+            div(k_th, inertia, k_th)  # θ'' = (a F_f - b F_r + h F_x) / I
+            div(fx, m, k_x)  # x'' = F_x / M
+
+        return rhs
 
 
 def simulate_tractor(
@@ -451,7 +463,7 @@ def _run_switched(p, models, uf, udf, ur, udr, dt_s, lift_off, gravity_m_s2, swi
     for i, key in enumerate(_OUTPUTS):
         res[i, :, :n] = out[key][idx]
     views = {key: res[i, :, :n] for i, key in enumerate(_OUTPUTS)}
-    res_flat = res.reshape(5, count * (n + 1))
+    res_flat = [res[i].reshape(-1) for i in range(5)]  # one flat view per output: np.put is the fast scatter
     res_start, sink = rows * (n + 1), rows * (n + 1) + n
     pos = np.empty(count, dtype=np.intp)
     y = np.array([s[3] for s in switched], float).T.copy()  # (7, count)
@@ -460,6 +472,7 @@ def _run_switched(p, models, uf, udf, ur, udr, dt_s, lift_off, gravity_m_s2, swi
     active = np.ones(count, dtype=bool)
     off = np.zeros((2, count))  # samples off the ground, front and rear
     k1, k2, k3, k4, yb, yc, yd, acc, acc2, y_new = np.zeros((10, 7, count))
+    recorded = list(zip(res_flat, (k1[3], k1[4], k1[5], y[0], y[1])))  # vertical, pitch, longitudinal, z, θ
     lifted = np.empty((4, 2, count), dtype=bool)
     lifted_any = lifted.reshape(8, count)
     lifted_now = np.empty((2, count), dtype=bool)
@@ -467,31 +480,33 @@ def _run_switched(p, models, uf, udf, ur, udr, dt_s, lift_off, gravity_m_s2, swi
     any_lift = np.empty(count, dtype=bool)
     hstep, half, sixth = (np.full((7, count), v) for v in (dt_s, 0.5 * dt_s, dt_s / 6.0))
     add, mul = np.add, np.multiply
+    rhs1, rhs2, rhs3, rhs4 = (rhs.bind(*a) for a in ((y, w1, k1, lifted[0]), (yb, w2, k2, lifted[1]),
+                                                    (yc, w2, k3, lifted[2]), (yd, w3, k4, lifted[3])))
     last = n - 1
     while active.any():
         add(k, k, at[0])
         add(first, at[0], at)
         np.take(inputs, at_flat, axis=1, out=w_flat, mode="clip")
-        rhs(y, w1, k1, lifted[0])
+        rhs1()
         # record sample k of the runs still recording
         add(res_start, k, pos)
         np.logical_not(active, out=idle)
         np.copyto(pos, sink, where=idle)
-        res_flat[0:3, pos] = k1[3:6]
-        res_flat[3:5, pos] = y[0:2]
+        for flat, row in recorded:
+            np.put(flat, pos, row)
         np.logical_and(lifted[0], active, out=lifted_now)
         add(off, lifted_now, off)
         np.not_equal(k, last, out=step)
         np.logical_and(step, active, out=step)
         mul(half, k1, acc)
         add(y, acc, yb)
-        rhs(yb, w2, k2, lifted[1])
+        rhs2()
         mul(half, k2, acc)
         add(y, acc, yc)
-        rhs(yc, w2, k3, lifted[2])
+        rhs3()
         mul(hstep, k3, acc)
         add(y, acc, yd)
-        rhs(yd, w3, k4, lifted[3])
+        rhs4()
         # y + h/6 (k1 + 2 k2 + 2 k3 + k4), summed left to right
         add(k2, k2, acc)
         add(k1, acc, acc)
