@@ -210,15 +210,22 @@ class _Exact:
         pos = k0
         while True:
             stop = self.n - 1 if chunk is None else min(self.n - 1, pos + chunk)
-            y, kept = self.system.run(self.inputs[:, 2 * pos:2 * stop + 1], x, keep_modes=True)
-            if x is None:
-                y[5:7, 0] = 0.0  # at rest at the first sample exactly (the modal transform leaves ~1e-22)
-            # the RK4 judges contact at the half steps too: so does this check
-            hit = np.flatnonzero((y[3] <= self.floors[0]) | (y[4] <= self.floors[1]))[:1] if lift_off else []
+            kept = self.system.modes(self.inputs[:, 2 * pos:2 * stop + 1], x)
+            # the tyre forces at every half step (the RK4 judges contact at the half steps too: so
+            # does this check), the outputs only at the whole steps up to the first lift-off
+            # (FohSystem.outputs: the same values as computing every output everywhere)
+            if lift_off:
+                forces = self.system.outputs(kept, (3, 4))
+                hit = np.flatnonzero((forces[0] <= self.floors[0]) | (forces[1] <= self.floors[1]))[:1]
+            else:
+                hit = []
             end = max(pos, pos + (int(hit[0]) - 1) // 2) if len(hit) else stop + (stop == self.n - 1)
             m = end - pos
-            for key, r in zip(_OUTPUTS, (0, 1, 2, 5, 6)):
-                out[key][row, pos:end] = y[r, 0:2 * m:2]
+            y = self.system.outputs(kept, (0, 1, 2, 5, 6), 2 * m, 2)
+            if x is None and m:
+                y[3:5, 0] = 0.0  # at rest at the first sample exactly (the modal transform leaves ~1e-22)
+            for key, r in zip(_OUTPUTS, range(5)):
+                out[key][row, pos:end] = y[r]
             if len(hit):
                 return end, _from_states(self.system.state_at(kept, 2 * m), self.names, self.h, y_prev)
             if end == self.n:
