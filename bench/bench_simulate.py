@@ -42,7 +42,7 @@ from tyrelab import published  # noqa: E402
 from tyrelab.vehicle import studies, tractor  # noqa: E402
 from tyrelab.vehicle import published_layouts as layouts  # noqa: E402
 
-_TRACTOR_ARRAYS = tractor._PARAMS
+_TRACTOR_ARRAYS = tractor.PARAMETERS
 
 
 def _cpu(fn, *args, **kw):

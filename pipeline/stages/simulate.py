@@ -17,8 +17,9 @@ scenario × speed × pressure pair). A wrong scenario is quarantined with its pr
 the others still run.
 
 The carriage (ch. 6) and tractor (ch. 7) studies are cached as a whole under the digest of
-the tables each reads; those not cached run side by side through
-:func:`tyrelab.executor.map_batches` (``--jobs``/``--executor``). The tractor runs are
+the tables each reads, each ride scenario under the digest of what it reads; those not cached
+and Table XX run side by side in one :func:`tyrelab.executor.map_batches` call
+(``--jobs``/``--executor``), longest first. The tractor runs are
 exact while both axles are in contact and RK4 across lift-off, ``tractor_runs.method_used``
 (``exact`` or ``exact+rk4``) says which.
 
@@ -88,10 +89,11 @@ def _side_by_side(ours: pd.DataFrame, thesis: pd.DataFrame, keys: list[str]) -> 
     return out[cols].reset_index(drop=True)
 
 
-def _ride(ctx: Context, files: list[tuple[str, str]], cache: ItemCache):
-    """:func:`tyrelab.vehicle.ride.run_scenarios`, each scenario kept under the digest of what it
-    reads: its file, and the per-speed fits of the warehouse only if it names a measured tyre
-    (``measured_tyre_id``, the one way a scenario reads them)."""
+def _ride_plan(ctx: Context, files: list[tuple[str, str]], cache: ItemCache) -> tuple[list, dict, list]:
+    """The ride scenarios, each kept under the digest of what it reads: its file, and the per-speed
+    fits of the warehouse only if it names a measured tyre (``measured_tyre_id``, the one way a
+    scenario reads them). Returns the keys (one per file), the cached results by key, and the
+    ``(file, key)`` pairs to run (:func:`tyrelab.vehicle.ride.scenario_task`)."""
     fits = [ctx.read_table(t) if ctx.has_table(t) else None for t in INPUTS[2:]]
     keys = []
     for path, source in files:
@@ -99,8 +101,15 @@ def _ride(ctx: Context, files: list[tuple[str, str]], cache: ItemCache):
         keys.append(cache.key("ride", path, source, str(ctx.build), text, *(fits if b"measured_tyre_id" in text else [])))
     done = {k: v for k in keys for hit, v in [cache.get(k)] if hit}
     todo = [(f, k) for f, k in zip(files, keys) if k not in done]
+    return keys, done, todo
+
+
+def _ride_finish(ctx: Context, files: list[tuple[str, str]], cache: ItemCache, keys: list, done: dict, todo: list,
+                 outputs: list[dict]):
+    """``ride_scenarios``, ``ride_results`` and the refused files, from the cached scenarios and the
+    ``outputs`` of the ``todo`` ones (:func:`_ride_plan`), which are stored."""
     if todo:
-        scenarios, results, bad = ride.run_scenarios([f for f, _ in todo], ctx, ctx.build)
+        scenarios, results, bad = ride.collect_scenarios(outputs)
         if len(scenarios) and scenarios["scenario"].duplicated().any():  # rows not attributable: no reuse
             return ride.run_scenarios(files, ctx, ctx.build)
         for (path, _), k in zip([f for f, _ in todo], [k for _, k in todo]):
@@ -123,11 +132,23 @@ def _carriage_tables(car: dict) -> dict:
 
 
 def _study(item: tuple) -> dict:
-    """Executor task: one chapter 6/7 study (module level, picklable), the tables the stage keeps."""
+    """One chapter 6/7 study, the tables the stage keeps."""
     name, (first, second) = item
     if name == "carriage":
         return _carriage_tables(studies.carriage_study(first, second, seed=SEED))
     return studies.tractor_study(first, second, seed=SEED)
+
+
+def _task(item: tuple):
+    """Executor task (module level, picklable): a chapter 6/7 study (:func:`_study`), Table XX
+    (:func:`tyrelab.vehicle.bounce_pitch.table_xx`) or one ride scenario
+    (:func:`tyrelab.vehicle.ride.scenario_task`)."""
+    kind, payload = item
+    if kind == "ride":
+        return ride.scenario_task(payload)
+    if kind == "table_xx":
+        return bounce_pitch.table_xx(*payload)
+    return _study((kind, payload))
 
 
 def run(ctx: Context) -> StageResult:
@@ -140,14 +161,23 @@ def run(ctx: Context) -> StageResult:
     # a changed ride scenario re-runs neither, a changed Table XII only the carriage
     cache = ItemCache(ctx, "simulate")
 
-    # chapters 6 and 7: the studies not in the cache run side by side (tyrelab.executor.map_batches)
+    # the studies not in the cache, the ride scenarios not in the cache and Table XX run side by
+    # side, one executor call (tyrelab.executor.map_batches), longest first: with two workers the
+    # tractor study runs on one while the carriage study, the scenarios and Table XX share the other
     mass, tyres = layouts.tractor_mass(pub["table_xv"]), layouts.tractor_tyres(pub["table_xvi"])
     keys = {"carriage": cache.key("carriage", xii, stationary, SEED), "tractor": cache.key("tractor", mass, tyres, SEED)}
     done = {name: v for name, k in keys.items() for hit, v in [cache.get(k)] if hit}
-    todo = [(name, (xii, stationary) if name == "carriage" else (mass, tyres)) for name in keys if name not in done]
-    for (name, _), value in zip(todo, map_batches(_study, todo, ctx)):
+    todo = [(name, (xii, stationary) if name == "carriage" else (mass, tyres)) for name in ("tractor", "carriage")
+            if name not in done]
+    files = ride.scenario_files(ctx.raw)
+    ride_keys, ride_done, ride_todo = _ride_plan(ctx, files, cache)
+    ride_items = [("ride", item) for item in ride.scenario_items([f for f, _ in ride_todo], ctx.build)]
+    items = todo + ride_items + [("table_xx", (layouts.tractors(pub["table_xix"]), pub["table_xx"]))]
+    outputs = map_batches(_task, items, ctx)
+    for (name, _), value in zip(todo, outputs):
         cache.put(keys[name], value)
         done[name] = value
+    ride_outputs, xx = outputs[len(todo):len(todo) + len(ride_items)], outputs[-1]
     car, tr = done["carriage"], done["tractor"]
 
     # chapter 6: carriage
@@ -193,7 +223,6 @@ def run(ctx: Context) -> StageResult:
     )
 
     # chapter 8: Table XX
-    xx = bounce_pitch.table_xx(layouts.tractors(pub["table_xix"]), pub["table_xx"])
     xx_stats = bounce_pitch.table_xx_statistics(xx)
     for stat in ("mean", "sd", "p_within_10"):
         printed = {source: s[stat] for source, s in THESIS_XX_STATISTICS.items()}
@@ -227,8 +256,8 @@ def run(ctx: Context) -> StageResult:
         "simulate_inputs": sources,
     }
     # ride scenarios (issue 13)
-    files = ride.scenario_files(ctx.raw)
-    tables["ride_scenarios"], tables["ride_results"], bad = _ride(ctx, files, cache)
+    tables["ride_scenarios"], tables["ride_results"], bad = _ride_finish(ctx, files, cache, ride_keys, ride_done, ride_todo,
+                                                                         ride_outputs)
     write_quarantine(ctx, "simulate", [{"campaign": None, "run_id": None, "file": b["file"], "stage": "simulate",
                                         "reason": b["reason"]} for b in bad])
 

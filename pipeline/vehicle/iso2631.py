@@ -12,6 +12,7 @@ operator-exposure concerns; it does not compute them itself.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -139,8 +140,26 @@ def weighted_signal(acceleration_m_s2, fs_Hz: float, name: str = "Wk") -> np.nda
     n = a.size
     nfft = 1 << int(math.ceil(math.log2(max(2 * n, 2))))
     spec = np.fft.rfft(a, nfft)
-    f = np.fft.rfftfreq(nfft, 1.0 / fs_Hz)
-    return np.fft.irfft(spec * weighting_response(f, name), nfft)[:n]
+    w_re, w_im = _weighting_on_grid(nfft, float(fs_Hz), name)
+    # the complex product in real arithmetic: numpy's complex multiply rounds differently with the
+    # operands' memory alignment (its SIMD loop), which would make the last bits depend on the
+    # allocation history of the process (a worker's earlier tasks); real multiply and add do not
+    weighted = np.empty_like(spec)
+    weighted.real = spec.real * w_re - spec.imag * w_im
+    weighted.imag = spec.real * w_im + spec.imag * w_re
+    return np.fft.irfft(weighted, nfft)[:n]
+
+
+@functools.lru_cache(maxsize=16)
+def _weighting_on_grid(nfft: int, fs_Hz: float, name: str) -> tuple[np.ndarray, np.ndarray]:
+    """Real and imaginary parts of :func:`weighting_response` at the bins of an ``nfft``-point real
+    FFT (read-only; kept, as the records of a study share a few lengths and the polynomial
+    evaluation costs more than the FFTs)."""
+    w = weighting_response(np.fft.rfftfreq(nfft, 1.0 / fs_Hz), name)
+    parts = (np.ascontiguousarray(w.real), np.ascontiguousarray(w.imag))
+    for part in parts:
+        part.flags.writeable = False
+    return parts
 
 
 def weighted_rms(acceleration_m_s2, fs_Hz: float, name: str = "Wk") -> float:

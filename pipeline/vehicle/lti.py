@@ -70,6 +70,21 @@ class FohSystem:
         >>> round(float(second[0, -1]), 6), round(1 - float(np.exp(-1)), 6)
         (0.632121, 0.632121)
         """
+        kept = self.modes(w, x0)
+        y = self.outputs(kept, range(self.cv.shape[0]))
+        return (y, kept) if keep_modes else y
+
+    def modes(self, w, x0=None):
+        """The modal trajectories of :meth:`run` (its second return value with ``keep_modes``), from
+        which :meth:`outputs` gives any outputs at any samples and :meth:`state_at` the state.
+
+        Examples
+        --------
+        >>> s = discretise([[-1.0]], [[1.0]], [[1.0]], [[0.0]], 1e-3)
+        >>> kept = s.modes(np.ones((1, 1001)))
+        >>> bool(np.array_equal(s.outputs(kept, [0], step=10), s.run(np.ones((1, 1001)))[:, ::10]))
+        True
+        """
         w = np.atleast_2d(np.asarray(w, float))
         if w.shape[0] != self.g_in.shape[1]:
             raise ValueError(f"w: expected {self.g_in.shape[1]} input rows, got {w.shape[0]}")
@@ -80,7 +95,6 @@ class FohSystem:
             if x0.shape != (self.n_states,):
                 raise ValueError(f"x0: expected shape ({self.n_states},), got {x0.shape}")
             q0 = self.inv @ (x0 - self.gamma2 @ w[:, 0])
-        y = self.dd @ w
         modes = []
         for i in range(self.n_states):  # modal recursion q_{k+1} = mu q_k + g_k; a conjugate pair counted once, twice
             mu = self.mu[i]
@@ -91,11 +105,21 @@ class FohSystem:
             q = np.empty(w.shape[1], dtype=complex)
             q[0] = q0[i]
             q[1:] = signal.lfilter([1.0], [1.0, -mu], g, zi=[mu * q0[i]])[0]
-            y += np.outer(factor * self.cv[:, i].real, q.real)
-            y -= np.outer(factor * self.cv[:, i].imag, q.imag)
-            if keep_modes:
-                modes.append((i, factor, q))
-        return (y, (modes, w)) if keep_modes else y
+            modes.append((i, factor, q))
+        return modes, w, self.dd @ w
+
+    def outputs(self, kept, rows, stop: int | None = None, step: int = 1) -> np.ndarray:
+        """Outputs ``rows`` at samples ``0:stop:step`` of the :meth:`modes` ``kept``, bit for bit
+        those of :meth:`run` (the same operations on fewer elements): a caller that needs some
+        outputs everywhere and others only up to a point computes no more."""
+        modes, _, direct = kept
+        rows = list(rows)
+        at = slice(0, stop, step)
+        y = direct[rows, at]
+        for i, factor, q in modes:
+            y += np.outer(factor * self.cv[rows, i].real, q[at].real)
+            y -= np.outer(factor * self.cv[rows, i].imag, q[at].imag)
+        return y
 
     def state_at(self, kept, k: int) -> np.ndarray:
         """State ``x_k = V q_k + Γ2 w_k`` at sample ``k`` of a :meth:`run` with ``keep_modes``
@@ -108,7 +132,7 @@ class FohSystem:
         >>> bool(abs(s.state_at(kept, 1000)[0] - y[0, 1000]) < 1e-15)
         True
         """
-        modes, w = kept
+        modes, w = kept[:2]
         x = self.gamma2 @ w[:, k]
         for i, factor, q in modes:
             x = x + factor * (self.vecs[:, i].real * q[k].real - self.vecs[:, i].imag * q[k].imag)

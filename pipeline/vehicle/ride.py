@@ -85,6 +85,9 @@ __all__ = [
     "results_table",
     "scenario_files",
     "run_scenarios",
+    "scenario_items",
+    "scenario_task",
+    "collect_scenarios",
     "VERDICTS",
 ]
 
@@ -967,7 +970,14 @@ def scenario_files(raw: Path | None) -> list[tuple[str, str]]:
     return out
 
 
-def _scenario_task(item: tuple) -> dict:
+def scenario_items(files: list[tuple[str, str]], build: Path | None = None) -> list[tuple]:
+    """The executor items of :func:`run_scenarios`, one per ``(path, source)`` of ``files``: run each
+    with :func:`scenario_task` (in any process) and hand the results, in order, to
+    :func:`collect_scenarios` (the simulate stage runs them beside its studies this way)."""
+    return [(p, src, str(build) if build else None) for p, src in files]
+
+
+def scenario_task(item: tuple) -> dict:
     """Executor task of the simulate stage: one scenario file, every pressure pair of its sweep."""
     from .scenario import ScenarioError, load_scenario
 
@@ -1019,10 +1029,14 @@ def run_scenarios(files: list[tuple[str, str]], ctx=None, build: Path | None = N
     """
     from ..executor import map_batches
 
-    items = [(p, src, str(build) if build else None) for p, src in files]
-    out = map_batches(_scenario_task, items, ctx) if ctx is not None else [_scenario_task(i) for i in items]
-    ok = [o for o in out if "error" not in o]
-    problems = [{"file": o["file"], "reason": o["error"]} for o in out if "error" in o]
+    items = scenario_items(files, build)
+    return collect_scenarios(map_batches(scenario_task, items, ctx) if ctx is not None else [scenario_task(i) for i in items])
+
+
+def collect_scenarios(outputs: list[dict]) -> tuple[pd.DataFrame, pd.DataFrame, list[dict]]:
+    """The tables of :func:`run_scenarios` from the results of :func:`scenario_task`, in order."""
+    ok = [o for o in outputs if "error" not in o]
+    problems = [{"file": o["file"], "reason": o["error"]} for o in outputs if "error" in o]
     scenarios = pd.DataFrame([o["scenario"] for o in ok])
     results = pd.concat([o["results"] for o in ok], ignore_index=True) if ok else pd.DataFrame()
     return scenarios, results, problems

@@ -210,15 +210,22 @@ class _Exact:
         pos = k0
         while True:
             stop = self.n - 1 if chunk is None else min(self.n - 1, pos + chunk)
-            y, kept = self.system.run(self.inputs[:, 2 * pos:2 * stop + 1], x, keep_modes=True)
-            if x is None:
-                y[5:7, 0] = 0.0  # at rest at the first sample exactly (the modal transform leaves ~1e-22)
-            # the RK4 judges contact at the half steps too: so does this check
-            hit = np.flatnonzero((y[3] <= self.floors[0]) | (y[4] <= self.floors[1]))[:1] if lift_off else []
+            kept = self.system.modes(self.inputs[:, 2 * pos:2 * stop + 1], x)
+            # the tyre forces at every half step (the RK4 judges contact at the half steps too: so
+            # does this check), the outputs only at the whole steps up to the first lift-off
+            # (FohSystem.outputs: the same values as computing every output everywhere)
+            if lift_off:
+                forces = self.system.outputs(kept, (3, 4))
+                hit = np.flatnonzero((forces[0] <= self.floors[0]) | (forces[1] <= self.floors[1]))[:1]
+            else:
+                hit = []
             end = max(pos, pos + (int(hit[0]) - 1) // 2) if len(hit) else stop + (stop == self.n - 1)
             m = end - pos
-            for key, r in zip(_OUTPUTS, (0, 1, 2, 5, 6)):
-                out[key][row, pos:end] = y[r, 0:2 * m:2]
+            y = self.system.outputs(kept, (0, 1, 2, 5, 6), 2 * m, 2)
+            if x is None and m:
+                y[3:5, 0] = 0.0  # at rest at the first sample exactly (the modal transform leaves ~1e-22)
+            for key, r in zip(_OUTPUTS, range(5)):
+                out[key][row, pos:end] = y[r]
             if len(hit):
                 return end, _from_states(self.system.state_at(kept, 2 * m), self.names, self.h, y_prev)
             if end == self.n:
@@ -228,46 +235,113 @@ class _Exact:
 
 
 class _Rhs:
-    """Right-hand side of the nonlinear tractor, vectorised over runs (per-run longitudinal model)."""
+    """Right-hand side of the nonlinear tractor for a batch of runs, into preallocated buffers.
 
-    def __init__(self, p: dict[str, np.ndarray], models: np.ndarray, lift_off: bool, gravity_m_s2: float):
+    A batch is tens of runs, so the cost is the number of numpy calls, not the arithmetic: the
+    front and rear axles are one (2, runs) array each call (``[a, -b]`` the levers: ``u_r - z +
+    b θ`` is ``u_r - z - (-b) θ`` exactly), each longitudinal model is worked out on its own
+    contiguous slice of runs (the runs must come grouped by model, :func:`_run_switched` sorts
+    them), results go into buffers (``out=``), scalars are arrays (a Python float operand costs a
+    numpy call 60 % more). The floating-point operations and their order are those of the
+    equations in the module docstring written out plainly (tests/vehicle/test_tractor_switching.py
+    checks bit-identity against that form).
+    """
+
+    def __init__(self, p: dict[str, np.ndarray], models: np.ndarray, lift_off: bool, gravity_m_s2: float, dt_s: float):
         runs = models.size
-        self.m, self.inertia, self.a, self.b, self.h = (p[k] for k in PARAMETERS[:5])
-        self.kf, self.kr, self.cf, self.cr, self.kx, self.cx = (p[k] for k in PARAMETERS[5:])
-        w = self.m * gravity_m_s2
-        self.wf = -w * self.b / (self.a + self.b) if lift_off else np.full(runs, -np.inf)
-        self.wr = -w * self.a / (self.a + self.b) if lift_off else np.full(runs, -np.inf)
-        self.maxwell_rate = np.divide(self.kx, self.cx, out=np.zeros(runs), where=self.cx > 0)
-        self.maxwell_active = (self.kx > 0) & (self.cx > 0)
-        kinds = set(models.tolist())
-        self.kind = kinds.pop() if len(kinds) == 1 else "mixed"
-        self.kv, self.mw = models == "kelvin_voigt", models == "maxwell"
-        self.zeros = np.zeros(runs)
+        m, inertia, a, b, h = (np.ascontiguousarray(p[k]) for k in PARAMETERS[:5])
+        kf, kr, cf, cr, kx, cx = (np.ascontiguousarray(p[k]) for k in PARAMETERS[5:])
+        w = m * gravity_m_s2
+        wf = -w * b / (a + b) if lift_off else np.full(runs, -np.inf)
+        wr = -w * a / (a + b) if lift_off else np.full(runs, -np.inf)
+        self.m, self.inertia, self.h = m, inertia, h
+        self.wr = wr
+        self.lever, self.ab = np.stack([a, -b]), np.stack([a, b])
+        self.stiffness, self.damping, self.floors = np.stack([kf, kr]), np.stack([cf, cr]), np.stack([wf, wr])
+        maxwell_rate = np.divide(kx, cx, out=np.zeros(runs), where=cx > 0)
+        maxwell_active = (kx > 0) & (cx > 0)
+        models = np.asarray(models)
+        self.slices = {}
+        for kind in ("kelvin_voigt", "maxwell"):
+            at = np.flatnonzero(models == kind)
+            if at.size:
+                if at[-1] - at[0] + 1 != at.size:
+                    raise ValueError("longitudinal_model: the runs of a batch must be grouped by model")
+                self.slices[kind] = slice(int(at[0]), int(at[-1]) + 1)
+        kv = self.slices.get("kelvin_voigt", slice(0, 0))
+        mw = self.slices.get("maxwell", slice(0, 0))
+        self.kv = (kx[kv], cx[kv], h[kv])
+        self.mw = (-kx[mw], maxwell_active[mw], maxwell_rate[mw])
+        self.e1, self.e2, self.e3, self.force = np.empty((4, 2, runs))
+        self.d, self.fx, self.t1, self.t2 = np.empty((4, runs))
+        self.fx[:] = 0.0  # no longitudinal element: no force
+        self.contact = np.empty(runs, dtype=bool)
 
-    def __call__(self, y, uf, udf, ur, udr):
+    def bind(self, y: np.ndarray, w: np.ndarray, k: np.ndarray, lifted: np.ndarray):
+        """A function of no arguments that writes ``k`` = the derivative of the state ``y`` (7, runs)
+        under inputs ``w`` = ``[u_f, u_r, u_f', u_r']`` (4, runs), and ``lifted`` = ``[F_f <= -W_f,
+        F_r <= -W_r]`` (front, rear off the ground), from the arrays' values at the call (every view
+        taken once, here). ``k[6]`` (Maxwell ``s'``) is written for the Maxwell runs only: it must
+        hold 0 elsewhere."""
+        add, sub, mul, div, maximum, less_equal, greater, negative, copyto = (
+            np.add, np.subtract, np.multiply, np.divide, np.maximum, np.less_equal, np.greater, np.negative, np.copyto)
         z, th, x, vz, vth, vx, s = y
-        a, b, h = self.a, self.b, self.h
-        ff = np.maximum(self.kf * (uf - z - a * th) + self.cf * (udf - vz - a * vth), self.wf)
-        fr = np.maximum(self.kr * (ur - z + b * th) + self.cr * (udr - vz + b * vth), self.wr)
-        d = x + h * th
-        contact = fr > self.wr
-        if self.kind == "kelvin_voigt":
-            fx = -(self.kx * d + self.cx * (vx + h * vth)) * contact
-            ds = self.zeros
-        elif self.kind == "maxwell":
-            fx = -self.kx * (d - s) * self.maxwell_active * contact
-            ds = self.maxwell_rate * (d - s)
-        elif self.kind == "none":
-            fx = self.zeros
-            ds = self.zeros
-        else:
-            fx = np.where(self.kv, -(self.kx * d + self.cx * (vx + h * vth)),
-                          np.where(self.mw, -self.kx * (d - s) * self.maxwell_active, 0.0)) * contact
-            ds = np.where(self.mw, self.maxwell_rate * (d - s), 0.0)
-        az = (ff + fr) / self.m
-        ath = (a * ff - b * fr + h * fx) / self.inertia
-        ax = fx / self.m
-        return np.array([vz, vth, vx, az, ath, ax, ds]), ff <= self.wf, fr <= self.wr
+        e1, e2, e3, force, d, fx, t1, t2 = self.e1, self.e2, self.e3, self.force, self.d, self.fx, self.t1, self.t2
+        contact, lever, stiffness, damping, floors, wr = self.contact, self.lever, self.stiffness, self.damping, self.floors, self.wr
+        m, inertia, h, ab = self.m, self.inertia, self.h, self.ab
+        u, ud, force_f, force_r, e1_f, e1_r = w[0:2], w[2:4], force[0], force[1], e1[0], e1[1]
+        k_vel, y_vel, k_z, k_th, k_x = k[0:3], y[3:6], k[3], k[4], k[5]
+        kv = self.slices.get("kelvin_voigt")
+        if kv is not None:
+            kv_kx, kv_cx, kv_h = self.kv
+            kv_f1, kv_f2, kv_d, kv_vth, kv_vx, kv_contact, kv_fx = (a[kv] for a in (t1, t2, d, vth, vx, contact, fx))
+        mw = self.slices.get("maxwell")
+        if mw is not None:
+            mw_neg_kx, mw_active, mw_rate = self.mw
+            mw_f1, mw_f2, mw_d, mw_s, mw_contact, mw_fx, mw_ds = (a[mw] for a in (t1, t2, d, s, contact, fx, k[6]))
+
+        def rhs() -> None:
+            # [F_f, F_r] = max(K (u - z -+ lever θ) + C (u' - z' -+ lever θ'), floors)
+            sub(u, z, e1)
+            mul(lever, th, e2)
+            sub(e1, e2, e1)
+            mul(stiffness, e1, e1)
+            sub(ud, vz, e2)
+            mul(lever, vth, e3)
+            sub(e2, e3, e2)
+            mul(damping, e2, e2)
+            add(e1, e2, force)
+            maximum(force, floors, out=force)  # (a positional out is deprecated for maximum, and slow)
+            less_equal(force, floors, out=lifted)
+            greater(force_r, wr, out=contact)
+            # rear contact fore-aft d = x + h θ
+            mul(h, th, d)
+            add(x, d, d)
+            if kv is not None:  # F_x = -(k_x d + c_x (x' + h θ')) while in contact
+                mul(kv_kx, kv_d, kv_f1)
+                mul(kv_h, kv_vth, kv_f2)
+                add(kv_vx, kv_f2, kv_f2)
+                mul(kv_cx, kv_f2, kv_f2)
+                add(kv_f1, kv_f2, kv_f1)
+                negative(kv_f1, kv_f1)
+                mul(kv_f1, kv_contact, kv_fx)
+            if mw is not None:  # F_x = -k_x (d - s) while in contact, c_x s' = k_x (d - s)
+                sub(mw_d, mw_s, mw_f2)
+                mul(mw_neg_kx, mw_f2, mw_f1)
+                mul(mw_f1, mw_active, mw_f1)
+                mul(mw_f1, mw_contact, mw_fx)
+                mul(mw_rate, mw_f2, mw_ds)
+            copyto(k_vel, y_vel)
+            add(force_f, force_r, k_z)
+            div(k_z, m, k_z)  # z'' = (F_f + F_r) / M
+            mul(ab, force, e1)
+            sub(e1_f, e1_r, k_th)
+            mul(h, fx, t1)
+            add(k_th, t1, k_th)
+            div(k_th, inertia, k_th)  # θ'' = (a F_f - b F_r + h F_x) / I
+            div(fx, m, k_x)  # x'' = F_x / M
+
+        return rhs
 
 
 def simulate_tractor(
@@ -365,51 +439,109 @@ def _run_switched(p, models, uf, udf, ur, udr, dt_s, lift_off, gravity_m_s2, swi
     """RK4 across the lift-off intervals of the ``switched`` runs, the exact path in between.
 
     ``switched``: per run (index, exact path, sample where RK4 takes over, RK4 state there); a run
-    whose exact path is None stays on RK4 to the end (:func:`_simulate_rk4`)."""
+    whose exact path is None stays on RK4 to the end (:func:`_simulate_rk4`). All runs advance
+    together, each at its own sample; a run that has ended (or gone back to the exact path for
+    good) is still computed, its results go nowhere."""
+    models = np.asarray(models)
+    order = {m: i for i, m in enumerate(LONGITUDINAL_MODELS)}
+    switched = sorted(switched, key=lambda s: order[str(models[s[0]])])  # grouped by model (_Rhs), stable
     idx = np.array([s[0] for s in switched])
     exact = [s[1] for s in switched]
     returns = np.array([e is not None for e in exact])
-    rhs = _Rhs({k: v[idx] for k, v in p.items()}, np.asarray(models)[idx], lift_off, gravity_m_s2)
-    inputs = np.stack([v[idx] for v in (uf, udf, ur, udr)], axis=-1)  # (runs, 2n - 1, 4): one gather a stage
     count, n = idx.size, (uf.shape[1] + 1) // 2
+    rhs = _Rhs({k: v[idx] for k, v in p.items()}, models[idx], lift_off, gravity_m_s2, dt_s)
+    # inputs [u_f, u_r, u_f', u_r'] of every run, each padded with its last sample twice (the
+    # stages past the last sample read it, as a clamped index would), flat: one gather a step
+    width = 2 * n + 1
+    inputs = np.empty((4, count, width))
+    for row, v in enumerate((uf, ur, udf, udr)):
+        inputs[row, :, : 2 * n - 1] = v[idx]
+        inputs[row, :, 2 * n - 1:] = inputs[row, :, 2 * n - 2: 2 * n - 1]
+    inputs = inputs.reshape(4, count * width)
     rows = np.arange(count)
-    y = np.array([s[3] for s in switched]).T  # (7, count)
-    k = np.array([s[2] for s in switched])
+    at = np.empty((3, count), dtype=np.intp)  # the three half samples a step reads, flat
+    at_flat = at.reshape(-1)
+    first = rows * width + np.arange(3)[:, None]
+    w = np.empty((4, 3, count))
+    w_flat = w.reshape(4, 3 * count)
+    w1, w2, w3 = w[:, 0], w[:, 1], w[:, 2]
+    # results: (5, count, n + 1), the last column a sink for the runs that no longer record
+    res = np.empty((5, count, n + 1))
+    for i, key in enumerate(_OUTPUTS):
+        res[i, :, :n] = out[key][idx]
+    views = {key: res[i, :, :n] for i, key in enumerate(_OUTPUTS)}
+    res_flat = [res[i].reshape(-1) for i in range(5)]  # one flat view per output: np.put is the fast scatter
+    res_start, sink = rows * (n + 1), rows * (n + 1) + n
+    pos = np.empty(count, dtype=np.intp)
+    y = np.array([s[3] for s in switched], float).T.copy()  # (7, count)
+    k = np.array([s[2] for s in switched], dtype=np.intp)
     calm = np.zeros(count, dtype=int)
     active = np.ones(count, dtype=bool)
-    off_f, off_r = np.zeros(count), np.zeros(count)
-    res = np.stack([out[key][idx] for key in _OUTPUTS])  # (5, count, n), written back at the end
-    views = {key: res[i] for i, key in enumerate(_OUTPUTS)}
-    last, hstep = 2 * n - 2, dt_s
+    off = np.zeros((2, count))  # samples off the ground, front and rear
+    k1, k2, k3, k4, yb, yc, yd, acc, acc2, y_new = np.zeros((10, 7, count))
+    recorded = list(zip(res_flat, (k1[3], k1[4], k1[5], y[0], y[1])))  # vertical, pitch, longitudinal, z, θ
+    lifted = np.empty((4, 2, count), dtype=bool)
+    lifted_any = lifted.reshape(8, count)
+    lifted_now = np.empty((2, count), dtype=bool)
+    step, idle, back = np.empty((3, count), dtype=bool)
+    any_lift = np.empty(count, dtype=bool)
+    hstep, half, sixth = (np.full((7, count), v) for v in (dt_s, 0.5 * dt_s, dt_s / 6.0))
+    add, mul = np.add, np.multiply
+    rhs1, rhs2, rhs3, rhs4 = (rhs.bind(*a) for a in ((y, w1, k1, lifted[0]), (yb, w2, k2, lifted[1]),
+                                                    (yc, w2, k3, lifted[2]), (yd, w3, k4, lifted[3])))
+    last = n - 1
     while active.any():
-        j = 2 * k
-        w0 = inputs[rows, j].T
-        w1 = inputs[rows, np.minimum(j + 1, last)].T
-        w2 = inputs[rows, np.minimum(j + 2, last)].T
-        k1, lf, lr = rhs(y, *w0)
-        act = np.flatnonzero(active)
-        res[:, act, k[act]] = np.stack([k1[3], k1[4], k1[5], y[0], y[1]])[:, act]
-        off_f[act] += lf[act]
-        off_r[act] += lr[act]
-        end = active & (k == n - 1)
-        step = active & ~end
-        k2, lf2, lr2 = rhs(y + 0.5 * hstep * k1, *w1)
-        k3, lf3, lr3 = rhs(y + 0.5 * hstep * k2, *w1)
-        k4, lf4, lr4 = rhs(y + hstep * k3, *w2)
-        y = np.where(step, y + hstep / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4), y)
-        k = k + step
-        calm = np.where(lf | lr | lf2 | lr2 | lf3 | lr3 | lf4 | lr4, 0, calm + 1)
-        active &= ~end
-        for r in np.flatnonzero(step & (calm >= CALM_STEPS) & returns):  # back in contact for a while: exact again
-            kr, y7 = exact[r].solve(int(k[r]), y[:, r], views, r, lift_off, chunk=EXACT_CHUNK)
-            if y7 is None:
-                active[r] = False
-            else:
-                k[r], y[:, r], calm[r] = kr, y7, 0
+        add(k, k, at[0])
+        add(first, at[0], at)
+        np.take(inputs, at_flat, axis=1, out=w_flat, mode="clip")
+        rhs1()
+        # record sample k of the runs still recording
+        add(res_start, k, pos)
+        np.logical_not(active, out=idle)
+        np.copyto(pos, sink, where=idle)
+        for flat, row in recorded:
+            np.put(flat, pos, row)
+        np.logical_and(lifted[0], active, out=lifted_now)
+        add(off, lifted_now, off)
+        np.not_equal(k, last, out=step)
+        np.logical_and(step, active, out=step)
+        mul(half, k1, acc)
+        add(y, acc, yb)
+        rhs2()
+        mul(half, k2, acc)
+        add(y, acc, yc)
+        rhs3()
+        mul(hstep, k3, acc)
+        add(y, acc, yd)
+        rhs4()
+        # y + h/6 (k1 + 2 k2 + 2 k3 + k4), summed left to right
+        add(k2, k2, acc)
+        add(k1, acc, acc)
+        add(k3, k3, acc2)
+        add(acc, acc2, acc)
+        add(acc, k4, acc)
+        mul(sixth, acc, acc)
+        add(y, acc, y_new)
+        np.copyto(y, y_new, where=step)
+        add(k, step, k)
+        np.logical_or.reduce(lifted_any, axis=0, out=any_lift)
+        add(calm, 1, calm)
+        np.copyto(calm, 0, where=any_lift)
+        np.copyto(active, step)
+        np.greater_equal(calm, CALM_STEPS, out=back)
+        np.logical_and(back, step, out=back)
+        np.logical_and(back, returns, out=back)
+        if back.any():
+            for r in np.flatnonzero(back):  # back in contact for a while: exact again
+                kr, y7 = exact[r].solve(int(k[r]), y[:, r], views, r, lift_off, chunk=EXACT_CHUNK)
+                if y7 is None:
+                    active[r] = False
+                else:
+                    k[r], y[:, r], calm[r] = kr, y7, 0
     for i, key in enumerate(_OUTPUTS):
-        out[key][idx] = res[i]
-    out["lift_off_fraction_front"][idx] = off_f / n
-    out["lift_off_fraction_rear"][idx] = off_r / n
+        out[key][idx] = views[key]
+    out["lift_off_fraction_front"][idx] = off[0] / n
+    out["lift_off_fraction_rear"][idx] = off[1] / n
 
 
 def _simulate_rk4(
