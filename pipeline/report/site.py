@@ -62,8 +62,20 @@ class Warehouse:
     def __init__(self, db: Path):
         self.db = Path(db)
         self._con = None
-        self.names = set(self.sql("SELECT table_name FROM information_schema.tables")["table_name"])
+        self._names: set[str] | None = None
         self._cache: dict[str, pd.DataFrame] = {}
+
+    @property
+    def names(self) -> set[str]:
+        """Names of the tables and views (listed on first use: a drill-down worker reading
+        its run's file never connects)."""
+        if self._names is None:
+            self._names = set(self.sql("SELECT table_name FROM information_schema.tables")["table_name"])
+        return self._names
+
+    @names.setter
+    def names(self, value) -> None:
+        self._names = set(value)
 
     def __contains__(self, name: str) -> bool:
         return name in self.names
@@ -154,7 +166,12 @@ def draw(task: FigureTask) -> str | None:
     """Draw one :class:`FigureTask`; the SVG markup or None (runs in a worker process)."""
     if task.kind == "run":
         row, db = task.args
-        return run_figure(Warehouse(db) if Path(db).exists() else None, row)
+        wh = Warehouse(db) if Path(db).exists() else None
+        try:
+            return run_figure(wh, row)
+        finally:
+            if wh is not None:
+                wh.close()
     return getattr(figures, task.function)(*task.args, **task.kwargs)
 
 
