@@ -16,7 +16,8 @@ Figures are the expensive part. :func:`build_site` first lists every figure of
 the site as a :class:`FigureTask` (the drawing function and exactly the data it
 draws: its warehouse tables, or a run's row and the content digest of its
 signal file), then reuses the ones a cache already holds under the digest of
-that task and draws the others in parallel (:func:`tyrelab.executor.map_batches`),
+that task and draws the others in parallel (:func:`tyrelab.executor.map_alongside`: this
+process and ``jobs - 1`` workers),
 and only then renders the pages. A figure is therefore redrawn only when its own
 inputs (or the code) changed, and the site is the same bytes either way.
 """
@@ -29,12 +30,11 @@ import re
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from types import SimpleNamespace
 
 import pandas as pd
 
 from .. import io
-from ..executor import map_batches
+from ..executor import map_alongside
 from ..stages.state import digest
 from ..warehouse import check_read_only, connect_read_only
 from . import figures, tables
@@ -49,10 +49,12 @@ RUNS_PER_TYRE = 2
 MAX_RUN_PAGES = 60
 #: Rows shown of a plain (non-comparison) table.
 MAX_PLAIN_ROWS = 40
-#: Fewer figures to draw than this are drawn in this process, more by ``jobs`` worker processes.
-#: A figure takes ~0.2 s here, where matplotlib is loaded already; a new worker first spends ~2 s
-#: importing matplotlib, pandas and this module (measured on the small demo campaign's one-run
-#: change: 7 figures, report 8.4 s wall with 2 workers, 4.0 s in the process; docs/benchmarks.md).
+#: Fewer figures to draw than this are drawn in this process, more by this process and ``jobs - 1``
+#: workers. A figure takes ~0.15-0.3 s here, where matplotlib is loaded already; a new worker first
+#: spends ~1.7 s CPU importing matplotlib, pandas, scipy.signal and this module, and this process
+#: would wait at the end for the figures queued to a worker still importing (measured on the small
+#: demo campaign's one-run change: 7 figures, report 8.4 s wall with 2 workers, 4.0 s in the process;
+#: docs/benchmarks.md).
 POOL_MIN_FIGURES = 16
 
 
@@ -183,8 +185,8 @@ class FigureSet:
     cache : tyrelab.stages.state.ItemCache, optional
         Where drawn figures are kept by :attr:`FigureTask.key`; None draws every figure.
     jobs : int
-        Worker processes for the figures to draw (when there are at least
-        :data:`POOL_MIN_FIGURES` of them; fewer are drawn in this process).
+        Processes drawing the figures, this one included (when there are at least
+        :data:`POOL_MIN_FIGURES` of them; fewer are drawn in this process alone).
     """
 
     def __init__(self, cache=None, jobs: int = 1):
@@ -201,7 +203,8 @@ class FigureSet:
         return task.key
 
     def draw_all(self) -> None:
-        """Take what the cache holds, draw the rest in parallel."""
+        """Take what the cache holds, draw the rest in parallel: this process and ``jobs - 1``
+        workers (:func:`tyrelab.executor.map_alongside`)."""
         todo = []
         for key, task in self.tasks.items():
             hit, svg = self.cache.get(self.cache.key("figure", key)) if self.cache else (False, None)
@@ -209,8 +212,10 @@ class FigureSet:
                 self.svgs[key] = svg
             else:
                 todo.append(key)
-        ctx = SimpleNamespace(executor="local", jobs=self.jobs if len(todo) >= POOL_MIN_FIGURES else 1, scheduler=None)
-        for key, svg in zip(todo, map_batches(draw, [self.tasks[k] for k in todo], ctx)):
+        # Drill-downs (the dearest) first, so that the last figures handed out are cheap ones.
+        todo.sort(key=lambda k: self.tasks[k].kind != "run")
+        jobs = self.jobs if len(todo) >= POOL_MIN_FIGURES else 1
+        for key, svg in zip(todo, map_alongside(draw, [self.tasks[k] for k in todo], jobs)):
             self.svgs[key] = svg
             if self.cache:
                 self.cache.put(self.cache.key("figure", key), svg)
@@ -330,7 +335,7 @@ def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1) -> dic
         Figures kept by the digest of their inputs (see the module docstring);
         None draws every figure.
     jobs : int
-        Worker processes drawing the figures not in ``cache``.
+        Processes drawing the figures not in ``cache``, this one included.
 
     Returns
     -------

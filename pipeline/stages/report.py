@@ -3,8 +3,8 @@
 All the work is in :mod:`tyrelab.report.site`; this stage only times it and
 summarises what was written. Figures are kept in ``build/cache/report`` by the
 digest of their inputs (:class:`tyrelab.stages.state.ItemCache`), so a new run
-redraws only the figures whose data changed; the rest are drawn by ``--jobs``
-worker processes.
+redraws only the figures whose data changed; the rest are drawn by this process and
+``--jobs`` - 1 worker processes.
 """
 
 from __future__ import annotations
