@@ -24,6 +24,7 @@ inputs (or the code) changed, and the site is the same bytes either way.
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import re
@@ -42,7 +43,7 @@ from .chapters import CHAPTERS, Chapter, FigureSpec, TableSpec
 from .render import environment, provenance
 
 __all__ = ["RUNS_PER_TYRE", "MAX_RUN_PAGES", "MAX_PLAIN_ROWS", "POOL_MIN_FIGURES", "Warehouse", "resolve_table",
-    "resolve_figure", "chapter_items", "run_page_name", "read_signals", "run_item", "build_site"]
+    "shape_table", "resolve_figure", "chapter_items", "run_page_name", "read_signals", "run_item", "build_site"]
 
 #: Drill-down pages: runs per tyre, and the cap on the total.
 RUNS_PER_TYRE = 2
@@ -109,12 +110,30 @@ def _missing(stage: str, what: str) -> str:
     return f"{what} not produced yet by stage {stage}."
 
 
-def resolve_table(wh: Warehouse, spec: TableSpec) -> dict:
-    """Fetch and shape one :class:`TableSpec` into a template item."""
-    item = {"kind": "table", "spec": spec, "note": spec.note}
+def resolve_table(wh: Warehouse, spec: TableSpec, cache=None) -> dict:
+    """Fetch and shape one :class:`TableSpec` into a template item.
+
+    With ``cache`` (:class:`tyrelab.stages.state.ItemCache`) the shaping is kept under the
+    digest of the spec and of exactly the frames it shapes (our table or query result and the
+    published table), so an unchanged table is fetched but not shaped again.
+    """
     published = wh.table(spec.published) if spec.published and spec.published in wh else pd.DataFrame()
+    ours = None
     if spec.view in wh:
         ours = wh.sql(spec.ours_sql) if spec.ours_sql else wh.table(spec.view)
+    if cache is None:
+        shaped = shape_table(spec, ours, published)
+    else:
+        key = cache.key("table", dataclasses.asdict(spec), ours, published)
+        shaped = cache.get_or_compute(key, lambda: shape_table(spec, ours, published))
+    return {"kind": "table", "spec": spec, **shaped}
+
+
+def shape_table(spec: TableSpec, ours: pd.DataFrame | None, published: pd.DataFrame) -> dict:
+    """The template fields of one table (``mode``, ``note`` and ``shaped`` or ``plain``) from our
+    frame (None when ``spec.view`` does not exist) and the published one (may be empty)."""
+    item = {"note": spec.note}
+    if ours is not None:
         if spec.ours_sql and not published.empty:
             df = tables.compare_frames(ours, published, list(spec.keys), spec.values, spec.thesis_rename)
         elif tables.find_pairs(ours.columns) or published.empty:
@@ -242,9 +261,9 @@ def resolve_figure(wh: Warehouse, spec: FigureSpec, figs: FigureSet | None = Non
     return {"kind": "figure", "spec": spec, "svg": svg, "note": note}
 
 
-def chapter_items(wh: Warehouse, chapter: Chapter, figs: FigureSet | None = None) -> list[dict]:
-    """All tables and figures of one chapter page."""
-    return [resolve_table(wh, it) if isinstance(it, TableSpec) else resolve_figure(wh, it, figs)
+def chapter_items(wh: Warehouse, chapter: Chapter, figs: FigureSet | None = None, cache=None) -> list[dict]:
+    """All tables and figures of one chapter page (tables shaped through ``cache``, see :func:`resolve_table`)."""
+    return [resolve_table(wh, it, cache) if isinstance(it, TableSpec) else resolve_figure(wh, it, figs)
             for it in chapter.items]
 
 
@@ -378,7 +397,7 @@ def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1) -> dic
 
     contents = []
     for chapter in CHAPTERS:
-        items = chapter_items(wh, chapter, figs)
+        items = chapter_items(wh, chapter, figs, cache)
         for it in items:
             n_tables += it["kind"] == "table"
             n_comparison += it.get("mode") == "comparison"

@@ -34,5 +34,6 @@ def run(ctx: Context) -> StageResult:
     return StageResult(
         "report", n_in=info["tables"], n_ok=n, seconds=time.perf_counter() - t0,
         message=f"{n} pages, {info['comparison_tables']} thesis comparisons, {info['figures']} figures "
-                f"({info['drawn']} drawn, the others unchanged), {info['bytes'] / 1e6:.2f} MB in {out}",
+                f"({info['drawn']} drawn, the others unchanged), tables {cache.summary('table')}, "
+                f"{info['bytes'] / 1e6:.2f} MB in {out}",
     )
