@@ -6,7 +6,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from tyrelab.executor import map_batches
+from tyrelab.executor import map_alongside, map_batches
 from tyrelab.stages import Context, run_pipeline
 from synthetic import manifest_row, spring_damper_recording, write_campaign
 
@@ -16,6 +16,10 @@ TABLES = ["manifest.parquet", "results.parquet", "quarantine.parquet", "tyres.pa
 
 def square(x):
     return x * x
+
+
+def square_and_pid(x):
+    return x * x, os.getpid()
 
 
 def write_marker(path):
@@ -35,6 +39,18 @@ def test_local_map_preserves_order():
     ctx = SimpleNamespace(executor="local", jobs=2, scheduler=None)
     assert map_batches(square, range(7), ctx) == [x * x for x in range(7)]
     assert map_batches(square, [], ctx) == []
+
+
+def test_map_alongside_shares_the_work_and_keeps_the_order():
+    """This process works while the worker starts; the results are in order wherever they ran."""
+    out = map_alongside(square_and_pid, range(12), jobs=2)
+    assert [r for r, _ in out] == [x * x for x in range(12)]
+    pids = {p for _, p in out}
+    assert os.getpid() in pids  # this process drew some
+    assert len(pids) == 2  # and the one worker the others
+    assert map_alongside(square, [3], jobs=2) == [9] and map_alongside(square, [], jobs=2) == []
+    with pytest.raises(ValueError, match="jobs"):
+        map_alongside(square, [1], jobs=0)
 
 
 def test_unknown_executor_is_refused():
