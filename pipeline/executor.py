@@ -258,11 +258,10 @@ def _map_dask(fn: Callable[[Any], Any], batches: list[Any], ctx, done: Callable[
 def map_alongside(fn: Callable[[Any], Any], batches: Sequence[Any], jobs: int, depth: int = 2) -> list[Any]:
     """:func:`map_batches` on ``jobs - 1`` local worker processes with this process working too.
 
-    A new worker first spends seconds importing what ``fn`` needs (pandas, matplotlib, scipy:
-    ~1.7 s CPU for the report's figures), where this process has it loaded already: here the
-    calling process takes the next batch itself whenever the workers have ``depth`` batches
-    each in hand, so it draws from the first second while they start up, and one worker's
-    start-up is saved. Batches are handed out one at a time in order, to whoever is free, so
+    The calling process takes the next batch itself whenever the workers have ``depth``
+    batches each in hand, so it works from the first second while they start (forked from the
+    worker server, :func:`start_worker_server`, which may still be importing the stages'
+    modules), and one worker fewer is started. Batches are handed out one at a time in order, to whoever is free, so
     the load balances whatever the batches cost. The results are ``[fn(b) for b in batches]``
     wherever each ran, so ``fn`` must give the same result in any process.
 
