@@ -55,8 +55,8 @@ from ..tyre import spoke
 from .base import Context, StageResult
 from .state import ItemCache
 
-__all__ = ["FIT_INPUT_COLUMNS", "PUBLISHED", "FACTORS", "read_published", "read_tyres", "tyre_fits", "tyre_fits_each", "all_tyre_fits",
-           "compute", "run"]
+__all__ = ["FIT_INPUT_COLUMNS", "PUBLISHED", "FACTORS", "read_published", "read_tyres", "tyre_fits", "tyre_fits_each",
+           "all_tyre_fits", "compute", "run"]
 
 #: The ``results`` columns the per-tyre fits read (:mod:`tyrelab.tyre.conditions` and the
 #: runs' uncertainties): the fits are given only these, and a tyre's cache key is the digest
