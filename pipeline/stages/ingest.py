@@ -154,7 +154,7 @@ def run_file_options(columns: list[str]) -> dict:
             "column_encoding": {c: "BYTE_STREAM_SPLIT" for c in columns if c != "run_id"}}
 
 
-def _row_hash(row: pd.Series) -> str:
+def _row_hash(row) -> str:
     return hashlib.sha256(json.dumps({k: str(v) for k, v in row.items()}, sort_keys=True).encode()).hexdigest()
 
 
@@ -212,7 +212,7 @@ def convert_run(task: dict) -> dict:
     return {**done, "info": info, "converted": True}
 
 
-def _optional_float(row: pd.Series, name: str) -> float | None:
+def _optional_float(row, name: str) -> float | None:
     value = row.get(name)
     return float(value) if value is not None and pd.notna(value) else None
 
@@ -255,7 +255,7 @@ def _plan(ctx: Context, schema: dict, campaigns: list[Path], sizes_ok: dict) -> 
             continue
         listed = set()
         _, by_row = row_problems(manifest, schema)
-        for i, row in manifest.iterrows():
+        for i, row in enumerate(manifest.to_dict("records")):  # plain dicts: a Series per row cost ~0.3 s per 1 000 runs
             run_id = row["run_id"] if isinstance(row["run_id"], str) else None
             listed.add(str(Path(str(row.get("file")))))
             problems = by_row.get(i, [])
@@ -417,7 +417,7 @@ def _manifest_table(records: list[dict], numeric: list[str]) -> pd.DataFrame:
     return df.sort_values("run_id", kind="stable").reset_index(drop=True)
 
 
-def manifest_columns(schema: dict, row: pd.Series) -> list[str]:
-    """Manifest columns to carry into the ``manifest`` table: the schema's, then any extras."""
+def manifest_columns(schema: dict, row) -> list[str]:
+    """Manifest columns to carry into the ``manifest`` table: the schema's, then any extras of ``row`` (a mapping)."""
     names = field_names(schema)
-    return names + [c for c in row.index if c not in names]
+    return names + [c for c in row.keys() if c not in names]
