@@ -24,7 +24,7 @@ from concurrent.futures import ProcessPoolExecutor
 from typing import Any, Callable, Sequence
 
 __all__ = ["EXECUTORS", "BLAS_THREAD_VARIABLES", "WORKER_PRELOAD", "map_batches", "map_alongside",
-           "single_threaded_blas", "start_worker_server"]
+           "single_threaded_blas", "start_worker_server", "worker_server_state"]
 
 EXECUTORS = ("local", "dask")
 
@@ -255,15 +255,32 @@ def _map_dask(fn: Callable[[Any], Any], batches: list[Any], ctx, done: Callable[
             cluster.close()
 
 
+def worker_server_state() -> str:
+    """``"none"`` (no worker server in this process), ``"starting"`` (still importing
+    :data:`WORKER_PRELOAD`) or ``"ready"``, without waiting (:func:`start_worker_server`)."""
+    from multiprocessing import forkserver
+
+    pid = getattr(getattr(forkserver, "_forkserver", None), "_forkserver_pid", None)
+    if pid is None:
+        return "none"
+    ready = _ready_marker
+    if ready is None or os.path.exists(ready) or _exited(pid):
+        return "ready"  # a dead server: the pool starts another and says why (_worker_context)
+    return "starting"
+
+
 def map_alongside(fn: Callable[[Any], Any], batches: Sequence[Any], jobs: int, depth: int = 2) -> list[Any]:
     """:func:`map_batches` on ``jobs - 1`` local worker processes with this process working too.
 
     The calling process takes the next batch itself whenever the workers have ``depth``
-    batches each in hand, so it works from the first second while they start (forked from the
-    worker server, :func:`start_worker_server`, which may still be importing the stages'
-    modules), and one worker fewer is started. Batches are handed out one at a time in order, to whoever is free, so
-    the load balances whatever the batches cost. The results are ``[fn(b) for b in batches]``
-    wherever each ran, so ``fn`` must give the same result in any process.
+    batches each in hand, and the workers are asked for only once the worker server
+    (:func:`start_worker_server`) has finished its imports: until then this process works
+    alone, so it never waits for them (a server started by this call imports for ~2-3 s of
+    CPU on another core; when the batches run out first, no worker is started at all). One
+    worker fewer is started than with :func:`map_batches`. Batches are handed out one at a
+    time in order, to whoever is free, so the load balances whatever the batches cost. The
+    results are ``[fn(b) for b in batches]`` wherever each ran, so ``fn`` must give the same
+    result in any process.
 
     Parameters
     ----------
@@ -296,16 +313,19 @@ def map_alongside(fn: Callable[[Any], Any], batches: Sequence[Any], jobs: int, d
         return [fn(b) for b in batches]
     from concurrent.futures import FIRST_COMPLETED, wait
 
+    start_worker_server()
     results: list[Any] = [None] * len(batches)
     pending: dict = {}  # future -> batch index
     nxt = 0
-    pool = ProcessPoolExecutor(max_workers=workers, mp_context=_worker_context(),
-                               initializer=_leave_interrupts_to_the_parent)
+    pool = None
     try:
         while nxt < len(batches) or pending:
             for f in [f for f in pending if f.done()]:
                 results[pending.pop(f)] = f.result()
-            while nxt < len(batches) and len(pending) < workers * depth:
+            if pool is None and nxt < len(batches) and worker_server_state() == "ready":
+                pool = ProcessPoolExecutor(max_workers=workers, mp_context=_worker_context(),
+                                           initializer=_leave_interrupts_to_the_parent)
+            while pool is not None and nxt < len(batches) and len(pending) < workers * depth:
                 pending[pool.submit(fn, batches[nxt])] = nxt
                 nxt += 1
             if nxt < len(batches):
@@ -316,7 +336,9 @@ def map_alongside(fn: Callable[[Any], Any], batches: Sequence[Any], jobs: int, d
                 for f in done:
                     results[pending.pop(f)] = f.result()
     except BaseException:
-        _abandon(pool)
+        if pool is not None:
+            _abandon(pool)
         raise
-    pool.shutdown(wait=True)
+    if pool is not None:
+        pool.shutdown(wait=True)
     return results

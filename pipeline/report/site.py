@@ -51,11 +51,13 @@ MAX_RUN_PAGES = 60
 #: Rows shown of a plain (non-comparison) table.
 MAX_PLAIN_ROWS = 40
 #: Fewer figures to draw than this are drawn in this process, more by this process and ``jobs - 1``
-#: workers. A figure takes ~0.15-0.3 s here, where matplotlib is loaded already; a new worker first
-#: spends ~1.7 s CPU importing matplotlib, pandas, scipy.signal and this module, and this process
-#: would wait at the end for the figures queued to a worker still importing (measured on the small
-#: demo campaign's one-run change: 7 figures, report 8.4 s wall with 2 workers, 4.0 s in the process;
-#: docs/benchmarks.md).
+#: workers (:func:`tyrelab.executor.map_alongside`: this process draws from the start and asks for
+#: workers once the worker server has imported the stages' modules, ~2-3 s of CPU on another core
+#: when it is not running yet). A figure takes ~0.15-0.3 s here, where matplotlib is loaded already
+#: (measured on the small demo campaign's one-run change, 7 figures: report 8.4 s wall with 2 fresh
+#: workers, 4.0 s in the process; docs/benchmarks.md); with a worker server ready (started by an
+#: earlier stage) the 7 figures shared with one worker took 2.4 -> 1.9 s of this process' CPU but
+#: 2.7 -> 4.3 s wall on the shared 2 cores (the worker's first figure pays matplotlib's font set-up).
 POOL_MIN_FIGURES = 16
 
 
@@ -234,7 +236,8 @@ class FigureSet:
         # Drill-downs (the dearest) first, so that the last figures handed out are cheap ones.
         todo.sort(key=lambda k: self.tasks[k].kind != "run")
         jobs = self.jobs if len(todo) >= POOL_MIN_FIGURES else 1
-        for key, svg in zip(todo, map_alongside(draw, [self.tasks[k] for k in todo], jobs)):
+        svgs = map_alongside(draw, [self.tasks[k] for k in todo], jobs)
+        for key, svg in zip(todo, svgs):
             self.svgs[key] = svg
             if self.cache:
                 self.cache.put(self.cache.key("figure", key), svg)

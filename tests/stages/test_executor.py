@@ -2,11 +2,12 @@
 
 import os
 import shutil
+import time
 from types import SimpleNamespace
 
 import pytest
 
-from tyrelab.executor import map_alongside, map_batches
+from tyrelab.executor import map_alongside, map_batches, worker_server_state
 from tyrelab.stages import Context, run_pipeline
 from synthetic import manifest_row, spring_damper_recording, write_campaign
 
@@ -42,7 +43,11 @@ def test_local_map_preserves_order():
 
 
 def test_map_alongside_shares_the_work_and_keeps_the_order():
-    """This process works while the worker starts; the results are in order wherever they ran."""
+    """This process works until the worker server is ready; the results are in order wherever they ran."""
+    assert map_alongside(square_and_pid, range(3), jobs=2)[0][0] == 0  # starts the server, need not wait for it
+    deadline = time.monotonic() + 300
+    while worker_server_state() != "ready" and time.monotonic() < deadline:
+        time.sleep(0.05)
     out = map_alongside(square_and_pid, range(12), jobs=2)
     assert [r for r, _ in out] == [x * x for x in range(12)]
     pids = {p for _, p in out}
