@@ -17,6 +17,9 @@ run one after the other on one build folder, each as a fresh ``python`` process
 ``remove_one_run``  the campaign folder of ``add_one_run`` removed again;
 ``edit_published``  one value of a published table changed (``<raw>/published/table_xii.csv``:
                     the rolling damping of one carriage condition; see :mod:`tyrelab.published`).
+``warm``            add one run, change one row, remove it again, in one long-lived process
+                    whose stage modules were imported before (as in ``tyrelab watch``):
+                    what a lab that leaves ``tyrelab watch`` running waits for a new run.
 
 Each scenario records the wall time and the CPU time (user + system, the
 process and its workers) and, per stage, the wall and CPU seconds spent in
@@ -66,6 +69,32 @@ for name in ORDER:
 print(json.dumps({{"import_s": round(t_import, 3), "stages": stages}}))
 """
 
+#: Long-lived child (as ``tyrelab watch``): stage modules imported once, then one timed pipeline run
+#: per line read from stdin, each printed as one JSON line.
+CHILD_WARM = """
+import json, resource, sys, time
+def cpu():
+    s = resource.getrusage(resource.RUSAGE_SELF)
+    return s.ru_utime + s.ru_stime
+from tyrelab.executor import single_threaded_blas
+single_threaded_blas()  # as the tyrelab command does
+from tyrelab.stages import ORDER, Context, run_stage
+from tyrelab.watch import preload
+t0 = time.perf_counter()
+preload()
+ctx = Context(raw={raw!r}, build={build!r}, jobs={jobs})
+print(json.dumps({{"preload_s": round(time.perf_counter() - t0, 3)}}), flush=True)
+for line in sys.stdin:
+    t_run, c_run = time.perf_counter(), cpu()
+    stages = {{}}
+    for name in ORDER:
+        t, c = time.perf_counter(), cpu()
+        r = run_stage(name, ctx)
+        stages[name] = {{"seconds": round(time.perf_counter() - t, 3), "cpu_s": round(cpu() - c, 3), "ran": not r.skipped}}
+    print(json.dumps({{"wall_s": round(time.perf_counter() - t_run, 3), "cpu_s": round(cpu() - c_run, 3),
+                      "stages": stages, "ran": [n for n, s in stages.items() if s["ran"]]}}), flush=True)
+"""
+
 SEED = 1991
 
 
@@ -94,6 +123,30 @@ def run_once(raw: Path, build: Path, jobs: int) -> dict:
     res["cpu_s"] = round(c1.ru_utime + c1.ru_stime - c0.ru_utime - c0.ru_stime, 3)
     res["ran"] = [n for n, s in res["stages"].items() if s["ran"]]
     return res
+
+
+def warm_scenarios(raw: Path, build: Path, jobs: int, main: Path) -> dict:
+    """add / change / remove one run, each timed in one long-lived process (``tyrelab watch``)."""
+    code = CHILD_WARM.format(raw=str(raw), build=str(build), jobs=jobs)
+    child = subprocess.Popen([sys.executable, "-c", code], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    out: dict = {}
+    try:
+        out["preload_s"] = json.loads(child.stdout.readline())["preload_s"]
+        added = add_one_run(raw, main)
+        for name, change in (("add_one_run", None), ("change_one_row", lambda: change_one_row(main)),
+                             ("remove_one_run", lambda: shutil.rmtree(added))):
+            if change:
+                change()
+            child.stdin.write("run\n")
+            child.stdin.flush()
+            line = child.stdout.readline()
+            if not line:
+                raise RuntimeError("the long-lived pipeline process ended early")
+            out[name] = json.loads(line)
+    finally:
+        child.stdin.close()
+        child.wait()
+    return out
 
 
 def _read_manifest(path: Path) -> tuple[list[str], list[dict]]:
@@ -173,6 +226,7 @@ def bench_scale(scale: str, data: Path, work: Path, jobs: int, noop_repeats: int
     out["remove_one_run"] = run_once(raw, build, jobs)
     what = edit_published(raw)
     out["edit_published"] = dict(run_once(raw, build, jobs), changed=what)
+    out["warm"] = warm_scenarios(raw, build, jobs, main)
     return out
 
 

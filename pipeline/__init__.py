@@ -30,7 +30,7 @@ __version__ = "0.1.0"
 
 __getattr__, __dir__, __all__ = attach(
     __name__,
-    submodules=["api", "measurement", "tyre", "vehicle", "rig", "rawformat", "report", "stages", "resources",
+    submodules=["api", "measurement", "tyre", "vehicle", "rig", "rawformat", "report", "stages", "resources", "watch",
                 "warehouse"],
     attrs={
         "api": ["analyze_recording"],

@@ -4,6 +4,7 @@ Verbs (a stable contract; see docs/architecture.md):
 
 - ``generate``             write a seeded virtual campaign
 - ``run``                  every stage: raw -> warehouse -> report
+- ``watch``                ``run`` now and after every change of the raw folder, in one process
 - ``ingest``, ``analyse``, ... one stage
 - ``sql``                  read-only query of the warehouse
 - ``analyze-run``          K and C of one recording, as JSON
@@ -28,7 +29,7 @@ from pathlib import Path
 
 from . import __version__
 
-__all__ = ["cmd_generate", "cmd_run", "cmd_stage", "cmd_sql", "cmd_analyze_run", "cmd_estimate_stiffness",
+__all__ = ["cmd_generate", "cmd_run", "cmd_watch", "cmd_stage", "cmd_sql", "cmd_analyze_run", "cmd_estimate_stiffness",
     "cmd_natural_frequencies", "build_parser", "main"]
 
 EXIT_OK, EXIT_USAGE, EXIT_QUARANTINE = 0, 2, 3
@@ -109,6 +110,30 @@ def cmd_run(args) -> int:
         return EXIT_QUARANTINE if any(r.n_quarantined or r.n_rejected for r in results) else EXIT_OK
 
     return _writing(args, "run", work)
+
+
+def cmd_watch(args) -> int:
+    from .watch import WatchOptions, watch
+
+    problem = _check_raw(args, need_campaign=True)
+    if problem:
+        print(f"tyrelab watch: {problem}", file=sys.stderr)
+        return EXIT_USAGE
+    try:
+        options = WatchOptions(interval_s=args.interval, settle_s=args.settle, max_runs=args.max_runs)
+    except ValueError as exc:
+        text = str(exc)
+        for field_name, option in (("interval_s", "--interval"), ("settle_s", "--settle"), ("max_runs", "--max-runs")):
+            text = text.replace(field_name, option)
+        print(f"tyrelab watch: {text}", file=sys.stderr)
+        return EXIT_USAGE
+
+    def work() -> int:
+        runs = watch(_context(args), options)
+        last = runs[-1] if runs else None
+        return EXIT_USAGE if last and last.error else EXIT_QUARANTINE if last and last.quarantined else EXIT_OK
+
+    return _writing(args, "watch", work)
 
 
 def cmd_stage(args) -> int:
@@ -378,6 +403,14 @@ def build_parser() -> argparse.ArgumentParser:
     r = sub.add_parser("run", help="run every stage: raw -> warehouse -> report")
     io_options(r)
     r.set_defaults(func=cmd_run)
+    w = sub.add_parser("watch", help="run every stage now and again whenever the raw folder changes "
+                                     "(one process: the libraries are loaded once)")
+    io_options(w)
+    w.add_argument("--interval", type=float, default=1.0, help="seconds between looks at the raw folder (default 1)")
+    w.add_argument("--settle", type=float, default=1.0,
+                   help="act on a change once the raw folder has stayed unchanged this many seconds (default 1)")
+    w.add_argument("--max-runs", type=int, default=None, help="stop after this many pipeline runs (default: until Ctrl-C)")
+    w.set_defaults(func=cmd_watch)
     for name in ORDER:
         s = sub.add_parser(name, help=f"run the {name} stage only")
         io_options(s)

@@ -23,7 +23,8 @@ import os
 from concurrent.futures import ProcessPoolExecutor
 from typing import Any, Callable, Sequence
 
-__all__ = ["EXECUTORS", "BLAS_THREAD_VARIABLES", "map_batches", "single_threaded_blas"]
+__all__ = ["EXECUTORS", "BLAS_THREAD_VARIABLES", "WORKER_PRELOAD", "map_batches", "map_alongside",
+           "single_threaded_blas", "start_worker_server"]
 
 EXECUTORS = ("local", "dask")
 
@@ -96,7 +97,7 @@ def map_batches(
             results.append(fn(b))
             done(i)
         return results
-    mp = multiprocessing.get_context("forkserver")
+    mp = _worker_context()
     pool = ProcessPoolExecutor(max_workers=jobs, mp_context=mp, initializer=_leave_interrupts_to_the_parent)
     try:
         for i, r in enumerate(pool.map(fn, batches, chunksize=1)):
@@ -107,6 +108,96 @@ def map_batches(
         raise
     pool.shutdown(wait=True)
     return results
+
+
+#: Modules of the functions the stages hand to :func:`map_batches` (and so the libraries their
+#: workers use). The worker server imports them once, when it starts, and every worker is forked
+#: from it with them loaded: without this each worker of each stage imported pandas, pyarrow,
+#: scipy or matplotlib itself (0.5-1.5 s of CPU per worker and stage) before its first batch.
+#: The last one only tells the parent that the others are imported.
+WORKER_PRELOAD = ("tyrelab.stages.ingest", "tyrelab.stages.analyse", "tyrelab.stages.simulate",
+                  "tyrelab.vehicle.ride", "tyrelab.report.site", "tyrelab._worker_ready")
+#: Environment variable naming the file :mod:`tyrelab._worker_ready` creates in the server.
+READY_VARIABLE = "TYRELAB_WORKER_SERVER_READY"
+#: Longest wait for the server's imports, s (then the pool starts anyway).
+READY_TIMEOUT_S = 300.0
+
+
+#: Path of the marker file of a worker server started but not yet seen ready, else None.
+_ready_marker: str | None = None
+
+
+def start_worker_server() -> None:
+    """Start the worker server now, without waiting for its imports (idempotent).
+
+    Its imports (:data:`WORKER_PRELOAD`) then run on another core while the caller goes on;
+    the first pool waits for them. ``tyrelab run`` calls it when a stage runs for the
+    first time (or with ``--force``) with ``--jobs`` above 1, before importing the stage:
+    a first run uses worker pools in most stages. The server is started with SIGINT
+    ignored: a terminal's Ctrl-C reaches the whole process group, and the server must not
+    print a traceback from the middle of an import.
+    """
+    global _ready_marker
+    from multiprocessing import forkserver, util
+
+    server = getattr(forkserver, "_forkserver", None)
+    if server is None or getattr(server, "_forkserver_pid", None) is not None:
+        return  # running (or started by someone else, with their own preload)
+    import signal
+    import threading
+
+    multiprocessing.get_context("forkserver").set_forkserver_preload(list(WORKER_PRELOAD))
+    # in the process's own pymp-* folder, which multiprocessing removes at exit: a server that
+    # finishes its imports after an interrupted parent has gone finds no folder to write into
+    ready = os.path.join(util.get_temp_dir(), f"worker-server-ready-{os.getpid()}")
+    main = threading.current_thread() is threading.main_thread()
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN) if main else None
+    os.environ[READY_VARIABLE] = ready
+    try:
+        forkserver.ensure_running()
+    finally:
+        del os.environ[READY_VARIABLE]
+        if main:
+            signal.signal(signal.SIGINT, previous)
+    _ready_marker = ready
+
+
+def _worker_context():
+    """The ``forkserver`` context, its server running with :data:`WORKER_PRELOAD` imported.
+
+    Starts the server (:func:`start_worker_server`) if needed and waits until its imports
+    are done before asking it for workers: a pool abandoned (Ctrl-C, SIGTERM) while its
+    workers were still queued behind the imports left workers that failed to start, each
+    printing a traceback. An interrupt during the wait stops the parent before any worker
+    was asked for.
+    """
+    global _ready_marker
+    import time
+    from multiprocessing import forkserver
+
+    start_worker_server()
+    ready = _ready_marker
+    if ready is not None:
+        pid = getattr(getattr(forkserver, "_forkserver", None), "_forkserver_pid", None)
+        deadline = time.monotonic() + READY_TIMEOUT_S
+        try:
+            while not os.path.exists(ready) and time.monotonic() < deadline:
+                if pid is not None and _exited(pid):
+                    break  # the server died: the pool will start another and say why
+                time.sleep(0.005)
+        finally:
+            _ready_marker = None  # waited once: a server that died or timed out is not waited for again
+            if os.path.exists(ready):
+                os.unlink(ready)
+    return multiprocessing.get_context("forkserver")
+
+
+def _exited(pid: int) -> bool:
+    """Whether child ``pid`` has ended, without reaping it (multiprocessing reaps its server itself)."""
+    try:
+        return os.waitid(os.P_PID, pid, os.WEXITED | os.WNOHANG | os.WNOWAIT) is not None
+    except (ChildProcessError, AttributeError):  # not our child, or no waitid on this system
+        return False
 
 
 def _leave_interrupts_to_the_parent() -> None:
@@ -162,3 +253,70 @@ def _map_dask(fn: Callable[[Any], Any], batches: list[Any], ctx, done: Callable[
             cluster = client.cluster
             client.close()
             cluster.close()
+
+
+def map_alongside(fn: Callable[[Any], Any], batches: Sequence[Any], jobs: int, depth: int = 2) -> list[Any]:
+    """:func:`map_batches` on ``jobs - 1`` local worker processes with this process working too.
+
+    The calling process takes the next batch itself whenever the workers have ``depth``
+    batches each in hand, so it works from the first second while they start (forked from the
+    worker server, :func:`start_worker_server`, which may still be importing the stages'
+    modules), and one worker fewer is started. Batches are handed out one at a time in order, to whoever is free, so
+    the load balances whatever the batches cost. The results are ``[fn(b) for b in batches]``
+    wherever each ran, so ``fn`` must give the same result in any process.
+
+    Parameters
+    ----------
+    fn : callable
+        A module-level (picklable) function of one batch.
+    batches : sequence
+        Picklable work items.
+    jobs : int
+        Processes working, this one included (``jobs=1``: all in this process).
+    depth : int, optional
+        Batches queued per worker (so a worker never waits for this process to hand out work).
+
+    Returns
+    -------
+    list
+        ``[fn(b) for b in batches]``.
+
+    Examples
+    --------
+    >>> map_alongside(abs, [-1, 2, -3], jobs=1)
+    [1, 2, 3]
+    """
+    if int(jobs) < 1:
+        raise ValueError(f"jobs must be at least 1, got {jobs!r}")
+    if int(depth) < 1:
+        raise ValueError(f"depth must be at least 1, got {depth!r}")
+    batches = list(batches)
+    workers = min(int(jobs), len(batches)) - 1
+    if workers < 1:
+        return [fn(b) for b in batches]
+    from concurrent.futures import FIRST_COMPLETED, wait
+
+    results: list[Any] = [None] * len(batches)
+    pending: dict = {}  # future -> batch index
+    nxt = 0
+    pool = ProcessPoolExecutor(max_workers=workers, mp_context=_worker_context(),
+                               initializer=_leave_interrupts_to_the_parent)
+    try:
+        while nxt < len(batches) or pending:
+            for f in [f for f in pending if f.done()]:
+                results[pending.pop(f)] = f.result()
+            while nxt < len(batches) and len(pending) < workers * depth:
+                pending[pool.submit(fn, batches[nxt])] = nxt
+                nxt += 1
+            if nxt < len(batches):
+                results[nxt] = fn(batches[nxt])
+                nxt += 1
+            elif pending:
+                done, _ = wait(list(pending), return_when=FIRST_COMPLETED)
+                for f in done:
+                    results[pending.pop(f)] = f.result()
+    except BaseException:
+        _abandon(pool)
+        raise
+    pool.shutdown(wait=True)
+    return results

@@ -116,22 +116,27 @@ def file_kind(mode: int) -> str:
 
 
 def regular_files(folder: str | os.PathLike, exclude: str | os.PathLike | None = None,
-                  skip_folders_with: str | None = None):
+                  skip_folders_with: str | None = None, prune=None):
     """Regular files below ``folder`` (sorted folders; hidden folders and ``exclude`` skipped).
 
     Named pipes, devices and sockets are skipped with a warning (once per path and
     process): opening a FIFO would block the pipeline for ever. Dangling symlinks are
     skipped silently. Symlinks are followed (``stat``), as reading them would.
     With ``skip_folders_with`` (a name, e.g. ``"manifest.csv"``), a folder holding an
-    entry of that name is skipped with everything below it.
+    entry of that name is skipped with everything below it. ``prune(parts)`` (the folder's
+    path below ``folder`` as a tuple of names) returning true skips a folder without
+    entering it.
     """
     skip = Path(exclude).resolve() if exclude is not None else None
     for dirpath, dirnames, filenames in os.walk(folder):
         if skip_folders_with is not None and (skip_folders_with in filenames or skip_folders_with in dirnames):
             dirnames[:] = []
             continue
+        here = () if prune is None else Path(os.path.relpath(dirpath, folder)).parts
+        here = () if here == (".",) else here
         dirnames[:] = sorted(d for d in dirnames
-                             if not d.startswith(".") and (skip is None or (Path(dirpath) / d).resolve() != skip))
+                             if not d.startswith(".") and (skip is None or (Path(dirpath) / d).resolve() != skip)
+                             and (prune is None or not prune((*here, d))))
         for f in sorted(filenames):
             p = Path(dirpath) / f
             try:

@@ -9,6 +9,7 @@ checked against ``schemas/published/<stem>.json``.
 
 from __future__ import annotations
 
+import hashlib
 import logging
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -62,15 +63,35 @@ def read_published(stem: str, raw: Path | None = None, strict: bool = True) -> p
     path = published_dir(raw) / f"{stem}.csv"
     if not path.is_file():
         raise PublishedTableError(f"{path}: published table not found")
+    with open(path, "rb") as fh:
+        data = fh.read()
+    key = (str(path), hashlib.sha256(data).digest())
+    if key not in _READ:  # stages in one process read the same tables: parse and check once
+        if len(_READ) > 64:  # bounded: a long-lived process may see many edited copies
+            _READ.clear()
+        _READ[key] = _parse(stem, data)
+    df, problems = _READ[key]
+    if problems and strict:
+        raise PublishedTableError(f"{path}: {problems[0]}")
+    for p in problems:
+        log.error("%s: %s", path, p)
+    return df.copy()
+
+
+#: (path, SHA-256 of the bytes) -> (frame, schema problems) of the tables read in this process.
+_READ: dict[tuple[str, bytes], tuple[pd.DataFrame, list[str]]] = {}
+
+
+def _parse(stem: str, data: bytes) -> tuple[pd.DataFrame, list[str]]:
+    """A published table's bytes as a frame, with its schema problems (empty: it conforms)."""
+    import io
+
     import pandas as pd
 
     from .schema import SCHEMA_DIR, load_schema, validate_frame  # pandas and numpy
 
-    df = pd.read_csv(path, keep_default_na=False, na_values=[""])
+    df = pd.read_csv(io.BytesIO(data), keep_default_na=False, na_values=[""])
+    problems: list[str] = []
     if (SCHEMA_DIR / "published" / f"{stem}.json").exists():
         problems = validate_frame(df, load_schema(f"published/{stem}"))
-        if problems and strict:
-            raise PublishedTableError(f"{path}: {problems[0]}")
-        for p in problems:
-            log.error("%s: %s", path, p)
-    return df
+    return df, problems

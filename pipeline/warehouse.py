@@ -159,8 +159,10 @@ def build_warehouse(db_path: Path, parquet_dir: Path, published: dict[str, Path]
             con.execute(f"ATTACH {_sql_path(tmp)} AS warehouse (BLOCK_SIZE {block_size_bytes})")
             con.execute("USE warehouse")
             _search_path(con, home)
+            con.execute("BEGIN TRANSACTION")  # one commit (one WAL sync) for every table, not one each
             for sql in statements:
                 con.execute(sql)
+            con.execute("COMMIT")
             con.execute("USE memory")
             con.execute("DETACH warehouse")  # checkpoints: everything is in the file
         except duckdb.Error as exc:  # e.g. a file-size limit or a full disk: never an empty warehouse

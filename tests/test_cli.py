@@ -9,7 +9,7 @@ from tyrelab.cli import build_parser, main
 def test_every_contract_verb_exists():
     verbs = set(build_parser()._subparsers._group_actions[0].choices)
     assert {"generate", "run", "sql", "analyze-run", "estimate-stiffness", "natural-frequencies",
-            "ingest", "analyse", "calibrate", "regress", "simulate", "warehouse", "report"} <= verbs
+            "ingest", "analyse", "calibrate", "regress", "simulate", "warehouse", "report", "watch"} <= verbs
 
 
 def test_natural_frequencies_leyland_with_thesis_stiffnesses(capsys):

@@ -16,25 +16,26 @@ Figures are the expensive part. :func:`build_site` first lists every figure of
 the site as a :class:`FigureTask` (the drawing function and exactly the data it
 draws: its warehouse tables, or a run's row and the content digest of its
 signal file), then reuses the ones a cache already holds under the digest of
-that task and draws the others in parallel (:func:`tyrelab.executor.map_batches`),
+that task and draws the others in parallel (:func:`tyrelab.executor.map_alongside`: this
+process and ``jobs - 1`` workers),
 and only then renders the pages. A figure is therefore redrawn only when its own
 inputs (or the code) changed, and the site is the same bytes either way.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import hashlib
 import json
 import re
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
-from types import SimpleNamespace
 
 import pandas as pd
 
 from .. import io
-from ..executor import map_batches
+from ..executor import map_alongside
 from ..stages.state import digest
 from ..warehouse import check_read_only, connect_read_only
 from . import figures, tables
@@ -42,17 +43,19 @@ from .chapters import CHAPTERS, Chapter, FigureSpec, TableSpec
 from .render import environment, provenance
 
 __all__ = ["RUNS_PER_TYRE", "MAX_RUN_PAGES", "MAX_PLAIN_ROWS", "POOL_MIN_FIGURES", "Warehouse", "resolve_table",
-    "resolve_figure", "chapter_items", "run_page_name", "read_signals", "run_item", "build_site"]
+    "shape_table", "resolve_figure", "chapter_items", "run_page_name", "read_signals", "run_item", "build_site"]
 
 #: Drill-down pages: runs per tyre, and the cap on the total.
 RUNS_PER_TYRE = 2
 MAX_RUN_PAGES = 60
 #: Rows shown of a plain (non-comparison) table.
 MAX_PLAIN_ROWS = 40
-#: Fewer figures to draw than this are drawn in this process, more by ``jobs`` worker processes.
-#: A figure takes ~0.2 s here, where matplotlib is loaded already; a new worker first spends ~2 s
-#: importing matplotlib, pandas and this module (measured on the small demo campaign's one-run
-#: change: 7 figures, report 8.4 s wall with 2 workers, 4.0 s in the process; docs/benchmarks.md).
+#: Fewer figures to draw than this are drawn in this process, more by this process and ``jobs - 1``
+#: workers. A figure takes ~0.15-0.3 s here, where matplotlib is loaded already; a new worker first
+#: spends ~1.7 s CPU importing matplotlib, pandas, scipy.signal and this module, and this process
+#: would wait at the end for the figures queued to a worker still importing (measured on the small
+#: demo campaign's one-run change: 7 figures, report 8.4 s wall with 2 workers, 4.0 s in the process;
+#: docs/benchmarks.md).
 POOL_MIN_FIGURES = 16
 
 
@@ -62,8 +65,20 @@ class Warehouse:
     def __init__(self, db: Path):
         self.db = Path(db)
         self._con = None
-        self.names = set(self.sql("SELECT table_name FROM information_schema.tables")["table_name"])
+        self._names: set[str] | None = None
         self._cache: dict[str, pd.DataFrame] = {}
+
+    @property
+    def names(self) -> set[str]:
+        """Names of the tables and views (listed on first use: a drill-down worker reading
+        its run's file never connects)."""
+        if self._names is None:
+            self._names = set(self.sql("SELECT table_name FROM information_schema.tables")["table_name"])
+        return self._names
+
+    @names.setter
+    def names(self, value) -> None:
+        self._names = set(value)
 
     def __contains__(self, name: str) -> bool:
         return name in self.names
@@ -95,12 +110,30 @@ def _missing(stage: str, what: str) -> str:
     return f"{what} not produced yet by stage {stage}."
 
 
-def resolve_table(wh: Warehouse, spec: TableSpec) -> dict:
-    """Fetch and shape one :class:`TableSpec` into a template item."""
-    item = {"kind": "table", "spec": spec, "note": spec.note}
+def resolve_table(wh: Warehouse, spec: TableSpec, cache=None) -> dict:
+    """Fetch and shape one :class:`TableSpec` into a template item.
+
+    With ``cache`` (:class:`tyrelab.stages.state.ItemCache`) the shaping is kept under the
+    digest of the spec and of exactly the frames it shapes (our table or query result and the
+    published table), so an unchanged table is fetched but not shaped again.
+    """
     published = wh.table(spec.published) if spec.published and spec.published in wh else pd.DataFrame()
+    ours = None
     if spec.view in wh:
         ours = wh.sql(spec.ours_sql) if spec.ours_sql else wh.table(spec.view)
+    if cache is None:
+        shaped = shape_table(spec, ours, published)
+    else:
+        key = cache.key("table", dataclasses.asdict(spec), ours, published)
+        shaped = cache.get_or_compute(key, lambda: shape_table(spec, ours, published))
+    return {"kind": "table", "spec": spec, **shaped}
+
+
+def shape_table(spec: TableSpec, ours: pd.DataFrame | None, published: pd.DataFrame) -> dict:
+    """The template fields of one table (``mode``, ``note`` and ``shaped`` or ``plain``) from our
+    frame (None when ``spec.view`` does not exist) and the published one (may be empty)."""
+    item = {"note": spec.note}
+    if ours is not None:
         if spec.ours_sql and not published.empty:
             df = tables.compare_frames(ours, published, list(spec.keys), spec.values, spec.thesis_rename)
         elif tables.find_pairs(ours.columns) or published.empty:
@@ -154,7 +187,12 @@ def draw(task: FigureTask) -> str | None:
     """Draw one :class:`FigureTask`; the SVG markup or None (runs in a worker process)."""
     if task.kind == "run":
         row, db = task.args
-        return run_figure(Warehouse(db) if Path(db).exists() else None, row)
+        wh = Warehouse(db) if Path(db).exists() else None
+        try:
+            return run_figure(wh, row)
+        finally:
+            if wh is not None:
+                wh.close()
     return getattr(figures, task.function)(*task.args, **task.kwargs)
 
 
@@ -166,8 +204,8 @@ class FigureSet:
     cache : tyrelab.stages.state.ItemCache, optional
         Where drawn figures are kept by :attr:`FigureTask.key`; None draws every figure.
     jobs : int
-        Worker processes for the figures to draw (when there are at least
-        :data:`POOL_MIN_FIGURES` of them; fewer are drawn in this process).
+        Processes drawing the figures, this one included (when there are at least
+        :data:`POOL_MIN_FIGURES` of them; fewer are drawn in this process alone).
     """
 
     def __init__(self, cache=None, jobs: int = 1):
@@ -184,7 +222,8 @@ class FigureSet:
         return task.key
 
     def draw_all(self) -> None:
-        """Take what the cache holds, draw the rest in parallel."""
+        """Take what the cache holds, draw the rest in parallel: this process and ``jobs - 1``
+        workers (:func:`tyrelab.executor.map_alongside`)."""
         todo = []
         for key, task in self.tasks.items():
             hit, svg = self.cache.get(self.cache.key("figure", key)) if self.cache else (False, None)
@@ -192,8 +231,10 @@ class FigureSet:
                 self.svgs[key] = svg
             else:
                 todo.append(key)
-        ctx = SimpleNamespace(executor="local", jobs=self.jobs if len(todo) >= POOL_MIN_FIGURES else 1, scheduler=None)
-        for key, svg in zip(todo, map_batches(draw, [self.tasks[k] for k in todo], ctx)):
+        # Drill-downs (the dearest) first, so that the last figures handed out are cheap ones.
+        todo.sort(key=lambda k: self.tasks[k].kind != "run")
+        jobs = self.jobs if len(todo) >= POOL_MIN_FIGURES else 1
+        for key, svg in zip(todo, map_alongside(draw, [self.tasks[k] for k in todo], jobs)):
             self.svgs[key] = svg
             if self.cache:
                 self.cache.put(self.cache.key("figure", key), svg)
@@ -220,9 +261,9 @@ def resolve_figure(wh: Warehouse, spec: FigureSpec, figs: FigureSet | None = Non
     return {"kind": "figure", "spec": spec, "svg": svg, "note": note}
 
 
-def chapter_items(wh: Warehouse, chapter: Chapter, figs: FigureSet | None = None) -> list[dict]:
-    """All tables and figures of one chapter page."""
-    return [resolve_table(wh, it) if isinstance(it, TableSpec) else resolve_figure(wh, it, figs)
+def chapter_items(wh: Warehouse, chapter: Chapter, figs: FigureSet | None = None, cache=None) -> list[dict]:
+    """All tables and figures of one chapter page (tables shaped through ``cache``, see :func:`resolve_table`)."""
+    return [resolve_table(wh, it, cache) if isinstance(it, TableSpec) else resolve_figure(wh, it, figs)
             for it in chapter.items]
 
 
@@ -313,7 +354,7 @@ def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1) -> dic
         Figures kept by the digest of their inputs (see the module docstring);
         None draws every figure.
     jobs : int
-        Worker processes drawing the figures not in ``cache``.
+        Processes drawing the figures not in ``cache``, this one included.
 
     Returns
     -------
@@ -356,7 +397,7 @@ def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1) -> dic
 
     contents = []
     for chapter in CHAPTERS:
-        items = chapter_items(wh, chapter, figs)
+        items = chapter_items(wh, chapter, figs, cache)
         for it in items:
             n_tables += it["kind"] == "table"
             n_comparison += it.get("mode") == "comparison"

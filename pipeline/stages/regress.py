@@ -31,8 +31,9 @@ with null estimates of ours.
 
 Incremental: the fits that read one tyre's runs (Table III, per-speed K and C, the
 one-factor rates, the spoke fit) are kept per tyre in ``build/cache/regress`` under
-the digest of that tyre's ``results`` rows and catalogue row
-(:class:`tyrelab.stages.state.ItemCache`), so one new run refits its tyre only; the
+the digest of that tyre's ``results`` rows (the columns they read,
+:data:`FIT_INPUT_COLUMNS`) and catalogue row (:class:`tyrelab.stages.state.ItemCache`),
+so one new run refits its tyre only, and the tyres to refit are fitted in one pass; the
 across-tyre tables (surface effects, summaries, size regressions, formula accuracy)
 are recomputed from the per-tyre fits whenever the stage runs, and the parts that
 read only the published tables are kept under the digest of those tables.
@@ -42,9 +43,11 @@ from __future__ import annotations
 
 import time
 
+import numpy as np
 import pandas as pd
 
 from .. import published
+from ..tyre import conditions as cond
 from ..tyre import formula_accuracy as fa
 from ..tyre import regressions as reg
 from ..tyre import size_regressions as sr
@@ -52,8 +55,13 @@ from ..tyre import spoke
 from .base import Context, StageResult
 from .state import ItemCache
 
-__all__ = ["PUBLISHED", "FACTORS", "read_published", "read_tyres", "compute", "run"]
+__all__ = ["FIT_INPUT_COLUMNS", "PUBLISHED", "FACTORS", "read_published", "read_tyres", "tyre_fits", "tyre_fits_each",
+           "all_tyre_fits", "compute", "run"]
 
+#: The ``results`` columns the per-tyre fits read (:mod:`tyrelab.tyre.conditions` and the
+#: runs' uncertainties): the fits are given only these, and a tyre's cache key is the digest
+#: of exactly these, so a change elsewhere in a run's row (e.g. its campaign) refits nothing.
+FIT_INPUT_COLUMNS = (*cond.RESULTS_COLUMNS, *reg.RESPONSE_UNCERTAINTY.values())
 PUBLISHED = ("table_iii", "table_iv", "table_v", "table_vi", "table_vii", "table_viii", "table_ix", "table_x")
 FACTORS = ("amplitude", "frequency", "load", "torque")
 
@@ -85,19 +93,60 @@ def tyre_fits(results: pd.DataFrame, tyre_ids: list[str], tyres: pd.DataFrame | 
     }
 
 
+def tyre_fits_each(results: pd.DataFrame, tyre_ids: list[str], tyres: pd.DataFrame | None) -> dict[str, dict]:
+    """:func:`tyre_fits` of each tyre of ``tyre_ids`` on its own, all tyres in one pass.
+
+    ``out[tyre]`` equals ``tyre_fits(<results rows of tyre>, [tyre], <tyres row of tyre>)``: the
+    runs are selected and grouped once for all tyres (:func:`tyrelab.tyre.regressions.pressure_regressions_each`,
+    :func:`~tyrelab.tyre.regressions.factor_regressions_each`, :func:`tyrelab.tyre.spoke.fit_tyres_each`)
+    and every fit reads its own tyre's runs only.
+    """
+    tyre_ids = [str(t) for t in tyre_ids]
+    k_cond = reg.pressure_regressions_each(results, (reg.STIFFNESS,), by="condition", tyre_ids=tyre_ids)
+    by_speed = reg.pressure_regressions_each(results, (reg.STIFFNESS, reg.DAMPING), by="speed", tyre_ids=tyre_ids)
+    rates = [reg.factor_regressions_each(results, f, tyre_ids=tyre_ids) for f in FACTORS]
+    catalogue = tyres if tyres is not None and "tyre_id" in tyres else None
+    spokes = spoke.fit_tyres_each(results, catalogue, tyre_ids=tyre_ids)
+    return {t: {"k_cond": k_cond[t][reg.STIFFNESS], "k_speed": by_speed[t][reg.STIFFNESS],
+                "c_speed": by_speed[t][reg.DAMPING], "rates": pd.concat([r[t] for r in rates], ignore_index=True),
+                "spoke_fit": spokes[t][0], "spoke_fit_points": spokes[t][1]} for t in tyre_ids}
+
+
 def all_tyre_fits(results: pd.DataFrame, tyres: pd.DataFrame | None, cache=None) -> dict[str, pd.DataFrame]:
     """:func:`tyre_fits` of every measured tyre, each computed from its own runs (reused from
-    ``cache`` when that tyre's runs and catalogue row are unchanged), in the all-tyre order."""
+    ``cache`` when that tyre's runs and catalogue row are unchanged), in the all-tyre order.
+
+    The fits read the :data:`FIT_INPUT_COLUMNS` of ``results`` only (a tyre's cache key is their
+    digest). The runs are grouped by tyre once; the tyres not in the cache are fitted together
+    in one pass (:func:`tyre_fits_each`: the same per-tyre tables as one :func:`tyre_fits` per tyre).
+    """
     tyre_ids = reg.measured_tyres(results)
     if not tyre_ids:
         return tyre_fits(results, tyre_ids, tyres)
-    ids = results["tyre_id"].astype(str)
-    parts = []
+    results = results[[c for c in FIT_INPUT_COLUMNS if c in results.columns]]
+    rows_of = results.groupby(results["tyre_id"].astype(str), sort=False).indices
+    cat_of = tyres.groupby(tyres["tyre_id"].astype(str), sort=False).indices \
+        if tyres is not None and "tyre_id" in tyres else None
+    parts, keys, todo = {}, {}, []
     for t in tyre_ids:
-        own = results.loc[ids == t]
-        row = tyres.loc[tyres["tyre_id"].astype(str) == t] if tyres is not None and "tyre_id" in tyres else None
-        compute_one = lambda own=own, t=t, row=row: tyre_fits(own, [t], row)  # noqa: E731
-        parts.append(cache.get_or_compute(cache.key("tyre", t, own, row), compute_one) if cache else compute_one())
+        if cache is None:
+            todo.append(t)
+            continue
+        own = results.iloc[rows_of[t]]
+        row = None if cat_of is None else tyres.iloc[cat_of.get(t, np.empty(0, dtype=np.intp))]
+        keys[t] = cache.key("tyre", t, own, row)
+        hit, value = cache.get(keys[t])
+        if hit:
+            parts[t] = value
+        else:
+            todo.append(t)
+    if todo:
+        mine = np.sort(np.concatenate([rows_of[t] for t in todo]))
+        for t, value in tyre_fits_each(results.iloc[mine], todo, tyres).items():
+            parts[t] = value
+            if cache is not None:
+                cache.put(keys[t], value)
+    parts = [parts[t] for t in tyre_ids]
     out = {name: _text_columns(pd.concat([p[name] for p in parts], ignore_index=True)) for name in parts[0]}
     # factor_regressions orders rows by factor, response, then tyre: restore that order
     rates = out["rates"]
@@ -121,13 +170,20 @@ def _text_columns(df: pd.DataFrame) -> pd.DataFrame:
 
 def _published_source(table: pd.DataFrame, tyres: pd.DataFrame | None) -> dict:
     """Size regressions, selection search and formula accuracy of the printed Table III."""
-    searches = []
+    size, searches = _size_fits(table, tyres, "published")
+    p = fa.predictions_from_table(table, tyres, source="published")
+    return {"size": size, "searches": searches, "predictions": p, "accuracy": fa.accuracy_summary(p, "published")}
+
+
+def _size_fits(table: pd.DataFrame, tyres: pd.DataFrame | None, source: str) -> tuple[pd.DataFrame, list]:
+    """Size regressions of one Table III and the 25 best selections of each fit's search (each
+    search done once: the size regressions' findings reuse it)."""
+    full = {}
     if not table.empty:
         points = sr.tyre_points(table, tyres)
-        searches = [sr.selection_search(points, name).head(25).assign(source="published") for name in sr.THESIS_FITS]
-    p = fa.predictions_from_table(table, tyres, source="published")
-    return {"size": sr.size_regressions(table, tyres, "published"), "searches": searches, "predictions": p,
-            "accuracy": fa.accuracy_summary(p, "published")}
+        full = {name: sr.selection_search(points, name) for name in sr.THESIS_FITS}
+    searches = [full[name].head(25).assign(source=source) for name in full]
+    return sr.size_regressions(table, tyres, source, searches=full), searches
 
 
 def _spoke_curves() -> dict[str, pd.DataFrame]:
@@ -173,10 +229,8 @@ def compute(results: pd.DataFrame, tyres: pd.DataFrame | None,
     ours_iii = k_cond.rename(columns={"intercept": "carcass_stiffness_kN_per_m",
                                       "slope": "pressure_dependence_kN_per_m_bar"})
     pub_iii = published.get("table_iii")
-    size_rows, searches, preds, acc = [sr.size_regressions(ours_iii, tyres, "ours")], [], [], []
-    if not ours_iii.empty:
-        points = sr.tyre_points(ours_iii, tyres)
-        searches = [sr.selection_search(points, name).head(25).assign(source="ours") for name in sr.THESIS_FITS]
+    size_ours, searches = _size_fits(ours_iii, tyres, "ours")
+    size_rows, preds, acc = [size_ours], [], []
     preds.append(fa.predictions_from_recordings(results, ours_iii, tyres))
     acc.append(fa.accuracy_summary(preds[-1], "ours"))
     if pub_iii is not None:

@@ -3,8 +3,8 @@
 All the work is in :mod:`tyrelab.report.site`; this stage only times it and
 summarises what was written. Figures are kept in ``build/cache/report`` by the
 digest of their inputs (:class:`tyrelab.stages.state.ItemCache`), so a new run
-redraws only the figures whose data changed; the rest are drawn by ``--jobs``
-worker processes.
+redraws only the figures whose data changed; the rest are drawn by this process and
+``--jobs`` - 1 worker processes.
 """
 
 from __future__ import annotations
@@ -34,5 +34,6 @@ def run(ctx: Context) -> StageResult:
     return StageResult(
         "report", n_in=info["tables"], n_ok=n, seconds=time.perf_counter() - t0,
         message=f"{n} pages, {info['comparison_tables']} thesis comparisons, {info['figures']} figures "
-                f"({info['drawn']} drawn, the others unchanged), {info['bytes'] / 1e6:.2f} MB in {out}",
+                f"({info['drawn']} drawn, the others unchanged), tables {cache.summary('table')}, "
+                f"{info['bytes'] / 1e6:.2f} MB in {out}",
     )

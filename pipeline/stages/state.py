@@ -287,7 +287,9 @@ def published_digests(raw: Path, cache: HashCache) -> dict[str, str]:
 def snapshot(build: Path) -> dict[str, tuple[int, int]]:
     """(size, mtime) of every file of ``build/`` except state and the per-run dataset."""
     snap = {}
-    for p in _files_below(build) if build.is_dir() else []:
+    # the untracked folders (state, cache, the per-run dataset: most of a build's files) are not entered
+    untracked = io.regular_files(build, prune=lambda parts: bool(UNTRACKED.intersection(parts[:2])))
+    for p in untracked if build.is_dir() else []:
         rel = p.relative_to(build)
         if not UNTRACKED.intersection(rel.parts[:2]) and not p.name.endswith(".tmp") and p.name != LOCK_NAME:
             st = p.stat()

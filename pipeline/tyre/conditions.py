@@ -51,7 +51,7 @@ __all__ = ["REFERENCE_SURFACE", "NOMINAL_FREQUENCY_HZ", "FREQUENCY_TOLERANCE_HZ"
     "NOMINAL_TORQUE_KNM", "ROLLING_POOL_KM_H", "STANDARD_PRESSURE_BAR", "SPEED_DECIMALS", "PRESSURE_DECIMALS",
     "LOAD_DECIMALS", "FACTORS", "RESULTS_COLUMNS", "with_columns", "usable", "on_reference_surface",
     "at_nominal_torque", "at_nominal_frequency", "at_nominal_amplitude", "nominal", "speed_condition",
-    "table_iii_runs", "regressor", "factor_runs", "hold_constant"]
+    "table_iii_runs", "regressor", "factor_runs", "hold_levels", "hold_level", "n_distinct", "hold_constant"]
 
 #: Reference surface (thesis §4.3.7, Tables V and IX are relative to it).
 REFERENCE_SURFACE = "concrete"
@@ -243,10 +243,109 @@ def factor_runs(results: pd.DataFrame, factor: str) -> pd.DataFrame:
     return sel.loc[sel["x"].notna()]
 
 
+_HOLD_DECIMALS = {"load_kN": LOAD_DECIMALS, "pressure_bar": PRESSURE_DECIMALS}
+
+
+def hold_levels(runs: pd.DataFrame, cols: list[str]) -> np.ndarray:
+    """Rounded levels of the ``cols`` of ``runs`` as an ``(n, len(cols))`` float array (missing → −1).
+
+    The keys by which :func:`hold_constant` groups runs: load to 0.1 kN, pressure to 0.01 bar,
+    any other column to 3 decimals.
+
+    Examples
+    --------
+    >>> hold_levels(pd.DataFrame({"load_kN": [10.04, None]}), ["load_kN"]).ravel().tolist()
+    [10.0, -1.0]
+    """
+    keys = np.empty((len(runs), len(cols)), dtype=float)
+    for j, c in enumerate(cols):
+        keys[:, j] = np.round(pd.to_numeric(runs[c], errors="coerce").to_numpy(dtype=float, na_value=np.nan),
+                              _HOLD_DECIMALS.get(c, 3))
+    keys[np.isnan(keys)] = -1.0
+    return keys
+
+
+def n_distinct(values) -> int:
+    """Number of distinct non-NaN values of a float array (as ``Series.nunique``).
+
+    Examples
+    --------
+    >>> n_distinct(np.array([1.0, 1.0, np.nan, 2.0]))
+    2
+    """
+    values = np.asarray(values, dtype=float)
+    values = values[~np.isnan(values)]
+    return int(len(np.unique(values))) if len(values) else 0
+
+
+def hold_level(x, keys: np.ndarray, cols: list[str], hold: list[str], prefer: dict[str, float] | None = None):
+    """:func:`hold_constant` on arrays: which runs of one group to keep.
+
+    Parameters
+    ----------
+    x : array-like of float
+        Regressor values of the group's runs.
+    keys : ndarray
+        :func:`hold_levels` of the group's runs (columns ``cols``, those of ``hold`` present).
+    cols, hold : list of str
+        Held columns present, and all held columns (absent ones get level None).
+    prefer : dict, optional
+        Tie-break target per column.
+
+    Returns
+    -------
+    positions : ndarray of int or None
+        Positions (ascending) of the kept runs; None when the runs are pooled (all kept).
+    levels : dict
+        Held level per column of ``hold`` (None where pooled or absent).
+    note : str
+        Empty, or why the runs were pooled.
+
+    Examples
+    --------
+    >>> keys = np.array([[1.0], [1.0], [2.0]])
+    >>> pos, levels, note = hold_level(np.array([1.0, 2.0, 1.0]), keys, ["load_kN"], ["load_kN"])
+    >>> pos.tolist(), levels, note
+    ([0, 1], {'load_kN': 1.0}, '')
+    """
+    prefer = prefer or {}
+    x = np.asarray(x, dtype=float)
+    keys = np.asarray(keys, dtype=float)
+    if keys.shape != (len(x), len(cols)):
+        raise ValueError(f"keys must have shape (len(x), len(cols)) = {(len(x), len(cols))}, not {keys.shape}")
+    if len(x) == 0 or not cols:
+        return None, {c: None for c in hold}, ""
+    xr = np.round(x, 6)
+    # the levels in lexicographic order (a stable sort keeps each level's runs in their order)
+    order = np.lexsort(keys.T[::-1])
+    ordered = keys[order]
+    starts = np.flatnonzero(np.r_[True, np.any(ordered[1:] != ordered[:-1], axis=1)])
+    ends = np.r_[starts[1:], len(order)]
+    best = None
+    for s, e in zip(starts.tolist(), ends.tolist()):
+        level = tuple(ordered[s].tolist())
+        pos = order[s:e]
+        distinct = n_distinct(xr[pos])
+        distance = sum(abs(v - prefer[c]) for c, v in zip(cols, level) if c in prefer)
+        score = (distinct, e - s, -distance, -sum(level))
+        if best is None or score > best[0]:
+            best = (score, level, pos)
+    (distinct, _, _, _), level, pos = best
+    if distinct < 2 and n_distinct(xr) >= 2 and len(starts) > 1:
+        return None, {c: None for c in hold}, f"pooled over {', '.join(cols)} (no single level varies the regressor)"
+    levels = {c: (float(v) if v != -1.0 else None) for c, v in zip(cols, level)}
+    levels.update({c: None for c in hold if c not in cols})
+    return pos, levels, ""
+
+
 def hold_constant(
     runs: pd.DataFrame, x: str, hold: list[str], *, prefer: dict[str, float] | None = None
 ) -> tuple[pd.DataFrame, dict[str, float | None], str]:
     """Keep the runs of one level of the ``hold`` columns: the one with most distinct ``x``.
+
+    Levels are ``hold`` values rounded (:func:`hold_levels`); ties of distinct ``x`` go to the
+    level with most runs, then the one nearest ``prefer``, then the lowest (:func:`hold_level`,
+    the same rule on arrays).
 
     Parameters
     ----------
@@ -268,30 +367,9 @@ def hold_constant(
     note : str
         Empty, or why the runs were pooled.
     """
-    prefer = prefer or {}
     cols = [c for c in hold if c in runs.columns]
     if not cols or runs.empty:
         return runs, {c: None for c in hold}, ""
-    decimals = {"load_kN": LOAD_DECIMALS, "pressure_bar": PRESSURE_DECIMALS}
-    keys = pd.DataFrame(
-        {c: pd.to_numeric(runs[c], errors="coerce").round(decimals.get(c, 3)) for c in cols},
-        index=runs.index,
-    )
-    if keys.isna().any(axis=None):
-        keys = keys.fillna(-1.0)
-    best = None
-    for level, sub_keys in keys.groupby(cols, sort=True):
-        level = level if isinstance(level, tuple) else (level,)
-        idx = sub_keys.index
-        sub_x = runs[x].loc[idx]  # only the regressor: taking every column of a wide table is slow
-        distinct = sub_x.round(6).nunique()
-        distance = sum(abs(v - prefer[c]) for c, v in zip(cols, level) if c in prefer)
-        score = (distinct, len(sub_x), -distance, -sum(level))
-        if best is None or score > best[0]:
-            best = (score, level, idx)
-    (distinct, _, _, _), level, idx = best
-    if distinct < 2 and runs[x].round(6).nunique() >= 2 and keys.drop_duplicates().shape[0] > 1:
-        return runs, {c: None for c in hold}, f"pooled over {', '.join(cols)} (no single level varies the regressor)"
-    levels = {c: (float(v) if v != -1.0 else None) for c, v in zip(cols, level)}
-    levels.update({c: None for c in hold if c not in cols})
-    return runs.loc[idx], levels, ""
+    xs = pd.to_numeric(runs[x], errors="coerce").to_numpy(dtype=float, na_value=np.nan)
+    pos, levels, note = hold_level(xs, hold_levels(runs, cols), cols, hold, prefer)
+    return (runs if pos is None else runs.loc[runs.index[pos]]), levels, note

@@ -35,7 +35,8 @@ from statsmodels.tools.tools import add_constant
 from . import conditions as cond
 
 __all__ = ["STIFFNESS", "DAMPING", "FIT_COLUMNS", "fit_line", "fit_mean", "measured_tyres",
-    "pressure_regressions", "factor_regressions", "surface_effects", "compare_with_thesis", "table_iii",
+    "pressure_regressions", "pressure_regressions_each", "factor_regressions", "factor_regressions_each",
+    "surface_effects", "compare_with_thesis", "table_iii",
     "table_vii", "amplitude_table", "surface_table", "SUMMARY_FACTORS", "summary_rates", "RESPONSE_UNCERTAINTY", "WLS_MIN_SPREAD", "between_run_variance"]
 
 STIFFNESS = "stiffness_kN_per_m"
@@ -68,9 +69,12 @@ def between_run_variance(x, y, u) -> float:
     x, y, u = (np.asarray(v, dtype=float) for v in (x, y, u))
     design = np.column_stack([np.ones_like(x), x])
 
+    u2 = u**2
+
     def chi2(tau2):
-        w = 1.0 / (u**2 + tau2)
-        beta = np.linalg.lstsq(design * np.sqrt(w)[:, None], y * np.sqrt(w), rcond=None)[0]
+        w = 1.0 / (u2 + tau2)
+        sw = np.sqrt(w)
+        beta = np.linalg.lstsq(design * sw[:, None], y * sw, rcond=None)[0]
         return float(np.sum(w * (y - design @ beta) ** 2))
 
     target = len(y) - 2
@@ -79,7 +83,10 @@ def between_run_variance(x, y, u) -> float:
     lo, hi = 0.0, float(np.var(y)) * 10 + 1e-30
     for _ in range(100):
         mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if chi2(mid) > target else (lo, mid)
+        step = (mid, hi) if chi2(mid) > target else (lo, mid)
+        if step == (lo, hi):
+            break  # converged to adjacent floats: every further step repeats this one
+        lo, hi = step
     return 0.5 * (lo + hi)
 
 
@@ -194,41 +201,77 @@ def measured_tyres(results: pd.DataFrame) -> list[str]:
     return sorted(results.loc[kind == "measurement", "tyre_id"].dropna().astype(str).unique())
 
 
+def _floats(runs: pd.DataFrame, column: str | None) -> np.ndarray | None:
+    """Column as a float array (non-numbers NaN), or None when absent."""
+    if column is None or column not in runs.columns:
+        return None
+    return pd.to_numeric(runs[column], errors="coerce").to_numpy(dtype=float, na_value=np.nan)
+
+
 def _fit_groups(runs, keys, grid, response, hold, prefer, design: str = "x") -> pd.DataFrame:
-    """Fit ``response ~ x`` per group of ``keys``; ``grid`` lists the groups to report.
+    """Fit ``response ~ x`` per group of ``keys`` (:func:`_fit_rows`) as one DataFrame."""
+    return _fit_frame(_fit_rows(runs, keys, grid, response, hold, prefer, design), keys, hold)
+
+
+def _fit_frame(rows: list[dict], keys, hold) -> pd.DataFrame:
+    """The DataFrame of :func:`_fit_rows` (columns in their fixed order)."""
+    return pd.DataFrame(rows, columns=list(keys) + FIT_COLUMNS + [f"held_{c}" for c in hold] + ["note"])
+
+
+def _fit_rows(runs, keys, grid, response, hold, prefer, design: str = "x") -> list[dict]:
+    """Fit ``response ~ x`` per group of ``keys``; ``grid`` lists the groups to report (one row each).
 
     ``design`` is the column of the experiment's set levels (the nominal
     condition): the held level is chosen, and a group counts as an experiment
     on x, by its distinct *design* values, so that the scatter of a measured
     regressor around one set level is never mistaken for a sweep.
+
+    The runs are grouped once (positions per group) and every group is fitted on
+    arrays (:func:`conditions.hold_level`, :func:`fit_line`): no per-group DataFrame.
     """
     rows = []
-    # Only the columns used below: every row selection of a wide ``results`` table (dozens of
-    # text columns) would otherwise copy all of them, which is most of the time of the fits.
-    used = dict.fromkeys([*keys, response, design, "x", *hold, RESPONSE_UNCERTAINTY.get(response)])
-    runs = runs[[c for c in used if c is not None and c in runs.columns]]
-    groups = dict(tuple(runs.groupby(keys, sort=True))) if not runs.empty else {}
+    u_col = RESPONSE_UNCERTAINTY.get(response)
+    cols = [c for c in hold if c in runs.columns]
+    groups = runs.groupby(keys, sort=True).indices if not runs.empty else {}
+    x_all, y_all, d_all = _floats(runs, "x"), _floats(runs, response), _floats(runs, design)
+    u_all = _floats(runs, u_col)
+    u_all = u_all / 1e3 if u_all is not None else None  # N -> kN, as the responses
+    levels_all = cond.hold_levels(runs, cols) if cols and not runs.empty else None
+    none_held = {c: None for c in hold}
+    empty = np.empty(0, dtype=np.intp)
     for key in grid.itertuples(index=False, name=None):
-        sub = groups.get(key if len(keys) > 1 else key[0], runs.iloc[0:0])
-        sub = sub.loc[sub[response].notna()] if response in sub else sub
-        sub, levels, note = cond.hold_constant(sub, design, hold, prefer=prefer)
-        one_level = len(sub) > 0 and sub[design].round(6).nunique() < 2
-        u_col = RESPONSE_UNCERTAINTY.get(response)
-        u = sub[u_col] / 1e3 if u_col in sub else None  # N -> kN, as the responses
-        fit = fit_line(sub["x"], sub[response], u=u) if len(sub) and not one_level else fit_line([], [])
-        if len(sub) == 0:
+        pos = groups.get(key if len(keys) > 1 else key[0], empty)
+        if len(pos) and y_all is not None:
+            pos = pos[~np.isnan(y_all[pos])]
+        levels, note = none_held, ""
+        if len(pos) and levels_all is not None:
+            keep, levels, note = cond.hold_level(d_all[pos], levels_all[pos], cols, hold, prefer)
+            pos = pos if keep is None else pos[keep]
+        n = len(pos)
+        one_level = n > 0 and cond.n_distinct(np.round(d_all[pos], 6)) < 2
+        u = u_all[pos] if u_all is not None else None
+        fit = fit_line(x_all[pos], y_all[pos], u=u) if n and not one_level else fit_line([], [])
+        if n == 0:
             fit["reason"] = "no runs under the selection convention (tyrelab.tyre.conditions)"
         elif one_level:
-            fit["n"] = int(len(sub))
-            fit["reason"] = f"fewer than 2 distinct set levels of the regressor (n={len(sub)}): the runs do not vary it"
+            fit["n"] = int(n)
+            fit["reason"] = f"fewer than 2 distinct set levels of the regressor (n={n}): the runs do not vary it"
         row = dict(zip(keys, key))
         row.update(fit)
         for c in hold:
             row[f"held_{c}"] = levels.get(c)
         row["note"] = note or None
         rows.append(row)
-    cols = list(keys) + FIT_COLUMNS + [f"held_{c}" for c in hold] + ["note"]
-    return pd.DataFrame(rows, columns=cols)
+    return rows
+
+
+def _by_tyre(rows: list[dict], tyre_ids) -> dict[str, list[dict]]:
+    """The rows of each tyre of ``tyre_ids`` (in their order; rows of other tyres dropped)."""
+    out: dict[str, list[dict]] = {t: [] for t in tyre_ids}
+    for row in rows:
+        if row["tyre_id"] in out:
+            out[row["tyre_id"]].append(row)
+    return out
 
 
 def pressure_regressions(
@@ -261,6 +304,16 @@ def pressure_regressions(
         (intercept = carcass value, slope = pressure dependence per bar),
         ``held_load_kN``, ``note``.
     """
+    runs, keys, grid = _pressure_runs(results, by, tyre_ids)
+    return _fit_groups(runs, keys, grid, response, *_PRESSURE_HOLD)
+
+
+#: Held condition of the pressure regressions and its preferred level.
+_PRESSURE_HOLD = (["load_kN"], {"load_kN": 0.0})
+
+
+def _pressure_runs(results: pd.DataFrame, by: str, tyre_ids) -> tuple[pd.DataFrame, list, pd.DataFrame]:
+    """Runs (with regressor ``x``), group keys and grid of :func:`pressure_regressions`."""
     results = cond.with_columns(results)
     tyre_ids = measured_tyres(results) if tyre_ids is None else list(tyre_ids)
     if by == "condition":
@@ -281,7 +334,30 @@ def pressure_regressions(
         raise ValueError(f"by must be 'condition' or 'speed', not {by!r}")
     runs = runs.assign(x=pd.to_numeric(runs.get("pressure_bar"), errors="coerce"), tyre_id=runs["tyre_id"].astype(str)) \
         if not runs.empty else runs.assign(x=np.nan)
-    return _fit_groups(runs, ["tyre_id", key], grid, response, ["load_kN"], {"load_kN": 0.0})
+    return runs, ["tyre_id", key], grid
+
+
+def pressure_regressions_each(
+    results: pd.DataFrame, responses=(STIFFNESS, DAMPING), *, by: str = "condition", tyre_ids: list[str],
+) -> dict[str, dict[str, pd.DataFrame]]:
+    """:func:`pressure_regressions` of each tyre on its own, all tyres in one pass.
+
+    ``out[tyre][response]`` equals ``pressure_regressions(<results rows of tyre>, response, by=by,
+    tyre_ids=[tyre])``: the runs are selected and grouped once and every fit reads its
+    group's runs only.
+
+    Examples
+    --------
+    >>> pressure_regressions_each(pd.DataFrame(), tyre_ids=["T1"])["T1"][STIFFNESS]["n"].tolist()
+    [0, 0]
+    """
+    tyre_ids = [str(t) for t in tyre_ids]
+    runs, keys, grid = _pressure_runs(results, by, tyre_ids)
+    out: dict[str, dict[str, pd.DataFrame]] = {t: {} for t in tyre_ids}
+    for response in responses:
+        for t, rows in _by_tyre(_fit_rows(runs, keys, grid, response, *_PRESSURE_HOLD), tyre_ids).items():
+            out[t][response] = _fit_frame(rows, keys, _PRESSURE_HOLD[0])
+    return out
 
 
 def factor_regressions(
@@ -306,6 +382,19 @@ def factor_regressions(
         ``tyre_id, speed_km_h, response, factor, factor_unit, rate_unit``, the fit
         (slope = rate), ``held_pressure_bar``, ``held_load_kN``, ``note``.
     """
+    runs, grid, hold = _factor_runs(results, factor)
+    rows = {response: _fit_rows(runs, _FACTOR_KEYS, grid, response, hold, _FACTOR_PREFER, design="x_design")
+            for response in responses}
+    return _factor_frame(rows, factor, hold)
+
+
+_FACTOR_KEYS = ["tyre_id", "speed_km_h"]
+#: Preferred levels of the conditions held constant in the one-factor regressions.
+_FACTOR_PREFER = {"pressure_bar": cond.STANDARD_PRESSURE_BAR, "load_kN": 0.0}
+
+
+def _factor_runs(results: pd.DataFrame, factor: str) -> tuple[pd.DataFrame, pd.DataFrame, list[str]]:
+    """Runs (with ``x`` and ``x_design``), grid and held columns of :func:`factor_regressions`."""
     results = cond.with_columns(results)
     runs = cond.factor_runs(results, factor) if not results.empty else results.assign(x=np.nan)
     runs = runs.copy()
@@ -313,23 +402,54 @@ def factor_regressions(
         runs["speed_km_h"] = _speed(runs["speed_km_h"])
         runs["tyre_id"] = runs["tyre_id"].astype(str)
     runs["x_design"] = pd.to_numeric(runs[cond.FACTORS[factor][0]], errors="coerce") if not runs.empty else np.nan
-    unit = cond.FACTORS[factor][2]
     hold = [c for c in ("pressure_bar", "load_kN") if c != cond.FACTORS[factor][0]]
-    grid = runs[["tyre_id", "speed_km_h"]].drop_duplicates().sort_values(["tyre_id", "speed_km_h"]) \
-        if not runs.empty else pd.DataFrame(columns=["tyre_id", "speed_km_h"])
+    grid = runs[_FACTOR_KEYS].drop_duplicates().sort_values(_FACTOR_KEYS) \
+        if not runs.empty else pd.DataFrame(columns=_FACTOR_KEYS)
+    return runs, grid, hold
+
+
+def _factor_frame(rows: dict[str, list[dict]], factor: str, hold: list[str]) -> pd.DataFrame:
+    """The :func:`factor_regressions` table of the fit rows of each response."""
+    unit = cond.FACTORS[factor][2]
+    held = [f"held_{c}" for c in hold]
     out = []
-    for response in responses:
-        f = _fit_groups(runs, ["tyre_id", "speed_km_h"], grid, response, hold,
-                        {"pressure_bar": cond.STANDARD_PRESSURE_BAR, "load_kN": 0.0}, design="x_design")
-        f.insert(2, "response", response)
-        f.insert(3, "factor", factor)
-        f.insert(4, "factor_unit", unit)
-        f.insert(5, "rate_unit", f"{_RESPONSE_UNIT.get(response, response)} per {unit}")
-        for c in ("held_pressure_bar", "held_load_kN"):
-            if c not in f:
-                f[c] = np.nan
+    for response, fit_rows in rows.items():
+        extra = {"response": response, "factor": factor, "factor_unit": unit,
+                 "rate_unit": f"{_RESPONSE_UNIT.get(response, response)} per {unit}"}
+        absent = {c: np.nan for c in ("held_pressure_bar", "held_load_kN") if c not in held}
+        if fit_rows:  # the constant columns inferred from the rows: the dtypes of inserting them
+            f = pd.DataFrame([{**r, **extra, **absent} for r in fit_rows],
+                             columns=_FACTOR_KEYS + list(extra) + FIT_COLUMNS + held + ["note"] + list(absent))
+        else:  # no rows: inserted columns keep the dtypes an insert gives an empty frame
+            f = _fit_frame(fit_rows, _FACTOR_KEYS, hold)
+            for i, (c, v) in enumerate(extra.items()):
+                f.insert(2 + i, c, v)
+            for c, v in absent.items():
+                f[c] = v
         out.append(f)
     return pd.concat(out, ignore_index=True) if out else pd.DataFrame()
+
+
+def factor_regressions_each(
+    results: pd.DataFrame, factor: str, responses=(STIFFNESS, DAMPING), *, tyre_ids: list[str],
+) -> dict[str, pd.DataFrame]:
+    """:func:`factor_regressions` of each tyre on its own, all tyres in one pass.
+
+    ``out[tyre]`` equals ``factor_regressions(<results rows of tyre>, factor, responses)``:
+    the runs are selected and grouped once and every fit reads its group's runs only.
+
+    Examples
+    --------
+    >>> len(factor_regressions_each(pd.DataFrame(), "load", tyre_ids=["T1"])["T1"])
+    0
+    """
+    if factor not in cond.FACTORS:
+        raise ValueError(f"factor must be one of {sorted(cond.FACTORS)}, not {factor!r}")
+    tyre_ids = [str(t) for t in tyre_ids]
+    runs, grid, hold = _factor_runs(results, factor)
+    rows = {response: _by_tyre(_fit_rows(runs, _FACTOR_KEYS, grid, response, hold, _FACTOR_PREFER,
+                                         design="x_design"), tyre_ids) for response in responses}
+    return {t: _factor_frame({r: rows[r][t] for r in responses}, factor, hold) for t in tyre_ids}
 
 
 def surface_effects(results: pd.DataFrame, response: str = STIFFNESS) -> tuple[pd.DataFrame, pd.DataFrame]:

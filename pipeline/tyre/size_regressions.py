@@ -160,11 +160,12 @@ def selection_search(points: pd.DataFrame, name: str, *, max_excluded: int = 3,
     codes = base["tyre_id"].map({t: i for i, t in enumerate(ids)}).to_numpy(dtype=np.int64) if ids else \
         np.zeros(len(base), dtype=np.int64)
     xs, ys = np.asarray(base[spec["x"]], dtype=float), np.asarray(base[spec["y"]], dtype=float)
+    of_tyre = codes[None, :] == np.arange(len(ids))[:, None]  # row mask of each tyre
     rows = []
     for k in range(0, max_excluded + 1):
         for ex_codes in itertools.combinations(range(len(ids)), k):
             ex = tuple(ids[i] for i in ex_codes)
-            keep = ~np.isin(codes, ex_codes) if ex_codes else np.ones(len(codes), dtype=bool)
+            keep = ~np.logical_or.reduce(of_tyre[list(ex_codes)]) if ex_codes else np.ones(len(codes), dtype=bool)
             f = _quick_fit(xs[keep], ys[keep])
             rows.append(dict(fit=name, condition=cond,
                              change=("as printed" if not ex else "also excluding " + ",".join(ex)),
@@ -208,7 +209,7 @@ def _fmt(v, d=3):
     return "null" if v is None or not np.isfinite(v) else f"{v:.{d}g}"
 
 
-def _finding(name: str, spec: dict, f: dict, sub: pd.DataFrame, points: pd.DataFrame) -> str:
+def _finding(name: str, spec: dict, f: dict, sub: pd.DataFrame, points: pd.DataFrame, search=None) -> str:
     if f["n"] == 0 or not np.isfinite(f["slope"]):
         return f"not computable: {f['reason'] or 'no tyres in the selection'}"
     parts = []
@@ -239,7 +240,7 @@ def _finding(name: str, spec: dict, f: dict, sub: pd.DataFrame, points: pd.DataF
         parts.append("Table III and Table II sizes differ (" + "; ".join(pairs) + ") — "
                      + ("W and R identical, no effect on the fit" if same else "W·R differs: Table II sizes used"))
     if not ok:
-        search = selection_search(points, name, max_excluded=3)
+        search = selection_search(points, name, max_excluded=3) if search is None else search
         hits = search.loc[search["matches_printed"]]
         if len(hits):
             parts.append(f"{len(hits)} selection(s) reproduce the printed values, first: "
@@ -256,7 +257,8 @@ def _finding(name: str, spec: dict, f: dict, sub: pd.DataFrame, points: pd.DataF
     return ". ".join(parts)
 
 
-def size_regressions(table: pd.DataFrame, tyres: pd.DataFrame | None, source: str) -> pd.DataFrame:
+def size_regressions(table: pd.DataFrame, tyres: pd.DataFrame | None, source: str, *,
+                     searches: dict[str, pd.DataFrame] | None = None) -> pd.DataFrame:
     """The three across-tyre fits from one Table III (``source`` "published" or "ours").
 
     Parameters
@@ -267,6 +269,10 @@ def size_regressions(table: pd.DataFrame, tyres: pd.DataFrame | None, source: st
         ``tyres`` table for sizes and ages.
     source : str
         Label for the ``source`` column.
+    searches : dict, optional
+        :func:`selection_search` (``max_excluded=3``) of each fit on ``tyre_points(table, tyres)``
+        where the caller has it already; the findings of fits not reproduced use it instead
+        of searching again.
 
     Returns
     -------
@@ -294,7 +300,8 @@ def size_regressions(table: pd.DataFrame, tyres: pd.DataFrame | None, source: st
         for k in ("intercept", "slope", "r_squared"):
             row[f"{k}_difference"] = (f[k] - spec[k]) if spec[k] is not None else np.nan
         row["reproduces_printed"] = bool(_matches(f, spec))
-        row["finding"] = _finding(name, spec, f, sub, points) if not points.empty else "no Table III rows"
+        row["finding"] = _finding(name, spec, f, sub, points, (searches or {}).get(name)) \
+            if not points.empty else "no Table III rows"
         row["thesis_ref"] = spec["ref"]
         rows.append(row)
     return pd.DataFrame(rows)

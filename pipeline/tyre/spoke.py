@@ -46,7 +46,7 @@ __all__ = ["R0_13_6R38_M", "H_OVER_R0", "FREQUENCY_HZ", "AMPLITUDE_M", "C_COULOM
     "C_VISCOUS_FIG45_N_S_PER_M_PER_RAD", "ASPECT_RATIO_DEFAULT", "unloaded_radius_m", "contact_half_angle",
     "spoke_rate", "vertical_force", "vertical_force_spokes", "damping_basis", "equivalent_damping",
     "fit_coefficients", "force_curves", "speed_curves", "frequency_curves", "amplitude_curves",
-    "deflection_curves", "SPOKE_FIT_COLUMNS", "fit_tyres"]
+    "deflection_curves", "SPOKE_FIT_COLUMNS", "fit_tyres", "fit_tyres_each"]
 
 #: Unloaded radius of the 13.6R38 tyre used in the thesis' model, m (§5.5.2).
 R0_13_6R38_M = 0.795
@@ -392,12 +392,51 @@ def fit_tyres(results: pd.DataFrame, tyres: pd.DataFrame | None = None, *,
     points : DataFrame
         Per tyre and speed: measured and fitted damping (kNs/m) and error.
     """
+    items = list(_fit_items(results, tyres, None, min_speed_km_h, h_over_r0))
+    return _fit_frames([row for _, row, _ in items], [p for _, _, p in items if p is not None])
+
+
+def fit_tyres_each(results: pd.DataFrame, tyres: pd.DataFrame | None = None, *, tyre_ids: list[str],
+                   min_speed_km_h: float = 10.0,
+                   h_over_r0: float = H_OVER_R0) -> dict[str, tuple[pd.DataFrame, pd.DataFrame]]:
+    """:func:`fit_tyres` of each tyre on its own, all tyres in one pass.
+
+    ``out[tyre]`` equals ``fit_tyres(<results rows of tyre>, <tyres row of tyre>)``: the
+    nominal runs are selected once.
+
+    Examples
+    --------
+    >>> fits, points = fit_tyres_each(pd.DataFrame(), tyre_ids=["T1"])["T1"]
+    >>> len(fits), len(points)
+    (0, 0)
+    """
+    tyre_ids = [str(t) for t in tyre_ids]
+    out = {t: _fit_frames([], []) for t in tyre_ids}  # a tyre without rows: no fit, as fit_tyres
+    for tid, row, pts in _fit_items(results, tyres, set(tyre_ids), min_speed_km_h, h_over_r0):
+        out[tid] = _fit_frames([row], [] if pts is None else [pts])
+    return out
+
+
+_POINTS_COLUMNS = ["tyre_id", "speed_km_h", "used_in_fit", "frequency_Hz", "amplitude_mm_pp", "damping_kN_s_per_m",
+                   "fitted_damping_kN_s_per_m", "error_percent", "fitted_nonneg_damping_kN_s_per_m",
+                   "error_nonneg_percent"]
+
+
+def _fit_frames(fits: list[dict], points: list[pd.DataFrame]) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """The two tables of :func:`fit_tyres` from the tyres' rows and point tables."""
+    pts = pd.concat(points, ignore_index=True) if points else pd.DataFrame(columns=_POINTS_COLUMNS)
+    return pd.DataFrame(fits, columns=SPOKE_FIT_COLUMNS), pts
+
+
+def _fit_items(results, tyres, only, min_speed_km_h, h_over_r0):
+    """``(tyre_id, fit row, points or None)`` per tyre of ``results`` (of ``only`` if given), sorted."""
     results = cond.with_columns(results)
     sizes = {}
-    if tyres is not None and not tyres.empty and "size" in tyres:
+    if tyres is not None and not tyres.empty and "size" in tyres and "tyre_id" in tyres:
         sizes = dict(zip(tyres["tyre_id"].astype(str), tyres["size"]))
-    fits, points = [], []
     ids = sorted(results["tyre_id"].dropna().astype(str).unique()) if not results.empty else []
+    if only is not None:
+        ids = [t for t in ids if t in only]
     runs = results.loc[cond.nominal(results)].copy() if not results.empty else results
     if not runs.empty:
         runs["tyre_id"] = runs["tyre_id"].astype(str)
@@ -433,7 +472,7 @@ def fit_tyres(results: pd.DataFrame, tyres: pd.DataFrame | None = None, *,
         if fast.empty:
             row.update(n_speeds=0, status=f"no nominal runs at >= {min_speed_km_h:g} km/h")
             row["note"] = "; ".join(note) or None
-            fits.append(row)
+            yield tid, row, None
             continue
         freq = cond.regressor(sub, "frequency").fillna(cond.NOMINAL_FREQUENCY_HZ)
         amp = cond.regressor(sub, "amplitude").fillna(14.0)
@@ -455,7 +494,6 @@ def fit_tyres(results: pd.DataFrame, tyres: pd.DataFrame | None = None, *,
             max_abs_error_nonneg_percent=100 * phys["max_abs_relative_error"],
             status=fit["status"], note="; ".join(note) or None,
         )
-        fits.append(row)
         if np.isfinite(fit["c_coulomb"]):
             pred = equivalent_damping(g_all["speed_km_h"], g_all["f"], g_all["a"] / 2000.0, h_over_r0, r0,
                                       fit["c_coulomb"], fit["c_viscous"])
@@ -463,15 +501,10 @@ def fit_tyres(results: pd.DataFrame, tyres: pd.DataFrame | None = None, *,
                                            phys["c_coulomb"], phys["c_viscous"])
         else:
             pred = pred_phys = np.full(len(g_all), np.nan)
-        points.append(pd.DataFrame({
+        yield tid, row, pd.DataFrame({
             "tyre_id": tid, "speed_km_h": g_all["speed_km_h"], "used_in_fit": g_all["speed_km_h"] >= min_speed_km_h,
             "frequency_Hz": g_all["f"], "amplitude_mm_pp": g_all["a"], "damping_kN_s_per_m": g_all["damping"],
             "fitted_damping_kN_s_per_m": pred, "error_percent": 100 * (pred / g_all["damping"] - 1),
             "fitted_nonneg_damping_kN_s_per_m": pred_phys,
             "error_nonneg_percent": 100 * (pred_phys / g_all["damping"] - 1),
-        }))
-    pts_cols = ["tyre_id", "speed_km_h", "used_in_fit", "frequency_Hz", "amplitude_mm_pp", "damping_kN_s_per_m",
-                "fitted_damping_kN_s_per_m", "error_percent", "fitted_nonneg_damping_kN_s_per_m",
-                "error_nonneg_percent"]
-    pts = pd.concat(points, ignore_index=True) if points else pd.DataFrame(columns=pts_cols)
-    return pd.DataFrame(fits, columns=SPOKE_FIT_COLUMNS), pts
+        })

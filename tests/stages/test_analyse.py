@@ -61,3 +61,30 @@ def test_excitation_not_found_quarantine_names_the_file(tmp_path):
     q = ctx.read_table("quarantine")
     row = q[q["stage"] == "analyse"]
     assert r.n_quarantined == 1 and row["file"].iloc[0].endswith("flat.parquet")
+
+
+def test_a_run_analysed_alone_gives_the_bytes_it_gives_in_a_batch(tmp_path):
+    """An added run is analysed in a batch of its own; a clean build puts it in a batch with others.
+
+    numpy sums a (1, n) batch along another path than a (rows >= 2, n) one: the type A
+    uncertainty moved in its last bit (every run of the demo campaign) before a lone run was
+    analysed as two copies of itself.
+    """
+    import pandas as pd
+
+    from tyrelab.stages.analyse import analyse_paths
+
+    paths = []
+    for i, (k, c) in enumerate(((300e3, 2500.0), (150e3, 900.0), (220e3, 1600.0))):
+        paths.append(str(tmp_path / f"r{i}.parquet"))
+        spring_damper_recording(k, c, force_noise_N=80.0, seed=10 + i).to_parquet(paths[-1])
+
+    def task(ps):
+        return {"paths": ps, "interference_Hz": [[5.2] for _ in ps], "axle_mass_kg": [600.0] * len(ps),
+                "sample_rate_Hz": 256.0}
+
+    together = analyse_paths(task(paths))
+    for i, p in enumerate(paths):
+        alone = analyse_paths(task([p]))
+        assert len(alone) == 1
+        pd.testing.assert_frame_equal(alone, together.iloc[[i]].reset_index(drop=True), check_exact=True)

@@ -6,7 +6,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from tyrelab.executor import map_batches
+from tyrelab.executor import map_alongside, map_batches
 from tyrelab.stages import Context, run_pipeline
 from synthetic import manifest_row, spring_damper_recording, write_campaign
 
@@ -16,6 +16,10 @@ TABLES = ["manifest.parquet", "results.parquet", "quarantine.parquet", "tyres.pa
 
 def square(x):
     return x * x
+
+
+def square_and_pid(x):
+    return x * x, os.getpid()
 
 
 def write_marker(path):
@@ -35,6 +39,18 @@ def test_local_map_preserves_order():
     ctx = SimpleNamespace(executor="local", jobs=2, scheduler=None)
     assert map_batches(square, range(7), ctx) == [x * x for x in range(7)]
     assert map_batches(square, [], ctx) == []
+
+
+def test_map_alongside_shares_the_work_and_keeps_the_order():
+    """This process works while the worker starts; the results are in order wherever they ran."""
+    out = map_alongside(square_and_pid, range(12), jobs=2)
+    assert [r for r, _ in out] == [x * x for x in range(12)]
+    pids = {p for _, p in out}
+    assert os.getpid() in pids  # this process drew some
+    assert len(pids) == 2  # and the one worker the others
+    assert map_alongside(square, [3], jobs=2) == [9] and map_alongside(square, [], jobs=2) == []
+    with pytest.raises(ValueError, match="jobs"):
+        map_alongside(square, [1], jobs=0)
 
 
 def test_unknown_executor_is_refused():
@@ -108,3 +124,22 @@ def test_the_tyrelab_command_defaults_blas_to_one_thread():
             "import numpy\nprint(os.environ['OPENBLAS_NUM_THREADS'])\n")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
     assert out.stdout.strip().splitlines()[-1] == "1", out.stderr
+
+
+def _preloaded(_):
+    import sys
+
+    return "tyrelab.stages.analyse" in sys.modules and "tyrelab.report.site" in sys.modules
+
+
+def test_workers_start_with_the_stage_modules_imported():
+    """Workers are forked from a server that imported the stages' worker modules once."""
+    from multiprocessing import forkserver
+
+    from tyrelab import executor
+    from tyrelab.stages import Context
+
+    server = forkserver._forkserver
+    if server._forkserver_pid is not None and "tyrelab._worker_ready" not in (server._preload_modules or []):
+        pytest.skip("a forkserver without tyrelab's preload was started earlier in this process")
+    assert executor.map_batches(_preloaded, [1, 2], Context(jobs=2)) == [True, True]

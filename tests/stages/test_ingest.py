@@ -51,3 +51,23 @@ def test_downward_positive_accelerations_are_rejected(tmp_path):
     ctx = Context(raw=raw, build=tmp_path / "build", jobs=1)
     assert run_stage("ingest", ctx).n_quarantined == 1
     assert "downward-positive" in ctx.read_table("quarantine")["reason"].iloc[0]
+
+
+def test_runs_converted_by_other_code_are_converted_again(tmp_path):
+    """The per-run reuse is valid only for the code that converted the run: after an upgrade that
+    changes the conversion, a build must hold what a clean build of the new code holds."""
+    import json
+    import logging
+
+    from tyrelab.stages.ingest import run as ingest_run
+
+    raw = write_campaign(tmp_path / "raw", [(manifest_row(f"r{i}", f"r{i}.parquet"), spring_damper_recording(seed=i))
+                                            for i in range(2)])
+    ctx = Context(raw=raw, build=tmp_path / "build", jobs=1, log=logging.getLogger("tyrelab.test"))
+    assert ingest_run(ctx).message == "2 converted, 0 unchanged"
+    assert ingest_run(ctx).message == "0 converted, 2 unchanged"
+    path = ctx.state / "ingest_runs.json"
+    kept = json.loads(path.read_text())
+    kept["r0"]["code"] = "an older version"
+    path.write_text(json.dumps(kept))
+    assert ingest_run(ctx).message == "1 converted, 1 unchanged"

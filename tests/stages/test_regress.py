@@ -166,3 +166,39 @@ def test_every_comparison_table_gives_ours_minus_thesis_on_non_zero_differences(
     assert t10.loc["pressure", "value_difference"] == pytest.approx(t10.loc["pressure", "value"] - 0.4)
     for name in COMPARISON_TABLES:
         assert assert_differences_are_ours_minus_thesis(ctx.read_table(name), name) > 0, f"{name}: no non-zero case"
+
+
+def _mixed_results():
+    """:func:`_results` plus tyres that take the other paths of the per-tyre fits: runs with
+    their own uncertainties (WLS), two loads none of which varies the pressure (pooled), only
+    failed-QC runs, and a tyre missing from the catalogue."""
+    rows = _results().to_dict("records")
+    rng = np.random.default_rng(3)
+    for p in (0.8, 1.1, 1.4, 1.6):
+        for v in (0.0, 10.0):
+            rows.append(_run("T5", v, p, 300 + 150 * p + rng.normal(0, 3), 1.0 + 0.3 * p + rng.normal(0, 0.02),
+                             stiffness_u_N_per_m=float(rng.uniform(500, 5000)),
+                             damping_u_N_s_per_m=float(rng.uniform(5, 50))))
+    for p, load in ((0.9, 15.0), (1.3, 20.0)):
+        rows.append(_run("T7", 10.0, p, 250 + 100 * p, 1.1, load_kN=load))
+    rows.append(_run("T8", 10.0, 1.2, 280.0, 1.0, qc_ok=False))
+    rows.append(_run("ZZ1", 15.0, 1.2, 260.0, 0.95))
+    rows.append(_run("ZZ1", 15.0, 1.6, 290.0, 1.05, amplitude_mm_pp=20.0, amplitude_measured_mm_pp=20.5))
+    return pd.DataFrame(rows)
+
+
+def test_tyre_fits_in_one_pass_equal_one_tyre_at_a_time():
+    results = _mixed_results()
+    tyres = pd.read_csv(REPO_RAW / "tyres.csv")
+    ids = sorted(results["tyre_id"].unique())
+    each = regress.tyre_fits_each(results, ids, tyres)
+    assert set(each) == set(ids)
+    for t in ids:
+        alone = regress.tyre_fits(results.loc[results["tyre_id"] == t], [t], tyres.loc[tyres["tyre_id"] == t])
+        assert set(each[t]) == set(alone)
+        for name, df in alone.items():
+            pd.testing.assert_frame_equal(each[t][name], df, check_exact=True, obj=f"{t} {name}")
+    k = pd.concat([each[t]["k_speed"] for t in ids])
+    assert (k["weighting"] != "OLS").any()  # the WLS path is exercised
+    assert each["T7"]["k_speed"]["note"].str.startswith("pooled").any()  # and the pooled one
+    assert each["T8"]["k_cond"]["n"].eq(0).all() and each["ZZ1"]["spoke_fit"]["size"].isna().all()
