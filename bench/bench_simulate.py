@@ -14,6 +14,10 @@ shared, wall times are not comparable between runs):
     switched runs' accelerations, relative to each run's r.m.s.);
 * the two studies themselves (:func:`~tyrelab.vehicle.studies.tractor_study`,
   :func:`~tyrelab.vehicle.studies.carriage_study`);
+* the ch. 6 reference batch (the carriage study's nonlinear runs) by
+  :func:`~tyrelab.vehicle.carriage.simulate_nonlinear` (state as one array, buffers, about half
+  the numpy calls a step) and by the plain RK4 loop it replaced (``textbook_carriage``, the
+  baseline): CPU of each, ratio, and whether the outputs are bit-identical;
 * with ``--stage``: the simulate stage on an empty build (shipped tables and scenarios),
   ``--jobs 1`` and ``--jobs 2``, CPU of this process and of its worker processes.
 
@@ -39,7 +43,7 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 
 from tyrelab import published  # noqa: E402
-from tyrelab.vehicle import studies, tractor  # noqa: E402
+from tyrelab.vehicle import carriage, studies, tractor  # noqa: E402
 from tyrelab.vehicle import published_layouts as layouts  # noqa: E402
 
 _TRACTOR_ARRAYS = tractor.PARAMETERS
@@ -79,6 +83,59 @@ def _subset(tr: tractor.Tractor, idx) -> tractor.Tractor:
     models = np.broadcast_to(np.asarray(tr.longitudinal_model, dtype=object), (np.size(tr.mass_kg),))
     return tractor.Tractor(**{k: np.asarray(getattr(tr, k))[idx] for k in _TRACTOR_ARRAYS},
                            longitudinal_model=str(models[idx][0]))
+
+
+def _capture_carriage(xii, stationary) -> tuple:
+    """The (carriage, inputs, kwargs) the ch. 6 study hands :func:`carriage.simulate_nonlinear`."""
+    seen = []
+    real = carriage.simulate_nonlinear
+
+    def recorder(*args, **kw):
+        seen.append((args, kw))
+        return real(*args, **kw)
+
+    carriage.simulate_nonlinear = recorder
+    try:
+        studies.carriage_study(xii, stationary, seed=5007)
+    finally:
+        carriage.simulate_nonlinear = real
+    (args, kw), = seen
+    return args, kw
+
+
+def textbook_carriage(car: carriage.Carriage, u, ud, dt_s: float = 1e-3, lift_off: bool = True, vs: float = 0.005) -> dict:
+    """The RK4 loop of :func:`carriage.simulate_nonlinear` before issue 15 (whole-array steps, one
+    numpy call per operation): the baseline of its ratio."""
+    runs = u.shape[0]
+    m, k, c, cp, fc = (np.broadcast_to(np.asarray(getattr(car, f), float), (runs,)) for f in
+                       ("mass_kg", "stiffness_N_per_m", "damping_N_s_per_m", "parasitic_damping_N_s_per_m",
+                        "coulomb_friction_N"))
+    floor = -m * carriage.GRAVITY_M_S2 if lift_off else np.full(runs, -np.inf)
+    inv_m = 1.0 / m
+
+    def accel(z, v, uu, uud):
+        ft = np.maximum(k * (uu - z) + c * (uud - v), floor)
+        return (ft - cp * v - fc * np.tanh(v / vs)) * inv_m, ft
+
+    n = (u.shape[1] + 1) // 2
+    z_out, v_out, a_out = np.empty((runs, n)), np.empty((runs, n)), np.empty((runs, n))
+    off, z, v, h = np.zeros(runs), np.zeros(runs), np.zeros(runs), dt_s
+    for i in range(n):
+        j = 2 * i
+        a1, ft = accel(z, v, u[:, j], ud[:, j])
+        z_out[:, i], v_out[:, i], a_out[:, i] = z, v, a1
+        off += ft <= floor
+        if i == n - 1:
+            break
+        zb, vb = z + 0.5 * h * v, v + 0.5 * h * a1
+        a2, _ = accel(zb, vb, u[:, j + 1], ud[:, j + 1])
+        zc, vc = z + 0.5 * h * vb, v + 0.5 * h * a2
+        a3, _ = accel(zc, vc, u[:, j + 1], ud[:, j + 1])
+        zd, vd = z + h * vc, v + h * a3
+        a4, _ = accel(zd, vd, u[:, j + 2], ud[:, j + 2])
+        z = z + h / 6.0 * (v + 2 * vb + 2 * vc + vd)
+        v = v + h / 6.0 * (a1 + 2 * a2 + 2 * a3 + a4)
+    return {"z_m": z_out, "v_m_s": v_out, "a_m_s2": a_out, "lift_off_fraction": off / n}
 
 
 def old_path(tr: tractor.Tractor, inputs, dt_s: float) -> dict:
@@ -149,8 +206,16 @@ def main(argv=None) -> int:
     sw_rows = np.flatnonzero(switched["method_used"] == "exact+rk4")
     _, cpu_car = _cpu(studies.carriage_study, layouts.carriage_rolling(pub["table_xii"]),
                       layouts.carriage_stationary(pub["table_xii"]), seed=5007)
+    (car, u, ud, *rest), car_kw = _capture_carriage(layouts.carriage_rolling(pub["table_xii"]),
+                                                    layouts.carriage_stationary(pub["table_xii"]))
+    buffered, cpu_buffered = _cpu(carriage.simulate_nonlinear, car, u, ud, *rest, **car_kw)
+    plain, cpu_plain = _cpu(textbook_carriage, car, u, ud, *rest, **car_kw)
     out = {
         "load_average_1min": round(os.getloadavg()[0], 1),
+        "carriage_batch": {"runs": int(u.shape[0]), "steps": int((u.shape[1] + 1) // 2),
+                           "cpu_s": {"buffered": round(cpu_buffered, 2), "textbook": round(cpu_plain, 2)},
+                           "ratio_textbook_over_buffered": round(cpu_plain / cpu_buffered, 2),
+                           "bit_identical": all(np.array_equal(buffered[k], plain[k]) for k in plain)},
         "tractor_batch": {"runs": int(inputs[0].shape[0]), "samples_per_run": int((inputs[0].shape[1] + 1) // 2),
                           "switched_runs": int(sw_rows.size),
                           "exact_runs": int(np.sum(switched["method_used"] == "exact"))},

@@ -11,6 +11,7 @@ the probability, under a normal model N(mean, sd), of lying within ±10 % and ±
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -170,10 +171,19 @@ def envelope(x, fs_Hz: float, centre_Hz: float, cutoff_Hz: float = 0.5) -> np.nd
     a = a - a.mean()
     t = np.arange(a.size) / fs_Hz
     z = a * np.exp(-2j * math.pi * centre_Hz * t)
-    sos = signal.butter(4, cutoff_Hz, fs=fs_Hz, output="sos")
+    sos = _lowpass_sos(float(cutoff_Hz), float(fs_Hz)).copy()  # (scipy's sosfilt wants a writable array)
     zr = signal.sosfiltfilt(sos, z.real)
     zi = signal.sosfiltfilt(sos, z.imag)
     return 2.0 * np.hypot(zr, zi)
+
+
+@functools.lru_cache(maxsize=16)
+def _lowpass_sos(cutoff_Hz: float, fs_Hz: float) -> np.ndarray:
+    """4th-order Butterworth low-pass of :func:`envelope` (second-order sections, read-only; kept:
+    designing it cost about as much as filtering a record)."""
+    sos = signal.butter(4, cutoff_Hz, fs=fs_Hz, output="sos")
+    sos.flags.writeable = False
+    return sos
 
 
 def envelope_similarity(env_x, env_y, fs_Hz: float, max_lag_s: float = 1.0) -> float:

@@ -234,30 +234,40 @@ class _Exact:
             chunk = min(2 * chunk, EXACT_CHUNK_MAX) if chunk else None  # in contact for the whole chunk: look further
 
 
+#: The RK4 loop's order of the state ``z, θ, x, z', θ', x', s`` (:func:`_to_states`' ``y7``): each
+#: displacement beside its rate, so one numpy call takes ``[u - z, u' - z']`` or ``[d, x' + h θ']``
+#: (:class:`_Rhs`); and back.
+_RK4_ORDER = np.array([0, 3, 1, 4, 2, 5, 6])
+_Y7_ORDER = np.argsort(_RK4_ORDER)
+
+
 class _Rhs:
     """Right-hand side of the nonlinear tractor for a batch of runs, into preallocated buffers.
 
     A batch is tens of runs, so the cost is the number of numpy calls, not the arithmetic: the
-    front and rear axles are one (2, runs) array each call (``[a, -b]`` the levers: ``u_r - z +
-    b θ`` is ``u_r - z - (-b) θ`` exactly), each longitudinal model is worked out on its own
-    contiguous slice of runs (the runs must come grouped by model, :func:`_run_switched` sorts
-    them), results go into buffers (``out=``), scalars are arrays (a Python float operand costs a
-    numpy call 60 % more). The floating-point operations and their order are those of the
-    equations in the module docstring written out plainly (tests/vehicle/test_tractor_switching.py
-    checks bit-identity against that form).
+    state is ``[z, z', θ, θ', x, x', s]`` (:data:`_RK4_ORDER`) and the derivative ``[z', z'',
+    θ', θ'', x', x'', s']``; the front and rear axles' stiffness and damping terms are one (2, 2,
+    runs) array each call (``[a, -b]`` the levers: ``u_r - z + b θ`` is ``u_r - z - (-b) θ``
+    exactly); each longitudinal model is worked out on its own contiguous slice of runs (the runs
+    must come grouped by model, :func:`_run_switched` sorts them); results go into buffers
+    (``out=``); scalars are arrays (a Python float operand costs a numpy call 60 % more). The
+    floating-point operations and their order are those of the equations in the module docstring
+    written out plainly (tests/vehicle/test_tractor_switching.py checks bit-identity against
+    that form).
     """
 
-    def __init__(self, p: dict[str, np.ndarray], models: np.ndarray, lift_off: bool, gravity_m_s2: float, dt_s: float):
+    def __init__(self, p: dict[str, np.ndarray], models: np.ndarray, lift_off: bool, gravity_m_s2: float):
         runs = models.size
         m, inertia, a, b, h = (np.ascontiguousarray(p[k]) for k in PARAMETERS[:5])
         kf, kr, cf, cr, kx, cx = (np.ascontiguousarray(p[k]) for k in PARAMETERS[5:])
         w = m * gravity_m_s2
         wf = -w * b / (a + b) if lift_off else np.full(runs, -np.inf)
         wr = -w * a / (a + b) if lift_off else np.full(runs, -np.inf)
-        self.m, self.inertia, self.h = m, inertia, h
+        self.m, self.inertia, self.h, self.h2 = m, inertia, h, np.stack([h, h])
         self.wr = wr
         self.lever, self.ab = np.stack([a, -b]), np.stack([a, b])
-        self.stiffness, self.damping, self.floors = np.stack([kf, kr]), np.stack([cf, cr]), np.stack([wf, wr])
+        self.coefficients = np.stack([np.stack([kf, kr]), np.stack([cf, cr])])  # [[K_f, K_r], [C_f, C_r]]
+        self.floors = np.stack([wf, wr])
         maxwell_rate = np.divide(kx, cx, out=np.zeros(runs), where=cx > 0)
         maxwell_active = (kx > 0) & (cx > 0)
         models = np.asarray(models)
@@ -270,72 +280,69 @@ class _Rhs:
                 self.slices[kind] = slice(int(at[0]), int(at[-1]) + 1)
         kv = self.slices.get("kelvin_voigt", slice(0, 0))
         mw = self.slices.get("maxwell", slice(0, 0))
-        self.kv = (kx[kv], cx[kv], h[kv])
-        self.mw = (-kx[mw], maxwell_active[mw], maxwell_rate[mw])
-        self.e1, self.e2, self.e3, self.force = np.empty((4, 2, runs))
-        self.d, self.fx, self.t1, self.t2 = np.empty((4, runs))
+        self.kv = np.stack([kx[kv], cx[kv]])
+        # an element without spring or damper exerts no force; times 1 changes nothing, so skipped
+        self.mw = (-kx[mw], None if maxwell_active[mw].all() else maxwell_active[mw], maxwell_rate[mw])
+        self.e1, self.e2 = np.empty((2, 2, 2, runs))
+        self.force, self.dq, self.moments = np.empty((3, 2, runs))
+        self.fx, self.t1 = np.empty((2, runs))
         self.fx[:] = 0.0  # no longitudinal element: no force
         self.contact = np.empty(runs, dtype=bool)
 
     def bind(self, y: np.ndarray, w: np.ndarray, k: np.ndarray, lifted: np.ndarray):
-        """A function of no arguments that writes ``k`` = the derivative of the state ``y`` (7, runs)
-        under inputs ``w`` = ``[u_f, u_r, u_f', u_r']`` (4, runs), and ``lifted`` = ``[F_f <= -W_f,
-        F_r <= -W_r]`` (front, rear off the ground), from the arrays' values at the call (every view
-        taken once, here). ``k[6]`` (Maxwell ``s'``) is written for the Maxwell runs only: it must
-        hold 0 elsewhere."""
+        """A function of no arguments that writes ``k`` = the derivative of the state ``y`` (7, runs,
+        order :data:`_RK4_ORDER`) under inputs ``w`` = ``[[u_f, u_r], [u_f', u_r']]`` (2, 2, runs),
+        and ``lifted`` = ``[F_f <= -W_f, F_r <= -W_r]`` (front, rear off the ground), from the
+        arrays' values at the call (every view taken once, here). ``k[6]`` (Maxwell ``s'``) is
+        written for the Maxwell runs only: it must hold 0 elsewhere."""
         add, sub, mul, div, maximum, less_equal, greater, negative, copyto = (
             np.add, np.subtract, np.multiply, np.divide, np.maximum, np.less_equal, np.greater, np.negative, np.copyto)
-        z, th, x, vz, vth, vx, s = y
-        e1, e2, e3, force, d, fx, t1, t2 = self.e1, self.e2, self.e3, self.force, self.d, self.fx, self.t1, self.t2
-        contact, lever, stiffness, damping, floors, wr = self.contact, self.lever, self.stiffness, self.damping, self.floors, self.wr
-        m, inertia, h, ab = self.m, self.inertia, self.h, self.ab
-        u, ud, force_f, force_r, e1_f, e1_r = w[0:2], w[2:4], force[0], force[1], e1[0], e1[1]
-        k_vel, y_vel, k_z, k_th, k_x = k[0:3], y[3:6], k[3], k[4], k[5]
+        e1, e2, force, dq, moments, fx, t1 = self.e1, self.e2, self.force, self.dq, self.moments, self.fx, self.t1
+        contact, lever, coefficients, floors, wr = self.contact, self.lever[None], self.coefficients, self.floors, self.wr
+        m, inertia, h, h2, ab = self.m, self.inertia, self.h, self.h2, self.ab
+        zv, tv, xv, s = y[0:2, None], y[2:4, None], y[4:6], y[6]  # [z, z'], [θ, θ'] (as (2, 1, runs)), [x, x']
+        e_stiff, e_damp, force_f, force_r, mom_f, mom_r, d = e1[0], e1[1], force[0], force[1], moments[0], moments[1], dq[0]
+        k_vel, y_vel, k_z, k_th, k_x = k[0:6:2], y[1:6:2], k[1], k[3], k[5]
         kv = self.slices.get("kelvin_voigt")
         if kv is not None:
-            kv_kx, kv_cx, kv_h = self.kv
-            kv_f1, kv_f2, kv_d, kv_vth, kv_vx, kv_contact, kv_fx = (a[kv] for a in (t1, t2, d, vth, vx, contact, fx))
+            kv_coef, kv_dq, kv_e, kv_contact, kv_fx = self.kv, dq[:, kv], e2[0, :, kv], contact[kv], fx[kv]
+            kv_kd, kv_cq = kv_e
         mw = self.slices.get("maxwell")
         if mw is not None:
             mw_neg_kx, mw_active, mw_rate = self.mw
-            mw_f1, mw_f2, mw_d, mw_s, mw_contact, mw_fx, mw_ds = (a[mw] for a in (t1, t2, d, s, contact, fx, k[6]))
+            mw_f1, mw_f2 = e2[1, :, mw]
+            mw_d, mw_s, mw_contact, mw_fx, mw_ds = d[mw], s[mw], contact[mw], fx[mw], k[6, mw]
 
         def rhs() -> None:
             # [F_f, F_r] = max(K (u - z -+ lever θ) + C (u' - z' -+ lever θ'), floors)
-            sub(u, z, e1)
-            mul(lever, th, e2)
+            sub(w, zv, e1)  # [[u_f - z, u_r - z], [u_f' - z', u_r' - z']]
+            mul(tv, lever, e2)  # [[a θ, -b θ], [a θ', -b θ']]
             sub(e1, e2, e1)
-            mul(stiffness, e1, e1)
-            sub(ud, vz, e2)
-            mul(lever, vth, e3)
-            sub(e2, e3, e2)
-            mul(damping, e2, e2)
-            add(e1, e2, force)
+            mul(coefficients, e1, e1)
+            add(e_stiff, e_damp, force)
             maximum(force, floors, out=force)  # (a positional out is deprecated for maximum, and slow)
             less_equal(force, floors, out=lifted)
             greater(force_r, wr, out=contact)
-            # rear contact fore-aft d = x + h θ
-            mul(h, th, d)
-            add(x, d, d)
+            # [d, x' + h θ'], d = x + h θ the rear contact's fore-aft displacement
+            mul(h2, tv[:, 0], dq)
+            add(xv, dq, dq)
             if kv is not None:  # F_x = -(k_x d + c_x (x' + h θ')) while in contact
-                mul(kv_kx, kv_d, kv_f1)
-                mul(kv_h, kv_vth, kv_f2)
-                add(kv_vx, kv_f2, kv_f2)
-                mul(kv_cx, kv_f2, kv_f2)
-                add(kv_f1, kv_f2, kv_f1)
-                negative(kv_f1, kv_f1)
-                mul(kv_f1, kv_contact, kv_fx)
+                mul(kv_coef, kv_dq, kv_e)
+                add(kv_kd, kv_cq, kv_fx)
+                negative(kv_fx, kv_fx)
+                mul(kv_fx, kv_contact, kv_fx)
             if mw is not None:  # F_x = -k_x (d - s) while in contact, c_x s' = k_x (d - s)
                 sub(mw_d, mw_s, mw_f2)
                 mul(mw_neg_kx, mw_f2, mw_f1)
-                mul(mw_f1, mw_active, mw_f1)
+                if mw_active is not None:
+                    mul(mw_f1, mw_active, mw_f1)
                 mul(mw_f1, mw_contact, mw_fx)
                 mul(mw_rate, mw_f2, mw_ds)
             copyto(k_vel, y_vel)
             add(force_f, force_r, k_z)
             div(k_z, m, k_z)  # z'' = (F_f + F_r) / M
-            mul(ab, force, e1)
-            sub(e1_f, e1_r, k_th)
+            mul(ab, force, moments)
+            sub(mom_f, mom_r, k_th)
             mul(h, fx, t1)
             add(k_th, t1, k_th)
             div(k_th, inertia, k_th)  # θ'' = (a F_f - b F_r + h F_x) / I
@@ -449,7 +456,7 @@ def _run_switched(p, models, uf, udf, ur, udr, dt_s, lift_off, gravity_m_s2, swi
     exact = [s[1] for s in switched]
     returns = np.array([e is not None for e in exact])
     count, n = idx.size, (uf.shape[1] + 1) // 2
-    rhs = _Rhs({k: v[idx] for k, v in p.items()}, models[idx], lift_off, gravity_m_s2, dt_s)
+    rhs = _Rhs({k: v[idx] for k, v in p.items()}, models[idx], lift_off, gravity_m_s2)
     # inputs [u_f, u_r, u_f', u_r'] of every run, each padded with its last sample twice (the
     # stages past the last sample read it, as a clamped index would), flat: one gather a step
     width = 2 * n + 1
@@ -464,7 +471,7 @@ def _run_switched(p, models, uf, udf, ur, udr, dt_s, lift_off, gravity_m_s2, swi
     first = rows * width + np.arange(3)[:, None]
     w = np.empty((4, 3, count))
     w_flat = w.reshape(4, 3 * count)
-    w1, w2, w3 = w[:, 0], w[:, 1], w[:, 2]
+    w1, w2, w3 = (w.reshape(2, 2, 3, count)[:, :, i] for i in range(3))  # [[u_f, u_r], [u_f', u_r']]
     # results: (5, count, n + 1), the last column a sink for the runs that no longer record
     res = np.empty((5, count, n + 1))
     for i, key in enumerate(_OUTPUTS):
@@ -473,13 +480,13 @@ def _run_switched(p, models, uf, udf, ur, udr, dt_s, lift_off, gravity_m_s2, swi
     res_flat = [res[i].reshape(-1) for i in range(5)]  # one flat view per output: np.put is the fast scatter
     res_start, sink = rows * (n + 1), rows * (n + 1) + n
     pos = np.empty(count, dtype=np.intp)
-    y = np.array([s[3] for s in switched], float).T.copy()  # (7, count)
+    y = np.array([s[3] for s in switched], float).T[_RK4_ORDER].copy()  # (7, count)
     k = np.array([s[2] for s in switched], dtype=np.intp)
     calm = np.zeros(count, dtype=int)
     active = np.ones(count, dtype=bool)
     off = np.zeros((2, count))  # samples off the ground, front and rear
     k1, k2, k3, k4, yb, yc, yd, acc, acc2, y_new = np.zeros((10, 7, count))
-    recorded = list(zip(res_flat, (k1[3], k1[4], k1[5], y[0], y[1])))  # vertical, pitch, longitudinal, z, θ
+    recorded = list(zip(res_flat, (k1[1], k1[3], k1[5], y[0], y[2])))  # vertical, pitch, longitudinal, z, θ
     lifted = np.empty((4, 2, count), dtype=bool)
     lifted_any = lifted.reshape(8, count)
     lifted_now = np.empty((2, count), dtype=bool)
@@ -533,11 +540,11 @@ def _run_switched(p, models, uf, udf, ur, udr, dt_s, lift_off, gravity_m_s2, swi
         np.logical_and(back, returns, out=back)
         if back.any():
             for r in np.flatnonzero(back):  # back in contact for a while: exact again
-                kr, y7 = exact[r].solve(int(k[r]), y[:, r], views, r, lift_off, chunk=EXACT_CHUNK)
+                kr, y7 = exact[r].solve(int(k[r]), y[_Y7_ORDER, r], views, r, lift_off, chunk=EXACT_CHUNK)
                 if y7 is None:
                     active[r] = False
                 else:
-                    k[r], y[:, r], calm[r] = kr, y7, 0
+                    k[r], y[:, r], calm[r] = kr, y7[_RK4_ORDER], 0
     for i, key in enumerate(_OUTPUTS):
         out[key][idx] = views[key]
     out["lift_off_fraction_front"][idx] = off[0] / n
