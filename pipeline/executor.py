@@ -56,7 +56,8 @@ def single_threaded_blas() -> None:
 
 
 def map_batches(
-    fn: Callable[[Any], Any], batches: Sequence[Any], ctx, on_done: Callable[[int], None] | None = None
+    fn: Callable[[Any], Any], batches: Sequence[Any], ctx, on_done: Callable[[int], None] | None = None,
+    alongside: bool = False,
 ) -> list[Any]:
     """Apply ``fn`` to every batch; return the results in the order of ``batches``.
 
@@ -71,6 +72,12 @@ def map_batches(
         Supplies ``executor`` (``"local"`` or ``"dask"``), ``jobs`` and ``scheduler``.
     on_done : callable, optional
         Called with a batch's index as soon as that batch has finished (for progress).
+    alongside : bool, optional
+        With ``executor="local"``, this process works too, beside ``jobs - 1`` workers asked
+        for once the worker server is ready (:func:`map_alongside`): for many small batches
+        (run conversions, analysis batches), so that a first run never waits for the
+        server's imports. Not for a few long batches (the caller would take one of them
+        before the workers start).
 
     Returns
     -------
@@ -91,6 +98,8 @@ def map_batches(
     if ctx.executor != "local":
         raise ValueError(f"unknown executor {ctx.executor!r} (expected one of {', '.join(EXECUTORS)})")
     jobs = max(1, min(int(ctx.jobs or 1), len(batches)))
+    if alongside:
+        return map_alongside(fn, batches, jobs, on_done=on_done)
     results = []
     if jobs == 1:
         for i, b in enumerate(batches):
@@ -269,7 +278,8 @@ def worker_server_state() -> str:
     return "starting"
 
 
-def map_alongside(fn: Callable[[Any], Any], batches: Sequence[Any], jobs: int, depth: int = 2) -> list[Any]:
+def map_alongside(fn: Callable[[Any], Any], batches: Sequence[Any], jobs: int, depth: int = 2,
+                  on_done: Callable[[int], None] | None = None) -> list[Any]:
     """:func:`map_batches` on ``jobs - 1`` local worker processes with this process working too.
 
     The calling process takes the next batch itself whenever the workers have ``depth``
@@ -292,6 +302,8 @@ def map_alongside(fn: Callable[[Any], Any], batches: Sequence[Any], jobs: int, d
         Processes working, this one included (``jobs=1``: all in this process).
     depth : int, optional
         Batches queued per worker (so a worker never waits for this process to hand out work).
+    on_done : callable, optional
+        Called with a batch's index once it has finished (for progress), in this process.
 
     Returns
     -------
@@ -308,9 +320,14 @@ def map_alongside(fn: Callable[[Any], Any], batches: Sequence[Any], jobs: int, d
     if int(depth) < 1:
         raise ValueError(f"depth must be at least 1, got {depth!r}")
     batches = list(batches)
+    done_ = on_done or (lambda i: None)
     workers = min(int(jobs), len(batches)) - 1
     if workers < 1:
-        return [fn(b) for b in batches]
+        results_ = []
+        for i, b in enumerate(batches):
+            results_.append(fn(b))
+            done_(i)
+        return results_
     from concurrent.futures import FIRST_COMPLETED, wait
 
     start_worker_server()
@@ -321,7 +338,9 @@ def map_alongside(fn: Callable[[Any], Any], batches: Sequence[Any], jobs: int, d
     try:
         while nxt < len(batches) or pending:
             for f in [f for f in pending if f.done()]:
-                results[pending.pop(f)] = f.result()
+                i = pending.pop(f)
+                results[i] = f.result()
+                done_(i)
             if pool is None and nxt < len(batches) and worker_server_state() == "ready":
                 pool = ProcessPoolExecutor(max_workers=workers, mp_context=_worker_context(),
                                            initializer=_leave_interrupts_to_the_parent)
@@ -330,11 +349,14 @@ def map_alongside(fn: Callable[[Any], Any], batches: Sequence[Any], jobs: int, d
                 nxt += 1
             if nxt < len(batches):
                 results[nxt] = fn(batches[nxt])
+                done_(nxt)
                 nxt += 1
             elif pending:
-                done, _ = wait(list(pending), return_when=FIRST_COMPLETED)
-                for f in done:
-                    results[pending.pop(f)] = f.result()
+                finished, _ = wait(list(pending), return_when=FIRST_COMPLETED)
+                for f in finished:
+                    i = pending.pop(f)
+                    results[i] = f.result()
+                    done_(i)
     except BaseException:
         if pool is not None:
             _abandon(pool)

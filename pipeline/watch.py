@@ -134,6 +134,10 @@ def watch(ctx, options: WatchOptions | None = None, *, run: Callable | None = No
                 done = now
                 if len(runs) == 1:
                     preload()
+                    if ctx.executor == "local" and int(ctx.jobs or 1) > 1:
+                        from .executor import start_worker_server
+
+                        start_worker_server()  # later pools (a day of runs at once) fork at once
                 if ctx.force:  # --force is for the first run; later runs recompute what changed
                     ctx = dataclasses.replace(ctx, force=False)
                 continue  # look again at once: files may have arrived during the run

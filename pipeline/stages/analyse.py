@@ -207,7 +207,7 @@ def run(ctx: Context) -> StageResult:
     tyres = {r["tyre_id"]: r for _, r in catalogue.iterrows()}
     progress = Progress("analyse", len(todo), logger=ctx.log)
     outs = map_batches(analyse_paths, [_batch_task(c, tyres) for c in chunks], ctx,
-                       on_done=lambda i: progress.step(len(chunks[i])))
+                       on_done=lambda i: progress.step(len(chunks[i])), alongside=True)
     frames = [pd.concat([c.reset_index(drop=True), o], axis=1) for c, o in zip(chunks, outs)]
     new = pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
     if not new.empty:

@@ -352,7 +352,8 @@ def run(ctx: Context) -> StageResult:
     ctx.log.info("ingest: %d run(s) unchanged, %d to convert", len(cached), len(work))
     done = {t["run_id"]: {"run_id": t["run_id"], "sha256": t["prev"]["sha256"], "info": t["prev"]["info"]} for t in cached}
     progress = Progress("ingest", len(work), logger=ctx.log)
-    done.update((d["run_id"], d) for d in map_batches(convert_run, work, ctx, on_done=lambda i: progress.step()))
+    done.update((d["run_id"], d) for d in map_batches(convert_run, work, ctx, on_done=lambda i: progress.step(),
+                                                      alongside=True))
 
     new_state, records = {}, []
     for t in tasks:
