@@ -50,9 +50,25 @@ def run_stage(name: str, ctx: Context) -> StageResult:
 
 
 def run_pipeline(ctx: Context, stages: list[str] | None = None) -> list[StageResult]:
-    """Run ``stages`` (default: every stage of :data:`ORDER`, in order)."""
+    """Run ``stages`` (default: every stage of :data:`ORDER`, in order).
+
+    On a first build with ``--jobs`` above 1 (the worker server was started, see
+    :func:`run_stage`), the chapter 6-7 studies, which read only published tables, are started
+    ahead on workers as soon as the server is ready (:func:`tyrelab.stages.simulate.start_studies_ahead`)
+    and the simulate stage takes their results; studies no stage took are ended at the end.
+    """
     t0 = time.perf_counter()
-    results = [run_stage(name, ctx) for name in (stages or ORDER)]
+    names = list(stages or ORDER)
+    results, ahead = [], None
+    try:
+        for i, name in enumerate(names):
+            if ahead is None and "simulate" in names[i:] and _worker_server_ready():
+                ahead = importlib.import_module(f"{__name__}.simulate")
+                ahead.start_studies_ahead(ctx)
+            results.append(run_stage(name, ctx))
+    finally:
+        if ahead is not None:
+            ahead.abandon_studies_ahead()
     ran = [r.name for r in results if not r.skipped]
     ctx.log.info("recomputed: %s", ", ".join(ran) if ran else "nothing (every stage up to date)")
     ingest = next((r for r in results if r.name == "ingest"), None)
@@ -68,6 +84,14 @@ def run_pipeline(ctx: Context, stages: list[str] | None = None) -> list[StageRes
         time.perf_counter() - t0,
     )
     return results
+
+
+def _worker_server_ready() -> bool:
+    """Whether this process started a worker server that is ready, without importing anything heavy."""
+    import sys
+
+    executor = sys.modules.get(f"{__package__.rsplit('.', 1)[0]}.executor")
+    return executor is not None and executor.worker_server_state() == "ready"
 
 
 def _passed_qc(ctx: Context) -> int | str:

@@ -44,7 +44,7 @@ from ..vehicle import published_layouts as layouts
 from .base import Context, StageResult, write_quarantine
 from .state import ItemCache
 
-__all__ = ["SEED", "STEMS", "THESIS_XX_STATISTICS", "run"]
+__all__ = ["SEED", "STEMS", "THESIS_XX_STATISTICS", "run", "start_studies_ahead", "abandon_studies_ahead"]
 
 SEED = 5007
 #: What the stage reads (see :mod:`tyrelab.stages.state`): the published tables, the ride
@@ -151,24 +151,94 @@ def _task(item: tuple):
     return _study((kind, payload))
 
 
+def _study_plan(pub: dict, cache: ItemCache) -> tuple[dict, dict]:
+    """The chapter 6 and 7 studies: cache key and task payload of each (``"tractor"``, ``"carriage"``).
+
+    Each is kept under the digest of exactly what it reads (ItemCache): a new recording or a
+    changed ride scenario re-runs neither, a changed Table XII only the carriage.
+    """
+    xii = layouts.carriage_rolling(pub["table_xii"])
+    stationary = layouts.carriage_stationary(pub["table_xii"])
+    mass, tyres = layouts.tractor_mass(pub["table_xv"]), layouts.tractor_tyres(pub["table_xvi"])
+    keys = {"tractor": cache.key("tractor", mass, tyres, SEED), "carriage": cache.key("carriage", xii, stationary, SEED)}
+    return keys, {"tractor": (mass, tyres), "carriage": (xii, stationary)}
+
+
+#: Studies started ahead of the stage (:func:`start_studies_ahead`), in this process: key -> (pool, future).
+_AHEAD: dict = {}
+
+
+def start_studies_ahead(ctx: Context) -> list[str]:
+    """Start the chapter 6 and 7 studies that are not in the cache now, one worker each.
+
+    They read only the published Tables XII, XV and XVI, not the recordings, so
+    ``tyrelab run`` starts them on a first build as soon as the worker server is ready
+    (:func:`tyrelab.stages.run_pipeline`): they then run while calibrate and regress keep
+    one core busy, instead of after them. The stage takes their results as its own (the
+    same task, inputs and cache key; one not yet started is cancelled and run by the stage).
+    Returns the names of the studies started.
+    """
+    from concurrent.futures import ProcessPoolExecutor
+
+    from .. import executor
+
+    if _AHEAD or ctx.executor != "local" or int(ctx.jobs or 1) < 2:
+        return []
+    pub, _ = _read(ctx)
+    cache = ItemCache(ctx, "simulate")
+    keys, payloads = _study_plan(pub, cache)
+    todo = [name for name in keys if ctx.force or not (cache.folder / f"{keys[name]}.pkl").is_file()]
+    if not todo:
+        return []
+    pool = ProcessPoolExecutor(max_workers=len(todo), mp_context=executor._worker_context(),
+                               initializer=executor._leave_interrupts_to_the_parent)
+    for name in todo:
+        _AHEAD[keys[name]] = (pool, pool.submit(_task, (name, payloads[name])))
+    ctx.log.info("simulate: %s started ahead, on %d worker(s)", " and ".join(todo), len(todo))
+    return todo
+
+
+def abandon_studies_ahead() -> None:
+    """End the studies started ahead that no stage took (an interrupt, an error, a stage skipped)."""
+    from .. import executor
+
+    pools = {id(pool): pool for pool, _ in _AHEAD.values()}
+    _AHEAD.clear()
+    for pool in pools.values():
+        executor._abandon(pool)
+
+
+def _take_ahead(key: str):
+    """``(True, result)`` of the study started ahead under ``key``, or ``(False, None)`` (none, or
+    cancelled before it started: the stage runs it)."""
+    pool, future = _AHEAD.pop(key, (None, None))
+    if future is None:
+        return False, None
+    if not any(p is pool for p, _ in _AHEAD.values()):
+        pool.shutdown(wait=False, cancel_futures=True)  # its last study: no new work for it
+    if future.cancel():
+        return False, None
+    return True, future.result()
+
+
 def run(ctx: Context) -> StageResult:
     """Run the chapter 6-8 simulations and write their tables (see module docstring)."""
     t0 = time.perf_counter()
     pub, sources = _read(ctx)
-    xii = layouts.carriage_rolling(pub["table_xii"])
-    stationary = layouts.carriage_stationary(pub["table_xii"])
-    # each study is kept under the digest of exactly what it reads (ItemCache): a new recording or
-    # a changed ride scenario re-runs neither, a changed Table XII only the carriage
     cache = ItemCache(ctx, "simulate")
 
-    # the studies not in the cache, the ride scenarios not in the cache and Table XX run side by
-    # side, one executor call (tyrelab.executor.map_batches), longest first: with two workers the
-    # tractor study runs on one while the carriage study, the scenarios and Table XX share the other
-    mass, tyres = layouts.tractor_mass(pub["table_xv"]), layouts.tractor_tyres(pub["table_xvi"])
-    keys = {"carriage": cache.key("carriage", xii, stationary, SEED), "tractor": cache.key("tractor", mass, tyres, SEED)}
+    # the studies not in the cache (nor started ahead), the ride scenarios not in the cache and
+    # Table XX run side by side, one executor call (tyrelab.executor.map_batches), longest first:
+    # with two workers the tractor study runs on one while the carriage study, the scenarios and
+    # Table XX share the other
+    keys, payloads = _study_plan(pub, cache)
     done = {name: v for name, k in keys.items() for hit, v in [cache.get(k)] if hit}
-    todo = [(name, (xii, stationary) if name == "carriage" else (mass, tyres)) for name in ("tractor", "carriage")
-            if name not in done]
+    for name in [n for n in keys if n not in done]:
+        took, value = _take_ahead(keys[name])
+        if took:
+            cache.put(keys[name], value)
+            done[name] = value
+    todo = [(name, payloads[name]) for name in ("tractor", "carriage") if name not in done]
     files = ride.scenario_files(ctx.raw)
     ride_keys, ride_done, ride_todo = _ride_plan(ctx, files, cache)
     ride_items = [("ride", item) for item in ride.scenario_items([f for f, _ in ride_todo], ctx.build)]

@@ -183,3 +183,41 @@ def test_ctrl_c_to_the_whole_process_group_prints_one_line(tmp_path):
     assert proc.returncode == 130, err
     assert "Traceback" not in err and "KeyboardInterrupt" not in err, err
     assert err.strip().splitlines()[-1].endswith("interrupted")
+
+
+def test_ctrl_c_while_the_studies_run_ahead_prints_one_line(tmp_path):
+    """Ctrl-C to the process group while the chapter 6-7 studies run ahead (first build, --jobs 2):
+    one line, exit 130, their workers ended, no temporary folder left."""
+    raw = write_campaign(tmp_path / "raw", [(manifest_row(f"r{i}", f"r{i}.parquet", pressure_bar=1 + i / 10),
+                                             spring_damper_recording(duration_s=30.0, seed=i)) for i in range(24)])
+    tmp = Path(tempfile.mkdtemp(prefix="t15"))
+    code = ("import sys, tyrelab.stages as s; s.ORDER[:] = ['ingest', 'analyse', 'calibrate', 'regress', 'simulate']\n"
+            "from tyrelab.cli import main; sys.exit(main(sys.argv[1:]))")
+    proc = subprocess.Popen([sys.executable, "-c", code, "run", "--raw", str(raw), "--build", str(tmp_path / "b"),
+                             "--jobs", "2"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env={**os.environ, "TMPDIR": str(tmp)}, start_new_session=True)
+    lines = []
+    for line in proc.stderr:
+        lines.append(line)
+        if "started ahead" in line:
+            break
+    assert any("started ahead" in x for x in lines), "".join(lines)
+    time.sleep(0.5)
+    os.killpg(proc.pid, signal.SIGINT)
+    _, rest = proc.communicate(timeout=120)
+    err = "".join(lines) + rest
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err and "KeyboardInterrupt" not in err, err
+    assert err.strip().splitlines()[-1].endswith("interrupted")
+    deadline = time.monotonic() + 3  # no worker of the studies outlives the command
+    while time.monotonic() < deadline:
+        try:
+            os.killpg(proc.pid, 0)
+        except ProcessLookupError:
+            break
+        time.sleep(0.05)
+    else:
+        raise AssertionError("processes of the interrupted run are still alive")
+    left = list(tmp.iterdir())
+    shutil.rmtree(tmp, ignore_errors=True)
+    assert not left

@@ -168,3 +168,30 @@ def test_tractor_runs_record_their_solution_path(ctx):
     assert set(runs.loc[lifted, "method_used"]) == {"exact+rk4"}
     assert set(runs.loc[~lifted, "method_used"]) <= {"exact", "exact+rk4"}
     assert (runs["method_used"] == "exact").any() and lifted.any()
+
+
+def test_studies_started_ahead_give_the_tables_of_the_stage_alone(ctx, tmp_path):
+    """``run_pipeline`` starts the chapter 6-7 studies ahead on a first build; the stage takes
+    their results: the same bytes as the shared build, which ran them itself (``--jobs 1``)."""
+    import logging
+
+    ahead = Context(raw=ctx.raw, build=tmp_path / "build", jobs=2, log=logging.getLogger("tyrelab.test"))
+    assert simulate.start_studies_ahead(ahead) == ["tractor", "carriage"]
+    assert simulate.start_studies_ahead(ahead) == []  # once
+    for table in ("stiffness_pressure_by_speed", "damping_pressure_by_speed"):  # the ride scenarios' inputs
+        if ctx.has_table(table):
+            ahead.parquet.mkdir(parents=True, exist_ok=True)
+            shutil.copy(ctx.table(table), ahead.table(table))
+    result = simulate.run(ahead)
+    assert "0 reused, 4 computed" in result.message and not simulate._AHEAD
+    for name in ("carriage_runs", "table_xiii", "table_xiv", "tractor_runs", "table_xvii", "table_xviii", "table_xx"):
+        assert ahead.table(name).read_bytes() == ctx.table(name).read_bytes(), name
+
+
+def test_studies_no_stage_took_are_ended(ctx, tmp_path):
+    ahead = Context(raw=ctx.raw, build=tmp_path / "build", jobs=2)
+    assert simulate.start_studies_ahead(ahead)
+    pools = {id(p): p for p, _ in simulate._AHEAD.values()}.values()
+    workers = [w for p in pools for w in (p._processes or {}).values()]
+    simulate.abandon_studies_ahead()
+    assert not simulate._AHEAD and workers and not any(w.is_alive() for w in workers)
