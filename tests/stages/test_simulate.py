@@ -185,7 +185,10 @@ def test_studies_started_ahead_give_the_tables_of_the_stage_alone(ctx, tmp_path)
     result = simulate.run(ahead)
     assert "0 reused, 4 computed" in result.message and not simulate._AHEAD
     for name in ("carriage_runs", "table_xiii", "table_xiv", "tractor_runs", "table_xvii", "table_xviii", "table_xx"):
-        assert ahead.table(name).read_bytes() == ctx.table(name).read_bytes(), name
+        # the same task on the same inputs; the shared build ran it in another process (under
+        # pytest-xdist, after other tests), where a last bit may round otherwise (docs/benchmarks.md)
+        pd.testing.assert_frame_equal(ahead.read_table(name), ctx.read_table(name), check_exact=False, rtol=1e-12,
+                                      atol=0, obj=name)
 
 
 def test_studies_no_stage_took_are_ended(ctx, tmp_path):
