@@ -8,7 +8,8 @@ For each scale a seeded demo campaign is generated once into ``--data`` (reused 
 later invocations, so before/after comparisons read the same bytes; not timed).
 The raw folder of the benchmark is a hard-linked copy of it, and these scenarios
 run one after the other on one build folder, each as a fresh ``python`` process
-(so the wall time includes interpreter start-up and imports, as ``tyrelab run``):
+(so the wall time includes interpreter start-up and imports, as ``tyrelab run``), through
+:func:`tyrelab.stages.run_pipeline` (what ``tyrelab run`` does) with each stage timed:
 
 ``first``           clean build, every stage;
 ``noop``            nothing changed (median of ``--noop-repeats``);
@@ -58,14 +59,18 @@ def cpu():
 t0 = time.perf_counter()
 from tyrelab.executor import single_threaded_blas
 single_threaded_blas()  # as the tyrelab command does
-from tyrelab.stages import ORDER, Context, run_stage
-ctx = Context(raw={raw!r}, build={build!r}, jobs={jobs})
+import tyrelab.stages as S
+ctx = S.Context(raw={raw!r}, build={build!r}, jobs={jobs})
 t_import = time.perf_counter() - t0
 stages = {{}}
-for name in ORDER:
+run_stage = S.run_stage
+def timed(name, ctx):  # run_pipeline, as tyrelab run, each stage timed
     t, c = time.perf_counter(), cpu()
     r = run_stage(name, ctx)
     stages[name] = {{"seconds": round(time.perf_counter() - t, 3), "cpu_s": round(cpu() - c, 3), "ran": not r.skipped}}
+    return r
+S.run_stage = timed
+S.run_pipeline(ctx)
 print(json.dumps({{"import_s": round(t_import, 3), "stages": stages}}))
 """
 
@@ -78,19 +83,23 @@ def cpu():
     return s.ru_utime + s.ru_stime
 from tyrelab.executor import single_threaded_blas
 single_threaded_blas()  # as the tyrelab command does
-from tyrelab.stages import ORDER, Context, run_stage
+import tyrelab.stages as S
 from tyrelab.watch import preload
 t0 = time.perf_counter()
 preload()
-ctx = Context(raw={raw!r}, build={build!r}, jobs={jobs})
+ctx = S.Context(raw={raw!r}, build={build!r}, jobs={jobs})
 print(json.dumps({{"preload_s": round(time.perf_counter() - t0, 3)}}), flush=True)
+run_stage = S.run_stage
+def timed(name, ctx):
+    t, c = time.perf_counter(), cpu()
+    r = run_stage(name, ctx)
+    stages[name] = {{"seconds": round(time.perf_counter() - t, 3), "cpu_s": round(cpu() - c, 3), "ran": not r.skipped}}
+    return r
+S.run_stage = timed
 for line in sys.stdin:
     t_run, c_run = time.perf_counter(), cpu()
     stages = {{}}
-    for name in ORDER:
-        t, c = time.perf_counter(), cpu()
-        r = run_stage(name, ctx)
-        stages[name] = {{"seconds": round(time.perf_counter() - t, 3), "cpu_s": round(cpu() - c, 3), "ran": not r.skipped}}
+    S.run_pipeline(ctx)
     print(json.dumps({{"wall_s": round(time.perf_counter() - t_run, 3), "cpu_s": round(cpu() - c_run, 3),
                       "stages": stages, "ran": [n for n, s in stages.items() if s["ran"]]}}), flush=True)
 """
