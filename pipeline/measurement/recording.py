@@ -223,6 +223,14 @@ def analyse_batch(
         raise ValueError(f"axle_mass_kg must have shape ({accel.shape[0]},), got {mass.shape}")
     if interference_Hz is not None and len(interference_Hz) != accel.shape[0]:
         raise ValueError(f"interference_Hz must have one list per run ({accel.shape[0]}), got {len(interference_Hz)}")
+    if accel.shape[0] == 1:
+        # One run is analysed as two copies of itself: numpy's reductions over a (1, n) batch take
+        # another summation path than over (runs >= 2, n), which moved the last bit of the type A
+        # uncertainty, so a run analysed alone (an added run, analyze-run) must give the numbers
+        # it gives in any batch.
+        twice = analyse_batch(np.repeat(accel, 2, axis=0), np.repeat(beams, 2, axis=0), np.repeat(mass, 2),
+                              sample_rate_Hz, None if interference_Hz is None else list(interference_Hz) * 2)
+        return twice.iloc[:1].reset_index(drop=True)
     force = am.tyre_force(accel[:, 0], accel[:, 1], beams, mass)
     a = accel.mean(axis=1, dtype=float)
     fe = am.excitation_frequency(a, sample_rate_Hz)

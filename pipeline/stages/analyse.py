@@ -167,14 +167,6 @@ def analyse_paths(task: dict) -> pd.DataFrame:
     reuse_freed_memory()
     accel, beams = load_signals(task["paths"])
     masses, interference = np.asarray(task["axle_mass_kg"], dtype=float), list(task["interference_Hz"])
-    if len(accel) == 1:
-        # A batch of one run (an added run on its own) is analysed as two copies of it: numpy's
-        # reductions over a (1, n) batch take another summation path than over (rows >= 2, n),
-        # which moved the last bit of the run's type A uncertainty, and a build made
-        # incrementally must hold the bytes of a clean build, where the run shares a batch.
-        out = analyse_batch(np.repeat(accel, 2, axis=0), np.repeat(beams, 2, axis=0), np.repeat(masses, 2),
-                            task["sample_rate_Hz"], interference * 2)
-        return out.iloc[:1].reset_index(drop=True)
     return analyse_batch(accel, beams, masses, task["sample_rate_Hz"], interference)
 
 
