@@ -2,7 +2,7 @@
 
 The server process inherits the environment variable
 :data:`tyrelab.executor.READY_VARIABLE`, the path of a file to create; the parent waits for
-that file before it asks the server for workers (see :func:`tyrelab.executor._worker_context`).
+that file before it asks the server for workers (see :func:`tyrelab.executor.worker_pool`).
 """
 
 import os

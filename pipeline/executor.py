@@ -24,7 +24,7 @@ from concurrent.futures import ProcessPoolExecutor
 from typing import Any, Callable, Sequence
 
 __all__ = ["EXECUTORS", "BLAS_THREAD_VARIABLES", "WORKER_PRELOAD", "map_batches", "map_alongside",
-           "single_threaded_blas", "start_worker_server", "worker_server_state"]
+           "single_threaded_blas", "start_worker_server", "worker_server_state", "worker_pool", "abandon_pool"]
 
 EXECUTORS = ("local", "dask")
 
@@ -100,20 +100,16 @@ def map_batches(
     jobs = max(1, min(int(ctx.jobs or 1), len(batches)))
     if alongside:
         return map_alongside(fn, batches, jobs, on_done=on_done)
-    results = []
     if jobs == 1:
-        for i, b in enumerate(batches):
-            results.append(fn(b))
-            done(i)
-        return results
-    mp = _worker_context()
-    pool = ProcessPoolExecutor(max_workers=jobs, mp_context=mp, initializer=_leave_interrupts_to_the_parent)
+        return _in_process(fn, batches, done)
+    results = []
+    pool = worker_pool(jobs)
     try:
         for i, r in enumerate(pool.map(fn, batches, chunksize=1)):
             results.append(r)
             done(i)
     except BaseException:
-        _abandon(pool)
+        abandon_pool(pool)
         raise
     pool.shutdown(wait=True)
     return results
@@ -136,6 +132,30 @@ READY_TIMEOUT_S = 300.0
 _ready_marker: str | None = None
 
 
+def _in_process(fn: Callable[[Any], Any], batches: list[Any], done: Callable[[int], None]) -> list[Any]:
+    """``[fn(b) for b in batches]`` in this process, ``done(i)`` after each."""
+    results = []
+    for i, b in enumerate(batches):
+        results.append(fn(b))
+        done(i)
+    return results
+
+
+def _server_pid() -> int | None:
+    """Pid of this process's forkserver, or None if it has not started one."""
+    from multiprocessing import forkserver
+
+    return getattr(getattr(forkserver, "_forkserver", None), "_forkserver_pid", None)
+
+
+def worker_pool(workers: int) -> ProcessPoolExecutor:
+    """A pool of ``workers`` processes forked from the worker server (started and waited for if
+    needed, :func:`start_worker_server`), ignoring SIGINT; end it with :func:`abandon_pool` on an
+    error or interrupt."""
+    return ProcessPoolExecutor(max_workers=workers, mp_context=_worker_context(),
+                               initializer=_leave_interrupts_to_the_parent)
+
+
 def start_worker_server() -> None:
     """Start the worker server now, without waiting for its imports (idempotent).
 
@@ -149,8 +169,7 @@ def start_worker_server() -> None:
     global _ready_marker
     from multiprocessing import forkserver, util
 
-    server = getattr(forkserver, "_forkserver", None)
-    if server is None or getattr(server, "_forkserver_pid", None) is not None:
+    if getattr(forkserver, "_forkserver", None) is None or _server_pid() is not None:
         return  # running (or started by someone else, with their own preload)
     import signal
     import threading
@@ -182,22 +201,16 @@ def _worker_context():
     """
     global _ready_marker
     import time
-    from multiprocessing import forkserver
 
     start_worker_server()
-    ready = _ready_marker
-    if ready is not None:
-        pid = getattr(getattr(forkserver, "_forkserver", None), "_forkserver_pid", None)
-        deadline = time.monotonic() + READY_TIMEOUT_S
-        try:
-            while not os.path.exists(ready) and time.monotonic() < deadline:
-                if pid is not None and _exited(pid):
-                    break  # the server died: the pool will start another and say why
-                time.sleep(0.005)
-        finally:
-            _ready_marker = None  # waited once: a server that died or timed out is not waited for again
-            if os.path.exists(ready):
-                os.unlink(ready)
+    deadline = time.monotonic() + READY_TIMEOUT_S
+    try:  # a server that died is "ready": the pool starts another and says why
+        while worker_server_state() == "starting" and time.monotonic() < deadline:
+            time.sleep(0.005)
+    finally:
+        ready, _ready_marker = _ready_marker, None  # waited once: not again after a death or a timeout
+        if ready is not None and os.path.exists(ready):
+            os.unlink(ready)
     return multiprocessing.get_context("forkserver")
 
 
@@ -213,7 +226,7 @@ def _leave_interrupts_to_the_parent() -> None:
     """Worker initializer: ignore SIGINT.
 
     Ctrl-C in a terminal signals the whole process group; the parent turns it into one
-    line and exit 130 and ends the workers itself (:func:`_abandon`), so a worker must
+    line and exit 130 and ends the workers itself (:func:`abandon_pool`), so a worker must
     not print its own ``KeyboardInterrupt`` traceback.
     """
     import signal
@@ -221,7 +234,7 @@ def _leave_interrupts_to_the_parent() -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
-def _abandon(pool: ProcessPoolExecutor) -> None:
+def abandon_pool(pool: ProcessPoolExecutor) -> None:
     """End a pool at once after an error or an interrupt in the parent.
 
     ``shutdown(wait=True)`` (what ``with`` does) would first run every queued batch to the
@@ -267,9 +280,7 @@ def _map_dask(fn: Callable[[Any], Any], batches: list[Any], ctx, done: Callable[
 def worker_server_state() -> str:
     """``"none"`` (no worker server in this process), ``"starting"`` (still importing
     :data:`WORKER_PRELOAD`) or ``"ready"``, without waiting (:func:`start_worker_server`)."""
-    from multiprocessing import forkserver
-
-    pid = getattr(getattr(forkserver, "_forkserver", None), "_forkserver_pid", None)
+    pid = _server_pid()
     if pid is None:
         return "none"
     ready = _ready_marker
@@ -323,11 +334,7 @@ def map_alongside(fn: Callable[[Any], Any], batches: Sequence[Any], jobs: int, d
     done_ = on_done or (lambda i: None)
     workers = min(int(jobs), len(batches)) - 1
     if workers < 1:
-        results_ = []
-        for i, b in enumerate(batches):
-            results_.append(fn(b))
-            done_(i)
-        return results_
+        return _in_process(fn, batches, done_)
     from concurrent.futures import FIRST_COMPLETED, wait
 
     start_worker_server()
@@ -342,8 +349,7 @@ def map_alongside(fn: Callable[[Any], Any], batches: Sequence[Any], jobs: int, d
                 results[i] = f.result()
                 done_(i)
             if pool is None and nxt < len(batches) and worker_server_state() == "ready":
-                pool = ProcessPoolExecutor(max_workers=workers, mp_context=_worker_context(),
-                                           initializer=_leave_interrupts_to_the_parent)
+                pool = worker_pool(workers)
             while pool is not None and nxt < len(batches) and len(pending) < workers * depth:
                 pending[pool.submit(fn, batches[nxt])] = nxt
                 nxt += 1
@@ -359,7 +365,7 @@ def map_alongside(fn: Callable[[Any], Any], batches: Sequence[Any], jobs: int, d
                     done_(i)
     except BaseException:
         if pool is not None:
-            _abandon(pool)
+            abandon_pool(pool)
         raise
     if pool is not None:
         pool.shutdown(wait=True)

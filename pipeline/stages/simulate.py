@@ -178,20 +178,17 @@ def start_studies_ahead(ctx: Context) -> list[str]:
     same task, inputs and cache key; one not yet started is cancelled and run by the stage).
     Returns the names of the studies started.
     """
-    from concurrent.futures import ProcessPoolExecutor
-
-    from .. import executor
+    from ..executor import worker_pool
 
     if _AHEAD or ctx.executor != "local" or int(ctx.jobs or 1) < 2:
         return []
     pub, _ = _read(ctx)
     cache = ItemCache(ctx, "simulate")
     keys, payloads = _study_plan(pub, cache)
-    todo = [name for name in keys if ctx.force or not (cache.folder / f"{keys[name]}.pkl").is_file()]
+    todo = [name for name in keys if not cache.has(keys[name])]
     if not todo:
         return []
-    pool = ProcessPoolExecutor(max_workers=len(todo), mp_context=executor._worker_context(),
-                               initializer=executor._leave_interrupts_to_the_parent)
+    pool = worker_pool(len(todo))
     for name in todo:
         _AHEAD[keys[name]] = (pool, pool.submit(_task, (name, payloads[name])))
     ctx.log.info("simulate: %s started ahead, on %d worker(s)", " and ".join(todo), len(todo))
@@ -200,12 +197,12 @@ def start_studies_ahead(ctx: Context) -> list[str]:
 
 def abandon_studies_ahead() -> None:
     """End the studies started ahead that no stage took (an interrupt, an error, a stage skipped)."""
-    from .. import executor
+    from ..executor import abandon_pool
 
     pools = {id(pool): pool for pool, _ in _AHEAD.values()}
     _AHEAD.clear()
     for pool in pools.values():
-        executor._abandon(pool)
+        abandon_pool(pool)
 
 
 def _take_ahead(key: str):

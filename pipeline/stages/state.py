@@ -479,11 +479,18 @@ class ItemCache:
         """Key of one item: its kind, the code fingerprint and the digest of its inputs."""
         return f"{kind}-{digest([self.code, kind, *inputs])[:40]}"
 
+    def has(self, key: str) -> bool:
+        """Whether item ``key`` is stored and may be reused (never with ``--force``), without loading it."""
+        return not self.force and self._path(key).is_file()
+
+    def _path(self, key: str) -> Path:
+        return self.folder / f"{key}.pkl"
+
     def get(self, key: str):
         """``(True, value)`` for a stored item, else ``(False, None)``."""
         self.used.add(key)
-        path = self.folder / f"{key}.pkl"
-        if self.force or not path.is_file():
+        path = self._path(key)
+        if not self.has(key):
             return False, None
         try:
             with open(path, "rb") as fh:
@@ -499,7 +506,7 @@ class ItemCache:
         self.used.add(key)
         self.misses += 1
         self.counts.setdefault(key.rsplit("-", 1)[0], [0, 0])[1] += 1
-        with io.atomic_path(self.folder / f"{key}.pkl") as tmp:
+        with io.atomic_path(self._path(key)) as tmp:
             with open(tmp, "wb") as fh:
                 pickle.dump(value, fh, protocol=pickle.HIGHEST_PROTOCOL)
 
