@@ -28,6 +28,7 @@ import sys
 from pathlib import Path
 
 from . import __version__
+from .io import os_error_line  # noqa: F401 - also this module's, for the commands' error lines
 
 __all__ = ["cmd_generate", "cmd_run", "cmd_watch", "cmd_stage", "cmd_sql", "cmd_analyze_run", "cmd_estimate_stiffness",
     "cmd_natural_frequencies", "build_parser", "main"]
@@ -72,12 +73,6 @@ def _check_raw(args, need_campaign: bool) -> str | None:
         if not discover_campaigns(raw):
             return f"--raw {raw}: no campaign (no manifest.csv in it or below it)"
     return None
-
-
-def os_error_line(exc: OSError) -> str:
-    """One line for an OS error: ``<file>: <what the system said>``."""
-    what = exc.strerror or (str(exc).splitlines()[0] if str(exc) else type(exc).__name__)
-    return f"{exc.filename}: {what}" if getattr(exc, "filename", None) else what
 
 
 def _writing(args, label: str, work) -> int:

@@ -21,7 +21,21 @@ from typing import TYPE_CHECKING, Iterator
 if TYPE_CHECKING:  # pandas/pyarrow are imported where used: a no-op run never needs them
     import pandas as pd
 
-__all__ = ["atomic_path", "write_parquet_atomic", "write_text_atomic", "file_sha256", "discover_campaigns"]
+__all__ = ["atomic_path", "write_parquet_atomic", "write_text_atomic", "file_sha256", "discover_campaigns",
+           "os_error_line"]
+
+
+def os_error_line(exc: OSError) -> str:
+    """One line for an OS error: ``<file>: <what the system said>`` (the command line's and
+    ``tyrelab watch``'s error lines).
+
+    Examples
+    --------
+    >>> os_error_line(PermissionError(13, "Permission denied", "/data/r1.parquet"))
+    '/data/r1.parquet: Permission denied'
+    """
+    what = exc.strerror or (str(exc).splitlines()[0] if str(exc) else type(exc).__name__)
+    return f"{exc.filename}: {what}" if getattr(exc, "filename", None) else what
 
 
 _UMASK = os.umask(0)

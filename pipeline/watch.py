@@ -162,7 +162,7 @@ def preload() -> list[str]:
 
 def _one_run(ctx, run, input_errors) -> WatchRun:
     """One pipeline run; an OS or input error is one line and the watch goes on."""
-    from .cli import os_error_line
+    from .io import os_error_line
 
     t0 = time.perf_counter()
     try:
