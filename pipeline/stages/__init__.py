@@ -36,7 +36,7 @@ def run_stage(name: str, ctx: Context) -> StageResult:
         ctx.log.info("%s", result.summary())
         return result
     ctx.log.info("%s: recomputing (%s)", name, reason)
-    if reason in ("no previous run recorded", "--force") and ctx.executor == "local" and int(ctx.jobs or 1) > 1:
+    if (not prev or ctx.force) and ctx.executor == "local" and int(ctx.jobs or 1) > 1:
         from ..executor import start_worker_server
 
         start_worker_server()  # a first run uses worker pools: their imports overlap this stage's
