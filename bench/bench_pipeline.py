@@ -57,8 +57,9 @@ def cpu():
     s, c = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
     return s.ru_utime + s.ru_stime + c.ru_utime + c.ru_stime
 t0 = time.perf_counter()
-from tyrelab.executor import single_threaded_blas
+from tyrelab.executor import command_gc, single_threaded_blas
 single_threaded_blas()  # as the tyrelab command does
+command_gc()
 import tyrelab.stages as S
 ctx = S.Context(raw={raw!r}, build={build!r}, jobs={jobs})
 t_import = time.perf_counter() - t0
@@ -81,8 +82,9 @@ import json, resource, sys, time
 def cpu():
     s = resource.getrusage(resource.RUSAGE_SELF)
     return s.ru_utime + s.ru_stime
-from tyrelab.executor import single_threaded_blas
+from tyrelab.executor import command_gc, single_threaded_blas
 single_threaded_blas()  # as the tyrelab command does
+command_gc()
 import tyrelab.stages as S
 from tyrelab.watch import preload
 t0 = time.perf_counter()

@@ -494,10 +494,15 @@ def main(argv: list[str] | None = None) -> int:
     Ctrl-C (SIGINT) or SIGTERM ends a command with one line and exit 130, without a
     traceback; ``finally`` blocks and ``atexit`` handlers still run, so temporary
     files, worker pools and their ``pymp-*`` folders are cleaned up.
+
+    Called from the command line (``argv`` None) the garbage collector is tuned for a
+    short-lived process (:func:`tyrelab.executor.command_gc`).
     """
-    from .executor import single_threaded_blas
+    from .executor import command_gc, single_threaded_blas
 
     single_threaded_blas()  # before anything imports numpy (see its docstring)
+    if argv is None:
+        command_gc()
     args = build_parser().parse_args(argv)
     logging.basicConfig(
         level=logging.WARNING if args.quiet else logging.INFO, format="%(message)s", stream=sys.stderr

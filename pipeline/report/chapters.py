@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-__all__ = ["TableSpec", "FigureSpec", "Chapter", "CHAPTERS"]
+__all__ = ["TableSpec", "FigureSpec", "Chapter", "CHAPTERS", "SPOKE_FIGURES"]
 
 
 @dataclass(frozen=True)
@@ -104,9 +104,16 @@ class Chapter:
     items: tuple = ()
 
 
-def _spoke(table: str, number: str, caption: str) -> FigureSpec:
-    from .figures import SPOKE_FIGURES  # the axis choice lives with the figure code
+#: Spoke-model curves: table -> (x column, x label, thesis figure).
+SPOKE_FIGURES = {
+    "spoke_speed": ("speed_km_h", "rolling speed (km/h)", "Figs 44–45"),
+    "spoke_frequency": ("frequency_Hz", "forcing frequency (Hz)", "Fig. 46"),
+    "spoke_amplitude": ("amplitude_mm_pp", "amplitude (mm p-p)", "Fig. 47"),
+    "spoke_deflection": ("deflection_percent", "tyre deflection (% of radius)", "Fig. 48"),
+}
 
+
+def _spoke(table: str, number: str, caption: str) -> FigureSpec:
     x, xlabel, fig = SPOKE_FIGURES[table]
     return FigureSpec(number, caption, "spoke_curves", (table,), "regress", {"x": x, "xlabel": xlabel, "figure": fig})
 

@@ -331,13 +331,9 @@ def predicted_vs_measured(predictions: pd.DataFrame) -> str | None:
     return to_svg(fig)
 
 
-#: Spoke-model curves: table -> (x column, x label, thesis figure).
-SPOKE_FIGURES = {
-    "spoke_speed": ("speed_km_h", "rolling speed (km/h)", "Figs 44–45"),
-    "spoke_frequency": ("frequency_Hz", "forcing frequency (Hz)", "Fig. 46"),
-    "spoke_amplitude": ("amplitude_mm_pp", "amplitude (mm p-p)", "Fig. 47"),
-    "spoke_deflection": ("deflection_percent", "tyre deflection (% of radius)", "Fig. 48"),
-}
+#: Spoke-model curves: table -> (x column, x label, thesis figure); defined with the pages
+#: (:mod:`tyrelab.report.chapters`, which must not import matplotlib) and kept here by name.
+from .chapters import SPOKE_FIGURES  # noqa: E402
 
 
 def spoke_curves(curves: pd.DataFrame, x: str, xlabel: str, figure: str) -> str | None:

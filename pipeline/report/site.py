@@ -35,10 +35,10 @@ from pathlib import Path
 import pandas as pd
 
 from .. import io
-from ..executor import map_alongside
+from ..executor import map_alongside, map_in_background, worker_server_state
 from ..stages.state import digest
 from ..warehouse import check_read_only, connect_read_only
-from . import figures, tables
+from . import tables
 from .chapters import CHAPTERS, Chapter, FigureSpec, TableSpec
 from .render import environment, provenance
 
@@ -50,14 +50,15 @@ RUNS_PER_TYRE = 2
 MAX_RUN_PAGES = 60
 #: Rows shown of a plain (non-comparison) table.
 MAX_PLAIN_ROWS = 40
-#: Fewer figures to draw than this are drawn in this process, more by this process and ``jobs - 1``
-#: workers (:func:`tyrelab.executor.map_alongside`: this process draws from the start and asks for
-#: workers once the worker server has imported the stages' modules, ~2-3 s of CPU on another core
-#: when it is not running yet). A figure takes ~0.15-0.3 s here, where matplotlib is loaded already
+#: Without a worker server ready, fewer figures to draw than this are drawn in this process, more
+#: by this process and ``jobs - 1`` workers (:func:`tyrelab.executor.map_alongside`: this process
+#: draws from the start and asks for workers once the worker server has imported the stages'
+#: modules, ~2-3 s of CPU on another core). A figure takes ~0.1-0.3 s where matplotlib is loaded
 #: (measured on the small demo campaign's one-run change, 7 figures: report 8.4 s wall with 2 fresh
-#: workers, 4.0 s in the process; docs/benchmarks.md); with a worker server ready (started by an
-#: earlier stage) the 7 figures shared with one worker took 2.4 -> 1.9 s of this process' CPU but
-#: 2.7 -> 4.3 s wall on the shared 2 cores (the worker's first figure pays matplotlib's font set-up).
+#: workers, 4.0 s in the process; docs/benchmarks.md). With the server ready (``tyrelab run``
+#: starts it when its first stage runs, so after one added run it is by the report) every figure
+#: goes to ``jobs`` workers forked from it while this process shapes the tables
+#: (:meth:`FigureSet.start`): report 1.76 -> 0.9 s, and this process never imports matplotlib.
 POOL_MIN_FIGURES = 16
 
 
@@ -195,6 +196,8 @@ def draw(task: FigureTask) -> str | None:
         finally:
             if wh is not None:
                 wh.close()
+    from . import figures  # matplotlib: imported only where a figure is drawn
+
     return getattr(figures, task.function)(*task.args, **task.kwargs)
 
 
@@ -223,20 +226,40 @@ class FigureSet:
         self.names[name] = task.key
         return task.key
 
-    def draw_all(self) -> None:
-        """Take what the cache holds, draw the rest in parallel: this process and ``jobs - 1``
-        workers (:func:`tyrelab.executor.map_alongside`)."""
-        todo = []
+    def start(self) -> None:
+        """Take what the cache holds; when the worker server is ready, hand the rest to ``jobs``
+        worker processes (:func:`tyrelab.executor.map_in_background`), which draw while this
+        process shapes the tables; :meth:`draw_all` collects them (or draws them, without a server)."""
+        self._todo = []
         for key, task in self.tasks.items():
             hit, svg = self.cache.get(self.cache.key("figure", key)) if self.cache else (False, None)
             if hit:
                 self.svgs[key] = svg
             else:
-                todo.append(key)
+                self._todo.append(key)
         # Drill-downs (the dearest) first, so that the last figures handed out are cheap ones.
-        todo.sort(key=lambda k: self.tasks[k].kind != "run")
-        jobs = self.jobs if len(todo) >= POOL_MIN_FIGURES else 1
-        svgs = map_alongside(draw, [self.tasks[k] for k in todo], jobs)
+        self._todo.sort(key=lambda k: self.tasks[k].kind != "run")
+        self._background = map_in_background(draw, [self.tasks[k] for k in self._todo], self.jobs)
+
+    def abandon(self) -> None:
+        """End the workers of :meth:`start` (an error or an interrupt before :meth:`draw_all`)."""
+        background, self._background = getattr(self, "_background", None), None
+        if background is not None:
+            background.abandon()
+
+    def draw_all(self) -> None:
+        """The figures not in the cache: collected from the workers of :meth:`start`, else drawn in
+        parallel by this process and ``jobs - 1`` workers (:func:`tyrelab.executor.map_alongside`;
+        by this process alone when fewer than :data:`POOL_MIN_FIGURES` and no worker server is ready)."""
+        if not hasattr(self, "_todo"):
+            self.start()
+        todo, background, self._background = self._todo, self._background, None
+        if background is not None:
+            svgs = background.results()
+        else:
+            ready = worker_server_state() == "ready"
+            svgs = map_alongside(draw, [self.tasks[k] for k in todo],
+                                 self.jobs if len(todo) >= POOL_MIN_FIGURES or ready else 1)
         for key, svg in zip(todo, svgs):
             self.svgs[key] = svg
             if self.cache:
@@ -264,10 +287,13 @@ def resolve_figure(wh: Warehouse, spec: FigureSpec, figs: FigureSet | None = Non
     return {"kind": "figure", "spec": spec, "svg": svg, "note": note}
 
 
-def chapter_items(wh: Warehouse, chapter: Chapter, figs: FigureSet | None = None, cache=None) -> list[dict]:
-    """All tables and figures of one chapter page (tables shaped through ``cache``, see :func:`resolve_table`)."""
-    return [resolve_table(wh, it, cache) if isinstance(it, TableSpec) else resolve_figure(wh, it, figs)
-            for it in chapter.items]
+def chapter_items(wh: Warehouse, chapter: Chapter, figs: FigureSet | None = None, cache=None,
+                  shaped: dict | None = None) -> list[dict]:
+    """All tables and figures of one chapter page (tables shaped through ``cache``, see :func:`resolve_table`,
+    or taken from ``shaped``, keyed by the ``id`` of their :class:`TableSpec`)."""
+    shaped = shaped or {}
+    return [(shaped.get(id(it)) or resolve_table(wh, it, cache)) if isinstance(it, TableSpec)
+            else resolve_figure(wh, it, figs) for it in chapter.items]
 
 
 def run_page_name(run_id: str) -> str:
@@ -289,6 +315,8 @@ def read_signals(wh: Warehouse, row: pd.Series) -> pd.DataFrame:
 
 def run_figure(wh: Warehouse | None, row: pd.Series) -> str | None:
     """The drill-down figure of one run (signals read from its file, else from the warehouse)."""
+    from . import figures
+
     signals = read_signals(wh, row)
     fs = row.get("sample_rate_Hz")
     if (fs is None or pd.isna(fs)) and "time_s" in signals and len(signals) > 1:
@@ -396,11 +424,18 @@ def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1) -> dic
                 figs.request(("spec", id(it)), figure_task(wh, it))
     for _, row in selected.iterrows():
         figs.request(("run", row["run_id"]), run_task(wh, row))
-    figs.draw_all()
+    figs.start()  # with a worker server ready the figures are drawn while the tables are shaped
+    try:
+        shaped = {id(it): resolve_table(wh, it, cache) for chapter in CHAPTERS for it in chapter.items
+                  if isinstance(it, TableSpec)}
+        figs.draw_all()
+    except BaseException:
+        figs.abandon()
+        raise
 
     contents = []
     for chapter in CHAPTERS:
-        items = chapter_items(wh, chapter, figs, cache)
+        items = chapter_items(wh, chapter, figs, cache, shaped)
         for it in items:
             n_tables += it["kind"] == "table"
             n_comparison += it.get("mode") == "comparison"

@@ -36,10 +36,13 @@ def run_stage(name: str, ctx: Context) -> StageResult:
         ctx.log.info("%s", result.summary())
         return result
     ctx.log.info("%s: recomputing (%s)", name, reason)
-    if (not prev or ctx.force) and ctx.executor == "local" and int(ctx.jobs or 1) > 1:
+    if ctx.executor == "local" and int(ctx.jobs or 1) > 1:
         from ..executor import start_worker_server
 
-        start_worker_server()  # a first run uses worker pools: their imports overlap this stage's
+        # Its imports run on the other core while this process works: a first build uses worker
+        # pools in most stages; after one added run the report's figures are drawn by workers
+        # forked from it (~2-3 s into the run, it is ready by then) while this process shapes tables.
+        start_worker_server()
     before = state.snapshot(ctx.build)
     module = importlib.import_module(f"{__name__}.{name}")
     result = module.run(ctx)
@@ -54,9 +57,9 @@ def run_stage(name: str, ctx: Context) -> StageResult:
 def run_pipeline(ctx: Context, stages: list[str] | None = None) -> list[StageResult]:
     """Run ``stages`` (default: every stage of :data:`ORDER`, in order).
 
-    On a first build with ``--jobs`` above 1 (the worker server was started, see
-    :func:`run_stage`), the chapter 6-7 studies, which read only published tables, are started
-    ahead on workers once the per-run stages (:data:`PER_RUN`) are done and the server is ready
+    With ``--jobs`` above 1 (the worker server was started when the first stage ran, see
+    :func:`run_stage`), the chapter 6-7 studies not in the cache (all of them on a first
+    build), which read only published tables, are started ahead on workers once the per-run stages (:data:`PER_RUN`) are done and the server is ready
     (:func:`tyrelab.stages.simulate.start_studies_ahead`), so that they run while calibrate and
     regress keep one core busy; the simulate stage takes their results, and studies no stage
     took are ended at the end.
