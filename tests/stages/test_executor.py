@@ -7,7 +7,7 @@ from types import SimpleNamespace
 
 import pytest
 
-from tyrelab.executor import map_alongside, map_batches, worker_server_state
+from tyrelab.executor import map_alongside, map_batches, map_in_background, worker_server_state
 from tyrelab.stages import Context, run_pipeline
 from synthetic import manifest_row, spring_damper_recording, write_campaign
 
@@ -134,7 +134,70 @@ def test_the_tyrelab_command_defaults_blas_to_one_thread():
 def _preloaded(_):
     import sys
 
-    return "tyrelab.stages.analyse" in sys.modules and "tyrelab.report.site" in sys.modules
+    return all(m in sys.modules for m in ("tyrelab.stages.analyse", "tyrelab.report.site", "tyrelab.report.figures"))
+
+
+def _wait_for_server():
+    map_alongside(square, range(2), jobs=2)  # starts the server (idempotent)
+    deadline = time.monotonic() + 300
+    while worker_server_state() != "ready" and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert worker_server_state() == "ready"
+
+
+def _sleep_and_square(x):
+    time.sleep(x[1])
+    return x[0] * x[0], os.getpid()
+
+
+def test_map_in_background_returns_at_once_and_keeps_the_order():
+    """With the server ready the batches run in workers while the caller goes on; results in order."""
+    assert map_in_background(square, [1, 2], jobs=1) is None  # one process: the caller maps them
+    assert map_in_background(square, [], jobs=2) is None
+    with pytest.raises(ValueError, match="jobs"):
+        map_in_background(square, [1], jobs=0)
+    _wait_for_server()
+    t0 = time.monotonic()
+    bg = map_in_background(_sleep_and_square, [(i, 0.3) for i in range(4)], jobs=2)
+    assert bg is not None and time.monotonic() - t0 < 0.3  # did not wait for the batches
+    out = bg.results()
+    assert [r for r, _ in out] == [0, 1, 4, 9]
+    assert os.getpid() not in {p for _, p in out} and len({p for _, p in out}) == 2
+
+
+def test_map_in_background_abandon_ends_the_workers():
+    _wait_for_server()
+    bg = map_in_background(_sleep_and_square, [(i, 30.0) for i in range(2)], jobs=2)
+    time.sleep(0.5)
+    procs = list(bg._pool._processes.values())
+    assert procs and all(p.is_alive() for p in procs)
+    t0 = time.monotonic()
+    bg.abandon()
+    assert time.monotonic() - t0 < 10 and not any(p.is_alive() for p in procs)
+
+
+def test_command_gc_in_a_command_process():
+    """The tyrelab command's collector thresholds, and gc.freeze run at the process's end (before
+    the handlers registered earlier: atexit runs them last in, first out)."""
+    import subprocess
+    import sys
+
+    code = ("import gc, atexit; from tyrelab.executor import command_gc, GC_THRESHOLDS\n"
+            "atexit.register(lambda: print('frozen at exit:', gc.get_freeze_count() > 0))\n"
+            "print('frozen before:', gc.get_freeze_count() > 0)\n"
+            "command_gc(); command_gc(); assert gc.get_threshold() == GC_THRESHOLDS, gc.get_threshold()")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    assert out.split("\n")[:2] == ["frozen before: False", "frozen at exit: True"]
+
+
+def test_report_site_does_not_import_matplotlib():
+    """The pipeline process shapes tables and writes pages; only figure workers need matplotlib."""
+    import subprocess
+    import sys
+
+    code = "import sys, tyrelab.stages.report; print('matplotlib' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
 
 
 def test_workers_start_with_the_stage_modules_imported():
