@@ -8,4 +8,4 @@ here; a submodule is imported on first use (:mod:`tyrelab._lazy`).
 
 from .._lazy import attach
 
-__getattr__, __dir__, __all__ = attach(__name__)
+__getattr__, __dir__ = attach(__name__)
