@@ -252,7 +252,9 @@ def main(argv=None) -> dict:
     p.add_argument("--label", default="", help="free text stored in the JSON (e.g. before/after)")
     args = p.parse_args(argv)
     result = {"benchmark": "pipeline", "label": args.label, "cores": os.cpu_count(), "jobs": args.jobs,
-              "load_average_at_start": [round(x, 2) for x in os.getloadavg()], "scales": {}}
+              "load_average_at_start": [round(x, 2) for x in os.getloadavg()],
+              # with it set, the children read the package's byte code only if `make compile` wrote it
+              "PYTHONDONTWRITEBYTECODE": os.environ.get("PYTHONDONTWRITEBYTECODE", ""), "scales": {}}
     with tempfile.TemporaryDirectory() as tmp:
         work = args.work or Path(tmp)
         for scale in args.scales:

@@ -150,16 +150,27 @@ def _sleep_and_square(x):
     return x[0] * x[0], os.getpid()
 
 
-def test_map_in_background_returns_at_once_and_keeps_the_order():
+def _square_once_released(x):
+    """x[0] squared once the file x[1] exists (None after 60 s without it)."""
+    deadline = time.monotonic() + 60
+    while not os.path.exists(x[1]):
+        if time.monotonic() > deadline:
+            return None, os.getpid()
+        time.sleep(0.01)
+    return x[0] * x[0], os.getpid()
+
+
+def test_map_in_background_returns_at_once_and_keeps_the_order(tmp_path):
     """With the server ready the batches run in workers while the caller goes on; results in order."""
     assert map_in_background(square, [1, 2], jobs=1) is None  # one process: the caller maps them
     assert map_in_background(square, [], jobs=2) is None
     with pytest.raises(ValueError, match="jobs"):
         map_in_background(square, [1], jobs=0)
     _wait_for_server()
-    t0 = time.monotonic()
-    bg = map_in_background(_sleep_and_square, [(i, 0.3) for i in range(4)], jobs=2)
-    assert bg is not None and time.monotonic() - t0 < 0.3  # did not wait for the batches
+    release = tmp_path / "release"
+    bg = map_in_background(_square_once_released, [(i, str(release)) for i in range(4)], jobs=2)
+    assert bg is not None  # returned while every batch still waits for this process
+    release.touch()
     out = bg.results()
     assert [r for r, _ in out] == [0, 1, 4, 9]
     assert os.getpid() not in {p for _, p in out} and len({p for _, p in out}) == 2
