@@ -172,7 +172,8 @@ def start_studies_ahead(ctx: Context) -> list[str]:
     """Start the chapter 6 and 7 studies that are not in the cache now, one worker each.
 
     They read only the published Tables XII, XV and XVI, not the recordings, so
-    ``tyrelab run`` starts them on a first build as soon as the worker server is ready
+    ``tyrelab run`` starts the ones not cached (both on a first build, the carriage after an
+    edited Table XII) as soon as the per-run stages are done and the worker server is ready
     (:func:`tyrelab.stages.run_pipeline`): they then run while calibrate and regress keep
     one core busy, instead of after them. The stage takes their results as its own (the
     same task, inputs and cache key; one not yet started is cancelled and run by the stage).
