@@ -67,3 +67,60 @@ def test_missing_tables_say_which_stage(small_report):
     assert any("not produced yet by stage simulate" in (n or "") for n in notes), notes
     html = _pages(small_report)[small_report.build / "reports" / "ch6-carriage.html"]
     assert "not produced yet" not in html  # the full build has them
+
+
+def _server_ready():
+    import time
+
+    from tyrelab.executor import start_worker_server, worker_server_state
+
+    start_worker_server()
+    deadline = time.monotonic() + 300
+    while worker_server_state() != "ready" and time.monotonic() < deadline:
+        time.sleep(0.05)
+    return worker_server_state() == "ready"
+
+
+def test_figures_drawn_in_the_background_give_the_same_pages(small_report, tmp_path, monkeypatch):
+    """Every figure drawn by workers forked from the worker server (while the tables are shaped)
+    gives the bytes of the shared report, whose figures were drawn in its own process."""
+    from tyrelab.report import site
+
+    assert _server_ready()
+    handed = []
+    real = site.map_in_background
+    monkeypatch.setattr(site, "map_in_background", lambda *a: handed.append(real(*a)) or handed[-1])
+    info = site.build_site(small_report.build / "warehouse.duckdb", tmp_path / "reports", small_report.raw, jobs=2)
+    assert info["drawn"] == info["figures"] > 0 and handed and handed[0] is not None  # drawn by workers
+    ours = {p.relative_to(tmp_path / "reports"): t for p, t in
+            ((p, p.read_text(encoding="utf-8")) for p in sorted((tmp_path / "reports").rglob("*.html")))}
+    theirs = {p.relative_to(small_report.build / "reports"): t for p, t in _pages(small_report).items()}
+    assert ours.keys() == theirs.keys()
+    assert [p for p in ours if ours[p] != theirs[p]] == []
+
+
+def test_an_error_while_figures_are_drawn_ends_their_workers(small_report, tmp_path, monkeypatch):
+    """An error (or Ctrl-C) in this process while workers draw: the workers are ended, not left running."""
+    import pytest
+
+    from tyrelab import executor
+    from tyrelab.report import site
+
+    assert _server_ready()
+    ended = []
+    real = executor.abandon_pool
+
+    def abandon(pool):
+        procs = list(pool._processes.values())
+        real(pool)
+        ended.append([p.is_alive() for p in procs])
+
+    monkeypatch.setattr(executor, "abandon_pool", abandon)
+
+    def broken(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(site, "resolve_table", broken)
+    with pytest.raises(KeyboardInterrupt):
+        site.build_site(small_report.build / "warehouse.duckdb", tmp_path / "reports", small_report.raw, jobs=2)
+    assert ended and ended[0] and not any(ended[0])  # the pool's workers existed and are gone
