@@ -22,6 +22,9 @@ HERE = Path(__file__).resolve().parent
 CHILD = """
 import json, resource, sys, time
 sys.path.insert(0, {here!r})
+from tyrelab.executor import command_gc, single_threaded_blas
+single_threaded_blas()  # as the tyrelab command does
+command_gc()
 from tyrelab.stages import Context, run_pipeline
 ctx = Context(raw={raw!r}, build={build!r}, jobs={jobs})
 t0 = time.perf_counter()
