@@ -83,19 +83,27 @@ def _server_ready():
 
 def test_figures_drawn_in_the_background_give_the_same_pages(small_report, tmp_path, monkeypatch):
     """Every figure drawn by workers forked from the worker server (while the tables are shaped)
-    gives the bytes of the shared report, whose figures were drawn in its own process."""
+    gives the bytes of the same site drawn in this process.
+
+    Both sites are built here with the footer's "generated" time fixed (``SOURCE_DATE_EPOCH``):
+    the shared report was built minutes earlier, and its footer names that minute.
+    """
     from tyrelab.report import site
 
     assert _server_ready()
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "631152000")
+    db = small_report.build / "warehouse.duckdb"
     handed = []
     real = site.map_in_background
     monkeypatch.setattr(site, "map_in_background", lambda *a: handed.append(real(*a)) or handed[-1])
-    info = site.build_site(small_report.build / "warehouse.duckdb", tmp_path / "reports", small_report.raw, jobs=2)
+    info = site.build_site(db, tmp_path / "workers", small_report.raw, jobs=2)
     assert info["drawn"] == info["figures"] > 0 and handed and handed[0] is not None  # drawn by workers
-    ours = {p.relative_to(tmp_path / "reports"): t for p, t in
-            ((p, p.read_text(encoding="utf-8")) for p in sorted((tmp_path / "reports").rglob("*.html")))}
-    theirs = {p.relative_to(small_report.build / "reports"): t for p, t in _pages(small_report).items()}
-    assert ours.keys() == theirs.keys()
+    handed.clear()
+    assert site.build_site(db, tmp_path / "here", small_report.raw, jobs=1)["drawn"] == info["figures"]
+    assert handed == [None]  # jobs=1: no background workers, drawn in this process
+    ours, theirs = ({p.relative_to(tmp_path / name): p.read_text(encoding="utf-8")
+                     for p in sorted((tmp_path / name).rglob("*.html"))} for name in ("workers", "here"))
+    assert ours.keys() == theirs.keys() and len(ours) > 5
     assert [p for p in ours if ours[p] != theirs[p]] == []
 
 
