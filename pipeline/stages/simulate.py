@@ -17,7 +17,10 @@ scenario × speed × pressure pair). A wrong scenario is quarantined with its pr
 the others still run.
 
 The carriage (ch. 6) and tractor (ch. 7) studies are cached as a whole under the digest of
-the tables each reads, each ride scenario under the digest of what it reads; those not cached
+the tables each reads, and each carriage case (one Table XII rolling row: its reference run and
+four predictions) under the digest of what it reads (:func:`tyrelab.vehicle.studies.carriage_case_inputs`),
+so that an edited Table XII row re-simulates only its cases; each ride scenario is cached under
+the digest of what it reads; those not cached
 and Table XX run side by side in one :func:`tyrelab.executor.map_batches` call
 (``--jobs``/``--executor``), longest first. The tractor runs are
 exact while both axles are in contact and RK4 across lift-off, ``tractor_runs.method_used``
@@ -132,11 +135,13 @@ def _carriage_tables(car: dict) -> dict:
 
 
 def _study(item: tuple) -> dict:
-    """One chapter 6/7 study, the tables the stage keeps."""
-    name, (first, second) = item
+    """One chapter 6/7 study, the tables the stage keeps (the carriage's with its ``cases``)."""
+    name, payload = item
     if name == "carriage":
-        return _carriage_tables(studies.carriage_study(first, second, seed=SEED))
-    return studies.tractor_study(first, second, seed=SEED)
+        xii, stationary, done = payload
+        car = studies.carriage_study(xii, stationary, seed=SEED, cases=done)
+        return {**_carriage_tables(car), "cases": car["cases"]}
+    return studies.tractor_study(*payload, seed=SEED)
 
 
 def _task(item: tuple):
@@ -151,17 +156,39 @@ def _task(item: tuple):
     return _study((kind, payload))
 
 
-def _study_plan(pub: dict, cache: ItemCache) -> tuple[dict, dict]:
-    """The chapter 6 and 7 studies: cache key and task payload of each (``"tractor"``, ``"carriage"``).
+def _study_plan(pub: dict, cache: ItemCache) -> tuple[dict, dict, list]:
+    """The chapter 6 and 7 studies: cache key and inputs of each (``"tractor"``, ``"carriage"``),
+    and the cache keys of the carriage's cases (one per Table XII rolling row).
 
     Each is kept under the digest of exactly what it reads (ItemCache): a new recording or a
-    changed ride scenario re-runs neither, a changed Table XII only the carriage.
+    changed ride scenario re-runs neither, a changed Table XII only the carriage, and of it only
+    the cases whose inputs changed (:func:`_payload`).
     """
     xii = layouts.carriage_rolling(pub["table_xii"])
     stationary = layouts.carriage_stationary(pub["table_xii"])
     mass, tyres = layouts.tractor_mass(pub["table_xv"]), layouts.tractor_tyres(pub["table_xvi"])
     keys = {"tractor": cache.key("tractor", mass, tyres, SEED), "carriage": cache.key("carriage", xii, stationary, SEED)}
-    return keys, {"tractor": (mass, tyres), "carriage": (xii, stationary)}
+    case_keys = [cache.key("carriage-case", inputs, SEED) for inputs in studies.carriage_case_inputs(xii, stationary)]
+    return keys, {"tractor": (mass, tyres), "carriage": (xii, stationary)}, case_keys
+
+
+def _payload(name: str, inputs: tuple, case_keys: list, cache: ItemCache) -> tuple:
+    """The task payload of study ``name``: its inputs, and for the carriage the cases in the cache."""
+    if name != "carriage":
+        return inputs
+    return (*inputs, {i: v for i, k in enumerate(case_keys) for hit, v in [cache.get(k)] if hit})
+
+
+def _keep_study(cache: ItemCache, name: str, key: str, value: dict, case_keys: list) -> dict:
+    """Store a computed study under ``key`` and the carriage's new cases under theirs; return the
+    study's tables (without the cases)."""
+    if name == "carriage":
+        value = dict(value)
+        for k, case in zip(case_keys, value.pop("cases")):
+            if not cache.has(k):
+                cache.put(k, case)
+    cache.put(key, value)
+    return value
 
 
 #: Studies started ahead of the stage (:func:`start_studies_ahead`), in this process: key -> (pool, future).
@@ -185,13 +212,13 @@ def start_studies_ahead(ctx: Context) -> list[str]:
         return []
     pub, _ = _read(ctx)
     cache = ItemCache(ctx, "simulate")
-    keys, payloads = _study_plan(pub, cache)
+    keys, inputs, case_keys = _study_plan(pub, cache)
     todo = [name for name in keys if not cache.has(keys[name])]
     if not todo:
         return []
     pool = worker_pool(len(todo))
     for name in todo:
-        _AHEAD[keys[name]] = (pool, pool.submit(_task, (name, payloads[name])))
+        _AHEAD[keys[name]] = (pool, pool.submit(_task, (name, _payload(name, inputs[name], case_keys, cache))))
     ctx.log.info("simulate: %s started ahead, on %d worker(s)", " and ".join(todo), len(todo))
     return todo
 
@@ -229,22 +256,21 @@ def run(ctx: Context) -> StageResult:
     # Table XX run side by side, one executor call (tyrelab.executor.map_batches), longest first:
     # with two workers the tractor study runs on one while the carriage study, the scenarios and
     # Table XX share the other
-    keys, payloads = _study_plan(pub, cache)
+    keys, inputs, case_keys = _study_plan(pub, cache)
+    cache.keep(case_keys)  # a cached study's cases stay for the next edit of Table XII
     done = {name: v for name, k in keys.items() for hit, v in [cache.get(k)] if hit}
     for name in [n for n in keys if n not in done]:
         took, value = _take_ahead(keys[name])
         if took:
-            cache.put(keys[name], value)
-            done[name] = value
-    todo = [(name, payloads[name]) for name in ("tractor", "carriage") if name not in done]
+            done[name] = _keep_study(cache, name, keys[name], value, case_keys)
+    todo = [(name, _payload(name, inputs[name], case_keys, cache)) for name in ("tractor", "carriage") if name not in done]
     files = ride.scenario_files(ctx.raw)
     ride_keys, ride_done, ride_todo = _ride_plan(ctx, files, cache)
     ride_items = [("ride", item) for item in ride.scenario_items([f for f, _ in ride_todo], ctx.build)]
     items = todo + ride_items + [("table_xx", (layouts.tractors(pub["table_xix"]), pub["table_xx"]))]
     outputs = map_batches(_task, items, ctx)
     for (name, _), value in zip(todo, outputs):
-        cache.put(keys[name], value)
-        done[name] = value
+        done[name] = _keep_study(cache, name, keys[name], value, case_keys)
     ride_outputs, xx = outputs[len(todo):len(todo) + len(ride_items)], outputs[-1]
     car, tr = done["carriage"], done["tractor"]
 
@@ -339,6 +365,7 @@ def run(ctx: Context) -> StageResult:
         n_ok=n_runs + len(files) - len(bad),
         n_quarantined=len(bad),
         seconds=time.perf_counter() - t0,
-        message=f"{len(tables)} tables; {len(files) - len(bad)} ride scenarios; studies {cache.summary()}; "
+        message=f"{len(tables)} tables; {len(files) - len(bad)} ride scenarios; studies {cache.summary(exclude=('carriage-case',))}; "
+                f"carriage cases {cache.summary('carriage-case')}; "
                 "slatted track is a seeded stand-in",
     )

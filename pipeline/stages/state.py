@@ -518,6 +518,10 @@ class ItemCache:
             self.put(key, value)
         return value
 
+    def keep(self, keys) -> None:
+        """Count the entries ``keys`` as used by this run without loading them (:meth:`prune` keeps them)."""
+        self.used.update(keys)
+
     def prune(self) -> int:
         """Delete the entries this run did not use; return how many."""
         n = 0
@@ -527,7 +531,12 @@ class ItemCache:
                 n += 1
         return n
 
-    def summary(self, kind: str | None = None) -> str:
-        """``"12 reused, 3 computed"`` (of the items of ``kind`` only, if given)."""
-        hits, misses = self.counts.get(kind, [0, 0]) if kind else (self.hits, self.misses)
+    def summary(self, kind: str | None = None, exclude: tuple = ()) -> str:
+        """``"12 reused, 3 computed"`` (of the items of ``kind`` only, if given; else of all kinds
+        but those in ``exclude``)."""
+        if kind:
+            hits, misses = self.counts.get(kind, [0, 0])
+        else:
+            hits = self.hits - sum(self.counts.get(k, [0, 0])[0] for k in exclude)
+            misses = self.misses - sum(self.counts.get(k, [0, 0])[1] for k in exclude)
         return f"{hits} reused, {misses} computed"

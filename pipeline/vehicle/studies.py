@@ -42,6 +42,7 @@ from .tractor import PARAMETERS, Tractor, simulate_tractor
 
 __all__ = [
     "T4_ROLLING_RADIUS_M",
+    "carriage_case_inputs",
     "carriage_study",
     "tractor_study",
 ]
@@ -124,11 +125,65 @@ def _half_inputs(x, h, speed, n_steps, x_start=0.0):
     return u[: 2 * n_steps - 1], ud[: 2 * n_steps - 1]
 
 
+def _footprints(table_xii: pd.DataFrame, surface_stiffness_factor: float) -> dict:
+    """Tyre footprint length (m) per load condition of Table XII's rolling rows.
+
+    From the condition's static deflection under the mean rolling stiffness on the
+    slatted surface: the enveloped profile estimates of the condition depend on it.
+    """
+    out = {}
+    for load, g in table_xii.groupby("load_condition", sort=False):
+        k_mean = surface_stiffness_factor * 1e3 * g["stiffness_kN_per_m"].mean()
+        deflection = float(g["load_kg"].iloc[0]) * cm.GRAVITY_M_S2 / k_mean
+        out[load] = ev.contact_length(T4_ROLLING_RADIUS_M, deflection)
+    return out
+
+
+def carriage_case_inputs(
+    table_xii: pd.DataFrame, stationary: pd.DataFrame, surface_stiffness_factor: float = 0.9
+) -> list[dict]:
+    """What each case of :func:`carriage_study` reads, one dict per row of ``table_xii``.
+
+    A case is one rolling row of Table XII (speed and load condition): its reference
+    run and its four predictions. It reads its own row, the stationary row of its
+    load condition and its condition's tyre footprint (:func:`_footprints`, from the
+    condition's mean stiffness); with the study's seed and surface factor that is
+    everything. A cache keyed on these (the simulate stage's) recomputes only the
+    cases whose inputs changed.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> xii = pd.DataFrame({"speed_km_h": [5.0, 10.0], "actual_speed_m_s": [1.4, 2.8],
+    ...                     "load_condition": ["light", "light"], "load_kg": [1860, 1860],
+    ...                     "damping_kN_s_per_m": [2.2, 1.7], "stiffness_kN_per_m": [403.0, 388.0]})
+    >>> st = pd.DataFrame({"load_condition": ["light"], "load_kg": [1860],
+    ...                    "damping_kN_s_per_m": [3.0], "stiffness_kN_per_m": [420.0]})
+    >>> cases = carriage_case_inputs(xii, st)
+    >>> len(cases), sorted(cases[0])
+    (2, ['footprint_m', 'row', 'stationary', 'surface_stiffness_factor'])
+    >>> cases[0]["footprint_m"] == cases[1]["footprint_m"]  # one condition, one footprint
+    True
+    """
+    foot = _footprints(table_xii, surface_stiffness_factor)
+    stat = stationary.set_index("load_condition")
+    return [
+        {
+            "row": {k: (v.item() if hasattr(v, "item") else v) for k, v in row.items()},
+            "stationary": {k: (v.item() if hasattr(v, "item") else v) for k, v in stat.loc[row["load_condition"]].items()},
+            "footprint_m": float(foot[row["load_condition"]]),
+            "surface_stiffness_factor": float(surface_stiffness_factor),
+        }
+        for row in table_xii.reset_index(drop=True).to_dict("records")
+    ]
+
+
 def carriage_study(
     table_xii: pd.DataFrame,
     stationary: pd.DataFrame,
     seed: int = 5007,
     surface_stiffness_factor: float = 0.9,
+    cases: dict | None = None,
 ) -> dict[str, pd.DataFrame]:
     """Chapter 6: carriage runs of Tables XI/XII, rolling vs stationary, two estimates.
 
@@ -143,36 +198,87 @@ def carriage_study(
         Seed of the track stand-in and of the estimates.
     surface_stiffness_factor : float
         Stiffness factor on the slatted track (thesis §6.3: 0.9).
+    cases : dict of int to dict, optional
+        Cases computed before, by row position in ``table_xii``: items of a previous
+        result's ``cases`` whose inputs (:func:`carriage_case_inputs`) are unchanged.
+        Only the other rows are simulated; the result is the same, to the bit, as
+        simulating every row (each run is simulated on its own: the batch of
+        reference runs is elementwise).
 
     Returns
     -------
     dict of DataFrame
         ``runs`` (one row per run with its metrics and ISO 2631 values),
         ``comparisons`` (one row per prediction vs reference), ``table_xiii``,
-        ``table_xiv`` (ours, layout of the thesis), ``spectra`` (profile spectra).
+        ``table_xiv`` (ours, layout of the thesis), ``spectra`` (profile spectra);
+        ``cases`` (list, per row of ``table_xii``: its runs, comparisons and example
+        records, for a later call's ``cases``).
     """
+    conds = table_xii.reset_index(drop=True)
+    cases = dict(cases or {})
+    if any(not isinstance(i, (int, np.integer)) or not 0 <= i < len(conds) for i in cases):
+        raise ValueError(f"cases must be keyed by row positions 0..{len(conds) - 1} of table_xii, got {sorted(cases)!r}")
     track = pr.slatted_track(seed=seed)
     dx = track.dx_m
     lead = int(round(LEAD_IN_M / dx))
-    stat = stationary.set_index("load_condition")
     est_by_load = {}
-    for load, g in table_xii.groupby("load_condition", sort=False):
-        k_mean = surface_stiffness_factor * 1e3 * g["stiffness_kN_per_m"].mean()
-        deflection = float(g["load_kg"].iloc[0]) * cm.GRAVITY_M_S2 / k_mean
-        footprint = ev.contact_length(T4_ROLLING_RADIUS_M, deflection)
+    for load, footprint in _footprints(conds, surface_stiffness_factor).items():
         est = profile_estimates(track, T4_ROLLING_RADIUS_M, footprint, seed + 1)
         est_by_load[load] = {k: np.concatenate([np.full(lead, v[0]), v, np.full(lead, v[-1])]) for k, v in est.items()}
         est_by_load[load]["footprint_m"] = footprint
     x = np.arange(track.x_m.size + 2 * lead) * dx
-    conds = table_xii.reset_index(drop=True)
+    todo = [i for i in range(len(conds)) if i not in cases]
+    if todo:
+        new = _carriage_cases(conds.iloc[todo], stationary.set_index("load_condition"), x, est_by_load,
+                              track.x_m[-1], surface_stiffness_factor)
+        cases.update(zip(todo, new))
+    ordered = [cases[i] for i in range(len(conds))]
+    runs = [r for case in ordered for r in case["runs"]]
+    comparisons = pd.DataFrame([r for case in ordered for r in case["comparisons"]])
+    records = {k: v for case in ordered for k, v in case["records"].items()}
+    kept = comparisons[~comparisons["speed_km_h"].isin([5.0, 7.5])]
+    tables = {
+        est: mt.accuracy_table(kept[kept["profile_estimate"] == est], by="characteristics")
+        for est in ("surveyed", "recorded")
+    }
+    fp = est_by_load[conds["load_condition"].iloc[0]]
+    spectra = pr.spectra_table(
+        {
+            "slat_tops_left": track.left_m,
+            "slat_tops_right": track.right_m,
+            "surveyed_before_enveloping": fp["surveyed_raw"][lead:-lead],
+            "surveyed_enveloped": fp["surveyed"][lead:-lead],
+            "recorded_estimate": fp["recorded"][lead:-lead],
+            "true_enveloped": fp["true"][lead:-lead],
+        },
+        dx,
+    )
+    spectra.insert(0, "track", track.label)
+    return {
+        "runs": pd.DataFrame(runs),
+        "comparisons": comparisons,
+        "table_xiii": tables["surveyed"],
+        "table_xiv": tables["recorded"],
+        "spectra": spectra,
+        "records": records,
+        "acceleration_spectra": record_spectra(records, FS_HZ, speed_km_h=12.5),
+        "track": track,
+        "cases": ordered,
+    }
+
+
+def _carriage_cases(conds: pd.DataFrame, stat: pd.DataFrame, x: np.ndarray, est_by_load: dict, track_end_m: float,
+                    surface_stiffness_factor: float) -> list[dict]:
+    """The cases of :func:`carriage_study` for the rows ``conds``: each its ``runs`` and
+    ``comparisons`` rows and its example ``records`` (those of 12.5 km/h, heavy)."""
     speeds = conds["actual_speed_m_s"].to_numpy(float)
-    n_steps = np.floor((LEAD_IN_M + track.x_m[-1]) / (speeds * DT_S)).astype(int) + 1
+    n_steps = np.floor((LEAD_IN_M + track_end_m) / (speeds * DT_S)).astype(int) + 1
     n_max = int(n_steps.max())
 
     # reference ("measured") runs: nonlinear, batched
     uh = np.empty((len(conds), 2 * n_max - 1))
     udh = np.empty_like(uh)
-    for i, c in conds.iterrows():
+    for i, (_, c) in enumerate(conds.iterrows()):
         u, ud = _half_inputs(x, est_by_load[c["load_condition"]]["true"], speeds[i], n_max)
         uh[i], udh[i] = u - u[0], ud
     ref_car = cm.Carriage(
@@ -185,8 +291,9 @@ def carriage_study(
     ref = cm.simulate_nonlinear(ref_car, uh, udh, DT_S, lift_off=True)
     del uh, udh
 
-    runs, comps, records = [], [], {}
-    for i, c in conds.iterrows():
+    out = []
+    for i, (_, c) in enumerate(conds.iterrows()):
+        runs, comps, records = [], [], {}
         v = speeds[i]
         start = int(math.ceil(LEAD_IN_M / (v * DT_S)))
         stop = int(n_steps[i])
@@ -244,35 +351,8 @@ def carriage_study(
                     records[(name, estimate)] = pred
         if c["speed_km_h"] == 12.5 and c["load_condition"] == "heavy":
             records[("reference", "true")] = measured
-    comparisons = pd.DataFrame(comps)
-    kept = comparisons[~comparisons["speed_km_h"].isin([5.0, 7.5])]
-    tables = {
-        est: mt.accuracy_table(kept[kept["profile_estimate"] == est], by="characteristics")
-        for est in ("surveyed", "recorded")
-    }
-    fp = est_by_load[conds["load_condition"].iloc[0]]
-    spectra = pr.spectra_table(
-        {
-            "slat_tops_left": track.left_m,
-            "slat_tops_right": track.right_m,
-            "surveyed_before_enveloping": fp["surveyed_raw"][lead:-lead],
-            "surveyed_enveloped": fp["surveyed"][lead:-lead],
-            "recorded_estimate": fp["recorded"][lead:-lead],
-            "true_enveloped": fp["true"][lead:-lead],
-        },
-        dx,
-    )
-    spectra.insert(0, "track", track.label)
-    return {
-        "runs": pd.DataFrame(runs),
-        "comparisons": comparisons,
-        "table_xiii": tables["surveyed"],
-        "table_xiv": tables["recorded"],
-        "spectra": spectra,
-        "records": records,
-        "acceleration_spectra": record_spectra(records, FS_HZ, speed_km_h=12.5),
-        "track": track,
-    }
+        out.append({"runs": runs, "comparisons": comps, "records": records})
+    return out
 
 
 def record_spectra(records: dict, fs_Hz: float, speed_km_h: float, f_max_Hz: float = 10.0) -> pd.DataFrame:

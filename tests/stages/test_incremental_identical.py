@@ -130,3 +130,4 @@ def test_edit_published_simulation_input_matches_clean_rebuild(tmp_path, caplog,
     log = _assert_same_as_clean(raw, build, stages, caplog)
     assert "simulate: recomputing" in log
     assert "studies 3 reused, 1 computed" in log  # the carriage study re-ran; the tractor study, ride scenarios did not
+    assert "carriage cases 11 reused, 1 computed" in log  # of it, only the edited row's case was simulated

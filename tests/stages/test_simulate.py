@@ -183,7 +183,8 @@ def test_studies_started_ahead_give_the_tables_of_the_stage_alone(ctx, tmp_path)
             ahead.parquet.mkdir(parents=True, exist_ok=True)
             shutil.copy(ctx.table(table), ahead.table(table))
     result = simulate.run(ahead)
-    assert "0 reused, 4 computed" in result.message and not simulate._AHEAD
+    assert "studies 0 reused, 4 computed" in result.message and not simulate._AHEAD
+    assert "carriage cases 0 reused, 12 computed" in result.message  # the cases computed ahead, stored by the stage
     for name in ("carriage_runs", "table_xiii", "table_xiv", "tractor_runs", "table_xvii", "table_xviii", "table_xx"):
         # the same task on the same inputs; the shared build ran it in another process (under
         # pytest-xdist, after other tests), where a last bit may round otherwise (docs/benchmarks.md)
@@ -198,3 +199,40 @@ def test_studies_no_stage_took_are_ended(ctx, tmp_path):
     workers = [w for p in pools for w in (p._processes or {}).values()]
     simulate.abandon_studies_ahead()
     assert not simulate._AHEAD and workers and not any(w.is_alive() for w in workers)
+
+
+def test_an_edited_table_xii_row_resimulates_its_case_only(ctx, tmp_path):
+    """The shared build's simulate cache, a raw folder whose Table XII has one rolling row's damping
+    changed: the stage reuses the tractor study and the carriage's other 11 cases, simulates that one
+    case, and the carriage runs change in that case's rows only."""
+    import csv
+    import logging
+
+    raw, build = tmp_path / "raw", tmp_path / "build"
+    shutil.copytree(published.published_dir(), raw / "published")
+    if (ctx.raw / "scenarios").is_dir():
+        shutil.copytree(ctx.raw / "scenarios", raw / "scenarios")
+    shutil.copytree(ctx.build / "cache" / "simulate", build / "cache" / "simulate")
+    edited = Context(raw=raw, build=build, jobs=1, log=logging.getLogger("tyrelab.test"))
+    for table in ("stiffness_pressure_by_speed", "damping_pressure_by_speed"):  # the ride scenarios' inputs
+        if ctx.has_table(table):
+            edited.parquet.mkdir(parents=True, exist_ok=True)
+            shutil.copy(ctx.table(table), edited.table(table))
+    path = raw / "published" / "table_xii.csv"
+    with open(path, newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    assert rows[0]["characteristics"] == "rolling"
+    rows[0]["damping_kN_s_per_m"] = f"{float(rows[0]['damping_kN_s_per_m']) * 1.5:.3f}"
+    with open(path, "w", newline="") as fh:
+        writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+
+    result = simulate.run(edited)
+    assert "carriage cases 11 reused, 1 computed" in result.message, result.message
+    assert len(list((build / "cache" / "simulate").glob("carriage-case-*.pkl"))) == 12  # pruned the replaced one
+    ours, theirs = edited.read_table("carriage_runs"), ctx.read_table("carriage_runs")
+    case = (ours["speed_km_h"] == float(rows[0]["nominal_speed_km_h"])) & (ours["load_condition"] == rows[0]["load_condition"])
+    assert case.sum() == 5
+    pd.testing.assert_frame_equal(ours[~case], theirs[~case])
+    assert not ours.loc[case, "damping_kN_s_per_m"].equals(theirs.loc[case, "damping_kN_s_per_m"])
