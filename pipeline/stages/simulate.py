@@ -17,10 +17,12 @@ scenario × speed × pressure pair). A wrong scenario is quarantined with its pr
 the others still run.
 
 The carriage (ch. 6) and tractor (ch. 7) studies are cached as a whole under the digest of
-the tables each reads, and each carriage case (one Table XII rolling row: its reference run and
-four predictions) under the digest of what it reads (:func:`tyrelab.vehicle.studies.carriage_case_inputs`),
-so that an edited Table XII row re-simulates only its cases; each ride scenario is cached under
-the digest of what it reads; those not cached
+the tables each reads, and each of their cases under the digest of what the case reads: a
+carriage case is one Table XII rolling row (its reference run and four predictions,
+:func:`tyrelab.vehicle.studies.carriage_case_inputs`), a tractor case one Table XVI rolling row
+(its rolling, stationary and reference runs, :func:`tyrelab.vehicle.studies.tractor_case_inputs`),
+so that an edited row re-simulates only the cases that read it; each ride scenario is cached
+under the digest of what it reads; those not cached
 and Table XX run side by side in one :func:`tyrelab.executor.map_batches` call
 (``--jobs``/``--executor``), longest first. The tractor runs are
 exact while both axles are in contact and RK4 across lift-off, ``tractor_runs.method_used``
@@ -135,13 +137,12 @@ def _carriage_tables(car: dict) -> dict:
 
 
 def _study(item: tuple) -> dict:
-    """One chapter 6/7 study, the tables the stage keeps (the carriage's with its ``cases``)."""
-    name, payload = item
+    """One chapter 6/7 study: the tables the stage keeps, with its ``cases``."""
+    name, (first, second, done) = item
     if name == "carriage":
-        xii, stationary, done = payload
-        car = studies.carriage_study(xii, stationary, seed=SEED, cases=done)
+        car = studies.carriage_study(first, second, seed=SEED, cases=done)
         return {**_carriage_tables(car), "cases": car["cases"]}
-    return studies.tractor_study(*payload, seed=SEED)
+    return studies.tractor_study(first, second, seed=SEED, cases=done)
 
 
 def _task(item: tuple):
@@ -156,37 +157,41 @@ def _task(item: tuple):
     return _study((kind, payload))
 
 
-def _study_plan(pub: dict, cache: ItemCache) -> tuple[dict, dict, list]:
+def _study_plan(pub: dict, cache: ItemCache) -> tuple[dict, dict, dict]:
     """The chapter 6 and 7 studies: cache key and inputs of each (``"tractor"``, ``"carriage"``),
-    and the cache keys of the carriage's cases (one per Table XII rolling row).
+    and the cache keys of each one's cases (one per Table XII or XVI rolling row).
 
     Each is kept under the digest of exactly what it reads (ItemCache): a new recording or a
-    changed ride scenario re-runs neither, a changed Table XII only the carriage, and of it only
-    the cases whose inputs changed (:func:`_payload`).
+    changed ride scenario re-runs neither, a changed Table XII only the carriage, and of a study
+    only the cases whose inputs changed run again (:func:`_payload`).
     """
     xii = layouts.carriage_rolling(pub["table_xii"])
     stationary = layouts.carriage_stationary(pub["table_xii"])
     mass, tyres = layouts.tractor_mass(pub["table_xv"]), layouts.tractor_tyres(pub["table_xvi"])
     keys = {"tractor": cache.key("tractor", mass, tyres, SEED), "carriage": cache.key("carriage", xii, stationary, SEED)}
-    case_keys = [cache.key("carriage-case", inputs, SEED) for inputs in studies.carriage_case_inputs(xii, stationary)]
+    case_keys = {
+        "tractor": [cache.key("tractor-case", c, SEED) for c in studies.tractor_case_inputs(mass, tyres)],
+        "carriage": [cache.key("carriage-case", c, SEED) for c in studies.carriage_case_inputs(xii, stationary)],
+    }
     return keys, {"tractor": (mass, tyres), "carriage": (xii, stationary)}, case_keys
 
 
-def _payload(name: str, inputs: tuple, case_keys: list, cache: ItemCache) -> tuple:
-    """The task payload of study ``name``: its inputs, and for the carriage the cases in the cache."""
-    if name != "carriage":
-        return inputs
-    return (*inputs, {i: v for i, k in enumerate(case_keys) for hit, v in [cache.get(k)] if hit})
+#: Item kinds of the studies' cases in the stage's cache (counted apart in its message).
+CASE_KINDS = ("carriage-case", "tractor-case")
 
 
-def _keep_study(cache: ItemCache, name: str, key: str, value: dict, case_keys: list) -> dict:
-    """Store a computed study under ``key`` and the carriage's new cases under theirs; return the
-    study's tables (without the cases)."""
-    if name == "carriage":
-        value = dict(value)
-        for k, case in zip(case_keys, value.pop("cases")):
-            if not cache.has(k):
-                cache.put(k, case)
+def _payload(name: str, inputs: tuple, case_keys: dict, cache: ItemCache) -> tuple:
+    """The task payload of study ``name``: its inputs and its cases found in the cache, by position."""
+    return (*inputs, {i: v for i, k in enumerate(case_keys[name]) for hit, v in [cache.get(k)] if hit})
+
+
+def _keep_study(cache: ItemCache, name: str, key: str, value: dict, case_keys: dict) -> dict:
+    """Store a computed study under ``key`` and its new cases under theirs; return the study's
+    tables (without the cases)."""
+    value = dict(value)
+    for k, case in zip(case_keys[name], value.pop("cases")):
+        if not cache.has(k):
+            cache.put(k, case)
     cache.put(key, value)
     return value
 
@@ -257,7 +262,7 @@ def run(ctx: Context) -> StageResult:
     # with two workers the tractor study runs on one while the carriage study, the scenarios and
     # Table XX share the other
     keys, inputs, case_keys = _study_plan(pub, cache)
-    cache.keep(case_keys)  # a cached study's cases stay for the next edit of Table XII
+    cache.keep([k for ks in case_keys.values() for k in ks])  # a cached study's cases stay for the next edit
     done = {name: v for name, k in keys.items() for hit, v in [cache.get(k)] if hit}
     for name in [n for n in keys if n not in done]:
         took, value = _take_ahead(keys[name])
@@ -365,7 +370,7 @@ def run(ctx: Context) -> StageResult:
         n_ok=n_runs + len(files) - len(bad),
         n_quarantined=len(bad),
         seconds=time.perf_counter() - t0,
-        message=f"{len(tables)} tables; {len(files) - len(bad)} ride scenarios; studies {cache.summary(exclude=('carriage-case',))}; "
-                f"carriage cases {cache.summary('carriage-case')}; "
+        message=f"{len(tables)} tables; {len(files) - len(bad)} ride scenarios; studies {cache.summary(exclude=CASE_KINDS)}; "
+                f"carriage cases {cache.summary('carriage-case')}; tractor cases {cache.summary('tractor-case')}; "
                 "slatted track is a seeded stand-in",
     )

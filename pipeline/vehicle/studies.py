@@ -44,6 +44,7 @@ __all__ = [
     "T4_ROLLING_RADIUS_M",
     "carriage_case_inputs",
     "carriage_study",
+    "tractor_case_inputs",
     "tractor_study",
 ]
 
@@ -169,8 +170,8 @@ def carriage_case_inputs(
     stat = stationary.set_index("load_condition")
     return [
         {
-            "row": {k: (v.item() if hasattr(v, "item") else v) for k, v in row.items()},
-            "stationary": {k: (v.item() if hasattr(v, "item") else v) for k, v in stat.loc[row["load_condition"]].items()},
+            "row": _plain(row),
+            "stationary": _plain(stat.loc[row["load_condition"]]),
             "footprint_m": float(foot[row["load_condition"]]),
             "surface_stiffness_factor": float(surface_stiffness_factor),
         }
@@ -401,12 +402,40 @@ def _tractor_inputs(profile: pr.Profile, radii, footprints, speed, wheelbase, n_
     return uf - u0, udf, ur - u0, udr
 
 
+def _plain(row) -> dict:
+    """A table row as a dict of Python scalars (a cache key's input)."""
+    return {k: (v.item() if hasattr(v, "item") else v) for k, v in dict(row).items()}
+
+
+def tractor_case_inputs(
+    table_xv: pd.DataFrame, table_xvi: pd.DataFrame, farm_class: str = "D", duration_s: float = 30.0
+) -> list[dict]:
+    """What each case of :func:`tractor_study` reads, one dict per rolling row of ``table_xvi``.
+
+    A case is one rolling row of Table XVI (load condition, track, speed): its rolling,
+    stationary and reference runs (and, for load condition 1 on SBT at 10 km/h, the
+    Table XVIII sweep). It reads its row, the stationary row and the Table XV row of
+    its load condition, and the study's track and duration; with the seed that is
+    everything (the tracks are seeded). A cache keyed on these (the simulate stage's)
+    recomputes only the cases whose inputs changed.
+    """
+    xv = table_xv.set_index("load_condition")
+    stat = table_xvi[table_xvi["characteristics"] == "stationary"].set_index("load_condition")
+    rolling = table_xvi[table_xvi["characteristics"] == "rolling"].reset_index(drop=True)
+    return [
+        {"row": _plain(r), "stationary": _plain(stat.loc[int(r["load_condition"])]),
+         "mass": _plain(xv.loc[int(r["load_condition"])]), "farm_class": farm_class, "duration_s": float(duration_s)}
+        for _, r in rolling.iterrows()
+    ]
+
+
 def tractor_study(
     table_xv: pd.DataFrame,
     table_xvi: pd.DataFrame,
     seed: int = 5007,
     farm_class: str = "D",
     duration_s: float = 30.0,
+    cases: dict | None = None,
 ) -> dict[str, pd.DataFrame]:
     """Chapter 7: MF698T on the slatted track (SBT) and a farm track (HH).
 
@@ -420,13 +449,30 @@ def tractor_study(
     SBT); Table XVII's stationary frequency ratios (1.20 SBT vs 1.14 HH ≈ 1.14/√0.9)
     suggest the thesis did the same.
 
+    Parameters
+    ----------
+    table_xv, table_xvi : DataFrame
+        Tractor mass properties per load condition; rolling and stationary tyre
+        characteristics (:mod:`tyrelab.vehicle.published_layouts`).
+    seed : int
+        Seed of the tracks and estimates.
+    farm_class : str
+        ISO 8608 class of the farm track (HH).
+    duration_s : float
+        Length of a run, s.
+    cases : dict of int to list, optional
+        Cases computed before, by position among the rolling rows of ``table_xvi``:
+        items of a previous result's ``cases`` whose inputs (:func:`tractor_case_inputs`)
+        are unchanged. Only the other cases are simulated; the result is the same, to
+        the bit, as simulating all of them (the batched tractor runs are independent).
+
     Returns
     -------
     dict of DataFrame
         ``runs`` (per run: rms 0.5-10 Hz, peaks, ISO 2631), ``table_xvii`` (ours),
-        ``table_xviii`` (ours), ``spectra`` (farm track profiles).
+        ``table_xviii`` (ours), ``spectra`` (farm track profiles); ``cases`` (list, per
+        rolling row: its runs, for a later call's ``cases``).
     """
-    sbt = pr.add_lead_in(pr.slatted_track(seed=seed), LEAD_IN_M)
     hh_est = pr.add_lead_in(pr.iso8608_track(farm_class, seed=seed + 10), LEAD_IN_M)
     hh_true = pr.add_lead_in(pr.iso8608_track(farm_class, seed=seed + 11), LEAD_IN_M)
     # surveyed SBT estimate: slat tops with survey error (same for both tracks)
@@ -445,9 +491,14 @@ def tractor_study(
     xv = table_xv.set_index("load_condition")
     stat = table_xvi[table_xvi["characteristics"] == "stationary"].set_index("load_condition")
     rolling = table_xvi[table_xvi["characteristics"] == "rolling"].reset_index(drop=True)
+    cases = dict(cases or {})
+    if any(not isinstance(i, (int, np.integer)) or not 0 <= i < len(rolling) for i in cases):
+        raise ValueError(f"cases must be keyed by rolling-row positions 0..{len(rolling) - 1} of table_xvi, "
+                         f"got {sorted(cases)!r}")
 
-    specs = []  # (label dict, tractor kwargs, profile, radii flag)
+    specs = []  # per case: [(label dict, tractor kwargs, profile, radii flag)]
     for _, r in rolling.iterrows():
+        case = []
         lc = int(r["load_condition"])
         g = xv.loc[lc]
         base = dict(
@@ -473,9 +524,9 @@ def tractor_study(
         )
         est, true = (sbt_est, sbt_true) if r["track"] == "SBT" else (hh_est, hh_true)
         kx, cx = REFERENCE_LONGITUDINAL
-        specs.append(({**label, "characteristics": "rolling", "longitudinal": "none"}, {**base, **roll_k}, est, r["track"] != "SBT"))
-        specs.append(({**label, "characteristics": "stationary", "longitudinal": "none"}, {**base, **stat_k}, est, r["track"] != "SBT"))
-        specs.append(
+        case.append(({**label, "characteristics": "rolling", "longitudinal": "none"}, {**base, **roll_k}, est, r["track"] != "SBT"))
+        case.append(({**label, "characteristics": "stationary", "longitudinal": "none"}, {**base, **stat_k}, est, r["track"] != "SBT"))
+        case.append(
             (
                 {**label, "characteristics": "reference", "longitudinal": "maxwell"},
                 {**base, **roll_k, "longitudinal_stiffness_N_per_m": 2 * kx, "longitudinal_damping_N_s_per_m": 2 * cx, "longitudinal_model": "maxwell"},
@@ -489,7 +540,7 @@ def tractor_study(
                 ("maxwell", [(455, 1), (455, 3), (455, 5)]),
             ):
                 for k_kn, c_kn in pairs:
-                    specs.append(
+                    case.append(
                         (
                             {**label, "characteristics": "rolling", "longitudinal": model, "sweep": True,
                              "longitudinal_stiffness_kN_per_m": float(k_kn), "longitudinal_damping_kN_s_per_m": float(c_kn)},
@@ -499,13 +550,29 @@ def tractor_study(
                             False,
                         )
                     )  # fmt: skip
+        specs.append(case)
 
+    # every run in the order of the longitudinal models (a stable sort of the cases' runs)
+    models = ("none", "kelvin_voigt", "maxwell")
+    order = [(i, j) for model in models for i, case in enumerate(specs) for j, spec in enumerate(case)
+             if spec[1].get("longitudinal_model", "none") == model]
+    todo = [(i, j) for i, j in order if i not in cases]
+    if todo:
+        rows = _tractor_runs([specs[i][j] for i, j in todo], duration_s)
+        new = {i: [None] * len(specs[i]) for i, _ in todo}
+        for (i, j), row in zip(todo, rows):
+            new[i][j] = row
+        cases.update(new)
+    results = [cases[i][j] for i, j in order]
+    ordered = [cases[i] for i in range(len(specs))]
+    return {**_tractor_tables(pd.DataFrame(results), hh_est, hh_true), "cases": ordered}
+
+
+def _tractor_runs(group: list, duration_s: float) -> list[dict]:
+    """The result rows of the tractor runs ``group`` (specs of :func:`tractor_study`), simulated in one batch."""
     n_steps = int(round(duration_s / DT_S)) + 1 + int(round(LEAD_IN_M / (10 / 3.6 * DT_S)))
     results = []
     input_cache: dict = {}
-    # one batch for every run (the longitudinal model per run), in the order of the models
-    group = [s for model in ("none", "kelvin_voigt", "maxwell") for s in specs
-             if s[1].get("longitudinal_model", "none") == model]
     input_keys = []
     for label, kw, prof, farm in group:
         v = label["speed_km_h"] / 3.6
@@ -567,7 +634,11 @@ def tractor_study(
                 "method_used": str(sim["method_used"][i]),
             }
         )
-    runs = pd.DataFrame(results)
+    return results
+
+
+def _tractor_tables(runs: pd.DataFrame, hh_est: pr.Profile, hh_true: pr.Profile) -> dict:
+    """Tables XVII, XVIII, the Table XVIII reference row and the farm-track spectra from the runs."""
     main = runs[~runs["sweep"].astype(bool)]
     keys = ["load_condition", "track", "speed_km_h"]
     ref = main[main["characteristics"] == "reference"].set_index(keys)

@@ -127,7 +127,10 @@ def test_edit_published_simulation_input_matches_clean_rebuild(tmp_path, caplog,
     shutil.copytree(resources.published_dir(), raw / "published")
     _edit_csv(raw / "published" / "table_xii.csv",
               lambda rows: rows[0].update(damping_kN_s_per_m=f"{float(rows[0]['damping_kN_s_per_m']) * 1.1:.3f}"))
+    _edit_csv(raw / "published" / "table_xvi.csv",
+              lambda rows: rows[3].update(rear_damping_kN_s_per_m=f"{float(rows[3]['rear_damping_kN_s_per_m']) * 1.1:.3f}"))
     log = _assert_same_as_clean(raw, build, stages, caplog)
     assert "simulate: recomputing" in log
-    assert "studies 3 reused, 1 computed" in log  # the carriage study re-ran; the tractor study, ride scenarios did not
-    assert "carriage cases 11 reused, 1 computed" in log  # of it, only the edited row's case was simulated
+    assert "studies 2 reused, 2 computed" in log  # both studies re-ran; the ride scenarios did not
+    # of them, only the edited rows' cases were simulated
+    assert "carriage cases 11 reused, 1 computed" in log and "tractor cases 27 reused, 1 computed" in log

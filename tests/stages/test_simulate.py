@@ -185,6 +185,7 @@ def test_studies_started_ahead_give_the_tables_of_the_stage_alone(ctx, tmp_path)
     result = simulate.run(ahead)
     assert "studies 0 reused, 4 computed" in result.message and not simulate._AHEAD
     assert "carriage cases 0 reused, 12 computed" in result.message  # the cases computed ahead, stored by the stage
+    assert "tractor cases 0 reused, 28 computed" in result.message
     for name in ("carriage_runs", "table_xiii", "table_xiv", "tractor_runs", "table_xvii", "table_xviii", "table_xx"):
         # the same task on the same inputs; the shared build ran it in another process (under
         # pytest-xdist, after other tests), where a last bit may round otherwise (docs/benchmarks.md)
@@ -201,11 +202,26 @@ def test_studies_no_stage_took_are_ended(ctx, tmp_path):
     assert not simulate._AHEAD and workers and not any(w.is_alive() for w in workers)
 
 
-def test_an_edited_table_xii_row_resimulates_its_case_only(ctx, tmp_path):
-    """The shared build's simulate cache, a raw folder whose Table XII has one rolling row's damping
-    changed: the stage reuses the tractor study and the carriage's other 11 cases, simulates that one
-    case, and the carriage runs change in that case's rows only."""
+def _edit_first_row(path, column, factor):
+    """Multiply ``column`` of the first row of a published CSV by ``factor``; return that row."""
     import csv
+
+    with open(path, newline="") as fh:
+        rows = list(csv.DictReader(fh))
+    assert rows[0]["characteristics"] == "rolling"
+    rows[0][column] = f"{float(rows[0][column]) * factor:.3f}"
+    with open(path, "w", newline="") as fh:
+        writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
+        writer.writeheader()
+        writer.writerows(rows)
+    return rows[0]
+
+
+def test_edited_rows_resimulate_their_cases_only(ctx, tmp_path):
+    """The shared build's simulate cache, a raw folder whose Table XII has one rolling row's damping
+    changed and whose Table XVI has one rolling row's rear damping changed: the stage reuses the
+    other 11 carriage and 27 tractor cases, simulates those two, and the runs tables change in
+    those cases' rows only."""
     import logging
 
     raw, build = tmp_path / "raw", tmp_path / "build"
@@ -218,21 +234,24 @@ def test_an_edited_table_xii_row_resimulates_its_case_only(ctx, tmp_path):
         if ctx.has_table(table):
             edited.parquet.mkdir(parents=True, exist_ok=True)
             shutil.copy(ctx.table(table), edited.table(table))
-    path = raw / "published" / "table_xii.csv"
-    with open(path, newline="") as fh:
-        rows = list(csv.DictReader(fh))
-    assert rows[0]["characteristics"] == "rolling"
-    rows[0]["damping_kN_s_per_m"] = f"{float(rows[0]['damping_kN_s_per_m']) * 1.5:.3f}"
-    with open(path, "w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
+    xii = _edit_first_row(raw / "published" / "table_xii.csv", "damping_kN_s_per_m", 1.5)
+    xvi = _edit_first_row(raw / "published" / "table_xvi.csv", "rear_damping_kN_s_per_m", 1.5)
 
     result = simulate.run(edited)
     assert "carriage cases 11 reused, 1 computed" in result.message, result.message
-    assert len(list((build / "cache" / "simulate").glob("carriage-case-*.pkl"))) == 12  # pruned the replaced one
+    assert "tractor cases 27 reused, 1 computed" in result.message, result.message
+    cache = build / "cache" / "simulate"
+    assert len(list(cache.glob("carriage-case-*.pkl"))) == 12 and len(list(cache.glob("tractor-case-*.pkl"))) == 28
     ours, theirs = edited.read_table("carriage_runs"), ctx.read_table("carriage_runs")
-    case = (ours["speed_km_h"] == float(rows[0]["nominal_speed_km_h"])) & (ours["load_condition"] == rows[0]["load_condition"])
+    case = (ours["speed_km_h"] == float(xii["nominal_speed_km_h"])) & (ours["load_condition"] == xii["load_condition"])
     assert case.sum() == 5
-    pd.testing.assert_frame_equal(ours[~case], theirs[~case])
-    assert not ours.loc[case, "damping_kN_s_per_m"].equals(theirs.loc[case, "damping_kN_s_per_m"])
+    pd.testing.assert_frame_equal(ours[~case], theirs[~case], check_exact=True)  # the other cases: from the cache
+    rolling = case & (ours["characteristics"].isin(["reference", "rolling"]))
+    assert (ours.loc[rolling, "damping_kN_s_per_m"] != theirs.loc[rolling, "damping_kN_s_per_m"]).all()
+    ours, theirs = edited.read_table("tractor_runs"), ctx.read_table("tractor_runs")
+    case = ((ours["load_condition"] == int(xvi["load_condition"])) & (ours["track"] == xvi["track"])
+            & (ours["speed_km_h"] == float(xvi["speed_km_h"])))
+    assert case.sum() == 3 + 11  # rolling, stationary, reference and the Table XVIII sweep (load 1, SBT, 10 km/h)
+    pd.testing.assert_frame_equal(ours[~case], theirs[~case], check_exact=True)  # the other cases: from the cache
+    rolling = case & (ours["characteristics"] != "stationary")
+    assert (ours.loc[rolling, "rear_damping_kN_s_per_m"] != theirs.loc[rolling, "rear_damping_kN_s_per_m"]).all()

@@ -1,0 +1,105 @@
+"""Chapter 6 and 7 studies case by case: cases computed before give the same bytes as a full run,
+and a case's inputs are what it reads."""
+
+import numpy as np
+import pytest
+
+from tyrelab.published import read_published
+from tyrelab.vehicle import published_layouts as layouts
+from tyrelab.vehicle import studies
+
+TABLES = ("runs", "comparisons", "table_xiii", "table_xiv", "spectra", "acceleration_spectra")
+TRACTOR_TABLES = ("runs", "table_xvii", "table_xviii", "reference_xviii", "spectra")
+
+
+def _changed(before: list[dict], after: list[dict]) -> list[bool]:
+    """Which cases' inputs differ (by repr, as the cache key digests them: NaN equals NaN)."""
+    assert len(before) == len(after)
+    return [repr(a) != repr(b) for a, b in zip(before, after)]
+
+
+@pytest.fixture(scope="module")
+def tables():
+    xii = read_published("table_xii")
+    rolling = layouts.carriage_rolling(xii)
+    # the four rows of 12.5 and 17.5 km/h (12.5 km/h heavy gives the example records): a quick study
+    return rolling[rolling["speed_km_h"].isin([12.5, 17.5])].reset_index(drop=True), layouts.carriage_stationary(xii)
+
+
+@pytest.fixture(scope="module")
+def full(tables):
+    return studies.carriage_study(*tables)
+
+
+def test_cached_cases_give_the_full_study_to_the_bit(tables, full):
+    rolling, _ = tables
+    assert len(full["cases"]) == len(rolling) == 4
+    for recompute in ([0], [1, 3]):
+        part = studies.carriage_study(*tables, cases={i: c for i, c in enumerate(full["cases"]) if i not in recompute})
+        for name in TABLES:
+            assert part[name].equals(full[name]), (recompute, name)
+        assert part["records"].keys() == full["records"].keys()
+        assert all(np.array_equal(part["records"][k], full["records"][k]) for k in full["records"])
+    # every case given: nothing is simulated, the tables are assembled from them
+    again = studies.carriage_study(*tables, cases=dict(enumerate(full["cases"])))
+    assert all(again[name].equals(full[name]) for name in TABLES)
+
+
+def test_a_case_reads_its_row_its_stationary_row_and_its_conditions_footprint(tables):
+    rolling, stationary = tables
+    before = studies.carriage_case_inputs(rolling, stationary)
+    heavy = (rolling["load_condition"] == "heavy").to_numpy()
+    damped = rolling.copy()
+    damped.loc[0, "damping_kN_s_per_m"] *= 1.1  # one row's damping: that case only
+    after = studies.carriage_case_inputs(damped, stationary)
+    assert _changed(before, after) == [True, False, False, False]
+    stiffer = rolling.copy()
+    stiffer.loc[heavy.argmax(), "stiffness_kN_per_m"] += 20  # a stiffness moves its condition's footprint
+    after = studies.carriage_case_inputs(stiffer, stationary)
+    assert _changed(before, after) == list(heavy)
+    st = stationary.copy()
+    st.loc[st["load_condition"] == "light", "damping_kN_s_per_m"] += 0.5  # the light stationary row
+    after = studies.carriage_case_inputs(rolling, st)
+    assert _changed(before, after) == list(~heavy)
+
+
+def test_cases_must_be_keyed_by_row_position(tables, full):
+    with pytest.raises(ValueError, match="cases must be keyed by row positions 0..3"):
+        studies.carriage_study(*tables, cases={4: full["cases"][0]})
+
+
+@pytest.fixture(scope="module")
+def tractor_tables():
+    mass = layouts.tractor_mass(read_published("table_xv"))
+    tyres = layouts.tractor_tyres(read_published("table_xvi"))
+    rolling = tyres[tyres["characteristics"] == "rolling"]
+    # three cases (the first holds the Table XVIII sweep; one on the farm track), all stationary rows
+    keep = rolling.index[[0, 5, 10]].union(tyres.index[tyres["characteristics"] == "stationary"])
+    return mass, tyres.loc[keep].reset_index(drop=True)
+
+
+def test_tractor_cached_cases_give_the_full_study_to_the_bit(tractor_tables):
+    full = studies.tractor_study(*tractor_tables)
+    assert len(full["cases"]) == 3 and [len(c) for c in full["cases"]] == [3 + 11, 3, 3]
+    for recompute in ([0], [1, 2]):
+        part = studies.tractor_study(*tractor_tables, cases={i: c for i, c in enumerate(full["cases"]) if i not in recompute})
+        for name in TRACTOR_TABLES:
+            assert part[name].equals(full[name]), (recompute, name)
+    with pytest.raises(ValueError, match="cases must be keyed by rolling-row positions 0..2"):
+        studies.tractor_study(*tractor_tables, cases={-1: full["cases"][0]})
+
+
+def test_a_tractor_case_reads_its_row_and_its_load_conditions_rows(tractor_tables):
+    mass, tyres = tractor_tables
+    before = studies.tractor_case_inputs(mass, tyres)
+    lc = [c["row"]["load_condition"] for c in before]
+    assert lc == [1, 1, 2]
+    edited = tyres.copy()
+    edited.loc[1, "rear_damping_kN_s_per_m"] *= 1.1  # the second rolling row
+    assert _changed(before, studies.tractor_case_inputs(mass, edited)) == [False, True, False]
+    stat = tyres.copy()
+    stat.loc[(stat["characteristics"] == "stationary") & (stat["load_condition"] == 1), "rear_stiffness_kN_per_m"] += 10
+    assert _changed(before, studies.tractor_case_inputs(mass, stat)) == [True, True, False]
+    heavier = mass.copy()
+    heavier.loc[heavier["load_condition"] == 2, "mass_kg"] += 100
+    assert _changed(before, studies.tractor_case_inputs(heavier, tyres)) == [False, False, True]
