@@ -18,6 +18,8 @@ run one after the other on one build folder, each as a fresh ``python`` process
 ``remove_one_run``  the campaign folder of ``add_one_run`` removed again;
 ``edit_published``  one value of a published table changed (``<raw>/published/table_xii.csv``:
                     the rolling damping of one carriage condition; see :mod:`tyrelab.published`).
+``edit_published_tractor``  then one value of Table XVI (the rear rolling damping of one
+                    tractor condition, ``<raw>/published/table_xvi.csv``).
 ``warm``            add one run, change one row, remove it again, in one long-lived process
                     whose stage modules were imported before (as in ``tyrelab watch``):
                     what a lab that leaves ``tyrelab watch`` running waits for a new run.
@@ -214,6 +216,19 @@ def edit_published(raw: Path) -> str:
     return f"table_xii {col} of the first row x1.1"
 
 
+def edit_published_tractor(raw: Path) -> str:
+    """In ``<raw>/published`` (made by :func:`edit_published`), change one value of Table XVI."""
+    path = raw / "published" / "table_xvi.csv"
+    with open(path, newline="") as fh:
+        reader = csv.DictReader(fh)
+        fields, rows = list(reader.fieldnames or []), list(reader)
+    col = "rear_damping_kN_s_per_m"
+    row = [r for r in rows if r.get("characteristics") == "rolling"][3]
+    row[col] = f"{float(row[col]) * 1.1:.3f}"
+    _write_manifest(path, fields, rows)
+    return f"table_xvi {col} of the fourth rolling row x1.1"
+
+
 def bench_scale(scale: str, data: Path, work: Path, jobs: int, noop_repeats: int) -> dict:
     """Every scenario on one scale (see the module docstring)."""
     src = campaign(data, scale)
@@ -237,6 +252,8 @@ def bench_scale(scale: str, data: Path, work: Path, jobs: int, noop_repeats: int
     out["remove_one_run"] = run_once(raw, build, jobs)
     what = edit_published(raw)
     out["edit_published"] = dict(run_once(raw, build, jobs), changed=what)
+    what = edit_published_tractor(raw)
+    out["edit_published_tractor"] = dict(run_once(raw, build, jobs), changed=what)
     out["warm"] = warm_scenarios(raw, build, jobs, main)
     return out
 

@@ -488,6 +488,17 @@ def _terminate(signum, frame):  # pragma: no cover - exercised in a subprocess
     raise KeyboardInterrupt
 
 
+def _caused_by_interrupt(exc: BaseException) -> bool:
+    """Whether a KeyboardInterrupt is among the causes or contexts of ``exc``."""
+    seen = set()
+    while exc is not None and id(exc) not in seen:
+        if isinstance(exc, KeyboardInterrupt):
+            return True
+        seen.add(id(exc))
+        exc = exc.__cause__ or exc.__context__
+    return False
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``tyrelab`` console script.
 
@@ -517,6 +528,13 @@ def main(argv: list[str] | None = None) -> int:
     try:
         return args.func(args)
     except KeyboardInterrupt:
+        print(f"tyrelab {args.command}: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except Exception as exc:
+        if not _caused_by_interrupt(exc):
+            raise
+        # Ctrl-C while an extension module initialises: it reports an ImportError whose cause is the
+        # KeyboardInterrupt (pybind11's "initialization failed", scipy.optimize._highspy)
         print(f"tyrelab {args.command}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
     finally:

@@ -221,3 +221,27 @@ def test_ctrl_c_while_the_studies_run_ahead_prints_one_line(tmp_path):
     left = list(tmp.iterdir())
     shutil.rmtree(tmp, ignore_errors=True)
     assert not left
+
+
+def test_ctrl_c_while_an_extension_module_initialises_is_an_interrupt(tmp_path, monkeypatch, capsys):
+    """Ctrl-C while a compiled module initialises (a stage importing scipy) surfaces as an ImportError
+    caused by the KeyboardInterrupt ("initialization failed"): one line and exit 130, not a
+    traceback. Any other error still propagates."""
+    from tyrelab import cli
+
+    def interrupted_import(args):
+        try:
+            raise KeyboardInterrupt
+        except KeyboardInterrupt as exc:
+            raise ImportError("initialization failed") from exc
+
+    monkeypatch.setattr(cli, "cmd_run", interrupted_import)
+    assert main(["run", "--raw", str(tmp_path), "--build", str(tmp_path / "b")]) == 130
+    assert capsys.readouterr().err.strip().splitlines()[-1] == "tyrelab run: interrupted"
+
+    def broken(args):
+        raise ImportError("a real import error")
+
+    monkeypatch.setattr(cli, "cmd_run", broken)
+    with pytest.raises(ImportError, match="a real import error"):
+        main(["run", "--raw", str(tmp_path), "--build", str(tmp_path / "b")])
