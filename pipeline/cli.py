@@ -489,13 +489,17 @@ def _terminate(signum, frame):  # pragma: no cover - exercised in a subprocess
 
 
 def _caused_by_interrupt(exc: BaseException) -> bool:
-    """Whether a KeyboardInterrupt is among the causes or contexts of ``exc``."""
+    """Whether a KeyboardInterrupt is among the explicit causes (``raise ... from``) of ``exc``.
+
+    Only causes: an error raised while an interrupt was being handled (its context) is
+    an error of its own and keeps its traceback.
+    """
     seen = set()
     while exc is not None and id(exc) not in seen:
         if isinstance(exc, KeyboardInterrupt):
             return True
         seen.add(id(exc))
-        exc = exc.__cause__ or exc.__context__
+        exc = exc.__cause__
     return False
 
 

@@ -137,12 +137,13 @@ def _carriage_tables(car: dict) -> dict:
 
 
 def _study(item: tuple) -> dict:
-    """One chapter 6/7 study: the tables the stage keeps, with its ``cases``."""
+    """One chapter 6/7 study: the tables the stage keeps, with its ``cases`` and the positions of
+    those it was given (``reused``)."""
     name, (first, second, done) = item
     if name == "carriage":
         car = studies.carriage_study(first, second, seed=SEED, cases=done)
-        return {**_carriage_tables(car), "cases": car["cases"]}
-    return studies.tractor_study(first, second, seed=SEED, cases=done)
+        return {**_carriage_tables(car), "cases": car["cases"], "reused": sorted(done)}
+    return {**studies.tractor_study(first, second, seed=SEED, cases=done), "reused": sorted(done)}
 
 
 def _task(item: tuple):
@@ -181,16 +182,20 @@ CASE_KINDS = ("carriage-case", "tractor-case")
 
 
 def _payload(name: str, inputs: tuple, case_keys: dict, cache: ItemCache) -> tuple:
-    """The task payload of study ``name``: its inputs and its cases found in the cache, by position."""
-    return (*inputs, {i: v for i, k in enumerate(case_keys[name]) for hit, v in [cache.get(k)] if hit})
+    """The task payload of study ``name``: its inputs and its cases found (readable) in the cache,
+    by position. Counted by :func:`_keep_study` when the study's result is taken."""
+    return (*inputs, {i: v for i, k in enumerate(case_keys[name]) for hit, v in [cache.load(k)] if hit})
 
 
 def _keep_study(cache: ItemCache, name: str, key: str, value: dict, case_keys: dict) -> dict:
-    """Store a computed study under ``key`` and its new cases under theirs; return the study's
-    tables (without the cases)."""
+    """Store a computed study under ``key`` and the cases it computed under theirs (an unreadable
+    entry is replaced), count the ones it was given as reused; return the study's tables."""
     value = dict(value)
-    for k, case in zip(case_keys[name], value.pop("cases")):
-        if not cache.has(k):
+    reused = set(value.pop("reused"))
+    for i, (k, case) in enumerate(zip(case_keys[name], value.pop("cases"))):
+        if i in reused:
+            cache.reused(k)
+        else:
             cache.put(k, case)
     cache.put(key, value)
     return value

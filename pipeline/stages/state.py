@@ -489,17 +489,27 @@ class ItemCache:
     def get(self, key: str):
         """``(True, value)`` for a stored item, else ``(False, None)``."""
         self.used.add(key)
-        path = self._path(key)
+        hit, value = self.load(key)
+        if hit:
+            self.reused(key)
+        return hit, value
+
+    def load(self, key: str):
+        """:meth:`get` without counting the item as used or reused (for a task whose results
+        :meth:`reused` or :meth:`put` account for later)."""
         if not self.has(key):
             return False, None
         try:
-            with open(path, "rb") as fh:
-                value = pickle.load(fh)
+            with open(self._path(key), "rb") as fh:
+                return True, pickle.load(fh)
         except (OSError, EOFError, pickle.UnpicklingError, AttributeError, ImportError, IndexError, ValueError):
             return False, None  # unreadable entry: recompute
+
+    def reused(self, key: str) -> None:
+        """Count item ``key`` as used and reused by this run (loaded here or by a worker)."""
+        self.used.add(key)
         self.hits += 1
         self.counts.setdefault(key.rsplit("-", 1)[0], [0, 0])[0] += 1
-        return True, value
 
     def put(self, key: str, value) -> None:
         """Store an item (atomically)."""

@@ -187,6 +187,7 @@ def simulate_nonlinear(
     lift_off: bool = True,
     friction_velocity_m_s: float = 0.005,
     gravity_m_s2: float = GRAVITY_M_S2,
+    n_steps=None,
 ) -> dict[str, np.ndarray]:
     """Fixed-step RK4 carriage with tyre lift-off and Coulomb linkage friction.
 
@@ -206,12 +207,18 @@ def simulate_nonlinear(
         Allow the tyre to leave the ground.
     friction_velocity_m_s : float
         Smoothing velocity v_s of the Coulomb friction, m/s.
+    n_steps : int or array_like of int, optional
+        Per run, how many of the N samples are its own (1 to N): a batch of runs of
+        different lengths is padded to the longest, and ``lift_off_fraction`` counts a
+        run's own samples only, so that it does not depend on the other runs of the
+        batch. Default N for every run.
 
     Returns
     -------
     dict
-        ``z_m``, ``v_m_s``, ``a_m_s2``, ``lift_off_fraction`` (per run); arrays of
-        shape ``(N,)`` or ``(n_runs, N)``.
+        ``z_m``, ``v_m_s``, ``a_m_s2``, ``lift_off_fraction`` (per run: the fraction of
+        its ``n_steps`` samples with the tyre off the ground); arrays of shape ``(N,)``
+        or ``(n_runs, N)``.
     """
     u, ud = _half_samples(u_half_m, u_dot_half_m_s)
     squeeze = np.ndim(u_half_m) == 1
@@ -226,6 +233,11 @@ def simulate_nonlinear(
     inv_m = 1.0 / m
     vs = np.full(shape, float(friction_velocity_m_s))  # arrays, not Python floats: a scalar operand costs a numpy call 60 % more
     n = (u.shape[1] + 1) // 2
+    own = None
+    if n_steps is not None:
+        own = np.broadcast_to(np.asarray(n_steps), shape)
+        if own.dtype.kind not in "iu" or np.any(own < 1) or np.any(own > n):
+            raise ValueError(f"n_steps must be integers from 1 to the {n} samples of the input, got {n_steps!r}")
     # A batch is tens of runs, so the cost is the number of numpy calls per step, not the
     # arithmetic: every state is one (3, runs) array [z, z', z''] (rows 1:3 are the derivative
     # of rows 0:2, so one call advances z and z' together), the inputs [u, u'] of a half step
@@ -291,9 +303,12 @@ def simulate_nonlinear(
         add(inc, xd_d, inc)
         mul(sixth_h, inc, inc)
         add(xs, inc, rec_s[i + 1])
-    off = np.count_nonzero(ft_rec <= floor, axis=0).astype(float)
+    if own is None:
+        fraction = np.count_nonzero(ft_rec <= floor, axis=0).astype(float) / n
+    else:
+        fraction = np.count_nonzero((ft_rec <= floor) & (np.arange(n)[:, None] < own), axis=0) / own
     out = {"z_m": np.ascontiguousarray(rec[:, 0].T), "v_m_s": np.ascontiguousarray(rec[:, 1].T),
-           "a_m_s2": np.ascontiguousarray(rec[:, 2].T), "lift_off_fraction": off / n}
+           "a_m_s2": np.ascontiguousarray(rec[:, 2].T), "lift_off_fraction": fraction}
     if squeeze:
         out = {kk: vv[0] for kk, vv in out.items()}
     return out

@@ -289,7 +289,8 @@ def _carriage_cases(conds: pd.DataFrame, stat: pd.DataFrame, x: np.ndarray, est_
         parasitic_damping_N_s_per_m=0.0,
         coulomb_friction_N=REFERENCE_COULOMB_FRICTION_N,
     )
-    ref = cm.simulate_nonlinear(ref_car, uh, udh, DT_S, lift_off=True)
+    # each run's lift-off fraction over its own samples, not the batch's longest run
+    ref = cm.simulate_nonlinear(ref_car, uh, udh, DT_S, lift_off=True, n_steps=n_steps)
     del uh, udh
 
     out = []

@@ -242,6 +242,13 @@ def test_ctrl_c_while_an_extension_module_initialises_is_an_interrupt(tmp_path, 
     def broken(args):
         raise ImportError("a real import error")
 
-    monkeypatch.setattr(cli, "cmd_run", broken)
-    with pytest.raises(ImportError, match="a real import error"):
-        main(["run", "--raw", str(tmp_path), "--build", str(tmp_path / "b")])
+    def broken_while_interrupted(args):
+        try:
+            raise KeyboardInterrupt
+        except KeyboardInterrupt:
+            raise OSError("cleaning up failed")  # an error of its own, raised while handling the interrupt
+
+    for fn, error in ((broken, ImportError), (broken_while_interrupted, OSError)):
+        monkeypatch.setattr(cli, "cmd_run", fn)
+        with pytest.raises(error):
+            main(["run", "--raw", str(tmp_path), "--build", str(tmp_path / "b")])

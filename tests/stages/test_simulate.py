@@ -220,8 +220,8 @@ def _edit_first_row(path, column, factor):
 def test_edited_rows_resimulate_their_cases_only(ctx, tmp_path):
     """The shared build's simulate cache, a raw folder whose Table XII has one rolling row's damping
     changed and whose Table XVI has one rolling row's rear damping changed: the stage reuses the
-    other 11 carriage and 27 tractor cases, simulates those two, and the runs tables change in
-    those cases' rows only."""
+    other carriage and tractor cases, simulates those two (and one whose cache entry is torn), and
+    the runs tables change in the edited cases' rows only."""
     import logging
 
     raw, build = tmp_path / "raw", tmp_path / "build"
@@ -237,15 +237,27 @@ def test_edited_rows_resimulate_their_cases_only(ctx, tmp_path):
     xii = _edit_first_row(raw / "published" / "table_xii.csv", "damping_kN_s_per_m", 1.5)
     xvi = _edit_first_row(raw / "published" / "table_xvi.csv", "rear_damping_kN_s_per_m", 1.5)
 
+    # and one cached case unreadable (a torn or foreign file): it is computed again and replaced
+    case_keys = simulate._study_plan(simulate._read(edited)[0], simulate.ItemCache(edited, "simulate"))[2]
+    torn = build / "cache" / "simulate" / f"{case_keys['carriage'][5]}.pkl"
+    torn.write_bytes(torn.read_bytes()[:100])
+
     result = simulate.run(edited)
-    assert "carriage cases 11 reused, 1 computed" in result.message, result.message
+    assert "carriage cases 10 reused, 2 computed" in result.message, result.message
     assert "tractor cases 27 reused, 1 computed" in result.message, result.message
     cache = build / "cache" / "simulate"
     assert len(list(cache.glob("carriage-case-*.pkl"))) == 12 and len(list(cache.glob("tractor-case-*.pkl"))) == 28
+    assert simulate.ItemCache(edited, "simulate").load(torn.stem)[0]  # replaced by a readable entry
     ours, theirs = edited.read_table("carriage_runs"), ctx.read_table("carriage_runs")
     case = (ours["speed_km_h"] == float(xii["nominal_speed_km_h"])) & (ours["load_condition"] == xii["load_condition"])
-    assert case.sum() == 5
-    pd.testing.assert_frame_equal(ours[~case], theirs[~case], check_exact=True)  # the other cases: from the cache
+    row5 = simulate.layouts.carriage_rolling(simulate._read(edited)[0]["table_xii"]).iloc[5]
+    again = (ours["speed_km_h"] == row5["speed_km_h"]) & (ours["load_condition"] == row5["load_condition"])
+    assert case.sum() == again.sum() == 5 and not (case & again).any()
+    other = ~case & ~again
+    pd.testing.assert_frame_equal(ours[other], theirs[other], check_exact=True)  # the other cases: from the cache
+    # the torn case, simulated again in this process (the shared build's may come from another, where
+    # a last bit can round otherwise: docs/benchmarks.md)
+    pd.testing.assert_frame_equal(ours[again], theirs[again], check_exact=False, rtol=1e-12, atol=0)
     rolling = case & (ours["characteristics"].isin(["reference", "rolling"]))
     assert (ours.loc[rolling, "damping_kN_s_per_m"] != theirs.loc[rolling, "damping_kN_s_per_m"]).all()
     ours, theirs = edited.read_table("tractor_runs"), ctx.read_table("tractor_runs")

@@ -103,3 +103,36 @@ def test_a_tractor_case_reads_its_row_and_its_load_conditions_rows(tractor_table
     heavier = mass.copy()
     heavier.loc[heavier["load_condition"] == 2, "mass_kg"] += 100
     assert _changed(before, studies.tractor_case_inputs(heavier, tyres)) == [False, False, True]
+
+
+def test_a_case_with_lift_off_is_the_same_alone_and_in_the_full_batch(tables):
+    """The reference runs of a batch are padded to its longest (slowest) run; a run's lift-off
+    fraction counts its own samples only, so a case recomputed alone (the others cached) gives
+    the bytes of the full study, lift-off included."""
+    rolling, stationary = tables
+    light = rolling.copy()
+    light.loc[light["speed_km_h"] == 17.5, "damping_kN_s_per_m"] = 0.05  # the fast runs now lift off
+    full = studies.carriage_study(light, stationary)
+    ref = full["runs"][full["runs"]["characteristics"] == "reference"]
+    assert (ref.loc[ref["speed_km_h"] == 17.5, "lift_off_fraction"] > 0.01).all()
+    fast = [i for i, v in enumerate(light["speed_km_h"]) if v == 17.5]
+    part = studies.carriage_study(light, stationary, cases={i: c for i, c in enumerate(full["cases"]) if i not in fast})
+    for name in TABLES:
+        assert part[name].equals(full[name]), name
+
+
+def test_lift_off_counts_a_runs_own_samples():
+    from tyrelab.vehicle import carriage as cm
+
+    n = 2000
+    t = np.arange(2 * n - 1) * 5e-4
+    u = 0.05 * np.sin(2 * np.pi * 4.0 * t)  # 4 Hz, 50 mm: lifts off
+    ud = 0.05 * 2 * np.pi * 4.0 * np.cos(2 * np.pi * 4.0 * t)
+    u[2 * 1000:], ud[2 * 1000:] = u[2 * 1000], 0.0  # the second run's own samples end at 1000 (then level)
+    car = cm.Carriage(2000.0, 300e3, 500.0)
+    both = cm.simulate_nonlinear(car, np.stack([u, u]), np.stack([ud, ud]), 1e-3, n_steps=[n, 1000])
+    alone = cm.simulate_nonlinear(car, u[: 2 * 1000 - 1], ud[: 2 * 1000 - 1], 1e-3)
+    assert both["lift_off_fraction"][1] == alone["lift_off_fraction"] > 0
+    assert np.array_equal(both["a_m_s2"][1, :1000], alone["a_m_s2"])
+    with pytest.raises(ValueError, match="n_steps must be integers from 1 to the 2000 samples"):
+        cm.simulate_nonlinear(car, u, ud, 1e-3, n_steps=n + 1)
