@@ -78,6 +78,7 @@ def _check_raw(args, need_campaign: bool) -> str | None:
 def _writing(args, label: str, work) -> int:
     """Run ``work()`` holding the build's write lock; a second writer, or an OS error, is one line and exit 2."""
     from .buildlock import BuildLock, BuildLocked
+    from .published import PublishedTableError
 
     try:
         with BuildLock(args.build, f"tyrelab {label}"):
@@ -85,8 +86,8 @@ def _writing(args, label: str, work) -> int:
 
             io.remove_stale_temporaries(args.build)  # left by a killed writer: we are the only one now
             return work()
-    except BuildLocked as exc:
-        print(f"tyrelab {label}: {exc}", file=sys.stderr)
+    except (BuildLocked, PublishedTableError) as exc:  # a thesis table in <raw>/published that does not fit
+        print(f"tyrelab {label}: {str(exc).splitlines()[0]}", file=sys.stderr)
     except OSError as exc:
         print(f"tyrelab {label}: {os_error_line(exc)}", file=sys.stderr)
     return EXIT_USAGE

@@ -193,7 +193,7 @@ CHAPTERS: tuple[Chapter, ...] = (
             "with rolling and stationary tyre characteristics (§6.2–6.5).",
             (
                 TableSpec("XI", "Carriage test conditions", "carriage_runs", "simulate", "published_table_xi",
-                          ours_sql="SELECT DISTINCT load_condition, speed_km_h, load_kg FROM carriage_runs",
+                          ours_sql="SELECT DISTINCT load_condition, speed_km_h, load_kg FROM carriage_runs ORDER BY ALL",
                           keys=("load_condition", "speed_km_h"), values={"load_kg": "load_kg"}),
                 TableSpec("XII", "Tyre characteristics used in the carriage simulations", "carriage_runs",
                           "simulate", "published_table_xii",
@@ -202,7 +202,7 @@ CHAPTERS: tuple[Chapter, ...] = (
                           ours_sql="SELECT DISTINCT characteristics, load_condition, "
                                    "CASE WHEN characteristics = 'stationary' THEN NULL ELSE speed_km_h END AS speed_km_h, "
                                    "quoted_stiffness_kN_per_m AS stiffness_kN_per_m, damping_kN_s_per_m "
-                                   "FROM carriage_runs WHERE characteristics IN ('rolling', 'stationary')",
+                                   "FROM carriage_runs WHERE characteristics IN ('rolling', 'stationary') ORDER BY ALL",
                           keys=("characteristics", "load_condition", "speed_km_h"),
                           values={"stiffness_kN_per_m": "stiffness_kN_per_m", "damping_kN_s_per_m": "damping_kN_s_per_m"},
                           thesis_rename={"nominal_speed_km_h": "speed_km_h"}),
@@ -228,7 +228,7 @@ CHAPTERS: tuple[Chapter, ...] = (
                           "published_table_xvi",
                           ours_sql="SELECT DISTINCT characteristics, load_condition, track, speed_km_h, "
                                    "rear_stiffness_kN_per_m, front_stiffness_kN_per_m, rear_damping_kN_s_per_m, "
-                                   "front_damping_kN_s_per_m FROM tractor_runs WHERE NOT sweep",
+                                   "front_damping_kN_s_per_m FROM tractor_runs WHERE NOT sweep ORDER BY ALL",
                           keys=("characteristics", "load_condition", "track", "speed_km_h"),
                           values={c: c for c in ("rear_stiffness_kN_per_m", "front_stiffness_kN_per_m",
                                                  "rear_damping_kN_s_per_m", "front_damping_kN_s_per_m")}),

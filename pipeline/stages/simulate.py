@@ -158,22 +158,29 @@ def _task(item: tuple):
     return _study((kind, payload))
 
 
-def _study_plan(pub: dict, cache: ItemCache) -> tuple[dict, dict, dict]:
+def _study_plan(pub: dict, cache: ItemCache, folder: Path) -> tuple[dict, dict, dict]:
     """The chapter 6 and 7 studies: cache key and inputs of each (``"tractor"``, ``"carriage"``),
     and the cache keys of each one's cases (one per Table XII or XVI rolling row).
 
     Each is kept under the digest of exactly what it reads (ItemCache): a new recording or a
     changed ride scenario re-runs neither, a changed Table XII only the carriage, and of a study
-    only the cases whose inputs changed run again (:func:`_payload`).
+    only the cases whose inputs changed run again (:func:`_payload`). Tables that do not fit
+    together (a rolling row whose load condition has no stationary or Table XV row, in
+    ``folder``) raise :class:`tyrelab.published.PublishedTableError` naming every problem.
     """
     xii = layouts.carriage_rolling(pub["table_xii"])
     stationary = layouts.carriage_stationary(pub["table_xii"])
     mass, tyres = layouts.tractor_mass(pub["table_xv"]), layouts.tractor_tyres(pub["table_xvi"])
     keys = {"tractor": cache.key("tractor", mass, tyres, SEED), "carriage": cache.key("carriage", xii, stationary, SEED)}
-    case_keys = {
-        "tractor": [cache.key("tractor-case", c, SEED) for c in studies.tractor_case_inputs(mass, tyres)],
-        "carriage": [cache.key("carriage-case", c, SEED) for c in studies.carriage_case_inputs(xii, stationary)],
-    }
+    case_keys, problems = {}, []
+    for name, what, cases in (("tractor", "tractor study (table_xv, table_xvi)", lambda: studies.tractor_case_inputs(mass, tyres)),
+                              ("carriage", "carriage study (table_xii)", lambda: studies.carriage_case_inputs(xii, stationary))):
+        try:
+            case_keys[name] = [cache.key(f"{name}-case", c, SEED) for c in cases()]
+        except ValueError as exc:  # tables that do not fit together (an edited <raw>/published)
+            problems.append(f"{what}: {exc}")
+    if problems:
+        raise published.PublishedTableError(f"{folder}: {'; '.join(problems)}")
     return keys, {"tractor": (mass, tyres), "carriage": (xii, stationary)}, case_keys
 
 
@@ -220,9 +227,12 @@ def start_studies_ahead(ctx: Context) -> list[str]:
 
     if _AHEAD or ctx.executor != "local" or int(ctx.jobs or 1) < 2:
         return []
-    pub, _ = _read(ctx)
     cache = ItemCache(ctx, "simulate")
-    keys, inputs, case_keys = _study_plan(pub, cache)
+    try:
+        pub, _ = _read(ctx)
+        keys, inputs, case_keys = _study_plan(pub, cache, published.published_dir(ctx.raw))
+    except published.PublishedTableError:
+        return []  # the stage reports it, after the stages before it have run
     todo = [name for name in keys if not cache.has(keys[name])]
     if not todo:
         return []
@@ -266,7 +276,7 @@ def run(ctx: Context) -> StageResult:
     # Table XX run side by side, one executor call (tyrelab.executor.map_batches), longest first:
     # with two workers the tractor study runs on one while the carriage study, the scenarios and
     # Table XX share the other
-    keys, inputs, case_keys = _study_plan(pub, cache)
+    keys, inputs, case_keys = _study_plan(pub, cache, published.published_dir(ctx.raw))
     cache.keep([k for ks in case_keys.values() for k in ks])  # a cached study's cases stay for the next edit
     done = {name: v for name, k in keys.items() for hit, v in [cache.get(k)] if hit}
     for name in [n for n in keys if n not in done]:

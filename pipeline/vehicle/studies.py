@@ -126,6 +126,25 @@ def _half_inputs(x, h, speed, n_steps, x_start=0.0):
     return u[: 2 * n_steps - 1], ud[: 2 * n_steps - 1]
 
 
+def _by_condition(table: pd.DataFrame, needed, name: str, what: str, problems: list[str]) -> pd.DataFrame:
+    """``table`` indexed by ``load_condition``; appends to ``problems`` each condition of ``needed``
+    without a row, or with more than one (``name`` and ``what`` word the message)."""
+    indexed = table.set_index("load_condition")
+    missing = [str(c) for c in dict.fromkeys(needed) if c not in indexed.index]
+    repeated = sorted({str(c) for c in indexed.index[indexed.index.duplicated()]})
+    if missing:
+        problems.append(f"{name} has no {what} for load condition {', '.join(missing)}")
+    if repeated:
+        problems.append(f"{name} has more than one {what} for load condition {', '.join(repeated)}")
+    return indexed
+
+
+def _refuse(problems: list[str]) -> None:
+    """Raise every problem of the studies' tables at once (ValueError)."""
+    if problems:
+        raise ValueError("; ".join(problems))
+
+
 def _footprints(table_xii: pd.DataFrame, surface_stiffness_factor: float) -> dict:
     """Tyre footprint length (m) per load condition of Table XII's rolling rows.
 
@@ -166,8 +185,10 @@ def carriage_case_inputs(
     >>> cases[0]["footprint_m"] == cases[1]["footprint_m"]  # one condition, one footprint
     True
     """
+    problems: list[str] = []
+    stat = _by_condition(stationary, table_xii["load_condition"], "stationary", "row", problems)
+    _refuse(problems)
     foot = _footprints(table_xii, surface_stiffness_factor)
-    stat = stationary.set_index("load_condition")
     return [
         {
             "row": _plain(row),
@@ -219,6 +240,9 @@ def carriage_study(
     cases = dict(cases or {})
     if any(not isinstance(i, (int, np.integer)) or not 0 <= i < len(conds) for i in cases):
         raise ValueError(f"cases must be keyed by row positions 0..{len(conds) - 1} of table_xii, got {sorted(cases)!r}")
+    problems: list[str] = []
+    stat = _by_condition(stationary, conds["load_condition"], "stationary", "row", problems)
+    _refuse(problems)
     track = pr.slatted_track(seed=seed)
     dx = track.dx_m
     lead = int(round(LEAD_IN_M / dx))
@@ -230,7 +254,7 @@ def carriage_study(
     x = np.arange(track.x_m.size + 2 * lead) * dx
     todo = [i for i in range(len(conds)) if i not in cases]
     if todo:
-        new = _carriage_cases(conds.iloc[todo], stationary.set_index("load_condition"), x, est_by_load,
+        new = _carriage_cases(conds.iloc[todo], stat, x, est_by_load,
                               track.x_m[-1], surface_stiffness_factor)
         cases.update(zip(todo, new))
     ordered = [cases[i] for i in range(len(conds))]
@@ -408,6 +432,18 @@ def _plain(row) -> dict:
     return {k: (v.item() if hasattr(v, "item") else v) for k, v in dict(row).items()}
 
 
+def _tractor_conditions(table_xv: pd.DataFrame, table_xvi: pd.DataFrame, rolling: pd.DataFrame):
+    """Table XV and the stationary rows of Table XVI by load condition, each rolling row's condition
+    present once in both (ValueError naming every problem otherwise)."""
+    problems: list[str] = []
+    needed = rolling["load_condition"].astype(int)
+    xv = _by_condition(table_xv, needed, "table_xv", "row", problems)
+    stat = _by_condition(table_xvi[table_xvi["characteristics"] == "stationary"], needed, "table_xvi",
+                         "stationary row", problems)
+    _refuse(problems)
+    return xv, stat
+
+
 def tractor_case_inputs(
     table_xv: pd.DataFrame, table_xvi: pd.DataFrame, farm_class: str = "D", duration_s: float = 30.0
 ) -> list[dict]:
@@ -420,9 +456,8 @@ def tractor_case_inputs(
     everything (the tracks are seeded). A cache keyed on these (the simulate stage's)
     recomputes only the cases whose inputs changed.
     """
-    xv = table_xv.set_index("load_condition")
-    stat = table_xvi[table_xvi["characteristics"] == "stationary"].set_index("load_condition")
     rolling = table_xvi[table_xvi["characteristics"] == "rolling"].reset_index(drop=True)
+    xv, stat = _tractor_conditions(table_xv, table_xvi, rolling)
     return [
         {"row": _plain(r), "stationary": _plain(stat.loc[int(r["load_condition"])]),
          "mass": _plain(xv.loc[int(r["load_condition"])]), "farm_class": farm_class, "duration_s": float(duration_s)}
@@ -489,9 +524,8 @@ def tractor_study(
         base_track.replace(left_m=pr.slat_surface(base_track, "left"), right_m=pr.slat_surface(base_track, "right")),
         LEAD_IN_M,
     )
-    xv = table_xv.set_index("load_condition")
-    stat = table_xvi[table_xvi["characteristics"] == "stationary"].set_index("load_condition")
     rolling = table_xvi[table_xvi["characteristics"] == "rolling"].reset_index(drop=True)
+    xv, stat = _tractor_conditions(table_xv, table_xvi, rolling)
     cases = dict(cases or {})
     if any(not isinstance(i, (int, np.integer)) or not 0 <= i < len(rolling) for i in cases):
         raise ValueError(f"cases must be keyed by rolling-row positions 0..{len(rolling) - 1} of table_xvi, "

@@ -252,3 +252,36 @@ def test_ctrl_c_while_an_extension_module_initialises_is_an_interrupt(tmp_path, 
         monkeypatch.setattr(cli, "cmd_run", fn)
         with pytest.raises(error):
             main(["run", "--raw", str(tmp_path), "--build", str(tmp_path / "b")])
+
+
+def test_published_tables_that_do_not_fit_together_are_one_line(tmp_path, capsys):
+    """An edited <raw>/published whose Table XII has no stationary row for the heavy condition and
+    whose Table XVI has none for load condition 4: one line naming the folder and both problems,
+    exit 2, no table written. A table that does not match its schema: one line too (it was a
+    traceback from the stage commands and `run`)."""
+    import csv
+
+    from tyrelab import resources
+
+    raw = tmp_path / "raw"
+    shutil.copytree(resources.published_dir(), raw / "published")
+    for stem, drop in (("table_xii", ("stationary", "heavy")), ("table_xvi", ("stationary", "4"))):
+        path = raw / "published" / f"{stem}.csv"
+        with open(path, newline="") as fh:
+            rows = list(csv.DictReader(fh))
+        with open(path, "w", newline="") as fh:
+            writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
+            writer.writeheader()
+            writer.writerows(r for r in rows if (r["characteristics"], r["load_condition"]) != drop)
+    assert main(["simulate", "--raw", str(raw), "--build", str(tmp_path / "b"), "--jobs", "1"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert "Traceback" not in "\n".join(err)
+    assert err[-1] == (f"tyrelab simulate: {raw / 'published'}: tractor study (table_xv, table_xvi): table_xvi has "
+                       "no stationary row for load condition 4; carriage study (table_xii): stationary has no row "
+                       "for load condition heavy")
+    assert not (tmp_path / "b" / "parquet").exists() or not list((tmp_path / "b" / "parquet").glob("*.parquet"))
+
+    (raw / "published" / "table_xvi.csv").write_text("bogus,header\n1,2\n")
+    assert main(["simulate", "--raw", str(raw), "--build", str(tmp_path / "b"), "--jobs", "1"]) == 2
+    assert capsys.readouterr().err.strip().splitlines()[-1] == (
+        f"tyrelab simulate: {raw / 'published' / 'table_xvi.csv'}: missing column 'characteristics'")

@@ -132,3 +132,17 @@ def test_an_error_while_figures_are_drawn_ends_their_workers(small_report, tmp_p
     with pytest.raises(KeyboardInterrupt):
         site.build_site(small_report.build / "warehouse.duckdb", tmp_path / "reports", small_report.raw, jobs=2)
     assert ended and ended[0] and not any(ended[0])  # the pool's workers existed and are gone
+
+
+def test_every_query_of_ours_has_a_row_order(small_report):
+    """A chapter table's own query (``TableSpec.ours_sql``) orders its rows: its result keys the
+    report's cache of shaped tables, and DuckDB returns DISTINCT/GROUP BY rows in any order (the
+    random-kill test found a second cache entry for the same table)."""
+    from tyrelab.report import chapters, site
+
+    specs = [i for c in chapters.CHAPTERS for i in c.items if isinstance(i, chapters.TableSpec) and i.ours_sql]
+    assert len(specs) >= 4
+    wh = site.Warehouse(small_report.build / "warehouse.duckdb")
+    for spec in specs:
+        assert " ORDER BY " in spec.ours_sql, spec.ours_sql
+        assert len(wh.sql(spec.ours_sql)), spec.ours_sql  # and it runs on the warehouse

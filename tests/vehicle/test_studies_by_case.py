@@ -2,6 +2,7 @@
 and a case's inputs are what it reads."""
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from tyrelab.published import read_published
@@ -136,3 +137,16 @@ def test_lift_off_counts_a_runs_own_samples():
     assert np.array_equal(both["a_m_s2"][1, :1000], alone["a_m_s2"])
     with pytest.raises(ValueError, match="n_steps must be integers from 1 to the 2000 samples"):
         cm.simulate_nonlinear(car, u, ud, 1e-3, n_steps=n + 1)
+
+
+def test_tables_that_do_not_fit_together_are_refused_with_every_problem(tables, tractor_tables):
+    rolling, stationary = tables
+    with pytest.raises(ValueError, match="^stationary has no row for load condition heavy$"):
+        studies.carriage_case_inputs(rolling, stationary[stationary["load_condition"] != "heavy"])
+    with pytest.raises(ValueError, match="stationary has more than one row for load condition light"):
+        studies.carriage_study(rolling, pd.concat([stationary, stationary[stationary["load_condition"] == "light"]]))
+    mass, tyres = tractor_tables
+    no_stat = tyres[~((tyres["characteristics"] == "stationary") & (tyres["load_condition"] == 2))]
+    with pytest.raises(ValueError, match="^table_xv has no row for load condition 1; table_xvi has no stationary row "
+                                         "for load condition 2$"):
+        studies.tractor_study(mass[mass["load_condition"] != 1], no_stat)
