@@ -238,7 +238,8 @@ def test_edited_rows_resimulate_their_cases_only(ctx, tmp_path):
     xvi = _edit_first_row(raw / "published" / "table_xvi.csv", "rear_damping_kN_s_per_m", 1.5)
 
     # and one cached case unreadable (a torn or foreign file): it is computed again and replaced
-    case_keys = simulate._study_plan(simulate._read(edited)[0], simulate.ItemCache(edited, "simulate"))[2]
+    case_keys = simulate._study_plan(simulate._read(edited)[0], simulate.ItemCache(edited, "simulate"),
+                                     raw / "published")[2]
     torn = build / "cache" / "simulate" / f"{case_keys['carriage'][5]}.pkl"
     torn.write_bytes(torn.read_bytes()[:100])
 
