@@ -139,6 +139,14 @@ def _by_condition(table: pd.DataFrame, needed, name: str, what: str, problems: l
     return indexed
 
 
+def _given_cases(cases: dict | None, n: int, positions: str, table: str) -> dict:
+    """A copy of a study's ``cases`` argument, checked to be keyed by positions 0..n-1 of ``table``."""
+    cases = dict(cases or {})
+    if any(not isinstance(i, (int, np.integer)) or not 0 <= i < n for i in cases):
+        raise ValueError(f"cases must be keyed by {positions} 0..{n - 1} of {table}, got {sorted(cases)!r}")
+    return cases
+
+
 def _refuse(problems: list[str]) -> None:
     """Raise every problem of the studies' tables at once (ValueError)."""
     if problems:
@@ -237,9 +245,7 @@ def carriage_study(
         records, for a later call's ``cases``).
     """
     conds = table_xii.reset_index(drop=True)
-    cases = dict(cases or {})
-    if any(not isinstance(i, (int, np.integer)) or not 0 <= i < len(conds) for i in cases):
-        raise ValueError(f"cases must be keyed by row positions 0..{len(conds) - 1} of table_xii, got {sorted(cases)!r}")
+    cases = _given_cases(cases, len(conds), "row positions", "table_xii")
     problems: list[str] = []
     stat = _by_condition(stationary, conds["load_condition"], "stationary", "row", problems)
     _refuse(problems)
@@ -526,10 +532,7 @@ def tractor_study(
     )
     rolling = table_xvi[table_xvi["characteristics"] == "rolling"].reset_index(drop=True)
     xv, stat = _tractor_conditions(table_xv, table_xvi, rolling)
-    cases = dict(cases or {})
-    if any(not isinstance(i, (int, np.integer)) or not 0 <= i < len(rolling) for i in cases):
-        raise ValueError(f"cases must be keyed by rolling-row positions 0..{len(rolling) - 1} of table_xvi, "
-                         f"got {sorted(cases)!r}")
+    cases = _given_cases(cases, len(rolling), "rolling-row positions", "table_xvi")
 
     specs = []  # per case: [(label dict, tractor kwargs, profile, radii flag)]
     for _, r in rolling.iterrows():
