@@ -81,3 +81,19 @@ def write_campaign(folder: Path, runs: list[tuple[dict, pd.DataFrame | bytes | N
             content.to_parquet(path, index=False)
     pd.DataFrame([r for r, _ in runs]).to_csv(folder / "manifest.csv", index=False)
     return folder
+
+
+def edit_csv(path: Path, edit) -> list[dict]:
+    """Rewrite the CSV file ``path`` after ``edit(rows)`` changed its rows (dicts by column) in place;
+    return the rows written."""
+    import csv
+
+    with open(path, newline="") as fh:
+        reader = csv.DictReader(fh)
+        fields, rows = list(reader.fieldnames or []), list(reader)
+    edit(rows)
+    with open(path, "w", newline="") as fh:
+        writer = csv.DictWriter(fh, fieldnames=fields)
+        writer.writeheader()
+        writer.writerows(rows)
+    return rows

@@ -9,13 +9,13 @@ same bytes. ``SOURCE_DATE_EPOCH`` fixes the report's "generated" time.
 
 from __future__ import annotations
 
-import csv
 import logging
 import shutil
 from pathlib import Path
 
 import pytest
 
+from synthetic import edit_csv as _edit_csv
 from synthetic import manifest_row, spring_damper_recording, write_campaign
 from tyrelab import resources
 from tyrelab.stages import ORDER, Context, run_pipeline
@@ -64,17 +64,6 @@ def _assert_same_as_clean(raw: Path, build: Path, stages: list[str], caplog) -> 
     different = [name for name in clean if incremental[name] != clean[name]]
     assert not different, different
     return log
-
-
-def _edit_csv(path: Path, edit) -> None:
-    with open(path, newline="") as fh:
-        reader = csv.DictReader(fh)
-        fields, rows = list(reader.fieldnames or []), list(reader)
-    edit(rows)
-    with open(path, "w", newline="") as fh:
-        w = csv.DictWriter(fh, fieldnames=fields)
-        w.writeheader()
-        w.writerows(rows)
 
 
 def test_add_remove_change_edit_published_match_clean_rebuild(tmp_path, caplog, monkeypatch):

@@ -204,17 +204,11 @@ def test_studies_no_stage_took_are_ended(ctx, tmp_path):
 
 def _edit_first_row(path, column, factor):
     """Multiply ``column`` of the first row of a published CSV by ``factor``; return that row."""
-    import csv
+    from synthetic import edit_csv
 
-    with open(path, newline="") as fh:
-        rows = list(csv.DictReader(fh))
-    assert rows[0]["characteristics"] == "rolling"
-    rows[0][column] = f"{float(rows[0][column]) * factor:.3f}"
-    with open(path, "w", newline="") as fh:
-        writer = csv.DictWriter(fh, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-    return rows[0]
+    first = edit_csv(path, lambda rows: rows[0].update({column: f"{float(rows[0][column]) * factor:.3f}"}))[0]
+    assert first["characteristics"] == "rolling"
+    return first
 
 
 def test_edited_rows_resimulate_their_cases_only(ctx, tmp_path):
