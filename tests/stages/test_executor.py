@@ -12,7 +12,7 @@ from tyrelab.stages import Context, run_pipeline
 from synthetic import manifest_row, spring_damper_recording, write_campaign
 
 STAGES = ["ingest", "analyse", "warehouse"]
-TABLES = ["manifest.parquet", "results.parquet", "quarantine.parquet", "tyres.parquet"]
+TABLES = ["manifest.parquet", "stages/analysed.parquet", "quarantine.parquet", "tyres.parquet"]
 
 
 def square(x):
