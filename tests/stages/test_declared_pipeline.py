@@ -172,3 +172,10 @@ def test_deleting_any_single_output_restores_the_clean_bytes(clean, caplog):
         now = _outputs(build)
         assert sorted(now) == sorted(files), name
         assert [n for n in files if now[n] != files[n]] == [], name
+
+
+def test_the_architecture_document_shows_the_declared_graph():
+    """docs/architecture.md's stage graph is generated: regenerate it with ``dag.graph_text()``."""
+    doc = (Path(__file__).resolve().parents[2] / "docs" / "architecture.md").read_text(encoding="utf-8")
+    block = doc.split("<!-- stage-graph:begin", 1)[1].split("<!-- stage-graph:end -->", 1)[0]
+    assert block.split("```\n", 1)[1].rsplit("\n```", 1)[0] == dag.graph_text()
