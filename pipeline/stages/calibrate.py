@@ -42,7 +42,7 @@ from .. import io, published
 from ..measurement import calibration as cal
 from ..measurement import uncertainty as unc
 from ..measurement.apparent_mass import tyre_force
-from ..measurement.methods import table_i
+from ..rig.experiments import table_i
 from ..rawformat import ACCEL_CHANNELS, BEAM_CHANNELS, CHANNELS
 from .base import Context, StageResult
 from .dag import ANALYSED
@@ -239,7 +239,7 @@ def run(ctx: Context) -> StageResult:
             results = cal.flag_failed_days(results, days, keys, dkeys)
             n_flagged = int(results["qc_reasons"].str.contains("calibration failed on", regex=False).sum())
         ctx.write_table("results", results)
-    # Table I compares measurement methods on virtual experiments (see methods.table_i).
+    # Table I compares measurement methods on virtual experiments (see tyrelab.rig.experiments.table_i).
     published_i = published.read_published("table_i", ctx.raw)
     ctx.write_table("table_i", cache.get_or_compute(cache.key("table_i", published_i), lambda: table_i(published_i)))
     cache.prune()
