@@ -192,14 +192,39 @@ def _warn(prog: str, warnings) -> None:
         print(f"{prog}: warning: {w}", file=sys.stderr)
 
 
+def _stiffness_model(prog: str, build: str | None):
+    """The thesis' stiffness model, or with ``build`` the one fitted to that warehouse's tyres
+    (table ``formula_fit``); ValueError with one line for a missing or unfitted warehouse."""
+    from .published import thesis_stiffness_model
+    from .tyre.models import build_stiffness_model
+    from .warehouse import query
+
+    thesis = thesis_stiffness_model()
+    if build is None:
+        return thesis
+    db = Path(build) / "warehouse.duckdb"
+    try:
+        table = query(db, "SELECT * FROM formula_fit")
+    except FileNotFoundError as exc:
+        raise ValueError(str(exc)) from None
+    except Exception as exc:  # noqa: BLE001 - a warehouse without the table
+        raise ValueError(f"{db}: {str(exc).splitlines()[0]} (run 'tyrelab run' first)") from None
+    try:
+        return build_stiffness_model(table, thesis)
+    except ValueError as exc:
+        raise ValueError(f"{db}: {exc}") from None
+
+
 def cmd_estimate_stiffness(args) -> int:
     from .tyre.sizes import TyreSizeError
     from .tyre.stiffness import estimate_stiffness
 
     prog = "tyrelab estimate-stiffness"
     try:
+        model = _stiffness_model(prog, getattr(args, "build", None))
         est = estimate_stiffness(
-            args.size, args.pressure, args.age, undriven_front=args.front_undriven, water_ballast=args.water_ballast
+            args.size, args.pressure, args.age, undriven_front=args.front_undriven, water_ballast=args.water_ballast,
+            model=model,
         )
     except (TyreSizeError, ValueError) as exc:
         print(f"{prog}: {exc}", file=sys.stderr)
@@ -228,6 +253,7 @@ def cmd_natural_frequencies(args) -> int:
             age_years=args.age, front_stiffness_kN_per_m=args.front_stiffness,
             rear_stiffness_kN_per_m=args.rear_stiffness, front_stiffness_u_kN_per_m=args.front_stiffness_u,
             rear_stiffness_u_kN_per_m=args.rear_stiffness_u,
+            stiffness_model=_stiffness_model(prog, None),
         )
     except (TyreSizeError, ValueError) as exc:
         print(f"{prog}: {exc}", file=sys.stderr)
@@ -424,13 +450,17 @@ def build_parser() -> argparse.ArgumentParser:
     a.set_defaults(func=cmd_analyze_run)
 
     e = sub.add_parser("estimate-stiffness", help="rolling tyre stiffness from size, pressure and age (kN/m)",
-                       description="K = 172 - 1.77 R + 5.6 A + 0.34 W R P (thesis §4.5.3); warns on stderr "
-                       "where the tyre or pressure lies outside the thesis' data (Tables II, III, VI).")
+                       description="K = 172 - 1.77 R + 5.6 A + 0.34 W R P (thesis §4.5.3) with the 95 %% prediction "
+                       "interval of the same formula refitted to the thesis' Table III (or, with --build, the formula "
+                       "fitted to a build's tyres); warns on stderr where the tyre or pressure lies outside the data.")
     e.add_argument("--size", required=True, help="tyre size, e.g. 480/70R38, IF 710/70R42 173D, 13.6R38")
     e.add_argument("--pressure", type=_non_negative, required=True, help="inflation pressure, bar")
     e.add_argument("--age", type=_non_negative, default=1.0, help="tyre age, years (default 1)")
     e.add_argument("--front-undriven", action="store_true", help="undriven ribbed front tyre rule (thesis §8.2)")
     e.add_argument("--water-ballast", action="store_true", help="water-ballasted tyre (+25 %%)")
+    e.add_argument("--build", default=None, metavar="DIR",
+                   help="use the formula fitted to the tyres measured in DIR's warehouse (table formula_fit) and "
+                        "its prediction interval, instead of the thesis' (default)")
     e.add_argument("--json", action="store_true", help="print JSON (same as --format json)")
     e.add_argument("--format", choices=["text", "json"], default="text",
                    help="text: K in kN/m; json: inputs, W, R, aspect ratio, construction, K, warnings")
