@@ -148,12 +148,30 @@ def cmd_stage(args) -> int:
 
 
 def cmd_sql(args) -> int:
-    from .warehouse import WriteRefused, query_all
+    import duckdb
+
+    from .warehouse import QueryLimits, QueryTimeout, WriteRefused, query_all
 
     try:
-        frames = query_all(Path(args.build) / "warehouse.duckdb", args.query)
+        limits = QueryLimits(args.memory_limit, args.max_spill, args.timeout or None)
+    except ValueError as exc:
+        text = str(exc)
+        for field_name, option in (("memory_limit_bytes", "--memory-limit"), ("spill_limit_bytes", "--max-spill"),
+                                   ("timeout_s", "--timeout")):
+            text = text.replace(field_name, option)
+        print(f"tyrelab sql: {text}", file=sys.stderr)
+        return EXIT_USAGE
+    try:
+        frames = query_all(Path(args.build) / "warehouse.duckdb", args.query, limits)
     except (WriteRefused, FileNotFoundError) as exc:
         print(f"tyrelab sql: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except QueryTimeout as exc:
+        print(f"tyrelab sql: {exc}; --timeout SECONDS changes it (0: none)", file=sys.stderr)
+        return EXIT_USAGE
+    except duckdb.OutOfMemoryException as exc:
+        print(f"tyrelab sql: {str(exc).splitlines()[0]} (limits: --memory-limit {args.memory_limit} bytes, "
+              f"--max-spill {args.max_spill} bytes; raise them, e.g. --memory-limit 8GB)", file=sys.stderr)
         return EXIT_USAGE
     except Exception as exc:  # noqa: BLE001 - DuckDB errors are the user's query errors
         print(f"tyrelab sql: {type(exc).__name__}: {str(exc).splitlines()[0]}", file=sys.stderr)
@@ -394,6 +412,16 @@ def _non_negative(text: str) -> float:
     return value
 
 
+def _size(text: str) -> int:
+    """argparse type: a size in bytes (``512MB``, ``2GiB``, ``0``)."""
+    from .warehouse import parse_size
+
+    try:
+        return parse_size(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (exposed for tests and documentation)."""
     from .stages import ORDER
@@ -442,6 +470,12 @@ def build_parser() -> argparse.ArgumentParser:
     q.add_argument("query", help='e.g. "SELECT * FROM table_iii"')
     q.add_argument("--build", default="build")
     q.add_argument("--format", choices=["table", "csv", "json"], default="table")
+    q.add_argument("--memory-limit", type=_size, default="2GiB", metavar="SIZE",
+                   help="DuckDB memory limit, e.g. 512MB, 8GiB (default 2GiB)")
+    q.add_argument("--max-spill", type=_size, default="4GiB", metavar="SIZE",
+                   help="what may spill to disk, into <build>/.sql-spill/ only (default 4GiB; 0: no spilling)")
+    q.add_argument("--timeout", type=_non_negative, default=300.0, metavar="SECONDS",
+                   help="stop a statement after this many seconds (default 300; 0: no limit)")
     q.set_defaults(func=cmd_sql)
 
     a = sub.add_parser("analyze-run", help="K and C of one recording (raw format v1), as JSON")
