@@ -36,7 +36,6 @@ UPPER = ("tyrelab.stages", "tyrelab.report", "tyrelab.cli", "tyrelab.warehouse",
 #: of one cycle (a strongly connected component of the import graph) and who removes it.
 #: Remove an entry when its cycle is gone; the test fails while a listed cycle is missing.
 ALLOWED_MODULE_CYCLES = {
-    frozenset({"tyrelab.tyre.stiffness", "tyrelab.tyre.formula_accuracy"}): "issue 27 (tyre/)",
     frozenset({"tyrelab.vehicle.ride", "tyrelab.vehicle.studies", "tyrelab.vehicle.tractor"}): "issue 23 (vehicle/)",
 }
 #: Upward arrows (importer, imported module) from a pure package that exist today and are being

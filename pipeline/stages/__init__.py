@@ -45,7 +45,11 @@ def run_stage(name: str, ctx: Context) -> StageResult:
         # forked from it (~2-3 s into the run, it is ready by then) while this process shapes tables.
         start_worker_server()
     module = importlib.import_module(f"{__name__}.{name}")
-    result = module.run(ctx)
+    ctx.stage = name
+    try:
+        result = module.run(ctx)
+    finally:
+        ctx.stage = None
     counts = {"n_in": result.n_in, "n_ok": result.n_ok, "n_quarantined": result.n_quarantined,
               "n_rejected": result.n_rejected}
     state.record(ctx, stage, code, inputs, cache, counts)

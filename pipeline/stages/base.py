@@ -50,6 +50,9 @@ class Context:
     scheduler: str | None = None
     calibration_correct: bool = False
     log: logging.Logger = field(default=log, repr=False)
+    #: The stage running (set by :func:`tyrelab.stages.run_stage`): a table it writes must be one it
+    #: declares (:data:`tyrelab.stages.dag.STAGES`), so the declarations cannot drift from the code.
+    stage: str | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         self.raw = Path(self.raw).resolve()
@@ -88,7 +91,19 @@ class Context:
         return pd.read_parquet(self.table(name))
 
     def write_table(self, name: str, df: pd.DataFrame) -> Path:
-        """Write table ``name`` atomically."""
+        """Write table ``name`` atomically.
+
+        Raises
+        ------
+        RuntimeError
+            If the running stage (:attr:`stage`) does not declare the table among its outputs.
+        """
+        if self.stage is not None:
+            from .dag import table, writer
+
+            if writer(table(name)) != self.stage:
+                raise RuntimeError(f"stage {self.stage} writes table {name!r}, which it does not declare: add "
+                                   f"{table(name)!r} to its writes in tyrelab.stages.dag.STAGES")
         return io.write_parquet_atomic(df, self.table(name))
 
 
