@@ -6,7 +6,7 @@ float64 Parquet (pyarrow defaults: snappy, 1 Mi-row groups), then times, each in
 process, one after the other on the same file:
 
 - *read floor*: reading the four columns batch by batch with pyarrow into numpy, nothing else
-  (the recording reader's batch size);
+  (the recording reader's batch size and options: no pre-buffering, 1 MiB buffered stream);
 - *exposure*: :func:`tyrelab.rawformat.rides.open_recording` +
   :func:`tyrelab.vehicle.measured_ride.analyse_recording` (all the per-axis values, D_z, the
   PSDs), i.e. what ``tyrelab exposure FILE`` computes;
@@ -67,7 +67,8 @@ def child(mode: str, path: str) -> dict:
     out: dict = {}
     if mode == "read":
         total = 0.0
-        for batch in pq.ParquetFile(path).iter_batches(batch_size=CHUNK_ROWS, columns=COLUMNS):
+        for batch in pq.ParquetFile(path, pre_buffer=False, buffer_size=1 << 20).iter_batches(batch_size=CHUNK_ROWS,
+                                                                                             columns=COLUMNS):
             for col in batch.columns:
                 total += float(col.to_numpy()[-1])
         out["checksum"] = total
