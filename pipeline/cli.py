@@ -58,7 +58,8 @@ def _context(args):
 def cmd_generate(args) -> int:
     from .generate import generate_campaign
 
-    summary = generate_campaign(Path(args.out), scale=args.scale, seed=args.seed, scatter=args.scatter)
+    summary = generate_campaign(Path(args.out), scale=args.scale, seed=args.seed, scatter=args.scatter,
+                                rides=args.rides)
     log.info("generate: %s", json.dumps(summary, default=str))
     return EXIT_OK
 
@@ -421,6 +422,8 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--no-scatter", dest="scatter", action="store_false",
                    help="no run-to-run / day-to-day tyre scatter (thesis §3.6 repeatability is on by default: "
                         "K 2 %% + 1.5 %% per day, C 4 %% + 3 %% per day, standard deviations)")
+    g.add_argument("--no-rides", dest="rides", action="store_false",
+                   help="no seat recordings of virtual tractors (rides.csv, rides/; written by default)")
     g.set_defaults(func=cmd_generate)
 
     def io_options(sp):

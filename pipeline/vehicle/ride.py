@@ -640,7 +640,8 @@ class RideResult:
     #: ``bounce``/``pitch`` -> [low, high], 95 %, from the tyres' stiffness uncertainty (:func:`_mode_intervals`)
     natural_frequency_intervals_Hz: dict = field(default_factory=dict)
     #: With ``ride(..., with_signals=True)``: speed (km/h) -> the seat's predicted record, raw-format channel
-    #: name (``seat_z_m_s2``, ``seat_x_m_s2``) -> samples at ``FS_HZ`` from the front axle's entry on the track
+    #: name (``seat_z_m_s2``, ``seat_x_m_s2``, ``floor_z_m_s2``, ``floor_x_m_s2``) -> samples at ``FS_HZ`` from
+    #: the front axle's entry on the track
     signals: dict = field(default_factory=dict)
 
 
@@ -747,7 +748,9 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
         if seat_ss is not None:
             seat_z = simulate_state_space(*seat_ss, seat_z[None, :])[0]
         z, x = seat_z[start:stop], r["y"][1][start:stop]
-        signals = {**signals, float(speed): {"seat_z_m_s2": z, "seat_x_m_s2": x}} if with_signals else signals
+        if with_signals:  # the cab floor beneath the seat: before the seat suspension (the model's seat x has none)
+            signals[float(speed)] = {"seat_z_m_s2": z, "seat_x_m_s2": x, "floor_z_m_s2": r["y"][0][start:stop],
+                                     "floor_x_m_s2": x}
         wz = iso2631.weighted_signal(z, FS_HZ, "Wk")
         wx = iso2631.weighted_signal(x, FS_HZ, "Wd")
         a_wz, a_wx = float(np.sqrt(np.mean(wz**2))), float(np.sqrt(np.mean(wx**2)))
