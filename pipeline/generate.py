@@ -42,15 +42,15 @@ def write_rides(out: Path, seed: int) -> int:
     """Write the virtual tractors' recordings, their scenarios and ``rides.csv``; returns the count."""
     from .resources import scenarios_dir
     from .vehicle.scenario import load_scenario
-    from .vehicle.virtual_rides import ride_plan, virtual_recordings
+    from .vehicle.virtual_rides import RIDE_PLAN, ride_plan, virtual_recordings
 
-    plan = ride_plan()
+    scenarios = {file: load_scenario(scenarios_dir() / file) for file, *_ in RIDE_PLAN}
+    plan = ride_plan(scenarios)
     (out / "rides").mkdir(parents=True, exist_ok=True)
     for scenario_file, rows in plan.groupby("scenario", sort=False):
         name = Path(scenario_file).name
-        source = scenarios_dir() / name
-        io.write_text_atomic(source.read_text(encoding="utf-8"), out / scenario_file)
-        frames, _ = virtual_recordings(load_scenario(source), name, seed)
+        io.write_text_atomic((scenarios_dir() / name).read_text(encoding="utf-8"), out / scenario_file)
+        frames, _ = virtual_recordings(scenarios[name], name, seed)
         for row in rows.itertuples():
             write_run(frames[float(row.speed_km_h)], out / row.file)
     io.write_text_atomic(plan.to_csv(index=False, float_format="%.6g", lineterminator="\n"), out / "rides.csv")

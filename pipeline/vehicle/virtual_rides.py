@@ -39,14 +39,17 @@ RIDE_PLAN = (
 )
 
 
-def ride_plan() -> pd.DataFrame:
-    """The ``rides.csv`` rows of the demo campaign (without files written)."""
-    from ..resources import scenarios_dir
-    from .scenario import load_scenario
+def ride_plan(scenarios: dict) -> pd.DataFrame:
+    """The ``rides.csv`` rows of the demo campaign (without files written).
 
+    Parameters
+    ----------
+    scenarios : dict
+        Scenario file name of :data:`RIDE_PLAN` -> its loaded :class:`~tyrelab.vehicle.scenario.Scenario`.
+    """
     rows = []
     for file, vehicle, task, hours, day in RIDE_PLAN:
-        sc = load_scenario(scenarios_dir() / file)
+        sc = scenarios[file]
         stem = file.removesuffix(".toml")
         for v in sc.exposure.speeds_km_h:
             ride_id = f"{stem}_{v:g}kmh".replace(".", "p")
