@@ -251,3 +251,13 @@ def test_gravity_offset_is_a_warning_and_removed(tmp_path):
     assert not a.warnings and "±1 g offset" in b.warnings[0]
     assert b.dz_m_s2 == pytest.approx(a.dz_m_s2, rel=1e-6)
     assert b.axes()["z"]["a_w_m_s2"] == pytest.approx(a.axes()["z"]["a_w_m_s2"], rel=1e-6)
+
+
+def test_reader_channels_are_the_schema():
+    from tyrelab.rawformat.rides import RIDE_CHANNELS
+    from tyrelab.schema import load_schema
+
+    names = [f["name"] for f in load_schema("raw_ride")["fields"]]
+    assert names == ["time_s", *RIDE_CHANNELS]
+    rides = [f["name"] for f in load_schema("raw_rides")["fields"]]
+    assert rides[:6] == ["ride_id", "file", "vehicle", "speed_km_h", "track", "recorded_on"]
