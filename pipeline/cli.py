@@ -370,7 +370,7 @@ def cmd_exposure(args) -> int:
             print(f"{prog}: {line}", file=sys.stderr)
         return EXIT_USAGE
     try:
-        doc = assess(tasks)
+        doc = _json_safe(assess(tasks))
     except RecordingProblem as exc:
         for line in exc.lines:
             print(f"{prog}: {line}", file=sys.stderr)

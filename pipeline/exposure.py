@@ -10,8 +10,8 @@ JSON (:func:`assess`): with one recording, its ``axes`` (``x``/``y``/``z``: ``a_
 ``dz_m_s2`` and ``seat_factor`` (when floor channels exist) at the top; with several, each
 task carries its own. The day: ``tasks`` (each with ``partial_a8_m_s2`` per axis), ``a8_m_s2``
 (the Directive's, highest axis), ``a8_axis``, ``vdv_daily_m_s1_75``, ``hours_to_eav``,
-``hours_to_elv``, ``exposure_points``, ``verdict``, ``dzd_m_s2``. Infinite hours (no
-vibration) and NaN are ``null``.
+``hours_to_elv``, ``exposure_points``, ``verdict``, ``dzd_m_s2``. The command prints infinite
+hours (no vibration) and NaN as ``null``.
 """
 
 from __future__ import annotations
@@ -109,21 +109,11 @@ def assess(tasks, channel_map: dict | None = None) -> dict:
     out.update(day)
     warnings = [f"{t.file}: {w}" for t in tasks for w in analyses[Path(t.file).resolve()].warnings]
     out["warnings"] = list(dict.fromkeys(warnings))
-    return _json_safe(out)
-
-
-def _json_safe(obj):
-    if isinstance(obj, dict):
-        return {k: _json_safe(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_json_safe(v) for v in obj]
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    return obj
+    return out
 
 
 def _f(v, fmt: str = ".3f") -> str:
-    return "–" if v is None else format(v, fmt)
+    return "–" if v is None or (isinstance(v, float) and not math.isfinite(v)) else format(v, fmt)
 
 
 def format_table(doc: dict) -> str:
