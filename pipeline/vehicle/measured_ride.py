@@ -28,7 +28,7 @@ Examples
 >>> r = analyse_signals({"seat_z_m_s2": np.sin(2 * np.pi * 4.0 * t)}, fs)
 >>> z = r.axes()["z"]
 >>> round(z["a_w_m_s2"], 3), round(z["mtvv_m_s2"], 3), round(r.channels["seat_z_m_s2"].peak_frequency_Hz, 2)
-(0.684, 0.684, 4.0)
+(0.684, 0.686, 4.0)
 """
 
 from __future__ import annotations

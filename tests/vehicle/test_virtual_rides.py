@@ -34,6 +34,7 @@ def test_rides_csv_fits_its_schema_and_names_readable_recordings(demo):
         assert (campaign / row.scenario).is_file()
 
 
+@pytest.mark.slow
 def test_same_seed_same_bytes(demo, tmp_path):
     write_rides(tmp_path, seed=1991)
     for f in sorted((demo / "raw" / "demo" / "rides").iterdir()):
