@@ -24,9 +24,6 @@ Uncertainty (issue 14, docs/uncertainty.md): analyse gives every run the
 passed get the day's budget instead (:func:`tyrelab.measurement.uncertainty.day_budget`:
 the day's phase at the run's frequency, the channel gains), combined again
 with the run's own type A part; ``uncertainty_source`` names the day.
-
-Also writes ``table_i`` (thesis Table I: apparent mass vs load-deflection,
-free and forced vibration, from virtual experiments; :mod:`tyrelab.measurement.methods`).
 """
 
 from __future__ import annotations
@@ -38,11 +35,10 @@ import numpy as np
 import pandas as pd
 import pyarrow.parquet as pq
 
-from .. import io, published
+from .. import io
 from ..measurement import calibration as cal
 from ..measurement import uncertainty as unc
 from ..measurement.apparent_mass import tyre_force
-from ..rig.experiments import table_i
 from ..rawformat import ACCEL_CHANNELS, BEAM_CHANNELS, CHANNELS
 from .base import Context, StageResult
 from .dag import ANALYSED
@@ -239,9 +235,6 @@ def run(ctx: Context) -> StageResult:
             results = cal.flag_failed_days(results, days, keys, dkeys)
             n_flagged = int(results["qc_reasons"].str.contains("calibration failed on", regex=False).sum())
         ctx.write_table("results", results)
-    # Table I compares measurement methods on virtual experiments (see tyrelab.rig.experiments.table_i).
-    published_i = published.read_published("table_i", ctx.raw)
-    ctx.write_table("table_i", cache.get_or_compute(cache.key("table_i", published_i), lambda: table_i(published_i)))
     cache.prune()
     res.message = (f"{len(days)} days, {len(failed_days)} failed" + (f" ({', '.join(failed_days)})" if failed_days else "")
                    + (f"; {n_flagged} runs flagged" if n_flagged else ""))

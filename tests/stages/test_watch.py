@@ -13,7 +13,7 @@ from tyrelab import cli
 from tyrelab.stages import Context, run_pipeline
 from tyrelab.watch import WatchOptions, watch
 
-STAGES = ["ingest", "analyse", "warehouse"]
+STAGES = ["ingest", "analyse", "calibrate", "warehouse"]  # calibrate writes results
 
 
 class FakeTime:
