@@ -222,9 +222,15 @@ def cmd_estimate_stiffness(args) -> int:
     except (TyreSizeError, ValueError) as exc:
         print(f"{prog}: {exc}", file=sys.stderr)
         return EXIT_USAGE
+    if not math.isfinite(est.stiffness_kN_per_m):
+        print(f"{prog}: --pressure {args.pressure:g} bar (with --size {args.size}): the formula gives no finite "
+              "stiffness", file=sys.stderr)
+        return EXIT_USAGE
     _warn(prog, est.warnings)
     if args.json or args.format == "json":
-        print(json.dumps(est.to_dict(), indent=2, ensure_ascii=False))
+        from .io import json_safe
+
+        print(json.dumps(json_safe(est.to_dict()), indent=2, ensure_ascii=False, allow_nan=False))
     else:
         pi = est.prediction_interval_kN_per_m
         print(f"{est.stiffness_kN_per_m:.1f} kN/m" + (
@@ -255,75 +261,24 @@ def cmd_natural_frequencies(args) -> int:
     return EXIT_OK
 
 
-def _json_safe(obj):
-    """NaN -> None (JSON has no NaN), recursively through dicts and lists."""
-    if isinstance(obj, dict):
-        return {k: _json_safe(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_json_safe(v) for v in obj]
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    return obj
-
-
 def cmd_export_tyre(args) -> int:
-    import numpy as np
-
-    from .io import write_text_atomic
-    from .stages.ingest import run_key
-    from .tyre.mf_tyre import measured_tyre, pressure_table, property_file
+    from .export import export_tyre
     from .tyre.sizes import TyreSizeError
-    from .warehouse import query
 
     prog = "tyrelab export-tyre"
-    db = Path(args.build) / "warehouse.duckdb"
     try:
-        tables = {name: query(db, f"SELECT * FROM {name}") for name in
-                  ("tyres", "table_iii", "stiffness_pressure_by_speed", "damping_pressure_by_speed")}
-        runs = query(db, "SELECT tyre_id, kind, pressure_bar FROM results")
-    except FileNotFoundError as exc:
-        print(f"{prog}: {exc}", file=sys.stderr)
+        export, written = export_tyre(Path(args.build) / "warehouse.duckdb", args.tyre_id, args.pressure, args.out)
+    except (LookupError, TyreSizeError, ValueError) as exc:
+        print(f"{prog}: {str(exc).splitlines()[0]}", file=sys.stderr)
         return EXIT_USAGE
-    except Exception as exc:  # noqa: BLE001 - a warehouse without the regress tables
-        print(f"{prog}: {db}: {str(exc).splitlines()[0]} (run 'tyrelab run' first)", file=sys.stderr)
+    except OSError as exc:
+        if isinstance(exc, FileNotFoundError) and not exc.filename:  # no warehouse yet
+            print(f"{prog}: {exc}", file=sys.stderr)
+        else:  # a folder in the way, a full disk, ulimit -f: no file of the set was replaced
+            print(f"{prog}: {os_error_line(exc)} (nothing written)", file=sys.stderr)
         return EXIT_USAGE
-    tyre_id = args.tyre_id
-    kind = runs["kind"].fillna("measurement") if "kind" in runs else "measurement"
-    tested = runs.loc[(runs["tyre_id"].astype(str) == tyre_id) & (kind == "measurement"), "pressure_bar"]
-    tested = np.unique(np.round(tested.to_numpy(dtype=float), 3))
-    try:
-        tyre = measured_tyre(tyre_id, tables["tyres"], tables["table_iii"], tables["damping_pressure_by_speed"],
-                             tested, source=f"warehouse {db}")
-        pressures = list(args.pressure or [round(float(np.mean(tyre.pressure_range_bar)), 3)])
-        files = [(p, property_file(tyre, p)) for p in pressures]
-    except (TyreSizeError, ValueError) as exc:
-        print(f"{prog}: {exc}", file=sys.stderr)
-        return EXIT_USAGE
-    out = Path(args.out) if args.out else Path(f"{run_key(tyre_id)}.tir")
-    if out.suffix.lower() != ".tir":
-        out = out.with_name(out.name + ".tir")
-    written = []
-    for p, text in files:
-        path = out if len(files) == 1 else out.with_name(f"{out.stem}_{p:g}bar.tir")
-        write_text_atomic(text, path)
-        written.append(str(path))
-    grid = sorted(set(tested.tolist()) | set(pressures))
-    table = pressure_table(tyre_id, tables["stiffness_pressure_by_speed"], tables["damping_pressure_by_speed"], grid)
-    write_text_atomic(table.to_csv(index=False), out.with_suffix(".csv"))
-    summary = {
-        "tyre_id": tyre_id,
-        "size": tyre.size.designation,
-        "source": tyre.source,
-        "stiffness_line_kN_per_m": dataclasses.asdict(tyre.stiffness),
-        "damping_line_kN_s_per_m": dataclasses.asdict(tyre.damping) if tyre.damping else None,
-        "damping_speed_km_h": tyre.damping_speed_km_h,
-        "tested_load_kN": tyre.tested_load_kN,
-        "pressure_range_bar": list(tyre.pressure_range_bar),
-        "tir_files": dict(zip([f"{p:g}" for p in pressures], written)),
-        "by_speed": table.to_dict(orient="records"),
-    }
-    write_text_atomic(json.dumps(_json_safe(summary), indent=2, ensure_ascii=False) + "\n", out.with_suffix(".json"))
-    for path in [*written, str(out.with_suffix(".csv")), str(out.with_suffix(".json"))]:
+    _warn(prog, export.warnings)
+    for path in written:
         print(path)
     return EXIT_OK
 

@@ -27,7 +27,6 @@ from __future__ import annotations
 import hashlib
 import json
 import logging
-import re
 import time
 import urllib.parse
 from dataclasses import dataclass, field
@@ -67,11 +66,8 @@ INFO_KEYS = ("sample_rate_Hz", "n_samples", "duration_s")
 
 
 def run_key(run_id: str) -> str:
-    """A file-name-safe, unique key for a run id."""
-    safe = re.sub(r"[^A-Za-z0-9._-]", "_", run_id)[:80]
-    if safe != run_id:
-        safe += "-" + hashlib.sha1(run_id.encode()).hexdigest()[:8]
-    return safe
+    """A file-name-safe, unique key for a run id (:func:`tyrelab.io.safe_name`)."""
+    return io.safe_name(run_id)
 
 
 def tyre_partition(tyre_id: str) -> str:
