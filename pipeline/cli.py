@@ -14,7 +14,8 @@ Verbs (a stable contract; see docs/architecture.md):
 - ``ride``                 seat vibration and daily exposure of a tractor scenario (TOML)
 
 Exit codes: 0 success; 3 some runs (or a manifest/catalogue) were quarantined; 2 usage or input
-error (also: the build is locked by another writer, an OS error); 130 interrupted.
+error (also: the build is locked by another writer, an OS error); 130 interrupted; 141 the reader of
+stdout went away (e.g. piped into ``head``).
 """
 
 from __future__ import annotations
@@ -36,6 +37,9 @@ __all__ = ["cmd_generate", "cmd_run", "cmd_watch", "cmd_stage", "cmd_sql", "cmd_
 EXIT_OK, EXIT_USAGE, EXIT_QUARANTINE = 0, 2, 3
 #: Exit code after Ctrl-C or SIGTERM (128 + SIGINT, as shells report it).
 EXIT_INTERRUPTED = 130
+#: Exit code when the reader of stdout went away (``tyrelab sql … | head``): 128 + SIGPIPE, as a
+#: command killed by SIGPIPE reports it; nothing is printed.
+EXIT_BROKEN_PIPE = 141
 
 log = logging.getLogger("tyrelab")
 
@@ -193,9 +197,11 @@ def cmd_analyze_run(args) -> int:
     from .rawformat import RunFileError
 
     try:
-        out = analyze_recording(Path(args.file), args.axle_mass).to_dict()
-    except RunFileError as exc:
-        print(f"tyrelab analyze-run: {args.file}: {exc}", file=sys.stderr)
+        out = analyze_recording(Path(args.file), args.axle_mass, sample_rate_Hz=args.sample_rate).to_dict()
+    except (RunFileError, ValueError) as exc:  # ValueError: e.g. no time_s column and no --sample-rate
+        text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        text = text.replace("sample_rate_Hz is needed", "--sample-rate HZ is needed")
+        print(f"tyrelab analyze-run: {args.file}: {text}", file=sys.stderr)
         return EXIT_USAGE
     print(json.dumps(out, indent=2))
     if out["stiffness_N_per_m"] is None and not out["qc_ok"]:  # e.g. excitation outside the band: refused
@@ -303,12 +309,15 @@ def cmd_ride(args) -> int:
     except ValueError as exc:
         print(f"tyrelab ride: {args.scenario}: {exc}", file=sys.stderr)
         return EXIT_USAGE
+    except OSError as exc:  # e.g. --scheduler unreachable
+        print(f"tyrelab ride: {os_error_line(exc)}", file=sys.stderr)
+        return EXIT_USAGE
     doc = result_json(results)
     if args.out:
         try:
             paths = write_outputs(results, args.out)
-        except OSError as exc:
-            print(f"tyrelab ride: --out {args.out}: {exc.strerror or exc}", file=sys.stderr)
+        except OSError as exc:  # neither file replaced (write_outputs writes them as one set)
+            print(f"tyrelab ride: --out {args.out}: {os_error_line(exc)} (nothing written)", file=sys.stderr)
             return EXIT_USAGE
         log.info("ride: wrote %s and %s", paths["json"], paths["html"])
     sys.stdout.write(dumps(doc) if args.format == "json" else format_table(doc))
@@ -338,6 +347,21 @@ def _non_negative(text: str) -> float:
     value = _finite(text)
     if not value >= 0:
         raise argparse.ArgumentTypeError(f"{text} is negative")
+    return value
+
+
+#: Most worker processes ``--jobs`` may ask for (each holds a Python with numpy, scipy, pandas: ~150 MB).
+MAX_JOBS = 256
+
+
+def _jobs(text: str) -> int:
+    """argparse type: a number of worker processes, 1 to :data:`MAX_JOBS`."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+    if not 1 <= value <= MAX_JOBS:
+        raise argparse.ArgumentTypeError(f"{value} is not from 1 to {MAX_JOBS}")
     return value
 
 
@@ -373,7 +397,7 @@ def build_parser() -> argparse.ArgumentParser:
         sp.add_argument("--raw", default="raw", help="raw data folder (default raw/)")
         sp.add_argument("--build", default="build", help="output folder (default build/)")
         sp.add_argument("--force", action="store_true", help="recompute everything")
-        sp.add_argument("--jobs", type=int, default=None, help="worker processes (default: cores)")
+        sp.add_argument("--jobs", type=_jobs, default=None, help="worker processes (default: cores)")
         sp.add_argument("--executor", choices=["local", "dask"], default="local")
         sp.add_argument("--scheduler", default=None, help="dask scheduler address (with --executor dask)")
         sp.add_argument("--calibration-correct", action="store_true",
@@ -410,6 +434,8 @@ def build_parser() -> argparse.ArgumentParser:
     a = sub.add_parser("analyze-run", help="K and C of one recording (raw format v1), as JSON")
     a.add_argument("file")
     a.add_argument("--axle-mass", type=_positive, required=True, help="axle+wheel+tyre mass M_a, kg")
+    a.add_argument("--sample-rate", type=_positive, default=None, metavar="HZ",
+                   help="sampling rate, Hz: checked against time_s, or the time base of a file without time_s")
     a.set_defaults(func=cmd_analyze_run)
 
     e = sub.add_parser("estimate-stiffness", help="rolling tyre stiffness from size, pressure and age (kN/m)",
@@ -467,11 +493,23 @@ def build_parser() -> argparse.ArgumentParser:
                     help="rear pressures to sweep, bar (default: the scenario's)")
     rd.add_argument("--speeds", type=_positive, nargs="+", default=None, metavar="KM_H",
                     help="speeds, km/h (default: the scenario's)")
-    rd.add_argument("--jobs", type=int, default=1, help="worker processes for a sweep (default 1)")
+    rd.add_argument("--jobs", type=_jobs, default=1, help="worker processes for a sweep (default 1)")
     rd.add_argument("--executor", choices=["local", "dask"], default="local")
     rd.add_argument("--scheduler", default=None, help="dask scheduler address (with --executor dask)")
     rd.set_defaults(func=cmd_ride)
     return p
+
+
+def _discard_stdout() -> None:
+    """Point stdout at /dev/null, so that the interpreter's last flush does not fail again."""
+    import os
+
+    try:
+        fd = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(fd, sys.stdout.fileno())
+        os.close(fd)
+    except (OSError, ValueError, AttributeError):  # pragma: no cover - stdout without a file descriptor
+        pass
 
 
 def _terminate(signum, frame):  # pragma: no cover - exercised in a subprocess
@@ -520,7 +558,12 @@ def main(argv: list[str] | None = None) -> int:
     else:  # pragma: no cover
         previous = None
     try:
-        return args.func(args)
+        code = args.func(args)
+        sys.stdout.flush()  # here, not at exit: a reader gone is caught below
+        return code
+    except BrokenPipeError:  # stdout piped into `head` (or a pager) that quit reading: no traceback
+        _discard_stdout()
+        return EXIT_BROKEN_PIPE
     except KeyboardInterrupt:
         print(f"tyrelab {args.command}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
