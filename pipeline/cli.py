@@ -68,14 +68,11 @@ def cmd_generate(args) -> int:
 
 def _check_raw(args, need_campaign: bool) -> str | None:
     """One-line problem with ``--raw``, or None."""
-    raw = Path(args.raw)
-    if not raw.is_dir():
-        return f"--raw {raw}: no such folder"
-    if need_campaign:
-        from .io import discover_campaigns  # light: the ingest stage is imported only if it runs
+    from .io import raw_problem  # light: the ingest stage is imported only if it runs
 
-        if not discover_campaigns(raw):
-            return f"--raw {raw}: no campaign (no manifest.csv in it or below it)"
+    raw = Path(args.raw)
+    if not raw.is_dir() or need_campaign:
+        return raw_problem(raw)
     return None
 
 

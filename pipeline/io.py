@@ -24,7 +24,8 @@ if TYPE_CHECKING:  # pandas/pyarrow are imported where used: a no-op run never n
     import pandas as pd
 
 __all__ = ["atomic_path", "write_parquet_atomic", "write_text_atomic", "write_texts_atomic", "file_sha256",
-           "discover_campaigns", "os_error_line", "make_folder", "safe_name", "walk", "json_safe"]
+           "discover_campaigns", "os_error_line", "make_folder", "safe_name", "walk", "json_safe",
+           "raw_problem"]
 
 
 def os_error_line(exc: OSError) -> str:
@@ -316,3 +317,23 @@ def discover_campaigns(raw: str | os.PathLike) -> list[Path]:
         return [raw]
     return sorted(Path(top) for top, _, files in walk(raw) if "manifest.csv" in files
                   and (Path(top) / "manifest.csv").is_file())
+
+
+def raw_problem(raw: str | os.PathLike) -> str | None:
+    """Why ``raw`` cannot be built from (one line naming it), or None: not a folder, or no campaign in it.
+
+    ``tyrelab run`` refuses such a ``--raw`` before any stage, and ``tyrelab watch`` before each
+    run: a raw folder that vanished (an unmounted share, a folder renamed) must not replace a
+    build with an empty one.
+
+    Examples
+    --------
+    >>> raw_problem("/no/such/folder")
+    '--raw /no/such/folder: no such folder'
+    """
+    raw = Path(raw)
+    if not raw.is_dir():
+        return f"--raw {raw}: no such folder"
+    if not discover_campaigns(raw):
+        return f"--raw {raw}: no campaign (no manifest.csv in it or below it)"
+    return None
