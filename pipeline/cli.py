@@ -12,6 +12,7 @@ Verbs (a stable contract; see docs/architecture.md):
 - ``natural-frequencies``  bounce/pitch frequencies of a tractor (thesis ch. 8)
 - ``export-tyre``          a measured tyre as MF-Tyre ``.tir`` files and K(P), C(P) tables
 - ``ride``                 seat vibration and daily exposure of a tractor scenario (TOML)
+- ``exposure``             a driver's daily vibration exposure from seat recordings
 
 Exit codes: 0 success; 3 some runs (or a manifest/catalogue) were quarantined; 2 usage or input
 error (also: the build is locked by another writer, an OS error); 130 interrupted; 141 the reader of
@@ -61,7 +62,8 @@ def _context(args):
 def cmd_generate(args) -> int:
     from .generate import generate_campaign
 
-    summary = generate_campaign(Path(args.out), scale=args.scale, seed=args.seed, scatter=args.scatter)
+    summary = generate_campaign(Path(args.out), scale=args.scale, seed=args.seed, scatter=args.scatter,
+                                rides=args.rides)
     log.info("generate: %s", json.dumps(summary, default=str))
     return EXIT_OK
 
@@ -213,14 +215,39 @@ def _warn(prog: str, warnings) -> None:
         print(f"{prog}: warning: {w}", file=sys.stderr)
 
 
+def _stiffness_model(prog: str, build: str | None):
+    """The thesis' stiffness model, or with ``build`` the one fitted to that warehouse's tyres
+    (table ``formula_fit``); ValueError with one line for a missing or unfitted warehouse."""
+    from .published import thesis_stiffness_model
+    from .tyre.models import build_stiffness_model
+    from .warehouse import query
+
+    thesis = thesis_stiffness_model()
+    if build is None:
+        return thesis
+    db = Path(build) / "warehouse.duckdb"
+    try:
+        table = query(db, "SELECT * FROM formula_fit")
+    except FileNotFoundError as exc:
+        raise ValueError(str(exc)) from None
+    except Exception as exc:  # noqa: BLE001 - a warehouse without the table
+        raise ValueError(f"{db}: {str(exc).splitlines()[0]} (run 'tyrelab run' first)") from None
+    try:
+        return build_stiffness_model(table, thesis)
+    except ValueError as exc:
+        raise ValueError(f"{db}: {exc}") from None
+
+
 def cmd_estimate_stiffness(args) -> int:
     from .tyre.sizes import TyreSizeError
     from .tyre.stiffness import estimate_stiffness
 
     prog = "tyrelab estimate-stiffness"
     try:
+        model = _stiffness_model(prog, getattr(args, "build", None))
         est = estimate_stiffness(
-            args.size, args.pressure, args.age, undriven_front=args.front_undriven, water_ballast=args.water_ballast
+            args.size, args.pressure, args.age, undriven_front=args.front_undriven, water_ballast=args.water_ballast,
+            model=model,
         )
     except (TyreSizeError, ValueError) as exc:
         print(f"{prog}: {exc}", file=sys.stderr)
@@ -255,6 +282,7 @@ def cmd_natural_frequencies(args) -> int:
             age_years=args.age, front_stiffness_kN_per_m=args.front_stiffness,
             rear_stiffness_kN_per_m=args.rear_stiffness, front_stiffness_u_kN_per_m=args.front_stiffness_u,
             rear_stiffness_u_kN_per_m=args.rear_stiffness_u,
+            stiffness_model=_stiffness_model(prog, None),
         )
     except (TyreSizeError, ValueError) as exc:
         print(f"{prog}: {exc}", file=sys.stderr)
@@ -318,6 +346,42 @@ def cmd_ride(args) -> int:
             return EXIT_USAGE
         log.info("ride: wrote %s and %s", paths["json"], paths["html"])
     sys.stdout.write(dumps(doc) if args.format == "json" else format_table(doc))
+    return EXIT_OK
+
+
+def cmd_exposure(args) -> int:
+    from .exposure import RecordingProblem, Task, assess, format_table
+    from .vehicle.daily_exposure import MAX_HOURS_PER_DAY
+
+    prog = "tyrelab exposure"
+    if bool(args.file) == bool(args.task):
+        print(f"{prog}: give either FILE [--hours H] or one or more --task NAME FILE HOURS", file=sys.stderr)
+        return EXIT_USAGE
+    tasks, problems = [], []
+    for name, file, hours in args.task or [(Path(args.file).stem, args.file, str(args.hours))]:
+        try:
+            h = float(hours)
+        except ValueError:
+            h = math.nan
+        if not (math.isfinite(h) and 0 < h <= MAX_HOURS_PER_DAY):
+            problems.append(f"task {name}: HOURS {hours!r} must be a number of hours in (0, {MAX_HOURS_PER_DAY:g}]")
+        tasks.append(Task(name, Path(file), h))
+    if len({t.name for t in tasks}) < len(tasks):
+        problems.append("task names must differ")
+    if not problems and sum(t.hours for t in tasks) > MAX_HOURS_PER_DAY:
+        problems.append(f"the tasks add up to {sum(t.hours for t in tasks):g} h, more than a day")
+    if problems:
+        for line in problems:
+            print(f"{prog}: {line}", file=sys.stderr)
+        return EXIT_USAGE
+    try:
+        doc = _json_safe(assess(tasks))
+    except RecordingProblem as exc:
+        for line in exc.lines:
+            print(f"{prog}: {line}", file=sys.stderr)
+        return EXIT_USAGE if exc.usage else EXIT_QUARANTINE
+    _warn(prog, doc["warnings"])
+    sys.stdout.write(json.dumps(doc, indent=2, ensure_ascii=False) + "\n" if args.format == "json" else format_table(doc))
     return EXIT_OK
 
 
@@ -388,6 +452,8 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--no-scatter", dest="scatter", action="store_false",
                    help="no run-to-run / day-to-day tyre scatter (thesis §3.6 repeatability is on by default: "
                         "K 2 %% + 1.5 %% per day, C 4 %% + 3 %% per day, standard deviations)")
+    g.add_argument("--no-rides", dest="rides", action="store_false",
+                   help="no seat recordings of virtual tractors (rides.csv, rides/; written by default)")
     g.set_defaults(func=cmd_generate)
 
     def io_options(sp):
@@ -436,13 +502,17 @@ def build_parser() -> argparse.ArgumentParser:
     a.set_defaults(func=cmd_analyze_run)
 
     e = sub.add_parser("estimate-stiffness", help="rolling tyre stiffness from size, pressure and age (kN/m)",
-                       description="K = 172 - 1.77 R + 5.6 A + 0.34 W R P (thesis §4.5.3); warns on stderr "
-                       "where the tyre or pressure lies outside the thesis' data (Tables II, III, VI).")
+                       description="K = 172 - 1.77 R + 5.6 A + 0.34 W R P (thesis §4.5.3) with the 95 %% prediction "
+                       "interval of the same formula refitted to the thesis' Table III (or, with --build, the formula "
+                       "fitted to a build's tyres); warns on stderr where the tyre or pressure lies outside the data.")
     e.add_argument("--size", required=True, help="tyre size, e.g. 480/70R38, IF 710/70R42 173D, 13.6R38")
     e.add_argument("--pressure", type=_non_negative, required=True, help="inflation pressure, bar")
     e.add_argument("--age", type=_non_negative, default=1.0, help="tyre age, years (default 1)")
     e.add_argument("--front-undriven", action="store_true", help="undriven ribbed front tyre rule (thesis §8.2)")
     e.add_argument("--water-ballast", action="store_true", help="water-ballasted tyre (+25 %%)")
+    e.add_argument("--build", default=None, metavar="DIR",
+                   help="use the formula fitted to the tyres measured in DIR's warehouse (table formula_fit) and "
+                        "its prediction interval, instead of the thesis' (default)")
     e.add_argument("--json", action="store_true", help="print JSON (same as --format json)")
     e.add_argument("--format", choices=["text", "json"], default="text",
                    help="text: K in kN/m; json: inputs, W, R, aspect ratio, construction, K, warnings")
@@ -494,6 +564,16 @@ def build_parser() -> argparse.ArgumentParser:
     rd.add_argument("--executor", choices=["local", "dask"], default="local")
     rd.add_argument("--scheduler", default=None, help="dask scheduler address (with --executor dask)")
     rd.set_defaults(func=cmd_ride)
+
+    ex = sub.add_parser("exposure", help="a driver's daily whole-body vibration exposure from seat recordings "
+                        "(ISO 2631-1/-5, EU Directive 2002/44/EC)",
+                        description="Exit 2: usage, a missing or unknown file; 3: a recording that cannot be used.")
+    ex.add_argument("file", nargs="?", default=None, help="one recording (raw format v1: time_s, seat_x/y/z_m_s2, …)")
+    ex.add_argument("--hours", type=_positive, default=8.0, help="daily hours of the recorded task (default 8)")
+    ex.add_argument("--task", nargs=3, action="append", metavar=("NAME", "FILE", "HOURS"),
+                    help="a task of the day: its name, recording and daily hours (repeat for each task)")
+    ex.add_argument("--format", choices=["json", "table"], default="json")
+    ex.set_defaults(func=cmd_exposure)
     return p
 
 

@@ -185,10 +185,35 @@ def _measured(build: Path | None, table: str, tyre_id: str, pressure_bar: float)
     return rows["speed_km_h"].to_numpy(float), (rows["intercept"] + rows["slope"] * pressure_bar).to_numpy(float)
 
 
-def _formula_stiffness(spec) -> tuple[float, str, list[str], float]:
+def _stiffness_model(formula: str, build: Path | None):
+    """The :class:`~tyrelab.tyre.stiffness.StiffnessModel` of ``[tyres.*] formula``: the thesis'
+    (published Tables II, III, VI) or the build's (table ``formula_fit`` of its warehouse)."""
+    from ..tyre.models import build_stiffness_model
+    from ..warehouse import query
+
+    thesis = published.thesis_stiffness_model()
+    if formula != "build":
+        return thesis
+    if build is None:
+        raise ValueError('formula = "build" needs --build (a warehouse with table formula_fit)')
+    db = Path(build) / "warehouse.duckdb"
+    if not db.is_file():
+        raise ValueError(f'formula = "build": no warehouse at {db}')
+    try:
+        table = query(db, "SELECT * FROM formula_fit")
+    except Exception as exc:  # noqa: BLE001 - a warehouse without the table is the user's input problem
+        raise ValueError(f'formula = "build": cannot read formula_fit from {db} ({str(exc).splitlines()[0]})') from None
+    try:
+        return build_stiffness_model(table, thesis)
+    except ValueError as exc:
+        raise ValueError(f'formula = "build": {db}: {exc}') from None
+
+
+def _formula_stiffness(spec, build: Path | None = None) -> tuple[float, str, list[str], float]:
     """Per-tyre formula stiffness (kN/m), its rule, the formula's range warnings and its standard uncertainty."""
+    model = _stiffness_model(getattr(spec, "formula", "thesis"), build)
     est = estimate_stiffness(spec.size, spec.pressure_bar, spec.age_years, undriven_front=not spec.traction,
-                             water_ballast=spec.water_ballast)
+                             water_ballast=spec.water_ballast, model=model)
     rule = f"formula {est.rule}" + (" x1.25 water ballast" if spec.water_ballast else "")
     return est.stiffness_kN_per_m, rule, list(est.warnings), est.stiffness_u_kN_per_m or 0.0
 
@@ -230,7 +255,7 @@ def resolve_tyres(scenario: Scenario, build: Path | None = None) -> dict[str, Ax
             k = np.interp(speeds, sp, val)
             k_src = f"measured tyre {spec.measured_tyre_id}: K = Kc + dKp P per speed (stiffness_pressure_by_speed)"
         else:
-            k0, k_src, warnings, k_u = _formula_stiffness(spec)
+            k0, k_src, warnings, k_u = _formula_stiffness(spec, build)
             k = np.full(speeds.shape, k0)
         if spec.damping_kN_s_per_m is not None:
             c, c_src = per_speed(spec.damping_kN_s_per_m, lists, speeds), "override (scenario)"
@@ -639,6 +664,10 @@ class RideResult:
     warnings: list = field(default_factory=list)
     #: ``bounce``/``pitch`` -> [low, high], 95 %, from the tyres' stiffness uncertainty (:func:`_mode_intervals`)
     natural_frequency_intervals_Hz: dict = field(default_factory=dict)
+    #: With ``ride(..., with_signals=True)``: speed (km/h) -> the seat's predicted record, raw-format channel
+    #: name (``seat_z_m_s2``, ``seat_x_m_s2``, ``floor_z_m_s2``, ``floor_x_m_s2``) -> samples at ``FS_HZ`` from
+    #: the front axle's entry on the track
+    signals: dict = field(default_factory=dict)
 
 
 def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float | None) -> tuple[int, int]:
@@ -675,7 +704,8 @@ def _modes(tr: Tractor) -> tuple[dict, dict]:
             {k: modes[k]["nodal_point_ahead_of_cg_m"] for k in ("bounce", "pitch")})
 
 
-def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = True) -> RideResult:
+def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = True,
+         with_signals: bool = False) -> RideResult:
     """Simulate a scenario at every speed and evaluate the seat vibration.
 
     Parameters
@@ -685,6 +715,9 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
         Build folder whose warehouse holds measured tyres (``measured_tyre_id``).
     with_spectra : bool
         Also compute seat PSDs and transmissibilities (for figures).
+    with_signals : bool
+        Also keep the seat's predicted records (:attr:`RideResult.signals`), e.g. to compare
+        with a recording (:mod:`tyrelab.vehicle.ride_validation`).
 
     Returns
     -------
@@ -698,7 +731,7 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
     wb = scenario.tractor.wheelbase_m
     radii = (tyres["front"].radius_m, tyres["rear"].radius_m)
     f_grid = np.geomspace(*FIGURE_BAND_HZ, 300)
-    rows, spectra, trans = [], [], []
+    rows, spectra, trans, signals = [], [], [], {}
     warnings = [f"tyres.{ax}: {w}" for ax in ("front", "rear") for w in tyres[ax].warnings]
     speeds = scenario.exposure.speeds_km_h
     runs = []  # per speed: tractor, window, footprints, state space, outputs, method, lift-off flags
@@ -740,6 +773,9 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
         if seat_ss is not None:
             seat_z = simulate_state_space(*seat_ss, seat_z[None, :])[0]
         z, x = seat_z[start:stop], r["y"][1][start:stop]
+        if with_signals:  # the cab floor beneath the seat: before the seat suspension (the model's seat x has none)
+            signals[float(speed)] = {"seat_z_m_s2": z, "seat_x_m_s2": x, "floor_z_m_s2": r["y"][0][start:stop],
+                                     "floor_x_m_s2": x}
         wz = iso2631.weighted_signal(z, FS_HZ, "Wk")
         wx = iso2631.weighted_signal(x, FS_HZ, "Wd")
         a_wz, a_wx = float(np.sqrt(np.mean(wz**2))), float(np.sqrt(np.mean(wx**2)))
@@ -798,7 +834,7 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
         spectra=pd.concat(spectra, ignore_index=True) if spectra else pd.DataFrame(columns=cols),
         transmissibility=pd.concat(trans, ignore_index=True) if trans else pd.DataFrame(columns=cols),
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
-        warnings=warnings, natural_frequency_intervals_Hz=nat_ci,
+        warnings=warnings, natural_frequency_intervals_Hz=nat_ci, signals=signals,
     )
 
 
