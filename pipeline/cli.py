@@ -351,6 +351,7 @@ def cmd_ride(args) -> int:
 
 def cmd_exposure(args) -> int:
     from .exposure import RecordingProblem, Task, assess, format_table
+    from .io import json_safe
     from .vehicle.daily_exposure import MAX_HOURS_PER_DAY
 
     prog = "tyrelab exposure"
@@ -375,7 +376,7 @@ def cmd_exposure(args) -> int:
             print(f"{prog}: {line}", file=sys.stderr)
         return EXIT_USAGE
     try:
-        doc = _json_safe(assess(tasks))
+        doc = json_safe(assess(tasks))
     except RecordingProblem as exc:
         for line in exc.lines:
             print(f"{prog}: {line}", file=sys.stderr)
