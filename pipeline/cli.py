@@ -330,7 +330,8 @@ def cmd_ride(args) -> int:
     ctx = SimpleNamespace(executor=args.executor, jobs=args.jobs, scheduler=args.scheduler)
     try:
         results = ride_sweep(scenario, args.front_pressure, args.rear_pressure, args.speeds,
-                             Path(args.build) if args.build else None, ctx, with_spectra=bool(args.out))
+                             Path(args.build) if args.build else None, ctx, with_spectra=bool(args.out),
+                             max_variants=args.max_variants, max_samples=args.max_samples)
     except ValueError as exc:
         print(f"tyrelab ride: {args.scenario}: {exc}", file=sys.stderr)
         return EXIT_USAGE
@@ -416,15 +417,21 @@ def _non_negative(text: str) -> float:
 MAX_JOBS = 256
 
 
-def _jobs(text: str) -> int:
-    """argparse type: a number of worker processes, 1 to :data:`MAX_JOBS`."""
-    try:
-        value = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
-    if not 1 <= value <= MAX_JOBS:
-        raise argparse.ArgumentTypeError(f"{value} is not from 1 to {MAX_JOBS}")
-    return value
+def _whole(high: int):
+    """argparse type: a whole number from 1 to ``high``."""
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+        if not 1 <= value <= high:
+            raise argparse.ArgumentTypeError(f"{value} is not from 1 to {high}")
+        return value
+    return parse
+
+
+#: argparse type of ``--jobs``: 1 to :data:`MAX_JOBS`.
+_jobs = _whole(MAX_JOBS)
 
 
 def _size(text: str) -> int:
@@ -562,6 +569,10 @@ def build_parser() -> argparse.ArgumentParser:
     rd.add_argument("--speeds", type=_positive, nargs="+", default=None, metavar="KM_H",
                     help="speeds, km/h (default: the scenario's)")
     rd.add_argument("--jobs", type=_jobs, default=1, help="worker processes for a sweep (default 1)")
+    rd.add_argument("--max-variants", type=_whole(10**6), default=None, metavar="N",
+                    help="most pressure pairs a sweep may run (default 400; more is refused with an estimate)")
+    rd.add_argument("--max-samples", type=_whole(10**12), default=None, metavar="N",
+                    help="most 1 kHz samples the command may simulate over all pairs and speeds (default 10 million)")
     rd.add_argument("--executor", choices=["local", "dask"], default="local")
     rd.add_argument("--scheduler", default=None, help="dask scheduler address (with --executor dask)")
     rd.set_defaults(func=cmd_ride)
