@@ -58,7 +58,8 @@ from . import profiles as pr
 from .carriage import GRAVITY_M_S2
 from .scenario import Scenario, read_profile_csv, with_overrides
 from .studies import DT_S, _half_inputs
-from .tractor import PARAMETERS, Tractor, simulate_tractor
+from .model import SeatPoint, assemble
+from .tractor import Tractor, simulate, tractor_parts
 
 __all__ = [
     "OUTPUTS",
@@ -68,6 +69,8 @@ __all__ = [
     "per_speed",
     "resolve_tyres",
     "build_tractor",
+    "build_parts",
+    "tyre_inputs",
     "state_names",
     "state_space",
     "simulate_state_space",
@@ -271,41 +274,36 @@ def build_tractor(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Tr
     )
 
 
+def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int):
+    """The tractor's :class:`~tyrelab.vehicle.model.Parts` at speed index ``i`` (per tyre, SI)."""
+    seat = scenario.seat
+    return tractor_parts(build_tractor(scenario, tyres, i), SeatPoint(seat.ahead_of_cg_m, 0.0, seat.height_above_cg_m))
+
+
 # --------------------------------------------------------------------------- linear model
 def state_names(tractor: Tractor) -> list[str]:
-    """States of :func:`state_space` for a scalar ``tractor``, in order.
+    """States of :func:`state_space` for a scalar ``tractor``, in order
+    (:meth:`tyrelab.vehicle.model.Assembly.state_names` of its parts).
 
     ``z, θ`` ("th"), ``x`` (Kelvin-Voigt with ``k_x > 0`` only), ``z', θ'`` ("vz", "vth"),
     ``x'`` ("vx", any longitudinal element) and ``q = d - s`` (Maxwell). A Maxwell element
-    without spring or damper carries no force (as in
-    :func:`tyrelab.vehicle.tractor.simulate_tractor`) and adds no state.
+    without spring or damper carries no force and adds no state.
 
     Examples
     --------
     >>> state_names(Tractor(1000, 250, 1.0, 1.0, 0.5, 1e5, 1e5, 0.0, 0.0, 1e5, 1e3, "maxwell"))
     ['z', 'th', 'vz', 'vth', 'vx', 'q']
     """
-    kx, cx = float(tractor.longitudinal_stiffness_N_per_m), float(tractor.longitudinal_damping_N_s_per_m)
-    model = str(tractor.longitudinal_model)
-    if model == "maxwell" and not (kx > 0 and cx > 0):
-        model = "none"
-    names = ["z", "th"] + (["x"] if model == "kelvin_voigt" and kx > 0 else []) + ["vz", "vth"]
-    names += ["vx"] if model != "none" else []
-    names += ["q"] if model == "maxwell" else []
-    return names
+    return assemble(tractor_parts(tractor)).state_names()
 
 
 def state_space(tractor: Tractor, seat_ahead_m: float = 0.0, seat_height_m: float = 0.0):
-    """Linear pitch-plane tractor (both axles in contact) as ``(A, B, C, D)``.
+    """Linear pitch-plane tractor (both axles in contact) as ``(A, B, C, D)``, outputs :data:`OUTPUTS`.
 
-    Same equations as :func:`tyrelab.vehicle.tractor.simulate_tractor` without the
-    lift-off clamp. States: ``z, θ, z', θ'`` plus the longitudinal ones the model
-    needs — Kelvin-Voigt: ``x`` (only when ``k_x > 0``; otherwise ``x`` is not
-    observable) and ``x'``; Maxwell: ``x'`` and ``q = d - s`` (spring extension,
-    ``F_x = -k_x q``, ``q' = d' - (k_x/c_x) q``). Inputs ``[u_f, u_f', u_r, u_r']``.
-    Outputs :data:`OUTPUTS`: seat-point vertical ``z'' + x_s θ''`` and fore-aft
-    ``x'' - h_s θ''`` accelerations (rigid seat), CG vertical, pitch and
-    longitudinal accelerations, and the dynamic axle tyre forces.
+    The assembled parts' linear model (:meth:`tyrelab.vehicle.model.Assembly.linear` of
+    :func:`tyrelab.vehicle.tractor.tractor_parts`), inputs ``[u_f, u_f', u_r, u_r']``: seat-point
+    vertical ``z'' + x_s θ''`` and fore-aft ``x'' - h_s θ''`` accelerations (rigid seat), CG
+    vertical, pitch and longitudinal accelerations, and the dynamic axle tyre forces.
 
     Parameters
     ----------
@@ -314,10 +312,6 @@ def state_space(tractor: Tractor, seat_ahead_m: float = 0.0, seat_height_m: floa
     seat_ahead_m, seat_height_m : float
         Seat point ahead of and above the CG, m.
 
-    Returns
-    -------
-    A, B, C, D : ndarray
-
     Examples
     --------
     >>> t = Tractor(1000, 250, 1.0, 1.0, 0.5, 1e5, 1e5, 0.0, 0.0)
@@ -325,39 +319,8 @@ def state_space(tractor: Tractor, seat_ahead_m: float = 0.0, seat_height_m: floa
     >>> sorted(np.round(np.abs(np.linalg.eigvals(a)) / (2 * np.pi), 4).tolist())
     [2.2508, 2.2508, 4.5016, 4.5016]
     """
-    m, inertia = float(tractor.mass_kg), float(tractor.pitch_inertia_kg_m2)
-    a, b, h = float(tractor.front_distance_m), float(tractor.rear_distance_m), float(tractor.cg_height_m)
-    kf, kr = float(tractor.front_stiffness_N_per_m), float(tractor.rear_stiffness_N_per_m)
-    cf, cr = float(tractor.front_damping_N_s_per_m), float(tractor.rear_damping_N_s_per_m)
-    kx, cx = float(tractor.longitudinal_stiffness_N_per_m), float(tractor.longitudinal_damping_N_s_per_m)
-    names = state_names(tractor)
-    model = "maxwell" if "q" in names else "kelvin_voigt" if "vx" in names else "none"
-    n = len(names)
-    pos = {k: i for i, k in enumerate(names)} | {"uf": n, "udf": n + 1, "ur": n + 2, "udr": n + 3}
-
-    def row(**coef) -> np.ndarray:
-        r = np.zeros(n + 4)
-        for k, v in coef.items():
-            if k in pos:
-                r[pos[k]] += v
-        return r
-
-    ff = row(z=-kf, th=-kf * a, vz=-cf, vth=-cf * a, uf=kf, udf=cf)
-    fr = row(z=-kr, th=kr * b, vz=-cr, vth=cr * b, ur=kr, udr=cr)
-    if model == "kelvin_voigt":
-        fx = row(x=-kx, th=-kx * h, vx=-cx, vth=-cx * h)
-    elif model == "maxwell":
-        fx = row(q=-kx)
-    else:
-        fx = row()
-    az = (ff + fr) / m
-    ath = (a * ff - b * fr + h * fx) / inertia
-    ax = fx / m
-    deriv = {"z": row(vz=1.0), "th": row(vth=1.0), "x": row(vx=1.0), "vz": az, "vth": ath, "vx": ax,
-             "q": row(vx=1.0, vth=h, q=-kx / cx if cx > 0 else 0.0)}
-    rows = np.array([deriv[k] for k in names])
-    outs = np.array([az + seat_ahead_m * ath, ax - seat_height_m * ath, az, ath, ax, ff, fr])
-    return rows[:, :n], rows[:, n:], outs[:, :n], outs[:, n:]
+    parts = tractor_parts(tractor, SeatPoint(float(seat_ahead_m), 0.0, float(seat_height_m)))
+    return assemble(parts).linear(OUTPUTS).abcd
 
 
 def simulate_state_space(a, b, c, d, w, dt_s: float = DT_S, outputs=None) -> np.ndarray:
@@ -555,6 +518,16 @@ def axle_inputs(track: pr.Profile, kind: str, footprints: tuple[float, float], r
     return uf - u0, udf, ur - u0, udr
 
 
+def tyre_inputs(asm, track: pr.Profile, kind: str, footprints: tuple[float, float], radii: tuple[float, float],
+                speed_m_s: float, wheelbase_m: float, n_steps: int) -> tuple[np.ndarray, np.ndarray]:
+    """Ground elevation and rate under each tyre element of ``asm`` at ``dt/2``, shape
+    ``(tyres, 2 n_steps - 1)``: the axle-mean input of :func:`axle_inputs` in the pitch plane."""
+    uf, udf, ur, udr = axle_inputs(track, kind, footprints, radii, speed_m_s, wheelbase_m, n_steps)
+    by_axle = {"front": (uf, udf), "rear": (ur, udr)}
+    return (np.array([by_axle[t.split("_")[0]][0] for t in asm.tyres]),
+            np.array([by_axle[t.split("_")[0]][1] for t in asm.tyres]))
+
+
 # --------------------------------------------------------------------------- exposure
 def exposure(a_wz_m_s2: float, a_wx_m_s2: float, hours_per_day: float, a_wy_m_s2: float = 0.0) -> dict:
     """Daily exposure by EU Directive 2002/44/EC from per-axis weighted r.m.s. values.
@@ -648,29 +621,29 @@ def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float
     return start, start + int(round(length / DT_S))
 
 
-def _mode_intervals(tr: Tractor, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: float) -> dict:
-    """95 % intervals of the bounce and pitch frequencies from the tyre stiffness uncertainties.
-
-    First order as :func:`tyrelab.vehicle.bounce_pitch.frequency_uncertainty`
-    (central differences, independent axles, ``f ± 1.96 u``); an axle is two tyres.
-    """
-    base, _ = _modes(tr)
-    var = dict.fromkeys(base, 0.0)
-    for attr, u in (("front_stiffness_N_per_m", 2e3 * u_front_tyre_kN_per_m),
-                    ("rear_stiffness_N_per_m", 2e3 * u_rear_tyre_kN_per_m)):
-        if not u > 0:
-            continue
-        k = getattr(tr, attr)
-        up, _ = _modes(dataclasses.replace(tr, **{attr: 1.01 * k}))
-        down, _ = _modes(dataclasses.replace(tr, **{attr: 0.99 * k}))
-        for m in var:
-            var[m] += ((up[m] - down[m]) / (0.02 * k) * u) ** 2
-    return {m: [base[m] - 1.96 * math.sqrt(var[m]), base[m] + 1.96 * math.sqrt(var[m])] for m in base}
+def _mode_intervals(asm, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: float) -> dict:
+    """95 % intervals of the bounce and pitch frequencies from the tyre stiffness uncertainties
+    (:func:`tyrelab.vehicle.bounce_pitch.frequency_uncertainty`: first order, central
+    differences, independent axles, ``f ± 1.96 u``), each named by the mode whose frequency it
+    is centred on."""
+    p = asm.parts
+    base, _ = _modes(asm)
+    _, intervals = bounce_pitch.frequency_uncertainty(
+        p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m, -p.rear.ahead_of_cg_m,
+        p.front.tyre_stiffness_N_per_m / 1e3, p.rear.tyre_stiffness_N_per_m / 1e3,
+        u_front_tyre_kN_per_m, u_rear_tyre_kN_per_m)
+    centres = [0.5 * (lo + hi) for lo, hi in intervals]
+    return {m: list(intervals[int(np.argmin([abs(c - f) for c in centres]))]) for m, f in base.items()
+            if m in ("bounce", "pitch")}
 
 
-def _modes(tr: Tractor) -> tuple[dict, dict]:
-    modes = bounce_pitch.mode_shapes(tr.mass_kg, tr.pitch_inertia_kg_m2, tr.front_distance_m, tr.rear_distance_m,
-                                     tr.front_stiffness_N_per_m, tr.rear_stiffness_N_per_m)
+def _modes(asm) -> tuple[dict, dict]:
+    """Bounce and pitch natural frequencies and nodal points of the assembled tractor
+    (:func:`tyrelab.vehicle.bounce_pitch.mode_shapes` on its chassis and axles)."""
+    p = asm.parts
+    modes = bounce_pitch.mode_shapes(p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m,
+                                     -p.rear.ahead_of_cg_m, 2 * p.front.tyre_stiffness_N_per_m,
+                                     2 * p.rear.tyre_stiffness_N_per_m)
     return ({k: modes[k]["frequency_Hz"] for k in ("bounce", "pitch")},
             {k: modes[k]["nodal_point_ahead_of_cg_m"] for k in ("bounce", "pitch")})
 
@@ -701,40 +674,47 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
     rows, spectra, trans = [], [], []
     warnings = [f"tyres.{ax}: {w}" for ax in ("front", "rear") for w in tyres[ax].warnings]
     speeds = scenario.exposure.speeds_km_h
-    runs = []  # per speed: tractor, window, footprints, state space, outputs, method, lift-off flags
+    runs = []  # per speed: assembly, window, footprints, linear model, outputs, method, lift-off flags
+    seat_outputs = ("seat_vertical_m_s2", "seat_longitudinal_m_s2")
     for i, speed in enumerate(speeds):
         v = speed / 3.6
-        tr = build_tractor(scenario, tyres, i)
+        asm = assemble(build_parts(scenario, tyres, i))
         start, stop = _record_window(track, wb, v, scenario.simulation.duration_s)
         fp = (float(tyres["front"].footprint_m[i]), float(tyres["rear"].footprint_m[i]))
-        uf, udf, ur, udr = axle_inputs(track.profile, scenario.surface.enveloping, fp, radii, v, wb, stop)
-        ss = state_space(tr, seat.ahead_of_cg_m, seat.height_above_cg_m)
-        y = simulate_state_space(*ss, np.vstack([uf[::2], udf[::2], ur[::2], udr[::2]]), outputs=(0, 1, 5, 6))
-        w_static = _static_axle_loads(tr)
-        off = np.vstack([y[2] <= -w_static[0], y[3] <= -w_static[1]])
-        runs.append({"tr": tr, "v": v, "start": start, "stop": stop, "fp": fp, "ss": ss, "y": y[:2], "off": off,
-                     "method": "linear"})
-    # runs whose tyres would pull: the nonlinear model, batched (vectorised over runs as simulate_tractor is)
+        u, du = tyre_inputs(asm, track.profile, scenario.surface.enveloping, fp, radii, v, wb, stop)
+        forces = tuple(f"{t}_force_N" for t in asm.tyres)
+        lm = asm.linear(seat_outputs + forces)
+        w = np.empty((2 * len(asm.tyres), stop))
+        w[0::2], w[1::2] = u[:, ::2], du[:, ::2]
+        y = lti.discretise(*lm.abcd, DT_S).run(w)
+        static = asm.static_tyre_loads_N()
+        off = _axle_flags(asm, {t: y[len(seat_outputs) + j] <= -static[t] for j, t in enumerate(asm.tyres)})
+        runs.append({"asm": asm, "v": v, "start": start, "stop": stop, "fp": fp, "lm": lm, "y": y[:len(seat_outputs)],
+                     "off": off, "method": "linear"})
+    # runs whose tyres would pull: the nonlinear model, batched (exact in contact, RK4 across the
+    # lift-off intervals, as the ch. 7 study)
     redo = [k for k, r in enumerate(runs) if scenario.simulation.lift_off and r["off"][:, r["start"]:r["stop"]].any()]
     if redo:
         n_max = max(runs[k]["stop"] for k in redo)
-        inputs = [axle_inputs(track.profile, scenario.surface.enveloping, runs[k]["fp"], radii, runs[k]["v"], wb, n_max)
-                  for k in redo]
-        params = {f: np.array([float(getattr(runs[k]["tr"], f)) for k in redo]) for f in PARAMETERS}
-        sim = simulate_tractor(Tractor(**params, longitudinal_model=scenario.tractor.longitudinal_model),
-                               *[np.array([inp[j] for inp in inputs]) for j in range(4)], DT_S, lift_off=True,
-                               method="auto")  # exact in contact, RK4 across the lift-off intervals (as the ch. 7 study)
+        inputs = [tyre_inputs(runs[k]["asm"], track.profile, scenario.surface.enveloping, runs[k]["fp"], radii,
+                              runs[k]["v"], wb, n_max) for k in redo]
+        asms = [runs[k]["asm"] for k in redo]
+        forces = tuple(f"{t}_force_N" for t in asms[0].tyres)
+        sim = simulate(asms, np.array([x[0] for x in inputs]), np.array([x[1] for x in inputs]), DT_S, lift_off=True,
+                       method="auto", record=seat_outputs + forces)
         for row_i, k in enumerate(redo):
             r = runs[k]
-            vert, pitch, lon = (sim[c][row_i, :r["stop"]] for c in ("vertical_m_s2", "pitch_rad_s2", "longitudinal_m_s2"))
-            r["y"] = np.vstack([vert + seat.ahead_of_cg_m * pitch, lon - seat.height_above_cg_m * pitch])
-            r["off"] = _lift_off_from_accelerations(r["tr"], vert, pitch, lon)
+            static = r["asm"].static_tyre_loads_N()
+            r["y"] = np.vstack([sim[o][row_i, :r["stop"]] for o in seat_outputs])
+            # off the ground: the tyre force at minus its static load (the clamp), to rounding
+            r["off"] = _axle_flags(r["asm"], {t: sim[f"{t}_force_N"][row_i, :r["stop"]] <= -static[t] * (1 - 1e-6)
+                                              for t in r["asm"].tyres})
             r["method"] = "nonlinear (tyre lift-off)"
-    nat, nodal = _modes(runs[0]["tr"])
-    nat_ci = _mode_intervals(runs[0]["tr"], tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
+    nat, nodal = _modes(runs[0]["asm"])
+    nat_ci = _mode_intervals(runs[0]["asm"], tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
     for i, (speed, r) in enumerate(zip(speeds, runs)):
         v, start, stop, fp, method = r["v"], r["start"], r["stop"], r["fp"], r["method"]
-        a_m, b_m, c_m, d_m = r["ss"]
+        a_m, b_m, c_m, d_m = r["lm"].abcd
         lift = tuple(float(o[start:stop].mean()) for o in r["off"])
         seat_z = r["y"][0]
         if seat_ss is not None:
@@ -802,27 +782,10 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
     )
 
 
-def _static_axle_loads(tr: Tractor) -> np.ndarray:
-    """Static front and rear axle loads, N (a dynamic tyre force at minus this is lift-off)."""
-    w = float(tr.mass_kg) * GRAVITY_M_S2 / float(tr.wheelbase_m)
-    return np.array([w * float(tr.rear_distance_m), w * float(tr.front_distance_m)])
-
-
-def _lift_off_from_accelerations(tr: Tractor, vert, pitch, lon) -> np.ndarray:
-    """Per-step lift-off flags (front, rear) of a nonlinear run, from its accelerations.
-
-    ``M z'' = F_f + F_r``, ``I θ'' = a F_f - b F_r + h F_x`` and ``M x'' = F_x`` give the
-    dynamic axle forces; a tyre is off the ground where its force sits at minus the
-    static load (the clamp of :func:`~tyrelab.vehicle.tractor.simulate_tractor`).
-    """
-    m, inertia, h = float(tr.mass_kg), float(tr.pitch_inertia_kg_m2), float(tr.cg_height_m)
-    a, b = float(tr.front_distance_m), float(tr.rear_distance_m)
-    fx = m * lon
-    ff = (b * m * vert + inertia * pitch - h * fx) / (a + b)
-    fr = (a * m * vert - inertia * pitch + h * fx) / (a + b)
-    w = _static_axle_loads(tr)
-    tol = 1e-6 * w
-    return np.vstack([ff <= -w[0] + tol[0], fr <= -w[1] + tol[1]])
+def _axle_flags(asm, flags: dict) -> np.ndarray:
+    """Per-sample lift-off flags (front, rear) from per-tyre flags: an axle is off the ground
+    where any of its tyres is."""
+    return np.vstack([np.logical_or.reduce([flags[t] for t in asm.tyres if t.startswith(axle)]) for axle in ("front", "rear")])
 
 
 def _seat_tf(seat_ss, f_Hz) -> np.ndarray:
@@ -990,7 +953,7 @@ def scenario_task(item: tuple) -> dict:
         nominal = [r for r in results if r.tyres["front"].pressure_bar == sc.front.pressure_bar
                    and r.tyres["rear"].pressure_bar == sc.rear.pressure_bar]
         nat, nodal = ((nominal[0].natural_frequencies_Hz, nominal[0].nodal_points_m) if nominal else
-                      _modes(build_tractor(sc, resolve_tyres(sc, Path(build) if build else None), 0)))
+                      _modes(assemble(build_parts(sc, resolve_tyres(sc, Path(build) if build else None), 0))))
     except (ScenarioError, ValueError) as exc:
         return {"file": path, "error": str(exc).replace("\n", "; ")}
     table = results_table(results, sc.name)
