@@ -68,7 +68,7 @@ class TableSpec:
 
 @dataclass(frozen=True)
 class FigureSpec:
-    """A figure: ``tyrelab.report.figures.<function>(*tables, **kwargs)``.
+    """A figure: ``tyrelab.report.<module>.<function>(*tables, **kwargs)``.
 
     Attributes
     ----------
@@ -77,13 +77,16 @@ class FigureSpec:
     caption : str
         Caption.
     function : str
-        Name in :mod:`tyrelab.report.figures`.
+        Name of the drawing function in ``module``.
     inputs : tuple of str
         Warehouse tables passed positionally (empty DataFrame when missing).
     stage : str
         Stage that writes the first input.
     kwargs : dict
         Extra keyword arguments.
+    module : str
+        Module of this package holding ``function`` (:mod:`tyrelab.report.figures` by default;
+        imported only where figures are drawn).
     """
 
     number: str
@@ -92,6 +95,7 @@ class FigureSpec:
     inputs: tuple[str, ...]
     stage: str
     kwargs: dict = field(default_factory=dict)
+    module: str = "figures"
 
 
 @dataclass(frozen=True)
@@ -260,7 +264,7 @@ CHAPTERS: tuple[Chapter, ...] = (
             (
                 FigureSpec("", "Seat a_w (highest axis: a_wz or 1.4·a_wx) against speed per scenario, at the "
                                "scenario's tyre pressures; lines: the levels that reach EAV and ELV in 8 h",
-                           "ride_aw_speed", ("ride_results",), "simulate"),
+                           "ride_aw_speed", ("ride_results",), "simulate", module="ride_figures"),
                 TableSpec("", "Ride scenarios: seat vibration per speed", "ride_results", "simulate",
                           ours_sql="SELECT scenario, speed_km_h, front_pressure_bar, rear_pressure_bar, a_wz_m_s2, "
                                    "expected_a_wz_m_s2, a_wx_m_s2, a_v_m_s2, vdv_m_s1_75, crest_factor, "
@@ -276,7 +280,7 @@ CHAPTERS: tuple[Chapter, ...] = (
                                    "pressure_pairs")),
                 FigureSpec("", "Vertical weighted r.m.s. of the ch. 6–7 simulated runs against speed (carriage: at "
                                "the tyre; tractor: at the CG; mean over load conditions)",
-                           "study_aw_speed", ("iso2631",), "simulate"),
+                           "study_aw_speed", ("iso2631",), "simulate", module="ride_figures"),
                 TableSpec("", "Whole-body vibration of the ch. 6–7 simulated runs, summarised", "iso2631", "simulate",
                           ours_sql="SELECT study, COALESCE(track, '') AS track, characteristics, "
                                    "COALESCE(longitudinal, '') AS longitudinal, COUNT(*) AS runs, "

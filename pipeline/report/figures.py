@@ -633,18 +633,3 @@ def run_drilldown(signals: pd.DataFrame, spectra: pd.DataFrame, excitation_Hz: f
         _draw_coherence(a_coh, spectra, excitation_Hz)
     return to_svg(fig)
 
-
-# The Ride page's figures live in tyrelab.report.ride_figures (which imports this module);
-# report pages name functions of this module (FigureSpec.function), hence these two doors.
-def ride_aw_speed(ride_results: pd.DataFrame) -> str | None:
-    """Ride page: a_w against speed per scenario (:func:`tyrelab.report.ride_figures.ride_aw_speed`)."""
-    from . import ride_figures
-
-    return ride_figures.ride_aw_speed(ride_results)
-
-
-def study_aw_speed(iso: pd.DataFrame) -> str | None:
-    """Ride page: the studies' a_wz against speed (:func:`tyrelab.report.ride_figures.study_aw_speed`)."""
-    from . import ride_figures
-
-    return ride_figures.study_aw_speed(iso)

@@ -5,9 +5,10 @@ Parquet files named in ``manifest.run_path``, shapes tables and figures with
 the pure functions of :mod:`tyrelab.report.tables` and
 :mod:`tyrelab.report.figures`, and writes one HTML file per page:
 
-- ``index.html``: campaign summary, chapter contents, quarantined files, QC-flagged runs;
-- ``<chapter>.html``: one page per thesis chapter (:data:`tyrelab.report.chapters.CHAPTERS`);
-- ``runs.html`` and ``runs/<run>.html``: drill-down pages for a bounded selection of runs.
+the pages registered in :mod:`tyrelab.report.pages` (:data:`~tyrelab.report.pages.PAGES`: the
+index, one page per thesis chapter and the Ride page, the run drill-downs). :func:`build_site`
+knows no page by name: it asks each registered page for its tables and figures, then for its
+files (a new page is one :func:`~tyrelab.report.pages.register` call).
 
 Everything is inline (CSS, SVG); links are relative, so the folder opens from
 the file system and can be mailed as a zip.
@@ -26,8 +27,8 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
+import importlib
 import json
-import re
 from dataclasses import dataclass, field
 from functools import cached_property
 from pathlib import Path
@@ -39,15 +40,14 @@ from ..executor import map_alongside, map_in_background, worker_server_state
 from ..stages.state import digest
 from ..warehouse import check_read_only, connect_read_only
 from . import tables
-from .chapters import CHAPTERS, Chapter, FigureSpec, TableSpec
+from .chapters import Chapter, FigureSpec, TableSpec
+from .pages import ChapterPage, Page, registered, run_page_name
 from .render import environment, provenance
 
-__all__ = ["RUNS_PER_TYRE", "MAX_RUN_PAGES", "MAX_PLAIN_ROWS", "POOL_MIN_FIGURES", "Warehouse", "resolve_table",
-    "shape_table", "resolve_figure", "chapter_items", "run_page_name", "read_signals", "run_item", "build_site"]
+__all__ = ["MAX_PLAIN_ROWS", "POOL_MIN_FIGURES", "Missing", "Warehouse", "resolve_table",
+    "shape_table", "resolve_figure", "chapter_items", "run_page_name", "read_signals", "run_item", "SiteBuild",
+    "build_site"]
 
-#: Drill-down pages: runs per tyre, and the cap on the total.
-RUNS_PER_TYRE = 2
-MAX_RUN_PAGES = 60
 #: Rows shown of a plain (non-comparison) table.
 MAX_PLAIN_ROWS = 40
 #: Without a worker server ready, fewer figures to draw than this are drawn in this process, more
@@ -109,8 +109,33 @@ class Warehouse:
             self._con = None
 
 
-def _missing(stage: str, what: str) -> str:
-    return f"{what} not produced yet by stage {stage}."
+@dataclass(frozen=True)
+class Missing:
+    """What a page item lacks, as a typed signal (``item["missing"]``; ``str()`` is the note shown).
+
+    Attributes
+    ----------
+    stage : str
+        The stage that writes it.
+    subject : str
+        What is missing, as the start of a sentence (``"Our table_xiii"``).
+    empty : bool
+        The table exists but has no rows (else it was not produced yet).
+
+    Examples
+    --------
+    >>> str(Missing("simulate", "Table table_xiii"))
+    'Table table_xiii not produced yet by stage simulate.'
+    """
+
+    stage: str
+    subject: str
+    empty: bool = False
+
+    def __str__(self) -> str:
+        if self.empty:
+            return f"{self.subject} is empty (stage {self.stage})."
+        return f"{self.subject} not produced yet by stage {self.stage}."
 
 
 def resolve_table(wh: Warehouse, spec: TableSpec, cache=None) -> dict:
@@ -133,9 +158,13 @@ def resolve_table(wh: Warehouse, spec: TableSpec, cache=None) -> dict:
 
 
 def shape_table(spec: TableSpec, ours: pd.DataFrame | None, published: pd.DataFrame) -> dict:
-    """The template fields of one table (``mode``, ``note`` and ``shaped`` or ``plain``) from our
-    frame (None when ``spec.view`` does not exist) and the published one (may be empty)."""
-    item = {"note": spec.note}
+    """The template fields of one table (``mode``, ``note``, ``missing`` and ``shaped`` or ``plain``)
+    from our frame (None when ``spec.view`` does not exist) and the published one (may be empty).
+
+    ``missing`` is a :class:`Missing` when our table is not produced yet or empty (an input table,
+    ``spec.is_input``, shown with the thesis' values alone is not missing), else None.
+    """
+    item = {"note": spec.note, "missing": None}
     if ours is not None:
         if spec.ours_sql and not published.empty:
             df = tables.compare_frames(ours, published, list(spec.keys), spec.values, spec.thesis_rename)
@@ -151,21 +180,24 @@ def shape_table(spec: TableSpec, ours: pd.DataFrame | None, published: pd.DataFr
             item.update(mode="plain", plain=tables.plain_table(df, list(spec.columns) or None, MAX_PLAIN_ROWS))
     elif not published.empty:
         item.update(mode="comparison", shaped=tables.shape_comparison(tables.thesis_only(published, tuple(spec.values.values()))))
-        item["note"] = spec.note if spec.is_input else " ".join(
-            filter(None, [spec.note, _missing(spec.stage, f"Our {spec.view}")]))
+        if not spec.is_input:
+            item["missing"] = Missing(spec.stage, f"Our {spec.view}")
+            item["note"] = " ".join(filter(None, [spec.note, str(item["missing"])]))
     else:
-        item.update(mode="missing")
-        item["note"] = _missing(spec.stage, f"Table {spec.view}")
+        item.update(mode="missing", missing=Missing(spec.stage, f"Table {spec.view}"))
+        item["note"] = str(item["missing"])
     if item.get("mode") != "missing":
         size = item["shaped"].rows if item["mode"] == "comparison" else item["plain"]["rows"]
         if not size:
-            item.update(mode="missing", note=f"Table {spec.view} is empty (stage {spec.stage}).")
+            item.update(mode="missing", missing=Missing(spec.stage, f"Table {spec.view}", empty=True))
+            item["note"] = str(item["missing"])
     return item
 
 
 @dataclass
 class FigureTask:
-    """One figure to draw: ``figures.<function>(*args, **kwargs)``, or a run's drill-down.
+    """One figure to draw: ``<module>.<function>(*args, **kwargs)`` of this package (``function``
+    is ``"figures.stiffness_vs_pressure"``), or a run's drill-down.
 
     ``kind`` is ``"figure"`` (``args`` are the warehouse tables) or ``"run"``
     (``args`` is ``(row, db)``: the run's result row and the warehouse, the
@@ -196,9 +228,8 @@ def draw(task: FigureTask) -> str | None:
         finally:
             if wh is not None:
                 wh.close()
-    from . import figures  # matplotlib: imported only where a figure is drawn
-
-    return getattr(figures, task.function)(*task.args, **task.kwargs)
+    module, name = task.function.rsplit(".", 1)  # matplotlib: imported only where a figure is drawn
+    return getattr(importlib.import_module(f"{__package__}.{module}"), name)(*task.args, **task.kwargs)
 
 
 class FigureSet:
@@ -274,7 +305,7 @@ class FigureSet:
 def figure_task(wh: Warehouse, spec: FigureSpec) -> FigureTask:
     """The :class:`FigureTask` of a chapter figure: its function, kwargs and input tables."""
     tables_ = tuple(wh.table(n) for n in spec.inputs)
-    return FigureTask("figure", spec.function, tables_, dict(spec.kwargs), tables_)
+    return FigureTask("figure", f"{spec.module}.{spec.function}", tables_, dict(spec.kwargs), tables_)
 
 
 def resolve_figure(wh: Warehouse, spec: FigureSpec, figs: FigureSet | None = None) -> dict:
@@ -283,8 +314,9 @@ def resolve_figure(wh: Warehouse, spec: FigureSpec, figs: FigureSet | None = Non
     With ``figs`` the figure must have been requested and drawn there; without, it is drawn now.
     """
     svg = figs[("spec", id(spec))] if figs is not None else draw(figure_task(wh, spec))
-    note = "" if svg else _missing(spec.stage, f"The data of Fig. {spec.number} ({spec.inputs[0]}) are")
-    return {"kind": "figure", "spec": spec, "svg": svg, "note": note}
+    label = f"Fig. {spec.number}" if spec.number else "the figure"
+    missing = None if svg else Missing(spec.stage, f"The data of {label} ({spec.inputs[0]}) are")
+    return {"kind": "figure", "spec": spec, "svg": svg, "note": str(missing or ""), "missing": missing}
 
 
 def chapter_items(wh: Warehouse, chapter: Chapter, figs: FigureSet | None = None, cache=None,
@@ -294,12 +326,6 @@ def chapter_items(wh: Warehouse, chapter: Chapter, figs: FigureSet | None = None
     shaped = shaped or {}
     return [(shaped.get(id(it)) or resolve_table(wh, it, cache)) if isinstance(it, TableSpec)
             else resolve_figure(wh, it, figs) for it in chapter.items]
-
-
-def run_page_name(run_id: str) -> str:
-    """File name of a run's drill-down page: safe characters plus a short hash (no collisions)."""
-    safe = re.sub(r"[^A-Za-z0-9_.-]", "_", str(run_id))[:60]
-    return f"{safe}-{hashlib.sha1(str(run_id).encode()).hexdigest()[:6]}.html"
 
 
 def read_signals(wh: Warehouse, row: pd.Series) -> pd.DataFrame:
@@ -370,8 +396,65 @@ def _dataset(manifest: pd.DataFrame, raw: Path) -> dict:
     return {"campaigns": campaigns, "seeds": seeds, "digest": digest, "raw": str(raw)}
 
 
-def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1) -> dict:
-    """Render every page of the report into ``out``.
+class SiteBuild:
+    """One build of the site: what the registered pages read (see :mod:`tyrelab.report.pages`).
+
+    Parameters
+    ----------
+    wh : Warehouse
+    figs : FigureSet
+    pages : list of Page
+        The pages of this build, in order.
+    cache : tyrelab.stages.state.ItemCache, optional
+        Shaped tables (and figures, through ``figs``).
+    """
+
+    def __init__(self, wh: Warehouse, figs: FigureSet, pages: list[Page], cache=None):
+        self.wh, self.figs, self.pages, self.cache = wh, figs, pages, cache
+        self.manifest, self.results = wh.table("manifest"), wh.table("results")
+        self.shaped: dict[int, dict] = {}
+        self._items: dict[str, list[dict]] = {}
+        self._memo: dict = {}
+
+    def memo(self, key, compute):
+        """``compute()`` once per build under ``key`` (a page's own derived data)."""
+        if key not in self._memo:
+            self._memo[key] = compute()
+        return self._memo[key]
+
+    def figure_task(self, spec: FigureSpec) -> FigureTask:
+        """The task of a chapter figure (:func:`figure_task`)."""
+        return figure_task(self.wh, spec)
+
+    def run_task(self, row: pd.Series) -> FigureTask:
+        """The task of a run's drill-down figure (:func:`run_task`)."""
+        return run_task(self.wh, row)
+
+    def run_item(self, row: pd.Series) -> dict:
+        """Facts and figure of a run's drill-down page (:func:`run_item`)."""
+        return run_item(self.wh, row, self.figs)
+
+    def shape_tables(self) -> None:
+        """Shape every registered page's tables (through the cache)."""
+        for page in self.pages:
+            for spec in page.tables():
+                if id(spec) not in self.shaped:
+                    self.shaped[id(spec)] = resolve_table(self.wh, spec, self.cache)
+
+    def items(self, page: ChapterPage) -> list[dict]:
+        """The tables and figures of a chapter page as template items (resolved once per build)."""
+        if page.slug not in self._items:
+            self._items[page.slug] = chapter_items(self.wh, page.chapter, self.figs, self.cache, self.shaped)
+        return self._items[page.slug]
+
+    def missing(self) -> list[str]:
+        """``"<page>: <note>"`` for every item of a chapter page whose data were not produced yet."""
+        return [f"{page.slug}: {it['note']}" for page in self.pages if isinstance(page, ChapterPage)
+                for it in self.items(page) if it.get("missing") and not it["missing"].empty]
+
+
+def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1, pages: list[Page] | None = None) -> dict:
+    """Render every registered page of the report into ``out``.
 
     Parameters
     ----------
@@ -386,6 +469,8 @@ def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1) -> dic
         None draws every figure.
     jobs : int
         Processes drawing the figures not in ``cache``, this one included.
+    pages : list of Page, optional
+        The pages to build (default: :func:`tyrelab.report.pages.registered`).
 
     Returns
     -------
@@ -396,75 +481,44 @@ def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1) -> dic
     """
     out = Path(out)
     wh = Warehouse(db)
-    manifest, results, quarantine = wh.table("manifest"), wh.table("results"), wh.table("quarantine")
-    prov = provenance(raw, _dataset(manifest, raw))
+    pages_ = registered() if pages is None else list(pages)
+    prov = provenance(raw, _dataset(wh.table("manifest"), raw))
     env = environment()
-    nav = [{"href": "index.html", "title": "Summary"}] + [
-        {"href": f"{c.slug}.html", "title": c.title.split(" — ")[0]} for c in CHAPTERS
-    ] + [{"href": "runs.html", "title": "Runs"}]
-    pages: list[Path] = []
-    missing: list[str] = []
-    n_tables = n_comparison = 0
-
-    def write(template: str, path: Path, root: str = "", **kw) -> None:
-        html = env.get_template(template).render(prov=prov, nav=nav, root=root, **kw)
-        if not path.is_file() or path.read_text(encoding="utf-8") != html:  # unchanged pages keep their mtime
-            io.write_text_atomic(html, path)
-        pages.append(path)
-
-    selected = tables.select_runs(results, RUNS_PER_TYRE, MAX_RUN_PAGES)
-    if not selected.empty:
-        extra = [c for c in ("run_id", "sample_rate_Hz", "run_path", "file") if c in manifest.columns]
-        selected = selected.merge(manifest[extra], on="run_id", how="left", suffixes=("", "_manifest"))
+    nav = [{"href": p.href, "title": p.nav_title, "slug": p.slug} for p in pages_ if p.nav]
+    written: list[Path] = []
 
     figs = FigureSet(cache, jobs)
-    for chapter in CHAPTERS:
-        for it in chapter.items:
-            if isinstance(it, FigureSpec):
-                figs.request(("spec", id(it)), figure_task(wh, it))
-    for _, row in selected.iterrows():
-        figs.request(("run", row["run_id"]), run_task(wh, row))
+    site = SiteBuild(wh, figs, pages_, cache)
+    for page in pages_:
+        for name, task in page.figures(site):
+            figs.request(name, task)
     figs.start()  # with a worker server ready the figures are drawn while the tables are shaped
     try:
-        shaped = {id(it): resolve_table(wh, it, cache) for chapter in CHAPTERS for it in chapter.items
-                  if isinstance(it, TableSpec)}
+        site.shape_tables()
         figs.draw_all()
     except BaseException:
         figs.abandon()
         raise
 
-    contents = []
-    for chapter in CHAPTERS:
-        items = chapter_items(wh, chapter, figs, cache, shaped)
-        for it in items:
-            n_tables += it["kind"] == "table"
-            n_comparison += it.get("mode") == "comparison"
-            if it["note"] and "not produced yet" in it["note"]:
-                missing.append(f"{chapter.slug}: {it['note']}")
-        contents.append({"chapter": chapter, "items": items})
-        write("chapter.html.j2", out / f"{chapter.slug}.html", title=chapter.title, chapter=chapter, items=items)
+    for page in pages_:
+        outputs = list(page.render(site))
+        for o in outputs:
+            html = env.get_template(o.template).render(prov=prov, nav=nav, root=o.root, here=page.slug,
+                                                       title=o.title, **o.context)
+            path = out / o.path
+            if not path.is_file() or path.read_text(encoding="utf-8") != html:  # unchanged pages keep their mtime
+                io.write_text_atomic(html, path)
+            written.append(path)
+        if page.folder and (out / page.folder).is_dir():
+            keep = {out / o.path for o in outputs}
+            for stale in (out / page.folder).glob("*.html"):
+                if stale not in keep:
+                    stale.unlink()
 
-    run_dir = out / "runs"
-    listed = []
-    for _, row in selected.iterrows():
-        name = run_page_name(row["run_id"])
-        write("run.html.j2", run_dir / name, root="../", title=f"Run {row['run_id']}", run=run_item(wh, row, figs))
-        listed.append({"href": f"runs/{name}", "run_id": row["run_id"], "tyre_id": row.get("tyre_id"),
-                       "qc_ok": row.get("qc_ok"), "qc_reasons": row.get("qc_reasons")})
-    keep = {p.name for p in pages if p.parent == run_dir}
-    for stale in run_dir.glob("*.html") if run_dir.exists() else []:
-        if stale.name not in keep:
-            stale.unlink()
-    write("runs.html.j2", out / "runs.html", title="Run drill-down", runs=listed, n_results=len(results),
-          per_tyre=RUNS_PER_TYRE, cap=MAX_RUN_PAGES)
-
-    flagged = results.loc[~results["qc_ok"].fillna(False).astype(bool)] if "qc_ok" in results else results.head(0)
-    write("index.html.j2", out / "index.html", title="tyrelab report",
-          summary=tables.campaign_summary(manifest, results, quarantine, wh.table("calibration")),
-          contents=contents,
-          quarantine=tables.plain_table(quarantine, ["campaign", "file", "run_id", "stage", "reason"], 100),
-          flagged=tables.plain_table(flagged, ["run_id", "tyre_id", "speed_km_h", "pressure_bar", "qc_reasons"], 100))
+    items = [it for page in pages_ if isinstance(page, ChapterPage) for it in site.items(page)]
+    missing = site.missing()
     wh.close()
     size = sum(p.stat().st_size for p in out.rglob("*") if p.is_file())
-    return {"pages": pages, "bytes": size, "tables": n_tables, "comparison_tables": n_comparison, "missing": missing,
+    return {"pages": written, "bytes": size, "tables": sum(it["kind"] == "table" for it in items),
+            "comparison_tables": sum(it.get("mode") == "comparison" for it in items), "missing": missing,
             "figures": len(figs.tasks), "drawn": figs.drawn}
