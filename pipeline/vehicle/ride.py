@@ -44,7 +44,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from scipy import signal
+from scipy import linalg, signal
 
 from .. import published
 from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
@@ -58,7 +58,7 @@ from . import profiles as pr
 from .carriage import GRAVITY_M_S2
 from .scenario import Scenario, read_profile_csv, with_overrides
 from .studies import DT_S, _half_inputs
-from .model import SeatPoint, assemble
+from .model import Axle, Ballast, Cab, Chassis, Implement, Parts, SeatPoint, assemble
 from .tractor import Tractor, simulate, tractor_parts
 
 __all__ = [
@@ -82,6 +82,9 @@ __all__ = [
     "axle_inputs",
     "exposure",
     "expected_rms",
+    "seat_axes",
+    "modes",
+    "input_cross_spectra",
     "ride",
     "ride_sweep",
     "result_json",
@@ -299,10 +302,55 @@ def build_tractor(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Tr
     )
 
 
-def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int):
-    """The tractor's :class:`~tyrelab.vehicle.model.Parts` at speed index ``i`` (per tyre, SI)."""
-    seat = scenario.seat
-    return tractor_parts(build_tractor(scenario, tyres, i), SeatPoint(seat.ahead_of_cg_m, 0.0, seat.height_above_cg_m))
+def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Parts:
+    """The tractor's :class:`~tyrelab.vehicle.model.Parts` at speed index ``i`` (per tyre, SI).
+
+    The scenario's kN, kN s and kN m values become N, N s, N m here, once; the rear tyres carry
+    the longitudinal element. Without ``tractor.roll_inertia_kg_m2`` the parts are those of the
+    pitch-plane :class:`~tyrelab.vehicle.tractor.Tractor` of :func:`build_tractor`.
+    """
+    t, seat = scenario.tractor, scenario.seat
+    lon = t.longitudinal_model
+    kx = 1e3 * t.longitudinal_stiffness_kN_per_m if lon != "none" else 0.0
+    cx = 1e3 * t.longitudinal_damping_kN_s_per_m if lon != "none" else 0.0
+    if lon == "maxwell" and not (kx > 0 and cx > 0):
+        lon = "none"  # a Maxwell element without spring or damper carries no force
+
+    def axle(name: str, ahead: float, spec, track_m, **extra) -> Axle:
+        ty = tyres[name]
+        kw = {}
+        if spec.mount != "rigid":
+            kw["roll_inertia_kg_m2"] = spec.roll_inertia_kg_m2 or 0.0
+        if spec.mount == "suspended":
+            kw.update(mass_kg=spec.mass_kg, height_m=spec.height_m if spec.height_m is not None else ty.radius_m,
+                      suspension_stiffness_N_per_m=1e3 * spec.suspension_stiffness_kN_per_m,
+                      suspension_damping_N_s_per_m=1e3 * spec.suspension_damping_kN_s_per_m)
+        return Axle(name, ahead, 1e3 * float(ty.stiffness_kN_per_m[i]), 1e3 * float(ty.damping_kN_s_per_m[i]),
+                    track_m=track_m or 0.0, mount=spec.mount, **kw, **extra)
+
+    cab = None
+    if scenario.cab.mount == "suspended":
+        c = scenario.cab
+        cab = Cab(c.mass_kg, c.pitch_inertia_kg_m2, c.roll_inertia_kg_m2 or 0.0, c.ahead_of_cg_m, c.height_above_cg_m,
+                  c.front_mount_ahead_of_cg_m, c.rear_mount_ahead_of_cg_m, c.mount_track_m,
+                  1e3 * c.mount_stiffness_kN_per_m, 1e3 * c.mount_damping_kN_s_per_m)
+    imp = None
+    if scenario.implement is not None:
+        m = scenario.implement
+        imp = Implement(m.mass_kg, m.pitch_inertia_kg_m2, m.roll_inertia_kg_m2, m.behind_rear_axle_m, m.height_m,
+                        m.mount, m.hitch_behind_rear_axle_m, m.hitch_height_m,
+                        1e3 * (m.hitch_stiffness_kN_m_per_rad or 0.0), 1e3 * m.hitch_damping_kN_m_s_per_rad)
+    ballast = None
+    if scenario.ballast is not None:
+        b = scenario.ballast
+        ballast = Ballast(b.mass_kg, b.ahead_of_front_axle_m, b.height_m, b.pitch_inertia_kg_m2, b.roll_inertia_kg_m2)
+    return Parts(
+        Chassis(t.mass_kg, t.pitch_inertia_kg_m2, t.cg_height_m, t.roll_inertia_kg_m2),
+        axle("front", t.front_distance_m, scenario.front_axle, t.front_track_m),
+        axle("rear", -t.rear_distance_m, scenario.rear_axle, t.rear_track_m, longitudinal_model=lon,
+             longitudinal_stiffness_N_per_m=kx, longitudinal_damping_N_s_per_m=cx),
+        SeatPoint(seat.ahead_of_cg_m, seat.left_of_cg_m, seat.height_above_cg_m),
+        cab, imp, ballast)
 
 
 # --------------------------------------------------------------------------- linear model
@@ -465,17 +513,32 @@ class Track:
     #: (n cycles/m, G of the axle-mean input m³) for the frequency-domain path, or None.
     spectrum: tuple[np.ndarray, np.ndarray] | None
     spectrum_source: str
+    #: (n cycles/m, G_LL, G_RR, G_LR m³): the two tracks' spectra and cross-spectrum (3-D model).
+    side_spectrum: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
 
 
 def build_profile(scenario: Scenario) -> Track:
     """Generate or read the scenario's track, add the lead-in, describe its spectrum."""
     s = scenario.surface
     lead = max(s.lead_in_m, scenario.tractor.wheelbase_m + 1.0)
+    side = None
+    width = _track_width_m(scenario)
     if s.kind == "iso8608":
-        prof = pr.iso8608_track(s.road_class, seed=s.seed, length_m=s.length_m, dx_m=s.dx_m)
+        prof = pr.iso8608_track(s.road_class, seed=s.seed, length_m=s.length_m, dx_m=s.dx_m, tracks=s.tracks,
+                                track_width_m=width)
         n = np.geomspace(0.011, 2.83, 4000)
-        g = 0.5 * pr.ISO8608_CLASS_G0_M3[s.road_class] * (n / pr.ISO8608_N0_CYCLES_PER_M) ** -2.0
-        spectrum, source = (n, g), f"ISO 8608 class {s.road_class} (geometric mean), independent left/right"
+        g_one = pr.ISO8608_CLASS_G0_M3[s.road_class] * (n / pr.ISO8608_N0_CYCLES_PER_M) ** -2.0
+        rho = {"independent": np.zeros_like(n), "identical": np.ones_like(n)}.get(s.tracks)
+        if rho is None:
+            rho = pr.isotropic_coherence(n, width)
+        if s.tracks == "independent":
+            g = 0.5 * g_one  # as before: the mean of two independent tracks
+        else:
+            g = 0.5 * (1.0 + rho) * g_one
+        side = (n, g_one, g_one, rho * g_one)
+        words = (f"isotropic surface, left/right coherence 2 pi n b K1(2 pi n b), b = {width:g} m (Dodds & Robson 1973)"
+                 if s.tracks == "isotropic" else f"{s.tracks} left/right")
+        spectrum, source = (n, g), f"ISO 8608 class {s.road_class} (geometric mean), {words}"
     elif s.kind == "slatted":
         prof = pr.slatted_track(seed=s.seed, length_m=s.length_m)
         spectrum, source = None, ""
@@ -494,32 +557,55 @@ def build_profile(scenario: Scenario) -> Track:
             n = np.geomspace(1.0 / length, 0.5 / prof.dx_m, 4000)
             g = s.spectrum_g0_m3 * (n / pr.ISO8608_N0_CYCLES_PER_M) ** -s.spectrum_waviness * (1.0 if correlated else 0.5)
             spectrum = (n, g)
+            g_one = s.spectrum_g0_m3 * (n / pr.ISO8608_N0_CYCLES_PER_M) ** -s.spectrum_waviness
+            side = (n, g_one, g_one, g_one * (1.0 if correlated else 0.0))
             source = f"declared G_d(n0) = {s.spectrum_g0_m3:g} m^3, w = {s.spectrum_waviness:g}"
     if spectrum is None:  # the track's own spectrum (Welch) of the axle-mean elevation
         mean = prof.track("mean")
         seg = min(51.2, prof.x_m[-1] / 4)
         n_w, g_w = pr.profile_spectrum(mean, prof.dx_m, seg)
         keep = (n_w > 0) & (g_w > 0)
-        n = np.geomspace(n_w[keep][0], n_w[keep][-1], 4000)
-        g = np.exp(np.interp(np.log(n), np.log(n_w[keep]), np.log(g_w[keep])))
+        if keep.sum() >= 2:
+            n = np.geomspace(n_w[keep][0], n_w[keep][-1], 4000)
+            g = np.exp(np.interp(np.log(n), np.log(n_w[keep]), np.log(g_w[keep])))
+        else:  # a flat axle mean (left and right in anti-phase, or a flat track): no axle-mean input
+            n, g = np.geomspace(n_w[1], n_w[-1], 4000), np.zeros(4000)
         spectrum, source = (n, g), "the track's own Welch spectrum (axle mean)"
+    if side is None and scenario.tractor.three_d:  # the tracks' own spectra and cross-spectrum (Welch)
+        seg = min(51.2, prof.x_m[-1] / 4)
+        nper = max(8, int(round(seg / prof.dx_m)))
+        n_w, g_ll = signal.welch(prof.left_m, 1.0 / prof.dx_m, nperseg=nper)
+        _, g_rr = signal.welch(prof.right_m, 1.0 / prof.dx_m, nperseg=nper)
+        _, g_lr = signal.csd(prof.left_m, prof.right_m, 1.0 / prof.dx_m, nperseg=nper)
+        keep = n_w > 0
+        side = (n_w[keep], g_ll[keep], g_rr[keep], g_lr[keep])
+        source = "the tracks' own Welch spectra and cross-spectrum"
     length = float(prof.x_m[-1])
-    return Track(pr.add_lead_in(prof, lead), float(round(lead / prof.dx_m) * prof.dx_m), length, spectrum, source)
+    return Track(pr.add_lead_in(prof, lead), float(round(lead / prof.dx_m) * prof.dx_m), length, spectrum, source, side)
+
+
+def _track_width_m(scenario: Scenario) -> float | None:
+    """Distance between the two wheel tracks: the mean of the front and rear track widths (3-D), m."""
+    t = scenario.tractor
+    return 0.5 * (t.front_track_m + t.rear_track_m) if t.three_d else None
+
+
+def _envelope_side(track: pr.Profile, side: str, kind: str, footprint_m: float, radius_m: float) -> np.ndarray:
+    """One wheel track's enveloped elevation."""
+    dx = track.dx_m
+    h = track.track(side)
+    if kind == "tapered":
+        h = ev.tapered_moving_average(h, dx, footprint_m)
+    elif kind == "fixed":
+        h = ev.fixed_footprint(h, dx, footprint_m)
+    elif kind == "rigid_band":
+        h = ev.rigid_tread_band(h, dx, radius_m)
+    return h
 
 
 def _envelope(track: pr.Profile, kind: str, footprint_m: float, radius_m: float) -> np.ndarray:
     """Axle-mean enveloped elevation (left and right enveloped, then averaged, as the ch. 7 study)."""
-    dx = track.dx_m
-    out = []
-    for side in ("left", "right"):
-        h = track.track(side)
-        if kind == "tapered":
-            h = ev.tapered_moving_average(h, dx, footprint_m)
-        elif kind == "fixed":
-            h = ev.fixed_footprint(h, dx, footprint_m)
-        elif kind == "rigid_band":
-            h = ev.rigid_tread_band(h, dx, radius_m)
-        out.append(h)
+    out = [_envelope_side(track, side, kind, footprint_m, radius_m) for side in ("left", "right")]
     return 0.5 * (out[0] + out[1])
 
 
@@ -546,7 +632,19 @@ def axle_inputs(track: pr.Profile, kind: str, footprints: tuple[float, float], r
 def tyre_inputs(asm, track: pr.Profile, kind: str, footprints: tuple[float, float], radii: tuple[float, float],
                 speed_m_s: float, wheelbase_m: float, n_steps: int) -> tuple[np.ndarray, np.ndarray]:
     """Ground elevation and rate under each tyre element of ``asm`` at ``dt/2``, shape
-    ``(tyres, 2 n_steps - 1)``: the axle-mean input of :func:`axle_inputs` in the pitch plane."""
+    ``(tyres, 2 n_steps - 1)``: the axle-mean input of :func:`axle_inputs` in the pitch plane; in
+    3-D each wheel on its own side's track (enveloped with its axle's footprint), the rear one a
+    wheelbase later, each side's offset at the start removed."""
+    if asm.parts.three_d:
+        u, du = {}, {}
+        for side in ("left", "right"):
+            hf = _envelope_side(track, side, kind, footprints[0], radii[0])
+            hr = _envelope_side(track, side, kind, footprints[1], radii[1])
+            u[f"front_{side}"], du[f"front_{side}"] = _half_inputs(track.x_m, hf, speed_m_s, n_steps, x_start=wheelbase_m)
+            u[f"rear_{side}"], du[f"rear_{side}"] = _half_inputs(track.x_m, hr, speed_m_s, n_steps, x_start=0.0)
+            u0 = 0.5 * (u[f"front_{side}"][0] + u[f"rear_{side}"][0])
+            u[f"front_{side}"], u[f"rear_{side}"] = u[f"front_{side}"] - u0, u[f"rear_{side}"] - u0
+        return np.array([u[t] for t in asm.tyres]), np.array([du[t] for t in asm.tyres])
     uf, udf, ur, udr = axle_inputs(track, kind, footprints, radii, speed_m_s, wheelbase_m, n_steps)
     by_axle = {"front": (uf, udf), "rear": (ur, udr)}
     return (np.array([by_axle[t.split("_")[0]][0] for t in asm.tyres]),
@@ -646,31 +744,86 @@ def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float
     return start, start + int(round(length / DT_S))
 
 
-def _mode_intervals(asm, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: float) -> dict:
-    """95 % intervals of the bounce and pitch frequencies from the tyre stiffness uncertainties
-    (:func:`tyrelab.vehicle.bounce_pitch.frequency_uncertainty`: first order, central
-    differences, independent axles, ``f ± 1.96 u``), each named by the mode whose frequency it
-    is centred on."""
+#: Mode names by the coordinate that moves most (:func:`modes`).
+MODE_NAMES = {"z": "bounce", "th": "pitch", "phi": "roll", "front_axle_roll": "front_axle_roll",
+              "rear_axle_roll": "rear_axle_roll", "front_axle_z": "front_axle_bounce", "rear_axle_z": "rear_axle_bounce",
+              "cab_z": "cab_bounce", "cab_th": "cab_pitch", "cab_phi": "cab_roll", "implement_th": "implement_pitch"}
+
+
+def _is_beam(asm) -> bool:
+    """The thesis' §8.2 beam on two springs (the undamped model has z and θ only)."""
+    return asm.undamped()[2] == ("z", "th")
+
+
+def modes(asm) -> tuple[dict, dict]:
+    """Undamped natural frequencies (Hz) of an assembled tractor, each named by the coordinate
+    that moves most (kinetic-energy share; :data:`MODE_NAMES`, a second mode of the same name
+    ``_2``), and the bounce and pitch modes' nodal points ahead of the CG (m).
+
+    The pitch-plane tractor on rigid axles is thesis §8.2's beam on two springs
+    (:func:`tyrelab.vehicle.bounce_pitch.mode_shapes`, the same eigenproblem).
+    """
     p = asm.parts
-    base, _ = _modes(asm)
-    _, intervals = bounce_pitch.frequency_uncertainty(
-        p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m, -p.rear.ahead_of_cg_m,
-        p.front.tyre_stiffness_N_per_m / 1e3, p.rear.tyre_stiffness_N_per_m / 1e3,
-        u_front_tyre_kN_per_m, u_rear_tyre_kN_per_m)
-    centres = [0.5 * (lo + hi) for lo, hi in intervals]
-    return {m: list(intervals[int(np.argmin([abs(c - f) for c in centres]))]) for m, f in base.items()
-            if m in ("bounce", "pitch")}
+    if _is_beam(asm):
+        ms = bounce_pitch.mode_shapes(p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m,
+                                      -p.rear.ahead_of_cg_m, 2 * p.front.tyre_stiffness_N_per_m,
+                                      2 * p.rear.tyre_stiffness_N_per_m)
+        return ({k: ms[k]["frequency_Hz"] for k in ("bounce", "pitch")},
+                {k: ms[k]["nodal_point_ahead_of_cg_m"] for k in ("bounce", "pitch")})
+    k, m, names = asm.undamped()
+    w2, vecs = linalg.eigh(k, m)
+    shares = [vecs[:, i] * (m @ vecs[:, i]) for i in range(len(w2))]
+    dominant = [names[int(np.argmax(np.abs(sh)))] for sh in shares]
+    # the body's bounce and pitch (modes led by z or θ): by thesis §8.2's rule, the larger
+    # |z|/(r |θ|) is bounce (a tie to the lower frequency), the other pitch
+    body = [i for i in range(len(w2)) if dominant[i] in ("z", "th")]
+    iz, ith = names.index("z"), names.index("th")
+    ranked = sorted(body, key=lambda i: -abs(shares[i][iz]) / max(abs(shares[i][ith]), 1e-300))
+    label = {i: MODE_NAMES.get(dominant[i], dominant[i]) for i in range(len(w2))}
+    for j, i in enumerate(ranked[:2]):
+        label[i] = ("bounce", "pitch")[j] if len(ranked) > 1 else MODE_NAMES[dominant[i]]
+    freqs, nodal = {}, {}
+    for i in range(len(w2)):
+        name = label[i]
+        while name in freqs:
+            name = f"{name}_2" if not name[-1].isdigit() else f"{name[:-1]}{int(name[-1]) + 1}"
+        freqs[name] = math.sqrt(max(w2[i], 0.0)) / (2 * math.pi)
+        if name in ("bounce", "pitch"):
+            z, th = vecs[iz, i], vecs[ith, i]
+            nodal[name] = float(-z / th) + 0.0 if abs(th) > 1e-12 * abs(z) else math.inf
+    return freqs, nodal
 
 
 def _modes(asm) -> tuple[dict, dict]:
-    """Bounce and pitch natural frequencies and nodal points of the assembled tractor
-    (:func:`tyrelab.vehicle.bounce_pitch.mode_shapes` on its chassis and axles)."""
+    return modes(asm)
+
+
+def _mode_intervals(asm, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: float) -> dict:
+    """95 % intervals of the natural frequencies from the tyre stiffness uncertainties: first order,
+    central differences (±1 % of each axle's tyre stiffness), independent axles, ``f ± 1.96 u``
+    (:func:`tyrelab.vehicle.bounce_pitch.frequency_uncertainty` for thesis §8.2's beam; the same
+    method on the assembled model otherwise)."""
     p = asm.parts
-    modes = bounce_pitch.mode_shapes(p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m,
-                                     -p.rear.ahead_of_cg_m, 2 * p.front.tyre_stiffness_N_per_m,
-                                     2 * p.rear.tyre_stiffness_N_per_m)
-    return ({k: modes[k]["frequency_Hz"] for k in ("bounce", "pitch")},
-            {k: modes[k]["nodal_point_ahead_of_cg_m"] for k in ("bounce", "pitch")})
+    base, _ = modes(asm)
+    if _is_beam(asm):
+        _, intervals = bounce_pitch.frequency_uncertainty(
+            p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m, -p.rear.ahead_of_cg_m,
+            p.front.tyre_stiffness_N_per_m / 1e3, p.rear.tyre_stiffness_N_per_m / 1e3,
+            u_front_tyre_kN_per_m, u_rear_tyre_kN_per_m)
+        centres = [0.5 * (lo + hi) for lo, hi in intervals]
+        return {m: list(intervals[int(np.argmin([abs(c - f) for c in centres]))]) for m, f in base.items()}
+    var = dict.fromkeys(base, 0.0)
+    for axle, u in (("front", u_front_tyre_kN_per_m), ("rear", u_rear_tyre_kN_per_m)):
+        if not u > 0:
+            continue
+        part = getattr(p, axle)
+        k = part.tyre_stiffness_N_per_m
+        up, _ = modes(assemble(dataclasses.replace(p, **{axle: dataclasses.replace(part, tyre_stiffness_N_per_m=1.01 * k)})))
+        down, _ = modes(assemble(dataclasses.replace(p, **{axle: dataclasses.replace(part, tyre_stiffness_N_per_m=0.99 * k)})))
+        for m in var:
+            if m in up and m in down:
+                var[m] += ((up[m] - down[m]) / (0.02 * k) * 1e3 * u) ** 2
+    return {m: [base[m] - 1.96 * math.sqrt(var[m]), base[m] + 1.96 * math.sqrt(var[m])] for m in base}
 
 
 def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = True) -> RideResult:
@@ -699,8 +852,9 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
     rows, spectra, trans = [], [], []
     warnings = [f"tyres.{ax}: {w}" for ax in ("front", "rear") for w in tyres[ax].warnings]
     speeds = scenario.exposure.speeds_km_h
+    axes = seat_axes(scenario)  # axis -> output name
+    seat_outputs = tuple(axes.values())
     runs = []  # per speed: assembly, window, footprints, linear model, outputs, method, lift-off flags
-    seat_outputs = ("seat_vertical_m_s2", "seat_longitudinal_m_s2")
     for i, speed in enumerate(speeds):
         v = speed / 3.6
         asm = assemble(build_parts(scenario, tyres, i))
@@ -737,30 +891,22 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
             r["method"] = "nonlinear (tyre lift-off)"
     nat, nodal = _modes(runs[0]["asm"])
     nat_ci = _mode_intervals(runs[0]["asm"], tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
+    weightings = {"x": "Wd", "y": "Wd", "z": "Wk"}
     for i, (speed, r) in enumerate(zip(speeds, runs)):
         v, start, stop, fp, method = r["v"], r["start"], r["stop"], r["fp"], r["method"]
         a_m, b_m, c_m, d_m = r["lm"].abcd
         lift = tuple(float(o[start:stop].mean()) for o in r["off"])
-        seat_z = r["y"][0]
+        series = dict(zip(axes, r["y"]))
         if seat_ss is not None:
-            seat_z = simulate_state_space(*seat_ss, seat_z[None, :])[0]
-        z, x = seat_z[start:stop], r["y"][1][start:stop]
-        wz = iso2631.weighted_signal(z, FS_HZ, "Wk")
-        wx = iso2631.weighted_signal(x, FS_HZ, "Wd")
-        a_wz, a_wx = float(np.sqrt(np.mean(wz**2))), float(np.sqrt(np.mean(wx**2)))
-        vdv_z = iso2631.vibration_dose_value(wz, FS_HZ)
-        vdv_x = iso2631.AXIS_FACTOR["x"] * iso2631.vibration_dose_value(wx, FS_HZ)
-        duration = z.size / FS_HZ
-        vdv = max(vdv_z, vdv_x)
-        # frequency-domain path: linear model, ground spectrum, enveloping and delay
-        n_s, g_s = track.spectrum
-        f_s = n_s * v
-        keep = f_s <= FS_HZ / 2
-        f_s, n_k, s_u = f_s[keep], n_s[keep], g_s[keep] / v
-        h = frequency_response(a_m, b_m, c_m, d_m, f_s)
-        env = [enveloping_response(scenario.surface.enveloping, fp[j], track.profile.dx_m, n_k) for j in (0, 1)]
-        g_resp = ground_response(h, f_s, v, wb, env[0], env[1])
-        g_z = g_resp[0] * (_seat_tf(seat_ss, f_s) if seat_ss is not None else 1.0)
+            series["z"] = simulate_state_space(*seat_ss, series["z"][None, :])[0]
+        series = {ax: sig[start:stop] for ax, sig in series.items()}
+        weighted = {ax: iso2631.weighted_signal(sig, FS_HZ, weightings[ax]) for ax, sig in series.items()}
+        aw = {ax: float(np.sqrt(np.mean(sig**2))) for ax, sig in weighted.items()}
+        aw.setdefault("y", 0.0)  # the pitch-plane model has no lateral motion
+        vdv = max(iso2631.AXIS_FACTOR[ax] * iso2631.vibration_dose_value(sig, FS_HZ) for ax, sig in weighted.items())
+        duration = series["z"].size / FS_HZ
+        # frequency-domain path: linear model, ground spectra, enveloping and delay
+        expected = _expected(scenario, track, r, seat_ss, axes, v)
         row = {
             "speed_km_h": float(speed),
             "front_pressure_bar": tyres["front"].pressure_bar,
@@ -769,33 +915,30 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
             "rear_stiffness_kN_per_m": float(tyres["rear"].stiffness_kN_per_m[i]),
             "front_damping_kN_s_per_m": float(tyres["front"].damping_kN_s_per_m[i]),
             "rear_damping_kN_s_per_m": float(tyres["rear"].damping_kN_s_per_m[i]),
-            "a_wz_m_s2": a_wz,
-            "a_wx_m_s2": a_wx,
-            "expected_a_wz_m_s2": expected_rms(g_z, f_s, s_u, "Wk"),
-            "expected_a_wx_m_s2": expected_rms(g_resp[1], f_s, s_u, "Wd"),
+            "a_wz_m_s2": aw["z"],
+            "a_wx_m_s2": aw["x"],
+            "a_wy_m_s2": aw["y"],
+            "expected_a_wz_m_s2": expected["z"],
+            "expected_a_wx_m_s2": expected["x"],
+            "expected_a_wy_m_s2": expected.get("y", 0.0),
             "vdv_m_s1_75": vdv,
             "vdv_daily_m_s1_75": float(vdv * (hours * 3600.0 / duration) ** 0.25),
-            "crest_factor": iso2631.crest_factor(wz),
+            "crest_factor": iso2631.crest_factor(weighted["z"]),
             "lift_off_fraction_front": lift[0],
             "lift_off_fraction_rear": lift[1],
-            **exposure(a_wz, a_wx, hours),
+            **exposure(aw["z"], aw["x"], hours, aw["y"]),
             "hours_per_day": hours,
             "duration_s": duration,
             "simulation": method,
         }
         rows.append(row)
         if with_spectra:
-            fz, pz = mt.acceleration_psd(z, FS_HZ, 0.1)
-            fx_, px = mt.acceleration_psd(x, FS_HZ, 0.1)
+            psd = {ax: mt.acceleration_psd(sig, FS_HZ, 0.1) for ax, sig in series.items()}
+            fz = psd["z"][0]
             band = (fz >= FIGURE_BAND_HZ[0]) & (fz <= FIGURE_BAND_HZ[1])
             spectra.append(pd.DataFrame({"speed_km_h": float(speed), "frequency_Hz": fz[band],
-                                         "seat_vertical_psd_m2_s4_per_Hz": pz[band],
-                                         "seat_longitudinal_psd_m2_s4_per_Hz": px[band]}))
-            hg = ground_response(frequency_response(a_m, b_m, c_m, d_m, f_grid), f_grid, v, wb)
-            w2 = (2 * math.pi * f_grid) ** 2
-            tz = hg[0] * (_seat_tf(seat_ss, f_grid) if seat_ss is not None else 1.0)
-            trans.append(pd.DataFrame({"speed_km_h": float(speed), "frequency_Hz": f_grid,
-                                       "seat_vertical": np.abs(tz) / w2, "seat_longitudinal_per_m": np.abs(hg[1]) / w2}))
+                                         **{f"seat_{AXIS_WORDS[ax]}_psd_m2_s4_per_Hz": psd[ax][1][band] for ax in axes}}))
+            trans.append(_transmissibility(r, axes, seat_ss, f_grid, v, wb, float(speed)))
     cols = ["speed_km_h", "frequency_Hz"]
     return RideResult(
         scenario=scenario, tyres=tyres, natural_frequencies_Hz=nat, nodal_points_m=nodal,
@@ -805,6 +948,104 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
         warnings=warnings, natural_frequency_intervals_Hz=nat_ci,
     )
+
+
+#: Seat axes and their words in column names.
+AXIS_WORDS = {"z": "vertical", "x": "longitudinal", "y": "lateral"}
+
+
+def seat_axes(scenario: Scenario) -> dict[str, str]:
+    """Seat axis (``z``, ``x``, and ``y`` in 3-D) -> the assembly output that gives it: the seat
+    point's acceleration in space, or with ``[seat] gravity_tilt`` what a body-fixed
+    accelerometer reads (plus ``g θ`` fore-aft and ``g φ`` lateral)."""
+    tilt = "_tilt" if scenario.seat.gravity_tilt else ""
+    axes = {"z": "seat_vertical_m_s2", "x": f"seat_longitudinal{tilt}_m_s2"}
+    if scenario.tractor.three_d:
+        axes["y"] = f"seat_lateral{tilt}_m_s2"
+    return axes
+
+
+def _wheel_responses(r: dict, f_Hz, v: float, env) -> tuple[np.ndarray, list[str]]:
+    """Response of every output to each tyre's ground displacement (p, tyres, f), with the
+    enveloping filter of its axle (``env[axle]``), without the wheelbase delay; and the tyres."""
+    h = frequency_response(*r["lm"].abcd, f_Hz)
+    jw = 2j * math.pi * np.asarray(f_Hz, float)
+    tyres = list(r["asm"].tyres)
+    out = np.stack([(h[:, 2 * j] + jw * h[:, 2 * j + 1]) * env[t.split("_")[0]] for j, t in enumerate(tyres)], axis=1)
+    return out, tyres
+
+
+def input_cross_spectra(tyres: list[str], side_spectrum, f_Hz, v: float, wheelbase_m: float) -> np.ndarray:
+    """The tyres' input cross-spectral matrix (tyres, tyres, f), m²/Hz: per pair the two tracks'
+    spectrum or cross-spectrum (``G_LL``, ``G_RR``, ``G_LR`` at ``n = f/v``, per Hz ``/v``) times
+    ``exp(-jω (τ_i - τ_j))``, ``τ`` = 0 front, ``wheelbase/v`` rear (the front/rear delay)."""
+    n_s, g_ll, g_rr, g_lr = side_spectrum
+    n = np.asarray(f_Hz, float) / v
+    g = {("left", "left"): np.interp(n, n_s, g_ll), ("right", "right"): np.interp(n, n_s, g_rr),
+         ("left", "right"): np.interp(n, n_s, g_lr.real) + 1j * np.interp(n, n_s, np.imag(g_lr))}
+    g[("right", "left")] = np.conj(g[("left", "right")])
+    jw = 2j * math.pi * np.asarray(f_Hz, float)
+    tau = {t: (wheelbase_m / v if t.startswith("rear") else 0.0) for t in tyres}
+    out = np.empty((len(tyres), len(tyres), n.size), dtype=complex)
+    for i, a in enumerate(tyres):
+        for j, b in enumerate(tyres):
+            out[i, j] = g[(a.split("_")[1], b.split("_")[1])] / v * np.exp(-jw * (tau[a] - tau[b]))
+    return out
+
+
+def _expected(scenario: Scenario, track: Track, r: dict, seat_ss, axes: dict, v: float) -> dict:
+    """Expected weighted r.m.s. per seat axis from the frequency-domain path."""
+    fp, wb = r["fp"], scenario.tractor.wheelbase_m
+    weightings = {"x": "Wd", "y": "Wd", "z": "Wk"}
+    if not r["asm"].parts.three_d:  # the pitch plane: the axle-mean spectrum (as the ch. 7 study)
+        n_s, g_s = track.spectrum
+        f_s = n_s * v
+        keep = f_s <= FS_HZ / 2
+        f_s, n_k, s_u = f_s[keep], n_s[keep], g_s[keep] / v
+        h = frequency_response(*r["lm"].abcd, f_s)
+        env = [enveloping_response(scenario.surface.enveloping, fp[j], track.profile.dx_m, n_k) for j in (0, 1)]
+        g_resp = ground_response(h, f_s, v, wb, env[0], env[1])
+        g_resp[0] = g_resp[0] * (_seat_tf(seat_ss, f_s) if seat_ss is not None else 1.0)
+        return {ax: expected_rms(g_resp[k], f_s, s_u, weightings[ax]) for k, ax in enumerate(axes)}
+    # 3-D: the full input cross-spectral matrix (left/right coherence, front/rear delay)
+    n_s = track.side_spectrum[0]
+    f_s = n_s * v
+    f_s = f_s[f_s <= FS_HZ / 2]
+    n_k = f_s / v
+    env = {axle: enveloping_response(scenario.surface.enveloping, fp[j], track.profile.dx_m, n_k)
+           for j, axle in enumerate(("front", "rear"))}
+    h, tyres = _wheel_responses(r, f_s, v, env)
+    s_in = input_cross_spectra(tyres, track.side_spectrum, f_s, v, wb)
+    out = {}
+    for k, ax in enumerate(axes):
+        hk = h[k] * (_seat_tf(seat_ss, f_s) if (seat_ss is not None and ax == "z") else 1.0)
+        s_y = np.einsum("if,ijf,jf->f", hk, s_in, np.conj(hk)).real
+        w = np.abs(iso2631.weighting_response(f_s, weightings[ax]))
+        out[ax] = float(math.sqrt(max(np.trapezoid(s_y * w**2, f_s), 0.0)))
+    return out
+
+
+def _transmissibility(r: dict, axes: dict, seat_ss, f_grid, v: float, wb: float, speed: float) -> pd.DataFrame:
+    """|seat acceleration / ground acceleration| per axis on the figure grid (all wheels in phase
+    on both sides, the rear a wheelbase later): ``seat_vertical``, ``seat_longitudinal_per_m``
+    (fore-aft per unit ground acceleration, as before) and in 3-D ``seat_lateral_roll``: lateral
+    seat acceleration per unit left/right anti-phase ground acceleration."""
+    w2 = (2 * math.pi * f_grid) ** 2
+    ones = {"front": 1.0, "rear": 1.0}
+    h, tyres = _wheel_responses(r, f_grid, v, ones)
+    delay = np.array([np.exp(-2j * math.pi * f_grid * wb / v) if t.startswith("rear") else np.ones_like(f_grid)
+                      for t in tyres])
+    in_phase = np.einsum("ptf,tf->pf", h, delay)
+    out = {"speed_km_h": speed, "frequency_Hz": f_grid}
+    k = list(axes)
+    tz = in_phase[k.index("z")] * (_seat_tf(seat_ss, f_grid) if seat_ss is not None else 1.0)
+    out["seat_vertical"] = np.abs(tz) / w2
+    out["seat_longitudinal_per_m"] = np.abs(in_phase[k.index("x")]) / w2
+    if "y" in axes:
+        sign = np.array([1.0 if t.endswith("left") else -1.0 for t in tyres])[:, None]
+        anti = np.einsum("ptf,tf->pf", h, 0.5 * sign * delay)
+        out["seat_lateral_roll"] = np.abs(anti[k.index("y")]) / w2
+    return pd.DataFrame(out)
 
 
 def _axle_flags(asm, flags: dict) -> np.ndarray:

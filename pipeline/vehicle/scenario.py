@@ -53,6 +53,10 @@ __all__ = [
     "ExposureSpec",
     "SimulationSpec",
     "SweepSpec",
+    "AxleSpec",
+    "CabSpec",
+    "ImplementSpec",
+    "BallastSpec",
     "ScenarioError",
     "load_scenario",
     "parse_scenario",
@@ -83,6 +87,15 @@ class TractorSpec:
     longitudinal_model: str = "none"
     longitudinal_stiffness_kN_per_m: float = 455.0
     longitudinal_damping_kN_s_per_m: float = 3.0
+    roll_inertia_kg_m2: float | None = None
+    front_track_m: float | None = None
+    rear_track_m: float | None = None
+    lateral_model: str = "none"
+
+    @property
+    def three_d(self) -> bool:
+        """Roll modelled (``roll_inertia_kg_m2`` given): left and right tyres on their own tracks."""
+        return self.roll_inertia_kg_m2 is not None
 
     @property
     def wheelbase_m(self) -> float:
@@ -99,6 +112,64 @@ class SeatSpec:
     suspension: str = "rigid"
     natural_frequency_Hz: float | None = None
     damping_ratio: float | None = None
+    left_of_cg_m: float = 0.0
+    gravity_tilt: bool = False
+
+
+@dataclass(frozen=True)
+class AxleSpec:
+    """``[front_axle]`` / ``[rear_axle]``: how the axle is carried (kN, kg, m as the key names)."""
+
+    mount: str = "rigid"
+    roll_inertia_kg_m2: float | None = None
+    mass_kg: float | None = None
+    height_m: float | None = None
+    suspension_stiffness_kN_per_m: float | None = None
+    suspension_damping_kN_s_per_m: float = 0.0
+
+
+@dataclass(frozen=True)
+class CabSpec:
+    """``[cab]``: rigid (part of the body) or suspended on four mounts."""
+
+    mount: str = "rigid"
+    mass_kg: float | None = None
+    pitch_inertia_kg_m2: float | None = None
+    roll_inertia_kg_m2: float | None = None
+    ahead_of_cg_m: float = 0.0
+    height_above_cg_m: float = 0.0
+    front_mount_ahead_of_cg_m: float | None = None
+    rear_mount_ahead_of_cg_m: float | None = None
+    mount_track_m: float | None = None
+    mount_stiffness_kN_per_m: float | None = None
+    mount_damping_kN_s_per_m: float = 0.0
+
+
+@dataclass(frozen=True)
+class ImplementSpec:
+    """``[implement]``: a mounted implement on the rear hitch."""
+
+    mass_kg: float
+    behind_rear_axle_m: float
+    height_m: float
+    pitch_inertia_kg_m2: float = 0.0
+    roll_inertia_kg_m2: float = 0.0
+    mount: str = "rigid"
+    hitch_behind_rear_axle_m: float = 0.0
+    hitch_height_m: float = 0.0
+    hitch_stiffness_kN_m_per_rad: float | None = None
+    hitch_damping_kN_m_s_per_rad: float = 0.0
+
+
+@dataclass(frozen=True)
+class BallastSpec:
+    """``[ballast]``: a front ballast mass."""
+
+    mass_kg: float
+    ahead_of_front_axle_m: float
+    height_m: float
+    pitch_inertia_kg_m2: float = 0.0
+    roll_inertia_kg_m2: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -137,6 +208,7 @@ class SurfaceSpec:
     spectrum_correlated: bool | None = None
     enveloping: str = "tapered"
     lead_in_m: float = 5.0
+    tracks: str = "independent"
 
 
 @dataclass(frozen=True)
@@ -182,6 +254,10 @@ class Scenario:
     tractor : TractorSpec
     seat : SeatSpec
     front, rear : TyreSpec
+    front_axle, rear_axle : AxleSpec
+    cab : CabSpec
+    implement : ImplementSpec or None
+    ballast : BallastSpec or None
     surface : SurfaceSpec
     exposure : ExposureSpec
     simulation : SimulationSpec
@@ -202,6 +278,11 @@ class Scenario:
     sweep: SweepSpec = field(default_factory=SweepSpec)
     path: Path | None = None
     description: str = ""
+    front_axle: AxleSpec = field(default_factory=AxleSpec)
+    rear_axle: AxleSpec = field(default_factory=AxleSpec)
+    cab: CabSpec = field(default_factory=CabSpec)
+    implement: ImplementSpec | None = None
+    ballast: BallastSpec | None = None
 
 
 @cache
@@ -336,6 +417,7 @@ def _validate(doc: dict, base_dir: Path) -> list[str]:
         for k in ("natural_frequency_Hz", "damping_ratio"):
             if k not in seat:
                 problems.append(f"seat.{k} is required with suspension = \"linear\"")
+    problems += _parts_problems(doc)
     surf, _ = _section_values(doc, "surface")
     if surf:
         kind = surf.get("kind")
@@ -346,6 +428,84 @@ def _validate(doc: dict, base_dir: Path) -> list[str]:
                 problems.append("surface.profile (a CSV path) is required with kind = \"profile\"")
             elif isinstance(surf["profile"], str):
                 problems += _profile_problems(base_dir, surf["profile"])
+    return problems
+
+
+def _given(table: dict | None, key: str) -> bool:
+    return bool(table) and _is_number(table.get(key))
+
+
+def _parts_problems(doc: dict) -> list[str]:
+    """Problems between the keys of the tractor's parts (issue 23): what each mount needs, the
+    3-D model's track widths, the seat inside a suspended cab."""
+    problems: list[str] = []
+    tractor, _ = _section_values(doc, "tractor")
+    tractor = tractor or {}
+    three_d = "roll_inertia_kg_m2" in tractor
+    if three_d:
+        for k in ("front_track_m", "rear_track_m"):
+            if k not in tractor:
+                problems.append(f"tractor.{k} is required with tractor.roll_inertia_kg_m2 (the 3-D model)")
+    else:
+        for k in ("front_track_m", "rear_track_m"):
+            if k in tractor:
+                problems.append(f"tractor.{k} needs tractor.roll_inertia_kg_m2 (the 3-D model); without it the "
+                                "tracks are averaged")
+    for axle in ("front_axle", "rear_axle"):
+        t, _ = _section_values(doc, axle)
+        if not t:
+            continue
+        mount = t.get("mount", "rigid")
+        if mount == "pivot" and not three_d:
+            problems.append(f"{axle}.mount = \"pivot\" needs tractor.roll_inertia_kg_m2 (a pivot axle only differs "
+                            "from a rigid one in roll)")
+        if mount in ("pivot", "suspended") and three_d and "roll_inertia_kg_m2" not in t:
+            problems.append(f"{axle}.roll_inertia_kg_m2 is required with mount = \"{mount}\"")
+        if mount == "suspended":
+            for k in ("mass_kg", "suspension_stiffness_kN_per_m"):
+                if k not in t:
+                    problems.append(f"{axle}.{k} is required with mount = \"suspended\"")
+        if mount == "rigid":
+            extra = sorted(k for k in t if k != "mount")
+            if extra:
+                problems.append(f"{axle}: {', '.join(extra)} apply to a pivot or suspended axle, not mount = \"rigid\"")
+    surf, _ = _section_values(doc, "surface")
+    if surf and surf.get("tracks") == "isotropic" and not three_d:
+        problems.append("surface.tracks = \"isotropic\" needs the track widths of the 3-D model "
+                        "(tractor.roll_inertia_kg_m2, front_track_m, rear_track_m)")
+    cab, _ = _section_values(doc, "cab")
+    if cab and cab.get("mount", "rigid") == "suspended":
+        needed = ["mass_kg", "pitch_inertia_kg_m2", "front_mount_ahead_of_cg_m", "rear_mount_ahead_of_cg_m",
+                  "mount_track_m", "mount_stiffness_kN_per_m"] + (["roll_inertia_kg_m2"] if three_d else [])
+        for k in needed:
+            if k not in cab:
+                problems.append(f"cab.{k} is required with mount = \"suspended\"")
+        if _given(cab, "front_mount_ahead_of_cg_m") and _given(cab, "rear_mount_ahead_of_cg_m"):
+            front, rear = cab["front_mount_ahead_of_cg_m"], cab["rear_mount_ahead_of_cg_m"]
+            if not front > rear:
+                problems.append(f"cab.front_mount_ahead_of_cg_m ({front} m) must be ahead of "
+                                f"cab.rear_mount_ahead_of_cg_m ({rear} m)")
+            seat, _ = _section_values(doc, "seat")
+            seat = seat or {}
+            x, y = seat.get("ahead_of_cg_m", 0.0), seat.get("left_of_cg_m", 0.0)
+            if _is_number(x) and not rear <= x <= front:
+                problems.append(f"seat.ahead_of_cg_m = {x} m lies outside the cab (its mounts are from {rear} to "
+                                f"{front} m ahead of the CG)")
+            half = cab.get("mount_track_m")
+            if _is_number(y) and _is_number(half) and abs(y) > half / 2:
+                problems.append(f"seat.left_of_cg_m = {y} m lies outside the cab (its mounts are {half} m apart)")
+    imp, _ = _section_values(doc, "implement")
+    if imp:
+        for k in ("mass_kg", "behind_rear_axle_m", "height_m"):
+            if k not in imp:
+                problems.append(f"implement.{k} is required")
+        if imp.get("mount") == "hitch_spring" and "hitch_stiffness_kN_m_per_rad" not in imp:
+            problems.append("implement.hitch_stiffness_kN_m_per_rad is required with mount = \"hitch_spring\"")
+    ballast, _ = _section_values(doc, "ballast")
+    if ballast:
+        for k in ("mass_kg", "ahead_of_front_axle_m", "height_m"):
+            if k not in ballast:
+                problems.append(f"ballast.{k} is required")
     return problems
 
 
@@ -424,6 +584,11 @@ def _speed_values(v):
     return tuple(float(x) for x in v) if isinstance(v, list) else (None if v is None else float(v))
 
 
+def _floats(table: dict) -> dict:
+    """A table's values with numbers as floats (text and booleans as they are)."""
+    return {k: (v if isinstance(v, (str, bool)) else float(v)) for k, v in table.items()}
+
+
 def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
     t, s, surf, ex = doc["tractor"], doc.get("seat", {}), doc["surface"], doc["exposure"]
     sim = doc.get("simulation", {})
@@ -444,8 +609,13 @@ def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
     return Scenario(
         name=doc["name"],
         description=doc.get("description", ""),
-        tractor=TractorSpec(**{k: (v if isinstance(v, str) else float(v)) for k, v in t.items()}),
-        seat=SeatSpec(**{k: (v if isinstance(v, str) else float(v)) for k, v in s.items()}),
+        tractor=TractorSpec(**_floats(t)),
+        seat=SeatSpec(**{k: (v if isinstance(v, (str, bool)) else float(v)) for k, v in s.items()}),
+        front_axle=AxleSpec(**_floats(doc.get("front_axle", {}))),
+        rear_axle=AxleSpec(**_floats(doc.get("rear_axle", {}))),
+        cab=CabSpec(**_floats(doc.get("cab", {}))),
+        implement=ImplementSpec(**_floats(doc["implement"])) if "implement" in doc else None,
+        ballast=BallastSpec(**_floats(doc["ballast"])) if "ballast" in doc else None,
         front=tyre("front"),
         rear=tyre("rear"),
         surface=SurfaceSpec(
@@ -453,7 +623,7 @@ def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
             seed=int(surf.get("seed", 1)), dx_m=float(surf.get("dx_m", 0.05)), profile=profile,
             spectrum_g0_m3=surf.get("spectrum_g0_m3"), spectrum_waviness=float(surf.get("spectrum_waviness", 2.0)),
             spectrum_correlated=surf.get("spectrum_correlated"), enveloping=surf.get("enveloping", "tapered"),
-            lead_in_m=float(surf.get("lead_in_m", 5.0)),
+            lead_in_m=float(surf.get("lead_in_m", 5.0)), tracks=surf.get("tracks", "independent"),
         ),
         exposure=ExposureSpec(tuple(float(v) for v in ex["speeds_km_h"]), float(ex.get("hours_per_day", 8.0))),
         simulation=SimulationSpec(sim.get("duration_s"), bool(sim.get("lift_off", True))),
