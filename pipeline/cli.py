@@ -367,10 +367,14 @@ def cmd_ride(args) -> int:
         for problem in exc.problems:
             print(f"tyrelab ride: {exc.path}: {problem}", file=sys.stderr)
         return EXIT_USAGE
+    from .executor import map_batches
+    from .stages.simulate import WarehouseTyres
+
     ctx = SimpleNamespace(executor=args.executor, jobs=args.jobs, scheduler=args.scheduler)
     try:
         results = ride_sweep(scenario, args.front_pressure, args.rear_pressure, args.speeds,
-                             Path(args.build) if args.build else None, ctx, with_spectra=bool(args.out))
+                             WarehouseTyres(args.build) if args.build else None,
+                             lambda task, items: map_batches(task, items, ctx), with_spectra=bool(args.out))
     except ValueError as exc:
         print(f"tyrelab ride: {args.scenario}: {exc}", file=sys.stderr)
         return EXIT_USAGE
