@@ -708,6 +708,10 @@ class RideResult:
     warnings: list = field(default_factory=list)
     #: ``bounce``/``pitch`` -> [low, high], 95 %, from the tyres' stiffness uncertainty (:func:`_mode_intervals`)
     natural_frequency_intervals_Hz: dict = field(default_factory=dict)
+    #: With ``ride(..., with_signals=True)``: speed (km/h) -> the seat's predicted record, raw-format channel
+    #: name (``seat_z_m_s2``, ``seat_x_m_s2``, ``floor_z_m_s2``, ``floor_x_m_s2``; in 3-D also
+    #: ``seat_y_m_s2``, ``floor_y_m_s2``) -> samples at ``FS_HZ`` from the front axle's entry on the track
+    signals: dict = field(default_factory=dict)
 
 
 def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float | None) -> tuple[int, int]:
@@ -799,7 +803,8 @@ def _mode_intervals(asm, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: flo
     return {m: [base[m] - 1.96 * math.sqrt(var[m]), base[m] + 1.96 * math.sqrt(var[m])] for m in base}
 
 
-def ride(scenario: Scenario, tyre_data=None, with_spectra: bool = True) -> RideResult:
+def ride(scenario: Scenario, tyre_data=None, with_spectra: bool = True,
+         with_signals: bool = False) -> RideResult:
     """Simulate a scenario at every speed and evaluate the seat vibration.
 
     Parameters
@@ -810,6 +815,9 @@ def ride(scenario: Scenario, tyre_data=None, with_spectra: bool = True) -> RideR
         warehouse through :class:`tyrelab.stages.simulate.WarehouseTyres`).
     with_spectra : bool
         Also compute seat PSDs and transmissibilities (for figures).
+    with_signals : bool
+        Also keep the seat's predicted records (:attr:`RideResult.signals`), e.g. to compare
+        with a recording (:mod:`tyrelab.vehicle.ride_validation`).
 
     Returns
     -------
@@ -823,7 +831,7 @@ def ride(scenario: Scenario, tyre_data=None, with_spectra: bool = True) -> RideR
     wb = scenario.tractor.wheelbase_m
     radii = (tyres["front"].radius_m, tyres["rear"].radius_m)
     f_grid = np.geomspace(*FIGURE_BAND_HZ, 300)
-    rows, spectra, trans = [], [], []
+    rows, spectra, trans, signals = [], [], [], {}
     warnings = [f"tyres.{ax}: {w}" for ax in ("front", "rear") for w in tyres[ax].warnings]
     speeds = scenario.exposure.speeds_km_h
     axes = seat_axes(scenario)  # axis -> output name
@@ -871,9 +879,13 @@ def ride(scenario: Scenario, tyre_data=None, with_spectra: bool = True) -> RideR
         a_m, b_m, c_m, d_m = r["lm"].abcd
         lift = tuple(float(o[start:stop].mean()) for o in r["off"])
         series = dict(zip(axes, r["y"]))
+        floor = {ax: sig[start:stop] for ax, sig in series.items()}
         if seat_ss is not None:
             series["z"] = simulate_state_space(*seat_ss, series["z"][None, :])[0]
         series = {ax: sig[start:stop] for ax, sig in series.items()}
+        if with_signals:  # the cab floor beneath the seat: before the seat suspension (the model's seat x, y have none)
+            signals[float(speed)] = {**{f"seat_{ax}_m_s2": sig for ax, sig in series.items()},
+                                     **{f"floor_{ax}_m_s2": sig for ax, sig in floor.items()}}
         weighted = {ax: iso2631.weighted_signal(sig, FS_HZ, weightings[ax]) for ax, sig in series.items()}
         aw = {ax: float(np.sqrt(np.mean(sig**2))) for ax, sig in weighted.items()}
         aw.setdefault("y", 0.0)  # the pitch-plane model has no lateral motion
@@ -920,7 +932,7 @@ def ride(scenario: Scenario, tyre_data=None, with_spectra: bool = True) -> RideR
         spectra=pd.concat(spectra, ignore_index=True) if spectra else pd.DataFrame(columns=cols),
         transmissibility=pd.concat(trans, ignore_index=True) if trans else pd.DataFrame(columns=cols),
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
-        warnings=warnings, natural_frequency_intervals_Hz=nat_ci,
+        warnings=warnings, natural_frequency_intervals_Hz=nat_ci, signals=signals,
     )
 
 
