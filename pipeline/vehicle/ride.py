@@ -57,7 +57,7 @@ from . import metrics as mt
 from . import profiles as pr
 from .carriage import GRAVITY_M_S2
 from .scenario import Scenario, read_profile_csv, with_overrides
-from .studies import DT_S, _half_inputs
+from .carriage import half_step_input
 from .model import Axle, Ballast, Cab, Chassis, Implement, Parts, SeatPoint, assemble
 from .tractor import Tractor, simulate, tractor_parts
 
@@ -68,6 +68,7 @@ __all__ = [
     "RideResult",
     "per_speed",
     "resolve_tyres",
+    "ShippedTyres",
     "build_tractor",
     "build_parts",
     "tyre_inputs",
@@ -89,14 +90,11 @@ __all__ = [
     "ride_sweep",
     "result_json",
     "results_table",
-    "scenario_files",
-    "run_scenarios",
-    "scenario_items",
-    "scenario_task",
-    "collect_scenarios",
     "VERDICTS",
 ]
 
+#: Simulation step of the ride, s (the ch. 7 study's).
+DT_S = 1e-3
 FS_HZ = 1.0 / DT_S
 #: Outputs of :func:`state_space`, in row order.
 OUTPUTS = ("seat_vertical_m_s2", "seat_longitudinal_m_s2", "vertical_m_s2", "pitch_rad_s2", "longitudinal_m_s2",
@@ -171,53 +169,26 @@ def per_speed(values, list_speeds_km_h, speeds_km_h) -> np.ndarray:
     return np.interp(speeds, ls[order], v[order])
 
 
-def _measured(build: Path | None, table: str, tyre_id: str, pressure_bar: float) -> tuple[np.ndarray, np.ndarray]:
-    """(speeds, value at pressure) of a measured tyre's per-speed pressure fits."""
-    from ..warehouse import query
+class ShippedTyres:
+    """Where :func:`resolve_tyres` finds tyre data without a build: the thesis' stiffness formula
+    (published Tables II, III, VI); a measured tyre or ``formula = "build"`` is refused. A caller
+    with a warehouse passes an object with the same two methods
+    (:class:`tyrelab.stages.simulate.WarehouseTyres`): this package reads no warehouse."""
 
-    if build is None:
+    def measured(self, table: str, tyre_id: str, pressure_bar: float) -> tuple[np.ndarray, np.ndarray]:
+        """(speeds km/h, value at ``pressure_bar``) of a measured tyre's per-speed pressure fits."""
         raise ValueError(f"measured_tyre_id {tyre_id!r} needs --build (a warehouse with {table})")
-    db = Path(build) / "warehouse.duckdb"
-    if not db.is_file():
-        raise ValueError(f"measured_tyre_id {tyre_id!r}: no warehouse at {db}")
-    tid = str(tyre_id).replace("'", "''")
-    try:
-        rows = query(db, f"SELECT speed_km_h, intercept, slope FROM {table} WHERE CAST(tyre_id AS VARCHAR) = '{tid}' "
-                         "AND intercept IS NOT NULL AND slope IS NOT NULL AND speed_km_h IS NOT NULL ORDER BY speed_km_h")
-    except Exception as exc:  # noqa: BLE001 - a warehouse without the table is the user's input problem
-        raise ValueError(f"measured_tyre_id {tyre_id!r}: cannot read {table} from {db} ({str(exc).splitlines()[0]})") from None
-    if rows.empty:
-        raise ValueError(f"measured_tyre_id {tyre_id!r}: no fitted rows in {table} of {db}")
-    return rows["speed_km_h"].to_numpy(float), (rows["intercept"] + rows["slope"] * pressure_bar).to_numpy(float)
+
+    def stiffness_model(self, formula: str):
+        """The :class:`~tyrelab.tyre.stiffness.StiffnessModel` of ``[tyres.*] formula``."""
+        if formula == "build":
+            raise ValueError('formula = "build" needs --build (a warehouse with table formula_fit)')
+        return published.thesis_stiffness_model()
 
 
-def _stiffness_model(formula: str, build: Path | None):
-    """The :class:`~tyrelab.tyre.stiffness.StiffnessModel` of ``[tyres.*] formula``: the thesis'
-    (published Tables II, III, VI) or the build's (table ``formula_fit`` of its warehouse)."""
-    from ..tyre.models import build_stiffness_model
-    from ..warehouse import query
-
-    thesis = published.thesis_stiffness_model()
-    if formula != "build":
-        return thesis
-    if build is None:
-        raise ValueError('formula = "build" needs --build (a warehouse with table formula_fit)')
-    db = Path(build) / "warehouse.duckdb"
-    if not db.is_file():
-        raise ValueError(f'formula = "build": no warehouse at {db}')
-    try:
-        table = query(db, "SELECT * FROM formula_fit")
-    except Exception as exc:  # noqa: BLE001 - a warehouse without the table is the user's input problem
-        raise ValueError(f'formula = "build": cannot read formula_fit from {db} ({str(exc).splitlines()[0]})') from None
-    try:
-        return build_stiffness_model(table, thesis)
-    except ValueError as exc:
-        raise ValueError(f'formula = "build": {db}: {exc}') from None
-
-
-def _formula_stiffness(spec, build: Path | None = None) -> tuple[float, str, list[str], float]:
+def _formula_stiffness(spec, tyre_data=None) -> tuple[float, str, list[str], float]:
     """Per-tyre formula stiffness (kN/m), its rule, the formula's range warnings and its standard uncertainty."""
-    model = _stiffness_model(getattr(spec, "formula", "thesis"), build)
+    model = (tyre_data or ShippedTyres()).stiffness_model(getattr(spec, "formula", "thesis"))
     est = estimate_stiffness(spec.size, spec.pressure_bar, spec.age_years, undriven_front=not spec.traction,
                              water_ballast=spec.water_ballast, model=model)
     rule = f"formula {est.rule}" + (" x1.25 water ballast" if spec.water_ballast else "")
@@ -232,19 +203,21 @@ def _thesis_damping(pressure_bar: float, speeds_km_h) -> np.ndarray:
     return np.interp(np.asarray(speeds_km_h, float), mean.index.to_numpy(float), mean.to_numpy(float))
 
 
-def resolve_tyres(scenario: Scenario, build: Path | None = None) -> dict[str, AxleTyres]:
+def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
     """Stiffness, damping, radius and footprint of the front and rear tyres per speed.
 
     Order of precedence per quantity: the scenario's override, the measured tyre
-    (``measured_tyre_id`` in the warehouse of ``build``; speeds interpolated, held
-    outside the measured range), the formula (stiffness) or the mean of the
-    thesis' Table VII (damping).
+    (``measured_tyre_id``, from ``tyre_data.measured``; speeds interpolated, held
+    outside the measured range), the formula (stiffness, ``tyre_data.stiffness_model``)
+    or the mean of the thesis' Table VII (damping). ``tyre_data`` default
+    :class:`ShippedTyres` (no warehouse).
 
     Raises
     ------
     ValueError
         When a measured tyre cannot be found.
     """
+    tyre_data = tyre_data or ShippedTyres()
     speeds = np.asarray(scenario.exposure.speeds_km_h, float)
     lists = scenario.exposure.list_speeds_km_h
     t = scenario.tractor
@@ -257,16 +230,16 @@ def resolve_tyres(scenario: Scenario, build: Path | None = None) -> dict[str, Ax
         if spec.stiffness_kN_per_m is not None:
             k, k_src = per_speed(spec.stiffness_kN_per_m, lists, speeds), "override (scenario)"
         elif spec.measured_tyre_id:
-            sp, val = _measured(build, "stiffness_pressure_by_speed", spec.measured_tyre_id, spec.pressure_bar)
+            sp, val = tyre_data.measured("stiffness_pressure_by_speed", spec.measured_tyre_id, spec.pressure_bar)
             k = np.interp(speeds, sp, val)
             k_src = f"measured tyre {spec.measured_tyre_id}: K = Kc + dKp P per speed (stiffness_pressure_by_speed)"
         else:
-            k0, k_src, warnings, k_u = _formula_stiffness(spec, build)
+            k0, k_src, warnings, k_u = _formula_stiffness(spec, tyre_data)
             k = np.full(speeds.shape, k0)
         if spec.damping_kN_s_per_m is not None:
             c, c_src = per_speed(spec.damping_kN_s_per_m, lists, speeds), "override (scenario)"
         elif spec.measured_tyre_id:
-            sp, val = _measured(build, "damping_pressure_by_speed", spec.measured_tyre_id, spec.pressure_bar)
+            sp, val = tyre_data.measured("damping_pressure_by_speed", spec.measured_tyre_id, spec.pressure_bar)
             c = np.interp(speeds, sp, val)
             c_src = f"measured tyre {spec.measured_tyre_id}: C = Cc + dC P per speed (damping_pressure_by_speed)"
         else:
@@ -623,8 +596,8 @@ def axle_inputs(track: pr.Profile, kind: str, footprints: tuple[float, float], r
     hf = _envelope(track, kind, footprints[0], radii[0])
     hr = hf if (footprints[0] == footprints[1] and radii[0] == radii[1]) or kind == "none" else \
         _envelope(track, kind, footprints[1], radii[1])
-    uf, udf = _half_inputs(track.x_m, hf, speed_m_s, n_steps, x_start=wheelbase_m)
-    ur, udr = _half_inputs(track.x_m, hr, speed_m_s, n_steps, x_start=0.0)
+    uf, udf = half_step_input(track.x_m, hf, speed_m_s, n_steps, wheelbase_m, DT_S)
+    ur, udr = half_step_input(track.x_m, hr, speed_m_s, n_steps, 0.0, DT_S)
     u0 = 0.5 * (uf[0] + ur[0])
     return uf - u0, udf, ur - u0, udr
 
@@ -640,8 +613,8 @@ def tyre_inputs(asm, track: pr.Profile, kind: str, footprints: tuple[float, floa
         for side in ("left", "right"):
             hf = _envelope_side(track, side, kind, footprints[0], radii[0])
             hr = _envelope_side(track, side, kind, footprints[1], radii[1])
-            u[f"front_{side}"], du[f"front_{side}"] = _half_inputs(track.x_m, hf, speed_m_s, n_steps, x_start=wheelbase_m)
-            u[f"rear_{side}"], du[f"rear_{side}"] = _half_inputs(track.x_m, hr, speed_m_s, n_steps, x_start=0.0)
+            u[f"front_{side}"], du[f"front_{side}"] = half_step_input(track.x_m, hf, speed_m_s, n_steps, wheelbase_m, DT_S)
+            u[f"rear_{side}"], du[f"rear_{side}"] = half_step_input(track.x_m, hr, speed_m_s, n_steps, 0.0, DT_S)
             u0 = 0.5 * (u[f"front_{side}"][0] + u[f"rear_{side}"][0])
             u[f"front_{side}"], u[f"rear_{side}"] = u[f"front_{side}"] - u0, u[f"rear_{side}"] - u0
         return np.array([u[t] for t in asm.tyres]), np.array([du[t] for t in asm.tyres])
@@ -735,6 +708,10 @@ class RideResult:
     warnings: list = field(default_factory=list)
     #: ``bounce``/``pitch`` -> [low, high], 95 %, from the tyres' stiffness uncertainty (:func:`_mode_intervals`)
     natural_frequency_intervals_Hz: dict = field(default_factory=dict)
+    #: With ``ride(..., with_signals=True)``: speed (km/h) -> the seat's predicted record, raw-format channel
+    #: name (``seat_z_m_s2``, ``seat_x_m_s2``, ``floor_z_m_s2``, ``floor_x_m_s2``; in 3-D also
+    #: ``seat_y_m_s2``, ``floor_y_m_s2``) -> samples at ``FS_HZ`` from the front axle's entry on the track
+    signals: dict = field(default_factory=dict)
 
 
 def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float | None) -> tuple[int, int]:
@@ -826,22 +803,27 @@ def _mode_intervals(asm, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: flo
     return {m: [base[m] - 1.96 * math.sqrt(var[m]), base[m] + 1.96 * math.sqrt(var[m])] for m in base}
 
 
-def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = True) -> RideResult:
+def ride(scenario: Scenario, tyre_data=None, with_spectra: bool = True,
+         with_signals: bool = False) -> RideResult:
     """Simulate a scenario at every speed and evaluate the seat vibration.
 
     Parameters
     ----------
     scenario : Scenario
-    build : Path, optional
-        Build folder whose warehouse holds measured tyres (``measured_tyre_id``).
+    tyre_data : object, optional
+        Measured tyres and the stiffness model (:class:`ShippedTyres` by default; a build's
+        warehouse through :class:`tyrelab.stages.simulate.WarehouseTyres`).
     with_spectra : bool
         Also compute seat PSDs and transmissibilities (for figures).
+    with_signals : bool
+        Also keep the seat's predicted records (:attr:`RideResult.signals`), e.g. to compare
+        with a recording (:mod:`tyrelab.vehicle.ride_validation`).
 
     Returns
     -------
     RideResult
     """
-    tyres = resolve_tyres(scenario, build)
+    tyres = resolve_tyres(scenario, tyre_data)
     track = build_profile(scenario)
     seat = scenario.seat
     seat_ss = seat_filter(seat.natural_frequency_Hz, seat.damping_ratio) if seat.suspension == "linear" else None
@@ -849,7 +831,7 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
     wb = scenario.tractor.wheelbase_m
     radii = (tyres["front"].radius_m, tyres["rear"].radius_m)
     f_grid = np.geomspace(*FIGURE_BAND_HZ, 300)
-    rows, spectra, trans = [], [], []
+    rows, spectra, trans, signals = [], [], [], {}
     warnings = [f"tyres.{ax}: {w}" for ax in ("front", "rear") for w in tyres[ax].warnings]
     speeds = scenario.exposure.speeds_km_h
     axes = seat_axes(scenario)  # axis -> output name
@@ -897,9 +879,13 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
         a_m, b_m, c_m, d_m = r["lm"].abcd
         lift = tuple(float(o[start:stop].mean()) for o in r["off"])
         series = dict(zip(axes, r["y"]))
+        floor = {ax: sig[start:stop] for ax, sig in series.items()}
         if seat_ss is not None:
             series["z"] = simulate_state_space(*seat_ss, series["z"][None, :])[0]
         series = {ax: sig[start:stop] for ax, sig in series.items()}
+        if with_signals:  # the cab floor beneath the seat: before the seat suspension (the model's seat x, y have none)
+            signals[float(speed)] = {**{f"seat_{ax}_m_s2": sig for ax, sig in series.items()},
+                                     **{f"floor_{ax}_m_s2": sig for ax, sig in floor.items()}}
         weighted = {ax: iso2631.weighted_signal(sig, FS_HZ, weightings[ax]) for ax, sig in series.items()}
         aw = {ax: float(np.sqrt(np.mean(sig**2))) for ax, sig in weighted.items()}
         aw.setdefault("y", 0.0)  # the pitch-plane model has no lateral motion
@@ -946,7 +932,7 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
         spectra=pd.concat(spectra, ignore_index=True) if spectra else pd.DataFrame(columns=cols),
         transmissibility=pd.concat(trans, ignore_index=True) if trans else pd.DataFrame(columns=cols),
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
-        warnings=warnings, natural_frequency_intervals_Hz=nat_ci,
+        warnings=warnings, natural_frequency_intervals_Hz=nat_ci, signals=signals,
     )
 
 
@@ -1060,8 +1046,8 @@ def _seat_tf(seat_ss, f_Hz) -> np.ndarray:
 
 def _ride_batch(item: tuple) -> RideResult:
     """Executor task: one scenario variant (module level, picklable)."""
-    scenario, build, with_spectra = item
-    return ride(scenario, build, with_spectra)
+    scenario, tyre_data, with_spectra = item
+    return ride(scenario, tyre_data, with_spectra)
 
 
 def ride_sweep(
@@ -1069,8 +1055,8 @@ def ride_sweep(
     front_pressures_bar=None,
     rear_pressures_bar=None,
     speeds_km_h=None,
-    build: Path | None = None,
-    executor_ctx=None,
+    tyre_data=None,
+    map_fn=None,
     with_spectra: bool = True,
 ) -> list[RideResult]:
     """:func:`ride` for every front × rear pressure pair (the scenario's own when not given).
@@ -1082,27 +1068,24 @@ def ride_sweep(
         Default: the scenario's ``[sweep]``, else its tyres' pressures.
     speeds_km_h : sequence of float, optional
         Override the scenario's speeds.
-    build : Path, optional
-        Warehouse of measured tyres.
-    executor_ctx : object, optional
-        Anything with ``executor``, ``jobs``, ``scheduler`` (a
-        :class:`tyrelab.stages.base.Context`): the variants run through
-        :func:`tyrelab.executor.map_batches` (local pool or Dask). Default: in-process.
+    tyre_data : object, optional
+        As :func:`ride`.
+    map_fn : callable, optional
+        ``map_fn(task, items) -> results`` in order (the caller's executor, e.g.
+        :func:`tyrelab.executor.map_batches` bound to a context); default in-process.
 
     Returns
     -------
     list of RideResult
         In front-major order of the pairs.
     """
-    from ..executor import map_batches
-
     fronts = list(front_pressures_bar or scenario.sweep.front_pressures_bar or [scenario.front.pressure_bar])
     rears = list(rear_pressures_bar or scenario.sweep.rear_pressures_bar or [scenario.rear.pressure_bar])
     variants = [with_overrides(scenario, speeds_km_h, pf, pr_) for pf in fronts for pr_ in rears]
-    items = [(v, build, with_spectra) for v in variants]
-    if executor_ctx is None or len(items) == 1:
+    items = [(v, tyre_data, with_spectra) for v in variants]
+    if map_fn is None or len(items) == 1:
         return [_ride_batch(i) for i in items]
-    return map_batches(_ride_batch, items, executor_ctx)
+    return map_fn(_ride_batch, items)
 
 
 def _clean(v):
@@ -1178,94 +1161,3 @@ def results_table(results: list[RideResult], scenario_id: str | None = None) -> 
         df["rear_stiffness_source"] = r.tyres["rear"].stiffness_source
         frames.append(df)
     return pd.concat(frames, ignore_index=True)
-
-
-# --------------------------------------------------------------------------- pipeline
-def scenario_files(raw: Path | None) -> list[tuple[str, str]]:
-    """``(path, source)`` of every shipped scenario and every ``<raw>/scenarios/*.toml``.
-
-    A file of ``raw`` with the same bytes as a shipped one (the repository's own
-    ``raw/`` folder) is listed once, as shipped.
-    """
-    from .. import resources
-
-    shipped = sorted(resources.scenarios_dir().glob("*.toml"))
-    seen = {p.read_bytes() for p in shipped}
-    out = [(str(p), "shipped") for p in shipped]
-    folder = Path(raw) / "scenarios" if raw is not None else None
-    for p in sorted(folder.glob("*.toml")) if folder is not None and folder.is_dir() else []:
-        if p.is_file() and p.read_bytes() not in seen:  # a named pipe is skipped (the raw walk warns of it)
-            out.append((str(p), "raw"))
-    return out
-
-
-def scenario_items(files: list[tuple[str, str]], build: Path | None = None) -> list[tuple]:
-    """The executor items of :func:`run_scenarios`, one per ``(path, source)`` of ``files``: run each
-    with :func:`scenario_task` (in any process) and hand the results, in order, to
-    :func:`collect_scenarios` (the simulate stage runs them beside its studies this way)."""
-    return [(p, src, str(build) if build else None) for p, src in files]
-
-
-def scenario_task(item: tuple) -> dict:
-    """Executor task of the simulate stage: one scenario file, every pressure pair of its sweep."""
-    from .scenario import ScenarioError, load_scenario
-
-    path, source, build = item
-    try:
-        sc = load_scenario(path)
-        results = ride_sweep(sc, build=Path(build) if build else None, with_spectra=False)
-        # the scenario row's modes are those at the scenario's own pressures, which a [sweep] need not
-        # list first, or at all: from the nominal pair's result, else from the nominal tyres
-        nominal = [r for r in results if r.tyres["front"].pressure_bar == sc.front.pressure_bar
-                   and r.tyres["rear"].pressure_bar == sc.rear.pressure_bar]
-        nat, nodal = ((nominal[0].natural_frequencies_Hz, nominal[0].nodal_points_m) if nominal else
-                      _modes(assemble(build_parts(sc, resolve_tyres(sc, Path(build) if build else None), 0))))
-    except (ScenarioError, ValueError) as exc:
-        return {"file": path, "error": str(exc).replace("\n", "; ")}
-    table = results_table(results, sc.name)
-    table["is_nominal"] = (table["front_pressure_bar"] == sc.front.pressure_bar) & \
-        (table["rear_pressure_bar"] == sc.rear.pressure_bar)
-    s = sc.surface
-    row = {
-        "scenario": sc.name, "file": path, "source": source, "description": sc.description,
-        "mass_kg": sc.tractor.mass_kg, "pitch_inertia_kg_m2": sc.tractor.pitch_inertia_kg_m2,
-        "front_distance_m": sc.tractor.front_distance_m, "rear_distance_m": sc.tractor.rear_distance_m,
-        "cg_height_m": sc.tractor.cg_height_m, "longitudinal_model": sc.tractor.longitudinal_model,
-        "seat_ahead_of_cg_m": sc.seat.ahead_of_cg_m, "seat_height_above_cg_m": sc.seat.height_above_cg_m,
-        "seat_suspension": sc.seat.suspension,
-        "front_size": sc.front.size, "front_pressure_bar": sc.front.pressure_bar,
-        "rear_size": sc.rear.size, "rear_pressure_bar": sc.rear.pressure_bar,
-        "surface": s.kind, "road_class": s.road_class, "track": results[0].track_label,
-        "track_length_m": results[0].track_length_m,
-        "seed": s.seed, "enveloping": s.enveloping,
-        "speeds_km_h": ", ".join(f"{v:g}" for v in sc.exposure.speeds_km_h), "hours_per_day": sc.exposure.hours_per_day,
-        "bounce_Hz": nat["bounce"], "pitch_Hz": nat["pitch"],
-        "bounce_nodal_point_m": nodal["bounce"], "pitch_nodal_point_m": nodal["pitch"],
-        "pressure_pairs": len(results), "warnings": "; ".join(sorted({w for r in results for w in r.warnings})),
-    }
-    return {"file": path, "scenario": row, "results": table}
-
-
-def run_scenarios(files: list[tuple[str, str]], ctx=None, build: Path | None = None) -> tuple[pd.DataFrame, pd.DataFrame, list[dict]]:
-    """Run scenario files (through :func:`tyrelab.executor.map_batches` when ``ctx`` is given).
-
-    Returns
-    -------
-    ride_scenarios, ride_results : DataFrame
-        One row per scenario; one row per scenario × speed × pressure pair.
-    problems : list of dict
-        ``file`` and ``reason`` of every scenario refused (the others still run).
-    """
-    from ..executor import map_batches
-
-    items = scenario_items(files, build)
-    return collect_scenarios(map_batches(scenario_task, items, ctx) if ctx is not None else [scenario_task(i) for i in items])
-
-
-def collect_scenarios(outputs: list[dict]) -> tuple[pd.DataFrame, pd.DataFrame, list[dict]]:
-    """The tables of :func:`run_scenarios` from the results of :func:`scenario_task`, in order."""
-    ok = [o for o in outputs if "error" not in o]
-    problems = [{"file": o["file"], "reason": o["error"]} for o in outputs if "error" in o]
-    scenarios = pd.DataFrame([o["scenario"] for o in ok])
-    results = pd.concat([o["results"] for o in ok], ignore_index=True) if ok else pd.DataFrame()
-    return scenarios, results, problems

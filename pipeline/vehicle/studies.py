@@ -111,21 +111,6 @@ def profile_estimates(track: pr.Profile, radius_m: float, footprint_m: float, se
     return {"true": true, "surveyed": surveyed, "recorded": recorded, "surveyed_raw": surveyed_raw}
 
 
-def _half_inputs(x, h, speed, n_steps, x_start=0.0):
-    """Input sampled at dt/2 over n_steps steps (padded level beyond the profile)."""
-    dt = DT_S / 2
-    t_end = (2 * n_steps - 2) * dt
-    x_end = x_start + speed * t_end
-    xx = np.asarray(x)
-    hh = np.asarray(h)
-    if x_end > xx[-1]:
-        extra = np.arange(xx[-1] + (xx[1] - xx[0]), x_end + 1.0, xx[1] - xx[0])
-        xx = np.concatenate([xx, extra])
-        hh = np.concatenate([hh, np.full(extra.size, hh[-1])])
-    t, u, ud = cm.ground_input(xx, hh, speed, dt, x_start, x_start + speed * t_end + 1e-9)
-    return u[: 2 * n_steps - 1], ud[: 2 * n_steps - 1]
-
-
 def _by_condition(table: pd.DataFrame, needed, name: str, what: str, problems: list[str]) -> pd.DataFrame:
     """``table`` indexed by ``load_condition``; appends to ``problems`` each condition of ``needed``
     without a row, or with more than one (``name`` and ``what`` word the message)."""
@@ -310,7 +295,7 @@ def _carriage_cases(conds: pd.DataFrame, stat: pd.DataFrame, x: np.ndarray, est_
     uh = np.empty((len(conds), 2 * n_max - 1))
     udh = np.empty_like(uh)
     for i, (_, c) in enumerate(conds.iterrows()):
-        u, ud = _half_inputs(x, est_by_load[c["load_condition"]]["true"], speeds[i], n_max)
+        u, ud = cm.half_step_input(x, est_by_load[c["load_condition"]]["true"], speeds[i], n_max, dt_s=DT_S)
         uh[i], udh[i] = u - u[0], ud
     ref_car = cm.Carriage(
         mass_kg=conds["load_kg"].to_numpy(float),
@@ -427,7 +412,7 @@ def _tractor_inputs(profile: pr.Profile, radii, footprints, speed, wheelbase, n_
             for s in ("left", "right")
         ]
         h = 0.5 * (tracks[0] + tracks[1])
-        out.append(_half_inputs(profile.x_m, h, speed, n_steps, x_start=offset))
+        out.append(cm.half_step_input(profile.x_m, h, speed, n_steps, x_start_m=offset, dt_s=DT_S))
     (uf, udf), (ur, udr) = out
     u0 = 0.5 * (uf[0] + ur[0])
     return uf - u0, udf, ur - u0, udr
