@@ -372,11 +372,18 @@ def cmd_ride(args) -> int:
     from .executor import map_batches
     from .stages.simulate import WarehouseTyres
 
+    from .vehicle.scenario import parse_sets
+
     ctx = SimpleNamespace(executor=args.executor, jobs=args.jobs, scheduler=args.scheduler)
     try:
+        sets = parse_sets(args.set or [])
         results = ride_sweep(scenario, args.front_pressure, args.rear_pressure, args.speeds,
                              WarehouseTyres(args.build) if args.build else None,
-                             lambda task, items: map_batches(task, items, ctx), with_spectra=bool(args.out))
+                             lambda task, items: map_batches(task, items, ctx), with_spectra=bool(args.out), sets=sets)
+    except ScenarioError as exc:  # a swept value the scenario refuses: every problem, one line each
+        for problem in exc.problems:
+            print(f"tyrelab ride: {exc.path}: {problem}", file=sys.stderr)
+        return EXIT_USAGE
     except ValueError as exc:
         print(f"tyrelab ride: {args.scenario}: {exc}", file=sys.stderr)
         return EXIT_USAGE
@@ -586,6 +593,8 @@ def build_parser() -> argparse.ArgumentParser:
                     help="rear pressures to sweep, bar (default: the scenario's)")
     rd.add_argument("--speeds", type=_positive, nargs="+", default=None, metavar="KM_H",
                     help="speeds, km/h (default: the scenario's)")
+    rd.add_argument("--set", action="append", default=None, metavar="KEY=V1,V2,...",
+                    help="sweep a numeric scenario key, e.g. implement.mass_kg=0,500,1000 (repeatable: every combination)")
     rd.add_argument("--jobs", type=int, default=1, help="worker processes for a sweep (default 1)")
     rd.add_argument("--executor", choices=["local", "dask"], default="local")
     rd.add_argument("--scheduler", default=None, help="dask scheduler address (with --executor dask)")

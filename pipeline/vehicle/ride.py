@@ -38,6 +38,7 @@ SI inside; km/h, kN/m and bar at the edges, as in the key names.
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -56,7 +57,7 @@ from . import lti
 from . import metrics as mt
 from . import profiles as pr
 from .carriage import GRAVITY_M_S2
-from .scenario import Scenario, read_profile_csv, with_overrides
+from .scenario import Scenario, read_profile_csv, with_overrides, with_values
 from .carriage import half_step_input
 from .model import Axle, Ballast, Cab, Chassis, Implement, Parts, SeatPoint, assemble
 from .tractor import Tractor, simulate, tractor_parts
@@ -712,6 +713,8 @@ class RideResult:
     #: name (``seat_z_m_s2``, ``seat_x_m_s2``, ``floor_z_m_s2``, ``floor_x_m_s2``; in 3-D also
     #: ``seat_y_m_s2``, ``floor_y_m_s2``) -> samples at ``FS_HZ`` from the front axle's entry on the track
     signals: dict = field(default_factory=dict)
+    #: The swept keys' values of this variant (:func:`ride_sweep`), ``{"section.key": value}``.
+    variant: dict = field(default_factory=dict)
 
 
 def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float | None) -> tuple[int, int]:
@@ -1058,8 +1061,10 @@ def ride_sweep(
     tyre_data=None,
     map_fn=None,
     with_spectra: bool = True,
+    sets: dict | None = None,
 ) -> list[RideResult]:
-    """:func:`ride` for every front × rear pressure pair (the scenario's own when not given).
+    """:func:`ride` for every variant: each front × rear pressure pair (the scenario's own when not
+    given) and every combination of the swept keys.
 
     Parameters
     ----------
@@ -1073,19 +1078,34 @@ def ride_sweep(
     map_fn : callable, optional
         ``map_fn(task, items) -> results`` in order (the caller's executor, e.g.
         :func:`tyrelab.executor.map_batches` bound to a context); default in-process.
+    sets : dict, optional
+        Numeric scenario keys (``"section.key"``, :func:`tyrelab.vehicle.scenario.numeric_key`)
+        -> values to run, on top of (and replacing the same keys of) the scenario's ``[sweep]``.
 
     Returns
     -------
     list of RideResult
-        In front-major order of the pairs.
+        Pressure pairs front-major, then the swept keys in order (the last varying fastest);
+        :attr:`RideResult.variant` names each variant's swept values.
     """
     fronts = list(front_pressures_bar or scenario.sweep.front_pressures_bar or [scenario.front.pressure_bar])
     rears = list(rear_pressures_bar or scenario.sweep.rear_pressures_bar or [scenario.rear.pressure_bar])
-    variants = [with_overrides(scenario, speeds_km_h, pf, pr_) for pf in fronts for pr_ in rears]
-    items = [(v, tyre_data, with_spectra) for v in variants]
+    swept = {**scenario.sweep.keys, **(sets or {})}
+    combos = [dict(zip(swept, values)) for values in itertools.product(*swept.values())] if swept else [{}]
+    variants = []
+    for pf in fronts:
+        for pr_ in rears:
+            for combo in combos:
+                base = with_values(scenario, combo) if combo else scenario
+                variants.append((with_overrides(base, speeds_km_h, pf, pr_), combo))
+    items = [(v, tyre_data, with_spectra) for v, _ in variants]
     if map_fn is None or len(items) == 1:
-        return [_ride_batch(i) for i in items]
-    return map_fn(_ride_batch, items)
+        results = [_ride_batch(i) for i in items]
+    else:
+        results = map_fn(_ride_batch, items)
+    for r, (_, combo) in zip(results, variants):
+        r.variant = dict(combo)
+    return results
 
 
 def _clean(v):
@@ -1142,7 +1162,9 @@ def result_json(results: list[RideResult]) -> dict:
            "warnings": sorted({w for r in results for w in r.warnings})}
     if len(results) > 1:
         out["sweep"] = [{"front_pressure_bar": r.tyres["front"].pressure_bar,
-                         "rear_pressure_bar": r.tyres["rear"].pressure_bar, **block(r)} for r in results]
+                         "rear_pressure_bar": r.tyres["rear"].pressure_bar,
+                         **({"variant": {k: _clean(v) for k, v in r.variant.items()}} if r.variant else {}),
+                         **block(r)} for r in results]
     return out
 
 
@@ -1159,5 +1181,7 @@ def results_table(results: list[RideResult], scenario_id: str | None = None) -> 
         df["pitch_Hz"] = r.natural_frequencies_Hz["pitch"]
         df["front_stiffness_source"] = r.tyres["front"].stiffness_source
         df["rear_stiffness_source"] = r.tyres["rear"].stiffness_source
+        for k, v in r.variant.items():  # one column per swept key
+            df[k] = v
         frames.append(df)
     return pd.concat(frames, ignore_index=True)

@@ -63,6 +63,9 @@ __all__ = [
     "read_profile_csv",
     "key_table",
     "with_overrides",
+    "with_values",
+    "numeric_key",
+    "parse_sets",
 ]
 
 
@@ -242,6 +245,8 @@ class SweepSpec:
 
     front_pressures_bar: tuple[float, ...] = ()
     rear_pressures_bar: tuple[float, ...] = ()
+    #: Any numeric scenario key (``"section.key"``) -> the values to run (every combination).
+    keys: dict = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -283,6 +288,9 @@ class Scenario:
     cab: CabSpec = field(default_factory=CabSpec)
     implement: ImplementSpec | None = None
     ballast: BallastSpec | None = None
+    #: The parsed TOML and the folder its paths are relative to (for :func:`with_values`).
+    doc: dict = field(default_factory=dict, repr=False, compare=False)
+    base_dir: Path | None = field(default=None, repr=False, compare=False)
 
 
 @cache
@@ -302,8 +310,8 @@ def key_table() -> pd.DataFrame:
     Examples
     --------
     >>> t = key_table()
-    >>> t.loc[t["key"] == "mass_kg", ["section", "unit"]].values.tolist()
-    [['tractor', 'kg']]
+    >>> t.loc[t["key"] == "mass_kg", ["section", "unit"]].values.tolist()[:2]
+    [['tractor', 'kg'], ['front_axle', 'kg']]
     """
     rows = []
     for sec, spec in _sections().items():
@@ -395,6 +403,9 @@ def _validate(doc: dict, base_dir: Path) -> list[str]:
         for k, v in values.items():
             if sec == "" and k in known_top and k not in spec["fields"]:
                 continue  # a table, checked as its own section
+            if sec == "sweep" and "." in k:
+                problems += _sweep_key_problems(k, v)
+                continue
             if k not in spec["fields"]:
                 known = sorted(known_top) if sec == "" else list(spec["fields"])
                 problems.append(f"unknown key {label(k)!r} (known: {', '.join(known)})")
@@ -429,6 +440,115 @@ def _validate(doc: dict, base_dir: Path) -> list[str]:
             elif isinstance(surf["profile"], str):
                 problems += _profile_problems(base_dir, surf["profile"])
     return problems
+
+
+def numeric_key(key: str) -> dict | None:
+    """The schema field of a numeric scenario key ``"section.key"`` (``"tyres.front.pressure_bar"``),
+    or None when it is not one."""
+    section, _, name = key.rpartition(".")
+    f = _sections().get(section, {}).get("fields", {}).get(name)
+    return f if f is not None and f["type"] in ("number", "number_or_numbers") else None
+
+
+def _sweep_key_problems(key: str, values) -> list[str]:
+    """Problems of a ``[sweep]`` entry ``"section.key" = [values]``."""
+    f = numeric_key(key)
+    if f is None:
+        return [f"sweep.{key!r}: not a numeric scenario key (a quoted \"section.key\", e.g. \"implement.mass_kg\")"]
+    if not isinstance(values, list) or not values or not all(_is_number(v) for v in values):
+        return [f"sweep.{key!r}: expected a list of numbers, got {values!r}"]
+    return [p for v in values for p in _check_value(f"sweep.{key!r}", {**f, "type": "number"}, v, None)][:1]
+
+
+#: Most variants one sweep may ask for (``--set`` and ``[sweep]`` combinations times pressure pairs).
+MAX_VARIANTS = 10_000
+
+
+def parse_sets(items) -> dict:
+    """``["KEY=V1,V2", ...]`` (``tyrelab ride --set``) -> ``{"KEY": (V1, V2)}``, every problem at once.
+
+    Examples
+    --------
+    >>> parse_sets(["implement.mass_kg=500,1000", "tyres.rear.pressure_bar=1.2"])
+    {'implement.mass_kg': (500.0, 1000.0), 'tyres.rear.pressure_bar': (1.2,)}
+    """
+    out, problems = {}, []
+    for item in items:
+        key, sep, text = str(item).partition("=")
+        key = key.strip()
+        try:
+            values = tuple(float(v) for v in text.split(",")) if sep and text.strip() else ()
+        except ValueError:
+            values = ()
+        if numeric_key(key) is None:
+            problems.append(f"--set {item!r}: {key!r} is not a numeric scenario key (e.g. implement.mass_kg)")
+        elif not values or not all(math.isfinite(v) for v in values):
+            problems.append(f"--set {item!r}: expected KEY=V1,V2,... with numbers")
+        else:
+            bad = [p for v in values for p in _check_value(f"--set {key}", {**numeric_key(key), "type": "number"}, v, None)]
+            problems += bad[:1]
+            out[key] = values
+    n = math.prod(len(v) for v in out.values()) if out else 1
+    if n > MAX_VARIANTS:
+        problems.append(f"--set: {n} combinations (at most {MAX_VARIANTS})")
+    if problems:
+        raise ValueError("; ".join(problems))
+    return out
+
+
+def with_values(scenario: Scenario, values: dict) -> Scenario:
+    """A copy of ``scenario`` with numeric keys replaced, ``{"section.key": value}``, checked as the
+    file is (every problem at once, :class:`ScenarioError`); the ``[sweep]`` table is dropped.
+
+    Examples
+    --------
+    >>> s = parse_scenario(_EXAMPLE)
+    >>> with_values(s, {"tractor.mass_kg": 5000, "tyres.rear.pressure_bar": 1.4}).tractor.mass_kg
+    5000.0
+    """
+    if not scenario.doc:
+        raise ValueError("scenario: built in memory, not from TOML (with_values needs the parsed file)")
+    doc = {k: (dict(v) if isinstance(v, dict) else v) for k, v in scenario.doc.items()}
+    doc["tyres"] = {k: dict(v) for k, v in doc.get("tyres", {}).items()}
+    doc.pop("sweep", None)
+    for key, value in values.items():
+        if numeric_key(key) is None:
+            raise ScenarioError(scenario.path or "<scenario>", [f"{key!r}: not a numeric scenario key"])
+        parts = key.split(".")
+        node = doc
+        for part in parts[:-1]:
+            node = node.setdefault(part, {})
+        node[parts[-1]] = float(value)
+    where = str(scenario.path) if scenario.path is not None else "<scenario>"
+    base = scenario.base_dir or Path(".")
+    problems = _validate(doc, base)
+    if problems:
+        raise ScenarioError(where, problems)
+    out = _build(doc, scenario.path, base)
+    return replace(out, exposure=replace(out.exposure, speeds_km_h=scenario.exposure.speeds_km_h,
+                                         list_speeds_km_h=scenario.exposure.list_speeds_km_h))
+
+
+_EXAMPLE = """
+name = "demo"
+[tractor]
+mass_kg = 4700
+pitch_inertia_kg_m2 = 5500
+front_distance_m = 1.56
+rear_distance_m = 0.95
+cg_height_m = 0.95
+[tyres.front]
+size = "14.9R28"
+pressure_bar = 1.6
+[tyres.rear]
+size = "18.4R38"
+pressure_bar = 1.2
+[surface]
+kind = "iso8608"
+class = "C"
+[exposure]
+speeds_km_h = [4, 8]
+"""
 
 
 def _given(table: dict | None, key: str) -> bool:
@@ -628,8 +748,11 @@ def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
         exposure=ExposureSpec(tuple(float(v) for v in ex["speeds_km_h"]), float(ex.get("hours_per_day", 8.0))),
         simulation=SimulationSpec(sim.get("duration_s"), bool(sim.get("lift_off", True))),
         sweep=SweepSpec(tuple(float(v) for v in sweep.get("front_pressures_bar", ())),
-                        tuple(float(v) for v in sweep.get("rear_pressures_bar", ()))),
+                        tuple(float(v) for v in sweep.get("rear_pressures_bar", ())),
+                        {k: tuple(float(x) for x in v) for k, v in sweep.items() if "." in k}),
         path=path,
+        doc=doc,
+        base_dir=base_dir,
     )
 
 

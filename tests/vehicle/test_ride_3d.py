@@ -281,3 +281,23 @@ def test_implement_and_hitch_damping(parts_results):
     assert r1["a_wx_m_s2"] > r0["a_wx_m_s2"]
     assert "implement_pitch" in f2
     assert r2["a_wx_m_s2"] < r1["a_wx_m_s2"]
+
+
+# ------------------------------------------------------------------ sweeps of any numeric key
+def test_sweep_any_numeric_key_from_the_command_line_and_the_file(tmp_path, capsys):
+    import json
+
+    body = text('kind = "iso8608"\nclass = "B"\nlength_m = 30', "[10]",
+                extra='[implement]\nmass_kg = 500\nbehind_rear_axle_m = 1.2\nheight_m = 0.8\n'
+                      '[sweep]\n"tractor.cg_height_m" = [0.9, 1.1]')
+    path = _write(tmp_path, body)
+    assert cli.main(["ride", str(path), "--set", "implement.mass_kg=500,1500"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    variants = [s["variant"] for s in doc["sweep"]]
+    assert variants == [{"tractor.cg_height_m": h, "implement.mass_kg": m} for h in (0.9, 1.1) for m in (500, 1500)]
+    pitch = {(s["variant"]["tractor.cg_height_m"], s["variant"]["implement.mass_kg"]): s["natural_frequencies_Hz"]["pitch"]
+             for s in doc["sweep"]}
+    assert pitch[(0.9, 1500)] < pitch[(0.9, 500)]  # a heavier implement: more pitch inertia
+    assert cli.main(["ride", str(path), "--set", "implement.colour=1,2", "--set", "tractor.mass_kg=-5"]) == 2
+    err = capsys.readouterr().err
+    assert "implement.colour" in err and "tractor.mass_kg" in err and "Traceback" not in err
