@@ -1177,10 +1177,13 @@ def results_table(results: list[RideResult], scenario_id: str | None = None) -> 
     for r in results:
         df = r.speeds.copy()
         df.insert(0, "scenario", scenario_id or r.scenario.name)
-        df["bounce_Hz"] = r.natural_frequencies_Hz["bounce"]
-        df["pitch_Hz"] = r.natural_frequencies_Hz["pitch"]
+        df["bounce_Hz"] = r.natural_frequencies_Hz.get("bounce", math.nan)
+        df["pitch_Hz"] = r.natural_frequencies_Hz.get("pitch", math.nan)
+        df["roll_Hz"] = r.natural_frequencies_Hz.get("roll", math.nan)
+        df["modes_Hz"] = "; ".join(f"{k} {v:.3f}" for k, v in r.natural_frequencies_Hz.items())
         df["front_stiffness_source"] = r.tyres["front"].stiffness_source
         df["rear_stiffness_source"] = r.tyres["rear"].stiffness_source
+        df["variant"] = ", ".join(f"{k}={v:g}" for k, v in r.variant.items())
         for k, v in r.variant.items():  # one column per swept key
             df[k] = v
         frames.append(df)
