@@ -198,6 +198,7 @@ def simulate_linear(
     dict
         ``z_m``, ``v_m_s``, ``a_m_s2`` arrays like ``u_m``.
     """
+    dt_s = positive("dt_s", dt_s)
     a, b, c, d = state_space(carriage)
     w = np.vstack([np.asarray(u_m, float), np.asarray(u_dot_m_s, float)])  # (2, n)
     y = lti.discretise(a, b, c, d, dt_s).run(w, x0=np.array([z0_m, v0_m_s], float))
@@ -253,6 +254,7 @@ def simulate_nonlinear(
         its ``n_steps`` samples with the tyre off the ground); arrays of shape ``(N,)``
         or ``(n_runs, N)``.
     """
+    dt_s = positive("dt_s", dt_s)
     u, ud = _half_samples(u_half_m, u_dot_half_m_s)
     squeeze = np.ndim(u_half_m) == 1
     runs = u.shape[0]

@@ -136,6 +136,9 @@ def spectral_synthesis(
     ndarray
         Elevations in m, zero mean.
     """
+    dx_m = _validate.positive("dx_m", dx_m)
+    if int(n_samples) < 2:
+        raise ValueError(f"n_samples must be at least 2, got {n_samples!r}")
     n = np.fft.rfftfreq(n_samples, dx_m)
     dn = n[1]
     g = np.zeros_like(n)
@@ -296,6 +299,8 @@ def iso8608_track(
     -------
     Profile
     """
+    length_m = _validate.positive("length_m", length_m)
+    dx_m = _validate.positive("dx_m", dx_m)
     c = road_class.upper()
     if c not in ISO8608_CLASS_G0_M3:
         raise ValueError(f"ISO 8608 class {road_class!r}: expected one of A-H")

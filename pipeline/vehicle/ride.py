@@ -48,6 +48,7 @@ import pandas as pd
 from scipy import linalg, signal
 
 from .. import published
+from .._validate import positive
 from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
 from ..tyre.stiffness import estimate_stiffness
 from . import bounce_pitch
@@ -413,8 +414,10 @@ def seat_filter(natural_frequency_Hz: float, damping_ratio: float):
     ``T(s) = (2 ζ ω s + ω²) / (s² + 2 ζ ω s + ω²)``, the transmissibility of a seat
     on a linear spring and damper; it maps base acceleration to seat acceleration.
     """
-    wn = 2 * math.pi * float(natural_frequency_Hz)
+    wn = 2 * math.pi * positive("natural_frequency_Hz", natural_frequency_Hz)
     z = float(damping_ratio)
+    if not (math.isfinite(z) and z >= 0):
+        raise ValueError(f"damping_ratio must be finite and non-negative, got {damping_ratio!r}")
     return signal.tf2ss([2 * z * wn, wn**2], [1.0, 2 * z * wn, wn**2])
 
 
@@ -639,8 +642,7 @@ def exposure(a_wz_m_s2: float, a_wx_m_s2: float, hours_per_day: float, a_wy_m_s2
     >>> round(e["a8_m_s2"], 6), round(e["hours_to_elv"], 4), e["verdict"]
     (0.565685, 16.5312, 'above action value')
     """
-    if hours_per_day <= 0:
-        raise ValueError("hours_per_day must be positive")
+    positive("hours_per_day", hours_per_day)
     k = iso2631.AXIS_FACTOR
     aw = max(k["x"] * a_wx_m_s2, k["y"] * a_wy_m_s2, k["z"] * a_wz_m_s2)
     a8 = iso2631.daily_exposure_a8(aw, hours_per_day)
@@ -1177,10 +1179,13 @@ def results_table(results: list[RideResult], scenario_id: str | None = None) -> 
     for r in results:
         df = r.speeds.copy()
         df.insert(0, "scenario", scenario_id or r.scenario.name)
-        df["bounce_Hz"] = r.natural_frequencies_Hz["bounce"]
-        df["pitch_Hz"] = r.natural_frequencies_Hz["pitch"]
+        df["bounce_Hz"] = r.natural_frequencies_Hz.get("bounce", math.nan)
+        df["pitch_Hz"] = r.natural_frequencies_Hz.get("pitch", math.nan)
+        df["roll_Hz"] = r.natural_frequencies_Hz.get("roll", math.nan)
+        df["modes_Hz"] = "; ".join(f"{k} {v:.3f}" for k, v in r.natural_frequencies_Hz.items())
         df["front_stiffness_source"] = r.tyres["front"].stiffness_source
         df["rear_stiffness_source"] = r.tyres["rear"].stiffness_source
+        df["variant"] = ", ".join(f"{k}={v:g}" for k, v in r.variant.items())
         for k, v in r.variant.items():  # one column per swept key
             df[k] = v
         frames.append(df)
