@@ -502,7 +502,8 @@ def with_values(scenario: Scenario, values: dict) -> Scenario:
 
     Examples
     --------
-    >>> s = parse_scenario(_EXAMPLE)
+    >>> from tyrelab.resources import scenarios_dir
+    >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
     >>> with_values(s, {"tractor.mass_kg": 5000, "tyres.rear.pressure_bar": 1.4}).tractor.mass_kg
     5000.0
     """
@@ -527,28 +528,6 @@ def with_values(scenario: Scenario, values: dict) -> Scenario:
     out = _build(doc, scenario.path, base)
     return replace(out, exposure=replace(out.exposure, speeds_km_h=scenario.exposure.speeds_km_h,
                                          list_speeds_km_h=scenario.exposure.list_speeds_km_h))
-
-
-_EXAMPLE = """
-name = "demo"
-[tractor]
-mass_kg = 4700
-pitch_inertia_kg_m2 = 5500
-front_distance_m = 1.56
-rear_distance_m = 0.95
-cg_height_m = 0.95
-[tyres.front]
-size = "14.9R28"
-pressure_bar = 1.6
-[tyres.rear]
-size = "18.4R38"
-pressure_bar = 1.2
-[surface]
-kind = "iso8608"
-class = "C"
-[exposure]
-speeds_km_h = [4, 8]
-"""
 
 
 def _given(table: dict | None, key: str) -> bool:

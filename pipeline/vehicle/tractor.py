@@ -675,9 +675,6 @@ def simulate_tractor(
     >>> str(out["method_used"]), bool(out["lift_off_fraction_front"] > 0)
     ('exact+rk4', True)
     """
-    if method not in METHODS:
-        raise ValueError(f"method {method!r}: expected one of {METHODS}")
-    dt_s = _validate.positive("dt_s", dt_s)
     uf, udf, ur, udr = (np.atleast_2d(np.asarray(v, float)) for v in (front_half, front_rate_half, rear_half, rear_rate_half))
     squeeze = np.ndim(front_half) == 1
     if not uf.shape == udf.shape == ur.shape == udr.shape:
