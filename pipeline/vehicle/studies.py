@@ -45,6 +45,7 @@ __all__ = [
     "carriage_case_inputs",
     "carriage_study",
     "tractor_case_inputs",
+    "longitudinal_grid",
     "tractor_study",
 ]
 
@@ -435,6 +436,28 @@ def _tractor_conditions(table_xv: pd.DataFrame, table_xvi: pd.DataFrame, rolling
     return xv, stat
 
 
+def longitudinal_grid(table_xviii: pd.DataFrame | None = None) -> dict[str, list[tuple[float, float]]]:
+    """The Table XVIII sweep's rear longitudinal elements per model, (k, c) per tyre in kN/m and
+    kN s/m: Kelvin-Voigt at the thesis' predicted rows, in their order; Maxwell (§7.5's proposal,
+    our addition) at those of them with both a spring and a damper.
+
+    Examples
+    --------
+    >>> g = longitudinal_grid()
+    >>> g["kelvin_voigt"][:3], g["maxwell"]
+    ([(0.0, 0.0), (455.0, 0.0), (455.0, 1.0)], [(455.0, 1.0), (455.0, 3.0), (455.0, 5.0)])
+    """
+    if table_xviii is None:
+        from .. import published
+
+        table_xviii = published.read_published("table_xviii")
+    measured = table_xviii["is_measured"].astype(str).str.lower().isin(["true", "1"])
+    rows = table_xviii[~measured]
+    kv = [(float(k), float(c)) for k, c in zip(rows["longitudinal_stiffness_kN_per_m"],
+                                               rows["longitudinal_damping_kN_s_per_m"])]
+    return {"kelvin_voigt": kv, "maxwell": [(k, c) for k, c in kv if k > 0 and c > 0]}
+
+
 def tractor_case_inputs(
     table_xv: pd.DataFrame, table_xvi: pd.DataFrame, farm_class: str = "D", duration_s: float = 30.0
 ) -> list[dict]:
@@ -463,6 +486,7 @@ def tractor_study(
     farm_class: str = "D",
     duration_s: float = 30.0,
     cases: dict | None = None,
+    table_xviii: pd.DataFrame | None = None,
 ) -> dict[str, pd.DataFrame]:
     """Chapter 7: MF698T on the slatted track (SBT) and a farm track (HH).
 
@@ -487,6 +511,9 @@ def tractor_study(
         ISO 8608 class of the farm track (HH).
     duration_s : float
         Length of a run, s.
+    table_xviii : DataFrame, optional
+        Thesis Table XVIII (its predicted rows give the longitudinal sweep's (k, c) pairs,
+        :func:`longitudinal_grid`); default the shipped one (:mod:`tyrelab.published`).
     cases : dict of int to list, optional
         Cases computed before, by position among the rolling rows of ``table_xvi``:
         items of a previous result's ``cases`` whose inputs (:func:`tractor_case_inputs`)
@@ -558,10 +585,7 @@ def tractor_study(
             )
         )
         if lc == 1 and r["track"] == "SBT" and r["speed_km_h"] == 10:
-            for model, pairs in (
-                ("kelvin_voigt", [(0, 0), (455, 0), (455, 1), (455, 3), (455, 5), (0, 1), (0, 3), (0, 5)]),
-                ("maxwell", [(455, 1), (455, 3), (455, 5)]),
-            ):
+            for model, pairs in longitudinal_grid(table_xviii).items():
                 for k_kn, c_kn in pairs:
                     case.append(
                         (
