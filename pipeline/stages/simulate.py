@@ -121,13 +121,11 @@ def _ride_finish(ctx: Context, files: list[tuple[str, str]], cache: ItemCache, k
     ``outputs`` of the ``todo`` ones (:func:`_ride_plan`), which are stored."""
     if todo:
         scenarios, results, bad = collect_scenarios(outputs)
-        if len(scenarios) and scenarios["scenario"].duplicated().any():  # rows not attributable: no reuse
-            return run_scenarios(files, ctx, ctx.build)
         for (path, _), k in zip([f for f, _ in todo], [k for _, k in todo]):
             failed = [b for b in bad if b["file"] == path]
             mine = scenarios[scenarios["file"] == path] if len(scenarios) else scenarios
-            name = mine["scenario"].iloc[0] if len(mine) else None
-            rows = results[results["scenario"] == name] if name is not None and len(results) else results.iloc[0:0]
+            # keyed by the scenario file (ride_results.file): two files may give the same name
+            rows = results[results["file"] == path] if len(results) else results.iloc[0:0]
             done[k] = (mine, rows, failed)
             cache.put(k, done[k])
     parts = [done[k] for k in keys]
@@ -487,7 +485,10 @@ def scenario_task(item: tuple) -> dict:
                       ride.modes(assemble(ride.build_parts(sc, ride.resolve_tyres(sc, tyre_data), 0))))
     except (ScenarioError, ValueError) as exc:
         return {"file": path, "error": str(exc).replace("\n", "; ")}
+    except (ArithmeticError, MemoryError, RecursionError) as exc:  # the model failed: this scenario only
+        return {"file": path, "error": f"the ride model failed: {type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"}
     table = ride.results_table(results, sc.name)
+    table["file"] = path  # rows are keyed by the scenario file: two files may share a name
     table["is_nominal"] = (table["front_pressure_bar"] == sc.front.pressure_bar) & \
         (table["rear_pressure_bar"] == sc.rear.pressure_bar)
     s = sc.surface

@@ -62,6 +62,7 @@ from .scenario import Scenario, read_profile_csv, with_overrides, with_values
 from .carriage import half_step_input
 from .model import Axle, Ballast, Cab, Chassis, Implement, Parts, SeatPoint, assemble
 from .tractor import Tractor, simulate, tractor_parts
+from .scenario_limits import MIN_VERDICT_DURATION_S
 
 __all__ = [
     "OUTPUTS",
@@ -922,6 +923,10 @@ def ride(scenario: Scenario, tyre_data=None, with_spectra: bool = True,
             "duration_s": duration,
             "simulation": method,
         }
+        if duration < MIN_VERDICT_DURATION_S:
+            warnings.append(f"{speed:g} km/h: the seat record is {duration:.2f} s, shorter than "
+                            f"{MIN_VERDICT_DURATION_S:g} s: too short for a reliable exposure verdict "
+                            "(lengthen surface.length_m or simulation.duration_s)")
         rows.append(row)
         if with_spectra:
             psd = {ax: mt.acceleration_psd(sig, FS_HZ, 0.1) for ax, sig in series.items()}
@@ -1064,6 +1069,8 @@ def ride_sweep(
     map_fn=None,
     with_spectra: bool = True,
     sets: dict | None = None,
+    max_variants: int | None = None,
+    max_samples: int | None = None,
 ) -> list[RideResult]:
     """:func:`ride` for every variant: each front × rear pressure pair (the scenario's own when not
     given) and every combination of the swept keys.
@@ -1083,6 +1090,9 @@ def ride_sweep(
     sets : dict, optional
         Numeric scenario keys (``"section.key"``, :func:`tyrelab.vehicle.scenario.numeric_key`)
         -> values to run, on top of (and replacing the same keys of) the scenario's ``[sweep]``.
+    max_variants, max_samples : int, optional
+        Bounds of the work (:mod:`tyrelab.vehicle.scenario_limits`; default its ``MAX_VARIANTS``,
+        ``MAX_SAMPLES``): more is refused with a ValueError giving the estimate, before any work.
 
     Returns
     -------
@@ -1094,6 +1104,16 @@ def ride_sweep(
     rears = list(rear_pressures_bar or scenario.sweep.rear_pressures_bar or [scenario.rear.pressure_bar])
     swept = {**scenario.sweep.keys, **(sets or {})}
     combos = [dict(zip(swept, values)) for values in itertools.product(*swept.values())] if swept else [{}]
+    from . import scenario_limits as limits
+
+    bad = limits.override_problems(speeds_km_h, front_pressures_bar, rear_pressures_bar)
+    if bad:
+        raise ValueError("; ".join(bad))
+    too_much = limits.work_problems(scenario, len(fronts) * len(rears) * len(combos), speeds_km_h,
+                                    max_variants=max_variants or limits.MAX_VARIANTS,
+                                    max_samples=max_samples or limits.MAX_SAMPLES)
+    if too_much:  # before any work (the variants are not even built)
+        raise ValueError("; ".join(too_much))
     variants = []
     for pf in fronts:
         for pr_ in rears:
