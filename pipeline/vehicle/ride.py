@@ -923,7 +923,8 @@ def ride(scenario: Scenario, tyre_data=None, with_spectra: bool = True,
             "duration_s": duration,
             "simulation": method,
         }
-        if duration < MIN_VERDICT_DURATION_S:
+        if duration < MIN_VERDICT_DURATION_S:  # the exposure numbers stay; the verdict is withheld
+            row["verdict"] = f"no verdict: record {duration:.2f} s, shorter than {MIN_VERDICT_DURATION_S:g} s"
             warnings.append(f"{speed:g} km/h: the seat record is {duration:.2f} s, shorter than "
                             f"{MIN_VERDICT_DURATION_S:g} s: too short for a reliable exposure verdict "
                             "(lengthen surface.length_m or simulation.duration_s)")

@@ -117,6 +117,7 @@ def test_a_short_record_warns(tmp_path):
     sc = parse_scenario(text(surface='kind = "iso8608"\nclass = "C"\nlength_m = 10', speeds="[20]"))
     res = ride.ride(sc, with_spectra=False)
     assert any("too short for a reliable exposure verdict" in w for w in res.warnings)
+    assert res.speeds["verdict"].iloc[0].startswith("no verdict: record 1.")
 
 
 def test_a_model_failure_is_one_scenario_s_problem(tmp_path, monkeypatch):
