@@ -36,17 +36,12 @@ UPPER = ("tyrelab.stages", "tyrelab.report", "tyrelab.cli", "tyrelab.warehouse",
 #: of one cycle (a strongly connected component of the import graph) and who removes it.
 #: Remove an entry when its cycle is gone; the test fails while a listed cycle is missing.
 ALLOWED_MODULE_CYCLES = {
-    frozenset({"tyrelab.vehicle.ride", "tyrelab.vehicle.studies", "tyrelab.vehicle.tractor"}): "issue 23 (vehicle/)",
     # scenario_limits reads a profile CSV through scenario.read_profile_csv (function-level import)
     frozenset({"tyrelab.vehicle.scenario", "tyrelab.vehicle.scenario_limits"}): "issue 25 (vehicle/scenario_limits.py)",
 }
-#: Upward arrows (importer, imported module) from a pure package that exist today and are being
-#: removed, and who removes them: ``vehicle.ride`` queries the warehouse for a scenario's measured
-#: tyre and spreads scenarios over the executor's workers (the stage should load and map instead).
-ALLOWED_UPWARD = {
-    ("tyrelab.vehicle.ride", "tyrelab.warehouse"): "issue 23 (vehicle/)",
-    ("tyrelab.vehicle.ride", "tyrelab.executor"): "issue 23 (vehicle/)",
-}
+#: Upward arrows (importer, imported module) from a pure package that exist and are being removed,
+#: and who removes them (none left: issue 23 moved the scenario tasks out of vehicle/ride.py).
+ALLOWED_UPWARD: dict[tuple[str, str], str] = {}
 
 
 def _modules() -> dict[str, Path]:
