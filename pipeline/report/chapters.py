@@ -39,7 +39,8 @@ class TableSpec:
     thesis_rename : dict
         Renames of the thesis table's columns before joining.
     columns : tuple of str
-        For plain (non-comparison) tables: columns shown (all when empty).
+        Columns shown (all when empty); of a comparison table, the key and extra columns (its
+        compared quantities are always shown).
     note : str
         Explanation shown under the caption.
     is_input : bool
@@ -162,7 +163,8 @@ CHAPTERS: tuple[Chapter, ...] = (
                 TableSpec("VI", "Summary of the factors affecting stiffness", "table_vi", "regress",
                           "published_table_vi"),
                 TableSpec("", "Size regressions (Figs 30–31): ours and from the printed Table III",
-                          "size_regressions", "regress"),
+                          "size_regressions", "regress",
+                          columns=("fit", "source", "condition", "selection", "n", "finding")),
                 FigureSpec("30", "ΔK_p against section width × rim diameter", "pressure_dependence_vs_wr",
                            ("table_iii", "tyres", "size_regressions"), "regress"),
                 FigureSpec("31", "Carcass stiffness against rim diameter", "carcass_stiffness_vs_rim",

@@ -11,10 +11,12 @@ from pathlib import Path
 import jinja2
 import numpy as np
 import pandas as pd
+from markupsafe import Markup, escape
 
 from .. import __version__, resources
+from .tables import Note
 
-__all__ = ["TEMPLATE_DIR", "environment", "format_number", "code_version", "provenance", "UNITS", "column_label"]
+__all__ = ["TEMPLATE_DIR", "environment", "format_number", "breakable", "code_version", "provenance", "UNITS", "column_label"]
 
 #: Templates live in the repository's ``reports/`` folder.
 TEMPLATE_DIR = resources.templates_dir()
@@ -31,11 +33,35 @@ def environment() -> jinja2.Environment:
     )
     env.filters["num"] = format_number
     env.filters["label"] = column_label
+    env.filters["breakable"] = breakable
+    env.tests["note"] = lambda value: isinstance(value, Note)
     return env
 
 
-def format_number(value, digits: int = 3) -> str:
-    """Format a cell: numbers to ``digits`` significant decimals, blanks for missing."""
+def breakable(value) -> Markup:
+    """Cell text that may wrap after ``_``, ``/`` and ``,`` (``stationary_free_vibration``), escaped.
+
+    Examples
+    --------
+    >>> str(breakable("stationary_free_vibration"))
+    'stationary_<wbr>free_<wbr>vibration'
+    """
+    text = str(escape(value))
+    return Markup(text.replace("_", "_<wbr>").replace("/", "/<wbr>").replace(",", ",<wbr>"))
+
+
+def format_number(value, digits: int = 3, decimals: int | None = None) -> str:
+    """Format a cell: "–" for missing, yes/no for booleans, a number with ``decimals`` fixed
+    decimals when given (one format for a whole column), else with at most ``digits`` decimals
+    (trailing zeros dropped); no thousands separators, so a number copies into any tool.
+
+    Examples
+    --------
+    >>> format_number(2241.4832), format_number(2241.4832, decimals=0), format_number(0.5, decimals=3)
+    ('2241.483', '2241', '0.500')
+    >>> format_number(float("nan")), format_number(True), format_number(-0.0001, decimals=2)
+    ('–', 'yes', '0.00')
+    """
     if value is None or (isinstance(value, float) and math.isnan(value)) or value is pd.NA:
         return "–"
     if isinstance(value, (bool, np.bool_)):
@@ -44,9 +70,14 @@ def format_number(value, digits: int = 3) -> str:
         return str(int(value))
     if isinstance(value, (float, np.floating)):
         v = float(value)
+        if not math.isfinite(v):
+            return "∞" if v > 0 else "−∞"
+        if decimals is not None:
+            text = f"{v:.{decimals}f}"
+            return text[1:] if text.startswith("-") and float(text) == 0 else text
         if v != 0 and (abs(v) >= 1e5 or abs(v) < 1e-3):
             return f"{v:.{digits}g}"
-        return f"{v:,.{digits}f}".rstrip("0").rstrip(".") if "." in f"{v:.{digits}f}" else f"{v:,.0f}"
+        return f"{v:.{digits}f}".rstrip("0").rstrip(".")
     return str(value)
 
 

@@ -44,7 +44,7 @@ from .chapters import Chapter, FigureSpec, TableSpec
 from .pages import ChapterPage, Page, registered, run_page_name
 from .render import environment, provenance
 
-__all__ = ["MAX_PLAIN_ROWS", "POOL_MIN_FIGURES", "Missing", "Warehouse", "resolve_table",
+__all__ = ["MAX_PLAIN_ROWS", "POOL_MIN_FIGURES", "Missing", "Warehouse", "resolve_table", "table_queries",
     "shape_table", "resolve_figure", "chapter_items", "run_page_name", "read_signals", "run_item", "SiteBuild",
     "build_site"]
 
@@ -154,7 +154,18 @@ def resolve_table(wh: Warehouse, spec: TableSpec, cache=None) -> dict:
     else:
         key = cache.key("table", dataclasses.asdict(spec), ours, published)
         shaped = cache.get_or_compute(key, lambda: shape_table(spec, ours, published))
-    return {"kind": "table", "spec": spec, **shaped}
+    return {"kind": "table", "spec": spec, **shaped, "queries": table_queries(wh, spec)}
+
+
+def table_queries(wh: Warehouse, spec: TableSpec) -> list[str]:
+    """The queries a page shows under a table: those that run in ``tyrelab sql`` on this warehouse
+    (our values: ``spec.ours_sql`` or the whole view; the digitised thesis table)."""
+    queries = []
+    if spec.view in wh:
+        queries.append(spec.ours_sql or f"SELECT * FROM {spec.view}")
+    if spec.published and spec.published in wh:
+        queries.append(f"SELECT * FROM {spec.published}")
+    return queries
 
 
 def shape_table(spec: TableSpec, ours: pd.DataFrame | None, published: pd.DataFrame) -> dict:
@@ -175,7 +186,7 @@ def shape_table(spec: TableSpec, ours: pd.DataFrame | None, published: pd.DataFr
             keys = [c for c in common if not tables._is_numeric(ours[c]) or c in tables.NUMERIC_KEYS]
             df = tables.compare_frames(ours, published, keys, {c: c for c in common if c not in keys})
         if tables.find_pairs(df.columns):
-            item.update(mode="comparison", shaped=tables.shape_comparison(df))
+            item.update(mode="comparison", shaped=tables.shape_comparison(df, columns=spec.columns))
         else:
             item.update(mode="plain", plain=tables.plain_table(df, list(spec.columns) or None, MAX_PLAIN_ROWS))
     elif not published.empty:
