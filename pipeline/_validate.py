@@ -24,7 +24,7 @@ import math
 
 import numpy as np
 
-__all__ = ["positive", "positive_array", "finite_array", "same_last_axis", "band"]
+__all__ = ["positive", "positive_array", "finite_array", "same_last_axis", "band", "non_negative", "probability"]
 
 
 def positive(name: str, value) -> float:
@@ -85,3 +85,39 @@ def band(name: str, value) -> tuple[float, float]:
     if not (math.isfinite(lo) and math.isfinite(hi) and 0 <= lo < hi):
         raise ValueError(f"{name} must satisfy 0 <= low < high, got {value!r}")
     return lo, hi
+
+
+def non_negative(name: str, value) -> float:
+    """``value`` as a float; ValueError naming ``name`` unless it is a finite number >= 0.
+
+    Examples
+    --------
+    >>> non_negative("age_years", 0)
+    0.0
+    """
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(v) or v < 0:
+        raise ValueError(f"{name} must be finite and non-negative, got {value!r}")
+    return v
+
+
+def probability(name: str, value) -> float:
+    """``value`` as a float strictly between 0 and 1 (a level or an alpha); ValueError naming ``name`` otherwise.
+
+    Examples
+    --------
+    >>> probability("alpha", 2)
+    Traceback (most recent call last):
+    ...
+    ValueError: alpha must be a number in (0, 1), got 2
+    """
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number in (0, 1), got {value!r}") from None
+    if not 0 < v < 1:
+        raise ValueError(f"{name} must be a number in (0, 1), got {value!r}")
+    return v

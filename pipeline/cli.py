@@ -148,12 +148,30 @@ def cmd_stage(args) -> int:
 
 
 def cmd_sql(args) -> int:
-    from .warehouse import WriteRefused, query_all
+    import duckdb
+
+    from .warehouse import QueryLimits, QueryTimeout, WriteRefused, query_all
 
     try:
-        frames = query_all(Path(args.build) / "warehouse.duckdb", args.query)
+        limits = QueryLimits(args.memory_limit, args.max_spill, args.timeout or None)
+    except ValueError as exc:
+        text = str(exc)
+        for field_name, option in (("memory_limit_bytes", "--memory-limit"), ("spill_limit_bytes", "--max-spill"),
+                                   ("timeout_s", "--timeout")):
+            text = text.replace(field_name, option)
+        print(f"tyrelab sql: {text}", file=sys.stderr)
+        return EXIT_USAGE
+    try:
+        frames = query_all(Path(args.build) / "warehouse.duckdb", args.query, limits)
     except (WriteRefused, FileNotFoundError) as exc:
         print(f"tyrelab sql: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except QueryTimeout as exc:
+        print(f"tyrelab sql: {exc}; --timeout SECONDS changes it (0: none)", file=sys.stderr)
+        return EXIT_USAGE
+    except duckdb.OutOfMemoryException as exc:
+        print(f"tyrelab sql: {str(exc).splitlines()[0]} (limits: --memory-limit {args.memory_limit} bytes, "
+              f"--max-spill {args.max_spill} bytes; raise them, e.g. --memory-limit 8GB)", file=sys.stderr)
         return EXIT_USAGE
     except Exception as exc:  # noqa: BLE001 - DuckDB errors are the user's query errors
         print(f"tyrelab sql: {type(exc).__name__}: {str(exc).splitlines()[0]}", file=sys.stderr)
@@ -192,14 +210,39 @@ def _warn(prog: str, warnings) -> None:
         print(f"{prog}: warning: {w}", file=sys.stderr)
 
 
+def _stiffness_model(prog: str, build: str | None):
+    """The thesis' stiffness model, or with ``build`` the one fitted to that warehouse's tyres
+    (table ``formula_fit``); ValueError with one line for a missing or unfitted warehouse."""
+    from .published import thesis_stiffness_model
+    from .tyre.models import build_stiffness_model
+    from .warehouse import query
+
+    thesis = thesis_stiffness_model()
+    if build is None:
+        return thesis
+    db = Path(build) / "warehouse.duckdb"
+    try:
+        table = query(db, "SELECT * FROM formula_fit")
+    except FileNotFoundError as exc:
+        raise ValueError(str(exc)) from None
+    except Exception as exc:  # noqa: BLE001 - a warehouse without the table
+        raise ValueError(f"{db}: {str(exc).splitlines()[0]} (run 'tyrelab run' first)") from None
+    try:
+        return build_stiffness_model(table, thesis)
+    except ValueError as exc:
+        raise ValueError(f"{db}: {exc}") from None
+
+
 def cmd_estimate_stiffness(args) -> int:
     from .tyre.sizes import TyreSizeError
     from .tyre.stiffness import estimate_stiffness
 
     prog = "tyrelab estimate-stiffness"
     try:
+        model = _stiffness_model(prog, getattr(args, "build", None))
         est = estimate_stiffness(
-            args.size, args.pressure, args.age, undriven_front=args.front_undriven, water_ballast=args.water_ballast
+            args.size, args.pressure, args.age, undriven_front=args.front_undriven, water_ballast=args.water_ballast,
+            model=model,
         )
     except (TyreSizeError, ValueError) as exc:
         print(f"{prog}: {exc}", file=sys.stderr)
@@ -228,6 +271,7 @@ def cmd_natural_frequencies(args) -> int:
             age_years=args.age, front_stiffness_kN_per_m=args.front_stiffness,
             rear_stiffness_kN_per_m=args.rear_stiffness, front_stiffness_u_kN_per_m=args.front_stiffness_u,
             rear_stiffness_u_kN_per_m=args.rear_stiffness_u,
+            stiffness_model=_stiffness_model(prog, None),
         )
     except (TyreSizeError, ValueError) as exc:
         print(f"{prog}: {exc}", file=sys.stderr)
@@ -368,6 +412,16 @@ def _non_negative(text: str) -> float:
     return value
 
 
+def _size(text: str) -> int:
+    """argparse type: a size in bytes (``512MB``, ``2GiB``, ``0``)."""
+    from .warehouse import parse_size
+
+    try:
+        return parse_size(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (exposed for tests and documentation)."""
     from .stages import ORDER
@@ -416,6 +470,12 @@ def build_parser() -> argparse.ArgumentParser:
     q.add_argument("query", help='e.g. "SELECT * FROM table_iii"')
     q.add_argument("--build", default="build")
     q.add_argument("--format", choices=["table", "csv", "json"], default="table")
+    q.add_argument("--memory-limit", type=_size, default="2GiB", metavar="SIZE",
+                   help="DuckDB memory limit, e.g. 512MB, 8GiB (default 2GiB)")
+    q.add_argument("--max-spill", type=_size, default="4GiB", metavar="SIZE",
+                   help="what may spill to disk, into <build>/.sql-spill/ only (default 4GiB; 0: no spilling)")
+    q.add_argument("--timeout", type=_non_negative, default=300.0, metavar="SECONDS",
+                   help="stop a statement after this many seconds (default 300; 0: no limit)")
     q.set_defaults(func=cmd_sql)
 
     a = sub.add_parser("analyze-run", help="K and C of one recording (raw format v1), as JSON")
@@ -424,13 +484,17 @@ def build_parser() -> argparse.ArgumentParser:
     a.set_defaults(func=cmd_analyze_run)
 
     e = sub.add_parser("estimate-stiffness", help="rolling tyre stiffness from size, pressure and age (kN/m)",
-                       description="K = 172 - 1.77 R + 5.6 A + 0.34 W R P (thesis §4.5.3); warns on stderr "
-                       "where the tyre or pressure lies outside the thesis' data (Tables II, III, VI).")
+                       description="K = 172 - 1.77 R + 5.6 A + 0.34 W R P (thesis §4.5.3) with the 95 %% prediction "
+                       "interval of the same formula refitted to the thesis' Table III (or, with --build, the formula "
+                       "fitted to a build's tyres); warns on stderr where the tyre or pressure lies outside the data.")
     e.add_argument("--size", required=True, help="tyre size, e.g. 480/70R38, IF 710/70R42 173D, 13.6R38")
     e.add_argument("--pressure", type=_non_negative, required=True, help="inflation pressure, bar")
     e.add_argument("--age", type=_non_negative, default=1.0, help="tyre age, years (default 1)")
     e.add_argument("--front-undriven", action="store_true", help="undriven ribbed front tyre rule (thesis §8.2)")
     e.add_argument("--water-ballast", action="store_true", help="water-ballasted tyre (+25 %%)")
+    e.add_argument("--build", default=None, metavar="DIR",
+                   help="use the formula fitted to the tyres measured in DIR's warehouse (table formula_fit) and "
+                        "its prediction interval, instead of the thesis' (default)")
     e.add_argument("--json", action="store_true", help="print JSON (same as --format json)")
     e.add_argument("--format", choices=["text", "json"], default="text",
                    help="text: K in kN/m; json: inputs, W, R, aspect ratio, construction, K, warnings")

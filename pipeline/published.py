@@ -19,7 +19,7 @@ from . import resources
 if TYPE_CHECKING:  # imported where used: resolving the folder needs no pandas
     import pandas as pd
 
-__all__ = ["SHIPPED_DIR", "PublishedTableError", "published_dir", "stems", "read_published"]
+__all__ = ["SHIPPED_DIR", "PublishedTableError", "published_dir", "stems", "read_published", "thesis_stiffness_model"]
 
 #: Digitised thesis tables shipped with tyrelab.
 SHIPPED_DIR = resources.published_dir()
@@ -95,3 +95,16 @@ def _parse(stem: str, data: bytes) -> tuple[pd.DataFrame, list[str]]:
     if (SCHEMA_DIR / "published" / f"{stem}.json").exists():
         problems = validate_frame(df, load_schema(f"published/{stem}"))
     return df, problems
+
+
+def thesis_stiffness_model(raw: Path | None = None):
+    """The thesis' :class:`tyrelab.tyre.stiffness.StiffnessModel` from Tables II, III and VI.
+
+    Reads the tables (``<raw>/published`` if ``raw`` has one, else the shipped copies) and
+    builds the model with the pure :func:`tyrelab.tyre.models.thesis_stiffness_model`.
+    """
+    from .tyre.models import THESIS_TABLES
+    from .tyre.models import thesis_stiffness_model as build
+
+    return build(*(read_published(t, raw) for t in THESIS_TABLES))
+

@@ -51,8 +51,8 @@ import pyarrow.parquet as pq
 
 from . import io
 
-__all__ = ["READ_ONLY_STATEMENTS", "SANDBOX_SETTINGS", "WriteRefused", "view_name", "build_warehouse",
-    "connect_read_only", "check_read_only", "query", "query_all"]
+__all__ = ["READ_ONLY_STATEMENTS", "SANDBOX_SETTINGS", "SPILL_FOLDER", "QueryLimits", "QueryTimeout", "WriteRefused",
+    "view_name", "build_warehouse", "connect_read_only", "check_read_only", "query", "query_all", "parse_size"]
 
 log = logging.getLogger("tyrelab")
 
@@ -83,8 +83,135 @@ SANDBOX_SETTINGS = (
 )
 
 
+#: Where in the build DuckDB may spill what does not fit in its memory limit (large sorts,
+#: joins, aggregates). Each session spills into a folder of its own, ``<build>/.sql-spill-<pid>-<n>``,
+#: which DuckDB creates when it first spills and removes when the session closes; one left by a
+#: killed process is removed by the next session that finds its process gone (:func:`_spill_folder`). DuckDB's own default is ``.tmp``
+#: in the caller's working folder: a read-only query would write outside the build.
+SPILL_FOLDER = ".sql-spill"
+
+_SIZE_UNITS = {"": 1, "b": 1, "kb": 10**3, "mb": 10**6, "gb": 10**9, "tb": 10**12,
+               "kib": 2**10, "mib": 2**20, "gib": 2**30, "tib": 2**40}
+
+
+def parse_size(text: str | int) -> int:
+    """Bytes from a size such as ``"512MB"``, ``"2GiB"``, ``"1.5 GB"`` or ``"1000"`` (DuckDB's units: KB = 1000 B).
+
+    Raises
+    ------
+    ValueError
+        Naming the text, for anything else (negative, not finite, unknown unit).
+
+    Examples
+    --------
+    >>> parse_size("2GiB"), parse_size("512MB"), parse_size(0)
+    (2147483648, 512000000, 0)
+    """
+    if isinstance(text, int) and not isinstance(text, bool):
+        number, unit = float(text), ""
+    else:
+        m = re.fullmatch(r"\s*([0-9]+(?:\.[0-9]*)?)\s*([A-Za-z]*)\s*", str(text))
+        if not m or m.group(2).lower() not in _SIZE_UNITS:
+            raise ValueError(f"{text!r} is not a size (e.g. 512MB, 2GiB, 0)")
+        number, unit = float(m.group(1)), m.group(2).lower()
+    value = number * _SIZE_UNITS[unit]
+    if not (0 <= value < 2**62):
+        raise ValueError(f"{text!r} is not a size from 0 to 4 EiB")
+    return int(value)
+
+
+class QueryLimits:
+    """What one read-only query session may use: memory, spill space and time.
+
+    Parameters
+    ----------
+    memory_limit_bytes : int
+        DuckDB's ``memory_limit`` (buffer memory; DuckDB's own default is 80 % of the
+        machine's). Default 2 GiB.
+    spill_limit_bytes : int
+        ``max_temp_directory_size``: what may be spilled into the build's
+        :data:`SPILL_FOLDER`; 0 spills nothing (a query that does not fit in memory fails).
+        Default 4 GiB.
+    timeout_s : float or None
+        Each statement is interrupted after this many seconds (raising
+        :class:`QueryTimeout`); None: no limit. Default None (the command line's
+        ``tyrelab sql`` sets 300 s).
+
+    Examples
+    --------
+    >>> QueryLimits(memory_limit_bytes=parse_size("512MB")).memory_limit_bytes
+    512000000
+    >>> QueryLimits(timeout_s=0)
+    Traceback (most recent call last):
+    ...
+    ValueError: timeout_s must be a finite number > 0 or None, got 0
+    """
+
+    __slots__ = ("memory_limit_bytes", "spill_limit_bytes", "timeout_s")
+
+    def __init__(self, memory_limit_bytes: int = 2 * 2**30, spill_limit_bytes: int = 4 * 2**30,
+                 timeout_s: float | None = None):
+        for name, value, low in (("memory_limit_bytes", memory_limit_bytes, 2**20),
+                                 ("spill_limit_bytes", spill_limit_bytes, 0)):
+            if isinstance(value, bool) or not isinstance(value, int) or not low <= value < 2**62:
+                raise ValueError(f"{name} must be an integer from {low} to 2**62 bytes, got {value!r}")
+        if timeout_s is not None and (isinstance(timeout_s, bool) or not isinstance(timeout_s, (int, float))
+                                      or not 0 < timeout_s < float("inf")):
+            raise ValueError(f"timeout_s must be a finite number > 0 or None, got {timeout_s!r}")
+        self.memory_limit_bytes, self.spill_limit_bytes, self.timeout_s = memory_limit_bytes, spill_limit_bytes, timeout_s
+
+    def __repr__(self) -> str:
+        return (f"QueryLimits(memory_limit_bytes={self.memory_limit_bytes}, spill_limit_bytes={self.spill_limit_bytes}, "
+                f"timeout_s={self.timeout_s})")
+
+
 class WriteRefused(ValueError):
     """Raised for a statement that would write to the warehouse."""
+
+
+class QueryTimeout(TimeoutError):
+    """Raised when a statement ran longer than :attr:`QueryLimits.timeout_s`."""
+
+
+_sessions = iter(range(1, 1 << 62))
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:  # e.g. another user's process
+        return True
+    return True
+
+
+def _spill_folder(build: Path) -> Path | None:
+    """A fresh folder name for one session's spill files in ``build`` (DuckDB creates it when it spills), or None.
+
+    Folders of processes that no longer run (killed before DuckDB could remove them) are
+    removed first. None when the build folder cannot take one (not writable): then nothing spills.
+    """
+    import shutil
+
+    build = Path(build).resolve()
+    if not os.access(build, os.W_OK | os.X_OK):
+        return None
+    for old in build.glob(f"{SPILL_FOLDER}-*"):
+        pid = old.name[len(SPILL_FOLDER) + 1:].split("-", 1)[0]
+        if pid.isdigit() and int(pid) != os.getpid() and not _pid_alive(int(pid)) and not old.is_symlink():
+            shutil.rmtree(old, ignore_errors=True)
+    return build / f"{SPILL_FOLDER}-{os.getpid()}-{next(_sessions)}"
+
+
+def _confine(con: duckdb.DuckDBPyConnection, build: Path, limits: QueryLimits | None) -> None:
+    """Spills go below ``build`` (bounded) or nowhere; memory bounded when ``limits`` say so."""
+    limits_ = limits or QueryLimits()
+    folder = _spill_folder(build) if limits_.spill_limit_bytes else None
+    con.execute(f"SET temp_directory = {_sql_path(folder) if folder else chr(39) * 2}")
+    con.execute(f"SET max_temp_directory_size = '{limits_.spill_limit_bytes if folder else 0}B'")
+    if limits is not None:
+        con.execute(f"SET memory_limit = '{limits.memory_limit_bytes}B'")
 
 
 def view_name(stem: str) -> str:
@@ -156,6 +283,7 @@ def build_warehouse(db_path: Path, parquet_dir: Path, published: dict[str, Path]
         tmp.unlink()  # DuckDB wants to create the file itself
         con = duckdb.connect()
         try:
+            _confine(con, home, None)
             con.execute(f"ATTACH {_sql_path(tmp)} AS warehouse (BLOCK_SIZE {block_size_bytes})")
             con.execute("USE warehouse")
             _search_path(con, home)
@@ -189,7 +317,7 @@ def build_warehouse(db_path: Path, parquet_dir: Path, published: dict[str, Path]
     return list(sources)
 
 
-def connect_read_only(db_path: Path) -> duckdb.DuckDBPyConnection:
+def connect_read_only(db_path: Path, limits: QueryLimits | None = None) -> duckdb.DuckDBPyConnection:
     """Open the warehouse read-only and sandboxed (many readers may do so while the pipeline writes).
 
     The file is attached (read-only) to a fresh in-memory session: unlike
@@ -201,6 +329,11 @@ def connect_read_only(db_path: Path) -> duckdb.DuckDBPyConnection:
     warehouse's ``parquet/`` folder (``allowed_directories`` with
     ``enable_external_access = false``), never installs or autoloads an
     extension, and its configuration is locked (:data:`SANDBOX_SETTINGS`).
+
+    What does not fit in memory spills only into the build's :data:`SPILL_FOLDER`, at most
+    ``limits.spill_limit_bytes`` (4 GiB without ``limits``), or nowhere when the build folder
+    is read-only; ``limits`` also bounds the memory (DuckDB's default, 80 % of the machine's,
+    without). The statement timeout is :func:`query_all`'s.
     """
     db_path = Path(db_path)
     if not db_path.is_file():
@@ -211,6 +344,7 @@ def connect_read_only(db_path: Path) -> duckdb.DuckDBPyConnection:
         con.execute(f"ATTACH {_sql_path(db_path.resolve())} AS warehouse (READ_ONLY)")
         con.execute("USE warehouse")
         _search_path(con, db_path.parent)
+        _confine(con, db_path.parent, limits)
         # The build's Parquet folder, absolute and as the ``runs`` view names it (relative to the
         # database's folder, through ``file_search_path``); ``..`` cannot climb out of either.
         allowed = [str(db_path.resolve().parent / "parquet") + "/", "parquet/"]
@@ -250,16 +384,74 @@ def check_read_only(sql: str) -> list[str]:
     return [st.query.strip().rstrip(";").strip() for st in statements]
 
 
-def query_all(db_path: Path, sql: str) -> list[pd.DataFrame]:
-    """Run one or several read-only statements (``;``-separated); return one DataFrame each."""
-    statements = check_read_only(sql)
-    con = connect_read_only(db_path)
+def _statement(con: duckdb.DuckDBPyConnection, statement: str, timeout_s: float | None) -> pd.DataFrame:
+    """One statement's result, run in a helper thread so that this one can stop it.
+
+    DuckDB runs a statement with the GIL released and does not always look for Ctrl-C while
+    it does (an aggregate over a large range ran on after SIGINT and SIGTERM): this thread
+    waits instead, and on Ctrl-C/SIGTERM (KeyboardInterrupt) or at the time limit interrupts
+    the statement (``con.interrupt()``) and waits for it to stop.
+    """
+    import threading
+    import time
+
+    box: dict = {}
+    done = threading.Event()  # not Thread.join: one interrupted by Ctrl-C may return early later (Python 3.11)
+
+    def run() -> None:
+        try:
+            box["df"] = con.execute(statement).df()
+        except BaseException as exc:  # noqa: BLE001 - handed to the waiting thread
+            box["exc"] = exc
+        finally:
+            done.set()
+
+    def stop() -> None:
+        while True:
+            try:
+                con.interrupt()
+                if done.wait(0.1):
+                    return
+            except KeyboardInterrupt:  # a second Ctrl-C: the statement is being stopped already
+                continue
+
+    deadline = None if timeout_s is None else time.monotonic() + timeout_s
+    threading.Thread(target=run, name="tyrelab-sql", daemon=True).start()
     try:
-        return [con.execute(st).df() for st in statements]
+        while not done.wait(0.1 if deadline is None else max(0.0, min(0.1, deadline - time.monotonic()))):
+            if deadline is not None and time.monotonic() >= deadline:
+                stop()
+                if "df" not in box:
+                    raise QueryTimeout(f"statement stopped after {timeout_s:g} s (the time limit)")
+    except KeyboardInterrupt:
+        stop()
+        raise
+    if "exc" in box:
+        raise box["exc"]
+    return box["df"]
+
+
+def query_all(db_path: Path, sql: str, limits: QueryLimits | None = None) -> list[pd.DataFrame]:
+    """Run one or several read-only statements (``;``-separated); return one DataFrame each.
+
+    ``limits`` bounds memory, spill space and the time of each statement (:class:`QueryLimits`).
+
+    Raises
+    ------
+    QueryTimeout
+        A statement ran longer than ``limits.timeout_s``.
+    KeyboardInterrupt
+        Ctrl-C (or SIGTERM through the command line's handler) during a statement: it is stopped first.
+    """
+    statements = check_read_only(sql)
+    con = connect_read_only(db_path, limits)
+    timeout_s = limits.timeout_s if limits is not None else None
+    try:
+        return [_statement(con, st, timeout_s) for st in statements]
     finally:
         con.close()
 
 
-def query(db_path: Path, sql: str) -> pd.DataFrame:
+def query(db_path: Path, sql: str, limits: QueryLimits | None = None) -> pd.DataFrame:
     """Run a read-only query against the warehouse and return a DataFrame (of the last statement)."""
-    return query_all(db_path, sql)[-1]
+    return query_all(db_path, sql, limits)[-1]

@@ -20,6 +20,10 @@ table                          contents
 ``size_regression_search``     which tyre selections reproduce the printed coefficients
 ``formula_predictions``        per tyre × pressure: formula and stationary predictions, errors
 ``formula_accuracy``           mean, sd, within ±10 %, normal P(|e|<10 %) per source × method
+``formula_fit``                K = a + b R + c A + d W R P fitted (WLS, cluster-robust by tyre) to the
+                               published Table III and to our tyres, beside the printed coefficients;
+                               leave-one-tyre-out errors of the refit and of the printed formula
+``formula_fit_loto``           per tyre × pressure: the leave-one-tyre-out predictions behind those
 ``spoke_force``                Fig. 43 data; ``spoke_speed`` Figs 44–45; ``spoke_frequency``
                                Fig. 46; ``spoke_amplitude`` Fig. 47; ``spoke_deflection`` Fig. 48
 ``spoke_fit`` / ``spoke_fit_points``  Coulomb and viscous coefficients per tyre from our damping
@@ -49,6 +53,8 @@ import pandas as pd
 from .. import published
 from ..tyre import conditions as cond
 from ..tyre import formula_accuracy as fa
+from ..tyre import formula_fit as ff
+from ..tyre import models
 from ..tyre import regressions as reg
 from ..tyre import size_regressions as sr
 from ..tyre import spoke
@@ -56,7 +62,7 @@ from .base import Context, StageResult
 from .state import ItemCache
 
 __all__ = ["FIT_INPUT_COLUMNS", "PUBLISHED", "FACTORS", "read_published", "read_tyres", "tyre_fits", "tyre_fits_each",
-           "all_tyre_fits", "compute", "run"]
+           "all_tyre_fits", "formula_fits", "compute", "run"]
 
 #: The ``results`` columns the per-tyre fits read (:mod:`tyrelab.tyre.conditions` and the
 #: runs' uncertainties): the fits are given only these, and a tyre's cache key is the digest
@@ -186,6 +192,46 @@ def _size_fits(table: pd.DataFrame, tyres: pd.DataFrame | None, source: str) -> 
     return sr.size_regressions(table, tyres, source, searches=full), searches
 
 
+def formula_fits(predictions: list[pd.DataFrame]) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Tables ``formula_fit`` and ``formula_fit_loto`` from the formula-prediction points of each source.
+
+    A source with fewer than 5 usable traction tyres gets a row with a ``reason`` and null
+    statistics; each fitted source carries its leave-one-tyre-out summary (mean absolute
+    error of the refit and of the printed formula on the same points, and the share of
+    points inside the refit's 95 % interval).
+    """
+    fits, loto, reasons = [], [], {}
+    for points in predictions:
+        if points.empty:
+            continue
+        source = str(points["source"].iloc[0])
+        try:
+            fits.append(ff.fit_formula(points, source))
+        except ValueError as exc:
+            reasons[source] = str(exc)
+            continue
+        loto.append(ff.leave_one_tyre_out(points, source))
+    table = ff.fit_table(fits)
+    extra = [{**models.fit_row(f)} for f in fits]
+    wide = pd.DataFrame(extra, columns=[c for c in (extra[0] if extra else {}) if c not in table.columns] + ["source"])
+    table = table.merge(wide, on="source", how="left") if len(wide) else table
+    loto_df = pd.concat(loto, ignore_index=True) if loto else ff.leave_one_tyre_out(pd.DataFrame(
+        columns=list(ff.POINT_COLUMNS)))
+    stats = {}
+    for source, sub in loto_df.groupby("source"):
+        stats[source] = dict(loto_n_points=len(sub), loto_n_tyres=sub["tyre_id"].nunique(),
+                             loto_mean_abs_error_percent=float(sub["refit_error_percent"].abs().mean()),
+                             printed_mean_abs_error_percent=float(sub["printed_error_percent"].abs().mean()),
+                             loto_coverage_fraction=float(sub["refit_covers"].mean()))
+    for col in ("loto_n_points", "loto_n_tyres", "loto_mean_abs_error_percent", "printed_mean_abs_error_percent",
+                "loto_coverage_fraction"):
+        table[col] = table["source"].map(lambda s, c=col: stats.get(s, {}).get(c, np.nan))
+    table["reason"] = None
+    for source, reason in sorted(reasons.items()):
+        table = pd.concat([table, pd.DataFrame([{"source": source, "reason": reason}])], ignore_index=True)
+    return table, loto_df
+
+
 def _spoke_curves() -> dict[str, pd.DataFrame]:
     """Figs 43-48 of the spoke model (no data: they change only with the code)."""
     return {"spoke_force": spoke.force_curves(), "spoke_speed": spoke.speed_curves(),
@@ -245,6 +291,7 @@ def compute(results: pd.DataFrame, tyres: pd.DataFrame | None,
                  "distance", "source"])
     out["formula_predictions"] = pd.concat(preds, ignore_index=True)
     out["formula_accuracy"] = pd.concat(acc, ignore_index=True)
+    out["formula_fit"], out["formula_fit_loto"] = formula_fits(preds)
 
     out.update(memo("spoke_curves", (), _spoke_curves))
     out["spoke_fit"], out["spoke_fit_points"] = fits["spoke_fit"], fits["spoke_fit_points"]

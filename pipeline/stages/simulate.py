@@ -44,6 +44,7 @@ import pandas as pd
 
 from .. import published
 from ..executor import map_batches
+from ..tyre.models import THESIS_TABLES, thesis_stiffness_model
 from ..vehicle import bounce_pitch, ride, studies
 from ..vehicle import published_layouts as layouts
 from .base import Context, StageResult, write_quarantine
@@ -58,7 +59,8 @@ SEED = 5007
 INPUTS = ["published", "scenarios", "stiffness_pressure_by_speed", "damping_pressure_by_speed"]
 
 #: Published tables the stage reads (stems under ``published/``).
-STEMS = ("table_xii", "table_xiii", "table_xiv", "table_xv", "table_xvi", "table_xvii", "table_xviii", "table_xix", "table_xx")
+STEMS = ("table_xii", "table_xiii", "table_xiv", "table_xv", "table_xvi", "table_xvii", "table_xviii", "table_xix", "table_xx",
+         *THESIS_TABLES)
 
 #: Table XX ratio-error statistics as printed in the prose of thesis §8.2 (not in a
 #: table): mean, sd and fraction within ±10 % of predicted/measured frequency, per
@@ -287,7 +289,8 @@ def run(ctx: Context) -> StageResult:
     files = ride.scenario_files(ctx.raw)
     ride_keys, ride_done, ride_todo = _ride_plan(ctx, files, cache)
     ride_items = [("ride", item) for item in ride.scenario_items([f for f, _ in ride_todo], ctx.build)]
-    items = todo + ride_items + [("table_xx", (layouts.tractors(pub["table_xix"]), pub["table_xx"]))]
+    model = thesis_stiffness_model(*(pub[t] for t in THESIS_TABLES))
+    items = todo + ride_items + [("table_xx", (layouts.tractors(pub["table_xix"]), pub["table_xx"], model))]
     outputs = map_batches(_task, items, ctx)
     for (name, _), value in zip(todo, outputs):
         done[name] = _keep_study(cache, name, keys[name], value, case_keys)

@@ -22,7 +22,6 @@ rim is ≤ 30 in. Ages come from ``tyres.age_years``; a missing age is taken as
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass
 
@@ -36,7 +35,7 @@ from .sizes import TyreSizeError, parse_tyre_size
 from .stiffness import traction_tyre_stiffness
 
 __all__ = ["REAR_GRID_BAR", "FRONT_GRID_BAR", "NOT_TRACTION", "THESIS_ACCURACY", "PRED_COLUMNS", "p_within",
-    "predictions_from_table", "predictions_from_recordings", "accuracy_summary", "FormulaErrorModel", "formula_error_model", "published_formula_error"]
+    "predictions_from_table", "predictions_from_recordings", "accuracy_summary", "FormulaErrorModel", "formula_error_model"]
 
 REAR_GRID_BAR = (0.8, 1.0, 1.2, 1.4, 1.6)
 FRONT_GRID_BAR = (1.0, 1.25, 1.5, 1.75, 2.0)
@@ -270,11 +269,3 @@ def formula_error_model(table: pd.DataFrame, tyres: pd.DataFrame | None) -> Form
         raise ValueError("too few formula predictions to estimate its error")
     return FormulaErrorModel(float(e[ok].mean()), float(e[ok].std(ddof=1)), int(ok.sum()),
                              int(pred.loc[ok, "tyre_id"].nunique()))
-
-
-@functools.lru_cache(maxsize=1)
-def published_formula_error() -> FormulaErrorModel:
-    """:func:`formula_error_model` of the thesis' published Tables II and III (read once, cached)."""
-    from ..published import read_published
-
-    return formula_error_model(read_published("table_iii"), read_published("table_ii"))

@@ -8,20 +8,22 @@ rule rests on (:class:`FormulaDataRange`, from the digitised Tables II, III, VI)
 
 from __future__ import annotations
 
-import functools
+import math
 from dataclasses import dataclass, fields
 
 import pandas as pd
 
+from .. import _validate
+from .formula_fit import FormulaFit, FrontRule
 from .sizes import TyreSize, parse_tyre_size
 
 __all__ = [
     "FormulaDataRange",
     "StiffnessEstimate",
+    "StiffnessModel",
     "estimate_stiffness",
     "estimate_tyre_stiffness",
     "range_warnings",
-    "thesis_data_range",
     "traction_tyre_stiffness",
     "undriven_front_tyre_stiffness",
 ]
@@ -196,20 +198,6 @@ class FormulaDataRange:
         )
 
 
-@functools.lru_cache(maxsize=1)
-def thesis_data_range() -> FormulaDataRange:
-    """:class:`FormulaDataRange` of the tables shipped with tyrelab (read once, cached).
-
-    Reads ``table_ii``, ``table_iii`` and ``table_vi`` through
-    :func:`tyrelab.published.read_published`: the one place the thesis' numbers live.
-    """
-    from ..published import read_published
-
-    return FormulaDataRange.from_tables(
-        read_published("table_ii"), read_published("table_iii"), read_published("table_vi")
-    )
-
-
 def _outside(name: str, value: float, lo: float, hi: float, unit: str, what: str) -> str | None:
     """One warning if ``value`` lies outside [lo, hi], saying by how much."""
     if lo <= value <= hi:
@@ -241,7 +229,9 @@ def range_warnings(
         traction tyres' (W·R, R, age and Table VI's pressure range, which is the rear
         traction tyres'; no published table gives F1's pressures, so none is checked).
     data_range : FormulaDataRange, optional
-        Default: :func:`thesis_data_range`.
+        The data the rule rests on (:meth:`FormulaDataRange.from_tables` of the published
+        Tables II, III, VI, or :attr:`StiffnessModel.data_range`). None: nothing to check
+        against, no warnings but the flexion class.
 
     Returns
     -------
@@ -250,16 +240,21 @@ def range_warnings(
 
     Examples
     --------
-    >>> range_warnings("13.6R38", 1.2, 2)
+    >>> r = FormulaDataRange((326.4, 699.2), (24, 44), (0.7, 2.0), (0, 16), (135, 135), (18, 18))
+    >>> range_warnings("13.6R38", 1.2, 2, data_range=r)
     ()
+    >>> print(range_warnings("13.6R38", 2.4, 2, data_range=r)[0])
+    P = 2.4 bar is above the thesis' data (pressure range of Table VI: 0.7-2 bar) by 0.4 bar (20.0 %)
     """
     s = _size(size)
     if not pressure_bar >= 0:
         raise ValueError(f"pressure_bar {pressure_bar} is negative")
     if not age_years >= 0:
         raise ValueError(f"age_years {age_years} is negative")
-    r = thesis_data_range() if data_range is None else data_range
-    if undriven_front:
+    r = data_range
+    if r is None:
+        checks = []
+    elif undriven_front:
         checks = [("W·R", s.width_times_rim_in2, r.front_wr_in2, "in²", "the ribbed front tyre F1"),
                   ("R", s.rim_diameter_in, r.front_rim_diameter_in, "in", "the ribbed front tyre F1")]
     else:
@@ -292,13 +287,14 @@ class StiffnessEstimate:
         Where the tyre or pressure lies outside the thesis' data (:func:`range_warnings`).
     prediction_interval_kN_per_m : (float, float) or None
         95 % prediction interval of the tyre's measured rolling stiffness, kN/m, from
-        the formula's errors on the thesis' published data
-        (:func:`tyrelab.tyre.formula_accuracy.published_formula_error`); None for the
-        undriven front tyre rule, which rests on one tyre (F1) and has no spread to use.
+        the fitted formula of the :class:`StiffnessModel` (:mod:`tyrelab.tyre.formula_fit`)
+        or its front rule; None without a model.
     stiffness_u_kN_per_m : float or None
         Standard uncertainty of the estimate, kN/m (the interval's half-width over its t factor).
     prediction_interval_basis : str
         What the interval rests on, or why there is none.
+    model : str
+        Name of the :class:`StiffnessModel` used (``"thesis"``, ``"build"``), ``"printed"`` without one.
 
     Further fields (e.g. an interval) can be added with a default; :meth:`to_dict`
     includes every field.
@@ -315,6 +311,7 @@ class StiffnessEstimate:
     prediction_interval_kN_per_m: tuple[float, float] | None = None
     stiffness_u_kN_per_m: float | None = None
     prediction_interval_basis: str = ""
+    model: str = "printed"
 
     def to_dict(self) -> dict:
         """JSON-ready dict: the inputs, what the size says, K (rounded to 1e-3) and the warnings."""
@@ -346,6 +343,37 @@ class StiffnessEstimate:
         return out
 
 
+@dataclass(frozen=True)
+class StiffnessModel:
+    """What :func:`estimate_stiffness` rests on: a fitted formula, the front rule, the data's ranges.
+
+    Built from tables by :mod:`tyrelab.tyre.models` (pure: the tables are read by the
+    caller, :mod:`tyrelab.published` or the warehouse).
+
+    Attributes
+    ----------
+    name : str
+        ``"thesis"`` (fitted to the published Table III) or ``"build"`` (a lab's tyres).
+    formula : FormulaFit
+        Traction tyres: ``K = a + b R + c A + d W R P`` with its covariance.
+    front : FrontRule or None
+        Undriven ribbed front tyres (thesis §8.2) with their uncertainty.
+    data_range : FormulaDataRange or None
+        For :func:`range_warnings`.
+    point : str
+        ``"printed"``: K from the thesis' printed coefficients (172, −1.77, 5.6, 0.34), as
+        Table XX and every published number use, with the fit's prediction interval (which
+        is that of the tyre's stiffness whatever point estimate is quoted); ``"fitted"``:
+        K from :attr:`formula`'s own coefficients.
+    """
+
+    name: str
+    formula: FormulaFit
+    front: FrontRule | None = None
+    data_range: FormulaDataRange | None = None
+    point: str = "printed"
+
+
 def estimate_stiffness(
     size: str | TyreSize,
     pressure_bar: float,
@@ -354,39 +382,75 @@ def estimate_stiffness(
     undriven_front: bool = False,
     water_ballast: bool = False,
     data_range: FormulaDataRange | None = None,
+    model: StiffnessModel | None = None,
 ) -> StiffnessEstimate:
-    """Estimated rolling tyre stiffness with the range warnings (thesis §4.5.3, §8.2).
+    """Estimated rolling tyre stiffness with its prediction interval and range warnings (§4.5.3, §8.2).
 
-    K from :func:`estimate_tyre_stiffness`; the warnings from :func:`range_warnings`
-    say where the tyre or pressure lies outside the data the rule rests on (the rule is
-    still applied: a modern 480/70R38 is just outside the thesis' W·R).
+    Parameters
+    ----------
+    size : str or TyreSize
+    pressure_bar, age_years : float
+        Inflation pressure (bar), tyre age (years).
+    undriven_front, water_ballast : bool
+        The ribbed front tyre rule; ×1.25 for water ballast.
+    data_range : FormulaDataRange, optional
+        Overrides ``model.data_range`` for the warnings.
+    model : StiffnessModel, optional
+        The fitted formula (and front rule) behind K and its interval
+        (:func:`tyrelab.tyre.models.thesis_stiffness_model` for the thesis' data). None:
+        the printed formulas, no interval and no range warnings.
+
+    Returns
+    -------
+    StiffnessEstimate
+        K per tyre (kN/m), the 95 % prediction interval of the tyre's measured rolling
+        stiffness from the fit (leverage included: wider away from the data), its standard
+        uncertainty, what they rest on, and the range warnings (the rule is still applied
+        outside the data).
 
     Examples
     --------
     >>> e = estimate_stiffness("480/70R38", 1.2, 2)
-    >>> round(e.stiffness_kN_per_m, 1), len(e.warnings)
-    (408.9, 1)
+    >>> round(e.stiffness_kN_per_m, 1), e.prediction_interval_kN_per_m
+    (408.9, None)
     """
     s = _size(size)
-    if age_years < 0:
-        raise ValueError(f"age_years {age_years} is negative")
+    pressure_bar = _validate.non_negative("pressure_bar", pressure_bar)
+    age_years = _validate.non_negative("age_years", age_years)
     k = estimate_tyre_stiffness(s, pressure_bar, age_years, undriven_front=undriven_front, water_ballast=water_ballast)
     rule = (
         "front undriven K = 134/(7.5*18) W R P (thesis §8.2)"
         if undriven_front
         else "K = 172 - 1.77 R + 5.6 A + 0.34 W R P (thesis §4.5.3)"
     )
-    if undriven_front:
-        interval, u, basis = None, None, "none: the undriven front tyre rule rests on one tyre (F1), no spread to use"
+    interval, u = None, None
+    factor = WATER_BALLAST_FACTOR if water_ballast else 1.0
+    ballast = "; water ballast scales it by 1.25 (its own uncertainty is not known)" if water_ballast else ""
+    if model is None:
+        basis = "none: no stiffness model given (tyrelab.tyre.models.thesis_stiffness_model)"
+    elif undriven_front:
+        if model.front is None:
+            basis = f"none: the {model.name} model has no undriven front tyre rule"
+        else:
+            pred = model.front.predict(s, pressure_bar)
+            k = pred.stiffness_kN_per_m * factor
+            interval = tuple(v * factor for v in pred.interval_kN_per_m)
+            u = pred.standard_uncertainty_kN_per_m * factor
+            basis = "95 % prediction interval, " + model.front.basis + ballast
     else:
-        from .formula_accuracy import published_formula_error
-
-        model = published_formula_error()
-        interval, u = model.interval(k), model.standard_uncertainty(k)
-        basis = (f"95 % prediction interval from the formula's errors on the thesis' data: mean "
-                 f"{model.mean_error_percent:.1f} %, sd {model.sd_error_percent:.1f} % over {model.n} points of "
-                 f"{model.n_tyres} tyres (Table III rolling lines; t with {model.n_tyres - 1} degrees of freedom)"
-                 + ("; water ballast scales it by 1.25 (its own uncertainty is not known)" if water_ballast else ""))
+        f = model.formula
+        pred = f.predict(s, pressure_bar, age_years)
+        if model.point == "fitted":
+            k = pred.stiffness_kN_per_m * factor
+            b = f.coefficients
+            rule = f"K = {b[0]:.4g} {b[1]:+.4g} R {b[2]:+.4g} A {b[3]:+.4g} W R P (fitted to the {model.name}'s tyres)"
+        interval = tuple(v * factor for v in pred.interval_kN_per_m)
+        u = pred.standard_uncertainty_kN_per_m * factor
+        basis = (f"95 % prediction interval of the formula fitted to {f.n_points} points of {f.n_tyres} tyres "
+                 f"({f.source}; {f.method}); relative residual sd {100 * f.relative_residual_sd:.1f} %, "
+                 f"leverage {pred.mean_se_kN_per_m:.1f} kN/m" + ballast)
+    if data_range is None and model is not None:
+        data_range = model.data_range
     return StiffnessEstimate(
         size=s,
         pressure_bar=float(pressure_bar),
@@ -399,4 +463,5 @@ def estimate_stiffness(
         prediction_interval_kN_per_m=interval,
         stiffness_u_kN_per_m=u,
         prediction_interval_basis=basis,
+        model=model.name if model is not None else "printed",
     )

@@ -159,6 +159,7 @@ def tractor_natural_frequencies(
     rear_stiffness_kN_per_m: float | None = None,
     front_stiffness_u_kN_per_m: float | None = None,
     rear_stiffness_u_kN_per_m: float | None = None,
+    stiffness_model=None,
 ) -> dict:
     """Natural frequencies of a tractor from its tyre sizes and pressures (thesis §8.2).
 
@@ -186,8 +187,11 @@ def tractor_natural_frequencies(
     front_stiffness_u_kN_per_m, rear_stiffness_u_kN_per_m : float, optional
         Standard uncertainties of the per-tyre stiffnesses, kN/m. Default: the
         formula's (:attr:`~tyrelab.tyre.stiffness.StiffnessEstimate.stiffness_u_kN_per_m`,
-        from its prediction interval on the thesis' data) for an estimated
-        stiffness, 0 for a given one; the undriven front rule has none (0).
+        from the prediction interval of ``stiffness_model``; the undriven front rule's from
+        the spread between tyres) for an estimated stiffness, 0 for a given one.
+    stiffness_model : tyrelab.tyre.stiffness.StiffnessModel, optional
+        The fitted formula behind the estimates (:func:`tyrelab.published.thesis_stiffness_model`);
+        None: the printed formulas without uncertainty or range warnings.
 
     Returns
     -------
@@ -207,14 +211,15 @@ def tractor_natural_frequencies(
         kf = float(front_stiffness_kN_per_m)
     else:
         est = estimate_stiffness(front_size, front_pressure_bar, age_years, undriven_front=not front_traction,
-                                 water_ballast=front_water_ballast)
+                                 water_ballast=front_water_ballast, model=stiffness_model)
         kf = est.stiffness_kN_per_m
         uf = est.stiffness_u_kN_per_m or 0.0
         warnings += [f"front tyre {est.size.designation}: {w}" for w in est.warnings]
     if rear_stiffness_kN_per_m is not None:
         kr = float(rear_stiffness_kN_per_m)
     else:
-        est = estimate_stiffness(rear_size, rear_pressure_bar, age_years, water_ballast=rear_water_ballast)
+        est = estimate_stiffness(rear_size, rear_pressure_bar, age_years, water_ballast=rear_water_ballast,
+                                 model=stiffness_model)
         kr = est.stiffness_kN_per_m
         ur = est.stiffness_u_kN_per_m or 0.0
         warnings += [f"rear tyre {est.size.designation}: {w}" for w in est.warnings]
@@ -344,7 +349,7 @@ def frequency_rounding_range(
     return np.array([[f[:, 0].min(), f[:, 0].max()], [f[:, 1].min(), f[:, 1].max()]])
 
 
-def table_xx(tractors: pd.DataFrame, published: pd.DataFrame | None = None) -> pd.DataFrame:
+def table_xx(tractors: pd.DataFrame, published: pd.DataFrame | None = None, stiffness_model=None) -> pd.DataFrame:
     """Table XX: tyre stiffnesses and predicted natural frequencies, ours beside the thesis'.
 
     For each tractor of Table XIX two rows are produced:
@@ -365,6 +370,8 @@ def table_xx(tractors: pd.DataFrame, published: pd.DataFrame | None = None) -> p
         Table XX columns: ``tractor, stiffness_source, rear_stiffness_kN_per_m,
         front_stiffness_kN_per_m, predicted_frequency_1_Hz, predicted_frequency_2_Hz,
         measured_frequency_1_Hz, measured_frequency_2_Hz``.
+    stiffness_model : tyrelab.tyre.stiffness.StiffnessModel, optional
+        As :func:`tractor_natural_frequencies` (the stage passes the thesis' model).
 
     Returns
     -------
@@ -373,8 +380,8 @@ def table_xx(tractors: pd.DataFrame, published: pd.DataFrame | None = None) -> p
         stiffnesses and frequencies, ``*_from_thesis_stiffness_Hz`` and differences.
         Formula rows also carry the formula's per-tyre stiffness uncertainties
         ``ours_{front,rear}_stiffness_u_kN_per_m`` (its prediction interval,
-        :mod:`tyrelab.tyre.stiffness`; 0 for the undriven front rule, which rests
-        on one tyre) and the frequencies' ``ours_frequency_{1,2}_u_Hz`` and 95 %
+        :mod:`tyrelab.tyre.stiffness`; the undriven front rule's from the spread
+        between tyres, :class:`tyrelab.tyre.formula_fit.FrontRule`) and the frequencies' ``ours_frequency_{1,2}_u_Hz`` and 95 %
         intervals ``ours_frequency_{1,2}_ci95_{low,high}_Hz``
         (:func:`frequency_uncertainty`); the measured-stiffness rows have none
         (the thesis states no uncertainty for them): NaN.
@@ -393,6 +400,7 @@ def table_xx(tractors: pd.DataFrame, published: pd.DataFrame | None = None) -> p
             t.rear_pressure_bar,
             front_traction=bool(t.four_wheel_drive),
             front_water_ballast=bool(t.front_water_ballast),
+            stiffness_model=stiffness_model,
         )
         for source in ("formula", "stationary_free_vibration"):
             p = (

@@ -185,10 +185,35 @@ def _measured(build: Path | None, table: str, tyre_id: str, pressure_bar: float)
     return rows["speed_km_h"].to_numpy(float), (rows["intercept"] + rows["slope"] * pressure_bar).to_numpy(float)
 
 
-def _formula_stiffness(spec) -> tuple[float, str, list[str], float]:
+def _stiffness_model(formula: str, build: Path | None):
+    """The :class:`~tyrelab.tyre.stiffness.StiffnessModel` of ``[tyres.*] formula``: the thesis'
+    (published Tables II, III, VI) or the build's (table ``formula_fit`` of its warehouse)."""
+    from ..tyre.models import build_stiffness_model
+    from ..warehouse import query
+
+    thesis = published.thesis_stiffness_model()
+    if formula != "build":
+        return thesis
+    if build is None:
+        raise ValueError('formula = "build" needs --build (a warehouse with table formula_fit)')
+    db = Path(build) / "warehouse.duckdb"
+    if not db.is_file():
+        raise ValueError(f'formula = "build": no warehouse at {db}')
+    try:
+        table = query(db, "SELECT * FROM formula_fit")
+    except Exception as exc:  # noqa: BLE001 - a warehouse without the table is the user's input problem
+        raise ValueError(f'formula = "build": cannot read formula_fit from {db} ({str(exc).splitlines()[0]})') from None
+    try:
+        return build_stiffness_model(table, thesis)
+    except ValueError as exc:
+        raise ValueError(f'formula = "build": {db}: {exc}') from None
+
+
+def _formula_stiffness(spec, build: Path | None = None) -> tuple[float, str, list[str], float]:
     """Per-tyre formula stiffness (kN/m), its rule, the formula's range warnings and its standard uncertainty."""
+    model = _stiffness_model(getattr(spec, "formula", "thesis"), build)
     est = estimate_stiffness(spec.size, spec.pressure_bar, spec.age_years, undriven_front=not spec.traction,
-                             water_ballast=spec.water_ballast)
+                             water_ballast=spec.water_ballast, model=model)
     rule = f"formula {est.rule}" + (" x1.25 water ballast" if spec.water_ballast else "")
     return est.stiffness_kN_per_m, rule, list(est.warnings), est.stiffness_u_kN_per_m or 0.0
 
@@ -230,7 +255,7 @@ def resolve_tyres(scenario: Scenario, build: Path | None = None) -> dict[str, Ax
             k = np.interp(speeds, sp, val)
             k_src = f"measured tyre {spec.measured_tyre_id}: K = Kc + dKp P per speed (stiffness_pressure_by_speed)"
         else:
-            k0, k_src, warnings, k_u = _formula_stiffness(spec)
+            k0, k_src, warnings, k_u = _formula_stiffness(spec, build)
             k = np.full(speeds.shape, k0)
         if spec.damping_kN_s_per_m is not None:
             c, c_src = per_speed(spec.damping_kN_s_per_m, lists, speeds), "override (scenario)"

@@ -119,6 +119,7 @@ class TyreSpec:
     age_years: float = 1.0
     radius_m: float | None = None
     footprint_m: float | None = None
+    formula: str = "thesis"
 
 
 @dataclass(frozen=True)
@@ -436,6 +437,7 @@ def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
             damping_kN_s_per_m=_speed_values(d.get("damping_kN_s_per_m")),
             measured_tyre_id=d.get("measured_tyre_id"), water_ballast=bool(d.get("water_ballast", False)),
             age_years=float(d.get("age_years", 1.0)), radius_m=d.get("radius_m"), footprint_m=d.get("footprint_m"),
+            formula=str(d.get("formula", "thesis")),
         )
 
     profile = _resolve_inside(base_dir, surf["profile"])[0] if "profile" in surf else None

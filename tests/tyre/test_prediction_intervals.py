@@ -16,7 +16,7 @@ LEYLAND = ["--mass", "3235", "--pitch-inertia", "2669", "--front-distance", "1.3
 
 
 def test_formula_error_model_from_the_published_tables():
-    m = fa.published_formula_error()
+    m = fa.formula_error_model(read_published("table_iii"), read_published("table_ii"))
     assert m.n_tyres >= 10 and m.n >= 5 * m.n_tyres
     assert 0 < m.sd_error_percent < 30  # thesis §4.5.3: sd 10 % over 56 points
     lo, hi = m.interval(300.0)
@@ -30,12 +30,17 @@ def test_formula_error_model_from_the_published_tables():
         m.interval(-1.0)
 
 
-def test_estimate_stiffness_carries_its_prediction_interval(capsys):
-    e = estimate_stiffness("13.6R38", 1.2, 2)
+def test_estimate_stiffness_carries_its_prediction_interval(capsys, thesis_model):
+    e = estimate_stiffness("13.6R38", 1.2, 2, model=thesis_model)
     lo, hi = e.prediction_interval_kN_per_m
     assert lo < e.stiffness_kN_per_m < hi and e.stiffness_u_kN_per_m > 0
-    front = estimate_stiffness("7.50-16", 2.0, undriven_front=True)
-    assert front.prediction_interval_kN_per_m is None and "F1" in front.prediction_interval_basis
+    # issue 27: the undriven front rule has an interval too (spread between tyres), not none
+    front = estimate_stiffness("7.50-16", 2.0, undriven_front=True, model=thesis_model)
+    flo, fhi = front.prediction_interval_kN_per_m
+    assert flo < front.stiffness_kN_per_m < fhi and front.stiffness_u_kN_per_m > 0
+    assert "F1" in front.prediction_interval_basis
+    bare = estimate_stiffness("13.6R38", 1.2, 2)
+    assert bare.prediction_interval_kN_per_m is None and bare.stiffness_kN_per_m == e.stiffness_kN_per_m
     assert main(["estimate-stiffness", "--size", "13.6R38", "--pressure", "1.2", "--age", "2"]) == 0
     assert "95 % prediction interval" in capsys.readouterr().out
     assert main(["estimate-stiffness", "--size", "13.6R38", "--pressure", "1.2", "--format", "json"]) == 0

@@ -294,11 +294,12 @@ def test_run_scenarios_quarantines_a_bad_file_and_runs_the_rest(tmp_path):
 
 
 def test_metric_tyres_pass_the_formula_range_warnings_on(tmp_path):
+    from tyrelab.published import thesis_stiffness_model
     from tyrelab.tyre.stiffness import estimate_stiffness
 
     text = scenario_text('kind = "iso8608"\nclass = "B"\nlength_m = 30', "[10]").replace('"18.4R38"', '"480/70R38"')
     res = ride.ride(load_scenario(write(tmp_path, text)), with_spectra=False)
-    est = estimate_stiffness("480/70R38", 1.2, 1.0)
+    est = estimate_stiffness("480/70R38", 1.2, 1.0, model=thesis_stiffness_model())
     assert res.tyres["rear"].stiffness_kN_per_m[0] == pytest.approx(est.stiffness_kN_per_m)
     assert est.warnings and set(est.warnings) <= set(res.tyres["rear"].warnings)
     assert any("480/70R38" in w or w.startswith("tyres.rear:") for w in ride.result_json([res])["warnings"])

@@ -1,0 +1,407 @@
+"""The stiffness formula as a fitted model: ``K = a + b R + c A + d W R P`` (thesis §4.5.3, issue 27).
+
+The thesis built its formula from three separate regressions over Table III's rolling
+lines (ΔK_p on W·R; K_c on R with five tyres left out; K_c on age over T1–T5:
+:mod:`tyrelab.tyre.size_regressions` reproduces them). Here the same form is fitted in
+one step to tyre × pressure points, so that it has a covariance and a prediction interval
+and can be refitted on any lab's measured tyres:
+
+* **points**: each traction tyre's rolling stiffness at its pressures (published Table
+  III: ``K_c + ΔK_p P`` on the pressure grid of :mod:`~tyrelab.tyre.formula_accuracy`;
+  a lab's: the mean rolling-pool stiffness per tyre and measured pressure);
+* **estimator**: weighted least squares (statsmodels ``WLS``) with weights ``1/K̂²``
+  from an OLS first pass: the scatter about the formula grows with the stiffness (on
+  the published points |residual| rises with the fitted value, Spearman 0.26, p 0.02;
+  the relative residual does not, 0.07, p 0.5), and the thesis states the formula's
+  error in percent;
+* **covariance**: cluster-robust by tyre (CR1, statsmodels ``cov_type="cluster"``),
+  with Student t on ``n_tyres − 1`` degrees of freedom. The points of one tyre are
+  one measured line, not independent observations; a mixed model would need a random
+  intercept *and* a random pressure slope (tyres differ in both, Table III) from 16
+  clusters, and the formula is a population-average model in any case, which is what
+  OLS/WLS with a cluster-robust covariance estimates without assuming the within-tyre
+  correlation structure;
+* **prediction interval** of a new tyre's measured stiffness at ``x0``:
+  ``x0'β̂ ± t · sqrt(x0' V x0 + (s K̂0)²)``, with ``V`` the cluster-robust covariance
+  (the leverage term, which grows as the size moves away from the data) and ``s`` the
+  relative residual sd.
+
+All stiffnesses in kN/m per tyre; W and R in inches, A in years, P in bar.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+from scipy.stats import t as student_t
+
+from .sizes import TyreSize, TyreSizeError, parse_tyre_size
+
+__all__ = ["TERMS", "TERM_UNITS", "POINT_COLUMNS", "PRINTED_COEFFICIENTS", "FormulaPrediction", "FormulaFit", "design_matrix", "fit_formula",
+           "leave_one_tyre_out", "FrontRule", "front_rule", "fit_table"]
+
+#: The formula's terms, in coefficient order, with units of their coefficients.
+TERMS = ("intercept", "rim_diameter", "age", "wrp")
+TERM_UNITS = ("kN/m", "kN/m/in", "kN/m/year", "kN/m/in²/bar")
+#: The thesis' printed coefficients (§4.5.3, §4.6): K = 172 − 1.77 R + 5.6 A + 0.34 W R P.
+PRINTED_COEFFICIENTS = (172.0, -1.77, 5.6, 0.34)
+
+#: Columns of the points a fit needs (those of :data:`tyrelab.tyre.formula_accuracy.PRED_COLUMNS`).
+POINT_COLUMNS = ("tyre_id", "size", "age_years", "pressure_bar", "measured_kN_per_m")
+
+
+def _size(size) -> TyreSize:
+    return size if isinstance(size, TyreSize) else parse_tyre_size(size)
+
+
+def design_matrix(sizes, age_years, pressure_bar) -> np.ndarray:
+    """Rows ``[1, R, A, W R P]`` of the formula for sizes, ages (years) and pressures (bar).
+
+    Examples
+    --------
+    >>> design_matrix(["13.6R38"], [1.0], [1.2]).round(2).tolist()
+    [[1.0, 38.0, 1.0, 620.16]]
+    """
+    s = [_size(x) for x in sizes]
+    a = np.asarray(age_years, float)
+    p = np.asarray(pressure_bar, float)
+    if len(s) != len(a) or len(s) != len(p):
+        raise ValueError(f"sizes, age_years and pressure_bar must have the same length, got {len(s)}, {len(a)}, {len(p)}")
+    return np.column_stack([np.ones(len(s)), [z.rim_diameter_in for z in s], a,
+                            np.array([z.width_times_rim_in2 for z in s]) * p]) if s else np.empty((0, 4))
+
+
+@dataclass(frozen=True)
+class FormulaPrediction:
+    """One prediction of a fitted formula.
+
+    Attributes
+    ----------
+    stiffness_kN_per_m : float
+        ``x0'β̂``, kN/m.
+    interval_kN_per_m : (float, float)
+        95 % (or ``level``) prediction interval of the tyre's measured rolling stiffness, kN/m.
+    standard_uncertainty_kN_per_m : float
+        ``sqrt(x0'Vx0 + (s K̂0)²)``, kN/m.
+    mean_se_kN_per_m : float
+        Standard error of the fitted mean alone, ``sqrt(x0'Vx0)`` (the leverage part), kN/m.
+    coverage_factor : float
+        Student t factor used.
+    """
+
+    stiffness_kN_per_m: float
+    interval_kN_per_m: tuple[float, float]
+    standard_uncertainty_kN_per_m: float
+    mean_se_kN_per_m: float
+    coverage_factor: float
+
+
+@dataclass(frozen=True)
+class FormulaFit:
+    """``K = a + b R + c A + d W R P`` fitted to tyre × pressure points (module docstring).
+
+    Attributes
+    ----------
+    source : str
+        Which points (``"published"``: thesis Table III; ``"ours"``: the build's tyres).
+    coefficients : tuple of float
+        ``(a, b, c, d)`` in :data:`TERMS` order (kN/m, kN/m/in, kN/m/year, kN/m/in²/bar).
+    covariance : tuple of tuple of float
+        Cluster-robust (by tyre, CR1) covariance of the coefficients.
+    relative_residual_sd : float
+        ``s``: residual sd of the weighted fit, a fraction of the stiffness.
+    residual_sd_kN_per_m : float
+        Root mean square of the unweighted residuals over the fit's degrees of freedom, kN/m.
+    r_squared : float
+        ``Σ(K̂−K̄)²/Σ(K−K̄)²`` (unweighted, the thesis' r², §4.3.1).
+    n_tyres, n_points : int
+    tyre_ids : tuple of str
+    ranges : dict
+        (min, max) of ``wr_in2``, ``rim_diameter_in``, ``age_years``, ``pressure_bar`` of the points.
+    method : str
+    """
+
+    source: str
+    coefficients: tuple[float, float, float, float]
+    covariance: tuple[tuple[float, ...], ...]
+    relative_residual_sd: float
+    residual_sd_kN_per_m: float
+    r_squared: float
+    n_tyres: int
+    n_points: int
+    tyre_ids: tuple[str, ...] = ()
+    ranges: dict = field(default_factory=dict)
+    method: str = ("WLS (weights 1/K̂² from an OLS pass), cluster-robust covariance by tyre (CR1), "
+                   "t with n_tyres − 1 degrees of freedom")
+
+    @property
+    def dof(self) -> int:
+        """Degrees of freedom of the t factor: ``n_tyres − 1`` (clusters, not points)."""
+        return max(self.n_tyres - 1, 1)
+
+    def standard_errors(self) -> tuple[float, ...]:
+        """Cluster-robust standard errors of :attr:`coefficients`."""
+        return tuple(float(math.sqrt(max(self.covariance[i][i], 0.0))) for i in range(len(TERMS)))
+
+    def coverage_factor(self, level: float = 0.95) -> float:
+        """Student t factor for ``level`` on :attr:`dof` degrees of freedom."""
+        if not 0 < level < 1:
+            raise ValueError(f"level must be in (0, 1), got {level!r}")
+        return float(student_t.ppf(0.5 + level / 2, self.dof))
+
+    def predict(self, size, pressure_bar: float, age_years: float = 1.0, *, level: float = 0.95) -> FormulaPrediction:
+        """Prediction and prediction interval for one tyre (kN/m).
+
+        Examples
+        --------
+        >>> f = FormulaFit("x", (172.0, -1.77, 5.6, 0.34), tuple(tuple(0.0 for _ in range(4)) for _ in range(4)),
+        ...                0.1, 30.0, 0.9, 14, 56)
+        >>> p = f.predict("13.6-38", 1.1, 1)
+        >>> round(p.stiffness_kN_per_m, 1), round(p.standard_uncertainty_kN_per_m, 2)
+        (303.6, 30.36)
+        """
+        if not (math.isfinite(pressure_bar) and pressure_bar >= 0):
+            raise ValueError(f"pressure_bar must be a non-negative number, got {pressure_bar!r}")
+        if not (math.isfinite(age_years) and age_years >= 0):
+            raise ValueError(f"age_years must be a non-negative number, got {age_years!r}")
+        x0 = design_matrix([size], [age_years], [pressure_bar])[0]
+        k = float(x0 @ np.asarray(self.coefficients))
+        var_mean = float(x0 @ np.asarray(self.covariance) @ x0)
+        u = math.sqrt(max(var_mean, 0.0) + (self.relative_residual_sd * k) ** 2)
+        t = self.coverage_factor(level)
+        return FormulaPrediction(k, (k - t * u, k + t * u), u, math.sqrt(max(var_mean, 0.0)), t)
+
+    def row(self) -> dict:
+        """One ``formula_fit`` row: coefficients, standard errors, counts, r², residual sd."""
+        out = {"source": self.source, "method": self.method, "n_tyres": self.n_tyres, "n_points": self.n_points,
+               "dof": self.dof, "r_squared": self.r_squared, "residual_sd_kN_per_m": self.residual_sd_kN_per_m,
+               "relative_residual_sd_percent": 100 * self.relative_residual_sd}
+        for name, b, se in zip(TERMS, self.coefficients, self.standard_errors()):
+            out[name] = b
+            out[f"{name}_se"] = se
+        out["tyre_ids"] = " ".join(self.tyre_ids)
+        return out
+
+
+def _points(points: pd.DataFrame) -> pd.DataFrame:
+    missing = [c for c in POINT_COLUMNS if c not in points.columns]
+    if missing:
+        raise ValueError(f"points lack columns {missing}")
+    p = points.loc[:, list(POINT_COLUMNS)].copy()
+    p["tyre_id"] = p["tyre_id"].astype(str)
+    for c in ("age_years", "pressure_bar", "measured_kN_per_m"):
+        p[c] = pd.to_numeric(p[c], errors="coerce")
+
+    def ok_size(s):
+        try:
+            _size(s)
+            return True
+        except (TyreSizeError, TypeError, ValueError):
+            return False
+
+    keep = p["size"].map(ok_size) & np.isfinite(p[["age_years", "pressure_bar", "measured_kN_per_m"]]).all(axis=1)
+    return p.loc[keep & (p["measured_kN_per_m"] > 0)].reset_index(drop=True)
+
+
+def fit_formula(points: pd.DataFrame, source: str = "published") -> FormulaFit:
+    """Fit ``K = a + b R + c A + d W R P`` to tyre × pressure points (module docstring).
+
+    Parameters
+    ----------
+    points : DataFrame
+        Columns ``tyre_id, size, age_years, pressure_bar, measured_kN_per_m`` (e.g.
+        :func:`tyrelab.tyre.formula_accuracy.predictions_from_table` or
+        ``predictions_from_recordings``); rows with an unreadable size or a missing
+        number are left out.
+    source : str
+        Label of the points.
+
+    Returns
+    -------
+    FormulaFit
+
+    Raises
+    ------
+    ValueError
+        With fewer than 5 tyres (4 coefficients and a cluster-robust covariance need
+        more tyres than coefficients) or a design that cannot separate the terms.
+    """
+    from statsmodels.regression.linear_model import OLS, WLS
+
+    p = _points(points)
+    n_tyres = int(p["tyre_id"].nunique())
+    if n_tyres < 5:
+        raise ValueError(f"points: the formula needs at least 5 tyres with usable points, got {n_tyres}")
+    x = design_matrix(p["size"], p["age_years"], p["pressure_bar"])
+    if np.linalg.matrix_rank(x) < x.shape[1]:
+        raise ValueError("points: the tyres do not separate rim diameter, age and W·R·P (rank-deficient design)")
+    y = p["measured_kN_per_m"].to_numpy(float)
+    groups = pd.factorize(p["tyre_id"])[0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        first = OLS(y, x).fit()
+        fitted0 = np.maximum(x @ first.params, 0.05 * np.abs(y).max())
+        res = WLS(y, x, weights=1.0 / fitted0**2).fit(cov_type="cluster", cov_kwds={"groups": groups})
+    beta = np.asarray(res.params, float)
+    fitted = x @ beta
+    resid = y - fitted
+    dof_resid = max(len(y) - x.shape[1], 1)
+    s = float(np.sqrt(np.sum((resid / fitted0) ** 2) / dof_resid))
+    cov = np.asarray(res.cov_params(), float)
+    wr = x[:, 3] / p["pressure_bar"].replace(0, np.nan).to_numpy(float)
+    return FormulaFit(
+        source=source,
+        coefficients=tuple(float(b) for b in beta),
+        covariance=tuple(tuple(float(v) for v in row) for row in cov),
+        relative_residual_sd=s,
+        residual_sd_kN_per_m=float(np.sqrt(np.sum(resid**2) / dof_resid)),
+        r_squared=float(np.sum((fitted - y.mean()) ** 2) / np.sum((y - y.mean()) ** 2)),
+        n_tyres=n_tyres,
+        n_points=int(len(y)),
+        tyre_ids=tuple(sorted(p["tyre_id"].unique())),
+        ranges={"wr_in2": (float(np.nanmin(wr)), float(np.nanmax(wr))),
+                "rim_diameter_in": (float(x[:, 1].min()), float(x[:, 1].max())),
+                "age_years": (float(x[:, 2].min()), float(x[:, 2].max())),
+                "pressure_bar": (float(p["pressure_bar"].min()), float(p["pressure_bar"].max()))},
+    )
+
+
+def leave_one_tyre_out(points: pd.DataFrame, source: str = "ours") -> pd.DataFrame:
+    """Each tyre predicted by the fit of the others, and by the printed formula (issue 27).
+
+    Returns
+    -------
+    DataFrame
+        Per point: ``source, tyre_id, size, age_years, pressure_bar, measured_kN_per_m,
+        refit_kN_per_m, refit_ci95_low_kN_per_m, refit_ci95_high_kN_per_m, refit_covers,
+        printed_kN_per_m, refit_error_percent, printed_error_percent`` (error =
+        100 (predicted − measured)/measured). Tyres whose left-out fit cannot be made
+        (fewer than 5 others) are skipped.
+    """
+    p = _points(points)
+    rows = []
+    printed = np.asarray(PRINTED_COEFFICIENTS)
+    for tid in sorted(p["tyre_id"].unique()):
+        others, own = p.loc[p["tyre_id"] != tid], p.loc[p["tyre_id"] == tid]
+        try:
+            fit = fit_formula(others, source)
+        except ValueError:
+            continue
+        for r in own.itertuples(index=False):
+            pr = fit.predict(r.size, r.pressure_bar, r.age_years)
+            k_printed = float(design_matrix([r.size], [r.age_years], [r.pressure_bar])[0] @ printed)
+            m = float(r.measured_kN_per_m)
+            lo, hi = pr.interval_kN_per_m
+            rows.append(dict(source=source, tyre_id=tid, size=r.size, age_years=r.age_years,
+                             pressure_bar=r.pressure_bar, measured_kN_per_m=m, refit_kN_per_m=pr.stiffness_kN_per_m,
+                             refit_ci95_low_kN_per_m=lo, refit_ci95_high_kN_per_m=hi, refit_covers=bool(lo <= m <= hi),
+                             printed_kN_per_m=k_printed,
+                             refit_error_percent=100 * (pr.stiffness_kN_per_m - m) / m,
+                             printed_error_percent=100 * (k_printed - m) / m))
+    cols = ["source", "tyre_id", "size", "age_years", "pressure_bar", "measured_kN_per_m", "refit_kN_per_m",
+            "refit_ci95_low_kN_per_m", "refit_ci95_high_kN_per_m", "refit_covers", "printed_kN_per_m",
+            "refit_error_percent", "printed_error_percent"]
+    return pd.DataFrame(rows, columns=cols)
+
+
+@dataclass(frozen=True)
+class FrontRule:
+    """Undriven ribbed front tyre: ``K = g W R P`` with ``g`` = F1's ΔK_p / (W·R) (thesis §8.2).
+
+    The rule rests on one tyre (F1). Its uncertainty is the spread of the pressure
+    dependence per W·R between tyres of one kind, taken from the traction tyres of
+    Table III (the coefficient of variation ``cv`` of ΔK_p/(W·R) over ``n`` tyres): a new
+    ribbed tyre differs from F1 by two draws of that spread, ``u = K cv √2`` (F1's own
+    value is one draw, the new tyre another), with Student t on ``n − 1`` degrees of freedom.
+
+    Attributes
+    ----------
+    coefficient_kN_per_m_in2_bar : float
+        ``g``, kN/m per in² per bar.
+    relative_sd : float
+        ``cv``, a fraction.
+    n_tyres : int
+        Tyres behind ``cv``.
+    basis : str
+    """
+
+    coefficient_kN_per_m_in2_bar: float
+    relative_sd: float
+    n_tyres: int
+    basis: str = ""
+
+    def predict(self, size, pressure_bar: float, *, level: float = 0.95) -> FormulaPrediction:
+        """Per-tyre stiffness and its prediction interval (kN/m).
+
+        Examples
+        --------
+        >>> r = FrontRule(134 / 135, 0.1, 16)
+        >>> p = r.predict("7.50-18", 2.0)
+        >>> round(p.stiffness_kN_per_m, 1), round(p.standard_uncertainty_kN_per_m, 1)
+        (268.0, 37.9)
+        """
+        if not (math.isfinite(pressure_bar) and pressure_bar >= 0):
+            raise ValueError(f"pressure_bar must be a non-negative number, got {pressure_bar!r}")
+        if not 0 < level < 1:
+            raise ValueError(f"level must be in (0, 1), got {level!r}")
+        s = _size(size)
+        k = self.coefficient_kN_per_m_in2_bar * s.width_times_rim_in2 * pressure_bar
+        u = k * self.relative_sd * math.sqrt(2.0)
+        t = float(student_t.ppf(0.5 + level / 2, max(self.n_tyres - 1, 1)))
+        return FormulaPrediction(k, (k - t * u, k + t * u), u, k * self.relative_sd, t)
+
+
+def front_rule(table_iii: pd.DataFrame, table_ii: pd.DataFrame, front_id: str = "F1") -> FrontRule:
+    """:class:`FrontRule` from Table III's rolling rows (F1 for ``g``, the traction tyres for ``cv``).
+
+    Raises
+    ------
+    ValueError
+        If ``front_id`` or fewer than 3 traction tyres have a rolling ΔK_p.
+    """
+    rolling = table_iii.loc[(table_iii["condition"] == "rolling")
+                            & table_iii["pressure_dependence_kN_per_m_bar"].notna()].copy()
+    rolling["tyre_id"] = rolling["tyre_id"].astype(str)
+    sizes = dict(zip(table_ii["tyre_id"].astype(str), table_ii["size"].astype(str)))
+    ratio = {}
+    for r in rolling.itertuples(index=False):
+        try:
+            ratio[r.tyre_id] = float(r.pressure_dependence_kN_per_m_bar) / _size(sizes.get(r.tyre_id, r.size)).width_times_rim_in2
+        except (TyreSizeError, TypeError, ValueError):
+            continue
+    if front_id not in ratio:
+        raise ValueError(f"table_iii has no rolling ΔK_p for the front tyre {front_id}")
+    others = np.array([v for k, v in ratio.items() if k != front_id])
+    if len(others) < 3:
+        raise ValueError("table_iii has fewer than 3 traction tyres with a rolling ΔK_p")
+    cv = float(others.std(ddof=1) / others.mean())
+    return FrontRule(ratio[front_id], cv, len(others),
+                     basis=(f"g = ΔK_p/(W·R) of {front_id} (thesis §8.2); u = K·{100 * cv:.1f} %·√2, the spread of "
+                            f"ΔK_p/(W·R) between the {len(others)} traction tyres of Table III taken as that between "
+                            f"ribbed tyres; t with {len(others) - 1} degrees of freedom"))
+
+
+def fit_table(fits: list[FormulaFit]) -> pd.DataFrame:
+    """Table ``formula_fit``: the thesis' printed coefficients and each fit, side by side.
+
+    The first row (``source = "thesis_printed"``) carries the printed coefficients
+    with null statistics; each fit adds a row (:meth:`FormulaFit.row`) with the printed
+    value and the difference in standard errors, ``<term>_vs_printed_se``.
+    """
+    printed = {"source": "thesis_printed", "method": "thesis §4.5.3: three separate regressions (Figs 26, 30, 31)",
+               **dict(zip(TERMS, PRINTED_COEFFICIENTS))}
+    rows = [printed]
+    for f in fits:
+        row = f.row()
+        for name, b_p in zip(TERMS, PRINTED_COEFFICIENTS):
+            se = row[f"{name}_se"]
+            row[f"{name}_vs_printed_se"] = (row[name] - b_p) / se if se > 0 else np.nan
+        rows.append(row)
+    cols = ["source", "method", "n_tyres", "n_points", "dof", "r_squared", "residual_sd_kN_per_m",
+            "relative_residual_sd_percent"]
+    cols += [c for name in TERMS for c in (name, f"{name}_se", f"{name}_vs_printed_se")] + ["tyre_ids"]
+    return pd.DataFrame(rows).reindex(columns=cols)

@@ -1,0 +1,121 @@
+"""Stiffness models from tables: the thesis' (published Tables II, III, VI) and a build's (issue 27).
+
+Pure: the caller reads the tables (:func:`tyrelab.published.read_published`, the
+warehouse) and passes them in; :class:`~tyrelab.tyre.stiffness.StiffnessModel` is what
+:func:`~tyrelab.tyre.stiffness.estimate_stiffness` and every caller of it (natural
+frequencies, ride, Table XX) take.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pandas as pd
+
+from . import formula_accuracy as fa
+from .formula_fit import TERMS, FormulaFit, fit_formula, front_rule
+from .stiffness import FormulaDataRange, StiffnessModel
+
+__all__ = ["THESIS_TABLES", "thesis_points", "thesis_formula_fit", "thesis_stiffness_model", "fit_row",
+           "fit_from_row", "build_stiffness_model"]
+
+#: Published tables a thesis model is built from.
+THESIS_TABLES = ("table_ii", "table_iii", "table_vi")
+
+
+def thesis_points(table_ii: pd.DataFrame, table_iii: pd.DataFrame) -> pd.DataFrame:
+    """Tyre × pressure points of the published Table III rolling lines (traction tyres, F1 left out).
+
+    :func:`tyrelab.tyre.formula_accuracy.predictions_from_table`: ``K_c + ΔK_p P`` on the
+    rear/front pressure grids, sizes and ages from Table II (Berlin tyres new: 0 years).
+    """
+    return fa.predictions_from_table(table_iii, table_ii)
+
+
+def thesis_formula_fit(table_ii: pd.DataFrame, table_iii: pd.DataFrame) -> FormulaFit:
+    """:func:`~tyrelab.tyre.formula_fit.fit_formula` of :func:`thesis_points` (``source = "published"``)."""
+    return fit_formula(thesis_points(table_ii, table_iii), "published")
+
+
+def thesis_stiffness_model(table_ii: pd.DataFrame, table_iii: pd.DataFrame, table_vi: pd.DataFrame) -> StiffnessModel:
+    """The thesis' model: printed point estimate, the published refit's interval, F1's front rule.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> m = thesis_stiffness_model(*(read_published(t) for t in THESIS_TABLES))
+    >>> m.formula.n_tyres, m.formula.n_points, m.front.n_tyres
+    (16, 80, 16)
+    """
+    return StiffnessModel("thesis", thesis_formula_fit(table_ii, table_iii), front_rule(table_iii, table_ii),
+                          FormulaDataRange.from_tables(table_ii, table_iii, table_vi), point="printed")
+
+
+def fit_row(fit: FormulaFit) -> dict:
+    """:meth:`FormulaFit.row` plus what :func:`fit_from_row` needs: the covariance
+    (``cov_<term>_<term>``, upper triangle) and the data ranges (``<range>_min``/``_max``)."""
+    row = fit.row()
+    cov = np.asarray(fit.covariance)
+    for i, a in enumerate(TERMS):
+        for j, b in enumerate(TERMS):
+            if j >= i:
+                row[f"cov_{a}_{b}"] = float(cov[i, j])
+    for name, (lo, hi) in fit.ranges.items():
+        row[f"{name}_min"], row[f"{name}_max"] = lo, hi
+    return row
+
+
+def fit_from_row(row) -> FormulaFit:
+    """The :class:`FormulaFit` of one ``formula_fit`` row written with :func:`fit_row`.
+
+    Raises
+    ------
+    ValueError
+        If the row lacks a coefficient or covariance column.
+    """
+    get = row.get if isinstance(row, dict) else (lambda k, d=None: row[k] if k in row.index else d)
+    try:
+        beta = tuple(float(get(t)) for t in TERMS)
+        cov = np.zeros((4, 4))
+        for i, a in enumerate(TERMS):
+            for j, b in enumerate(TERMS):
+                if j >= i:
+                    cov[i, j] = cov[j, i] = float(get(f"cov_{a}_{b}"))
+        s = float(get("relative_residual_sd_percent")) / 100
+    except (TypeError, ValueError, KeyError) as exc:
+        raise ValueError(f"formula_fit row lacks the coefficients or covariance ({exc})") from None
+    if not np.all(np.isfinite(beta)) or not np.all(np.isfinite(cov)):
+        raise ValueError("formula_fit row has no fitted coefficients")
+    ranges = {}
+    for name in ("wr_in2", "rim_diameter_in", "age_years", "pressure_bar"):
+        lo, hi = get(f"{name}_min"), get(f"{name}_max")
+        if lo is not None and hi is not None and np.isfinite(lo) and np.isfinite(hi):
+            ranges[name] = (float(lo), float(hi))
+    ids = get("tyre_ids") or ""
+    return FormulaFit(str(get("source")), beta, tuple(tuple(float(v) for v in r) for r in cov), s,
+                      float(get("residual_sd_kN_per_m")), float(get("r_squared")), int(get("n_tyres")),
+                      int(get("n_points")), tuple(str(ids).split()), ranges, str(get("method")))
+
+
+def build_stiffness_model(formula_fit_table: pd.DataFrame, thesis: StiffnessModel, source: str = "ours") -> StiffnessModel:
+    """A build's model: the ``formula_fit`` row of ``source`` (a lab's tyres), fitted point and interval.
+
+    The front rule stays the thesis' (F1) unless the lab measured ribbed front tyres (it
+    has none of its own yet); the range warnings check the lab's tyres' ranges.
+
+    Raises
+    ------
+    ValueError
+        If the table has no usable row of ``source``.
+    """
+    rows = formula_fit_table.loc[formula_fit_table["source"].astype(str) == source]
+    if rows.empty:
+        raise ValueError(f"formula_fit has no '{source}' row (fewer than 5 measured traction tyres?)")
+    fit = fit_from_row(rows.iloc[0])
+    r = thesis.data_range
+    if r is not None and {"wr_in2", "rim_diameter_in", "age_years", "pressure_bar"} <= set(fit.ranges):
+        r = dataclasses.replace(r, wr_in2=fit.ranges["wr_in2"], rim_diameter_in=fit.ranges["rim_diameter_in"],
+                                age_years=fit.ranges["age_years"], pressure_bar=fit.ranges["pressure_bar"],
+                                source=f"the build's measured tyres ({fit.n_tyres})")
+    return StiffnessModel("build", fit, thesis.front, r, point="fitted")
