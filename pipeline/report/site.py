@@ -37,6 +37,7 @@ import pandas as pd
 
 from .. import io
 from ..executor import map_alongside, map_in_background, worker_server_state
+from ..progress import Progress
 from ..stages.state import digest
 from ..warehouse import check_read_only, connect_read_only
 from . import tables
@@ -289,19 +290,25 @@ class FigureSet:
         if background is not None:
             background.abandon()
 
-    def draw_all(self) -> None:
+    @property
+    def to_draw(self) -> int:
+        """Figures :meth:`draw_all` will draw (not in the cache), once :meth:`start` ran."""
+        return len(getattr(self, "_todo", ()))
+
+    def draw_all(self, on_done=None) -> None:
         """The figures not in the cache: collected from the workers of :meth:`start`, else drawn in
         parallel by this process and ``jobs - 1`` workers (:func:`tyrelab.executor.map_alongside`;
-        by this process alone when fewer than :data:`POOL_MIN_FIGURES` and no worker server is ready)."""
+        by this process alone when fewer than :data:`POOL_MIN_FIGURES` and no worker server is ready);
+        ``on_done(i)`` after each."""
         if not hasattr(self, "_todo"):
             self.start()
         todo, background, self._background = self._todo, self._background, None
         if background is not None:
-            svgs = background.results()
+            svgs = background.results(on_done)
         else:
             ready = worker_server_state() == "ready"
             svgs = map_alongside(draw, [self.tasks[k] for k in todo],
-                                 self.jobs if len(todo) >= POOL_MIN_FIGURES or ready else 1)
+                                 self.jobs if len(todo) >= POOL_MIN_FIGURES or ready else 1, on_done=on_done)
         for key, svg in zip(todo, svgs):
             self.svgs[key] = svg
             if self.cache:
@@ -504,11 +511,13 @@ def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1, pages:
         for name, task in page.figures(site):
             figs.request(name, task)
     figs.start()  # with a worker server ready the figures are drawn while the tables are shaped
+    progress = Progress("report: figures and pages", figs.to_draw + len(pages_), unit="items")
     try:
         site.shape_tables()
-        figs.draw_all()
+        figs.draw_all(on_done=lambda i: progress.step())
     except BaseException:
         figs.abandon()
+        progress.close()
         raise
 
     for page in pages_:
@@ -525,6 +534,7 @@ def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1, pages:
             for stale in (out / page.folder).glob("*.html"):
                 if stale not in keep:
                     stale.unlink()
+        progress.step()
 
     items = [it for page in pages_ if isinstance(page, ChapterPage) for it in site.items(page)]
     missing = site.missing()

@@ -9,6 +9,7 @@ from __future__ import annotations
 import importlib
 import time
 
+from .. import progress
 from . import state
 from .base import Context, StageResult
 
@@ -45,7 +46,10 @@ def run_stage(name: str, ctx: Context) -> StageResult:
         start_worker_server()
     before = state.snapshot(ctx.build)
     module = importlib.import_module(f"{__name__}.{name}")
-    result = module.run(ctx)
+    try:
+        result = module.run(ctx)
+    finally:
+        progress.close_all()  # a bar the stage left (an error, Ctrl-C) leaves the terminal
     counts = {"n_in": result.n_in, "n_ok": result.n_ok, "n_quarantined": result.n_quarantined,
               "n_rejected": result.n_rejected}
     state.record(ctx, name, code, inputs, before, cache, counts)

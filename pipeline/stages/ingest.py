@@ -380,8 +380,9 @@ def run(ctx: Context) -> StageResult:
     result.n_rejected = plan.rejected
     result.n_in = result.n_ok + result.n_quarantined
     unlisted = sum(1 for q in plan.quarantine if q["run_id"] is None)
-    converted = sum(1 for d in done.values() if d.get("converted"))
-    result.message = f"{converted} converted, {len(done) - converted} unchanged" + (
+    converted = sum(1 for d in done.values() if d.get("converted") is True)
+    unchanged = sum(1 for d in done.values() if d.get("converted") is False)  # a refused file is neither
+    result.message = f"{converted} converted, {unchanged} unchanged" + (
         f"; {unlisted} file/manifest/catalogue problem(s) without a run id" if unlisted else "")
     result.seconds = time.perf_counter() - t0
     return result

@@ -291,7 +291,7 @@ def _section_values(doc: dict, name: str) -> tuple[dict | None, list[str]]:
     return node, []
 
 
-def _validate(doc: dict, base_dir: Path) -> list[str]:
+def _validate(doc: dict, base_dir: Path, confine: bool = True) -> list[str]:
     """Every problem of a parsed TOML document (empty list when it is valid)."""
     problems: list[str] = []
     sections = _sections()
@@ -345,13 +345,16 @@ def _validate(doc: dict, base_dir: Path) -> list[str]:
             if "profile" not in surf:
                 problems.append("surface.profile (a CSV path) is required with kind = \"profile\"")
             elif isinstance(surf["profile"], str):
-                problems += _profile_problems(base_dir, surf["profile"])
+                problems += _profile_problems(base_dir, surf["profile"], confine)
     return problems
 
 
-def _resolve_inside(base_dir: Path, relative: str) -> tuple[Path | None, str | None]:
-    """``base_dir / relative`` if it stays inside ``base_dir``, else a problem."""
+def _resolve_inside(base_dir: Path, relative: str, confine: bool = True) -> tuple[Path | None, str | None]:
+    """``base_dir / relative`` if it stays inside ``base_dir``, else a problem; without ``confine``
+    (a scenario file the user names) any path, absolute or relative to ``base_dir``."""
     rel = Path(relative)
+    if not confine:
+        return (base_dir / rel).resolve(), None
     if rel.is_absolute():
         return None, f"surface.profile {relative!r}: give a path relative to the scenario file"
     full = (base_dir / rel).resolve()
@@ -360,8 +363,8 @@ def _resolve_inside(base_dir: Path, relative: str) -> tuple[Path | None, str | N
     return full, None
 
 
-def _profile_problems(base_dir: Path, relative: str) -> list[str]:
-    full, problem = _resolve_inside(base_dir, relative)
+def _profile_problems(base_dir: Path, relative: str, confine: bool = True) -> list[str]:
+    full, problem = _resolve_inside(base_dir, relative, confine)
     if problem:
         return [problem]
     try:
@@ -424,7 +427,7 @@ def _speed_values(v):
     return tuple(float(x) for x in v) if isinstance(v, list) else (None if v is None else float(v))
 
 
-def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
+def _build(doc: dict, path: Path | None, base_dir: Path, confine: bool = True) -> Scenario:
     t, s, surf, ex = doc["tractor"], doc.get("seat", {}), doc["surface"], doc["exposure"]
     sim = doc.get("simulation", {})
     sweep = doc.get("sweep", {})
@@ -440,7 +443,7 @@ def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
             formula=str(d.get("formula", "thesis")),
         )
 
-    profile = _resolve_inside(base_dir, surf["profile"])[0] if "profile" in surf else None
+    profile = _resolve_inside(base_dir, surf["profile"], confine)[0] if "profile" in surf else None
     return Scenario(
         name=doc["name"],
         description=doc.get("description", ""),
@@ -463,7 +466,8 @@ def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
     )
 
 
-def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | None = None) -> Scenario:
+def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | None = None, *,
+                   confine: bool = True) -> Scenario:
     """Parse and check scenario TOML text.
 
     Parameters
@@ -475,6 +479,10 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
         must stay inside.
     path : path, optional
         File name used in messages.
+    confine : bool, optional
+        ``surface.profile`` must be a relative path inside ``base_dir`` (default: campaign
+        scenarios the pipeline walks). False for a file the user names (``tyrelab ride FILE``):
+        an absolute path, or one relative to ``base_dir`` anywhere.
 
     Raises
     ------
@@ -512,14 +520,14 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
     except tomllib.TOMLDecodeError as exc:
         raise ScenarioError(where, [f"not valid TOML: {exc}"]) from None
     base = Path(base_dir)
-    problems = _validate(doc, base)
+    problems = _validate(doc, base, confine)
     if problems:
         raise ScenarioError(where, problems)
-    return _build(doc, Path(path) if path is not None else None, base)
+    return _build(doc, Path(path) if path is not None else None, base, confine)
 
 
-def load_scenario(path: str | Path) -> Scenario:
-    """Read and check a scenario file (see :func:`parse_scenario`).
+def load_scenario(path: str | Path, *, confine: bool = True) -> Scenario:
+    """Read and check a scenario file (see :func:`parse_scenario`, ``confine`` included).
 
     Raises
     ------
@@ -531,7 +539,7 @@ def load_scenario(path: str | Path) -> Scenario:
         text = p.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise ScenarioError(p, [f"cannot read: {exc.strerror if isinstance(exc, OSError) else exc}"]) from None
-    return parse_scenario(text, p.resolve().parent, p)
+    return parse_scenario(text, p.resolve().parent, p, confine=confine)
 
 
 def with_overrides(
