@@ -381,7 +381,7 @@ def run(ctx: Context) -> StageResult:
     result.n_in = result.n_ok + result.n_quarantined
     unlisted = sum(1 for q in plan.quarantine if q["run_id"] is None)
     converted = sum(1 for d in done.values() if d.get("converted") is True)
-    unchanged = sum(1 for d in done.values() if d.get("converted") is False)  # a refused file is neither
+    unchanged = sum(1 for d in done.values() if not d.get("converted") and "reason" not in d)  # refused: neither
     result.message = f"{converted} converted, {unchanged} unchanged" + (
         f"; {unlisted} file/manifest/catalogue problem(s) without a run id" if unlisted else "")
     result.seconds = time.perf_counter() - t0
