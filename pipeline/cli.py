@@ -768,12 +768,17 @@ def main(argv: list[str] | None = None) -> int:
     single_threaded_blas()  # before anything imports numpy (see its docstring)
     if argv is None:
         command_gc()
-    parser = build_parser()
-    if "_ARGCOMPLETE" in os.environ:  # the shell asks for completions (tyrelab completion SHELL)
-        import argcomplete
+    try:  # Ctrl-C while the options are read (a type such as --memory-limit's imports DuckDB)
+        parser = build_parser()
+        if "_ARGCOMPLETE" in os.environ:  # the shell asks for completions (tyrelab completion SHELL)
+            import argcomplete
 
-        argcomplete.autocomplete(parser)
-    args = parser.parse_args(argv)
+            argcomplete.autocomplete(parser)
+        args = parser.parse_args(argv)
+    except KeyboardInterrupt:
+        verb = next((a for a in (sys.argv[1:] if argv is None else argv) if not a.startswith("-")), "")
+        print(f"tyrelab {verb}: interrupted" if verb else "tyrelab: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
     if args.quiet and args.verbose:  # one before the verb, the other after it
         parser.error("argument -v/--verbose: not allowed with argument -q/--quiet")
     _configure_output(args)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import subprocess
 from datetime import datetime, timezone
 from pathlib import Path
@@ -16,7 +17,7 @@ from markupsafe import Markup, escape
 from .. import __version__, resources
 from .tables import Note
 
-__all__ = ["TEMPLATE_DIR", "environment", "format_number", "breakable", "code_version", "provenance", "UNITS", "column_label"]
+__all__ = ["TEMPLATE_DIR", "environment", "format_number", "breakable", "abbreviations_used", "SYMBOLS", "code_version", "provenance", "UNITS", "column_label"]
 
 #: Templates live in the repository's ``reports/`` folder.
 TEMPLATE_DIR = resources.templates_dir()
@@ -134,9 +135,35 @@ UNITS = {
 }
 
 
+#: Symbols that keep their underscore in a header: the names the CLI and the JSON use (``a_wz``).
+SYMBOLS = re.compile(r"(?<![A-Za-z0-9])a (w[xyz]|v)(?![A-Za-z0-9])")
+
+
 def column_label(name: str) -> str:
-    """A readable header from a column name: ``speed_km_h`` -> ``speed (km/h)``."""
+    """A readable header from a column name: ``speed_km_h`` -> ``speed (km/h)``; the ISO 2631
+    symbols keep the spelling of the CLI and the JSON (``a_wz_m_s2`` -> ``a_wz (m/s²)``).
+
+    Examples
+    --------
+    >>> column_label("speed_km_h"), column_label("expected_a_wz_m_s2"), column_label("a_v_m_s2")
+    ('speed (km/h)', 'expected a_wz (m/s²)', 'a_v (m/s²)')
+    """
     for suffix, unit in UNITS.items():
         if name.endswith(suffix):
-            return name[: -len(suffix)].replace("_", " ") + unit
-    return name.replace("_", " ")
+            return SYMBOLS.sub(r"a_\1", name[: -len(suffix)].replace("_", " ")) + unit
+    return SYMBOLS.sub(r"a_\1", name.replace("_", " "))
+
+
+def abbreviations_used(html: str, abbreviations: dict[str, str]) -> list[tuple[str, str]]:
+    """The ``abbreviations`` whose short form appears in the page's text (markup, style and
+    figures' SVG code aside), in the order of the dict.
+
+    Examples
+    --------
+    >>> abbreviations_used("<p>SBT and HH tracks</p><style>.HH{}</style>", {"HH": "Hussey", "EAV": "x", "SBT": "s"})
+    [('HH', 'Hussey'), ('SBT', 's')]
+    """
+    text = re.sub(r"(?s)<(style|script)\b.*?</\1>", " ", html).replace("<wbr>", "")
+    text = re.sub(r"<[^>]+>", " ", text)
+    return [(a, meaning) for a, meaning in abbreviations.items()
+            if re.search(rf"(?<![A-Za-z0-9_]){re.escape(a)}(?![A-Za-z0-9_])", text)]

@@ -41,9 +41,11 @@ from ..progress import Progress
 from ..stages.state import digest
 from ..warehouse import check_read_only, connect_read_only
 from . import tables
-from .chapters import Chapter, FigureSpec, TableSpec
+from markupsafe import escape
+
+from .chapters import ABBREVIATIONS, Chapter, FigureSpec, TableSpec
 from .pages import ChapterPage, Page, registered, run_page_name
-from .render import environment, provenance
+from .render import abbreviations_used, environment, provenance
 
 __all__ = ["MAX_PLAIN_ROWS", "POOL_MIN_FIGURES", "Missing", "Warehouse", "resolve_table", "table_queries",
     "shape_table", "resolve_figure", "chapter_items", "run_page_name", "read_signals", "run_item", "SiteBuild",
@@ -471,6 +473,16 @@ class SiteBuild:
                 for it in self.items(page) if it.get("missing") and not it["missing"].empty]
 
 
+def _spell_out(html: str) -> str:
+    """The page with its abbreviations (:data:`~tyrelab.report.chapters.ABBREVIATIONS` that appear
+    in it) spelled out once, under the title."""
+    used = abbreviations_used(html, ABBREVIATIONS)
+    if not used or "</h1>\n" not in html:
+        return html
+    line = "; ".join(f"<strong>{escape(a)}</strong>: {escape(m)}" for a, m in used)
+    return html.replace("</h1>\n", f'</h1>\n<p class="abbr">Abbreviations on this page — {line}.</p>\n', 1)
+
+
 def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1, pages: list[Page] | None = None) -> dict:
     """Render every registered page of the report into ``out``.
 
@@ -523,8 +535,8 @@ def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1, pages:
     for page in pages_:
         outputs = list(page.render(site))
         for o in outputs:
-            html = env.get_template(o.template).render(prov=prov, nav=nav, root=o.root, here=page.slug,
-                                                       title=o.title, **o.context)
+            html = _spell_out(env.get_template(o.template).render(prov=prov, nav=nav, root=o.root, here=page.slug,
+                                                                  title=o.title, **o.context))
             path = out / o.path
             if not path.is_file() or path.read_text(encoding="utf-8") != html:  # unchanged pages keep their mtime
                 io.write_text_atomic(html, path)

@@ -93,6 +93,9 @@ class Shaped:
         Number of highlighted differences.
     notes : list of str
         Long texts moved out of their cells (:class:`Note`), note 1 first.
+    not_compared : list of dict
+        Rows (as ``rows``) with the thesis' values and none of ours, when other rows have ours:
+        the thesis' conditions this campaign did not measure, shown behind a count.
     """
 
     keys: list[str]
@@ -101,6 +104,7 @@ class Shaped:
     rows: list[dict] = field(default_factory=list)
     n_off: int = 0
     notes: list[str] = field(default_factory=list)
+    not_compared: list[dict] = field(default_factory=list)
 
 
 def find_pairs(columns) -> list[Pair]:
@@ -202,6 +206,10 @@ def shape_comparison(df: pd.DataFrame, extras: tuple[str, ...] = EXTRAS, columns
             row_pairs.append((t, o, d, off))
         shaped.rows.append({"cells": cells, "pairs": row_pairs,
                             "intervals": [interval_text(rec, p.ours, p.decimals) for p in pairs]})
+    compared = [r for r in shaped.rows if any(np.isfinite(o) for _, o, _, _ in r["pairs"])]
+    if compared and len(compared) < len(shaped.rows):
+        shaped.not_compared = [r for r in shaped.rows if not any(np.isfinite(o) for _, o, _, _ in r["pairs"])]
+        shaped.rows = compared
     return shaped
 
 

@@ -159,7 +159,7 @@ READ_PAGE_JS = """() => {
   for (const t of document.querySelectorAll('table')) {
     const box = t.closest('.scroll') || t.parentElement;
     const head = t.querySelector('thead tr:last-child') ? t.tHead : null;
-    const rows = [...t.querySelectorAll('tbody tr')].map(tr => [...tr.cells].map(td => td.innerText.split('\\n')[0].trim()));
+    const rows = [...t.querySelectorAll('tbody:not(.not-compared) tr')].map(tr => [...tr.cells].map(td => td.innerText.split('\\n')[0].trim()));
     const ncols = Math.max(0, ...[...t.rows].map(r => [...r.cells].reduce((n, c) => n + c.colSpan, 0)));
     const caption = t.caption ? t.caption.innerText : (t.closest('section') ? t.closest('section').id : '');
     tables.push({caption, ncols, rows, boxWidth: box.clientWidth, boxScroll: box.scrollWidth,

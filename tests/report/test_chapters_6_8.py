@@ -32,7 +32,8 @@ def _rendered_rows(page: str, number: str) -> list[list[tuple[str, str, str]]]:
     """Per body row of the table in ``<section id="table-<number>">``: (thesis, ours, Δ) texts."""
     m = re.search(rf'<section id="table-{number}">(.*?)</section>', page, re.S)
     assert m, f"Table {number.upper()} is not on the page"
-    body = m.group(1).split("<tbody>", 1)[1].split("</tbody>", 1)[0]
+    # the rows with ours, then those of the thesis alone (tbody.not-compared, behind a count)
+    body = "".join(b.split("</tbody>", 1)[0] for b in re.split(r'<tbody(?: class="not-compared")?>', m.group(1))[1:])
     rows = []
     for tr in re.findall(r"<tr>(.*?)</tr>", body, re.S):
         cells = re.findall(r'<td class="([^"]*)">(.*?)</td>', tr, re.S)
