@@ -273,3 +273,23 @@ def test_text_order_detector():
     assert _text_not_numeric_order([["a", "10"], ["a", "12.5"], ["a", "5"], ["a", "7.5"]])
     assert not _text_not_numeric_order([["a", "5"], ["a", "7.5"], ["a", "10"], ["a", "12.5"]])
     assert not _text_not_numeric_order([["a", "5"], ["b", "10"], ["b", "7.5"], ["b", "2"]])
+
+
+def test_the_ride_page_of_a_pressure_sweep_fits_at_1400px(browser, tmp_path):
+    """``tyrelab ride --out`` (a sweep: the widest table) as a reader sees it: no sideways scrolling,
+    no console errors, numeric columns in numeric order, the PSD's drop explained."""
+    from tyrelab.cli import main
+
+    scenario = Path(__file__).parents[2] / "raw" / "scenarios" / "modern_tractor.toml"
+    assert main(["-q", "ride", str(scenario), "--speeds", "4", "8", "--front-pressure", "1.0", "1.4",
+                 "--rear-pressure", "0.8", "1.2", "--out", str(tmp_path)]) == 0
+    page = browser.new_page(viewport={"width": VIEWPORT_PX, "height": 1000})
+    errors: list[str] = []
+    page.on("console", lambda m: errors.append(m.text) if m.type == "error" else None)
+    page.goto((tmp_path / "ride.html").as_uri())
+    r = page.evaluate(READ_PAGE_JS)
+    assert not errors
+    wide = [t for t in r["tables"] if t["boxScroll"] > t["boxWidth"] + 1 and t["ncols"] * MIN_COLUMN_PX <= t["boxWidth"]]
+    assert wide == [] and r["pageScroll"] <= r["pageWidth"]
+    assert all(not _text_not_numeric_order(t["rows"]) for t in r["tables"])
+    assert "Each curve drops where the track's unevenness ends" in r["text"]
