@@ -234,3 +234,11 @@ def test_progress_bar_only_on_a_terminal_and_not_under_quiet(monkeypatch, capsys
     finally:
         progress.configure(bars=False)
         progress.close_all()
+
+
+def test_analyse_counts_its_own_qc_flags_not_calibrates():
+    from tyrelab.stages.analyse import _flagged_by_analyse
+
+    assert not _flagged_by_analyse("calibration failed on 1989-05-04")
+    assert _flagged_by_analyse("coherence 0.42 below 0.8; calibration failed on 1989-05-04")
+    assert not _flagged_by_analyse("")
