@@ -153,7 +153,7 @@ CHAPTERS: tuple[Chapter, ...] = (
             "the run's own residual force near the excitation, combined (GUM) with the day's force-plate "
             "check, or with the §3.2.9 limits (±3 %, ±1°) on a day without one (docs/uncertainty.md).",
             (
-                TableSpec("I", "Stiffness and damping by measurement method", "table_i", "calibrate",
+                TableSpec("I", "Stiffness and damping by measurement method", "table_i", "methods",
                           "published_table_i",
                           gaps=("Our values are about 41 % above the printed ones because our virtual rig follows "
                                 "Table III (633 kN/m for stationary T1 at 1.38 bar where Table I prints 450); the "

@@ -37,8 +37,8 @@ import pandas as pd
 
 from .. import io
 from ..executor import map_alongside, map_in_background, worker_server_state
+from ..itemcache import digest
 from ..progress import Progress
-from ..stages.state import digest
 from ..warehouse import check_read_only, connect_read_only
 from . import tables
 from markupsafe import escape
