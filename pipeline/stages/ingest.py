@@ -401,8 +401,9 @@ def run(ctx: Context) -> StageResult:
     # leaves its runs' files without a row and exited 0).
     result.n_rejected = max(plan.rejected, unlisted)
     result.n_in = result.n_ok + result.n_quarantined
-    converted = sum(1 for d in done.values() if d.get("converted"))
-    result.message = f"{converted} converted, {len(done) - converted} unchanged" + (
+    converted = sum(1 for d in done.values() if d.get("converted") is True)
+    unchanged = sum(1 for d in done.values() if not d.get("converted") and "reason" not in d)  # refused: neither
+    result.message = f"{converted} converted, {unchanged} unchanged" + (
         f"; {unlisted} file/manifest/catalogue problem(s) without a run id" if unlisted else "")
     result.seconds = time.perf_counter() - t0
     return result

@@ -34,6 +34,8 @@ def test_bad_run_quarantined_good_runs_proceed(tmp_path):
     q = ctx.read_table("quarantine").set_index("run_id")
     assert "corrupt" in q.loc["bad", "reason"] and q.loc["bad", "file"].endswith("bad.parquet")
     assert "pressure_bar" in q.loc["neg", "reason"] and "minimum" in q.loc["neg", "reason"]
+    # a fresh build: the corrupt file is neither converted nor unchanged (issue 26: "1 converted, 1 unchanged")
+    assert r.message == "1 converted, 0 unchanged"
 
 
 def test_campaign_tyres_csv_extends_catalogue(tmp_path):
