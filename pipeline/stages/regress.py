@@ -119,9 +119,9 @@ def tyre_fits_each(results: pd.DataFrame, tyre_ids: list[str], tyres: pd.DataFra
 
 
 #: The tyres to refit are fitted in at most this many passes of :func:`tyre_fits_each` (progress
-#: between passes; a pass per tyre costs ~1.5x the CPU of one pass, 8 passes the same as one
-#: within the noise on the full campaign: docs/benchmarks.md).
-FIT_PASSES = 8
+#: between passes). On the full campaign 4 passes cost ~1.1x the CPU of one, 8 passes ~1.25x and
+#: a pass per tyre ~1.5x (bench/bench_fit_passes.py, docs/benchmarks.md).
+FIT_PASSES = 4
 #: Steps of :func:`compute` after the per-tyre fits (for progress): Tables III-X, the size
 #: regressions, the formula fits and spoke model.
 ACROSS_TYRE_STEPS = 3
