@@ -57,7 +57,8 @@ def _context(args):
 def cmd_generate(args) -> int:
     from .generate import generate_campaign
 
-    summary = generate_campaign(Path(args.out), scale=args.scale, seed=args.seed, scatter=args.scatter)
+    summary = generate_campaign(Path(args.out), scale=args.scale, seed=args.seed, scatter=args.scatter,
+                                tyre_population=getattr(args, "tyre_population", 0))
     log.info("generate: %s", json.dumps(summary, default=str))
     return EXIT_OK
 
@@ -404,6 +405,17 @@ def _positive(text: str) -> float:
     return value
 
 
+def _population(text: str) -> int:
+    """argparse type: a tyre population size, an integer 0-99."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text} is not an integer") from None
+    if not 0 <= value <= 99:
+        raise argparse.ArgumentTypeError(f"{text} is not from 0 to 99")
+    return value
+
+
 def _non_negative(text: str) -> float:
     """argparse type: a finite float >= 0."""
     value = _finite(text)
@@ -438,6 +450,9 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--no-scatter", dest="scatter", action="store_false",
                    help="no run-to-run / day-to-day tyre scatter (thesis §3.6 repeatability is on by default: "
                         "K 2 %% + 1.5 %% per day, C 4 %% + 3 %% per day, standard deviations)")
+    g.add_argument("--tyre-population", type=_population, default=0, metavar="N",
+                   help="measure N (1-99) generated tyres whose true stiffness follows other coefficients than the "
+                        "thesis' formula, instead of the thesis' programme (tyres.csv and generator.json record them)")
     g.set_defaults(func=cmd_generate)
 
     def io_options(sp):
