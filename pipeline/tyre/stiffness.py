@@ -71,8 +71,8 @@ def traction_tyre_stiffness(size: str | TyreSize, pressure_bar: float, age_years
     303.6
     """
     s = _size(size)
-    if pressure_bar < 0:
-        raise ValueError(f"pressure {pressure_bar} bar is negative")
+    pressure_bar = _validate.non_negative("pressure_bar", pressure_bar)
+    age_years = _validate.non_negative("age_years", age_years)
     return (
         FORMULA_INTERCEPT_kN_per_m
         + FORMULA_RIM_kN_per_m_in * s.rim_diameter_in
@@ -93,8 +93,7 @@ def undriven_front_tyre_stiffness(size: str | TyreSize, pressure_bar: float) -> 
         Stiffness K in kN/m.
     """
     s = _size(size)
-    if pressure_bar < 0:
-        raise ValueError(f"pressure {pressure_bar} bar is negative")
+    pressure_bar = _validate.non_negative("pressure_bar", pressure_bar)
     return FRONT_UNDRIVEN_kN_per_m_in2_bar * s.section_width_in * s.rim_diameter_in * pressure_bar
 
 
@@ -247,10 +246,8 @@ def range_warnings(
     P = 2.4 bar is above the thesis' data (pressure range of Table VI: 0.7-2 bar) by 0.4 bar (20.0 %)
     """
     s = _size(size)
-    if not pressure_bar >= 0:
-        raise ValueError(f"pressure_bar {pressure_bar} is negative")
-    if not age_years >= 0:
-        raise ValueError(f"age_years {age_years} is negative")
+    pressure_bar = _validate.non_negative("pressure_bar", pressure_bar)
+    age_years = _validate.non_negative("age_years", age_years)
     r = data_range
     if r is None:
         checks = []
