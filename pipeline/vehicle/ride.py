@@ -238,7 +238,13 @@ def _model_damping(spec, speeds_km_h) -> tuple[np.ndarray, str, list[str]]:
     warnings = [f"damping not given: the Table VII damping model gives {c[0]:.2f} kN s/m at "
                 f"{float(np.asarray(speeds_km_h, float)[0]):g} km/h (95 % prediction interval {max(lo, 0.0):.2f} to "
                 f"{hi:.2f}; a rough stand-in, typical 0.8-3 kN s/m, §5.6)"]
-    warnings += sorted({w for p in preds for w in p.warnings})
+    v = np.asarray(speeds_km_h, float)
+    held = [(float(a), p.speed_used_km_h) for a, p in zip(v, preds) if p.speed_used_km_h != float(a)]
+    if held:
+        lo_v, hi_v = fit.ranges["speed_km_h"]
+        warnings.append(f"speeds {', '.join(f'{a:g}' for a, _ in held)} km/h are outside the damping model's "
+                        f"{lo_v:g}-{hi_v:g} km/h: evaluated at the nearest of those")
+    warnings += sorted({w for p in preds for w in p.warnings if not w.startswith("speed ")})
     return c, src, warnings
 
 
