@@ -272,7 +272,7 @@ def cmd_natural_frequencies(args) -> int:
             age_years=args.age, front_stiffness_kN_per_m=args.front_stiffness,
             rear_stiffness_kN_per_m=args.rear_stiffness, front_stiffness_u_kN_per_m=args.front_stiffness_u,
             rear_stiffness_u_kN_per_m=args.rear_stiffness_u,
-            stiffness_model=_stiffness_model(prog, None),
+            stiffness_model=_stiffness_model(prog, getattr(args, "build", None)),
         )
     except (TyreSizeError, ValueError) as exc:
         print(f"{prog}: {exc}", file=sys.stderr)
@@ -534,6 +534,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "for a given stiffness)")
     n.add_argument("--rear-stiffness-u", type=float, default=None,
                    help="standard uncertainty of the rear stiffness per tyre, kN/m (default: as for the front)")
+    n.add_argument("--build", default=None, metavar="DIR",
+                   help="estimate the stiffnesses with the formula fitted to the tyres measured in DIR's warehouse "
+                        "(table formula_fit) instead of the thesis'")
     n.set_defaults(func=cmd_natural_frequencies)
 
     x = sub.add_parser("export-tyre", help="a measured tyre as MF-Tyre .tir file(s) plus K(P), C(P) per speed (CSV, JSON)",

@@ -125,6 +125,9 @@ def estimate_tyre_stiffness(
 _FRONT_RIBBED = "front_ribbed"
 
 
+_THESIS_SOURCE = "thesis Tables II, III (sizes, ages) and VI (pressure)"
+
+
 @dataclass(frozen=True)
 class FormulaDataRange:
     """Ranges of the thesis' measurements that the stiffness rules rest on.
@@ -153,7 +156,7 @@ class FormulaDataRange:
     age_years: tuple[float, float]
     front_wr_in2: tuple[float, float]
     front_rim_diameter_in: tuple[float, float]
-    source: str = "thesis Tables II, III (sizes, ages) and VI (pressure)"
+    source: str = "thesis Tables II, III (sizes, ages) and VI (pressure)"  # = _THESIS_SOURCE
 
     @classmethod
     def from_tables(
@@ -197,14 +200,15 @@ class FormulaDataRange:
         )
 
 
-def _outside(name: str, value: float, lo: float, hi: float, unit: str, what: str) -> str | None:
+def _outside(name: str, value: float, lo: float, hi: float, unit: str, what: str,
+             whose: str = "the thesis' data") -> str | None:
     """One warning if ``value`` lies outside [lo, hi], saying by how much."""
     if lo <= value <= hi:
         return None
     side, by, ref = ("below", lo - value, lo) if value < lo else ("above", value - hi, hi)
     span = f"{lo:g}" if lo == hi else f"{lo:g}-{hi:g}"
     return (
-        f"{name} = {value:.4g} {unit} is {side} the thesis' data ({what}: {span} {unit}) "
+        f"{name} = {value:.4g} {unit} is {side} {whose} ({what}: {span} {unit}) "
         f"by {by:.3g} {unit} ({100 * by / ref:.1f} %)"
     )
 
@@ -254,12 +258,17 @@ def range_warnings(
     elif undriven_front:
         checks = [("W·R", s.width_times_rim_in2, r.front_wr_in2, "in²", "the ribbed front tyre F1"),
                   ("R", s.rim_diameter_in, r.front_rim_diameter_in, "in", "the ribbed front tyre F1")]
+    elif r.source != _THESIS_SOURCE:  # a build's fit: its own tyres' ranges
+        checks = [(n, v, rng, unit, r.source) for n, v, rng, unit in (
+            ("W·R", s.width_times_rim_in2, r.wr_in2, "in²"), ("R", s.rim_diameter_in, r.rim_diameter_in, "in"),
+            ("A", float(age_years), r.age_years, "years"), ("P", float(pressure_bar), r.pressure_bar, "bar"))]
     else:
         checks = [("W·R", s.width_times_rim_in2, r.wr_in2, "in²", "traction tyres of Tables II-III"),
                   ("R", s.rim_diameter_in, r.rim_diameter_in, "in", "traction tyres of Tables II-III"),
                   ("A", float(age_years), r.age_years, "years", "tyre ages of Table II")]
         checks.append(("P", float(pressure_bar), r.pressure_bar, "bar", "pressure range of Table VI"))
-    out = [w for name, v, (lo, hi), unit, what in checks if (w := _outside(name, v, lo, hi, unit, what))]
+    whose = "the thesis' data" if r is None or r.source == _THESIS_SOURCE or undriven_front else "the data"
+    out = [w for name, v, (lo, hi), unit, what in checks if (w := _outside(name, v, lo, hi, unit, what, whose))]
     if s.flexion_class:
         name = {"IF": "improved flexion", "VF": "very high flexion"}[s.flexion_class]
         out.append(f"{s.flexion_class} tyre: the thesis measured no {name} tyres, which carry "
