@@ -12,6 +12,7 @@ Verbs (a stable contract; see docs/architecture.md):
 - ``natural-frequencies``  bounce/pitch frequencies of a tractor (thesis ch. 8)
 - ``export-tyre``          a measured tyre as MF-Tyre ``.tir`` files and K(P), C(P) tables
 - ``ride``                 seat vibration and daily exposure of a tractor scenario (TOML)
+- ``exposure``             a driver's daily vibration exposure from seat recordings
 
 Exit codes: 0 success; 3 some runs (or a manifest/catalogue) were quarantined; 2 usage or input
 error (also: the build is locked by another writer, an OS error); 130 interrupted.
@@ -58,7 +59,7 @@ def cmd_generate(args) -> int:
     from .generate import generate_campaign
 
     summary = generate_campaign(Path(args.out), scale=args.scale, seed=args.seed, scatter=args.scatter,
-                                tyre_population=getattr(args, "tyre_population", 0))
+                                rides=args.rides, tyre_population=getattr(args, "tyre_population", 0))
     log.info("generate: %s", json.dumps(summary, default=str))
     return EXIT_OK
 
@@ -387,6 +388,42 @@ def cmd_ride(args) -> int:
     return EXIT_OK
 
 
+def cmd_exposure(args) -> int:
+    from .exposure import RecordingProblem, Task, assess, format_table
+    from .vehicle.daily_exposure import MAX_HOURS_PER_DAY
+
+    prog = "tyrelab exposure"
+    if bool(args.file) == bool(args.task):
+        print(f"{prog}: give either FILE [--hours H] or one or more --task NAME FILE HOURS", file=sys.stderr)
+        return EXIT_USAGE
+    tasks, problems = [], []
+    for name, file, hours in args.task or [(Path(args.file).stem, args.file, str(args.hours))]:
+        try:
+            h = float(hours)
+        except ValueError:
+            h = math.nan
+        if not (math.isfinite(h) and 0 < h <= MAX_HOURS_PER_DAY):
+            problems.append(f"task {name}: HOURS {hours!r} must be a number of hours in (0, {MAX_HOURS_PER_DAY:g}]")
+        tasks.append(Task(name, Path(file), h))
+    if len({t.name for t in tasks}) < len(tasks):
+        problems.append("task names must differ")
+    if not problems and sum(t.hours for t in tasks) > MAX_HOURS_PER_DAY:
+        problems.append(f"the tasks add up to {sum(t.hours for t in tasks):g} h, more than a day")
+    if problems:
+        for line in problems:
+            print(f"{prog}: {line}", file=sys.stderr)
+        return EXIT_USAGE
+    try:
+        doc = _json_safe(assess(tasks))
+    except RecordingProblem as exc:
+        for line in exc.lines:
+            print(f"{prog}: {line}", file=sys.stderr)
+        return EXIT_USAGE if exc.usage else EXIT_QUARANTINE
+    _warn(prog, doc["warnings"])
+    sys.stdout.write(json.dumps(doc, indent=2, ensure_ascii=False) + "\n" if args.format == "json" else format_table(doc))
+    return EXIT_OK
+
+
 def _finite(text: str) -> float:
     try:
         value = float(text)
@@ -450,6 +487,8 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--no-scatter", dest="scatter", action="store_false",
                    help="no run-to-run / day-to-day tyre scatter (thesis §3.6 repeatability is on by default: "
                         "K 2 %% + 1.5 %% per day, C 4 %% + 3 %% per day, standard deviations)")
+    g.add_argument("--no-rides", dest="rides", action="store_false",
+                   help="no seat recordings of virtual tractors (rides.csv, rides/; written by default)")
     g.add_argument("--tyre-population", type=_population, default=0, metavar="N",
                    help="measure N (1-99) generated tyres whose true stiffness follows other coefficients than the "
                         "thesis' formula, instead of the thesis' programme (tyres.csv and generator.json record them)")
@@ -564,6 +603,16 @@ def build_parser() -> argparse.ArgumentParser:
     rd.add_argument("--executor", choices=["local", "dask"], default="local")
     rd.add_argument("--scheduler", default=None, help="dask scheduler address (with --executor dask)")
     rd.set_defaults(func=cmd_ride)
+
+    ex = sub.add_parser("exposure", help="a driver's daily whole-body vibration exposure from seat recordings "
+                        "(ISO 2631-1/-5, EU Directive 2002/44/EC)",
+                        description="Exit 2: usage, a missing or unknown file; 3: a recording that cannot be used.")
+    ex.add_argument("file", nargs="?", default=None, help="one recording (raw format v1: time_s, seat_x/y/z_m_s2, …)")
+    ex.add_argument("--hours", type=_positive, default=8.0, help="daily hours of the recorded task (default 8)")
+    ex.add_argument("--task", nargs=3, action="append", metavar=("NAME", "FILE", "HOURS"),
+                    help="a task of the day: its name, recording and daily hours (repeat for each task)")
+    ex.add_argument("--format", choices=["json", "table"], default="json")
+    ex.set_defaults(func=cmd_exposure)
     return p
 
 

@@ -5,7 +5,10 @@ The only I/O around :mod:`tyrelab.rig`: builds the plan
 (:func:`tyrelab.rig.campaigns.simulate_run`) and writes a campaign folder in
 raw format v1 (docs/architecture.md): ``manifest.csv`` and ``runs/<run_id>.parquet``.
 All tyres are Table II tyres of the built-in catalogue, so no ``tyres.csv`` is
-written, unless a generated tyre population is asked for (``tyre_population``). Output is byte-for-byte reproducible for the same (scale, seed): each
+written, unless a generated tyre population is asked for (``tyre_population``). With
+``rides`` (the command's default), also seat and cab-floor recordings of
+virtual tractors (:mod:`tyrelab.vehicle.virtual_rides`): ``rides.csv``,
+``rides/<ride_id>.parquet`` and the scenarios they name, ``rides/<scenario>.toml``. Output is byte-for-byte reproducible for the same (scale, seed): each
 run's generator is seeded from (seed, run_id), Parquet is written by pyarrow
 without timestamps, the manifest with fixed float formatting.
 """
@@ -25,7 +28,7 @@ from . import __version__, io
 from .rig.campaigns import MANIFEST_COLUMNS, campaign_plan, population_plan, simulate_run
 from .rig.instrument import NO_SCATTER, RigConfig
 
-__all__ = ["write_run", "generate_campaign"]
+__all__ = ["write_run", "write_rides", "generate_campaign"]
 
 
 def write_run(run: pd.DataFrame, path: Path) -> None:
@@ -36,8 +39,27 @@ def write_run(run: pd.DataFrame, path: Path) -> None:
         pq.write_table(table, tmp, compression="zstd", use_byte_stream_split=True, write_statistics=True)
 
 
+def write_rides(out: Path, seed: int) -> int:
+    """Write the virtual tractors' recordings, their scenarios and ``rides.csv``; returns the count."""
+    from .resources import scenarios_dir
+    from .vehicle.scenario import load_scenario
+    from .vehicle.virtual_rides import RIDE_PLAN, ride_plan, virtual_recordings
+
+    scenarios = {file: load_scenario(scenarios_dir() / file) for file, *_ in RIDE_PLAN}
+    plan = ride_plan(scenarios)
+    (out / "rides").mkdir(parents=True, exist_ok=True)
+    for scenario_file, rows in plan.groupby("scenario", sort=False):
+        name = Path(scenario_file).name
+        io.write_text_atomic((scenarios_dir() / name).read_text(encoding="utf-8"), out / scenario_file)
+        frames, _ = virtual_recordings(scenarios[name], name, seed)
+        for row in rows.itertuples():
+            write_run(frames[float(row.speed_km_h)], out / row.file)
+    io.write_text_atomic(plan.to_csv(index=False, float_format="%.6g", lineterminator="\n"), out / "rides.csv")
+    return int(len(plan))
+
+
 def generate_campaign(out: Path, scale: str = "small", seed: int = 1991, scatter: bool = True,
-                      tyre_population: int = 0) -> dict:
+                      rides: bool = False, tyre_population: int = 0) -> dict:
     """Simulate and write a virtual campaign folder.
 
     Parameters
@@ -104,9 +126,12 @@ def generate_campaign(out: Path, scale: str = "small", seed: int = 1991, scatter
             "tyres": [{"tyre_id": m.params.tyre_id, "size": m.params.size, "age_years": m.params.age_years,
                        "deviation": round(m.deviation, 6), "carcass_stiffness_kN_per_m": round(m.params.k_rolling[0], 6),
                        "pressure_dependence_kN_per_m_bar": round(m.params.k_rolling[1], 6)} for m in population]}
+    n_rides = write_rides(out, seed) if rides else 0
+    if rides:
+        meta["rides"] = n_rides
     io.write_text_atomic(json.dumps(meta, indent=2, sort_keys=True) + "\n", out / "generator.json")
     return {
         "out": str(out), "scale": scale, "seed": seed, "scatter": bool(scatter), "runs": int(len(plan)),
         "measurement_runs": int((~cal).sum()), "calibration_runs": int(cal.sum()),
-        "days": int(plan["recorded_on"].nunique()), "seconds": round(time.perf_counter() - t0, 2),
+        "days": int(plan["recorded_on"].nunique()), "rides": n_rides, "seconds": round(time.perf_counter() - t0, 2),
     }

@@ -1,4 +1,4 @@
-"""ISO 2631-1:1997 whole-body vibration evaluation of simulated accelerations.
+"""ISO 2631-1:1997 whole-body vibration evaluation of simulated and measured accelerations.
 
 Frequency weightings W_k (vertical) and W_d (horizontal) are built from their analog
 definitions (ISO 2631-1 Annex A; constants in ``/work/shared/field-notes.md``):
@@ -8,6 +8,13 @@ transition ``(1 + s/w3)/(1 + s/(Q4 w4) + s^2/w4^2)`` and, for W_k, the upward st
 the frequency domain (FFT of the record times W(j w), inverse FFT). Exposure limits are
 those of EU Directive 2002/44/EC. The thesis (§1.1) motivates the work by these
 operator-exposure concerns; it does not compute them itself.
+
+Measured recordings (issue 24) use the same weightings through :class:`ResponseFilter`,
+which applies an analog response to a stream of chunks in bounded memory (overlap-save
+with the response's impulse response, so an 8 h recording is never held whole), and the
+same definitions: running r.m.s. with linear integration over ``tau = 1 s`` and its maximum
+MTVV (§6.3.1), VDV (§6.3.2), the crest-factor rule of §6.2.1/§6.3 (:func:`method_check`)
+and the vector sum ``a_v`` (§8.2.3 and §7.2.3, :func:`vector_sum`).
 """
 
 from __future__ import annotations
@@ -33,6 +40,15 @@ __all__ = [
     "EU_LIMIT_A8_M_S2",
     "EU_ACTION_VDV",
     "EU_LIMIT_VDV",
+    "AXIS_FACTOR",
+    "RUNNING_RMS_TAU_S",
+    "CREST_FACTOR_LIMIT",
+    "running_rms",
+    "mtvv",
+    "vector_sum",
+    "method_check",
+    "impulse_response",
+    "ResponseFilter",
 ]
 
 #: Analog weighting constants, ISO 2631-1:1997 Table A.2 (frequencies in Hz).
@@ -50,6 +66,14 @@ EU_LIMIT_VDV = 21.0
 
 #: Multiplying factors k for the seat point (ISO 2631-1 §8.2.3): x, y 1.4; z 1.0.
 AXIS_FACTOR = {"x": 1.4, "y": 1.4, "z": 1.0}
+
+#: Integration time of the running r.m.s. (ISO 2631-1 §6.3.1, linear integration), s.
+RUNNING_RMS_TAU_S = 1.0
+#: Crest factor up to which the basic r.m.s. method is enough (ISO 2631-1 §6.2.1).
+CREST_FACTOR_LIMIT = 9.0
+#: ISO 2631-1 §6.3.3: the additional methods are needed above these ratios.
+MTVV_RATIO_LIMIT = 1.5
+VDV_RATIO_LIMIT = 1.75
 
 
 def _polys(name: str) -> tuple[np.ndarray, np.ndarray]:
@@ -238,3 +262,202 @@ def evaluate(
         "exceeds_action": bool(a8 > EU_ACTION_A8_M_S2),
         "exceeds_limit": bool(a8 > EU_LIMIT_A8_M_S2),
     }
+
+
+def running_rms(weighted_m_s2, fs_Hz: float, tau_s: float = RUNNING_RMS_TAU_S) -> np.ndarray:
+    """Running r.m.s. ``a_w(t0) = [1/tau ∫_{t0-tau}^{t0} a_w² dt]^½`` (ISO 2631-1 §6.3.1, Eq. 2).
+
+    Linear integration over the trailing ``tau_s`` (not the exponential form ISO 8041-1 also
+    allows); before the record starts the signal counts as zero, as a meter switched on at
+    ``t = 0``.
+
+    Parameters
+    ----------
+    weighted_m_s2 : array_like
+        *Weighted* acceleration, m/s².
+    fs_Hz : float
+        Sampling rate, Hz.
+    tau_s : float
+        Integration time, s.
+
+    Returns
+    -------
+    ndarray
+        ``a_w(t0)`` at every sample, m/s².
+
+    Examples
+    --------
+    >>> a = np.ones(400)
+    >>> r = running_rms(a, 100.0)
+    >>> float(r[49]), float(r[-1])
+    (0.7071067811865476, 1.0)
+    """
+    fs_Hz = positive("fs_Hz", fs_Hz)
+    tau_s = positive("tau_s", tau_s)
+    p = np.asarray(weighted_m_s2, dtype=float) ** 2
+    window = max(1, int(round(tau_s * fs_Hz)))
+    c = np.concatenate(([0.0], np.cumsum(p)))
+    lo = np.maximum(0, np.arange(1, p.size + 1) - window)
+    return np.sqrt(np.maximum(c[1:] - c[lo], 0.0) / window)
+
+
+def mtvv(weighted_m_s2, fs_Hz: float, tau_s: float = RUNNING_RMS_TAU_S) -> float:
+    """Maximum transient vibration value, the largest :func:`running_rms`, m/s² (ISO 2631-1 Eq. 3).
+
+    Examples
+    --------
+    >>> t = np.arange(6000) / 100.0
+    >>> round(mtvv(np.sin(2 * np.pi * 5 * t), 100.0), 6)
+    0.707107
+    """
+    r = running_rms(weighted_m_s2, fs_Hz, tau_s)
+    return float(r.max()) if r.size else math.nan
+
+
+def vector_sum(a_wx_m_s2: float, a_wy_m_s2: float, a_wz_m_s2: float) -> float:
+    """ISO 2631-1 vibration total value ``a_v = √((1.4 a_wx)² + (1.4 a_wy)² + a_wz²)``, m/s².
+
+    The seat-point factors k of §8.2.3. This is not the Directive's A(8), which takes the
+    highest single axis (:mod:`tyrelab.vehicle.daily_exposure`).
+
+    Examples
+    --------
+    >>> round(vector_sum(0.3, 0.2, 0.5), 4)
+    0.7105
+    """
+    k = AXIS_FACTOR
+    return float(math.sqrt((k["x"] * a_wx_m_s2) ** 2 + (k["y"] * a_wy_m_s2) ** 2 + (k["z"] * a_wz_m_s2) ** 2))
+
+
+def method_check(a_w_m_s2: float, crest: float, mtvv_m_s2: float, vdv_m_s1_75: float, duration_s: float) -> dict:
+    """Is the basic r.m.s. method enough? ISO 2631-1 §6.2.1 and §6.3.3.
+
+    The basic method holds up to a crest factor of 9; above it, or when
+    ``MTVV / a_w > 1.5`` or ``VDV / (a_w T^¼) > 1.75``, the running r.m.s. (MTVV) and
+    the VDV must be reported as well.
+
+    Returns
+    -------
+    dict
+        ``rms_method_sufficient`` (bool), ``mtvv_ratio``, ``vdv_ratio`` and ``reasons``
+        (list of str, empty when the basic method is enough).
+
+    Examples
+    --------
+    >>> method_check(1.0, 12.0, 1.2, 10.0, 3600.0)["reasons"]
+    ['crest factor 12 > 9']
+    """
+    mtvv_ratio = mtvv_m_s2 / a_w_m_s2 if a_w_m_s2 > 0 else math.nan
+    vdv_ratio = vdv_m_s1_75 / (a_w_m_s2 * duration_s**0.25) if a_w_m_s2 > 0 and duration_s > 0 else math.nan
+    reasons = []
+    if crest > CREST_FACTOR_LIMIT:
+        reasons.append(f"crest factor {crest:.3g} > {CREST_FACTOR_LIMIT:g}")
+    if mtvv_ratio > MTVV_RATIO_LIMIT:
+        reasons.append(f"MTVV/a_w {mtvv_ratio:.3g} > {MTVV_RATIO_LIMIT:g}")
+    if vdv_ratio > VDV_RATIO_LIMIT:
+        reasons.append(f"VDV/(a_w T^1/4) {vdv_ratio:.3g} > {VDV_RATIO_LIMIT:g}")
+    return {"rms_method_sufficient": not reasons, "mtvv_ratio": float(mtvv_ratio), "vdv_ratio": float(vdv_ratio),
+            "reasons": reasons}
+
+
+def impulse_response(response, fs_Hz: float, ring_s: float, lead_s: float = 0.2) -> tuple[np.ndarray, int]:
+    """Taps of a linear filter given by its analog frequency response, and their lead.
+
+    The response is sampled on the bins of a real FFT ``ring_s + lead_s`` long (at least 4×
+    over), as :func:`weighted_signal` samples it on its record; the inverse FFT is that
+    sampled system's impulse response. It keeps the first ``ring_s`` seconds (the causal part,
+    by which the response has rung down) and the last ``lead_s`` seconds (the small
+    non-causal part that sampling a response that is not band-limited leaves before t = 0).
+
+    Parameters
+    ----------
+    response : callable
+        ``response(frequency_Hz) -> complex ndarray``.
+    fs_Hz : float
+        Sampling rate, Hz.
+    ring_s, lead_s : float
+        Kept length after and before t = 0, s.
+
+    Returns
+    -------
+    taps : ndarray
+        ``h[-lead], ..., h[0], ..., h[ring - 1]``.
+    lead : int
+        Number of taps before t = 0 (the output delay of a plain convolution with ``taps``).
+    """
+    fs_Hz = positive("fs_Hz", fs_Hz)
+    n_ring = max(1, int(round(positive("ring_s", ring_s) * fs_Hz)))
+    n_lead = int(round(lead_s * fs_Hz))
+    nfft = 1 << int(math.ceil(math.log2(4 * (n_ring + n_lead))))
+    h = np.fft.irfft(response(np.fft.rfftfreq(nfft, 1.0 / fs_Hz)), nfft)
+    return np.concatenate((h[nfft - n_lead:], h[:n_ring])), n_lead
+
+
+class ResponseFilter:
+    """Streaming linear filtering of one signal by several analog responses (overlap-save).
+
+    Chunks of any length go in; each :meth:`process` returns, per response, the filtered
+    samples ready so far, and :meth:`finish` the rest, so the outputs have exactly the
+    input's length and equal those of filtering the whole record (zero before and after,
+    as :func:`weighted_signal`'s zero padding). Memory: the taps and one chunk.
+
+    Parameters
+    ----------
+    responses : sequence of (taps, lead)
+        From :func:`impulse_response`; all with the same ``lead``.
+
+    Examples
+    --------
+    >>> fs = 200.0
+    >>> f = ResponseFilter([impulse_response(lambda f: weighting_response(f, "Wk"), fs, 20.0)])
+    >>> x = np.sin(2 * np.pi * 4.0 * np.arange(12000) / fs)
+    >>> parts = [f.process(x[:5000])[0], f.process(x[5000:])[0], f.finish()[0]]
+    >>> y = np.concatenate(parts)
+    >>> y.size, bool(np.allclose(y, weighted_signal(x, fs, "Wk"), atol=1e-4))
+    (12000, True)
+    """
+
+    def __init__(self, responses):
+        leads = {lead for _, lead in responses}
+        if len(leads) != 1:
+            raise ValueError("responses must share one lead")
+        self._lead = leads.pop()
+        self._taps = [np.asarray(t, dtype=float) for t, _ in responses]
+        n_taps = {t.size for t in self._taps}
+        if len(n_taps) != 1:
+            raise ValueError("responses must have the same number of taps")
+        self._n_taps = n_taps.pop()
+        self._history = np.zeros(self._n_taps - 1)
+        self._skip = self._lead  # outputs before t = 0 of the record
+        self._spectra: dict[int, list[np.ndarray]] = {}
+
+    def _convolve(self, chunk: np.ndarray) -> list[np.ndarray]:
+        from scipy import fft
+
+        buf = np.concatenate((self._history, chunk))
+        self._history = buf[buf.size - (self._n_taps - 1):] if self._n_taps > 1 else buf[:0]
+        nfft = fft.next_fast_len(buf.size, real=True)
+        spectra = self._spectra.get(nfft)
+        if spectra is None:
+            spectra = [fft.rfft(t, nfft) for t in self._taps]
+            self._spectra = {nfft: spectra}  # chunks come in a few sizes: keep the last
+        b = fft.rfft(buf, nfft)
+        out = [fft.irfft(b * s, nfft)[self._n_taps - 1: buf.size] for s in spectra]
+        if self._skip:
+            k = min(self._skip, out[0].size)
+            out = [o[k:] for o in out]
+            self._skip -= k
+        return out
+
+    def process(self, chunk) -> list[np.ndarray]:
+        """Filter the next chunk; returns one array per response (the first calls lag by the lead)."""
+        chunk = np.asarray(chunk, dtype=float)
+        if chunk.size == 0:
+            return [np.empty(0) for _ in self._taps]
+        return self._convolve(chunk)
+
+    def finish(self) -> list[np.ndarray]:
+        """The last ``lead`` output samples (the record continued by zeros)."""
+        n = self._lead
+        self._lead = 0
+        return self._convolve(np.zeros(n)) if n else [np.empty(0) for _ in self._taps]

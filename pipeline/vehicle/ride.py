@@ -687,6 +687,10 @@ class RideResult:
     warnings: list = field(default_factory=list)
     #: ``bounce``/``pitch`` -> [low, high], 95 %, from the tyres' stiffness uncertainty (:func:`_mode_intervals`)
     natural_frequency_intervals_Hz: dict = field(default_factory=dict)
+    #: With ``ride(..., with_signals=True)``: speed (km/h) -> the seat's predicted record, raw-format channel
+    #: name (``seat_z_m_s2``, ``seat_x_m_s2``, ``floor_z_m_s2``, ``floor_x_m_s2``) -> samples at ``FS_HZ`` from
+    #: the front axle's entry on the track
+    signals: dict = field(default_factory=dict)
 
 
 def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float | None) -> tuple[int, int]:
@@ -723,7 +727,8 @@ def _modes(tr: Tractor) -> tuple[dict, dict]:
             {k: modes[k]["nodal_point_ahead_of_cg_m"] for k in ("bounce", "pitch")})
 
 
-def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = True) -> RideResult:
+def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = True,
+         with_signals: bool = False) -> RideResult:
     """Simulate a scenario at every speed and evaluate the seat vibration.
 
     Parameters
@@ -733,6 +738,9 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
         Build folder whose warehouse holds measured tyres (``measured_tyre_id``).
     with_spectra : bool
         Also compute seat PSDs and transmissibilities (for figures).
+    with_signals : bool
+        Also keep the seat's predicted records (:attr:`RideResult.signals`), e.g. to compare
+        with a recording (:mod:`tyrelab.vehicle.ride_validation`).
 
     Returns
     -------
@@ -746,7 +754,7 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
     wb = scenario.tractor.wheelbase_m
     radii = (tyres["front"].radius_m, tyres["rear"].radius_m)
     f_grid = np.geomspace(*FIGURE_BAND_HZ, 300)
-    rows, spectra, trans = [], [], []
+    rows, spectra, trans, signals = [], [], [], {}
     warnings = [f"tyres.{ax}: {w}" for ax in ("front", "rear") for w in tyres[ax].warnings]
     speeds = scenario.exposure.speeds_km_h
     runs = []  # per speed: tractor, window, footprints, state space, outputs, method, lift-off flags
@@ -788,6 +796,9 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
         if seat_ss is not None:
             seat_z = simulate_state_space(*seat_ss, seat_z[None, :])[0]
         z, x = seat_z[start:stop], r["y"][1][start:stop]
+        if with_signals:  # the cab floor beneath the seat: before the seat suspension (the model's seat x has none)
+            signals[float(speed)] = {"seat_z_m_s2": z, "seat_x_m_s2": x, "floor_z_m_s2": r["y"][0][start:stop],
+                                     "floor_x_m_s2": x}
         wz = iso2631.weighted_signal(z, FS_HZ, "Wk")
         wx = iso2631.weighted_signal(x, FS_HZ, "Wd")
         a_wz, a_wx = float(np.sqrt(np.mean(wz**2))), float(np.sqrt(np.mean(wx**2)))
@@ -846,7 +857,7 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
         spectra=pd.concat(spectra, ignore_index=True) if spectra else pd.DataFrame(columns=cols),
         transmissibility=pd.concat(trans, ignore_index=True) if trans else pd.DataFrame(columns=cols),
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
-        warnings=warnings, natural_frequency_intervals_Hz=nat_ci,
+        warnings=warnings, natural_frequency_intervals_Hz=nat_ci, signals=signals,
     )
 
 

@@ -34,7 +34,8 @@ def test_modern_coefficients_put_a_13_6R38_about_12_percent_above_the_thesis_at_
 def population_build(tmp_path_factory):
     root = tmp_path_factory.mktemp("population")
     raw, build = root / "raw", root / "build"
-    assert main(["-q", "generate", "--out", str(raw / "pop"), "--tyre-population", "10", "--seed", "5"]) == 0
+    assert main(["-q", "generate", "--out", str(raw / "pop"), "--tyre-population", "10", "--seed", "5",
+                 "--no-rides"]) == 0
     for stage in ("ingest", "analyse", "calibrate", "regress", "warehouse"):
         assert main(["-q", stage, "--raw", str(raw), "--build", str(build), "--jobs", "1"]) == 0
     return raw, build

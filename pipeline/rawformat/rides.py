@@ -1,0 +1,257 @@
+"""Raw format v1 for vehicle vibration recordings (issue 24): the one home of their contract.
+
+A recording holds ``time_s`` and any of :data:`RIDE_CHANNELS` (x forward, y left, z up;
+SI: m/s² and rad/s²), one row per sample at a constant rate. ``.parquet`` and ``.csv`` are
+read as they are, in chunks (an 8 h day is never held whole); ``.mf4``/``.tdms`` go through
+a channel map (:mod:`tyrelab.rawformat.mapped`) and are read whole. A campaign lists its
+recordings in ``rides.csv`` (:data:`RIDES_SCHEMA`, ``schemas/raw_rides.json``).
+
+Every problem raises :class:`RunFileError` with a one-line reason: no time base, no known
+channel, a NaN, a time base that goes back or is irregular, a vertical channel that
+averages about ±1 (a channel in g, not m/s²). A channel averaging about ±9.81 m/s² (a
+DC-coupled accelerometer reading gravity) is accepted with a warning: the analysis removes
+each channel's offset (the mean of its first chunk).
+
+Examples
+--------
+>>> import tempfile, pathlib
+>>> import numpy as np, pandas as pd
+>>> with tempfile.TemporaryDirectory() as d:
+...     p = pathlib.Path(d) / "r.csv"
+...     t = np.arange(0, 20, 0.01)
+...     pd.DataFrame({"time_s": t, "seat_z_m_s2": 9.81 + np.sin(t)}).to_csv(p, index=False)
+...     rec = open_recording(p)
+...     n = sum(len(c.time_s) for c in rec.chunks())
+>>> rec.channels, round(rec.sample_rate_Hz, 6), n, rec.warnings[0][:44]
+(('seat_z_m_s2',), 100.0, 2000, 'channel seat_z_m_s2 averages 9.84 m/s² (a ±1')
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Iterator
+
+import numpy as np
+import pandas as pd
+import pyarrow as pa
+import pyarrow.parquet as pq
+
+from . import mapped
+from .mapped import RunFileError
+
+__all__ = [
+    "RIDE_CHANNELS", "SEAT_CHANNELS", "FLOOR_CHANNELS", "RECORDING_SUFFIXES", "MAX_RECORDING_BYTES",
+    "CHUNK_ROWS", "GRAVITY_M_S2", "Chunk", "Recording", "open_recording",
+]
+
+#: Seat accelerations, m/s² (x forward, y left, z up).
+SEAT_CHANNELS = ["seat_x_m_s2", "seat_y_m_s2", "seat_z_m_s2"]
+#: Cab-floor accelerations beneath the seat, m/s².
+FLOOR_CHANNELS = ["floor_x_m_s2", "floor_y_m_s2", "floor_z_m_s2"]
+#: Every channel a recording may hold besides ``time_s``.
+RIDE_CHANNELS = [*SEAT_CHANNELS, *FLOOR_CHANNELS, "front_axle_z_m_s2", "rear_axle_z_m_s2",
+                 "pitch_rad_s2", "roll_rad_s2"]
+RECORDING_SUFFIXES = (".parquet", ".csv", *mapped.SUFFIXES)
+#: Largest recording read, bytes (streamed: a bound on time, not memory). An 8 h day of
+#: three axes at 500 Hz in float64 Parquet is about 0.5 GB.
+MAX_RECORDING_BYTES = 8 * 1024**3
+#: Largest ``.mf4``/``.tdms`` recording (read whole), bytes.
+MAX_MAPPED_BYTES = 512 * 1024**2
+#: Rows per chunk.
+CHUNK_ROWS = 1 << 18
+#: Accepted sampling rates, Hz.
+SAMPLE_RATE_RANGE_Hz = (16.0, 20000.0)
+#: Allowed relative jitter of the sampling interval.
+MAX_DT_JITTER = 0.01
+GRAVITY_M_S2 = 9.80665
+
+
+@dataclass
+class Chunk:
+    """Consecutive samples of a recording."""
+
+    time_s: np.ndarray
+    channels: dict
+
+
+@dataclass
+class Recording:
+    """An opened recording: its channels, rate and a chunk iterator.
+
+    Attributes
+    ----------
+    path : Path
+    channels : tuple of str
+        The :data:`RIDE_CHANNELS` it holds, in that order.
+    sample_rate_Hz : float
+        From the first chunk's mean interval.
+    offsets : dict
+        Channel -> mean of its first chunk (the analysis removes it).
+    warnings : list of str
+    """
+
+    path: Path
+    channels: tuple
+    sample_rate_Hz: float
+    offsets: dict
+    warnings: list = field(default_factory=list)
+    _first: Chunk | None = None
+    _rest: Iterator | None = None
+    _dt: float = math.nan
+
+    def chunks(self) -> Iterator[Chunk]:
+        """The samples, chunk after chunk, each checked; a problem raises :class:`RunFileError`."""
+        first, self._first = self._first, None
+        if first is None:
+            raise RuntimeError("a recording's chunks can be read once")
+        yield first
+        last_t = float(first.time_s[-1])
+        row = first.time_s.size
+        for frame in self._rest:
+            chunk = _checked(frame, self.channels, row)
+            gap = float(chunk.time_s[0]) - last_t
+            if abs(gap - self._dt) > MAX_DT_JITTER * self._dt:
+                raise RunFileError(f"irregular sampling: interval at row {row} is {gap:.6g} s, expected {self._dt:.6g} s")
+            _regular(chunk.time_s, self._dt, row)
+            last_t = float(chunk.time_s[-1])
+            row += chunk.time_s.size
+            yield chunk
+
+
+def _frames(path: Path, columns: list[str], chunk_rows: int, channel_map: dict | None) -> Iterator[pd.DataFrame]:
+    suffix = path.suffix.lower()
+    try:
+        if suffix == ".parquet":
+            pf = _parquet(path)
+            for batch in pf.iter_batches(batch_size=chunk_rows, columns=columns):
+                yield batch.to_pandas()
+        elif suffix == ".csv":
+            with pd.read_csv(path, usecols=lambda c: c in columns, chunksize=chunk_rows) as reader:
+                yield from reader
+        else:
+            frame = mapped.read_mapped(path, [], RIDE_CHANNELS, channel_map)
+            for i in range(0, len(frame), chunk_rows):
+                yield frame.iloc[i:i + chunk_rows]
+    except RunFileError:
+        raise
+    except (pa.ArrowException, OSError, ValueError, UnicodeDecodeError, pd.errors.ParserError) as exc:
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise RunFileError(f"corrupt or truncated {suffix[1:]} file ({first})") from None
+
+
+def _parquet(path: Path) -> pq.ParquetFile:
+    """Opened to stream: no pre-buffering of whole row groups (an 8 h day read with pyarrow's
+    defaults peaks at ~0.5 GB more; with these at ~0.13 GB, and reads faster)."""
+    return pq.ParquetFile(path, pre_buffer=False, buffer_size=1 << 20)
+
+
+def _header(path: Path, channel_map: dict | None) -> list[str]:
+    suffix = path.suffix.lower()
+    try:
+        if suffix == ".parquet":
+            return list(_parquet(path).schema_arrow.names)
+        if suffix == ".csv":
+            return [str(c).strip() for c in pd.read_csv(path, nrows=0).columns]
+    except (pa.ArrowException, OSError, ValueError, UnicodeDecodeError, pd.errors.ParserError) as exc:
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+        raise RunFileError(f"corrupt or truncated {suffix[1:]} file ({first})") from None
+    return ["time_s", *RIDE_CHANNELS]  # mapped: the map decides; missing channels are dropped later
+
+
+def _checked(frame: pd.DataFrame, channels, row0: int) -> Chunk:
+    out = {}
+    for c in ("time_s", *channels):
+        if c not in frame.columns:
+            raise RunFileError(f"channel {c} is missing")
+        v = pd.to_numeric(frame[c], errors="coerce").to_numpy(dtype=float)
+        bad = ~np.isfinite(v)
+        if bad.any():
+            i = int(np.flatnonzero(bad)[0])
+            raise RunFileError(f"channel {c} has a NaN, infinite or non-numeric sample at row {row0 + i}")
+        out[c] = v
+    t = out.pop("time_s")
+    return Chunk(t, out)
+
+
+def _regular(t: np.ndarray, dt: float, row0: int) -> None:
+    d = np.diff(t)
+    if (d <= 0).any():
+        i = int(np.flatnonzero(d <= 0)[0])
+        raise RunFileError(f"time_s is not strictly increasing at row {row0 + i + 1}")
+    bad = np.abs(d - dt) > MAX_DT_JITTER * dt
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise RunFileError(f"irregular sampling: interval at row {row0 + i + 1} is {d[i]:.6g} s, expected {dt:.6g} s")
+
+
+def open_recording(path, channel_map: dict | None = None, chunk_rows: int = CHUNK_ROWS) -> Recording:
+    """Open a recording and check its header and first chunk.
+
+    Parameters
+    ----------
+    path : path
+        ``.parquet``, ``.csv``, or ``.mf4``/``.tdms`` with ``channel_map``.
+    channel_map : dict, optional
+        For ``.mf4``/``.tdms`` (:func:`tyrelab.rawformat.load_channel_map`).
+    chunk_rows : int
+        Rows per chunk.
+
+    Raises
+    ------
+    RunFileError
+        One line naming the problem.
+    """
+    from .files import regular_file
+
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in RECORDING_SUFFIXES:
+        raise RunFileError(f"unknown file type {suffix!r} (expected {', '.join(RECORDING_SUFFIXES)})")
+    size = regular_file(path).st_size
+    limit = MAX_MAPPED_BYTES if suffix in mapped.SUFFIXES else MAX_RECORDING_BYTES
+    if size > limit:
+        raise RunFileError(f"file is {size / 1e9:.1f} GB, larger than the {limit / 1e9:.1f} GB limit")
+    if size == 0:
+        raise RunFileError("file is empty")
+    names = _header(path, channel_map)
+    if "time_s" not in names:
+        raise RunFileError("no time base: column time_s is missing")
+    present = [c for c in RIDE_CHANNELS if c in names]
+    if not present and suffix not in mapped.SUFFIXES:
+        raise RunFileError(f"no known channel (expected any of {', '.join(RIDE_CHANNELS)})")
+    frames = _frames(path, ["time_s", *present], chunk_rows, channel_map)
+    try:
+        frame = next(frames)
+    except StopIteration:
+        raise RunFileError("no samples") from None
+    if suffix in mapped.SUFFIXES:
+        present = [c for c in RIDE_CHANNELS if c in frame.columns]
+        if not present:
+            raise RunFileError(f"no known channel after the channel map (expected any of {', '.join(RIDE_CHANNELS)})")
+    first = _checked(frame, present, 0)
+    t = first.time_s
+    if t.size < 2:
+        raise RunFileError(f"only {t.size} sample(s)")
+    dt = float(np.median(np.diff(t)))
+    if not dt > 0:
+        raise RunFileError("time_s is not strictly increasing at row 1")
+    _regular(t, dt, 0)
+    dt = float(np.mean(np.diff(t)))
+    fs = 1.0 / dt
+    if not SAMPLE_RATE_RANGE_Hz[0] <= fs <= SAMPLE_RATE_RANGE_Hz[1]:
+        raise RunFileError(f"sample rate {fs:.4g} Hz outside {SAMPLE_RATE_RANGE_Hz[0]:g}-{SAMPLE_RATE_RANGE_Hz[1]:g} Hz")
+    offsets = {c: float(v.mean()) for c, v in first.channels.items()}
+    warnings = []
+    for c, m in offsets.items():
+        if not c.endswith("_m_s2"):
+            continue
+        spread = float(first.channels[c].std())
+        if 0.85 < abs(m) < 1.15 and spread < 1.0 and c.endswith("z_m_s2"):
+            raise RunFileError(f"channel {c} averages {m:.3f}: it looks like g, not m/s² (raw format v1 wants m/s²; "
+                               f"multiply by {GRAVITY_M_S2})")
+        if 0.85 * GRAVITY_M_S2 < abs(m) < 1.15 * GRAVITY_M_S2:
+            warnings.append(f"channel {c} averages {m:.2f} m/s² (a ±1 g offset: gravity on a DC-coupled "
+                            "accelerometer?); the offset is removed before the analysis")
+    return Recording(path, tuple(present), fs, offsets, warnings, first, frames, dt)

@@ -1,0 +1,149 @@
+"""A driver's daily whole-body vibration exposure from tasks, as practice does it.
+
+EU Directive 2002/44/EC (Annex, part B) and the HSE calculator's layout:
+
+- per task ``i`` and axis, the partial exposure ``k a_w,i √(T_i / 8 h)`` (k = 1.4 on x and y,
+  1.0 on z; ISO 2631-1 §8.2.3);
+- per axis, the partials combine as ``A(8) = √(Σ_i (k a_w,i)² T_i / 8 h)``;
+- the Directive's A(8) is the **highest axis** (not the vector sum ``a_v``);
+- daily VDV per axis ``(Σ_i VDV_i⁴ T_i / T_meas,i)^(1/4)`` times k, highest axis;
+- hours to the action (0.5 m/s²) and limit (1.15 m/s²) values at the day's mix of tasks,
+  ``T_day (value / A(8))²`` (one task: ``8 h (value / (k a_w))²``);
+- HSE exposure points ``400 A(8)²`` (EAV 100, ELV 529);
+- ISO 2631-5:2018 daily dose ``D_zd`` (:func:`tyrelab.vehicle.iso2631_5.daily_dose`).
+
+Examples
+--------
+>>> day = daily_exposure([TaskExposure("baling", 4.0, {"x": 0.3, "y": 0.2, "z": 0.6},
+...                                    {"x": 5.0, "y": 3.0, "z": 9.0}, 3600.0)])
+>>> round(day["a8_m_s2"], 4), day["a8_axis"], round(day["exposure_points"], 1), day["verdict"]
+(0.4243, 'z', 72.0, 'below action value')
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from . import iso2631, iso2631_5
+
+__all__ = ["TaskExposure", "daily_exposure", "verdict", "EXPOSURE_VERDICTS", "MAX_HOURS_PER_DAY"]
+
+#: Verdicts against the Directive's daily values (the strings of :data:`tyrelab.vehicle.ride.VERDICTS`).
+EXPOSURE_VERDICTS = ("below action value", "above action value", "above limit value")
+#: A day has 24 hours: longer task hours are refused.
+MAX_HOURS_PER_DAY = 24.0
+
+
+@dataclass(frozen=True)
+class TaskExposure:
+    """One task of a working day: its daily duration and the measured values of its recording.
+
+    Attributes
+    ----------
+    name : str
+    hours : float
+        Daily exposure to the task, h.
+    a_w_m_s2 : dict
+        Axis (``x``, ``y``, ``z``) -> weighted r.m.s. a_w, m/s², *without* the factor k.
+    vdv_m_s1_75 : dict
+        Axis -> VDV of the recording, m/s^1.75, without k.
+    measured_s : float
+        Duration of the recording, s.
+    dz_m_s2 : float
+        ISO 2631-5 dose D_z of the recording (NaN if no vertical seat channel).
+    """
+
+    name: str
+    hours: float
+    a_w_m_s2: dict
+    vdv_m_s1_75: dict
+    measured_s: float
+    dz_m_s2: float = math.nan
+    extra: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        h = float(self.hours)
+        if not (math.isfinite(h) and 0 < h <= MAX_HOURS_PER_DAY):
+            raise ValueError(f"hours must be in (0, {MAX_HOURS_PER_DAY:g}] for task {self.name!r}, got {self.hours!r}")
+        if not (math.isfinite(self.measured_s) and self.measured_s > 0):
+            raise ValueError(f"measured_s must be positive for task {self.name!r}")
+
+
+def verdict(a8_m_s2: float) -> str:
+    """The Directive's verdict on a daily A(8).
+
+    Examples
+    --------
+    >>> verdict(0.49), verdict(0.6), verdict(1.2)
+    ('below action value', 'above action value', 'above limit value')
+    """
+    if a8_m_s2 > iso2631.EU_LIMIT_A8_M_S2:
+        return EXPOSURE_VERDICTS[2]
+    return EXPOSURE_VERDICTS[1] if a8_m_s2 > iso2631.EU_ACTION_A8_M_S2 else EXPOSURE_VERDICTS[0]
+
+
+def _hours_to(value: float, a8: float, day_hours: float) -> float:
+    return day_hours * (value / a8) ** 2 if a8 > 0 else math.inf
+
+
+def daily_exposure(tasks) -> dict:
+    """Daily exposure of a driver from one or more tasks (see the module docstring).
+
+    Parameters
+    ----------
+    tasks : sequence of TaskExposure
+
+    Returns
+    -------
+    dict
+        ``tasks`` (per task: ``name, hours, partial_a8_m_s2`` per axis with k, ``a_w_m_s2``
+        per axis, ``hours_to_eav``, ``hours_to_elv``), ``a8_axes_m_s2`` (per axis, with k),
+        ``a8_m_s2`` (the Directive's: highest axis), ``a8_axis``, ``vdv_daily_axes_m_s1_75``,
+        ``vdv_daily_m_s1_75``, ``vdv_daily_axis``, ``hours_to_eav``, ``hours_to_elv``,
+        ``exposure_points``, ``verdict``, ``vdv_verdict``, ``dzd_m_s2``, ``hours_per_day``.
+    """
+    tasks = list(tasks)
+    if not tasks:
+        raise ValueError("tasks must hold at least one task")
+    day_hours = sum(float(t.hours) for t in tasks)
+    if day_hours > MAX_HOURS_PER_DAY:
+        raise ValueError(f"tasks add up to {day_hours:g} h, more than a day ({MAX_HOURS_PER_DAY:g} h)")
+    axes = [ax for ax in ("x", "y", "z") if any(ax in t.a_w_m_s2 for t in tasks)]
+    k = iso2631.AXIS_FACTOR
+    rows = []
+    for t in tasks:
+        partial = {ax: k[ax] * t.a_w_m_s2[ax] * math.sqrt(t.hours / 8.0) for ax in axes if ax in t.a_w_m_s2}
+        top = max((k[ax] * t.a_w_m_s2[ax] for ax in partial), default=0.0)
+        rows.append({"name": t.name, "hours": float(t.hours), "measured_s": float(t.measured_s),
+                     "a_w_m_s2": {ax: float(t.a_w_m_s2[ax]) for ax in partial},
+                     "partial_a8_m_s2": partial,
+                     "hours_to_eav": _hours_to(iso2631.EU_ACTION_A8_M_S2, top, 8.0),
+                     "hours_to_elv": _hours_to(iso2631.EU_LIMIT_A8_M_S2, top, 8.0), **t.extra})
+    a8_axes = {ax: math.sqrt(sum(r["partial_a8_m_s2"].get(ax, 0.0) ** 2 for r in rows)) for ax in axes}
+    a8_axis = max(a8_axes, key=lambda ax: a8_axes[ax]) if a8_axes else None
+    a8 = a8_axes[a8_axis] if a8_axis else math.nan
+    vdv_axes = {ax: k[ax] * sum(t.vdv_m_s1_75[ax] ** 4 * t.hours * 3600.0 / t.measured_s
+                                for t in tasks if ax in t.vdv_m_s1_75) ** 0.25 for ax in axes}
+    vdv_axis = max(vdv_axes, key=lambda ax: vdv_axes[ax]) if vdv_axes else None
+    vdv = vdv_axes[vdv_axis] if vdv_axis else math.nan
+    with_dz = [t for t in tasks if math.isfinite(t.dz_m_s2)]
+    dzd = iso2631_5.daily_dose([t.dz_m_s2 for t in with_dz], [t.hours * 3600.0 for t in with_dz],
+                               [t.measured_s for t in with_dz]) if with_dz else math.nan
+    return {
+        "tasks": rows,
+        "hours_per_day": day_hours,
+        "a8_axes_m_s2": a8_axes,
+        "a8_m_s2": a8,
+        "a8_axis": a8_axis,
+        "vdv_daily_axes_m_s1_75": vdv_axes,
+        "vdv_daily_m_s1_75": vdv,
+        "vdv_daily_axis": vdv_axis,
+        "hours_to_eav": _hours_to(iso2631.EU_ACTION_A8_M_S2, a8, day_hours),
+        "hours_to_elv": _hours_to(iso2631.EU_LIMIT_A8_M_S2, a8, day_hours),
+        "exposure_points": 400.0 * a8**2,
+        "verdict": verdict(a8),
+        "vdv_verdict": (EXPOSURE_VERDICTS[2] if vdv > iso2631.EU_LIMIT_VDV else
+                        EXPOSURE_VERDICTS[1] if vdv > iso2631.EU_ACTION_VDV else EXPOSURE_VERDICTS[0]),
+        "dzd_m_s2": dzd,
+    }

@@ -1,0 +1,313 @@
+"""Whole-body vibration of a recording, streamed: one analysis for measured and predicted signals.
+
+Per channel of a vehicle recording (:mod:`tyrelab.rawformat.rides`), in one pass over
+chunks and bounded memory:
+
+- the offset (the mean of the first chunk, :data:`tyrelab.rawformat.rides.CHUNK_ROWS`
+  rows) is removed — also a DC-coupled accelerometer's 1 g;
+- seat and floor accelerations are frequency weighted (ISO 2631-1: W_k on z, W_d on x
+  and y; :class:`~tyrelab.vehicle.iso2631.ResponseFilter` with the same analog responses
+  :func:`~tyrelab.vehicle.iso2631.weighted_signal` uses), giving a_w, VDV, running r.m.s.
+  (linear, τ = 1 s) and its maximum MTVV, the crest factor and the §6.2.1/§6.3.3 rule;
+  axle and rotational channels are not weighted (ISO 2631-1 weights only where the
+  body is supported; their r.m.s. and spectrum are reported);
+- the seat's vertical acceleration also goes through the ISO 2631-5:2018 seat-to-spine
+  model (:mod:`tyrelab.vehicle.iso2631_5`): D_z;
+- the unweighted PSD (Welch, Hann, 50 % overlap, 0.1 Hz as thesis §7.4; the same segments
+  as :func:`tyrelab.vehicle.metrics.acceleration_psd`), its dominant peak frequency and
+  half-power width (thesis §6.4.2, :func:`tyrelab.vehicle.metrics.spectral_peak`).
+
+The recording gives per-axis seat values, the vector sum a_v, SEAT = a_w(seat)/a_w(floor)
+per axis (ISO 10326-1) where both are recorded, and the JSON of ``tyrelab exposure``.
+Predicted signals go through :func:`analyse_signals`, the same code.
+
+Examples
+--------
+>>> fs = 100.0
+>>> t = np.arange(int(120 * fs)) / fs
+>>> r = analyse_signals({"seat_z_m_s2": np.sin(2 * np.pi * 4.0 * t)}, fs)
+>>> z = r.axes()["z"]
+>>> round(z["a_w_m_s2"], 3), round(z["mtvv_m_s2"], 3), round(r.channels["seat_z_m_s2"].peak_frequency_Hz, 2)
+(0.684, 0.686, 4.0)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .._validate import positive
+from . import iso2631, iso2631_5
+from . import metrics as mt
+
+__all__ = ["WEIGHTING_OF", "ChannelResult", "ChannelAnalyser", "RecordingAnalysis", "analyse_recording",
+           "analyse_signals", "WEIGHTING_RING_S", "PSD_BANDWIDTH_HZ", "PEAK_BAND_HZ"]
+
+#: Channel -> (ISO 2631-1 weighting, axis) for the channels weighted (seat and cab floor).
+WEIGHTING_OF = {
+    "seat_x_m_s2": ("Wd", "x"), "seat_y_m_s2": ("Wd", "y"), "seat_z_m_s2": ("Wk", "z"),
+    "floor_x_m_s2": ("Wd", "x"), "floor_y_m_s2": ("Wd", "y"), "floor_z_m_s2": ("Wk", "z"),
+}
+#: Length after which the weightings' impulse responses have rung down (the 0.4 Hz
+#: band-limiting high-pass decays as exp(-1.78 t): 1e-6 of its peak after 10 s), s.
+WEIGHTING_RING_S = 20.0
+#: Resolution of the seat PSD (thesis §7.4), Hz.
+PSD_BANDWIDTH_HZ = 0.1
+#: Band searched for the dominant spectral peak (thesis §6.4.2), Hz.
+PEAK_BAND_HZ = (0.5, 10.0)
+
+
+@dataclass
+class ChannelResult:
+    """The analysis of one channel (SI; NaN where a value does not apply).
+
+    ``a_w_m_s2``, ``vdv_m_s1_75``, ``mtvv_m_s2`` are *without* the axis factor k;
+    ``crest_factor`` is that of the weighted signal; ``dz_m_s2`` only for the seat's z.
+    """
+
+    channel: str
+    weighting: str | None
+    duration_s: float
+    n_samples: int
+    unweighted_rms: float
+    a_w_m_s2: float = math.nan
+    vdv_m_s1_75: float = math.nan
+    mtvv_m_s2: float = math.nan
+    crest_factor: float = math.nan
+    dz_m_s2: float = math.nan
+    peak_frequency_Hz: float = math.nan
+    half_power_width_Hz: float = math.nan
+    width_over_frequency: float = math.nan
+    method: dict = field(default_factory=dict)
+    frequency_Hz: np.ndarray = field(default_factory=lambda: np.empty(0), repr=False)
+    psd: np.ndarray = field(default_factory=lambda: np.empty(0), repr=False)
+
+
+class _Welch:
+    """Streaming Welch PSD: Hann, 50 % overlap, constant detrend, density scaling (as scipy.signal.welch)."""
+
+    def __init__(self, fs_Hz: float, nperseg: int):
+        self.fs, self.n, self.hop = fs_Hz, nperseg, nperseg - nperseg // 2
+        self.win = np.hanning(nperseg + 1)[:-1] if nperseg > 1 else np.ones(1)  # periodic Hann (scipy's 'hann')
+        self.left = np.empty(0)
+        self.total = np.zeros(nperseg // 2 + 1)
+        self.count = 0
+
+    def process(self, x: np.ndarray) -> None:
+        buf = np.concatenate((self.left, x))
+        if buf.size < self.n:
+            self.left = buf
+            return
+        segs = np.lib.stride_tricks.sliding_window_view(buf, self.n)[:: self.hop]
+        spec = np.fft.rfft((segs - segs.mean(axis=1, keepdims=True)) * self.win, axis=1)
+        self.total += np.sum(spec.real**2 + spec.imag**2, axis=0)
+        self.count += segs.shape[0]
+        self.left = buf[segs.shape[0] * self.hop:]
+
+    def finish(self) -> tuple[np.ndarray, np.ndarray]:
+        from scipy import signal
+
+        if self.count == 0:  # shorter than a segment: one periodogram of it all (as acceleration_psd)
+            if self.left.size < 2:
+                return np.empty(0), np.empty(0)
+            return signal.welch(self.left, fs=self.fs, window="hann", nperseg=self.left.size, detrend="constant")
+        psd = self.total / self.count / (self.fs * np.sum(self.win**2))
+        psd[1:] *= 2.0
+        if self.n % 2 == 0:
+            psd[-1] /= 2.0
+        return np.fft.rfftfreq(self.n, 1.0 / self.fs), psd
+
+
+class ChannelAnalyser:
+    """Streaming analysis of one channel; :meth:`process` chunks, then :meth:`finish`.
+
+    Parameters
+    ----------
+    channel : str
+        Raw-format name; seat/floor channels are weighted (:data:`WEIGHTING_OF`).
+    fs_Hz : float
+        Sampling rate, Hz.
+    offset : float
+        Removed from every sample (the recording's first-chunk mean).
+    """
+
+    def __init__(self, channel: str, fs_Hz: float, offset: float = 0.0):
+        self.channel = channel
+        self.fs = positive("fs_Hz", fs_Hz)
+        self.offset = float(offset)
+        self.weighting = WEIGHTING_OF.get(channel, (None, None))[0]
+        self.spine = channel == "seat_z_m_s2"
+        responses = []
+        if self.weighting:
+            w = self.weighting
+            responses.append(iso2631.impulse_response(lambda f: iso2631.weighting_response(f, w), self.fs,
+                                                      WEIGHTING_RING_S))
+        if self.spine:  # same length as the weighting's taps, so one FFT of each chunk serves both
+            responses.append(iso2631.impulse_response(iso2631_5.spine_response, self.fs, WEIGHTING_RING_S))
+        self._filter = iso2631.ResponseFilter(responses) if responses else None
+        self._dose = iso2631_5.PeakDose() if self.spine else None
+        self._welch = _Welch(self.fs, max(1, int(round(self.fs / PSD_BANDWIDTH_HZ))))
+        self._window = max(1, int(round(iso2631.RUNNING_RMS_TAU_S * self.fs)))
+        self._tail = np.zeros(self._window)  # last squares of the weighted signal (zeros before the start)
+        self.n = 0
+        self._sum = self._sum2 = 0.0
+        self._w2 = self._w4 = self._wmax = self._rmax = 0.0
+        self._nw = 0
+
+    def process(self, samples) -> None:
+        x = np.asarray(samples, dtype=float) - self.offset
+        if x.size == 0:
+            return
+        self.n += x.size
+        self._sum += float(x.sum())
+        self._sum2 += float(np.dot(x, x))
+        self._welch.process(x)
+        if self._filter is not None:
+            self._weighted(self._filter.process(x))
+
+    def _weighted(self, outputs) -> None:
+        if self.weighting:
+            aw = outputs[0]
+            if aw.size:
+                sq = aw * aw
+                self._nw += aw.size
+                self._w2 += float(sq.sum())
+                self._w4 += float(np.dot(sq, sq))
+                self._wmax = max(self._wmax, float(np.abs(aw).max()))
+                c = np.concatenate(([0.0], np.cumsum(np.concatenate((self._tail, sq)))))
+                k = self._window
+                sums = c[k + 1:] - c[1:c.size - k]  # window sums ending at each new sample
+                self._rmax = max(self._rmax, float(np.sqrt(max(float(sums.max()), 0.0) / k)))
+                self._tail = np.concatenate((self._tail, sq))[-k:]
+        if self._dose is not None:
+            self._dose.process(outputs[-1])
+
+    def finish(self) -> ChannelResult:
+        if self._filter is not None:
+            self._weighted(self._filter.finish())
+        duration = self.n / self.fs
+        mean = self._sum / self.n if self.n else math.nan
+        res = ChannelResult(self.channel, self.weighting, duration, self.n,
+                            math.sqrt(max(self._sum2 / self.n - mean**2, 0.0)) if self.n else math.nan)
+        f, p = self._welch.finish()
+        res.frequency_Hz, res.psd = f, p
+        if f.size > 2 and np.any((f >= PEAK_BAND_HZ[0]) & (f <= PEAK_BAND_HZ[1])) and np.max(p) > 0:
+            pk = mt.spectral_peak(f, p, *PEAK_BAND_HZ)
+            res.peak_frequency_Hz = pk["peak_frequency_Hz"]
+            res.half_power_width_Hz = pk["half_power_width_Hz"]
+            res.width_over_frequency = pk["width_over_frequency"]
+        if self.weighting and self._nw:
+            res.a_w_m_s2 = math.sqrt(self._w2 / self._nw)
+            res.vdv_m_s1_75 = (self._w4 / self.fs) ** 0.25
+            res.mtvv_m_s2 = self._rmax
+            res.crest_factor = self._wmax / res.a_w_m_s2 if res.a_w_m_s2 > 0 else math.nan
+            res.method = iso2631.method_check(res.a_w_m_s2, res.crest_factor, res.mtvv_m_s2, res.vdv_m_s1_75, duration)
+        if self._dose is not None:
+            res.dz_m_s2 = self._dose.finish()
+        return res
+
+
+@dataclass
+class RecordingAnalysis:
+    """The analysis of a recording (or of predicted signals).
+
+    Attributes
+    ----------
+    sample_rate_Hz, duration_s : float
+    channels : dict
+        Channel -> :class:`ChannelResult`.
+    warnings : list of str
+    """
+
+    sample_rate_Hz: float
+    duration_s: float
+    channels: dict
+    warnings: list = field(default_factory=list)
+
+    def axes(self) -> dict:
+        """Seat axis (``x``, ``y``, ``z``) -> the issue's per-axis values (a_w etc. without k)."""
+        out = {}
+        for ax in ("x", "y", "z"):
+            r = self.channels.get(f"seat_{ax}_m_s2")
+            if r is None:
+                continue
+            out[ax] = {"a_w_m_s2": r.a_w_m_s2, "vdv_m_s1_75": r.vdv_m_s1_75, "mtvv_m_s2": r.mtvv_m_s2,
+                       "crest_factor": r.crest_factor, "duration_s": r.duration_s, "weighting": r.weighting,
+                       "axis_factor": iso2631.AXIS_FACTOR[ax], "rms_method_sufficient": r.method["rms_method_sufficient"],
+                       "method_reasons": r.method["reasons"], "peak_frequency_Hz": r.peak_frequency_Hz,
+                       "half_power_width_Hz": r.half_power_width_Hz}
+        return out
+
+    def seat_factor(self) -> dict:
+        """Axis -> SEAT = a_w(seat) / a_w(floor) (ISO 10326-1), where both channels are recorded."""
+        out = {}
+        for ax in ("x", "y", "z"):
+            s, f = self.channels.get(f"seat_{ax}_m_s2"), self.channels.get(f"floor_{ax}_m_s2")
+            if s is not None and f is not None:
+                out[ax] = s.a_w_m_s2 / f.a_w_m_s2 if f.a_w_m_s2 > 0 else math.nan
+        return out
+
+    def a_v(self) -> float:
+        """ISO 2631-1 vector sum of the seat axes recorded (a missing axis counts as 0), m/s²."""
+        ax = self.axes()
+        return iso2631.vector_sum(*(ax[a]["a_w_m_s2"] if a in ax else 0.0 for a in ("x", "y", "z")))
+
+    @property
+    def dz_m_s2(self) -> float:
+        r = self.channels.get("seat_z_m_s2")
+        return r.dz_m_s2 if r is not None else math.nan
+
+    def to_json(self) -> dict:
+        """``axes``, ``a_v_m_s2``, ``dz_m_s2``, ``seat_factor`` (when floor channels exist), others."""
+        out = {"axes": self.axes(), "a_v_m_s2": self.a_v(), "dz_m_s2": self.dz_m_s2,
+               "duration_s": self.duration_s, "sample_rate_Hz": self.sample_rate_Hz}
+        seat = self.seat_factor()
+        if seat:
+            out["seat_factor"] = seat
+        other = {c: {"unweighted_rms": r.unweighted_rms, "peak_frequency_Hz": r.peak_frequency_Hz,
+                     "half_power_width_Hz": r.half_power_width_Hz, **({"a_w_m_s2": r.a_w_m_s2} if r.weighting else {})}
+                 for c, r in self.channels.items() if not c.startswith("seat_")}
+        if other:
+            out["channels"] = other
+        if self.warnings:
+            out["warnings"] = list(self.warnings)
+        return out
+
+
+def analyse_recording(recording) -> RecordingAnalysis:
+    """Analyse an opened recording (:func:`tyrelab.rawformat.rides.open_recording`) chunk by chunk.
+
+    Raises
+    ------
+    tyrelab.rawformat.RunFileError
+        From the reader, if a later chunk is bad (NaN, time going back, irregular).
+    """
+    analysers = {c: ChannelAnalyser(c, recording.sample_rate_Hz, recording.offsets[c]) for c in recording.channels}
+    for chunk in recording.chunks():
+        for c, a in analysers.items():
+            a.process(chunk.channels[c])
+    results = {c: a.finish() for c, a in analysers.items()}
+    n = max((r.n_samples for r in results.values()), default=0)
+    return RecordingAnalysis(recording.sample_rate_Hz, n / recording.sample_rate_Hz, results, list(recording.warnings))
+
+
+def analyse_signals(signals: dict, fs_Hz: float, chunk_rows: int | None = None) -> RecordingAnalysis:
+    """The same analysis for signals in memory (e.g. a prediction), channel name -> samples.
+
+    The offset is the mean of the first ``chunk_rows`` samples, as a recording's.
+    """
+    from ..rawformat.rides import CHUNK_ROWS
+
+    fs_Hz = positive("fs_Hz", fs_Hz)
+    rows = chunk_rows or CHUNK_ROWS
+    results = {}
+    for c, x in signals.items():
+        x = np.asarray(x, dtype=float)
+        a = ChannelAnalyser(c, fs_Hz, float(x[:rows].mean()) if x.size else 0.0)
+        for i in range(0, x.size, rows):
+            a.process(x[i:i + rows])
+        results[c] = a.finish()
+    n = max((r.n_samples for r in results.values()), default=0)
+    return RecordingAnalysis(fs_Hz, n / fs_Hz, results)
