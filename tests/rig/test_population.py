@@ -84,6 +84,7 @@ def test_build_without_a_fit_is_one_line(tmp_path, capsys):
 
 
 def test_scenario_formula_build_uses_the_lab_fit(population_build, tmp_path):
+    from tyrelab.stages.simulate import WarehouseTyres
     from tyrelab.vehicle import ride
     from tyrelab.vehicle.scenario import ScenarioError, load_scenario
 
@@ -114,9 +115,9 @@ hours_per_day = 6
 """
     path = tmp_path / "s.toml"
     path.write_text(text.replace("FORMULA", "build"))
-    lab = ride.resolve_tyres(load_scenario(path), build)["rear"]
+    lab = ride.resolve_tyres(load_scenario(path), WarehouseTyres(build))["rear"]
     path.write_text(text.replace("FORMULA", "thesis"))
-    thesis = ride.resolve_tyres(load_scenario(path), build)["rear"]
+    thesis = ride.resolve_tyres(load_scenario(path), WarehouseTyres(build))["rear"]
     true_k = float(design_matrix(["16.9R34"], [2], [1.2])[0] @ np.asarray(pop.MODERN_COEFFICIENTS))
     assert "fitted to the build's tyres" in lab.stiffness_source
     assert abs(lab.stiffness_kN_per_m[0] - true_k) < abs(thesis.stiffness_kN_per_m[0] - true_k)
