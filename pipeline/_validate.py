@@ -63,18 +63,24 @@ def positive_array(name: str, value, allow_nan: bool = False) -> np.ndarray:
 
     With ``allow_nan``, NaN ("not known", e.g. no excitation found) passes through.
     """
+    return _signed_array(name, value, allow_nan, strict=True)
+
+
+def _signed_array(name: str, value, allow_nan: bool, strict: bool) -> np.ndarray:
+    """:func:`positive_array` (``strict``) and :func:`non_negative_array`."""
     try:
         if np.asarray(value).dtype == bool:
             raise ValueError(f"{name} must be numbers, got booleans {value!r}")
         a = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be numbers, got {value!r}") from None
-    ok = np.isfinite(a) & (a > 0)
+    ok = np.isfinite(a) & ((a > 0) if strict else (a >= 0))
     if allow_nan:
         ok |= np.isnan(a)
     if not ok.all():
+        word = "positive" if strict else "non-negative"
         shown = a.tolist() if a.size <= 6 else f"{a.size} values, {int((~ok).sum())} bad"
-        raise ValueError(f"{name} must be {'positive (or NaN)' if allow_nan else 'finite and positive'}, got {shown}")
+        raise ValueError(f"{name} must be {f'{word} (or NaN)' if allow_nan else f'finite and {word}'}, got {shown}")
     return a
 
 
@@ -217,20 +223,7 @@ def non_negative_array(name: str, value, allow_nan: bool = False) -> np.ndarray:
     >>> non_negative_array("speed_km_h", [0.0, 10.0]).tolist()
     [0.0, 10.0]
     """
-    try:
-        if np.asarray(value).dtype == bool:
-            raise ValueError(f"{name} must be numbers, got booleans {value!r}")
-        a = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be numbers, got {value!r}") from None
-    ok = np.isfinite(a) & (a >= 0)
-    if allow_nan:
-        ok |= np.isnan(a)
-    if not ok.all():
-        shown = a.tolist() if a.size <= 6 else f"{a.size} values, {int((~ok).sum())} bad"
-        raise ValueError(f"{name} must be {'non-negative (or NaN)' if allow_nan else 'finite and non-negative'}, "
-                         f"got {shown}")
-    return a
+    return _signed_array(name, value, allow_nan, strict=False)
 
 
 def instance(name: str, value, kind):

@@ -248,7 +248,7 @@ ROWS = [
     (f"{TY}.spoke.contact_half_angle", dict(h=0.7, r0=0.0), "r0"),
     (f"{TY}.spoke.spoke_rate", dict(theta=0.1, h=0.7, h_dot=0.1, wheel_rate_rad_s=NAN), "wheel_rate_rad_s"),
     (f"{TY}.spoke.vertical_force", dict(h=0.7, h_dot=0.1, wheel_rate_rad_s=3.0, r0=-0.8, c_coulomb=1.0, c_viscous=0.0), "r0"),
-    (f"{TY}.spoke.vertical_force", dict(h=0.7, h_dot=0.1, wheel_rate_rad_s=3.0, r0=0.8, c_coulomb=-1.0, c_viscous=0.0), "c_coulomb"),
+    (f"{TY}.spoke.vertical_force", dict(h=0.7, h_dot=0.1, wheel_rate_rad_s=3.0, r0=0.8, c_coulomb=NAN, c_viscous=0.0), "c_coulomb"),
     (f"{TY}.spoke.vertical_force_spokes", dict(h=0.7, h_dot=0.1, wheel_angle_rad=0.0, wheel_rate_rad_s=3.0, r0=0.8, c_coulomb=1.0, c_viscous=0.0, n_spokes=0), "n_spokes"),
     (f"{TY}.spoke.damping_basis", dict(speed_km_h=10.0, amplitude_m=-0.01), "amplitude_m"),
     (f"{TY}.spoke.damping_basis", dict(speed_km_h=-5.0), "speed_km_h"),

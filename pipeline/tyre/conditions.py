@@ -392,11 +392,11 @@ def hold_constant(
         Empty, or why the runs were pooled.
     """
     _validate.frame("runs", runs)
-    if x not in runs.columns:
-        raise ValueError(f"x: runs has no column {x!r}")
     cols = [c for c in hold if c in runs.columns]
     if not cols or runs.empty:
         return runs, {c: None for c in hold}, ""
+    if x not in runs.columns:
+        raise ValueError(f"x: runs has no column {x!r}")
     xs = pd.to_numeric(runs[x], errors="coerce").to_numpy(dtype=float, na_value=np.nan)
     pos, levels, note = hold_level(xs, hold_levels(runs, cols), cols, hold, prefer)
     return (runs if pos is None else runs.loc[runs.index[pos]]), levels, note

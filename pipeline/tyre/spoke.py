@@ -130,8 +130,8 @@ def vertical_force(h, h_dot, wheel_rate_rad_s, r0, c_coulomb, c_viscous):
     """
     _validate.non_negative_array("wheel_rate_rad_s", wheel_rate_rad_s)
     r0 = _validate.positive("r0", r0)
-    _validate.non_negative_array("c_coulomb", c_coulomb)
-    _validate.non_negative_array("c_viscous", c_viscous)
+    _validate.finite_array("c_coulomb", np.atleast_1d(c_coulomb))  # negative in an unconstrained fit (spoke_fit)
+    _validate.finite_array("c_viscous", np.atleast_1d(c_viscous))
     h = np.asarray(h, dtype=float)
     h_dot = np.asarray(h_dot, dtype=float)
     alpha = contact_half_angle(h, r0)
@@ -226,8 +226,8 @@ def equivalent_damping(speed_km_h, frequency_Hz=FREQUENCY_HZ, amplitude_m=AMPLIT
     ndarray
         Broadcast shape of the inputs.
     """
-    _validate.non_negative_array("c_coulomb", c_coulomb)
-    _validate.non_negative_array("c_viscous", c_viscous)
+    _validate.finite_array("c_coulomb", np.atleast_1d(c_coulomb))  # negative in an unconstrained fit (spoke_fit)
+    _validate.finite_array("c_viscous", np.atleast_1d(c_viscous))
     g1, g2 = damping_basis(speed_km_h, frequency_Hz, amplitude_m, h_over_r0, r0, n_time)
     return c_coulomb * g1 + c_viscous * g2
 

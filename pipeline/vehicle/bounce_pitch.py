@@ -95,6 +95,14 @@ def natural_frequencies(
     return float(f[0]), float(f[1])
 
 
+def _check(positive: dict, non_negative: dict) -> None:
+    """ValueError naming the first argument of ``positive`` not > 0 or of ``non_negative`` not >= 0."""
+    for name, value in positive.items():
+        _validate.positive(name, value)
+    for name, value in non_negative.items():
+        _validate.non_negative(name, value)
+
+
 def _matrices(m, inertia, l1, l2, kf, kr) -> tuple[np.ndarray, np.ndarray]:
     """Stiffness and mass matrices of the beam on two springs (thesis §8.2), coordinates (z, θ):
     the undamped eigenproblem of the assembled pitch-plane tractor
@@ -134,12 +142,10 @@ def mode_shapes(
     >>> round(m["pitch"]["frequency_Hz"], 4), abs(m["pitch"]["nodal_point_ahead_of_cg_m"])
     (4.5016, 0.0)
     """
-    for _name, _value in (("mass_kg", mass_kg), ("pitch_inertia_kg_m2", pitch_inertia_kg_m2),
-                          ("front_stiffness_N_per_m_axle", front_stiffness_N_per_m_axle),
-                          ("rear_stiffness_N_per_m_axle", rear_stiffness_N_per_m_axle)):
-        _validate.positive(_name, _value)
-    _validate.non_negative("front_distance_m", front_distance_m)
-    _validate.non_negative("rear_distance_m", rear_distance_m)
+    _check(positive=dict(mass_kg=mass_kg, pitch_inertia_kg_m2=pitch_inertia_kg_m2,
+                         front_stiffness_N_per_m_axle=front_stiffness_N_per_m_axle,
+                         rear_stiffness_N_per_m_axle=rear_stiffness_N_per_m_axle),
+           non_negative=dict(front_distance_m=front_distance_m, rear_distance_m=rear_distance_m))
     f = natural_frequencies(mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m,
                             front_stiffness_N_per_m_axle, rear_stiffness_N_per_m_axle)
     stiffness, mass = _matrices(float(mass_kg), float(pitch_inertia_kg_m2), float(front_distance_m),
@@ -303,12 +309,10 @@ def frequency_uncertainty(mass_kg: float, pitch_inertia_kg_m2: float, front_dist
     >>> u1, u2
     (0.0, 0.0)
     """
-    for _name, _value in (("mass_kg", mass_kg), ("pitch_inertia_kg_m2", pitch_inertia_kg_m2),
-                          ("front_tyre_kN_per_m", front_tyre_kN_per_m), ("rear_tyre_kN_per_m", rear_tyre_kN_per_m)):
-        _validate.positive(_name, _value)
-    for _name, _value in (("front_distance_m", front_distance_m), ("rear_distance_m", rear_distance_m),
-                          ("front_u_kN_per_m", front_u_kN_per_m), ("rear_u_kN_per_m", rear_u_kN_per_m)):
-        _validate.non_negative(_name, _value)
+    _check(positive=dict(mass_kg=mass_kg, pitch_inertia_kg_m2=pitch_inertia_kg_m2,
+                         front_tyre_kN_per_m=front_tyre_kN_per_m, rear_tyre_kN_per_m=rear_tyre_kN_per_m),
+           non_negative=dict(front_distance_m=front_distance_m, rear_distance_m=rear_distance_m,
+                             front_u_kN_per_m=front_u_kN_per_m, rear_u_kN_per_m=rear_u_kN_per_m))
     k = np.array([front_tyre_kN_per_m, rear_tyre_kN_per_m], dtype=float)
     u = np.array([front_u_kN_per_m, rear_u_kN_per_m], dtype=float)
 
@@ -369,12 +373,9 @@ def frequency_rounding_range(
     ndarray, shape (2, 2)
         ``[[f1_low, f1_high], [f2_low, f2_high]]`` in Hz.
     """
-    for _name, _value in (("mass", mass), ("pitch_inertia", pitch_inertia),
-                          ("front_stiffness_kN_per_m", front_stiffness_kN_per_m),
-                          ("rear_stiffness_kN_per_m", rear_stiffness_kN_per_m)):
-        _validate.positive(_name, _value)
-    _validate.non_negative("front_distance", front_distance)
-    _validate.non_negative("rear_distance", rear_distance)
+    _check(positive=dict(mass=mass, pitch_inertia=pitch_inertia, front_stiffness_kN_per_m=front_stiffness_kN_per_m,
+                         rear_stiffness_kN_per_m=rear_stiffness_kN_per_m),
+           non_negative=dict(front_distance=front_distance, rear_distance=rear_distance))
     if not isinstance(rounding, dict):
         raise ValueError(f"rounding must be a dict of half-widths, got {type(rounding).__name__}")
     _validate.non_negative_array("rounding", list(rounding.values()))
