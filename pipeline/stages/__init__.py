@@ -12,7 +12,7 @@ import time
 from . import state
 from .base import Context, StageResult
 
-ORDER = ["ingest", "analyse", "calibrate", "regress", "simulate", "warehouse", "report"]
+ORDER = ["ingest", "analyse", "calibrate", "regress", "simulate", "rides", "warehouse", "report"]
 #: Stages that spread per-run work over worker pools.
 PER_RUN = ("ingest", "analyse")
 

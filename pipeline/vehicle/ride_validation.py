@@ -128,7 +128,7 @@ def _envelope_similarity(measured: np.ndarray, fs_m: float, f_m: float, predicte
 
 def validation_rows(measured: RecordingAnalysis, predicted_signals: dict, predicted_fs_Hz: float,
                     known_profile: bool, measured_signals: dict | None = None) -> list[dict]:
-    """Per seat axis recorded and predicted: the measured-vs-predicted values.
+    """Per seat axis recorded and predicted (and moved by the model): the measured-vs-predicted values.
 
     Parameters
     ----------
@@ -154,6 +154,8 @@ def validation_rows(measured: RecordingAnalysis, predicted_signals: dict, predic
         if c not in measured.channels or c not in predicted.channels:
             continue
         m, p = measured.channels[c], predicted.channels[c]
+        if not p.a_w_m_s2 > 0:  # an axis the model does not move (e.g. fore-aft without a longitudinal model)
+            continue
         r = math.nan
         if known_profile and measured_signals is not None and c in measured_signals:
             r = _envelope_similarity(np.asarray(measured_signals[c], float), measured.sample_rate_Hz,
