@@ -31,7 +31,7 @@ __version__ = "0.1.0"
 __getattr__, __dir__ = attach(
     __name__,
     submodules=["api", "measurement", "tyre", "vehicle", "rig", "rawformat", "report", "stages", "resources", "watch",
-                "warehouse"],
+                "warehouse", "export"],
     attrs={
         "api": ["analyze_recording"],
         "measurement.recording": ["RecordingResult", "WelchEstimate", "analyse_frame"],

@@ -28,7 +28,9 @@ __all__ = ["positive", "positive_array", "finite_array", "same_last_axis", "band
 
 
 def positive(name: str, value) -> float:
-    """``value`` as a float; ValueError naming ``name`` unless it is a finite number > 0."""
+    """``value`` as a float; ValueError naming ``name`` unless it is a finite number > 0 (not a bool: True is no mass)."""
+    if isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} must be a number, got {value!r}")
     try:
         v = float(value)
     except (TypeError, ValueError):
@@ -44,6 +46,8 @@ def positive_array(name: str, value, allow_nan: bool = False) -> np.ndarray:
     With ``allow_nan``, NaN ("not known", e.g. no excitation found) passes through.
     """
     try:
+        if np.asarray(value).dtype == bool:
+            raise ValueError(f"{name} must be numbers, got booleans {value!r}")
         a = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be numbers, got {value!r}") from None

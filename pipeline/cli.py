@@ -15,7 +15,8 @@ Verbs (a stable contract; see docs/architecture.md):
 - ``exposure``             a driver's daily vibration exposure from seat recordings
 
 Exit codes: 0 success; 3 some runs (or a manifest/catalogue) were quarantined; 2 usage or input
-error (also: the build is locked by another writer, an OS error); 130 interrupted.
+error (also: the build is locked by another writer, an OS error); 130 interrupted; 141 the reader of
+stdout went away (e.g. piped into ``head``).
 """
 
 from __future__ import annotations
@@ -37,6 +38,9 @@ __all__ = ["cmd_generate", "cmd_run", "cmd_watch", "cmd_stage", "cmd_sql", "cmd_
 EXIT_OK, EXIT_USAGE, EXIT_QUARANTINE = 0, 2, 3
 #: Exit code after Ctrl-C or SIGTERM (128 + SIGINT, as shells report it).
 EXIT_INTERRUPTED = 130
+#: Exit code when the reader of stdout went away (``tyrelab sql … | head``): 128 + SIGPIPE, as a
+#: command killed by SIGPIPE reports it; nothing is printed.
+EXIT_BROKEN_PIPE = 141
 
 log = logging.getLogger("tyrelab")
 
@@ -66,14 +70,11 @@ def cmd_generate(args) -> int:
 
 def _check_raw(args, need_campaign: bool) -> str | None:
     """One-line problem with ``--raw``, or None."""
-    raw = Path(args.raw)
-    if not raw.is_dir():
-        return f"--raw {raw}: no such folder"
-    if need_campaign:
-        from .io import discover_campaigns  # light: the ingest stage is imported only if it runs
+    from .io import raw_problem  # light: the ingest stage is imported only if it runs
 
-        if not discover_campaigns(raw):
-            return f"--raw {raw}: no campaign (no manifest.csv in it or below it)"
+    raw = Path(args.raw)
+    if not raw.is_dir() or need_campaign:
+        return raw_problem(raw)
     return None
 
 
@@ -195,9 +196,11 @@ def cmd_analyze_run(args) -> int:
     from .rawformat import RunFileError
 
     try:
-        out = analyze_recording(Path(args.file), args.axle_mass).to_dict()
-    except RunFileError as exc:
-        print(f"tyrelab analyze-run: {args.file}: {exc}", file=sys.stderr)
+        out = analyze_recording(Path(args.file), args.axle_mass, sample_rate_Hz=args.sample_rate).to_dict()
+    except (RunFileError, ValueError) as exc:  # ValueError: e.g. no time_s column and no --sample-rate
+        text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        text = text.replace("sample_rate_Hz is needed", "--sample-rate HZ is needed")
+        print(f"tyrelab analyze-run: {args.file}: {text}", file=sys.stderr)
         return EXIT_USAGE
     print(json.dumps(out, indent=2))
     if out["stiffness_N_per_m"] is None and not out["qc_ok"]:  # e.g. excitation outside the band: refused
@@ -249,9 +252,15 @@ def cmd_estimate_stiffness(args) -> int:
     except (TyreSizeError, ValueError) as exc:
         print(f"{prog}: {exc}", file=sys.stderr)
         return EXIT_USAGE
+    if not math.isfinite(est.stiffness_kN_per_m):
+        print(f"{prog}: --pressure {args.pressure:g} bar (with --size {args.size}): the formula gives no finite "
+              "stiffness", file=sys.stderr)
+        return EXIT_USAGE
     _warn(prog, est.warnings)
     if args.json or args.format == "json":
-        print(json.dumps(est.to_dict(), indent=2, ensure_ascii=False))
+        from .io import json_safe
+
+        print(json.dumps(json_safe(est.to_dict()), indent=2, ensure_ascii=False, allow_nan=False))
     else:
         pi = est.prediction_interval_kN_per_m
         print(f"{est.stiffness_kN_per_m:.1f} kN/m" + (
@@ -283,75 +292,24 @@ def cmd_natural_frequencies(args) -> int:
     return EXIT_OK
 
 
-def _json_safe(obj):
-    """NaN -> None (JSON has no NaN), recursively through dicts and lists."""
-    if isinstance(obj, dict):
-        return {k: _json_safe(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_json_safe(v) for v in obj]
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    return obj
-
-
 def cmd_export_tyre(args) -> int:
-    import numpy as np
-
-    from .io import write_text_atomic
-    from .stages.ingest import run_key
-    from .tyre.mf_tyre import measured_tyre, pressure_table, property_file
+    from .export import export_tyre
     from .tyre.sizes import TyreSizeError
-    from .warehouse import query
 
     prog = "tyrelab export-tyre"
-    db = Path(args.build) / "warehouse.duckdb"
     try:
-        tables = {name: query(db, f"SELECT * FROM {name}") for name in
-                  ("tyres", "table_iii", "stiffness_pressure_by_speed", "damping_pressure_by_speed")}
-        runs = query(db, "SELECT tyre_id, kind, pressure_bar FROM results")
-    except FileNotFoundError as exc:
-        print(f"{prog}: {exc}", file=sys.stderr)
+        export, written = export_tyre(Path(args.build) / "warehouse.duckdb", args.tyre_id, args.pressure, args.out)
+    except (LookupError, TyreSizeError, ValueError) as exc:
+        print(f"{prog}: {str(exc).splitlines()[0]}", file=sys.stderr)
         return EXIT_USAGE
-    except Exception as exc:  # noqa: BLE001 - a warehouse without the regress tables
-        print(f"{prog}: {db}: {str(exc).splitlines()[0]} (run 'tyrelab run' first)", file=sys.stderr)
+    except OSError as exc:
+        if isinstance(exc, FileNotFoundError) and not exc.filename:  # no warehouse yet
+            print(f"{prog}: {exc}", file=sys.stderr)
+        else:  # a folder in the way, a full disk, ulimit -f: no file of the set was replaced
+            print(f"{prog}: {os_error_line(exc)} (nothing written)", file=sys.stderr)
         return EXIT_USAGE
-    tyre_id = args.tyre_id
-    kind = runs["kind"].fillna("measurement") if "kind" in runs else "measurement"
-    tested = runs.loc[(runs["tyre_id"].astype(str) == tyre_id) & (kind == "measurement"), "pressure_bar"]
-    tested = np.unique(np.round(tested.to_numpy(dtype=float), 3))
-    try:
-        tyre = measured_tyre(tyre_id, tables["tyres"], tables["table_iii"], tables["damping_pressure_by_speed"],
-                             tested, source=f"warehouse {db}")
-        pressures = list(args.pressure or [round(float(np.mean(tyre.pressure_range_bar)), 3)])
-        files = [(p, property_file(tyre, p)) for p in pressures]
-    except (TyreSizeError, ValueError) as exc:
-        print(f"{prog}: {exc}", file=sys.stderr)
-        return EXIT_USAGE
-    out = Path(args.out) if args.out else Path(f"{run_key(tyre_id)}.tir")
-    if out.suffix.lower() != ".tir":
-        out = out.with_name(out.name + ".tir")
-    written = []
-    for p, text in files:
-        path = out if len(files) == 1 else out.with_name(f"{out.stem}_{p:g}bar.tir")
-        write_text_atomic(text, path)
-        written.append(str(path))
-    grid = sorted(set(tested.tolist()) | set(pressures))
-    table = pressure_table(tyre_id, tables["stiffness_pressure_by_speed"], tables["damping_pressure_by_speed"], grid)
-    write_text_atomic(table.to_csv(index=False), out.with_suffix(".csv"))
-    summary = {
-        "tyre_id": tyre_id,
-        "size": tyre.size.designation,
-        "source": tyre.source,
-        "stiffness_line_kN_per_m": dataclasses.asdict(tyre.stiffness),
-        "damping_line_kN_s_per_m": dataclasses.asdict(tyre.damping) if tyre.damping else None,
-        "damping_speed_km_h": tyre.damping_speed_km_h,
-        "tested_load_kN": tyre.tested_load_kN,
-        "pressure_range_bar": list(tyre.pressure_range_bar),
-        "tir_files": dict(zip([f"{p:g}" for p in pressures], written)),
-        "by_speed": table.to_dict(orient="records"),
-    }
-    write_text_atomic(json.dumps(_json_safe(summary), indent=2, ensure_ascii=False) + "\n", out.with_suffix(".json"))
-    for path in [*written, str(out.with_suffix(".csv")), str(out.with_suffix(".json"))]:
+    _warn(prog, export.warnings)
+    for path in written:
         print(path)
     return EXIT_OK
 
@@ -372,16 +330,20 @@ def cmd_ride(args) -> int:
     ctx = SimpleNamespace(executor=args.executor, jobs=args.jobs, scheduler=args.scheduler)
     try:
         results = ride_sweep(scenario, args.front_pressure, args.rear_pressure, args.speeds,
-                             Path(args.build) if args.build else None, ctx, with_spectra=bool(args.out))
+                             Path(args.build) if args.build else None, ctx, with_spectra=bool(args.out),
+                             max_variants=args.max_variants, max_samples=args.max_samples)
     except ValueError as exc:
         print(f"tyrelab ride: {args.scenario}: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except OSError as exc:  # e.g. --scheduler unreachable
+        print(f"tyrelab ride: {os_error_line(exc)}", file=sys.stderr)
         return EXIT_USAGE
     doc = result_json(results)
     if args.out:
         try:
             paths = write_outputs(results, args.out)
-        except OSError as exc:
-            print(f"tyrelab ride: --out {args.out}: {exc.strerror or exc}", file=sys.stderr)
+        except OSError as exc:  # neither file replaced (write_outputs writes them as one set)
+            print(f"tyrelab ride: --out {args.out}: {os_error_line(exc)} (nothing written)", file=sys.stderr)
             return EXIT_USAGE
         log.info("ride: wrote %s and %s", paths["json"], paths["html"])
     sys.stdout.write(dumps(doc) if args.format == "json" else format_table(doc))
@@ -390,6 +352,7 @@ def cmd_ride(args) -> int:
 
 def cmd_exposure(args) -> int:
     from .exposure import RecordingProblem, Task, assess, format_table
+    from .io import json_safe
     from .vehicle.daily_exposure import MAX_HOURS_PER_DAY
 
     prog = "tyrelab exposure"
@@ -414,7 +377,7 @@ def cmd_exposure(args) -> int:
             print(f"{prog}: {line}", file=sys.stderr)
         return EXIT_USAGE
     try:
-        doc = _json_safe(assess(tasks))
+        doc = json_safe(assess(tasks))
     except RecordingProblem as exc:
         for line in exc.lines:
             print(f"{prog}: {line}", file=sys.stderr)
@@ -448,6 +411,27 @@ def _non_negative(text: str) -> float:
     if not value >= 0:
         raise argparse.ArgumentTypeError(f"{text} is negative")
     return value
+
+
+#: Most worker processes ``--jobs`` may ask for (each holds a Python with numpy, scipy, pandas: ~150 MB).
+MAX_JOBS = 256
+
+
+def _whole(high: int):
+    """argparse type: a whole number from 1 to ``high``."""
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+        if not 1 <= value <= high:
+            raise argparse.ArgumentTypeError(f"{value} is not from 1 to {high}")
+        return value
+    return parse
+
+
+#: argparse type of ``--jobs``: 1 to :data:`MAX_JOBS`.
+_jobs = _whole(MAX_JOBS)
 
 
 def _size(text: str) -> int:
@@ -484,7 +468,7 @@ def build_parser() -> argparse.ArgumentParser:
         sp.add_argument("--raw", default="raw", help="raw data folder (default raw/)")
         sp.add_argument("--build", default="build", help="output folder (default build/)")
         sp.add_argument("--force", action="store_true", help="recompute everything")
-        sp.add_argument("--jobs", type=int, default=None, help="worker processes (default: cores)")
+        sp.add_argument("--jobs", type=_jobs, default=None, help="worker processes (default: cores)")
         sp.add_argument("--executor", choices=["local", "dask"], default="local")
         sp.add_argument("--scheduler", default=None, help="dask scheduler address (with --executor dask)")
         sp.add_argument("--calibration-correct", action="store_true",
@@ -521,6 +505,8 @@ def build_parser() -> argparse.ArgumentParser:
     a = sub.add_parser("analyze-run", help="K and C of one recording (raw format v1), as JSON")
     a.add_argument("file")
     a.add_argument("--axle-mass", type=_positive, required=True, help="axle+wheel+tyre mass M_a, kg")
+    a.add_argument("--sample-rate", type=_positive, default=None, metavar="HZ",
+                   help="sampling rate, Hz: checked against time_s, or the time base of a file without time_s")
     a.set_defaults(func=cmd_analyze_run)
 
     e = sub.add_parser("estimate-stiffness", help="rolling tyre stiffness from size, pressure and age (kN/m)",
@@ -582,7 +568,11 @@ def build_parser() -> argparse.ArgumentParser:
                     help="rear pressures to sweep, bar (default: the scenario's)")
     rd.add_argument("--speeds", type=_positive, nargs="+", default=None, metavar="KM_H",
                     help="speeds, km/h (default: the scenario's)")
-    rd.add_argument("--jobs", type=int, default=1, help="worker processes for a sweep (default 1)")
+    rd.add_argument("--jobs", type=_jobs, default=1, help="worker processes for a sweep (default 1)")
+    rd.add_argument("--max-variants", type=_whole(10**6), default=None, metavar="N",
+                    help="most pressure pairs a sweep may run (default 400; more is refused with an estimate)")
+    rd.add_argument("--max-samples", type=_whole(10**12), default=None, metavar="N",
+                    help="most 1 kHz samples the command may simulate over all pairs and speeds (default 10 million)")
     rd.add_argument("--executor", choices=["local", "dask"], default="local")
     rd.add_argument("--scheduler", default=None, help="dask scheduler address (with --executor dask)")
     rd.set_defaults(func=cmd_ride)
@@ -597,6 +587,18 @@ def build_parser() -> argparse.ArgumentParser:
     ex.add_argument("--format", choices=["json", "table"], default="json")
     ex.set_defaults(func=cmd_exposure)
     return p
+
+
+def _discard_stdout() -> None:
+    """Point stdout at /dev/null, so that the interpreter's last flush does not fail again."""
+    import os
+
+    try:
+        fd = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(fd, sys.stdout.fileno())
+        os.close(fd)
+    except (OSError, ValueError, AttributeError):  # pragma: no cover - stdout without a file descriptor
+        pass
 
 
 def _terminate(signum, frame):  # pragma: no cover - exercised in a subprocess
@@ -645,7 +647,12 @@ def main(argv: list[str] | None = None) -> int:
     else:  # pragma: no cover
         previous = None
     try:
-        return args.func(args)
+        code = args.func(args)
+        sys.stdout.flush()  # here, not at exit: a reader gone is caught below
+        return code
+    except BrokenPipeError:  # stdout piped into `head` (or a pager) that quit reading: no traceback
+        _discard_stdout()
+        return EXIT_BROKEN_PIPE
     except KeyboardInterrupt:
         print(f"tyrelab {args.command}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED

@@ -18,6 +18,7 @@ only when used, so ``tyrelab run`` starts quickly.
 
 from __future__ import annotations
 
+import errno
 import multiprocessing
 import os
 from concurrent.futures import ProcessPoolExecutor
@@ -278,17 +279,34 @@ def abandon_pool(pool: ProcessPoolExecutor) -> None:
         proc.join(timeout=10)
 
 
+#: Longest wait for a dask scheduler given with ``--scheduler``, s.
+DASK_CONNECT_TIMEOUT_S = 10.0
+
+
 def _map_dask(fn: Callable[[Any], Any], batches: list[Any], ctx, done: Callable[[int], None]) -> list[Any]:
     """Run the batches on a Dask cluster (``ctx.scheduler``, or a local one)."""
     try:
         from dask.distributed import Client, as_completed
     except ImportError:  # pragma: no cover - depends on the installed extras
         raise RuntimeError("--executor dask needs dask[distributed]: pip install 'tyrelab[dask]'") from None
+    import logging
+
+    # distributed logs every worker start, stop and heartbeat at INFO (~270 lines for 24 workers), and
+    # tyrelab's command line shows INFO: its scheduler and workers say only warnings and errors.
+    for name in ("distributed", "dask"):
+        logging.getLogger(name).setLevel(max(logging.WARNING, logging.getLogger(name).getEffectiveLevel()))
     if ctx.scheduler:
-        client = Client(ctx.scheduler)
+        try:
+            client = Client(ctx.scheduler, timeout=DASK_CONNECT_TIMEOUT_S)
+        except (OSError, TimeoutError, ValueError) as exc:  # refused, unreachable, a malformed address
+            raise OSError(errno.ECONNREFUSED, f"cannot reach the dask scheduler ({str(exc).splitlines()[0]})",
+                          f"--scheduler {ctx.scheduler}") from None
     else:
-        client = Client(n_workers=max(1, int(ctx.jobs or 1)), threads_per_worker=1, processes=True,
-                        dashboard_address=None)
+        # As the local executor: no more workers than batches (24 workers for 2 variants on 2 cores
+        # started 24 processes).
+        workers = max(1, min(int(ctx.jobs or 1), len(batches)))
+        client = Client(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
+                        silence_logs=logging.WARNING)
     try:
         futures = client.map(fn, batches, pure=False)
         index = {f.key: i for i, f in enumerate(futures)}

@@ -9,8 +9,10 @@ previous version in place.
 from __future__ import annotations
 
 import contextlib
+import errno
 import hashlib
 import logging
+import math
 import os
 import re
 import stat
@@ -21,8 +23,9 @@ from typing import TYPE_CHECKING, Iterator
 if TYPE_CHECKING:  # pandas/pyarrow are imported where used: a no-op run never needs them
     import pandas as pd
 
-__all__ = ["atomic_path", "write_parquet_atomic", "write_text_atomic", "file_sha256", "discover_campaigns",
-           "os_error_line"]
+__all__ = ["atomic_path", "write_parquet_atomic", "write_text_atomic", "write_texts_atomic", "file_sha256",
+           "discover_campaigns", "os_error_line", "make_folder", "safe_name", "walk", "json_safe",
+           "raw_problem"]
 
 
 def os_error_line(exc: OSError) -> str:
@@ -42,6 +45,16 @@ _UMASK = os.umask(0)
 os.umask(_UMASK)
 
 
+def make_folder(folder: str | os.PathLike) -> Path:
+    """``mkdir -p folder``; a regular file in the way is NotADirectoryError naming it (mkdir says "File exists")."""
+    folder = Path(folder)
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+    except FileExistsError as exc:
+        raise NotADirectoryError(errno.ENOTDIR, "Not a directory", exc.filename) from None
+    return folder
+
+
 @contextlib.contextmanager
 def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; rename it to ``path`` on success.
@@ -49,7 +62,7 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     On an exception the temporary file is removed and ``path`` is untouched.
     """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
+    make_folder(path.parent)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
     tmp_path = Path(tmp)
@@ -103,6 +116,127 @@ def write_text_atomic(text: str, path: str | os.PathLike) -> Path:
     return Path(path)
 
 
+def write_texts_atomic(files: dict[str | os.PathLike, str]) -> list[Path]:
+    """Write a set of UTF-8 files that belong together: all are replaced, or none is; return the paths.
+
+    Every file is first written to a temporary file beside its target; only when all
+    are written (a full disk, a file-size limit or a missing folder fails here, before
+    any target is touched) are they renamed over the targets. Should a rename fail,
+    the targets already replaced get their previous contents back (kept as hard links
+    until the set is complete), so readers see the old set or the new one.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> d = Path(tempfile.mkdtemp())
+    >>> [p.name for p in write_texts_atomic({d / "a.json": "{}", d / "a.html": "<p>"})]
+    ['a.json', 'a.html']
+    >>> write_texts_atomic({d / "b.json": "{}", d / "a.json" / "below-a-file.html": ""})
+    Traceback (most recent call last):
+    ...
+    NotADirectoryError: [Errno 20] Not a directory: ...
+    >>> sorted(p.name for p in d.iterdir())  # b.json was not written: the set failed
+    ['a.html', 'a.json']
+    """
+    targets = [Path(p) for p in files]
+    temporaries: list[Path] = []
+    replaced: list[tuple[Path, Path | None]] = []  # targets replaced so far, with their previous contents
+    try:
+        for path, text in zip(targets, files.values()):
+            make_folder(path.parent)
+            fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+            temporaries.append(Path(tmp))
+            with os.fdopen(fd, "w", encoding="utf-8") as fh:
+                fh.write(text)
+            os.chmod(tmp, 0o666 & ~_UMASK)
+        for path, tmp in zip(targets, temporaries):
+            backup = None
+            if len(targets) > 1 and path.is_file() and not path.is_symlink():
+                backup = Path(tempfile.mktemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent))
+                os.link(path, backup)
+            try:
+                os.replace(tmp, path)
+            except BaseException:
+                if backup is not None:
+                    backup.unlink()
+                raise
+            replaced.append((path, backup))
+    except BaseException:
+        for path, backup in reversed(replaced):
+            if backup is not None:
+                os.replace(backup, path)
+            else:
+                path.unlink(missing_ok=True)
+        raise
+    finally:
+        for tmp in temporaries:
+            tmp.unlink(missing_ok=True)
+        for _, backup in replaced:
+            if backup is not None:
+                backup.unlink(missing_ok=True)
+    return targets
+
+
+def json_safe(obj):
+    """``obj`` with NaN and infinities as None (JSON has neither: ``json.dumps`` would print
+    ``NaN``/``Infinity``), recursively through dicts, lists and tuples; numpy scalars as Python's.
+
+    Examples
+    --------
+    >>> json_safe({"k": [1.0, float("inf")], "c": float("nan")})
+    {'k': [1.0, None], 'c': None}
+    """
+    if isinstance(obj, dict):
+        return {k: json_safe(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [json_safe(v) for v in obj]
+    if hasattr(obj, "item") and getattr(obj, "ndim", None) == 0:  # a numpy scalar
+        obj = obj.item()
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None
+    return obj
+
+
+def safe_name(text: str) -> str:
+    """A file-name-safe, unique name for ``text`` (a run id, a tyre id): unsafe characters become ``_``
+    and, where anything was changed, a digest of the original keeps names apart.
+
+    Examples
+    --------
+    >>> safe_name("MF-480/70R38 #2")
+    'MF-480_70R38__2-e3099418'
+    >>> safe_name("r001")
+    'r001'
+    """
+    safe = re.sub(r"[^A-Za-z0-9._-]", "_", text)[:80]
+    if safe != text:
+        safe += "-" + hashlib.sha1(text.encode()).hexdigest()[:8]
+    return safe
+
+
+def walk(folder: str | os.PathLike):
+    """``os.walk(folder)`` (top-down, symlinked folders listed but not entered, unreadable folders
+    skipped) without recursion: Python 3.11's ``os.walk`` and ``Path.rglob`` recurse once per
+    level and raise RecursionError in a tree ~1,000 folders deep. ``dirnames`` may be pruned in place.
+    """
+    stack = [os.fspath(folder)]
+    while stack:
+        top = stack.pop()
+        dirs, files = [], []
+        try:
+            with os.scandir(top) as entries:
+                for entry in entries:
+                    try:
+                        is_dir = entry.is_dir()
+                    except OSError:
+                        is_dir = False
+                    (dirs if is_dir else files).append(entry.name)
+        except OSError:
+            continue
+        yield top, dirs, files
+        stack.extend(os.path.join(top, d) for d in reversed(dirs) if not os.path.islink(os.path.join(top, d)))
+
+
 def file_sha256(path: str | os.PathLike, chunk: int = 1 << 20) -> str:
     """Return the hex SHA-256 of a file's bytes."""
     h = hashlib.sha256()
@@ -142,7 +276,7 @@ def regular_files(folder: str | os.PathLike, exclude: str | os.PathLike | None =
     entering it.
     """
     skip = Path(exclude).resolve() if exclude is not None else None
-    for dirpath, dirnames, filenames in os.walk(folder):
+    for dirpath, dirnames, filenames in walk(folder):
         if skip_folders_with is not None and (skip_folders_with in filenames or skip_folders_with in dirnames):
             dirnames[:] = []
             continue
@@ -181,4 +315,25 @@ def discover_campaigns(raw: str | os.PathLike) -> list[Path]:
     raw = Path(raw)
     if (raw / "manifest.csv").is_file():
         return [raw]
-    return sorted(p.parent for p in raw.rglob("manifest.csv") if p.is_file())
+    return sorted(Path(top) for top, _, files in walk(raw) if "manifest.csv" in files
+                  and (Path(top) / "manifest.csv").is_file())
+
+
+def raw_problem(raw: str | os.PathLike) -> str | None:
+    """Why ``raw`` cannot be built from (one line naming it), or None: not a folder, or no campaign in it.
+
+    ``tyrelab run`` refuses such a ``--raw`` before any stage, and ``tyrelab watch`` before each
+    run: a raw folder that vanished (an unmounted share, a folder renamed) must not replace a
+    build with an empty one.
+
+    Examples
+    --------
+    >>> raw_problem("/no/such/folder")
+    '--raw /no/such/folder: no such folder'
+    """
+    raw = Path(raw)
+    if not raw.is_dir():
+        return f"--raw {raw}: no such folder"
+    if not discover_campaigns(raw):
+        return f"--raw {raw}: no campaign (no manifest.csv in it or below it)"
+    return None

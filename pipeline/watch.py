@@ -112,6 +112,7 @@ def watch(ctx, options: WatchOptions | None = None, *, run: Callable | None = No
         The runs made, when ``options.max_runs`` is reached (otherwise the function
         returns only by an exception such as ``KeyboardInterrupt``).
     """
+    from .io import raw_problem
     from .published import PublishedTableError
     from .stages import run_pipeline
     from .stages.state import raw_digest
@@ -128,10 +129,15 @@ def watch(ctx, options: WatchOptions | None = None, *, run: Callable | None = No
             if now != pending:
                 pending, since = now, clock()
             if done is None or clock() - since >= options.settle_s:
-                if done is not None:
+                first, done = done is None, now
+                problem = raw_problem(ctx.raw)
+                if problem:  # vanished or emptied: keep the build, never replace it with an empty one
+                    log.error("tyrelab watch: %s; the build is kept as it is (waiting for the next change)", problem)
+                    runs.append(WatchRun(seconds=0.0, error=problem))
+                    continue
+                if not first:
                     log.info("watch: the raw folder changed; running")
                 runs.append(_one_run(ctx, run, PublishedTableError))
-                done = now
                 if len(runs) == 1:
                     preload()
                     if ctx.executor == "local" and int(ctx.jobs or 1) > 1:

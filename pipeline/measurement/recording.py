@@ -364,6 +364,11 @@ def analyse_frame(
         sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
     if not isinstance(frame, pd.DataFrame):
         raise ValueError(f"frame must be a pandas DataFrame, got {type(frame).__name__}")
+    if isinstance(frame.columns, pd.MultiIndex):
+        raise ValueError(f"frame must have one level of column names (the channels), got {frame.columns.nlevels} levels")
+    duplicated = sorted({str(c) for c in frame.columns[frame.columns.duplicated()]})
+    if duplicated:
+        raise ValueError(f"frame has duplicated columns: {', '.join(duplicated)}")
     if TIME not in frame.columns:
         if sample_rate_Hz is None:
             raise ValueError("sample_rate_Hz is needed for a recording without a time_s column")

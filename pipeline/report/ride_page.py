@@ -100,7 +100,7 @@ def render_page(results: list[RideResult], doc: dict | None = None) -> str:
 
 
 def write_outputs(results: list[RideResult], out: str | Path) -> dict[str, Path]:
-    """Write ``ride.json`` and ``ride.html`` into ``out`` (created), atomically.
+    """Write ``ride.json`` and ``ride.html`` into ``out`` (created) as one set: both are replaced or neither.
 
     Returns
     -------
@@ -108,7 +108,7 @@ def write_outputs(results: list[RideResult], out: str | Path) -> dict[str, Path]
         ``json`` and ``html`` paths.
     """
     out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
     doc = result_json(results)
-    return {"json": io.write_text_atomic(dumps(doc), out / "ride.json"),
-            "html": io.write_text_atomic(render_page(results, doc), out / "ride.html")}
+    paths = {"json": out / "ride.json", "html": out / "ride.html"}
+    io.write_texts_atomic({paths["json"]: dumps(doc), paths["html"]: render_page(results, doc)})  # both or neither
+    return paths

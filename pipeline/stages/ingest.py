@@ -27,7 +27,6 @@ from __future__ import annotations
 import hashlib
 import json
 import logging
-import re
 import time
 import urllib.parse
 from dataclasses import dataclass, field
@@ -67,11 +66,8 @@ INFO_KEYS = ("sample_rate_Hz", "n_samples", "duration_s")
 
 
 def run_key(run_id: str) -> str:
-    """A file-name-safe, unique key for a run id."""
-    safe = re.sub(r"[^A-Za-z0-9._-]", "_", run_id)[:80]
-    if safe != run_id:
-        safe += "-" + hashlib.sha1(run_id.encode()).hexdigest()[:8]
-    return safe
+    """A file-name-safe, unique key for a run id (:func:`tyrelab.io.safe_name`)."""
+    return io.safe_name(run_id)
 
 
 def tyre_partition(tyre_id: str) -> str:
@@ -377,9 +373,12 @@ def run(ctx: Context) -> StageResult:
 
     result.n_ok = len(records)
     result.n_quarantined = sum(1 for q in plan.quarantine if q["run_id"] is not None)
-    result.n_rejected = plan.rejected
-    result.n_in = result.n_ok + result.n_quarantined
     unlisted = sum(1 for q in plan.quarantine if q["run_id"] is None)
+    # Every entry without a run id is a file, manifest or catalogue refused (a manifest or catalogue
+    # refused as a whole is one of them): the command exits 3 for these too (a manifest cut short
+    # leaves its runs' files without a row and exited 0).
+    result.n_rejected = max(plan.rejected, unlisted)
+    result.n_in = result.n_ok + result.n_quarantined
     converted = sum(1 for d in done.values() if d.get("converted"))
     result.message = f"{converted} converted, {len(done) - converted} unchanged" + (
         f"; {unlisted} file/manifest/catalogue problem(s) without a run id" if unlisted else "")

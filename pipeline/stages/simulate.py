@@ -117,13 +117,11 @@ def _ride_finish(ctx: Context, files: list[tuple[str, str]], cache: ItemCache, k
     ``outputs`` of the ``todo`` ones (:func:`_ride_plan`), which are stored."""
     if todo:
         scenarios, results, bad = ride.collect_scenarios(outputs)
-        if len(scenarios) and scenarios["scenario"].duplicated().any():  # rows not attributable: no reuse
-            return ride.run_scenarios(files, ctx, ctx.build)
         for (path, _), k in zip([f for f, _ in todo], [k for _, k in todo]):
             failed = [b for b in bad if b["file"] == path]
             mine = scenarios[scenarios["file"] == path] if len(scenarios) else scenarios
-            name = mine["scenario"].iloc[0] if len(mine) else None
-            rows = results[results["scenario"] == name] if name is not None and len(results) else results.iloc[0:0]
+            # keyed by the scenario file (ride_results.file): two files may give the same name
+            rows = results[results["file"] == path] if len(results) else results.iloc[0:0]
             done[k] = (mine, rows, failed)
             cache.put(k, done[k])
     parts = [done[k] for k in keys]

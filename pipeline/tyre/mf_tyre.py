@@ -252,6 +252,9 @@ def tir_parameters(tyre: MeasuredTyre, pressure_bar: float) -> dict[str, list[tu
         raise ValueError(f"pressure_bar {p0}: the measured line gives K = {k0:.1f} kN/m, not positive")
     s = tyre.size
     speed = tyre.damping_speed_km_h
+    low, high = tyre.pressure_range_bar
+    # Outside the tested pressures the line is extrapolated, not measured: the file says so.
+    at = "measured" if low - 1e-9 <= p0 <= high + 1e-9 else f"extrapolated to NOMPRES outside the tested {low:g}-{high:g} bar"
     model = [("FITTYP", 61, "Magic Formula 6.1"), ("TYRESIDE", "'LEFT'", "placeholder")]
     if speed is not None:
         model.append(("LONGVL", round(speed / 3.6, 6), f"measured: speed of the damping fit, {speed:g} km/h (m/s)"))
@@ -259,14 +262,14 @@ def tir_parameters(tyre: MeasuredTyre, pressure_bar: float) -> dict[str, list[tu
     diameter_note = "measured: catalogue outer diameter / 2" if tyre.outer_diameter_m else "from the size: rim/2 + aspect x width"
     vertical = [
         ("FNOMIN", round(tyre.tested_load_kN * 1e3, 3), "measured: load of the pressure sweep (N)"),
-        ("VERTICAL_STIFFNESS", round(k0 * 1e3, 3), f"measured: K_c + dK_p P at NOMPRES, {tyre.source} (N/m)"),
+        ("VERTICAL_STIFFNESS", round(k0 * 1e3, 3), f"{at}: K_c + dK_p P at NOMPRES, {tyre.source} (N/m)"),
     ]
     if tyre.damping is not None:
         c0 = float(tyre.damping.at(p0))
         vertical.append(("VERTICAL_DAMPING", round(c0 * 1e3, 3),
-                         f"measured: C_c + dC P at NOMPRES and {speed:g} km/h (N s/m); no pressure term in MF"))
+                         f"{at}: C_c + dC P at NOMPRES and {speed:g} km/h (N s/m); no pressure term in MF"))
     vertical += [
-        ("PFZ1", round(p0 * tyre.stiffness.slope / k0, 9), "measured: p0 dK_p / K(p0), pressure effect on stiffness"),
+        ("PFZ1", round(p0 * tyre.stiffness.slope / k0, 9), f"{at}: p0 dK_p / K(p0), pressure effect on stiffness"),
         ("Q_FZ2", 0, "placeholder: linear in deflection (measured about the mean deflection)"),
         ("Q_V2", 0, "placeholder: no speed term (see the per-speed K(P), C(P) table)"),
     ]
@@ -369,6 +372,7 @@ def pressure_table(
                              "value": float(v), "se": float(s), "low": float(v - tq * s), "high": float(v + tq * s),
                              "n": line.n, "unit": unit})
     long = pd.DataFrame(rows, columns=["speed_km_h", "pressure_bar", "quantity", "value", "se", "low", "high", "n", "unit"])
+    long = long.astype({"speed_km_h": float, "pressure_bar": float})  # also with no fit at all (no rows)
     out = pd.DataFrame({"speed_km_h": pd.Series(dtype=float), "pressure_bar": pd.Series(dtype=float)})
     for name, unit in (("stiffness", "kN_per_m"), ("damping", "kN_s_per_m")):
         q = long.loc[long["quantity"] == name].drop(columns=["quantity", "unit"]).rename(columns={

@@ -82,15 +82,22 @@ def natural_frequencies(
         raise ValueError("axle stiffnesses must be positive")
     if l1 < 0 or l2 < 0 or l1 + l2 <= 0:
         raise ValueError("axle distances must be non-negative with a positive wheelbase")
+    if not all(math.isfinite(v) for v in (m, inertia, l1, l2, kf, kr, kf * l1 * l1 + kr * l2 * l2)):
+        raise ValueError(f"front_distance_m {l1:g}, rear_distance_m {l2:g}, mass_kg {m:g}, pitch_inertia_kg_m2 "
+                         f"{inertia:g} and axle stiffnesses {kf:g}, {kr:g} N/m: the pitch stiffness "
+                         "K_f l1² + K_r l2² is beyond a float (inputs not finite or far too large)")
     stiffness, mass = _matrices(m, inertia, l1, l2, kf, kr)
     omega2 = linalg.eigh(stiffness, mass, eigvals_only=True)
     f = np.sqrt(np.clip(omega2, 0.0, None)) / (2.0 * math.pi)
+    if not np.isfinite(f).all():
+        raise ValueError(f"mass_kg {m:g} and pitch_inertia_kg_m2 {inertia:g} with axle stiffnesses {kf:g}, {kr:g} "
+                         "N/m give no finite natural frequency (far too small a mass or inertia)")
     return float(f[0]), float(f[1])
 
 
 def _matrices(m, inertia, l1, l2, kf, kr) -> tuple[np.ndarray, np.ndarray]:
     """Stiffness and mass matrices of the beam on two springs (thesis §8.2), coordinates (z, θ)."""
-    stiffness = np.array([[kf + kr, kf * l1 - kr * l2], [kf * l1 - kr * l2, kf * l1**2 + kr * l2**2]])
+    stiffness = np.array([[kf + kr, kf * l1 - kr * l2], [kf * l1 - kr * l2, kf * l1 * l1 + kr * l2 * l2]])
     return stiffness, np.diag([m, inertia])
 
 

@@ -57,6 +57,7 @@ from . import metrics as mt
 from . import profiles as pr
 from .carriage import GRAVITY_M_S2
 from .scenario import Scenario, read_profile_csv, with_overrides
+from .scenario_limits import MIN_VERDICT_DURATION_S
 from .studies import DT_S, _half_inputs
 from .tractor import PARAMETERS, Tractor, simulate_tractor
 
@@ -814,6 +815,10 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
             "duration_s": duration,
             "simulation": method,
         }
+        if duration < MIN_VERDICT_DURATION_S:
+            warnings.append(f"{speed:g} km/h: the seat record is {duration:.2f} s, shorter than "
+                            f"{MIN_VERDICT_DURATION_S:g} s: too short for a reliable exposure verdict "
+                            "(lengthen surface.length_m or simulation.duration_s)")
         rows.append(row)
         if with_spectra:
             fz, pz = mt.acceleration_psd(z, FS_HZ, 0.1)
@@ -879,6 +884,8 @@ def ride_sweep(
     build: Path | None = None,
     executor_ctx=None,
     with_spectra: bool = True,
+    max_variants: int | None = None,
+    max_samples: int | None = None,
 ) -> list[RideResult]:
     """:func:`ride` for every front × rear pressure pair (the scenario's own when not given).
 
@@ -889,6 +896,9 @@ def ride_sweep(
         Default: the scenario's ``[sweep]``, else its tyres' pressures.
     speeds_km_h : sequence of float, optional
         Override the scenario's speeds.
+    max_variants, max_samples : int, optional
+        Bounds of the work (:mod:`tyrelab.vehicle.scenario_limits`; default its ``MAX_VARIANTS``,
+        ``MAX_SAMPLES``): more is refused with a ValueError giving the estimate, before any work.
     build : Path, optional
         Warehouse of measured tyres.
     executor_ctx : object, optional
@@ -905,6 +915,16 @@ def ride_sweep(
 
     fronts = list(front_pressures_bar or scenario.sweep.front_pressures_bar or [scenario.front.pressure_bar])
     rears = list(rear_pressures_bar or scenario.sweep.rear_pressures_bar or [scenario.rear.pressure_bar])
+    from . import scenario_limits as limits
+
+    bad = limits.override_problems(speeds_km_h, front_pressures_bar, rear_pressures_bar)
+    if bad:
+        raise ValueError("; ".join(bad))
+    too_much = limits.work_problems(scenario, len(fronts) * len(rears), speeds_km_h,
+                                    max_variants=max_variants or limits.MAX_VARIANTS,
+                                    max_samples=max_samples or limits.MAX_SAMPLES)
+    if too_much:  # before any work (the pairs are not even built)
+        raise ValueError("; ".join(too_much))
     variants = [with_overrides(scenario, speeds_km_h, pf, pr_) for pf in fronts for pr_ in rears]
     items = [(v, build, with_spectra) for v in variants]
     if executor_ctx is None or len(items) == 1:
@@ -1029,7 +1049,10 @@ def scenario_task(item: tuple) -> dict:
                       _modes(build_tractor(sc, resolve_tyres(sc, Path(build) if build else None), 0)))
     except (ScenarioError, ValueError) as exc:
         return {"file": path, "error": str(exc).replace("\n", "; ")}
+    except (ArithmeticError, MemoryError, RecursionError) as exc:  # the model failed: this scenario only
+        return {"file": path, "error": f"the ride model failed: {type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"}
     table = results_table(results, sc.name)
+    table["file"] = path  # rows are keyed by the scenario file: two files may share a name
     table["is_nominal"] = (table["front_pressure_bar"] == sc.front.pressure_bar) & \
         (table["rear_pressure_bar"] == sc.rear.pressure_bar)
     s = sc.surface

@@ -43,6 +43,7 @@ import pandas as pd
 
 from ..schema import load_schema
 from ..tyre.sizes import TyreSizeError, parse_tyre_size
+from .scenario_limits import scenario_problems
 
 __all__ = [
     "Scenario",
@@ -351,6 +352,8 @@ def _validate(doc: dict, base_dir: Path) -> list[str]:
 
 def _resolve_inside(base_dir: Path, relative: str) -> tuple[Path | None, str | None]:
     """``base_dir / relative`` if it stays inside ``base_dir``, else a problem."""
+    if "\0" in relative:
+        return None, f"surface.profile {relative!r}: a path cannot hold a NUL character"
     rel = Path(relative)
     if rel.is_absolute():
         return None, f"surface.profile {relative!r}: give a path relative to the scenario file"
@@ -511,11 +514,21 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise ScenarioError(where, [f"not valid TOML: {exc}"]) from None
+    except RecursionError:  # arrays nested thousands deep
+        raise ScenarioError(where, ["not valid TOML: nested too deeply"]) from None
     base = Path(base_dir)
     problems = _validate(doc, base)
     if problems:
         raise ScenarioError(where, problems)
-    return _build(doc, Path(path) if path is not None else None, base)
+    scenario = _build(doc, Path(path) if path is not None else None, base)
+    problems = scenario_problems(scenario)  # what the model can represent (scenario_limits.LIMITS)
+    if problems:
+        raise ScenarioError(where, problems)
+    return scenario
+
+
+#: Largest scenario file read, bytes (the shipped ones are ~2 kB).
+MAX_SCENARIO_BYTES = 1_000_000
 
 
 def load_scenario(path: str | Path) -> Scenario:
@@ -528,6 +541,10 @@ def load_scenario(path: str | Path) -> Scenario:
     """
     p = Path(path)
     try:
+        if not p.is_file():  # a folder, a FIFO, /dev/zero (read for ever)
+            raise ScenarioError(p, ["not a regular file"] if p.exists() else ["cannot read: No such file or directory"])
+        if p.stat().st_size > MAX_SCENARIO_BYTES:
+            raise ScenarioError(p, [f"{p.stat().st_size} bytes: a scenario file is at most {MAX_SCENARIO_BYTES}"])
         text = p.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise ScenarioError(p, [f"cannot read: {exc.strerror if isinstance(exc, OSError) else exc}"]) from None

@@ -8,9 +8,10 @@ from pathlib import Path
 
 import pytest
 
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from synthetic import edit_csv, manifest_row, spring_damper_recording, write_campaign
 from tyrelab import cli
 from tyrelab.stages import Context, run_pipeline
+from tyrelab.warehouse import query
 from tyrelab.watch import WatchOptions, watch
 
 STAGES = ["ingest", "analyse", "warehouse"]
@@ -157,3 +158,47 @@ def test_cli_watch_runs_the_pipeline_under_the_build_lock(tmp_path, monkeypatch)
     assert cli.main(["-q", "watch", "--raw", str(raw), "--build", str(build), "--jobs", "1", "--max-runs", "1"]) == 0
     assert held == [True]
     assert (build / "warehouse.duckdb").is_file()
+
+
+# -- issue 25: a vanished raw folder keeps the build; a manifest cut short exits 3 ----------------
+
+def test_raw_vanishing_during_watch_keeps_the_build(tmp_path):
+    raw, build = tmp_path / "raw", tmp_path / "build"
+    _campaign(raw)
+    ctx = Context(raw=raw, build=build, jobs=1)
+    moved = tmp_path / "moved"
+    t = FakeTime({0: lambda: raw.rename(moved), 4: lambda: moved.rename(raw)})
+    ran = []
+
+    def run(c):
+        ran.append(c.raw)
+        return run_pipeline(c, STAGES)
+
+    runs = watch(ctx, WatchOptions(interval_s=1.0, settle_s=1.0, max_runs=3), run=run, sleep=t.sleep, clock=t.clock)
+    assert runs[0].error == "" and "no such folder" in runs[1].error and runs[2].error == ""
+    assert len(ran) == 2  # no pipeline run while the folder was gone
+    assert len(query(build / "warehouse.duckdb", "SELECT * FROM results")) == 3
+
+
+def test_raw_emptied_during_watch_keeps_the_build(tmp_path):
+    raw, build = tmp_path / "raw", tmp_path / "build"
+    _campaign(raw)
+    ctx = Context(raw=raw, build=build, jobs=1)
+    t = FakeTime({0: lambda: shutil.rmtree(raw / "c")})
+    runs = watch(ctx, WatchOptions(interval_s=1.0, settle_s=1.0, max_runs=2),
+                 run=lambda c: run_pipeline(c, STAGES), sleep=t.sleep, clock=t.clock)
+    assert "no campaign" in runs[1].error
+    assert len(query(build / "warehouse.duckdb", "SELECT * FROM results")) == 3
+
+
+def test_a_manifest_cut_short_exits_3(tmp_path, monkeypatch):
+    import tyrelab.stages as stages
+
+    monkeypatch.setattr(stages, "ORDER", STAGES)
+    raw = _campaign(tmp_path / "raw", n=4)
+    edit_csv(raw / "manifest.csv", lambda rows: rows.__delitem__(slice(1, None)))
+    assert cli.main(["run", "--raw", str(raw), "--build", str(tmp_path / "build"), "--jobs", "1"]) == 3
+    q = query(tmp_path / "build" / "warehouse.duckdb", "SELECT reason FROM quarantine")
+    assert list(q["reason"]) == ["file has no row in manifest.csv"] * 3
+    # and again when nothing changed: the build still holds them
+    assert cli.main(["run", "--raw", str(raw), "--build", str(tmp_path / "build"), "--jobs", "1"]) == 3
