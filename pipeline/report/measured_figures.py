@@ -17,12 +17,16 @@ MAX_PANELS = 12
 
 def psd_overlay(spectra: pd.DataFrame) -> str | None:
     """Seat vertical PSD of each recording (0.1 Hz), with its scenario's prediction where there is one."""
-    if not _has(spectra, "ride_id", "source", "channel", "frequency_Hz", "psd_m2_s4_per_Hz"):
-        return None
-    z = spectra[spectra["channel"] == "seat_z_m_s2"]
+    columns = ("ride_id", "source", "channel", "frequency_Hz", "psd_m2_s4_per_Hz")
+    if spectra is None or not all(c in spectra.columns for c in columns):
+        return None  # the rides stage has not run
+    z = spectra[spectra["channel"] == "seat_z_m_s2"] if _has(spectra, *columns) else spectra.iloc[:0]
     rides = sorted(z["ride_id"].unique())[:MAX_PANELS]
-    if not rides:
-        return None
+    if not rides:  # the stage ran; no campaign has a rides.csv with a seat z recording
+        fig, ax = _figure(size=(4.0, 1.2))
+        ax.set_axis_off()
+        ax.text(0.5, 0.5, "no seat recordings (no rides.csv in the raw folder)", ha="center", va="center")
+        return to_svg(fig)
     ncols = min(3, len(rides))
     nrows = math.ceil(len(rides) / ncols)
     fig, axes = _figure(nrows, ncols, size=(2.6 * ncols, 2.1 * nrows), sharex=True, squeeze=False)
