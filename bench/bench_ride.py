@@ -10,7 +10,14 @@ the shortest one, against the linear path of ``ride`` on the same run (inputs
 built once for both). Prints wall times, ratios and the largest relative
 difference of the seat vertical acceleration between the two paths.
 
-    .venv/bin/python bench/bench_ride.py [--skip-sweep]
+    .venv/bin/python bench/bench_ride.py [--skip-sweep] [--targets]
+
+``--targets`` also measures issue 23's sweep targets as ratios to u = one 4-speed scenario
+(``one_scenario_s``) in this process: a 10 x 10 pressure grid x 8 speeds in the time domain
+(``grid_800_over_u``, timed on 10 of the 100 variants and scaled, target <= 25) and the
+frequency-domain expectation for 10,000 variant-speeds (``fd_10000_over_u``, CPU seconds
+extrapolated from 100, target <= 5); and the 3-D model's cost
+(``three_d_over_u``: the same scenario with roll, isotropic tracks and a pivoting front axle).
 """
 
 from __future__ import annotations
@@ -28,7 +35,7 @@ import numpy as np  # noqa: E402
 
 from tyrelab.resources import scenarios_dir  # noqa: E402
 from tyrelab.vehicle import ride  # noqa: E402
-from tyrelab.vehicle.scenario import load_scenario, with_overrides  # noqa: E402
+from tyrelab.vehicle.scenario import load_scenario, parse_scenario, with_overrides  # noqa: E402
 from tyrelab.vehicle.tractor import simulate_tractor  # noqa: E402
 
 
@@ -46,6 +53,7 @@ def _timed(fn, *args, **kw):
 def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--skip-sweep", action="store_true", help="only the single scenario and the baseline")
+    p.add_argument("--targets", action="store_true", help="also the issue-23 sweep targets (minutes of CPU)")
     args = p.parse_args(argv)
     sc = load_scenario(scenarios_dir() / "modern_tractor.toml")
     ride.ride(with_overrides(sc, [16.0]), with_spectra=False)  # warm-up: imports, caches
@@ -87,8 +95,46 @@ def main(argv=None) -> int:
         table = ride.results_table(sweep)
         out.update(sweep_runs=len(table), sweep_s=round(t_sweep, 2), sweep_cpu_s=round(CPU["ride_sweep"], 2),
                    sweep_nonlinear_runs=int((table["simulation"] != "linear").sum()))
+    if args.targets:
+        out.update(_targets(sc, cpu_one))
     print(json.dumps(out, indent=2))
     return 0
+
+
+def _targets(sc, u_s: float) -> dict:
+    """Issue 23's targets as ratios to ``u_s`` (one 4-speed scenario), all in CPU seconds of this process."""
+    from tyrelab.vehicle.model import assemble
+
+    text = (scenarios_dir() / "modern_tractor.toml").read_text()
+    text = text.replace("[tractor]\n", "[tractor]\nroll_inertia_kg_m2 = 2400\nfront_track_m = 1.9\nrear_track_m = 1.8\n")
+    text = text.replace("[surface]\n", "[surface]\ntracks = \"isotropic\"\n")
+    text += "\n[front_axle]\nmount = \"pivot\"\nroll_inertia_kg_m2 = 160\n"
+    three = parse_scenario(text, scenarios_dir())
+    CPU.pop("ride", None)
+    _timed(ride.ride, three, with_spectra=False)
+    t_3d = CPU.pop("ride")
+    speeds8 = [2.0 * k for k in range(2, 10)]
+    grid = ([0.8 + 0.15 * i for i in range(10)], [0.6 + 0.12 * i for i in range(10)])
+    # 10 of the 100 variants (one rear-pressure column), scaled to 100
+    CPU.pop("ride_sweep", None)
+    _timed(ride.ride_sweep, sc, grid[0], grid[1][:1], speeds8, with_spectra=False)
+    t_grid = 10 * CPU.pop("ride_sweep")
+    # frequency domain: the expectation alone for 100 variant-speeds (assembly, linear model, spectra), scaled
+    tyres = ride.resolve_tyres(sc)
+    track = ride.build_profile(sc)
+    c0, t0 = time.process_time(), time.perf_counter()
+    count = 0
+    for k in range(25):
+        for i, speed in enumerate(sc.exposure.speeds_km_h):
+            asm = assemble(ride.build_parts(sc, tyres, i))
+            lm = asm.linear(tuple(ride.seat_axes(sc).values()) + tuple(f"{t}_force_N" for t in asm.tyres))
+            r = {"asm": asm, "lm": lm, "fp": (0.25, 0.45)}
+            ride._expected(sc, track, r, None, ride.seat_axes(sc), speed / 3.6)
+            count += 1
+    t_fd = (time.process_time() - c0) * 10_000 / count  # CPU seconds
+    return {"three_d_cpu_s": round(t_3d, 3), "three_d_over_u": round(t_3d / u_s, 2),
+            "grid_800_cpu_s": round(t_grid, 1), "grid_800_over_u": round(t_grid / u_s, 1),
+            "fd_10000_cpu_s_extrapolated": round(t_fd, 1), "fd_10000_over_u": round(t_fd / u_s, 1)}
 
 
 if __name__ == "__main__":

@@ -327,11 +327,22 @@ def cmd_ride(args) -> int:
         for problem in exc.problems:
             print(f"tyrelab ride: {exc.path}: {problem}", file=sys.stderr)
         return EXIT_USAGE
+    from .executor import map_batches
+    from .stages.simulate import WarehouseTyres
+
+    from .vehicle.scenario import parse_sets
+
     ctx = SimpleNamespace(executor=args.executor, jobs=args.jobs, scheduler=args.scheduler)
     try:
+        sets = parse_sets(args.set or [])
         results = ride_sweep(scenario, args.front_pressure, args.rear_pressure, args.speeds,
-                             Path(args.build) if args.build else None, ctx, with_spectra=bool(args.out),
+                             WarehouseTyres(args.build) if args.build else None,
+                             lambda task, items: map_batches(task, items, ctx), with_spectra=bool(args.out), sets=sets,
                              max_variants=args.max_variants, max_samples=args.max_samples)
+    except ScenarioError as exc:  # a swept value the scenario refuses: every problem, one line each
+        for problem in exc.problems:
+            print(f"tyrelab ride: {exc.path}: {problem}", file=sys.stderr)
+        return EXIT_USAGE
     except ValueError as exc:
         print(f"tyrelab ride: {args.scenario}: {exc}", file=sys.stderr)
         return EXIT_USAGE
@@ -568,6 +579,8 @@ def build_parser() -> argparse.ArgumentParser:
                     help="rear pressures to sweep, bar (default: the scenario's)")
     rd.add_argument("--speeds", type=_positive, nargs="+", default=None, metavar="KM_H",
                     help="speeds, km/h (default: the scenario's)")
+    rd.add_argument("--set", action="append", default=None, metavar="KEY=V1,V2,...",
+                    help="sweep a numeric scenario key, e.g. implement.mass_kg=0,500,1000 (repeatable: every combination)")
     rd.add_argument("--jobs", type=_jobs, default=1, help="worker processes for a sweep (default 1)")
     rd.add_argument("--max-variants", type=_whole(10**6), default=None, metavar="N",
                     help="most pressure pairs a sweep may run (default 400; more is refused with an estimate)")

@@ -8,6 +8,7 @@ text, fixed hash salt, no dates); ``None`` when there is nothing to plot.
 - :func:`aw_against_speed` — a_wz and 1.4 a_wx against speed with the levels that
   reach the EU action and limit values in the daily exposure time;
 - :func:`aw_against_pressure` — a_w against rear pressure per front pressure (sweeps);
+- :func:`hours_heatmap` — hours to the action value over two swept keys;
 - :func:`ride_aw_speed` — the report's Ride page: ride_results per scenario;
 - :func:`study_aw_speed` — the report's Ride page: the ch. 6/7 studies' ISO 2631 values.
 """
@@ -23,7 +24,7 @@ from ..vehicle import iso2631
 from .figures import MARKERS, _figure, _has, _plain_log, to_svg
 
 __all__ = ["seat_psd", "seat_transmissibility", "aw_against_speed", "aw_against_pressure", "ride_aw_speed",
-           "study_aw_speed", "exposure_levels"]
+           "study_aw_speed", "exposure_levels", "hours_heatmap"]
 
 
 def exposure_levels(hours_per_day: float) -> dict[str, float]:
@@ -47,65 +48,113 @@ def _limit_lines(ax, hours_per_day: float) -> None:
                     va="bottom", fontsize=7, color="tab:red")
 
 
+_AXES = (("seat_vertical_psd_m2_s4_per_Hz", "seat vertical"), ("seat_longitudinal_psd_m2_s4_per_Hz", "seat fore-aft"),
+          ("seat_lateral_psd_m2_s4_per_Hz", "seat lateral"))
+
+
 def seat_psd(spectra: pd.DataFrame) -> str | None:
-    """Seat vertical (and fore-aft) acceleration PSD per speed (0.1 Hz bandwidth)."""
+    """Seat acceleration PSD per speed (0.1 Hz bandwidth), one panel per axis (lateral in 3-D)."""
     if not _has(spectra, "speed_km_h", "frequency_Hz", "seat_vertical_psd_m2_s4_per_Hz"):
         return None
-    fig, axes = _figure(1, 2, size=(7.4, 3.0), sharey=True)
+    cols = [(c, t) for c, t in _AXES if c in spectra]
+    fig, axes = _figure(1, len(cols), size=(3.7 * len(cols), 3.0), sharey=True, squeeze=False)
+    axes = axes[0]
     for k, (speed, g) in enumerate(spectra.groupby("speed_km_h", sort=True)):
-        for ax, col in zip(axes, ("seat_vertical_psd_m2_s4_per_Hz", "seat_longitudinal_psd_m2_s4_per_Hz")):
+        for ax, (col, _) in zip(axes, cols):
             y = g[col].to_numpy(float)
             if np.any(y > 0):
                 ax.loglog(g["frequency_Hz"], np.where(y > 0, y, np.nan), lw=0.9, label=f"{speed:g} km/h")
-    for ax, title in zip(axes, ("seat vertical", "seat fore-aft")):
+    for ax, (_, title) in zip(axes, cols):
         ax.set_title(title)
         ax.set_xlabel("frequency, Hz")
         _plain_log(ax, "x")
     _plain_log(axes[0], "y")
-    top = float(spectra[["seat_vertical_psd_m2_s4_per_Hz", "seat_longitudinal_psd_m2_s4_per_Hz"]].max().max())
+    top = float(spectra[[c for c, _ in cols]].max().max())
     if top > 0:
         axes[0].set_ylim(top * 1e-6, top * 3)  # six decades: below is the track's band edge
     axes[0].set_ylabel("PSD, (m/s²)²/Hz")
-    axes[0].legend()
+    axes[0].legend(fontsize=7)
     return to_svg(fig)
 
 
 def seat_transmissibility(trans: pd.DataFrame) -> str | None:
-    """|seat vertical / ground| (both axles, wheelbase delay, no enveloping) per speed."""
+    """|seat / ground| per axis and speed: vertical (every wheel in phase, wheelbase delay, no
+    enveloping), fore-aft per unit ground acceleration and, in 3-D, lateral per unit left/right
+    anti-phase (roll) ground acceleration."""
     if not _has(trans, "speed_km_h", "frequency_Hz", "seat_vertical"):
         return None
-    fig, ax = _figure()
+    cols = [(c, t) for c, t in (("seat_vertical", "vertical"), ("seat_longitudinal_per_m", "fore-aft (per m)"),
+                                ("seat_lateral_roll", "lateral (roll input)")) if c in trans]
+    fig, axes = _figure(1, len(cols), size=(3.7 * len(cols), 3.0), squeeze=False)
+    axes = axes[0]
     for speed, g in trans.groupby("speed_km_h", sort=True):
-        ax.loglog(g["frequency_Hz"], g["seat_vertical"], lw=0.9, label=f"{speed:g} km/h")
-    ax.set_xlabel("frequency, Hz")
-    ax.set_ylabel("|seat vertical / ground|")
-    _plain_log(ax, "x")
-    _plain_log(ax, "y")
-    ax.legend()
+        for ax, (col, _) in zip(axes, cols):
+            y = g[col].to_numpy(float)
+            ax.loglog(g["frequency_Hz"], np.where(y > 0, y, np.nan), lw=0.9, label=f"{speed:g} km/h")
+    for ax, (_, title) in zip(axes, cols):
+        ax.set_title(title)
+        ax.set_xlabel("frequency, Hz")
+        _plain_log(ax, "x")
+        _plain_log(ax, "y")
+    axes[0].set_ylabel("|seat / ground|")
+    axes[0].legend(fontsize=7)
+    return to_svg(fig)
+
+
+def hours_heatmap(table: pd.DataFrame, x_key: str, y_key: str) -> str | None:
+    """Hours to the EU action value (worst speed of each variant) over two swept keys: a heatmap
+    with the hours written in each cell.
+
+    ``table``: one row per variant and speed with the two keys' columns and ``hours_to_eav``.
+    """
+    if not _has(table, x_key, y_key, "hours_to_eav"):
+        return None
+    worst = table.groupby([y_key, x_key], sort=True)["hours_to_eav"].min().unstack(x_key)
+    if worst.shape[0] < 2 and worst.shape[1] < 2:
+        return None
+    z = np.minimum(worst.to_numpy(float), 24.0)
+    fig, ax = _figure(size=(min(1.0 + 0.9 * worst.shape[1], 8.0), min(1.2 + 0.5 * worst.shape[0], 6.0)))
+    im = ax.imshow(z, origin="lower", aspect="auto", cmap="RdYlGn", vmin=0.0, vmax=max(8.0, float(np.nanmax(z))))
+    ax.set_xticks(range(worst.shape[1]), [f"{v:g}" for v in worst.columns])
+    ax.set_yticks(range(worst.shape[0]), [f"{v:g}" for v in worst.index])
+    for i in range(z.shape[0]):
+        for j in range(z.shape[1]):
+            ax.text(j, i, "≥24" if z[i, j] >= 24 else f"{z[i, j]:.1f}", ha="center", va="center", fontsize=7)
+    ax.set_xlabel(x_key)
+    ax.set_ylabel(y_key)
+    fig.colorbar(im, ax=ax, label="hours to the action value")
     return to_svg(fig)
 
 
 def aw_against_speed(speeds: pd.DataFrame, hours_per_day: float = 8.0) -> str | None:
-    """a_wz, 1.4 a_wx (simulated, and the frequency-domain expectation) against speed."""
+    """Per-axis a_wz, 1.4 a_wx and (3-D) 1.4 a_wy against speed, one panel per axis, one line per
+    variant (dotted: the frequency-domain expectation of a single variant), with the levels that
+    reach the EU action and limit values; the legend below the panels."""
     if not _has(speeds, "speed_km_h", "a_wz_m_s2", "a_wx_m_s2"):
         return None
-    fig, ax = _figure()
     s = speeds.sort_values("speed_km_h")
-    groups = s.groupby(["front_pressure_bar", "rear_pressure_bar"], sort=True) if "front_pressure_bar" in s and \
-        s[["front_pressure_bar", "rear_pressure_bar"]].drop_duplicates().shape[0] > 1 else [(None, s)]
-    for k, (key, g) in enumerate(groups):
-        tag = "" if key is None else f" {key[0]:g}/{key[1]:g} bar"
-        ax.plot(g["speed_km_h"], g["a_wz_m_s2"], marker=MARKERS[k % len(MARKERS)], color="tab:blue",
-                label=f"a_wz{tag}" if k < 4 else None, lw=0.9)
-        ax.plot(g["speed_km_h"], 1.4 * g["a_wx_m_s2"], marker=MARKERS[k % len(MARKERS)], color="tab:green",
-                label=f"1.4 a_wx{tag}" if k < 4 else None, lw=0.9)
-        if key is None and "expected_a_wz_m_s2" in g:
-            ax.plot(g["speed_km_h"], g["expected_a_wz_m_s2"], ls=":", color="tab:blue", label="a_wz expected")
-    _limit_lines(ax, hours_per_day)
-    ax.set_xlabel("speed, km/h")
-    ax.set_ylabel("weighted r.m.s., m/s²")
-    ax.set_ylim(bottom=0)
-    ax.legend(loc="upper left", bbox_to_anchor=(0.0, 0.93))
+    axes_cols = [("a_wz_m_s2", 1.0, "a_wz (vertical, W_k)"), ("a_wx_m_s2", 1.4, "1.4 a_wx (fore-aft, W_d)")]
+    if "a_wy_m_s2" in s and (s["a_wy_m_s2"] > 0).any():
+        axes_cols.append(("a_wy_m_s2", 1.4, "1.4 a_wy (lateral, W_d)"))
+    key = "variant" if "variant" in s and s["variant"].nunique() > 1 else None
+    groups = list(s.groupby(key, sort=False)) if key else [(None, s)]
+    fig, axes = _figure(1, len(axes_cols), size=(3.3 * len(axes_cols), 3.2), sharey=True, squeeze=False)
+    axes = axes[0]
+    for ax, (col, k_axis, title) in zip(axes, axes_cols):
+        for k, (name, g) in enumerate(groups):
+            ax.plot(g["speed_km_h"], k_axis * g[col], marker=MARKERS[k % len(MARKERS)], lw=0.9,
+                    label=str(name) if name is not None else "simulated")
+            exp = f"expected_{col}"
+            if name is None and exp in g:
+                ax.plot(g["speed_km_h"], k_axis * g[exp], ls=":", color="0.3", label="expected")
+        _limit_lines(ax, hours_per_day)
+        ax.set_title(title, fontsize=8)
+        ax.set_xlabel("speed, km/h")
+        ax.set_ylim(bottom=0)
+    axes[0].set_ylabel("weighted r.m.s., m/s²")
+    handles, labels = axes[0].get_legend_handles_labels()
+    if handles:
+        fig.legend(handles[:12], labels[:12], loc="outside lower center", ncol=min(4, len(handles)), fontsize=6)
     return to_svg(fig)
 
 
@@ -115,7 +164,8 @@ def aw_against_pressure(speeds: pd.DataFrame) -> str | None:
         return None
     if speeds[["front_pressure_bar", "rear_pressure_bar"]].drop_duplicates().shape[0] < 2:
         return None
-    s = speeds.assign(a_w=np.maximum(speeds["a_wz_m_s2"], 1.4 * speeds["a_wx_m_s2"]))
+    s = speeds.assign(a_w=np.maximum(speeds["a_wz_m_s2"], 1.4 * np.maximum(
+        speeds["a_wx_m_s2"], speeds["a_wy_m_s2"] if "a_wy_m_s2" in speeds else 0.0)))
     sp = sorted(s["speed_km_h"].unique())
     fig, axes = _figure(1, len(sp), size=(min(2.2 * len(sp) + 1.0, 9.0), 2.9), sharey=True, squeeze=False)
     for ax, speed in zip(axes[0], sp):
@@ -140,7 +190,9 @@ def ride_aw_speed(ride_results: pd.DataFrame) -> str | None:
     fig, ax = _figure()
     for k, (name, g) in enumerate(r.groupby("scenario", sort=True)):
         g = g.sort_values("speed_km_h")
-        ax.plot(g["speed_km_h"], np.maximum(g["a_wz_m_s2"], 1.4 * g["a_wx_m_s2"]), marker=MARKERS[k % len(MARKERS)],
+        lateral = g["a_wy_m_s2"].fillna(0.0) if "a_wy_m_s2" in g else 0.0
+        ax.plot(g["speed_km_h"], np.maximum(g["a_wz_m_s2"], 1.4 * np.maximum(g["a_wx_m_s2"], lateral)),
+                marker=MARKERS[k % len(MARKERS)],
                 lw=0.9, label=str(name)[:48])
     _limit_lines(ax, 8.0)
     ax.set_xlabel("speed, km/h")

@@ -17,16 +17,18 @@ from ..vehicle.ride import RideResult, result_json
 from . import ride_figures as rf
 from .render import environment
 
-__all__ = ["SPEED_COLUMNS", "format_table", "figures", "render_page", "write_outputs", "dumps"]
+__all__ = ["SPEED_COLUMNS", "format_table", "figures", "render_page", "write_outputs", "dumps", "variants",
+           "variant_label", "swept_keys"]
 
 #: Columns of the per-speed table (text and HTML), in order.
 SPEED_COLUMNS = ["speed_km_h", "front_pressure_bar", "rear_pressure_bar", "a_wz_m_s2", "expected_a_wz_m_s2",
-                 "a_wx_m_s2", "expected_a_wx_m_s2", "a_v_m_s2", "vdv_m_s1_75", "crest_factor",
+                 "a_wx_m_s2", "expected_a_wx_m_s2", "a_wy_m_s2", "expected_a_wy_m_s2", "a_v_m_s2", "vdv_m_s1_75", "crest_factor",
                  "lift_off_fraction_front", "lift_off_fraction_rear", "a8_m_s2", "hours_to_eav", "hours_to_elv",
                  "verdict", "simulation"]
 
 _SHORT = {"speed_km_h": "km/h", "front_pressure_bar": "Pf bar", "rear_pressure_bar": "Pr bar", "a_wz_m_s2": "a_wz",
-          "expected_a_wz_m_s2": "(exp.)", "a_wx_m_s2": "a_wx", "expected_a_wx_m_s2": "(exp.)", "a_v_m_s2": "a_v",
+          "expected_a_wz_m_s2": "(exp.)", "a_wx_m_s2": "a_wx", "expected_a_wx_m_s2": "(exp.)", "a_wy_m_s2": "a_wy",
+          "expected_a_wy_m_s2": "(exp.)", "a_v_m_s2": "a_v",
           "vdv_m_s1_75": "VDV", "crest_factor": "CF", "lift_off_fraction_front": "lift F",
           "lift_off_fraction_rear": "lift R", "a8_m_s2": "A(8)", "hours_to_eav": "h->EAV", "hours_to_elv": "h->ELV",
           "verdict": "verdict", "simulation": "simulation"}
@@ -66,26 +68,74 @@ def format_table(doc: dict) -> str:
             show[c] = show[c].map(lambda v: "inf" if v is None else f"{v:.3g}" if abs(v) >= 100 else f"{v:.3f}")
     show.columns = [_SHORT[c] for c in cols]
     lines.append(show.to_string(index=False))
-    lines.append("  a_w in m/s² (a_wz W_k, a_wx W_d; exp. = frequency-domain expectation); VDV m/s^1.75; "
-                 "A(8) = max(1.4 a_wx, a_wz) sqrt(T/8 h)")
+    lines.append("  a_w in m/s² (a_wz W_k, a_wx and a_wy W_d; exp. = frequency-domain expectation); VDV m/s^1.75; "
+                 "A(8) = max(1.4 a_wx, 1.4 a_wy, a_wz) sqrt(T/8 h)")
     return "\n".join(lines) + "\n"
+
+
+def variant_label(r: RideResult) -> str:
+    """A variant's name: its tyre pressures and swept values."""
+    parts = [f"{r.tyres['front'].pressure_bar:g}/{r.tyres['rear'].pressure_bar:g} bar"]
+    parts += [f"{k.rpartition('.')[2]}={v:g}" for k, v in r.variant.items()]
+    return ", ".join(parts)
+
+
+def _speeds(results: list[RideResult]) -> pd.DataFrame:
+    """Every variant's speed rows with its label and swept values (pressures under their scenario keys)."""
+    frames = []
+    for r in results:
+        df = r.speeds.copy()
+        df["variant"] = variant_label(r)
+        df["tyres.front.pressure_bar"] = r.tyres["front"].pressure_bar
+        df["tyres.rear.pressure_bar"] = r.tyres["rear"].pressure_bar
+        for k, v in r.variant.items():
+            df[k] = v
+        frames.append(df)
+    return pd.concat(frames, ignore_index=True)
+
+
+def swept_keys(results: list[RideResult]) -> list[str]:
+    """The keys that take more than one value across the variants (pressures first)."""
+    df = _speeds(results)
+    keys = ["tyres.front.pressure_bar", "tyres.rear.pressure_bar"] + list(results[0].variant)
+    return [k for k in dict.fromkeys(keys) if k in df and df[k].nunique() > 1]
+
+
+def variants(results: list[RideResult]) -> list[dict]:
+    """Per variant: label, tyre stiffness (first speed) and natural frequencies, for the page."""
+    return [{"label": variant_label(r),
+             "front_stiffness_kN_per_m": float(r.tyres["front"].stiffness_kN_per_m[0]),
+             "rear_stiffness_kN_per_m": float(r.tyres["rear"].stiffness_kN_per_m[0]),
+             "modes": {k: float(v) for k, v in r.natural_frequencies_Hz.items()}} for r in results]
 
 
 def figures(results: list[RideResult]) -> list[dict]:
     """The page's figures (caption + inline SVG)."""
     first = results[0]
     hours = first.scenario.exposure.hours_per_day
-    speeds = pd.concat([r.speeds for r in results], ignore_index=True)
-    return [
-        {"caption": "Weighted r.m.s. at the seat against speed (dotted: frequency-domain expectation), with the levels "
-                    f"that reach the EU action (EAV) and limit (ELV) values in {hours:g} h.",
-         "svg": rf.aw_against_speed(first.speeds if len(results) == 1 else speeds, hours)},
-        {"caption": "Highest-axis a_w against rear pressure, one line per front pressure.",
-         "svg": rf.aw_against_pressure(speeds) if len(results) > 1 else None},
-        {"caption": "Seat acceleration PSD (0.1 Hz bandwidth) per speed.", "svg": rf.seat_psd(first.spectra)},
-        {"caption": "Seat vertical transmissibility from ground input (both axles, wheelbase delay, no enveloping).",
+    speeds = _speeds(results)
+    keys = swept_keys(results)
+    out = [
+        {"caption": "Weighted r.m.s. at the seat against speed per axis, one line per variant (dotted: the "
+                    "frequency-domain expectation), with the levels that reach the EU action (EAV) and limit (ELV) "
+                    f"values in {hours:g} h.",
+         "svg": rf.aw_against_speed(speeds, hours)},
+    ]
+    if len(keys) >= 2:
+        out.append({"caption": f"Hours to the EU action value (the worst speed of each variant) over {keys[0]} and "
+                               f"{keys[1]}" + (f" (other swept keys: the lowest hours)" if len(keys) > 2 else "") + ".",
+                    "svg": rf.hours_heatmap(speeds, keys[0], keys[1])})
+    elif len(results) > 1 and "front_pressure_bar" in speeds:
+        out.append({"caption": "Highest-axis a_w against rear pressure, one line per front pressure.",
+                    "svg": rf.aw_against_pressure(speeds)})
+    out += [
+        {"caption": f"Seat acceleration PSD (0.1 Hz bandwidth) per speed and axis ({variant_label(first)}).",
+         "svg": rf.seat_psd(first.spectra)},
+        {"caption": "Seat transmissibility per axis from ground input (every wheel in phase with the wheelbase delay; "
+                    f"lateral: left/right in anti-phase; no enveloping) ({variant_label(first)}).",
          "svg": rf.seat_transmissibility(first.transmissibility)},
     ]
+    return out
 
 
 def render_page(results: list[RideResult], doc: dict | None = None) -> str:
@@ -96,7 +146,7 @@ def render_page(results: list[RideResult], doc: dict | None = None) -> str:
                                                           or "sweep" in doc)]
     return environment().get_template("ride.html.j2").render(
         r=doc, description=results[0].scenario.description, columns=cols, rows=rows, figures=figures(results),
-        version=__version__)
+        variants=variants(results), three_d=results[0].scenario.tractor.three_d, version=__version__)
 
 
 def write_outputs(results: list[RideResult], out: str | Path) -> dict[str, Path]:

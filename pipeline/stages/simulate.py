@@ -40,17 +40,21 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
-from .. import published
+from .. import published, resources
 from ..executor import map_batches
 from ..tyre.models import THESIS_TABLES, thesis_stiffness_model
 from ..vehicle import bounce_pitch, ride, studies
 from ..vehicle import published_layouts as layouts
+from ..vehicle.model import assemble
+from ..vehicle.scenario import ScenarioError, load_scenario
 from .base import Context, StageResult, write_quarantine
 from .state import ItemCache
 
-__all__ = ["SEED", "STEMS", "THESIS_XX_STATISTICS", "run", "start_studies_ahead", "abandon_studies_ahead"]
+__all__ = ["SEED", "STEMS", "THESIS_XX_STATISTICS", "run", "start_studies_ahead", "abandon_studies_ahead",
+           "WarehouseTyres", "scenario_files", "scenario_items", "scenario_task", "run_scenarios", "collect_scenarios"]
 
 SEED = 5007
 #: What the stage reads (see :mod:`tyrelab.stages.state`): the published tables, the ride
@@ -100,7 +104,7 @@ def _ride_plan(ctx: Context, files: list[tuple[str, str]], cache: ItemCache) -> 
     """The ride scenarios, each kept under the digest of what it reads: its file, and the per-speed
     fits of the warehouse only if it names a measured tyre (``measured_tyre_id``, the one way a
     scenario reads them). Returns the keys (one per file), the cached results by key, and the
-    ``(file, key)`` pairs to run (:func:`tyrelab.vehicle.ride.scenario_task`)."""
+    ``(file, key)`` pairs to run (:func:`scenario_task`)."""
     fits = [ctx.read_table(t) if ctx.has_table(t) else None for t in INPUTS[2:]]
     keys = []
     for path, source in files:
@@ -116,7 +120,7 @@ def _ride_finish(ctx: Context, files: list[tuple[str, str]], cache: ItemCache, k
     """``ride_scenarios``, ``ride_results`` and the refused files, from the cached scenarios and the
     ``outputs`` of the ``todo`` ones (:func:`_ride_plan`), which are stored."""
     if todo:
-        scenarios, results, bad = ride.collect_scenarios(outputs)
+        scenarios, results, bad = collect_scenarios(outputs)
         for (path, _), k in zip([f for f, _ in todo], [k for _, k in todo]):
             failed = [b for b in bad if b["file"] == path]
             mine = scenarios[scenarios["file"] == path] if len(scenarios) else scenarios
@@ -149,10 +153,10 @@ def _study(item: tuple) -> dict:
 def _task(item: tuple):
     """Executor task (module level, picklable): a chapter 6/7 study (:func:`_study`), Table XX
     (:func:`tyrelab.vehicle.bounce_pitch.table_xx`) or one ride scenario
-    (:func:`tyrelab.vehicle.ride.scenario_task`)."""
+    (:func:`scenario_task`)."""
     kind, payload = item
     if kind == "ride":
-        return ride.scenario_task(payload)
+        return scenario_task(payload)
     if kind == "table_xx":
         return bounce_pitch.table_xx(*payload)
     return _study((kind, payload))
@@ -284,9 +288,9 @@ def run(ctx: Context) -> StageResult:
         if took:
             done[name] = _keep_study(cache, name, keys[name], value, case_keys)
     todo = [(name, _payload(name, inputs[name], case_keys, cache)) for name in ("tractor", "carriage") if name not in done]
-    files = ride.scenario_files(ctx.raw)
+    files = scenario_files(ctx.raw)
     ride_keys, ride_done, ride_todo = _ride_plan(ctx, files, cache)
-    ride_items = [("ride", item) for item in ride.scenario_items([f for f, _ in ride_todo], ctx.build)]
+    ride_items = [("ride", item) for item in scenario_items([f for f, _ in ride_todo], ctx.build)]
     model = thesis_stiffness_model(*(pub[t] for t in THESIS_TABLES))
     items = todo + ride_items + [("table_xx", (layouts.tractors(pub["table_xix"]), pub["table_xx"], model))]
     outputs = map_batches(_task, items, ctx)
@@ -390,3 +394,142 @@ def run(ctx: Context) -> StageResult:
                 f"carriage cases {cache.summary('carriage-case')}; tractor cases {cache.summary('tractor-case')}; "
                 "slatted track is a seeded stand-in",
     )
+
+
+class WarehouseTyres(ride.ShippedTyres):
+    """Tyre data of a build's warehouse for :func:`tyrelab.vehicle.ride.resolve_tyres` (picklable:
+    it travels with the executor's tasks): a measured tyre's per-speed pressure fits and the
+    build's fitted stiffness formula (``formula = "build"``)."""
+
+    def __init__(self, build):
+        self.build = str(build)
+
+    def _db(self) -> Path:
+        return Path(self.build) / "warehouse.duckdb"
+
+    def measured(self, table: str, tyre_id: str, pressure_bar: float) -> tuple[np.ndarray, np.ndarray]:
+        """(speeds, value at pressure) of a measured tyre's per-speed pressure fits (``table``)."""
+        from ..warehouse import query
+
+        db = self._db()
+        if not db.is_file():
+            raise ValueError(f"measured_tyre_id {tyre_id!r}: no warehouse at {db}")
+        try:  # the fitted rows, then this tyre's (no SQL built from the user's text)
+            rows = query(db, f"SELECT CAST(tyre_id AS VARCHAR) AS tyre_id, speed_km_h, intercept, slope FROM {table} "
+                             "WHERE intercept IS NOT NULL AND slope IS NOT NULL AND speed_km_h IS NOT NULL")
+        except Exception as exc:  # noqa: BLE001 - a warehouse without the table is the user's input problem
+            raise ValueError(f"measured_tyre_id {tyre_id!r}: cannot read {table} from {db} ({str(exc).splitlines()[0]})") from None
+        rows = rows[rows["tyre_id"] == str(tyre_id)].sort_values("speed_km_h")
+        if rows.empty:
+            raise ValueError(f"measured_tyre_id {tyre_id!r}: no fitted rows in {table} of {db}")
+        return rows["speed_km_h"].to_numpy(float), (rows["intercept"] + rows["slope"] * pressure_bar).to_numpy(float)
+
+    def stiffness_model(self, formula: str):
+        """The thesis' stiffness formula, or the build's fit (table ``formula_fit``) for ``"build"``."""
+        from ..published import thesis_stiffness_model
+        from ..tyre.models import build_stiffness_model
+        from ..warehouse import query
+
+        thesis = thesis_stiffness_model()
+        if formula != "build":
+            return thesis
+        db = self._db()
+        if not db.is_file():
+            raise ValueError(f'formula = "build": no warehouse at {db}')
+        try:
+            table = query(db, "SELECT * FROM formula_fit")
+        except Exception as exc:  # noqa: BLE001 - a warehouse without the table is the user's input problem
+            raise ValueError(f'formula = "build": cannot read formula_fit from {db} ({str(exc).splitlines()[0]})') from None
+        try:
+            return build_stiffness_model(table, thesis)
+        except ValueError as exc:
+            raise ValueError(f'formula = "build": {db}: {exc}') from None
+
+
+# --------------------------------------------------------------------------- ride scenarios (issue 13)
+def scenario_files(raw: Path | None) -> list[tuple[str, str]]:
+    """``(path, source)`` of every shipped scenario and every ``<raw>/scenarios/*.toml``.
+
+    A file of ``raw`` with the same bytes as a shipped one (the repository's own
+    ``raw/`` folder) is listed once, as shipped.
+    """
+    shipped = sorted(resources.scenarios_dir().glob("*.toml"))
+    seen = {p.read_bytes() for p in shipped}
+    out = [(str(p), "shipped") for p in shipped]
+    folder = Path(raw) / "scenarios" if raw is not None else None
+    for p in sorted(folder.glob("*.toml")) if folder is not None and folder.is_dir() else []:
+        if p.is_file() and p.read_bytes() not in seen:  # a named pipe is skipped (the raw walk warns of it)
+            out.append((str(p), "raw"))
+    return out
+
+
+def scenario_items(files: list[tuple[str, str]], build: Path | None = None) -> list[tuple]:
+    """The executor items of :func:`run_scenarios`, one per ``(path, source)`` of ``files``: run each
+    with :func:`scenario_task` (in any process) and hand the results, in order, to
+    :func:`collect_scenarios` (the simulate stage runs them beside its studies this way)."""
+    return [(p, src, str(build) if build else None) for p, src in files]
+
+
+def scenario_task(item: tuple) -> dict:
+    """Executor task of the simulate stage: one scenario file, every pressure pair of its sweep."""
+    path, source, build = item
+    tyre_data = WarehouseTyres(build) if build else None
+    try:
+        sc = load_scenario(path)
+        results = ride.ride_sweep(sc, tyre_data=tyre_data, with_spectra=False)
+        # the scenario row's modes are those at the scenario's own pressures, which a [sweep] need not
+        # list first, or at all: from the nominal pair's result, else from the nominal tyres
+        nominal = [r for r in results if r.tyres["front"].pressure_bar == sc.front.pressure_bar
+                   and r.tyres["rear"].pressure_bar == sc.rear.pressure_bar]
+        nat, nodal = ((nominal[0].natural_frequencies_Hz, nominal[0].nodal_points_m) if nominal else
+                      ride.modes(assemble(ride.build_parts(sc, ride.resolve_tyres(sc, tyre_data), 0))))
+    except (ScenarioError, ValueError) as exc:
+        return {"file": path, "error": str(exc).replace("\n", "; ")}
+    except (ArithmeticError, MemoryError, RecursionError) as exc:  # the model failed: this scenario only
+        return {"file": path, "error": f"the ride model failed: {type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"}
+    table = ride.results_table(results, sc.name)
+    table["file"] = path  # rows are keyed by the scenario file: two files may share a name
+    table["is_nominal"] = (table["front_pressure_bar"] == sc.front.pressure_bar) & \
+        (table["rear_pressure_bar"] == sc.rear.pressure_bar)
+    s = sc.surface
+    row = {
+        "scenario": sc.name, "file": path, "source": source, "description": sc.description,
+        "mass_kg": sc.tractor.mass_kg, "pitch_inertia_kg_m2": sc.tractor.pitch_inertia_kg_m2,
+        "front_distance_m": sc.tractor.front_distance_m, "rear_distance_m": sc.tractor.rear_distance_m,
+        "cg_height_m": sc.tractor.cg_height_m, "longitudinal_model": sc.tractor.longitudinal_model,
+        "seat_ahead_of_cg_m": sc.seat.ahead_of_cg_m, "seat_height_above_cg_m": sc.seat.height_above_cg_m,
+        "seat_suspension": sc.seat.suspension,
+        "front_size": sc.front.size, "front_pressure_bar": sc.front.pressure_bar,
+        "rear_size": sc.rear.size, "rear_pressure_bar": sc.rear.pressure_bar,
+        "surface": s.kind, "road_class": s.road_class, "track": results[0].track_label,
+        "track_length_m": results[0].track_length_m,
+        "seed": s.seed, "enveloping": s.enveloping,
+        "speeds_km_h": ", ".join(f"{v:g}" for v in sc.exposure.speeds_km_h), "hours_per_day": sc.exposure.hours_per_day,
+        "bounce_Hz": nat["bounce"], "pitch_Hz": nat["pitch"],
+        "bounce_nodal_point_m": nodal["bounce"], "pitch_nodal_point_m": nodal["pitch"],
+        "pressure_pairs": len(results), "warnings": "; ".join(sorted({w for r in results for w in r.warnings})),
+    }
+    return {"file": path, "scenario": row, "results": table}
+
+
+def run_scenarios(files: list[tuple[str, str]], ctx=None, build: Path | None = None) -> tuple[pd.DataFrame, pd.DataFrame, list[dict]]:
+    """Run scenario files (through :func:`tyrelab.executor.map_batches` when ``ctx`` is given).
+
+    Returns
+    -------
+    ride_scenarios, ride_results : DataFrame
+        One row per scenario; one row per scenario × speed × pressure pair.
+    problems : list of dict
+        ``file`` and ``reason`` of every scenario refused (the others still run).
+    """
+    items = scenario_items(files, build)
+    return collect_scenarios(map_batches(scenario_task, items, ctx) if ctx is not None else [scenario_task(i) for i in items])
+
+
+def collect_scenarios(outputs: list[dict]) -> tuple[pd.DataFrame, pd.DataFrame, list[dict]]:
+    """The tables of :func:`run_scenarios` from the results of :func:`scenario_task`, in order."""
+    ok = [o for o in outputs if "error" not in o]
+    problems = [{"file": o["file"], "reason": o["error"]} for o in outputs if "error" in o]
+    scenarios = pd.DataFrame([o["scenario"] for o in ok])
+    results = pd.concat([o["results"] for o in ok], ignore_index=True) if ok else pd.DataFrame()
+    return scenarios, results, problems

@@ -25,6 +25,7 @@ from scipy import linalg
 
 from ..tyre.stiffness import estimate_stiffness
 from .metrics import ratio_error_statistics
+from .model import Axle, Chassis, Parts, assemble
 
 __all__ = [
     "natural_frequencies",
@@ -96,9 +97,12 @@ def natural_frequencies(
 
 
 def _matrices(m, inertia, l1, l2, kf, kr) -> tuple[np.ndarray, np.ndarray]:
-    """Stiffness and mass matrices of the beam on two springs (thesis §8.2), coordinates (z, θ)."""
-    stiffness = np.array([[kf + kr, kf * l1 - kr * l2], [kf * l1 - kr * l2, kf * l1 * l1 + kr * l2 * l2]])
-    return stiffness, np.diag([m, inertia])
+    """Stiffness and mass matrices of the beam on two springs (thesis §8.2), coordinates (z, θ):
+    the undamped eigenproblem of the assembled pitch-plane tractor
+    (:meth:`tyrelab.vehicle.model.Assembly.undamped`; an axle is two tyres)."""
+    parts = Parts(Chassis(m, inertia, 0.0), Axle("front", l1, kf / 2, 0.0), Axle("rear", -l2, kr / 2, 0.0))
+    stiffness, mass, _ = assemble(parts).undamped(("z", "th"))
+    return stiffness, mass
 
 
 def mode_shapes(

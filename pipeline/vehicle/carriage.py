@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import integrate, interpolate
 
+from .._validate import positive
 from . import lti
 
 __all__ = [
@@ -38,6 +39,7 @@ __all__ = [
     "PARASITIC_DAMPING_N_S_PER_M",
     "Carriage",
     "ground_input",
+    "half_step_input",
     "state_space",
     "simulate_linear",
     "simulate_nonlinear",
@@ -127,6 +129,37 @@ def ground_input(
     return t, spline(x), speed_m_s * spline(x, 1)
 
 
+def half_step_input(x_m, elevation_m, speed_m_s: float, n_steps: int, x_start_m: float = 0.0,
+                    dt_s: float = 1e-3) -> tuple[np.ndarray, np.ndarray]:
+    """Ground elevation and rate under a wheel at ``dt/2`` over ``n_steps`` steps of ``dt``
+    (:func:`ground_input`; the profile continued level beyond its end): the input of the
+    vehicles' RK4, whose stages read the half steps.
+
+    Returns
+    -------
+    u_m, u_dot_m_s : ndarray, shape (2 n_steps - 1,)
+
+    Examples
+    --------
+    >>> u, ud = half_step_input([0.0, 1.0, 2.0, 3.0], [0.0, 0.0, 0.0, 0.0], 1.0, 3)
+    >>> u.shape, float(abs(u).max())
+    ((5,), 0.0)
+    """
+    dt_s = positive("dt_s", dt_s)
+    speed_m_s = positive("speed_m_s", speed_m_s)
+    dt = dt_s / 2
+    t_end = (2 * n_steps - 2) * dt
+    x_end = x_start_m + speed_m_s * t_end
+    xx = np.asarray(x_m, float)
+    hh = np.asarray(elevation_m, float)
+    if x_end > xx[-1]:
+        extra = np.arange(xx[-1] + (xx[1] - xx[0]), x_end + 1.0, xx[1] - xx[0])
+        xx = np.concatenate([xx, extra])
+        hh = np.concatenate([hh, np.full(extra.size, hh[-1])])
+    _, u, ud = ground_input(xx, hh, speed_m_s, dt, x_start_m, x_start_m + speed_m_s * t_end + 1e-9)
+    return u[: 2 * n_steps - 1], ud[: 2 * n_steps - 1]
+
+
 def state_space(c: Carriage) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Continuous state space of the linear carriage.
 
@@ -165,6 +198,7 @@ def simulate_linear(
     dict
         ``z_m``, ``v_m_s``, ``a_m_s2`` arrays like ``u_m``.
     """
+    dt_s = positive("dt_s", dt_s)
     a, b, c, d = state_space(carriage)
     w = np.vstack([np.asarray(u_m, float), np.asarray(u_dot_m_s, float)])  # (2, n)
     y = lti.discretise(a, b, c, d, dt_s).run(w, x0=np.array([z0_m, v0_m_s], float))
@@ -220,6 +254,7 @@ def simulate_nonlinear(
         its ``n_steps`` samples with the tyre off the ground); arrays of shape ``(N,)``
         or ``(n_runs, N)``.
     """
+    dt_s = positive("dt_s", dt_s)
     u, ud = _half_samples(u_half_m, u_dot_half_m_s)
     squeeze = np.ndim(u_half_m) == 1
     runs = u.shape[0]

@@ -23,6 +23,8 @@ import numpy as np
 import pandas as pd
 from scipy import signal
 
+from .. import _validate
+
 __all__ = [
     "Profile",
     "ISO8608_CLASS_G0_M3",
@@ -32,6 +34,8 @@ __all__ = [
     "slatted_track",
     "slat_surface",
     "iso8608_track",
+    "isotropic_coherence",
+    "TRACK_MODELS",
     "profile_spectrum",
     "add_lead_in",
 ]
@@ -132,6 +136,9 @@ def spectral_synthesis(
     ndarray
         Elevations in m, zero mean.
     """
+    dx_m = _validate.positive("dx_m", dx_m)
+    if int(n_samples) < 2:
+        raise ValueError(f"n_samples must be at least 2, got {n_samples!r}")
     n = np.fft.rfftfreq(n_samples, dx_m)
     dn = n[1]
     g = np.zeros_like(n)
@@ -229,6 +236,35 @@ def slat_surface(track: Profile, side: str = "left") -> np.ndarray:
     return np.where(on_slat, tops[k], 0.0)
 
 
+#: Left/right track relations of :func:`iso8608_track`.
+TRACK_MODELS = ("independent", "isotropic", "identical")
+
+
+def isotropic_coherence(n_cycles_per_m, track_width_m: float) -> np.ndarray:
+    """Coherence (real, the cross-spectrum over the single-track PSD) of two parallel tracks
+    ``b`` apart on an isotropic surface whose track PSD falls as ``n^-2`` (waviness 2).
+
+    ``ρ(n) = κ b K₁(κ b)``, ``κ = 2π n``: the cross-spectrum of an isotropic surface, an
+    integral of its two-dimensional spectrum over the lateral wavenumber (Dodds and Robson
+    1973, "The description of road surface roughness", J. Sound Vib. 31(2) 175-183), in closed
+    form for w = 2 (the 2-D spectrum ∝ |k|⁻³: ``∫ (κ² + k₂²)^(-3/2) cos(k₂ b) dk₂ = 2 b K₁(κ b)/κ``
+    against ``2/κ²`` for ``b = 0``). 1 at long wavelengths, falling to 0.5 near ``n ≈ 0.2/b``.
+
+    Examples
+    --------
+    >>> np.round(isotropic_coherence([0.0, 0.1, 1.0], 1.8), 3).tolist()
+    [1.0, 0.548, 0.0]
+    """
+    from scipy.special import k1
+
+    n = np.asarray(n_cycles_per_m, float)
+    _validate.positive("track_width_m", track_width_m)
+    x = 2 * np.pi * n * track_width_m
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rho = np.where(x > 0, x * k1(np.where(x > 0, x, 1.0)), 1.0)
+    return rho
+
+
 def iso8608_track(
     road_class: str = "D",
     seed: int = 8608,
@@ -236,12 +272,19 @@ def iso8608_track(
     dx_m: float = 0.05,
     n_min_cycles_per_m: float = 0.011,
     n_max_cycles_per_m: float = 2.83,
+    tracks: str = "independent",
+    track_width_m: float | None = None,
 ) -> Profile:
     """Seeded two-track random profile of an ISO 8608 class (farm track, thesis §7.2).
 
-    Uses the class geometric mean of G_d(n0) (field notes), w = 2, independent left
-    and right tracks, band 0.011-2.83 cycles/m (ISO 8608's range). The thesis' farm
-    track was surveyed at 50 mm intervals, hence the default spacing.
+    Uses the class geometric mean of G_d(n0) (field notes), w = 2, band 0.011-2.83
+    cycles/m (ISO 8608's range). The thesis' farm track was surveyed at 50 mm
+    intervals, hence the default spacing. ``tracks`` (:data:`TRACK_MODELS`):
+    ``independent`` left and right tracks (the default, as before), ``identical`` (the
+    right is the left: no roll input) or ``isotropic`` (the right track's Fourier
+    coefficients ``ρ L + sqrt(1 - ρ²) N`` with ``N`` an independent track and ``ρ``
+    :func:`isotropic_coherence` at ``track_width_m``: each track keeps the class PSD and
+    their cross-spectrum is ``ρ`` times it).
 
     Parameters
     ----------
@@ -256,21 +299,32 @@ def iso8608_track(
     -------
     Profile
     """
+    length_m = _validate.positive("length_m", length_m)
+    dx_m = _validate.positive("dx_m", dx_m)
     c = road_class.upper()
     if c not in ISO8608_CLASS_G0_M3:
         raise ValueError(f"ISO 8608 class {road_class!r}: expected one of A-H")
+    if tracks not in TRACK_MODELS:
+        raise ValueError(f"tracks {tracks!r}: expected one of {TRACK_MODELS}")
+    if tracks == "isotropic":
+        track_width_m = _validate.positive("track_width_m", track_width_m)
     rng = np.random.default_rng(seed)
     n = int(round(length_m / dx_m))
     g0 = ISO8608_CLASS_G0_M3[c]
     left, right = (
         spectral_synthesis(n, dx_m, g0, rng, 2.0, n_min_cycles_per_m, n_max_cycles_per_m) for _ in range(2)
     )
+    if tracks == "identical":
+        right = left.copy()
+    elif tracks == "isotropic":
+        rho = isotropic_coherence(np.fft.rfftfreq(n, dx_m), track_width_m)
+        right = np.fft.irfft(rho * np.fft.rfft(left) + np.sqrt(1.0 - rho**2) * np.fft.rfft(right), n)
     return Profile(
         np.arange(n) * dx_m,
         left,
         right,
         f"ISO 8608 class {c} farm track, seeded (seed {seed})",
-        {"kind": "iso8608", "road_class": c, "g0_m3": g0, "seed": seed},
+        {"kind": "iso8608", "road_class": c, "g0_m3": g0, "seed": seed, "tracks": tracks},
     )
 
 

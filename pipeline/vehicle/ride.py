@@ -38,15 +38,17 @@ SI inside; km/h, kN/m and bar at the edges, as in the key names.
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from scipy import signal
+from scipy import linalg, signal
 
 from .. import published
+from .._validate import positive
 from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
 from ..tyre.stiffness import estimate_stiffness
 from . import bounce_pitch
@@ -56,10 +58,11 @@ from . import lti
 from . import metrics as mt
 from . import profiles as pr
 from .carriage import GRAVITY_M_S2
-from .scenario import Scenario, read_profile_csv, with_overrides
+from .scenario import Scenario, read_profile_csv, with_overrides, with_values
+from .carriage import half_step_input
+from .model import Axle, Ballast, Cab, Chassis, Implement, Parts, SeatPoint, assemble
+from .tractor import Tractor, simulate, tractor_parts
 from .scenario_limits import MIN_VERDICT_DURATION_S
-from .studies import DT_S, _half_inputs
-from .tractor import PARAMETERS, Tractor, simulate_tractor
 
 __all__ = [
     "OUTPUTS",
@@ -68,7 +71,10 @@ __all__ = [
     "RideResult",
     "per_speed",
     "resolve_tyres",
+    "ShippedTyres",
     "build_tractor",
+    "build_parts",
+    "tyre_inputs",
     "state_names",
     "state_space",
     "simulate_state_space",
@@ -80,18 +86,18 @@ __all__ = [
     "axle_inputs",
     "exposure",
     "expected_rms",
+    "seat_axes",
+    "modes",
+    "input_cross_spectra",
     "ride",
     "ride_sweep",
     "result_json",
     "results_table",
-    "scenario_files",
-    "run_scenarios",
-    "scenario_items",
-    "scenario_task",
-    "collect_scenarios",
     "VERDICTS",
 ]
 
+#: Simulation step of the ride, s (the ch. 7 study's).
+DT_S = 1e-3
 FS_HZ = 1.0 / DT_S
 #: Outputs of :func:`state_space`, in row order.
 OUTPUTS = ("seat_vertical_m_s2", "seat_longitudinal_m_s2", "vertical_m_s2", "pitch_rad_s2", "longitudinal_m_s2",
@@ -166,53 +172,26 @@ def per_speed(values, list_speeds_km_h, speeds_km_h) -> np.ndarray:
     return np.interp(speeds, ls[order], v[order])
 
 
-def _measured(build: Path | None, table: str, tyre_id: str, pressure_bar: float) -> tuple[np.ndarray, np.ndarray]:
-    """(speeds, value at pressure) of a measured tyre's per-speed pressure fits."""
-    from ..warehouse import query
+class ShippedTyres:
+    """Where :func:`resolve_tyres` finds tyre data without a build: the thesis' stiffness formula
+    (published Tables II, III, VI); a measured tyre or ``formula = "build"`` is refused. A caller
+    with a warehouse passes an object with the same two methods
+    (:class:`tyrelab.stages.simulate.WarehouseTyres`): this package reads no warehouse."""
 
-    if build is None:
+    def measured(self, table: str, tyre_id: str, pressure_bar: float) -> tuple[np.ndarray, np.ndarray]:
+        """(speeds km/h, value at ``pressure_bar``) of a measured tyre's per-speed pressure fits."""
         raise ValueError(f"measured_tyre_id {tyre_id!r} needs --build (a warehouse with {table})")
-    db = Path(build) / "warehouse.duckdb"
-    if not db.is_file():
-        raise ValueError(f"measured_tyre_id {tyre_id!r}: no warehouse at {db}")
-    tid = str(tyre_id).replace("'", "''")
-    try:
-        rows = query(db, f"SELECT speed_km_h, intercept, slope FROM {table} WHERE CAST(tyre_id AS VARCHAR) = '{tid}' "
-                         "AND intercept IS NOT NULL AND slope IS NOT NULL AND speed_km_h IS NOT NULL ORDER BY speed_km_h")
-    except Exception as exc:  # noqa: BLE001 - a warehouse without the table is the user's input problem
-        raise ValueError(f"measured_tyre_id {tyre_id!r}: cannot read {table} from {db} ({str(exc).splitlines()[0]})") from None
-    if rows.empty:
-        raise ValueError(f"measured_tyre_id {tyre_id!r}: no fitted rows in {table} of {db}")
-    return rows["speed_km_h"].to_numpy(float), (rows["intercept"] + rows["slope"] * pressure_bar).to_numpy(float)
+
+    def stiffness_model(self, formula: str):
+        """The :class:`~tyrelab.tyre.stiffness.StiffnessModel` of ``[tyres.*] formula``."""
+        if formula == "build":
+            raise ValueError('formula = "build" needs --build (a warehouse with table formula_fit)')
+        return published.thesis_stiffness_model()
 
 
-def _stiffness_model(formula: str, build: Path | None):
-    """The :class:`~tyrelab.tyre.stiffness.StiffnessModel` of ``[tyres.*] formula``: the thesis'
-    (published Tables II, III, VI) or the build's (table ``formula_fit`` of its warehouse)."""
-    from ..tyre.models import build_stiffness_model
-    from ..warehouse import query
-
-    thesis = published.thesis_stiffness_model()
-    if formula != "build":
-        return thesis
-    if build is None:
-        raise ValueError('formula = "build" needs --build (a warehouse with table formula_fit)')
-    db = Path(build) / "warehouse.duckdb"
-    if not db.is_file():
-        raise ValueError(f'formula = "build": no warehouse at {db}')
-    try:
-        table = query(db, "SELECT * FROM formula_fit")
-    except Exception as exc:  # noqa: BLE001 - a warehouse without the table is the user's input problem
-        raise ValueError(f'formula = "build": cannot read formula_fit from {db} ({str(exc).splitlines()[0]})') from None
-    try:
-        return build_stiffness_model(table, thesis)
-    except ValueError as exc:
-        raise ValueError(f'formula = "build": {db}: {exc}') from None
-
-
-def _formula_stiffness(spec, build: Path | None = None) -> tuple[float, str, list[str], float]:
+def _formula_stiffness(spec, tyre_data=None) -> tuple[float, str, list[str], float]:
     """Per-tyre formula stiffness (kN/m), its rule, the formula's range warnings and its standard uncertainty."""
-    model = _stiffness_model(getattr(spec, "formula", "thesis"), build)
+    model = (tyre_data or ShippedTyres()).stiffness_model(getattr(spec, "formula", "thesis"))
     est = estimate_stiffness(spec.size, spec.pressure_bar, spec.age_years, undriven_front=not spec.traction,
                              water_ballast=spec.water_ballast, model=model)
     rule = f"formula {est.rule}" + (" x1.25 water ballast" if spec.water_ballast else "")
@@ -227,19 +206,21 @@ def _thesis_damping(pressure_bar: float, speeds_km_h) -> np.ndarray:
     return np.interp(np.asarray(speeds_km_h, float), mean.index.to_numpy(float), mean.to_numpy(float))
 
 
-def resolve_tyres(scenario: Scenario, build: Path | None = None) -> dict[str, AxleTyres]:
+def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
     """Stiffness, damping, radius and footprint of the front and rear tyres per speed.
 
     Order of precedence per quantity: the scenario's override, the measured tyre
-    (``measured_tyre_id`` in the warehouse of ``build``; speeds interpolated, held
-    outside the measured range), the formula (stiffness) or the mean of the
-    thesis' Table VII (damping).
+    (``measured_tyre_id``, from ``tyre_data.measured``; speeds interpolated, held
+    outside the measured range), the formula (stiffness, ``tyre_data.stiffness_model``)
+    or the mean of the thesis' Table VII (damping). ``tyre_data`` default
+    :class:`ShippedTyres` (no warehouse).
 
     Raises
     ------
     ValueError
         When a measured tyre cannot be found.
     """
+    tyre_data = tyre_data or ShippedTyres()
     speeds = np.asarray(scenario.exposure.speeds_km_h, float)
     lists = scenario.exposure.list_speeds_km_h
     t = scenario.tractor
@@ -252,16 +233,16 @@ def resolve_tyres(scenario: Scenario, build: Path | None = None) -> dict[str, Ax
         if spec.stiffness_kN_per_m is not None:
             k, k_src = per_speed(spec.stiffness_kN_per_m, lists, speeds), "override (scenario)"
         elif spec.measured_tyre_id:
-            sp, val = _measured(build, "stiffness_pressure_by_speed", spec.measured_tyre_id, spec.pressure_bar)
+            sp, val = tyre_data.measured("stiffness_pressure_by_speed", spec.measured_tyre_id, spec.pressure_bar)
             k = np.interp(speeds, sp, val)
             k_src = f"measured tyre {spec.measured_tyre_id}: K = Kc + dKp P per speed (stiffness_pressure_by_speed)"
         else:
-            k0, k_src, warnings, k_u = _formula_stiffness(spec, build)
+            k0, k_src, warnings, k_u = _formula_stiffness(spec, tyre_data)
             k = np.full(speeds.shape, k0)
         if spec.damping_kN_s_per_m is not None:
             c, c_src = per_speed(spec.damping_kN_s_per_m, lists, speeds), "override (scenario)"
         elif spec.measured_tyre_id:
-            sp, val = _measured(build, "damping_pressure_by_speed", spec.measured_tyre_id, spec.pressure_bar)
+            sp, val = tyre_data.measured("damping_pressure_by_speed", spec.measured_tyre_id, spec.pressure_bar)
             c = np.interp(speeds, sp, val)
             c_src = f"measured tyre {spec.measured_tyre_id}: C = Cc + dC P per speed (damping_pressure_by_speed)"
         else:
@@ -297,41 +278,81 @@ def build_tractor(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Tr
     )
 
 
+def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Parts:
+    """The tractor's :class:`~tyrelab.vehicle.model.Parts` at speed index ``i`` (per tyre, SI).
+
+    The scenario's kN, kN s and kN m values become N, N s, N m here, once; the rear tyres carry
+    the longitudinal element. Without ``tractor.roll_inertia_kg_m2`` the parts are those of the
+    pitch-plane :class:`~tyrelab.vehicle.tractor.Tractor` of :func:`build_tractor`.
+    """
+    t, seat = scenario.tractor, scenario.seat
+    lon = t.longitudinal_model
+    kx = 1e3 * t.longitudinal_stiffness_kN_per_m if lon != "none" else 0.0
+    cx = 1e3 * t.longitudinal_damping_kN_s_per_m if lon != "none" else 0.0
+    if lon == "maxwell" and not (kx > 0 and cx > 0):
+        lon = "none"  # a Maxwell element without spring or damper carries no force
+
+    def axle(name: str, ahead: float, spec, track_m, **extra) -> Axle:
+        ty = tyres[name]
+        kw = {}
+        if spec.mount != "rigid":
+            kw["roll_inertia_kg_m2"] = spec.roll_inertia_kg_m2 or 0.0
+        if spec.mount == "suspended":
+            kw.update(mass_kg=spec.mass_kg, height_m=spec.height_m if spec.height_m is not None else ty.radius_m,
+                      suspension_stiffness_N_per_m=1e3 * spec.suspension_stiffness_kN_per_m,
+                      suspension_damping_N_s_per_m=1e3 * spec.suspension_damping_kN_s_per_m)
+        return Axle(name, ahead, 1e3 * float(ty.stiffness_kN_per_m[i]), 1e3 * float(ty.damping_kN_s_per_m[i]),
+                    track_m=track_m or 0.0, mount=spec.mount, **kw, **extra)
+
+    cab = None
+    if scenario.cab.mount == "suspended":
+        c = scenario.cab
+        cab = Cab(c.mass_kg, c.pitch_inertia_kg_m2, c.roll_inertia_kg_m2 or 0.0, c.ahead_of_cg_m, c.height_above_cg_m,
+                  c.front_mount_ahead_of_cg_m, c.rear_mount_ahead_of_cg_m, c.mount_track_m,
+                  1e3 * c.mount_stiffness_kN_per_m, 1e3 * c.mount_damping_kN_s_per_m)
+    imp = None
+    if scenario.implement is not None:
+        m = scenario.implement
+        imp = Implement(m.mass_kg, m.pitch_inertia_kg_m2, m.roll_inertia_kg_m2, m.behind_rear_axle_m, m.height_m,
+                        m.mount, m.hitch_behind_rear_axle_m, m.hitch_height_m,
+                        1e3 * (m.hitch_stiffness_kN_m_per_rad or 0.0), 1e3 * m.hitch_damping_kN_m_s_per_rad)
+    ballast = None
+    if scenario.ballast is not None:
+        b = scenario.ballast
+        ballast = Ballast(b.mass_kg, b.ahead_of_front_axle_m, b.height_m, b.pitch_inertia_kg_m2, b.roll_inertia_kg_m2)
+    return Parts(
+        Chassis(t.mass_kg, t.pitch_inertia_kg_m2, t.cg_height_m, t.roll_inertia_kg_m2),
+        axle("front", t.front_distance_m, scenario.front_axle, t.front_track_m),
+        axle("rear", -t.rear_distance_m, scenario.rear_axle, t.rear_track_m, longitudinal_model=lon,
+             longitudinal_stiffness_N_per_m=kx, longitudinal_damping_N_s_per_m=cx),
+        SeatPoint(seat.ahead_of_cg_m, seat.left_of_cg_m, seat.height_above_cg_m),
+        cab, imp, ballast)
+
+
 # --------------------------------------------------------------------------- linear model
 def state_names(tractor: Tractor) -> list[str]:
-    """States of :func:`state_space` for a scalar ``tractor``, in order.
+    """States of :func:`state_space` for a scalar ``tractor``, in order
+    (:meth:`tyrelab.vehicle.model.Assembly.state_names` of its parts).
 
     ``z, θ`` ("th"), ``x`` (Kelvin-Voigt with ``k_x > 0`` only), ``z', θ'`` ("vz", "vth"),
     ``x'`` ("vx", any longitudinal element) and ``q = d - s`` (Maxwell). A Maxwell element
-    without spring or damper carries no force (as in
-    :func:`tyrelab.vehicle.tractor.simulate_tractor`) and adds no state.
+    without spring or damper carries no force and adds no state.
 
     Examples
     --------
     >>> state_names(Tractor(1000, 250, 1.0, 1.0, 0.5, 1e5, 1e5, 0.0, 0.0, 1e5, 1e3, "maxwell"))
     ['z', 'th', 'vz', 'vth', 'vx', 'q']
     """
-    kx, cx = float(tractor.longitudinal_stiffness_N_per_m), float(tractor.longitudinal_damping_N_s_per_m)
-    model = str(tractor.longitudinal_model)
-    if model == "maxwell" and not (kx > 0 and cx > 0):
-        model = "none"
-    names = ["z", "th"] + (["x"] if model == "kelvin_voigt" and kx > 0 else []) + ["vz", "vth"]
-    names += ["vx"] if model != "none" else []
-    names += ["q"] if model == "maxwell" else []
-    return names
+    return assemble(tractor_parts(tractor)).state_names()
 
 
 def state_space(tractor: Tractor, seat_ahead_m: float = 0.0, seat_height_m: float = 0.0):
-    """Linear pitch-plane tractor (both axles in contact) as ``(A, B, C, D)``.
+    """Linear pitch-plane tractor (both axles in contact) as ``(A, B, C, D)``, outputs :data:`OUTPUTS`.
 
-    Same equations as :func:`tyrelab.vehicle.tractor.simulate_tractor` without the
-    lift-off clamp. States: ``z, θ, z', θ'`` plus the longitudinal ones the model
-    needs — Kelvin-Voigt: ``x`` (only when ``k_x > 0``; otherwise ``x`` is not
-    observable) and ``x'``; Maxwell: ``x'`` and ``q = d - s`` (spring extension,
-    ``F_x = -k_x q``, ``q' = d' - (k_x/c_x) q``). Inputs ``[u_f, u_f', u_r, u_r']``.
-    Outputs :data:`OUTPUTS`: seat-point vertical ``z'' + x_s θ''`` and fore-aft
-    ``x'' - h_s θ''`` accelerations (rigid seat), CG vertical, pitch and
-    longitudinal accelerations, and the dynamic axle tyre forces.
+    The assembled parts' linear model (:meth:`tyrelab.vehicle.model.Assembly.linear` of
+    :func:`tyrelab.vehicle.tractor.tractor_parts`), inputs ``[u_f, u_f', u_r, u_r']``: seat-point
+    vertical ``z'' + x_s θ''`` and fore-aft ``x'' - h_s θ''`` accelerations (rigid seat), CG
+    vertical, pitch and longitudinal accelerations, and the dynamic axle tyre forces.
 
     Parameters
     ----------
@@ -340,10 +361,6 @@ def state_space(tractor: Tractor, seat_ahead_m: float = 0.0, seat_height_m: floa
     seat_ahead_m, seat_height_m : float
         Seat point ahead of and above the CG, m.
 
-    Returns
-    -------
-    A, B, C, D : ndarray
-
     Examples
     --------
     >>> t = Tractor(1000, 250, 1.0, 1.0, 0.5, 1e5, 1e5, 0.0, 0.0)
@@ -351,39 +368,8 @@ def state_space(tractor: Tractor, seat_ahead_m: float = 0.0, seat_height_m: floa
     >>> sorted(np.round(np.abs(np.linalg.eigvals(a)) / (2 * np.pi), 4).tolist())
     [2.2508, 2.2508, 4.5016, 4.5016]
     """
-    m, inertia = float(tractor.mass_kg), float(tractor.pitch_inertia_kg_m2)
-    a, b, h = float(tractor.front_distance_m), float(tractor.rear_distance_m), float(tractor.cg_height_m)
-    kf, kr = float(tractor.front_stiffness_N_per_m), float(tractor.rear_stiffness_N_per_m)
-    cf, cr = float(tractor.front_damping_N_s_per_m), float(tractor.rear_damping_N_s_per_m)
-    kx, cx = float(tractor.longitudinal_stiffness_N_per_m), float(tractor.longitudinal_damping_N_s_per_m)
-    names = state_names(tractor)
-    model = "maxwell" if "q" in names else "kelvin_voigt" if "vx" in names else "none"
-    n = len(names)
-    pos = {k: i for i, k in enumerate(names)} | {"uf": n, "udf": n + 1, "ur": n + 2, "udr": n + 3}
-
-    def row(**coef) -> np.ndarray:
-        r = np.zeros(n + 4)
-        for k, v in coef.items():
-            if k in pos:
-                r[pos[k]] += v
-        return r
-
-    ff = row(z=-kf, th=-kf * a, vz=-cf, vth=-cf * a, uf=kf, udf=cf)
-    fr = row(z=-kr, th=kr * b, vz=-cr, vth=cr * b, ur=kr, udr=cr)
-    if model == "kelvin_voigt":
-        fx = row(x=-kx, th=-kx * h, vx=-cx, vth=-cx * h)
-    elif model == "maxwell":
-        fx = row(q=-kx)
-    else:
-        fx = row()
-    az = (ff + fr) / m
-    ath = (a * ff - b * fr + h * fx) / inertia
-    ax = fx / m
-    deriv = {"z": row(vz=1.0), "th": row(vth=1.0), "x": row(vx=1.0), "vz": az, "vth": ath, "vx": ax,
-             "q": row(vx=1.0, vth=h, q=-kx / cx if cx > 0 else 0.0)}
-    rows = np.array([deriv[k] for k in names])
-    outs = np.array([az + seat_ahead_m * ath, ax - seat_height_m * ath, az, ath, ax, ff, fr])
-    return rows[:, :n], rows[:, n:], outs[:, :n], outs[:, n:]
+    parts = tractor_parts(tractor, SeatPoint(float(seat_ahead_m), 0.0, float(seat_height_m)))
+    return assemble(parts).linear(OUTPUTS).abcd
 
 
 def simulate_state_space(a, b, c, d, w, dt_s: float = DT_S, outputs=None) -> np.ndarray:
@@ -429,8 +415,10 @@ def seat_filter(natural_frequency_Hz: float, damping_ratio: float):
     ``T(s) = (2 ζ ω s + ω²) / (s² + 2 ζ ω s + ω²)``, the transmissibility of a seat
     on a linear spring and damper; it maps base acceleration to seat acceleration.
     """
-    wn = 2 * math.pi * float(natural_frequency_Hz)
+    wn = 2 * math.pi * positive("natural_frequency_Hz", natural_frequency_Hz)
     z = float(damping_ratio)
+    if not (math.isfinite(z) and z >= 0):
+        raise ValueError(f"damping_ratio must be finite and non-negative, got {damping_ratio!r}")
     return signal.tf2ss([2 * z * wn, wn**2], [1.0, 2 * z * wn, wn**2])
 
 
@@ -503,17 +491,32 @@ class Track:
     #: (n cycles/m, G of the axle-mean input m³) for the frequency-domain path, or None.
     spectrum: tuple[np.ndarray, np.ndarray] | None
     spectrum_source: str
+    #: (n cycles/m, G_LL, G_RR, G_LR m³): the two tracks' spectra and cross-spectrum (3-D model).
+    side_spectrum: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
 
 
 def build_profile(scenario: Scenario) -> Track:
     """Generate or read the scenario's track, add the lead-in, describe its spectrum."""
     s = scenario.surface
     lead = max(s.lead_in_m, scenario.tractor.wheelbase_m + 1.0)
+    side = None
+    width = _track_width_m(scenario)
     if s.kind == "iso8608":
-        prof = pr.iso8608_track(s.road_class, seed=s.seed, length_m=s.length_m, dx_m=s.dx_m)
+        prof = pr.iso8608_track(s.road_class, seed=s.seed, length_m=s.length_m, dx_m=s.dx_m, tracks=s.tracks,
+                                track_width_m=width)
         n = np.geomspace(0.011, 2.83, 4000)
-        g = 0.5 * pr.ISO8608_CLASS_G0_M3[s.road_class] * (n / pr.ISO8608_N0_CYCLES_PER_M) ** -2.0
-        spectrum, source = (n, g), f"ISO 8608 class {s.road_class} (geometric mean), independent left/right"
+        g_one = pr.ISO8608_CLASS_G0_M3[s.road_class] * (n / pr.ISO8608_N0_CYCLES_PER_M) ** -2.0
+        rho = {"independent": np.zeros_like(n), "identical": np.ones_like(n)}.get(s.tracks)
+        if rho is None:
+            rho = pr.isotropic_coherence(n, width)
+        if s.tracks == "independent":
+            g = 0.5 * g_one  # as before: the mean of two independent tracks
+        else:
+            g = 0.5 * (1.0 + rho) * g_one
+        side = (n, g_one, g_one, rho * g_one)
+        words = (f"isotropic surface, left/right coherence 2 pi n b K1(2 pi n b), b = {width:g} m (Dodds & Robson 1973)"
+                 if s.tracks == "isotropic" else f"{s.tracks} left/right")
+        spectrum, source = (n, g), f"ISO 8608 class {s.road_class} (geometric mean), {words}"
     elif s.kind == "slatted":
         prof = pr.slatted_track(seed=s.seed, length_m=s.length_m)
         spectrum, source = None, ""
@@ -532,32 +535,55 @@ def build_profile(scenario: Scenario) -> Track:
             n = np.geomspace(1.0 / length, 0.5 / prof.dx_m, 4000)
             g = s.spectrum_g0_m3 * (n / pr.ISO8608_N0_CYCLES_PER_M) ** -s.spectrum_waviness * (1.0 if correlated else 0.5)
             spectrum = (n, g)
+            g_one = s.spectrum_g0_m3 * (n / pr.ISO8608_N0_CYCLES_PER_M) ** -s.spectrum_waviness
+            side = (n, g_one, g_one, g_one * (1.0 if correlated else 0.0))
             source = f"declared G_d(n0) = {s.spectrum_g0_m3:g} m^3, w = {s.spectrum_waviness:g}"
     if spectrum is None:  # the track's own spectrum (Welch) of the axle-mean elevation
         mean = prof.track("mean")
         seg = min(51.2, prof.x_m[-1] / 4)
         n_w, g_w = pr.profile_spectrum(mean, prof.dx_m, seg)
         keep = (n_w > 0) & (g_w > 0)
-        n = np.geomspace(n_w[keep][0], n_w[keep][-1], 4000)
-        g = np.exp(np.interp(np.log(n), np.log(n_w[keep]), np.log(g_w[keep])))
+        if keep.sum() >= 2:
+            n = np.geomspace(n_w[keep][0], n_w[keep][-1], 4000)
+            g = np.exp(np.interp(np.log(n), np.log(n_w[keep]), np.log(g_w[keep])))
+        else:  # a flat axle mean (left and right in anti-phase, or a flat track): no axle-mean input
+            n, g = np.geomspace(n_w[1], n_w[-1], 4000), np.zeros(4000)
         spectrum, source = (n, g), "the track's own Welch spectrum (axle mean)"
+    if side is None and scenario.tractor.three_d:  # the tracks' own spectra and cross-spectrum (Welch)
+        seg = min(51.2, prof.x_m[-1] / 4)
+        nper = max(8, int(round(seg / prof.dx_m)))
+        n_w, g_ll = signal.welch(prof.left_m, 1.0 / prof.dx_m, nperseg=nper)
+        _, g_rr = signal.welch(prof.right_m, 1.0 / prof.dx_m, nperseg=nper)
+        _, g_lr = signal.csd(prof.left_m, prof.right_m, 1.0 / prof.dx_m, nperseg=nper)
+        keep = n_w > 0
+        side = (n_w[keep], g_ll[keep], g_rr[keep], g_lr[keep])
+        source = "the tracks' own Welch spectra and cross-spectrum"
     length = float(prof.x_m[-1])
-    return Track(pr.add_lead_in(prof, lead), float(round(lead / prof.dx_m) * prof.dx_m), length, spectrum, source)
+    return Track(pr.add_lead_in(prof, lead), float(round(lead / prof.dx_m) * prof.dx_m), length, spectrum, source, side)
+
+
+def _track_width_m(scenario: Scenario) -> float | None:
+    """Distance between the two wheel tracks: the mean of the front and rear track widths (3-D), m."""
+    t = scenario.tractor
+    return 0.5 * (t.front_track_m + t.rear_track_m) if t.three_d else None
+
+
+def _envelope_side(track: pr.Profile, side: str, kind: str, footprint_m: float, radius_m: float) -> np.ndarray:
+    """One wheel track's enveloped elevation."""
+    dx = track.dx_m
+    h = track.track(side)
+    if kind == "tapered":
+        h = ev.tapered_moving_average(h, dx, footprint_m)
+    elif kind == "fixed":
+        h = ev.fixed_footprint(h, dx, footprint_m)
+    elif kind == "rigid_band":
+        h = ev.rigid_tread_band(h, dx, radius_m)
+    return h
 
 
 def _envelope(track: pr.Profile, kind: str, footprint_m: float, radius_m: float) -> np.ndarray:
     """Axle-mean enveloped elevation (left and right enveloped, then averaged, as the ch. 7 study)."""
-    dx = track.dx_m
-    out = []
-    for side in ("left", "right"):
-        h = track.track(side)
-        if kind == "tapered":
-            h = ev.tapered_moving_average(h, dx, footprint_m)
-        elif kind == "fixed":
-            h = ev.fixed_footprint(h, dx, footprint_m)
-        elif kind == "rigid_band":
-            h = ev.rigid_tread_band(h, dx, radius_m)
-        out.append(h)
+    out = [_envelope_side(track, side, kind, footprint_m, radius_m) for side in ("left", "right")]
     return 0.5 * (out[0] + out[1])
 
 
@@ -575,10 +601,32 @@ def axle_inputs(track: pr.Profile, kind: str, footprints: tuple[float, float], r
     hf = _envelope(track, kind, footprints[0], radii[0])
     hr = hf if (footprints[0] == footprints[1] and radii[0] == radii[1]) or kind == "none" else \
         _envelope(track, kind, footprints[1], radii[1])
-    uf, udf = _half_inputs(track.x_m, hf, speed_m_s, n_steps, x_start=wheelbase_m)
-    ur, udr = _half_inputs(track.x_m, hr, speed_m_s, n_steps, x_start=0.0)
+    uf, udf = half_step_input(track.x_m, hf, speed_m_s, n_steps, wheelbase_m, DT_S)
+    ur, udr = half_step_input(track.x_m, hr, speed_m_s, n_steps, 0.0, DT_S)
     u0 = 0.5 * (uf[0] + ur[0])
     return uf - u0, udf, ur - u0, udr
+
+
+def tyre_inputs(asm, track: pr.Profile, kind: str, footprints: tuple[float, float], radii: tuple[float, float],
+                speed_m_s: float, wheelbase_m: float, n_steps: int) -> tuple[np.ndarray, np.ndarray]:
+    """Ground elevation and rate under each tyre element of ``asm`` at ``dt/2``, shape
+    ``(tyres, 2 n_steps - 1)``: the axle-mean input of :func:`axle_inputs` in the pitch plane; in
+    3-D each wheel on its own side's track (enveloped with its axle's footprint), the rear one a
+    wheelbase later, each side's offset at the start removed."""
+    if asm.parts.three_d:
+        u, du = {}, {}
+        for side in ("left", "right"):
+            hf = _envelope_side(track, side, kind, footprints[0], radii[0])
+            hr = _envelope_side(track, side, kind, footprints[1], radii[1])
+            u[f"front_{side}"], du[f"front_{side}"] = half_step_input(track.x_m, hf, speed_m_s, n_steps, wheelbase_m, DT_S)
+            u[f"rear_{side}"], du[f"rear_{side}"] = half_step_input(track.x_m, hr, speed_m_s, n_steps, 0.0, DT_S)
+            u0 = 0.5 * (u[f"front_{side}"][0] + u[f"rear_{side}"][0])
+            u[f"front_{side}"], u[f"rear_{side}"] = u[f"front_{side}"] - u0, u[f"rear_{side}"] - u0
+        return np.array([u[t] for t in asm.tyres]), np.array([du[t] for t in asm.tyres])
+    uf, udf, ur, udr = axle_inputs(track, kind, footprints, radii, speed_m_s, wheelbase_m, n_steps)
+    by_axle = {"front": (uf, udf), "rear": (ur, udr)}
+    return (np.array([by_axle[t.split("_")[0]][0] for t in asm.tyres]),
+            np.array([by_axle[t.split("_")[0]][1] for t in asm.tyres]))
 
 
 # --------------------------------------------------------------------------- exposure
@@ -595,8 +643,7 @@ def exposure(a_wz_m_s2: float, a_wx_m_s2: float, hours_per_day: float, a_wy_m_s2
     >>> round(e["a8_m_s2"], 6), round(e["hours_to_elv"], 4), e["verdict"]
     (0.565685, 16.5312, 'above action value')
     """
-    if hours_per_day <= 0:
-        raise ValueError("hours_per_day must be positive")
+    positive("hours_per_day", hours_per_day)
     k = iso2631.AXIS_FACTOR
     aw = max(k["x"] * a_wx_m_s2, k["y"] * a_wy_m_s2, k["z"] * a_wz_m_s2)
     a8 = iso2631.daily_exposure_a8(aw, hours_per_day)
@@ -666,9 +713,11 @@ class RideResult:
     #: ``bounce``/``pitch`` -> [low, high], 95 %, from the tyres' stiffness uncertainty (:func:`_mode_intervals`)
     natural_frequency_intervals_Hz: dict = field(default_factory=dict)
     #: With ``ride(..., with_signals=True)``: speed (km/h) -> the seat's predicted record, raw-format channel
-    #: name (``seat_z_m_s2``, ``seat_x_m_s2``, ``floor_z_m_s2``, ``floor_x_m_s2``) -> samples at ``FS_HZ`` from
-    #: the front axle's entry on the track
+    #: name (``seat_z_m_s2``, ``seat_x_m_s2``, ``floor_z_m_s2``, ``floor_x_m_s2``; in 3-D also
+    #: ``seat_y_m_s2``, ``floor_y_m_s2``) -> samples at ``FS_HZ`` from the front axle's entry on the track
     signals: dict = field(default_factory=dict)
+    #: The swept keys' values of this variant (:func:`ride_sweep`), ``{"section.key": value}``.
+    variant: dict = field(default_factory=dict)
 
 
 def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float | None) -> tuple[int, int]:
@@ -678,42 +727,98 @@ def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float
     return start, start + int(round(length / DT_S))
 
 
-def _mode_intervals(tr: Tractor, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: float) -> dict:
-    """95 % intervals of the bounce and pitch frequencies from the tyre stiffness uncertainties.
+#: Mode names by the coordinate that moves most (:func:`modes`).
+MODE_NAMES = {"z": "bounce", "th": "pitch", "phi": "roll", "front_axle_roll": "front_axle_roll",
+              "rear_axle_roll": "rear_axle_roll", "front_axle_z": "front_axle_bounce", "rear_axle_z": "rear_axle_bounce",
+              "cab_z": "cab_bounce", "cab_th": "cab_pitch", "cab_phi": "cab_roll", "implement_th": "implement_pitch"}
 
-    First order as :func:`tyrelab.vehicle.bounce_pitch.frequency_uncertainty`
-    (central differences, independent axles, ``f ± 1.96 u``); an axle is two tyres.
+
+def _is_beam(asm) -> bool:
+    """The thesis' §8.2 beam on two springs (the undamped model has z and θ only)."""
+    return asm.undamped()[2] == ("z", "th")
+
+
+def modes(asm) -> tuple[dict, dict]:
+    """Undamped natural frequencies (Hz) of an assembled tractor, each named by the coordinate
+    that moves most (kinetic-energy share; :data:`MODE_NAMES`, a second mode of the same name
+    ``_2``), and the bounce and pitch modes' nodal points ahead of the CG (m).
+
+    The pitch-plane tractor on rigid axles is thesis §8.2's beam on two springs
+    (:func:`tyrelab.vehicle.bounce_pitch.mode_shapes`, the same eigenproblem).
     """
-    base, _ = _modes(tr)
+    p = asm.parts
+    if _is_beam(asm):
+        ms = bounce_pitch.mode_shapes(p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m,
+                                      -p.rear.ahead_of_cg_m, 2 * p.front.tyre_stiffness_N_per_m,
+                                      2 * p.rear.tyre_stiffness_N_per_m)
+        return ({k: ms[k]["frequency_Hz"] for k in ("bounce", "pitch")},
+                {k: ms[k]["nodal_point_ahead_of_cg_m"] for k in ("bounce", "pitch")})
+    k, m, names = asm.undamped()
+    w2, vecs = linalg.eigh(k, m)
+    shares = [vecs[:, i] * (m @ vecs[:, i]) for i in range(len(w2))]
+    dominant = [names[int(np.argmax(np.abs(sh)))] for sh in shares]
+    # the body's bounce and pitch (modes led by z or θ): by thesis §8.2's rule, the larger
+    # |z|/(r |θ|) is bounce (a tie to the lower frequency), the other pitch
+    body = [i for i in range(len(w2)) if dominant[i] in ("z", "th")]
+    iz, ith = names.index("z"), names.index("th")
+    ranked = sorted(body, key=lambda i: -abs(shares[i][iz]) / max(abs(shares[i][ith]), 1e-300))
+    label = {i: MODE_NAMES.get(dominant[i], dominant[i]) for i in range(len(w2))}
+    for j, i in enumerate(ranked[:2]):
+        label[i] = ("bounce", "pitch")[j] if len(ranked) > 1 else MODE_NAMES[dominant[i]]
+    freqs, nodal = {}, {}
+    for i in range(len(w2)):
+        name = label[i]
+        while name in freqs:
+            name = f"{name}_2" if not name[-1].isdigit() else f"{name[:-1]}{int(name[-1]) + 1}"
+        freqs[name] = math.sqrt(max(w2[i], 0.0)) / (2 * math.pi)
+        if name in ("bounce", "pitch"):
+            z, th = vecs[iz, i], vecs[ith, i]
+            nodal[name] = float(-z / th) + 0.0 if abs(th) > 1e-12 * abs(z) else math.inf
+    return freqs, nodal
+
+
+def _modes(asm) -> tuple[dict, dict]:
+    return modes(asm)
+
+
+def _mode_intervals(asm, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: float) -> dict:
+    """95 % intervals of the natural frequencies from the tyre stiffness uncertainties: first order,
+    central differences (±1 % of each axle's tyre stiffness), independent axles, ``f ± 1.96 u``
+    (:func:`tyrelab.vehicle.bounce_pitch.frequency_uncertainty` for thesis §8.2's beam; the same
+    method on the assembled model otherwise)."""
+    p = asm.parts
+    base, _ = modes(asm)
+    if _is_beam(asm):
+        _, intervals = bounce_pitch.frequency_uncertainty(
+            p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m, -p.rear.ahead_of_cg_m,
+            p.front.tyre_stiffness_N_per_m / 1e3, p.rear.tyre_stiffness_N_per_m / 1e3,
+            u_front_tyre_kN_per_m, u_rear_tyre_kN_per_m)
+        centres = [0.5 * (lo + hi) for lo, hi in intervals]
+        return {m: list(intervals[int(np.argmin([abs(c - f) for c in centres]))]) for m, f in base.items()}
     var = dict.fromkeys(base, 0.0)
-    for attr, u in (("front_stiffness_N_per_m", 2e3 * u_front_tyre_kN_per_m),
-                    ("rear_stiffness_N_per_m", 2e3 * u_rear_tyre_kN_per_m)):
+    for axle, u in (("front", u_front_tyre_kN_per_m), ("rear", u_rear_tyre_kN_per_m)):
         if not u > 0:
             continue
-        k = getattr(tr, attr)
-        up, _ = _modes(dataclasses.replace(tr, **{attr: 1.01 * k}))
-        down, _ = _modes(dataclasses.replace(tr, **{attr: 0.99 * k}))
+        part = getattr(p, axle)
+        k = part.tyre_stiffness_N_per_m
+        up, _ = modes(assemble(dataclasses.replace(p, **{axle: dataclasses.replace(part, tyre_stiffness_N_per_m=1.01 * k)})))
+        down, _ = modes(assemble(dataclasses.replace(p, **{axle: dataclasses.replace(part, tyre_stiffness_N_per_m=0.99 * k)})))
         for m in var:
-            var[m] += ((up[m] - down[m]) / (0.02 * k) * u) ** 2
+            if m in up and m in down:
+                var[m] += ((up[m] - down[m]) / (0.02 * k) * 1e3 * u) ** 2
     return {m: [base[m] - 1.96 * math.sqrt(var[m]), base[m] + 1.96 * math.sqrt(var[m])] for m in base}
 
 
-def _modes(tr: Tractor) -> tuple[dict, dict]:
-    modes = bounce_pitch.mode_shapes(tr.mass_kg, tr.pitch_inertia_kg_m2, tr.front_distance_m, tr.rear_distance_m,
-                                     tr.front_stiffness_N_per_m, tr.rear_stiffness_N_per_m)
-    return ({k: modes[k]["frequency_Hz"] for k in ("bounce", "pitch")},
-            {k: modes[k]["nodal_point_ahead_of_cg_m"] for k in ("bounce", "pitch")})
-
-
-def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = True,
+def ride(scenario: Scenario, tyre_data=None, with_spectra: bool = True,
          with_signals: bool = False) -> RideResult:
     """Simulate a scenario at every speed and evaluate the seat vibration.
 
     Parameters
     ----------
     scenario : Scenario
-    build : Path, optional
-        Build folder whose warehouse holds measured tyres (``measured_tyre_id``).
+    tyre_data : object, optional
+        Measured tyres and the stiffness model (:class:`ShippedTyres` by default; a build's
+        warehouse through :class:`tyrelab.stages.simulate.WarehouseTyres`).
     with_spectra : bool
         Also compute seat PSDs and transmissibilities (for figures).
     with_signals : bool
@@ -724,7 +829,7 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
     -------
     RideResult
     """
-    tyres = resolve_tyres(scenario, build)
+    tyres = resolve_tyres(scenario, tyre_data)
     track = build_profile(scenario)
     seat = scenario.seat
     seat_ss = seat_filter(seat.natural_frequency_Hz, seat.damping_ratio) if seat.suspension == "linear" else None
@@ -735,64 +840,65 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
     rows, spectra, trans, signals = [], [], [], {}
     warnings = [f"tyres.{ax}: {w}" for ax in ("front", "rear") for w in tyres[ax].warnings]
     speeds = scenario.exposure.speeds_km_h
-    runs = []  # per speed: tractor, window, footprints, state space, outputs, method, lift-off flags
+    axes = seat_axes(scenario)  # axis -> output name
+    seat_outputs = tuple(axes.values())
+    runs = []  # per speed: assembly, window, footprints, linear model, outputs, method, lift-off flags
     for i, speed in enumerate(speeds):
         v = speed / 3.6
-        tr = build_tractor(scenario, tyres, i)
+        asm = assemble(build_parts(scenario, tyres, i))
         start, stop = _record_window(track, wb, v, scenario.simulation.duration_s)
         fp = (float(tyres["front"].footprint_m[i]), float(tyres["rear"].footprint_m[i]))
-        uf, udf, ur, udr = axle_inputs(track.profile, scenario.surface.enveloping, fp, radii, v, wb, stop)
-        ss = state_space(tr, seat.ahead_of_cg_m, seat.height_above_cg_m)
-        y = simulate_state_space(*ss, np.vstack([uf[::2], udf[::2], ur[::2], udr[::2]]), outputs=(0, 1, 5, 6))
-        w_static = _static_axle_loads(tr)
-        off = np.vstack([y[2] <= -w_static[0], y[3] <= -w_static[1]])
-        runs.append({"tr": tr, "v": v, "start": start, "stop": stop, "fp": fp, "ss": ss, "y": y[:2], "off": off,
-                     "method": "linear"})
-    # runs whose tyres would pull: the nonlinear model, batched (vectorised over runs as simulate_tractor is)
+        u, du = tyre_inputs(asm, track.profile, scenario.surface.enveloping, fp, radii, v, wb, stop)
+        forces = tuple(f"{t}_force_N" for t in asm.tyres)
+        lm = asm.linear(seat_outputs + forces)
+        w = np.empty((2 * len(asm.tyres), stop))
+        w[0::2], w[1::2] = u[:, ::2], du[:, ::2]
+        y = lti.discretise(*lm.abcd, DT_S).run(w)
+        static = asm.static_tyre_loads_N()
+        off = _axle_flags(asm, {t: y[len(seat_outputs) + j] <= -static[t] for j, t in enumerate(asm.tyres)})
+        runs.append({"asm": asm, "v": v, "start": start, "stop": stop, "fp": fp, "lm": lm, "y": y[:len(seat_outputs)],
+                     "off": off, "method": "linear"})
+    # runs whose tyres would pull: the nonlinear model, batched (exact in contact, RK4 across the
+    # lift-off intervals, as the ch. 7 study)
     redo = [k for k, r in enumerate(runs) if scenario.simulation.lift_off and r["off"][:, r["start"]:r["stop"]].any()]
     if redo:
         n_max = max(runs[k]["stop"] for k in redo)
-        inputs = [axle_inputs(track.profile, scenario.surface.enveloping, runs[k]["fp"], radii, runs[k]["v"], wb, n_max)
-                  for k in redo]
-        params = {f: np.array([float(getattr(runs[k]["tr"], f)) for k in redo]) for f in PARAMETERS}
-        sim = simulate_tractor(Tractor(**params, longitudinal_model=scenario.tractor.longitudinal_model),
-                               *[np.array([inp[j] for inp in inputs]) for j in range(4)], DT_S, lift_off=True,
-                               method="auto")  # exact in contact, RK4 across the lift-off intervals (as the ch. 7 study)
+        inputs = [tyre_inputs(runs[k]["asm"], track.profile, scenario.surface.enveloping, runs[k]["fp"], radii,
+                              runs[k]["v"], wb, n_max) for k in redo]
+        asms = [runs[k]["asm"] for k in redo]
+        forces = tuple(f"{t}_force_N" for t in asms[0].tyres)
+        sim = simulate(asms, np.array([x[0] for x in inputs]), np.array([x[1] for x in inputs]), DT_S, lift_off=True,
+                       method="auto", record=seat_outputs + forces)
         for row_i, k in enumerate(redo):
             r = runs[k]
-            vert, pitch, lon = (sim[c][row_i, :r["stop"]] for c in ("vertical_m_s2", "pitch_rad_s2", "longitudinal_m_s2"))
-            r["y"] = np.vstack([vert + seat.ahead_of_cg_m * pitch, lon - seat.height_above_cg_m * pitch])
-            r["off"] = _lift_off_from_accelerations(r["tr"], vert, pitch, lon)
+            static = r["asm"].static_tyre_loads_N()
+            r["y"] = np.vstack([sim[o][row_i, :r["stop"]] for o in seat_outputs])
+            # off the ground: the tyre force at minus its static load (the clamp), to rounding
+            r["off"] = _axle_flags(r["asm"], {t: sim[f"{t}_force_N"][row_i, :r["stop"]] <= -static[t] * (1 - 1e-6)
+                                              for t in r["asm"].tyres})
             r["method"] = "nonlinear (tyre lift-off)"
-    nat, nodal = _modes(runs[0]["tr"])
-    nat_ci = _mode_intervals(runs[0]["tr"], tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
+    nat, nodal = _modes(runs[0]["asm"])
+    nat_ci = _mode_intervals(runs[0]["asm"], tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
+    weightings = {"x": "Wd", "y": "Wd", "z": "Wk"}
     for i, (speed, r) in enumerate(zip(speeds, runs)):
         v, start, stop, fp, method = r["v"], r["start"], r["stop"], r["fp"], r["method"]
-        a_m, b_m, c_m, d_m = r["ss"]
+        a_m, b_m, c_m, d_m = r["lm"].abcd
         lift = tuple(float(o[start:stop].mean()) for o in r["off"])
-        seat_z = r["y"][0]
+        series = dict(zip(axes, r["y"]))
+        floor = {ax: sig[start:stop] for ax, sig in series.items()}
         if seat_ss is not None:
-            seat_z = simulate_state_space(*seat_ss, seat_z[None, :])[0]
-        z, x = seat_z[start:stop], r["y"][1][start:stop]
-        if with_signals:  # the cab floor beneath the seat: before the seat suspension (the model's seat x has none)
-            signals[float(speed)] = {"seat_z_m_s2": z, "seat_x_m_s2": x, "floor_z_m_s2": r["y"][0][start:stop],
-                                     "floor_x_m_s2": x}
-        wz = iso2631.weighted_signal(z, FS_HZ, "Wk")
-        wx = iso2631.weighted_signal(x, FS_HZ, "Wd")
-        a_wz, a_wx = float(np.sqrt(np.mean(wz**2))), float(np.sqrt(np.mean(wx**2)))
-        vdv_z = iso2631.vibration_dose_value(wz, FS_HZ)
-        vdv_x = iso2631.AXIS_FACTOR["x"] * iso2631.vibration_dose_value(wx, FS_HZ)
-        duration = z.size / FS_HZ
-        vdv = max(vdv_z, vdv_x)
-        # frequency-domain path: linear model, ground spectrum, enveloping and delay
-        n_s, g_s = track.spectrum
-        f_s = n_s * v
-        keep = f_s <= FS_HZ / 2
-        f_s, n_k, s_u = f_s[keep], n_s[keep], g_s[keep] / v
-        h = frequency_response(a_m, b_m, c_m, d_m, f_s)
-        env = [enveloping_response(scenario.surface.enveloping, fp[j], track.profile.dx_m, n_k) for j in (0, 1)]
-        g_resp = ground_response(h, f_s, v, wb, env[0], env[1])
-        g_z = g_resp[0] * (_seat_tf(seat_ss, f_s) if seat_ss is not None else 1.0)
+            series["z"] = simulate_state_space(*seat_ss, series["z"][None, :])[0]
+        series = {ax: sig[start:stop] for ax, sig in series.items()}
+        if with_signals:  # the cab floor beneath the seat: before the seat suspension (the model's seat x, y have none)
+            signals[float(speed)] = {**{f"seat_{ax}_m_s2": sig for ax, sig in series.items()},
+                                     **{f"floor_{ax}_m_s2": sig for ax, sig in floor.items()}}
+        weighted = {ax: iso2631.weighted_signal(sig, FS_HZ, weightings[ax]) for ax, sig in series.items()}
+        aw = {ax: float(np.sqrt(np.mean(sig**2))) for ax, sig in weighted.items()}
+        aw.setdefault("y", 0.0)  # the pitch-plane model has no lateral motion
+        vdv = max(iso2631.AXIS_FACTOR[ax] * iso2631.vibration_dose_value(sig, FS_HZ) for ax, sig in weighted.items())
+        duration = series["z"].size / FS_HZ
+        # frequency-domain path: linear model, ground spectra, enveloping and delay
+        expected = _expected(scenario, track, r, seat_ss, axes, v)
         row = {
             "speed_km_h": float(speed),
             "front_pressure_bar": tyres["front"].pressure_bar,
@@ -801,37 +907,35 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
             "rear_stiffness_kN_per_m": float(tyres["rear"].stiffness_kN_per_m[i]),
             "front_damping_kN_s_per_m": float(tyres["front"].damping_kN_s_per_m[i]),
             "rear_damping_kN_s_per_m": float(tyres["rear"].damping_kN_s_per_m[i]),
-            "a_wz_m_s2": a_wz,
-            "a_wx_m_s2": a_wx,
-            "expected_a_wz_m_s2": expected_rms(g_z, f_s, s_u, "Wk"),
-            "expected_a_wx_m_s2": expected_rms(g_resp[1], f_s, s_u, "Wd"),
+            "a_wz_m_s2": aw["z"],
+            "a_wx_m_s2": aw["x"],
+            "a_wy_m_s2": aw["y"],
+            "expected_a_wz_m_s2": expected["z"],
+            "expected_a_wx_m_s2": expected["x"],
+            "expected_a_wy_m_s2": expected.get("y", 0.0),
             "vdv_m_s1_75": vdv,
             "vdv_daily_m_s1_75": float(vdv * (hours * 3600.0 / duration) ** 0.25),
-            "crest_factor": iso2631.crest_factor(wz),
+            "crest_factor": iso2631.crest_factor(weighted["z"]),
             "lift_off_fraction_front": lift[0],
             "lift_off_fraction_rear": lift[1],
-            **exposure(a_wz, a_wx, hours),
+            **exposure(aw["z"], aw["x"], hours, aw["y"]),
             "hours_per_day": hours,
             "duration_s": duration,
             "simulation": method,
         }
-        if duration < MIN_VERDICT_DURATION_S:
+        if duration < MIN_VERDICT_DURATION_S:  # the exposure numbers stay; the verdict is withheld
+            row["verdict"] = f"no verdict: record {duration:.2f} s, shorter than {MIN_VERDICT_DURATION_S:g} s"
             warnings.append(f"{speed:g} km/h: the seat record is {duration:.2f} s, shorter than "
                             f"{MIN_VERDICT_DURATION_S:g} s: too short for a reliable exposure verdict "
                             "(lengthen surface.length_m or simulation.duration_s)")
         rows.append(row)
         if with_spectra:
-            fz, pz = mt.acceleration_psd(z, FS_HZ, 0.1)
-            fx_, px = mt.acceleration_psd(x, FS_HZ, 0.1)
+            psd = {ax: mt.acceleration_psd(sig, FS_HZ, 0.1) for ax, sig in series.items()}
+            fz = psd["z"][0]
             band = (fz >= FIGURE_BAND_HZ[0]) & (fz <= FIGURE_BAND_HZ[1])
             spectra.append(pd.DataFrame({"speed_km_h": float(speed), "frequency_Hz": fz[band],
-                                         "seat_vertical_psd_m2_s4_per_Hz": pz[band],
-                                         "seat_longitudinal_psd_m2_s4_per_Hz": px[band]}))
-            hg = ground_response(frequency_response(a_m, b_m, c_m, d_m, f_grid), f_grid, v, wb)
-            w2 = (2 * math.pi * f_grid) ** 2
-            tz = hg[0] * (_seat_tf(seat_ss, f_grid) if seat_ss is not None else 1.0)
-            trans.append(pd.DataFrame({"speed_km_h": float(speed), "frequency_Hz": f_grid,
-                                       "seat_vertical": np.abs(tz) / w2, "seat_longitudinal_per_m": np.abs(hg[1]) / w2}))
+                                         **{f"seat_{AXIS_WORDS[ax]}_psd_m2_s4_per_Hz": psd[ax][1][band] for ax in axes}}))
+            trans.append(_transmissibility(r, axes, seat_ss, f_grid, v, wb, float(speed)))
     cols = ["speed_km_h", "frequency_Hz"]
     return RideResult(
         scenario=scenario, tyres=tyres, natural_frequencies_Hz=nat, nodal_points_m=nodal,
@@ -843,27 +947,108 @@ def ride(scenario: Scenario, build: Path | None = None, with_spectra: bool = Tru
     )
 
 
-def _static_axle_loads(tr: Tractor) -> np.ndarray:
-    """Static front and rear axle loads, N (a dynamic tyre force at minus this is lift-off)."""
-    w = float(tr.mass_kg) * GRAVITY_M_S2 / float(tr.wheelbase_m)
-    return np.array([w * float(tr.rear_distance_m), w * float(tr.front_distance_m)])
+#: Seat axes and their words in column names.
+AXIS_WORDS = {"z": "vertical", "x": "longitudinal", "y": "lateral"}
 
 
-def _lift_off_from_accelerations(tr: Tractor, vert, pitch, lon) -> np.ndarray:
-    """Per-step lift-off flags (front, rear) of a nonlinear run, from its accelerations.
+def seat_axes(scenario: Scenario) -> dict[str, str]:
+    """Seat axis (``z``, ``x``, and ``y`` in 3-D) -> the assembly output that gives it: the seat
+    point's acceleration in space, or with ``[seat] gravity_tilt`` what a body-fixed
+    accelerometer reads (plus ``g θ`` fore-aft and ``g φ`` lateral)."""
+    tilt = "_tilt" if scenario.seat.gravity_tilt else ""
+    axes = {"z": "seat_vertical_m_s2", "x": f"seat_longitudinal{tilt}_m_s2"}
+    if scenario.tractor.three_d:
+        axes["y"] = f"seat_lateral{tilt}_m_s2"
+    return axes
 
-    ``M z'' = F_f + F_r``, ``I θ'' = a F_f - b F_r + h F_x`` and ``M x'' = F_x`` give the
-    dynamic axle forces; a tyre is off the ground where its force sits at minus the
-    static load (the clamp of :func:`~tyrelab.vehicle.tractor.simulate_tractor`).
-    """
-    m, inertia, h = float(tr.mass_kg), float(tr.pitch_inertia_kg_m2), float(tr.cg_height_m)
-    a, b = float(tr.front_distance_m), float(tr.rear_distance_m)
-    fx = m * lon
-    ff = (b * m * vert + inertia * pitch - h * fx) / (a + b)
-    fr = (a * m * vert - inertia * pitch + h * fx) / (a + b)
-    w = _static_axle_loads(tr)
-    tol = 1e-6 * w
-    return np.vstack([ff <= -w[0] + tol[0], fr <= -w[1] + tol[1]])
+
+def _wheel_responses(r: dict, f_Hz, v: float, env) -> tuple[np.ndarray, list[str]]:
+    """Response of every output to each tyre's ground displacement (p, tyres, f), with the
+    enveloping filter of its axle (``env[axle]``), without the wheelbase delay; and the tyres."""
+    h = frequency_response(*r["lm"].abcd, f_Hz)
+    jw = 2j * math.pi * np.asarray(f_Hz, float)
+    tyres = list(r["asm"].tyres)
+    out = np.stack([(h[:, 2 * j] + jw * h[:, 2 * j + 1]) * env[t.split("_")[0]] for j, t in enumerate(tyres)], axis=1)
+    return out, tyres
+
+
+def input_cross_spectra(tyres: list[str], side_spectrum, f_Hz, v: float, wheelbase_m: float) -> np.ndarray:
+    """The tyres' input cross-spectral matrix (tyres, tyres, f), m²/Hz: per pair the two tracks'
+    spectrum or cross-spectrum (``G_LL``, ``G_RR``, ``G_LR`` at ``n = f/v``, per Hz ``/v``) times
+    ``exp(-jω (τ_i - τ_j))``, ``τ`` = 0 front, ``wheelbase/v`` rear (the front/rear delay)."""
+    n_s, g_ll, g_rr, g_lr = side_spectrum
+    n = np.asarray(f_Hz, float) / v
+    g = {("left", "left"): np.interp(n, n_s, g_ll), ("right", "right"): np.interp(n, n_s, g_rr),
+         ("left", "right"): np.interp(n, n_s, g_lr.real) + 1j * np.interp(n, n_s, np.imag(g_lr))}
+    g[("right", "left")] = np.conj(g[("left", "right")])
+    jw = 2j * math.pi * np.asarray(f_Hz, float)
+    tau = {t: (wheelbase_m / v if t.startswith("rear") else 0.0) for t in tyres}
+    out = np.empty((len(tyres), len(tyres), n.size), dtype=complex)
+    for i, a in enumerate(tyres):
+        for j, b in enumerate(tyres):
+            out[i, j] = g[(a.split("_")[1], b.split("_")[1])] / v * np.exp(-jw * (tau[a] - tau[b]))
+    return out
+
+
+def _expected(scenario: Scenario, track: Track, r: dict, seat_ss, axes: dict, v: float) -> dict:
+    """Expected weighted r.m.s. per seat axis from the frequency-domain path."""
+    fp, wb = r["fp"], scenario.tractor.wheelbase_m
+    weightings = {"x": "Wd", "y": "Wd", "z": "Wk"}
+    if not r["asm"].parts.three_d:  # the pitch plane: the axle-mean spectrum (as the ch. 7 study)
+        n_s, g_s = track.spectrum
+        f_s = n_s * v
+        keep = f_s <= FS_HZ / 2
+        f_s, n_k, s_u = f_s[keep], n_s[keep], g_s[keep] / v
+        h = frequency_response(*r["lm"].abcd, f_s)
+        env = [enveloping_response(scenario.surface.enveloping, fp[j], track.profile.dx_m, n_k) for j in (0, 1)]
+        g_resp = ground_response(h, f_s, v, wb, env[0], env[1])
+        g_resp[0] = g_resp[0] * (_seat_tf(seat_ss, f_s) if seat_ss is not None else 1.0)
+        return {ax: expected_rms(g_resp[k], f_s, s_u, weightings[ax]) for k, ax in enumerate(axes)}
+    # 3-D: the full input cross-spectral matrix (left/right coherence, front/rear delay)
+    n_s = track.side_spectrum[0]
+    f_s = n_s * v
+    f_s = f_s[f_s <= FS_HZ / 2]
+    n_k = f_s / v
+    env = {axle: enveloping_response(scenario.surface.enveloping, fp[j], track.profile.dx_m, n_k)
+           for j, axle in enumerate(("front", "rear"))}
+    h, tyres = _wheel_responses(r, f_s, v, env)
+    s_in = input_cross_spectra(tyres, track.side_spectrum, f_s, v, wb)
+    out = {}
+    for k, ax in enumerate(axes):
+        hk = h[k] * (_seat_tf(seat_ss, f_s) if (seat_ss is not None and ax == "z") else 1.0)
+        s_y = np.einsum("if,ijf,jf->f", hk, s_in, np.conj(hk)).real
+        w = np.abs(iso2631.weighting_response(f_s, weightings[ax]))
+        out[ax] = float(math.sqrt(max(np.trapezoid(s_y * w**2, f_s), 0.0)))
+    return out
+
+
+def _transmissibility(r: dict, axes: dict, seat_ss, f_grid, v: float, wb: float, speed: float) -> pd.DataFrame:
+    """|seat acceleration / ground acceleration| per axis on the figure grid (all wheels in phase
+    on both sides, the rear a wheelbase later): ``seat_vertical``, ``seat_longitudinal_per_m``
+    (fore-aft per unit ground acceleration, as before) and in 3-D ``seat_lateral_roll``: lateral
+    seat acceleration per unit left/right anti-phase ground acceleration."""
+    w2 = (2 * math.pi * f_grid) ** 2
+    ones = {"front": 1.0, "rear": 1.0}
+    h, tyres = _wheel_responses(r, f_grid, v, ones)
+    delay = np.array([np.exp(-2j * math.pi * f_grid * wb / v) if t.startswith("rear") else np.ones_like(f_grid)
+                      for t in tyres])
+    in_phase = np.einsum("ptf,tf->pf", h, delay)
+    out = {"speed_km_h": speed, "frequency_Hz": f_grid}
+    k = list(axes)
+    tz = in_phase[k.index("z")] * (_seat_tf(seat_ss, f_grid) if seat_ss is not None else 1.0)
+    out["seat_vertical"] = np.abs(tz) / w2
+    out["seat_longitudinal_per_m"] = np.abs(in_phase[k.index("x")]) / w2
+    if "y" in axes:
+        sign = np.array([1.0 if t.endswith("left") else -1.0 for t in tyres])[:, None]
+        anti = np.einsum("ptf,tf->pf", h, 0.5 * sign * delay)
+        out["seat_lateral_roll"] = np.abs(anti[k.index("y")]) / w2
+    return pd.DataFrame(out)
+
+
+def _axle_flags(asm, flags: dict) -> np.ndarray:
+    """Per-sample lift-off flags (front, rear) from per-tyre flags: an axle is off the ground
+    where any of its tyres is."""
+    return np.vstack([np.logical_or.reduce([flags[t] for t in asm.tyres if t.startswith(axle)]) for axle in ("front", "rear")])
 
 
 def _seat_tf(seat_ss, f_Hz) -> np.ndarray:
@@ -872,8 +1057,8 @@ def _seat_tf(seat_ss, f_Hz) -> np.ndarray:
 
 def _ride_batch(item: tuple) -> RideResult:
     """Executor task: one scenario variant (module level, picklable)."""
-    scenario, build, with_spectra = item
-    return ride(scenario, build, with_spectra)
+    scenario, tyre_data, with_spectra = item
+    return ride(scenario, tyre_data, with_spectra)
 
 
 def ride_sweep(
@@ -881,13 +1066,15 @@ def ride_sweep(
     front_pressures_bar=None,
     rear_pressures_bar=None,
     speeds_km_h=None,
-    build: Path | None = None,
-    executor_ctx=None,
+    tyre_data=None,
+    map_fn=None,
     with_spectra: bool = True,
+    sets: dict | None = None,
     max_variants: int | None = None,
     max_samples: int | None = None,
 ) -> list[RideResult]:
-    """:func:`ride` for every front × rear pressure pair (the scenario's own when not given).
+    """:func:`ride` for every variant: each front × rear pressure pair (the scenario's own when not
+    given) and every combination of the swept keys.
 
     Parameters
     ----------
@@ -896,40 +1083,52 @@ def ride_sweep(
         Default: the scenario's ``[sweep]``, else its tyres' pressures.
     speeds_km_h : sequence of float, optional
         Override the scenario's speeds.
+    tyre_data : object, optional
+        As :func:`ride`.
+    map_fn : callable, optional
+        ``map_fn(task, items) -> results`` in order (the caller's executor, e.g.
+        :func:`tyrelab.executor.map_batches` bound to a context); default in-process.
+    sets : dict, optional
+        Numeric scenario keys (``"section.key"``, :func:`tyrelab.vehicle.scenario.numeric_key`)
+        -> values to run, on top of (and replacing the same keys of) the scenario's ``[sweep]``.
     max_variants, max_samples : int, optional
         Bounds of the work (:mod:`tyrelab.vehicle.scenario_limits`; default its ``MAX_VARIANTS``,
         ``MAX_SAMPLES``): more is refused with a ValueError giving the estimate, before any work.
-    build : Path, optional
-        Warehouse of measured tyres.
-    executor_ctx : object, optional
-        Anything with ``executor``, ``jobs``, ``scheduler`` (a
-        :class:`tyrelab.stages.base.Context`): the variants run through
-        :func:`tyrelab.executor.map_batches` (local pool or Dask). Default: in-process.
 
     Returns
     -------
     list of RideResult
-        In front-major order of the pairs.
+        Pressure pairs front-major, then the swept keys in order (the last varying fastest);
+        :attr:`RideResult.variant` names each variant's swept values.
     """
-    from ..executor import map_batches
-
     fronts = list(front_pressures_bar or scenario.sweep.front_pressures_bar or [scenario.front.pressure_bar])
     rears = list(rear_pressures_bar or scenario.sweep.rear_pressures_bar or [scenario.rear.pressure_bar])
+    swept = {**scenario.sweep.keys, **(sets or {})}
+    combos = [dict(zip(swept, values)) for values in itertools.product(*swept.values())] if swept else [{}]
     from . import scenario_limits as limits
 
     bad = limits.override_problems(speeds_km_h, front_pressures_bar, rear_pressures_bar)
     if bad:
         raise ValueError("; ".join(bad))
-    too_much = limits.work_problems(scenario, len(fronts) * len(rears), speeds_km_h,
+    too_much = limits.work_problems(scenario, len(fronts) * len(rears) * len(combos), speeds_km_h,
                                     max_variants=max_variants or limits.MAX_VARIANTS,
                                     max_samples=max_samples or limits.MAX_SAMPLES)
-    if too_much:  # before any work (the pairs are not even built)
+    if too_much:  # before any work (the variants are not even built)
         raise ValueError("; ".join(too_much))
-    variants = [with_overrides(scenario, speeds_km_h, pf, pr_) for pf in fronts for pr_ in rears]
-    items = [(v, build, with_spectra) for v in variants]
-    if executor_ctx is None or len(items) == 1:
-        return [_ride_batch(i) for i in items]
-    return map_batches(_ride_batch, items, executor_ctx)
+    variants = []
+    for pf in fronts:
+        for pr_ in rears:
+            for combo in combos:
+                base = with_values(scenario, combo) if combo else scenario
+                variants.append((with_overrides(base, speeds_km_h, pf, pr_), combo))
+    items = [(v, tyre_data, with_spectra) for v, _ in variants]
+    if map_fn is None or len(items) == 1:
+        results = [_ride_batch(i) for i in items]
+    else:
+        results = map_fn(_ride_batch, items)
+    for r, (_, combo) in zip(results, variants):
+        r.variant = dict(combo)
+    return results
 
 
 def _clean(v):
@@ -986,7 +1185,9 @@ def result_json(results: list[RideResult]) -> dict:
            "warnings": sorted({w for r in results for w in r.warnings})}
     if len(results) > 1:
         out["sweep"] = [{"front_pressure_bar": r.tyres["front"].pressure_bar,
-                         "rear_pressure_bar": r.tyres["rear"].pressure_bar, **block(r)} for r in results]
+                         "rear_pressure_bar": r.tyres["rear"].pressure_bar,
+                         **({"variant": {k: _clean(v) for k, v in r.variant.items()}} if r.variant else {}),
+                         **block(r)} for r in results]
     return out
 
 
@@ -999,103 +1200,14 @@ def results_table(results: list[RideResult], scenario_id: str | None = None) -> 
     for r in results:
         df = r.speeds.copy()
         df.insert(0, "scenario", scenario_id or r.scenario.name)
-        df["bounce_Hz"] = r.natural_frequencies_Hz["bounce"]
-        df["pitch_Hz"] = r.natural_frequencies_Hz["pitch"]
+        df["bounce_Hz"] = r.natural_frequencies_Hz.get("bounce", math.nan)
+        df["pitch_Hz"] = r.natural_frequencies_Hz.get("pitch", math.nan)
+        df["roll_Hz"] = r.natural_frequencies_Hz.get("roll", math.nan)
+        df["modes_Hz"] = "; ".join(f"{k} {v:.3f}" for k, v in r.natural_frequencies_Hz.items())
         df["front_stiffness_source"] = r.tyres["front"].stiffness_source
         df["rear_stiffness_source"] = r.tyres["rear"].stiffness_source
+        df["variant"] = ", ".join(f"{k}={v:g}" for k, v in r.variant.items())
+        for k, v in r.variant.items():  # one column per swept key
+            df[k] = v
         frames.append(df)
     return pd.concat(frames, ignore_index=True)
-
-
-# --------------------------------------------------------------------------- pipeline
-def scenario_files(raw: Path | None) -> list[tuple[str, str]]:
-    """``(path, source)`` of every shipped scenario and every ``<raw>/scenarios/*.toml``.
-
-    A file of ``raw`` with the same bytes as a shipped one (the repository's own
-    ``raw/`` folder) is listed once, as shipped.
-    """
-    from .. import resources
-
-    shipped = sorted(resources.scenarios_dir().glob("*.toml"))
-    seen = {p.read_bytes() for p in shipped}
-    out = [(str(p), "shipped") for p in shipped]
-    folder = Path(raw) / "scenarios" if raw is not None else None
-    for p in sorted(folder.glob("*.toml")) if folder is not None and folder.is_dir() else []:
-        if p.is_file() and p.read_bytes() not in seen:  # a named pipe is skipped (the raw walk warns of it)
-            out.append((str(p), "raw"))
-    return out
-
-
-def scenario_items(files: list[tuple[str, str]], build: Path | None = None) -> list[tuple]:
-    """The executor items of :func:`run_scenarios`, one per ``(path, source)`` of ``files``: run each
-    with :func:`scenario_task` (in any process) and hand the results, in order, to
-    :func:`collect_scenarios` (the simulate stage runs them beside its studies this way)."""
-    return [(p, src, str(build) if build else None) for p, src in files]
-
-
-def scenario_task(item: tuple) -> dict:
-    """Executor task of the simulate stage: one scenario file, every pressure pair of its sweep."""
-    from .scenario import ScenarioError, load_scenario
-
-    path, source, build = item
-    try:
-        sc = load_scenario(path)
-        results = ride_sweep(sc, build=Path(build) if build else None, with_spectra=False)
-        # the scenario row's modes are those at the scenario's own pressures, which a [sweep] need not
-        # list first, or at all: from the nominal pair's result, else from the nominal tyres
-        nominal = [r for r in results if r.tyres["front"].pressure_bar == sc.front.pressure_bar
-                   and r.tyres["rear"].pressure_bar == sc.rear.pressure_bar]
-        nat, nodal = ((nominal[0].natural_frequencies_Hz, nominal[0].nodal_points_m) if nominal else
-                      _modes(build_tractor(sc, resolve_tyres(sc, Path(build) if build else None), 0)))
-    except (ScenarioError, ValueError) as exc:
-        return {"file": path, "error": str(exc).replace("\n", "; ")}
-    except (ArithmeticError, MemoryError, RecursionError) as exc:  # the model failed: this scenario only
-        return {"file": path, "error": f"the ride model failed: {type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"}
-    table = results_table(results, sc.name)
-    table["file"] = path  # rows are keyed by the scenario file: two files may share a name
-    table["is_nominal"] = (table["front_pressure_bar"] == sc.front.pressure_bar) & \
-        (table["rear_pressure_bar"] == sc.rear.pressure_bar)
-    s = sc.surface
-    row = {
-        "scenario": sc.name, "file": path, "source": source, "description": sc.description,
-        "mass_kg": sc.tractor.mass_kg, "pitch_inertia_kg_m2": sc.tractor.pitch_inertia_kg_m2,
-        "front_distance_m": sc.tractor.front_distance_m, "rear_distance_m": sc.tractor.rear_distance_m,
-        "cg_height_m": sc.tractor.cg_height_m, "longitudinal_model": sc.tractor.longitudinal_model,
-        "seat_ahead_of_cg_m": sc.seat.ahead_of_cg_m, "seat_height_above_cg_m": sc.seat.height_above_cg_m,
-        "seat_suspension": sc.seat.suspension,
-        "front_size": sc.front.size, "front_pressure_bar": sc.front.pressure_bar,
-        "rear_size": sc.rear.size, "rear_pressure_bar": sc.rear.pressure_bar,
-        "surface": s.kind, "road_class": s.road_class, "track": results[0].track_label,
-        "track_length_m": results[0].track_length_m,
-        "seed": s.seed, "enveloping": s.enveloping,
-        "speeds_km_h": ", ".join(f"{v:g}" for v in sc.exposure.speeds_km_h), "hours_per_day": sc.exposure.hours_per_day,
-        "bounce_Hz": nat["bounce"], "pitch_Hz": nat["pitch"],
-        "bounce_nodal_point_m": nodal["bounce"], "pitch_nodal_point_m": nodal["pitch"],
-        "pressure_pairs": len(results), "warnings": "; ".join(sorted({w for r in results for w in r.warnings})),
-    }
-    return {"file": path, "scenario": row, "results": table}
-
-
-def run_scenarios(files: list[tuple[str, str]], ctx=None, build: Path | None = None) -> tuple[pd.DataFrame, pd.DataFrame, list[dict]]:
-    """Run scenario files (through :func:`tyrelab.executor.map_batches` when ``ctx`` is given).
-
-    Returns
-    -------
-    ride_scenarios, ride_results : DataFrame
-        One row per scenario; one row per scenario × speed × pressure pair.
-    problems : list of dict
-        ``file`` and ``reason`` of every scenario refused (the others still run).
-    """
-    from ..executor import map_batches
-
-    items = scenario_items(files, build)
-    return collect_scenarios(map_batches(scenario_task, items, ctx) if ctx is not None else [scenario_task(i) for i in items])
-
-
-def collect_scenarios(outputs: list[dict]) -> tuple[pd.DataFrame, pd.DataFrame, list[dict]]:
-    """The tables of :func:`run_scenarios` from the results of :func:`scenario_task`, in order."""
-    ok = [o for o in outputs if "error" not in o]
-    problems = [{"file": o["file"], "reason": o["error"]} for o in outputs if "error" in o]
-    scenarios = pd.DataFrame([o["scenario"] for o in ok])
-    results = pd.concat([o["results"] for o in ok], ignore_index=True) if ok else pd.DataFrame()
-    return scenarios, results, problems

@@ -54,12 +54,19 @@ __all__ = [
     "ExposureSpec",
     "SimulationSpec",
     "SweepSpec",
+    "AxleSpec",
+    "CabSpec",
+    "ImplementSpec",
+    "BallastSpec",
     "ScenarioError",
     "load_scenario",
     "parse_scenario",
     "read_profile_csv",
     "key_table",
     "with_overrides",
+    "with_values",
+    "numeric_key",
+    "parse_sets",
 ]
 
 
@@ -84,6 +91,15 @@ class TractorSpec:
     longitudinal_model: str = "none"
     longitudinal_stiffness_kN_per_m: float = 455.0
     longitudinal_damping_kN_s_per_m: float = 3.0
+    roll_inertia_kg_m2: float | None = None
+    front_track_m: float | None = None
+    rear_track_m: float | None = None
+    lateral_model: str = "none"
+
+    @property
+    def three_d(self) -> bool:
+        """Roll modelled (``roll_inertia_kg_m2`` given): left and right tyres on their own tracks."""
+        return self.roll_inertia_kg_m2 is not None
 
     @property
     def wheelbase_m(self) -> float:
@@ -100,6 +116,64 @@ class SeatSpec:
     suspension: str = "rigid"
     natural_frequency_Hz: float | None = None
     damping_ratio: float | None = None
+    left_of_cg_m: float = 0.0
+    gravity_tilt: bool = False
+
+
+@dataclass(frozen=True)
+class AxleSpec:
+    """``[front_axle]`` / ``[rear_axle]``: how the axle is carried (kN, kg, m as the key names)."""
+
+    mount: str = "rigid"
+    roll_inertia_kg_m2: float | None = None
+    mass_kg: float | None = None
+    height_m: float | None = None
+    suspension_stiffness_kN_per_m: float | None = None
+    suspension_damping_kN_s_per_m: float = 0.0
+
+
+@dataclass(frozen=True)
+class CabSpec:
+    """``[cab]``: rigid (part of the body) or suspended on four mounts."""
+
+    mount: str = "rigid"
+    mass_kg: float | None = None
+    pitch_inertia_kg_m2: float | None = None
+    roll_inertia_kg_m2: float | None = None
+    ahead_of_cg_m: float = 0.0
+    height_above_cg_m: float = 0.0
+    front_mount_ahead_of_cg_m: float | None = None
+    rear_mount_ahead_of_cg_m: float | None = None
+    mount_track_m: float | None = None
+    mount_stiffness_kN_per_m: float | None = None
+    mount_damping_kN_s_per_m: float = 0.0
+
+
+@dataclass(frozen=True)
+class ImplementSpec:
+    """``[implement]``: a mounted implement on the rear hitch."""
+
+    mass_kg: float
+    behind_rear_axle_m: float
+    height_m: float
+    pitch_inertia_kg_m2: float = 0.0
+    roll_inertia_kg_m2: float = 0.0
+    mount: str = "rigid"
+    hitch_behind_rear_axle_m: float = 0.0
+    hitch_height_m: float = 0.0
+    hitch_stiffness_kN_m_per_rad: float | None = None
+    hitch_damping_kN_m_s_per_rad: float = 0.0
+
+
+@dataclass(frozen=True)
+class BallastSpec:
+    """``[ballast]``: a front ballast mass."""
+
+    mass_kg: float
+    ahead_of_front_axle_m: float
+    height_m: float
+    pitch_inertia_kg_m2: float = 0.0
+    roll_inertia_kg_m2: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -138,6 +212,7 @@ class SurfaceSpec:
     spectrum_correlated: bool | None = None
     enveloping: str = "tapered"
     lead_in_m: float = 5.0
+    tracks: str = "independent"
 
 
 @dataclass(frozen=True)
@@ -171,6 +246,8 @@ class SweepSpec:
 
     front_pressures_bar: tuple[float, ...] = ()
     rear_pressures_bar: tuple[float, ...] = ()
+    #: Any numeric scenario key (``"section.key"``) -> the values to run (every combination).
+    keys: dict = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -183,6 +260,10 @@ class Scenario:
     tractor : TractorSpec
     seat : SeatSpec
     front, rear : TyreSpec
+    front_axle, rear_axle : AxleSpec
+    cab : CabSpec
+    implement : ImplementSpec or None
+    ballast : BallastSpec or None
     surface : SurfaceSpec
     exposure : ExposureSpec
     simulation : SimulationSpec
@@ -203,6 +284,14 @@ class Scenario:
     sweep: SweepSpec = field(default_factory=SweepSpec)
     path: Path | None = None
     description: str = ""
+    front_axle: AxleSpec = field(default_factory=AxleSpec)
+    rear_axle: AxleSpec = field(default_factory=AxleSpec)
+    cab: CabSpec = field(default_factory=CabSpec)
+    implement: ImplementSpec | None = None
+    ballast: BallastSpec | None = None
+    #: The parsed TOML and the folder its paths are relative to (for :func:`with_values`).
+    doc: dict = field(default_factory=dict, repr=False, compare=False)
+    base_dir: Path | None = field(default=None, repr=False, compare=False)
 
 
 @cache
@@ -222,8 +311,8 @@ def key_table() -> pd.DataFrame:
     Examples
     --------
     >>> t = key_table()
-    >>> t.loc[t["key"] == "mass_kg", ["section", "unit"]].values.tolist()
-    [['tractor', 'kg']]
+    >>> t.loc[t["key"] == "mass_kg", ["section", "unit"]].values.tolist()[:2]
+    [['tractor', 'kg'], ['front_axle', 'kg']]
     """
     rows = []
     for sec, spec in _sections().items():
@@ -315,6 +404,9 @@ def _validate(doc: dict, base_dir: Path) -> list[str]:
         for k, v in values.items():
             if sec == "" and k in known_top and k not in spec["fields"]:
                 continue  # a table, checked as its own section
+            if sec == "sweep" and "." in k:
+                problems += _sweep_key_problems(k, v)
+                continue
             if k not in spec["fields"]:
                 known = sorted(known_top) if sec == "" else list(spec["fields"])
                 problems.append(f"unknown key {label(k)!r} (known: {', '.join(known)})")
@@ -337,6 +429,7 @@ def _validate(doc: dict, base_dir: Path) -> list[str]:
         for k in ("natural_frequency_Hz", "damping_ratio"):
             if k not in seat:
                 problems.append(f"seat.{k} is required with suspension = \"linear\"")
+    problems += _parts_problems(doc)
     surf, _ = _section_values(doc, "surface")
     if surf:
         kind = surf.get("kind")
@@ -347,6 +440,175 @@ def _validate(doc: dict, base_dir: Path) -> list[str]:
                 problems.append("surface.profile (a CSV path) is required with kind = \"profile\"")
             elif isinstance(surf["profile"], str):
                 problems += _profile_problems(base_dir, surf["profile"])
+    return problems
+
+
+def numeric_key(key: str) -> dict | None:
+    """The schema field of a numeric scenario key ``"section.key"`` (``"tyres.front.pressure_bar"``),
+    or None when it is not one."""
+    section, _, name = key.rpartition(".")
+    f = _sections().get(section, {}).get("fields", {}).get(name)
+    return f if f is not None and f["type"] in ("number", "number_or_numbers") else None
+
+
+def _sweep_key_problems(key: str, values) -> list[str]:
+    """Problems of a ``[sweep]`` entry ``"section.key" = [values]``."""
+    f = numeric_key(key)
+    if f is None:
+        return [f"sweep.{key!r}: not a numeric scenario key (a quoted \"section.key\", e.g. \"implement.mass_kg\")"]
+    if not isinstance(values, list) or not values or not all(_is_number(v) for v in values):
+        return [f"sweep.{key!r}: expected a list of numbers, got {values!r}"]
+    return [p for v in values for p in _check_value(f"sweep.{key!r}", {**f, "type": "number"}, v, None)][:1]
+
+
+#: Most variants one sweep may ask for (``--set`` and ``[sweep]`` combinations times pressure pairs).
+MAX_VARIANTS = 10_000
+
+
+def parse_sets(items) -> dict:
+    """``["KEY=V1,V2", ...]`` (``tyrelab ride --set``) -> ``{"KEY": (V1, V2)}``, every problem at once.
+
+    Examples
+    --------
+    >>> parse_sets(["implement.mass_kg=500,1000", "tyres.rear.pressure_bar=1.2"])
+    {'implement.mass_kg': (500.0, 1000.0), 'tyres.rear.pressure_bar': (1.2,)}
+    """
+    out, problems = {}, []
+    for item in items:
+        key, sep, text = str(item).partition("=")
+        key = key.strip()
+        try:
+            values = tuple(float(v) for v in text.split(",")) if sep and text.strip() else ()
+        except ValueError:
+            values = ()
+        if numeric_key(key) is None:
+            problems.append(f"--set {item!r}: {key!r} is not a numeric scenario key (e.g. implement.mass_kg)")
+        elif not values or not all(math.isfinite(v) for v in values):
+            problems.append(f"--set {item!r}: expected KEY=V1,V2,... with numbers")
+        else:
+            bad = [p for v in values for p in _check_value(f"--set {key}", {**numeric_key(key), "type": "number"}, v, None)]
+            problems += bad[:1]
+            out[key] = values
+    n = math.prod(len(v) for v in out.values()) if out else 1
+    if n > MAX_VARIANTS:
+        problems.append(f"--set: {n} combinations (at most {MAX_VARIANTS})")
+    if problems:
+        raise ValueError("; ".join(problems))
+    return out
+
+
+def with_values(scenario: Scenario, values: dict) -> Scenario:
+    """A copy of ``scenario`` with numeric keys replaced, ``{"section.key": value}``, checked as the
+    file is (every problem at once, :class:`ScenarioError`); the ``[sweep]`` table is dropped.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
+    >>> with_values(s, {"tractor.mass_kg": 5000, "tyres.rear.pressure_bar": 1.4}).tractor.mass_kg
+    5000.0
+    """
+    if not scenario.doc:
+        raise ValueError("scenario: built in memory, not from TOML (with_values needs the parsed file)")
+    doc = {k: (dict(v) if isinstance(v, dict) else v) for k, v in scenario.doc.items()}
+    doc["tyres"] = {k: dict(v) for k, v in doc.get("tyres", {}).items()}
+    doc.pop("sweep", None)
+    for key, value in values.items():
+        if numeric_key(key) is None:
+            raise ScenarioError(scenario.path or "<scenario>", [f"{key!r}: not a numeric scenario key"])
+        parts = key.split(".")
+        node = doc
+        for part in parts[:-1]:
+            node = node.setdefault(part, {})
+        node[parts[-1]] = float(value)
+    where = str(scenario.path) if scenario.path is not None else "<scenario>"
+    base = scenario.base_dir or Path(".")
+    problems = _validate(doc, base)
+    if problems:
+        raise ScenarioError(where, problems)
+    out = _build(doc, scenario.path, base)
+    problems = scenario_problems(out)  # what the model can represent (scenario_limits.LIMITS)
+    if problems:
+        raise ScenarioError(where, problems)
+    return replace(out, exposure=replace(out.exposure, speeds_km_h=scenario.exposure.speeds_km_h,
+                                         list_speeds_km_h=scenario.exposure.list_speeds_km_h))
+
+
+def _given(table: dict | None, key: str) -> bool:
+    return bool(table) and _is_number(table.get(key))
+
+
+def _parts_problems(doc: dict) -> list[str]:
+    """Problems between the keys of the tractor's parts (issue 23): what each mount needs, the
+    3-D model's track widths, the seat inside a suspended cab."""
+    problems: list[str] = []
+    tractor, _ = _section_values(doc, "tractor")
+    tractor = tractor or {}
+    three_d = "roll_inertia_kg_m2" in tractor
+    if three_d:
+        for k in ("front_track_m", "rear_track_m"):
+            if k not in tractor:
+                problems.append(f"tractor.{k} is required with tractor.roll_inertia_kg_m2 (the 3-D model)")
+    else:
+        for k in ("front_track_m", "rear_track_m"):
+            if k in tractor:
+                problems.append(f"tractor.{k} needs tractor.roll_inertia_kg_m2 (the 3-D model); without it the "
+                                "tracks are averaged")
+    for axle in ("front_axle", "rear_axle"):
+        t, _ = _section_values(doc, axle)
+        if not t:
+            continue
+        mount = t.get("mount", "rigid")
+        if mount == "pivot" and not three_d:
+            problems.append(f"{axle}.mount = \"pivot\" needs tractor.roll_inertia_kg_m2 (a pivot axle only differs "
+                            "from a rigid one in roll)")
+        if mount in ("pivot", "suspended") and three_d and "roll_inertia_kg_m2" not in t:
+            problems.append(f"{axle}.roll_inertia_kg_m2 is required with mount = \"{mount}\"")
+        if mount == "suspended":
+            for k in ("mass_kg", "suspension_stiffness_kN_per_m"):
+                if k not in t:
+                    problems.append(f"{axle}.{k} is required with mount = \"suspended\"")
+        if mount == "rigid":
+            extra = sorted(k for k in t if k != "mount")
+            if extra:
+                problems.append(f"{axle}: {', '.join(extra)} apply to a pivot or suspended axle, not mount = \"rigid\"")
+    surf, _ = _section_values(doc, "surface")
+    if surf and surf.get("tracks") == "isotropic" and not three_d:
+        problems.append("surface.tracks = \"isotropic\" needs the track widths of the 3-D model "
+                        "(tractor.roll_inertia_kg_m2, front_track_m, rear_track_m)")
+    cab, _ = _section_values(doc, "cab")
+    if cab and cab.get("mount", "rigid") == "suspended":
+        needed = ["mass_kg", "pitch_inertia_kg_m2", "front_mount_ahead_of_cg_m", "rear_mount_ahead_of_cg_m",
+                  "mount_track_m", "mount_stiffness_kN_per_m"] + (["roll_inertia_kg_m2"] if three_d else [])
+        for k in needed:
+            if k not in cab:
+                problems.append(f"cab.{k} is required with mount = \"suspended\"")
+        if _given(cab, "front_mount_ahead_of_cg_m") and _given(cab, "rear_mount_ahead_of_cg_m"):
+            front, rear = cab["front_mount_ahead_of_cg_m"], cab["rear_mount_ahead_of_cg_m"]
+            if not front > rear:
+                problems.append(f"cab.front_mount_ahead_of_cg_m ({front} m) must be ahead of "
+                                f"cab.rear_mount_ahead_of_cg_m ({rear} m)")
+            seat, _ = _section_values(doc, "seat")
+            seat = seat or {}
+            x, y = seat.get("ahead_of_cg_m", 0.0), seat.get("left_of_cg_m", 0.0)
+            if _is_number(x) and not rear <= x <= front:
+                problems.append(f"seat.ahead_of_cg_m = {x} m lies outside the cab (its mounts are from {rear} to "
+                                f"{front} m ahead of the CG)")
+            half = cab.get("mount_track_m")
+            if _is_number(y) and _is_number(half) and abs(y) > half / 2:
+                problems.append(f"seat.left_of_cg_m = {y} m lies outside the cab (its mounts are {half} m apart)")
+    imp, _ = _section_values(doc, "implement")
+    if imp:
+        for k in ("mass_kg", "behind_rear_axle_m", "height_m"):
+            if k not in imp:
+                problems.append(f"implement.{k} is required")
+        if imp.get("mount") == "hitch_spring" and "hitch_stiffness_kN_m_per_rad" not in imp:
+            problems.append("implement.hitch_stiffness_kN_m_per_rad is required with mount = \"hitch_spring\"")
+    ballast, _ = _section_values(doc, "ballast")
+    if ballast:
+        for k in ("mass_kg", "ahead_of_front_axle_m", "height_m"):
+            if k not in ballast:
+                problems.append(f"ballast.{k} is required")
     return problems
 
 
@@ -427,6 +689,11 @@ def _speed_values(v):
     return tuple(float(x) for x in v) if isinstance(v, list) else (None if v is None else float(v))
 
 
+def _floats(table: dict) -> dict:
+    """A table's values with numbers as floats (text and booleans as they are)."""
+    return {k: (v if isinstance(v, (str, bool)) else float(v)) for k, v in table.items()}
+
+
 def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
     t, s, surf, ex = doc["tractor"], doc.get("seat", {}), doc["surface"], doc["exposure"]
     sim = doc.get("simulation", {})
@@ -447,8 +714,13 @@ def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
     return Scenario(
         name=doc["name"],
         description=doc.get("description", ""),
-        tractor=TractorSpec(**{k: (v if isinstance(v, str) else float(v)) for k, v in t.items()}),
-        seat=SeatSpec(**{k: (v if isinstance(v, str) else float(v)) for k, v in s.items()}),
+        tractor=TractorSpec(**_floats(t)),
+        seat=SeatSpec(**{k: (v if isinstance(v, (str, bool)) else float(v)) for k, v in s.items()}),
+        front_axle=AxleSpec(**_floats(doc.get("front_axle", {}))),
+        rear_axle=AxleSpec(**_floats(doc.get("rear_axle", {}))),
+        cab=CabSpec(**_floats(doc.get("cab", {}))),
+        implement=ImplementSpec(**_floats(doc["implement"])) if "implement" in doc else None,
+        ballast=BallastSpec(**_floats(doc["ballast"])) if "ballast" in doc else None,
         front=tyre("front"),
         rear=tyre("rear"),
         surface=SurfaceSpec(
@@ -456,13 +728,16 @@ def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
             seed=int(surf.get("seed", 1)), dx_m=float(surf.get("dx_m", 0.05)), profile=profile,
             spectrum_g0_m3=surf.get("spectrum_g0_m3"), spectrum_waviness=float(surf.get("spectrum_waviness", 2.0)),
             spectrum_correlated=surf.get("spectrum_correlated"), enveloping=surf.get("enveloping", "tapered"),
-            lead_in_m=float(surf.get("lead_in_m", 5.0)),
+            lead_in_m=float(surf.get("lead_in_m", 5.0)), tracks=surf.get("tracks", "independent"),
         ),
         exposure=ExposureSpec(tuple(float(v) for v in ex["speeds_km_h"]), float(ex.get("hours_per_day", 8.0))),
         simulation=SimulationSpec(sim.get("duration_s"), bool(sim.get("lift_off", True))),
         sweep=SweepSpec(tuple(float(v) for v in sweep.get("front_pressures_bar", ())),
-                        tuple(float(v) for v in sweep.get("rear_pressures_bar", ()))),
+                        tuple(float(v) for v in sweep.get("rear_pressures_bar", ())),
+                        {k: tuple(float(x) for x in v) for k, v in sweep.items() if "." in k}),
         path=path,
+        doc=doc,
+        base_dir=base_dir,
     )
 
 

@@ -68,8 +68,8 @@ MAX_SAMPLES = 10_000_000
 BYTES_PER_SAMPLE = 300.0
 SECONDS_PER_SAMPLE = 2.5e-6
 #: Shortest seat record that gets a verdict against the EU limits, s: four periods of 0.4 Hz, the
-#: lower band limit of the ISO 2631-1 weightings (a documented choice; shorter records are reported
-#: with a warning and no verdict).
+#: lower band limit of the ISO 2631-1 weightings (a documented choice; shorter records get their
+#: exposure numbers, a warning and `verdict` "no verdict: ...").
 MIN_VERDICT_DURATION_S = 10.0
 
 

@@ -45,6 +45,7 @@ __all__ = [
     "carriage_case_inputs",
     "carriage_study",
     "tractor_case_inputs",
+    "longitudinal_grid",
     "tractor_study",
 ]
 
@@ -109,21 +110,6 @@ def profile_estimates(track: pr.Profile, radius_m: float, footprint_m: float, se
     )
     recorded = true + noise + spike
     return {"true": true, "surveyed": surveyed, "recorded": recorded, "surveyed_raw": surveyed_raw}
-
-
-def _half_inputs(x, h, speed, n_steps, x_start=0.0):
-    """Input sampled at dt/2 over n_steps steps (padded level beyond the profile)."""
-    dt = DT_S / 2
-    t_end = (2 * n_steps - 2) * dt
-    x_end = x_start + speed * t_end
-    xx = np.asarray(x)
-    hh = np.asarray(h)
-    if x_end > xx[-1]:
-        extra = np.arange(xx[-1] + (xx[1] - xx[0]), x_end + 1.0, xx[1] - xx[0])
-        xx = np.concatenate([xx, extra])
-        hh = np.concatenate([hh, np.full(extra.size, hh[-1])])
-    t, u, ud = cm.ground_input(xx, hh, speed, dt, x_start, x_start + speed * t_end + 1e-9)
-    return u[: 2 * n_steps - 1], ud[: 2 * n_steps - 1]
 
 
 def _by_condition(table: pd.DataFrame, needed, name: str, what: str, problems: list[str]) -> pd.DataFrame:
@@ -310,7 +296,7 @@ def _carriage_cases(conds: pd.DataFrame, stat: pd.DataFrame, x: np.ndarray, est_
     uh = np.empty((len(conds), 2 * n_max - 1))
     udh = np.empty_like(uh)
     for i, (_, c) in enumerate(conds.iterrows()):
-        u, ud = _half_inputs(x, est_by_load[c["load_condition"]]["true"], speeds[i], n_max)
+        u, ud = cm.half_step_input(x, est_by_load[c["load_condition"]]["true"], speeds[i], n_max, dt_s=DT_S)
         uh[i], udh[i] = u - u[0], ud
     ref_car = cm.Carriage(
         mass_kg=conds["load_kg"].to_numpy(float),
@@ -427,7 +413,7 @@ def _tractor_inputs(profile: pr.Profile, radii, footprints, speed, wheelbase, n_
             for s in ("left", "right")
         ]
         h = 0.5 * (tracks[0] + tracks[1])
-        out.append(_half_inputs(profile.x_m, h, speed, n_steps, x_start=offset))
+        out.append(cm.half_step_input(profile.x_m, h, speed, n_steps, x_start_m=offset, dt_s=DT_S))
     (uf, udf), (ur, udr) = out
     u0 = 0.5 * (uf[0] + ur[0])
     return uf - u0, udf, ur - u0, udr
@@ -448,6 +434,28 @@ def _tractor_conditions(table_xv: pd.DataFrame, table_xvi: pd.DataFrame, rolling
                          "stationary row", problems)
     _refuse(problems)
     return xv, stat
+
+
+def longitudinal_grid(table_xviii: pd.DataFrame | None = None) -> dict[str, list[tuple[float, float]]]:
+    """The Table XVIII sweep's rear longitudinal elements per model, (k, c) per tyre in kN/m and
+    kN s/m: Kelvin-Voigt at the thesis' predicted rows, in their order; Maxwell (§7.5's proposal,
+    our addition) at those of them with both a spring and a damper.
+
+    Examples
+    --------
+    >>> g = longitudinal_grid()
+    >>> g["kelvin_voigt"][:3], g["maxwell"]
+    ([(0.0, 0.0), (455.0, 0.0), (455.0, 1.0)], [(455.0, 1.0), (455.0, 3.0), (455.0, 5.0)])
+    """
+    if table_xviii is None:
+        from .. import published
+
+        table_xviii = published.read_published("table_xviii")
+    measured = table_xviii["is_measured"].astype(str).str.lower().isin(["true", "1"])
+    rows = table_xviii[~measured]
+    kv = [(float(k), float(c)) for k, c in zip(rows["longitudinal_stiffness_kN_per_m"],
+                                               rows["longitudinal_damping_kN_s_per_m"])]
+    return {"kelvin_voigt": kv, "maxwell": [(k, c) for k, c in kv if k > 0 and c > 0]}
 
 
 def tractor_case_inputs(
@@ -478,6 +486,7 @@ def tractor_study(
     farm_class: str = "D",
     duration_s: float = 30.0,
     cases: dict | None = None,
+    table_xviii: pd.DataFrame | None = None,
 ) -> dict[str, pd.DataFrame]:
     """Chapter 7: MF698T on the slatted track (SBT) and a farm track (HH).
 
@@ -502,6 +511,9 @@ def tractor_study(
         ISO 8608 class of the farm track (HH).
     duration_s : float
         Length of a run, s.
+    table_xviii : DataFrame, optional
+        Thesis Table XVIII (its predicted rows give the longitudinal sweep's (k, c) pairs,
+        :func:`longitudinal_grid`); default the shipped one (:mod:`tyrelab.published`).
     cases : dict of int to list, optional
         Cases computed before, by position among the rolling rows of ``table_xvi``:
         items of a previous result's ``cases`` whose inputs (:func:`tractor_case_inputs`)
@@ -573,10 +585,7 @@ def tractor_study(
             )
         )
         if lc == 1 and r["track"] == "SBT" and r["speed_km_h"] == 10:
-            for model, pairs in (
-                ("kelvin_voigt", [(0, 0), (455, 0), (455, 1), (455, 3), (455, 5), (0, 1), (0, 3), (0, 5)]),
-                ("maxwell", [(455, 1), (455, 3), (455, 5)]),
-            ):
+            for model, pairs in longitudinal_grid(table_xviii).items():
                 for k_kn, c_kn in pairs:
                     case.append(
                         (

@@ -148,7 +148,7 @@ def test_fifos_below_raw_are_skipped_with_a_warning(tmp_path):
     out = tyrelab("run", "--raw", raw, "--build", tmp_path / "b", "--jobs", "1", timeout=300)
     assert out.returncode == 3, out.stderr
     assert "Traceback" not in out.stderr
-    from tyrelab.vehicle.ride import scenario_files
+    from tyrelab.stages.simulate import scenario_files
 
     assert all(source == "shipped" for _, source in scenario_files(raw))  # the FIFO is not read
     for name in ("notes.txt", "tyres.csv", "ride.toml"):

@@ -7,6 +7,7 @@ from pathlib import Path
 import pytest
 
 from tyrelab.cli import main
+from tyrelab.stages import simulate as simulate_stage
 from tyrelab.vehicle import ride
 from tyrelab.vehicle.scenario import ScenarioError, load_scenario, parse_scenario
 from tyrelab.vehicle.scenario_limits import LIMITS, work_estimate
@@ -116,6 +117,7 @@ def test_a_short_record_warns(tmp_path):
     sc = parse_scenario(text(surface='kind = "iso8608"\nclass = "C"\nlength_m = 10', speeds="[20]"))
     res = ride.ride(sc, with_spectra=False)
     assert any("too short for a reliable exposure verdict" in w for w in res.warnings)
+    assert res.speeds["verdict"].iloc[0].startswith("no verdict: record 1.")
 
 
 def test_a_model_failure_is_one_scenario_s_problem(tmp_path, monkeypatch):
@@ -130,7 +132,7 @@ def test_a_model_failure_is_one_scenario_s_problem(tmp_path, monkeypatch):
         return real(sc, *a, **k)
 
     monkeypatch.setattr(ride, "ride_sweep", failing)
-    scenarios, results, problems = ride.run_scenarios([(str(good), "raw"), (str(bad), "raw")])
+    scenarios, results, problems = simulate_stage.run_scenarios([(str(good), "raw"), (str(bad), "raw")])
     assert list(scenarios["file"]) == [str(good)] and set(results["file"]) == {str(good)}
     assert problems[0]["file"] == str(bad) and "ZeroDivisionError" in problems[0]["reason"]
 
@@ -139,7 +141,7 @@ def test_rows_are_keyed_by_scenario_file(tmp_path):
     a, b = tmp_path / "a.toml", tmp_path / "b.toml"
     a.write_text(text(name="same"))
     b.write_text(text(name="same", speeds="[10]"))
-    scenarios, results, problems = ride.run_scenarios([(str(a), "raw"), (str(b), "raw")])
+    scenarios, results, problems = simulate_stage.run_scenarios([(str(a), "raw"), (str(b), "raw")])
     assert not problems
     keys = results[["file", "speed_km_h", "front_pressure_bar", "rear_pressure_bar"]]
     assert not keys.duplicated().any() and set(results["file"]) == {str(a), str(b)}

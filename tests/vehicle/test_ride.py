@@ -10,6 +10,7 @@ import pandas as pd
 import pytest
 
 from tyrelab import cli
+from tyrelab.stages import simulate as simulate_stage
 from tyrelab.vehicle import iso2631, ride
 from tyrelab.vehicle import profiles as pr
 from tyrelab.vehicle.scenario import ScenarioError, load_scenario, parse_scenario
@@ -263,7 +264,10 @@ def test_ride_cli_json_fields_and_outputs(tmp_path, capsys):
 def test_pressure_sweep_through_the_executor(tmp_path):
     sc = load_scenario(write(tmp_path, scenario_text('kind = "iso8608"\nclass = "B"\nlength_m = 30', "[10]")))
     local = ride.ride_sweep(sc, [1.2, 2.0], [1.0], with_spectra=False)
-    pooled = ride.ride_sweep(sc, [1.2, 2.0], [1.0], executor_ctx=SimpleNamespace(executor="local", jobs=2, scheduler=None),
+    from tyrelab.executor import map_batches
+
+    ctx = SimpleNamespace(executor="local", jobs=2, scheduler=None)
+    pooled = ride.ride_sweep(sc, [1.2, 2.0], [1.0], map_fn=lambda task, items: map_batches(task, items, ctx),
                              with_spectra=False)
     assert [r.tyres["front"].pressure_bar for r in pooled] == [1.2, 2.0]
     assert ride.results_table(local).equals(ride.results_table(pooled))
@@ -287,7 +291,7 @@ def test_run_scenarios_quarantines_a_bad_file_and_runs_the_rest(tmp_path):
     good = write(tmp_path, scenario_text('kind = "iso8608"\nclass = "B"\nlength_m = 30', "[10]",
                                          extra="[sweep]\nrear_pressures_bar = [1.0, 1.4]"), "good.toml")
     bad = write(tmp_path, "name = 1\n", "bad.toml")
-    scen, res, problems = ride.run_scenarios([(str(good), "raw"), (str(bad), "raw")])
+    scen, res, problems = simulate_stage.run_scenarios([(str(good), "raw"), (str(bad), "raw")])
     assert list(scen["scenario"]) == ["test tractor"] and len(res) == 2
     assert res["is_nominal"].tolist() == [False, False]  # the sweep does not include 1.2 bar
     assert problems[0]["file"] == str(bad) and "name: expected text" in problems[0]["reason"]
@@ -317,7 +321,7 @@ def test_measured_tyre_from_the_warehouse(tmp_path):
     text = scenario_text('kind = "iso8608"\nclass = "B"\nlength_m = 30', "[10, 15]").replace(
         'size = "18.4R38"', 'size = "18.4R38"\nmeasured_tyre_id = "T9"')
     sc = load_scenario(write(tmp_path, text))
-    t = ride.resolve_tyres(sc, tmp_path)["rear"]
+    t = ride.resolve_tyres(sc, simulate_stage.WarehouseTyres(tmp_path))["rear"]
     assert t.stiffness_kN_per_m.tolist() == pytest.approx([150 + 140 * 1.2, 0.5 * (150 + 140 * 1.2) + 0.5 * (140 + 130 * 1.2)])
     assert t.damping_kN_s_per_m.tolist() == pytest.approx([1.6, 0.5 * 1.6 + 0.5 * (0.6 + 0.48)])
     assert "measured tyre T9" in t.stiffness_source
@@ -334,7 +338,7 @@ def test_scenario_files_lists_shipped_then_new_raw_ones(tmp_path):
     shipped = sorted(scenarios_dir().glob("*.toml"))
     (tmp_path / "scenarios" / "copy.toml").write_bytes(shipped[0].read_bytes())
     (tmp_path / "scenarios" / "mine.toml").write_text(scenario_text('kind = "iso8608"\nclass = "B"'))
-    files = ride.scenario_files(tmp_path)
+    files = simulate_stage.scenario_files(tmp_path)
     assert files == [(str(p), "shipped") for p in shipped] + [(str(tmp_path / "scenarios" / "mine.toml"), "raw")]
 
 
@@ -353,7 +357,7 @@ def test_scenario_row_gives_the_modes_at_its_own_pressures(tmp_path):
     second = write(tmp_path, base + "[sweep]\nfront_pressures_bar = [0.8, 1.6]\n", "second.toml")
     absent = write(tmp_path, base.replace('name = "test tractor"', 'name = "absent"')
                    + "[sweep]\nfront_pressures_bar = [0.8, 2.4]\n", "absent.toml")
-    scen, res, problems = ride.run_scenarios([(str(second), "raw"), (str(absent), "raw")])
+    scen, res, problems = simulate_stage.run_scenarios([(str(second), "raw"), (str(absent), "raw")])
     assert not problems and len(res) == 4
     # the modes at 1.6/1.2 bar from the tyres alone (bounce_pitch through the CLI's own path)
     nominal = ride.ride(load_scenario(write(tmp_path, base, "nominal.toml")), with_spectra=False)

@@ -109,10 +109,11 @@ def _textbook_rk4(p, models, uf, udf, ur, udr, h, g=9.81):
     return np.array(rec).transpose(1, 2, 0), off / n
 
 
-def test_rk4_does_the_textbook_arithmetic_bit_for_bit():
-    """The buffered RK4 (axles stacked, runs grouped by model, out= buffers) against the equations
-    written out plainly, on a batch that mixes every model (unsorted, and a Maxwell element without
-    its damper) and lifts tyres off: equal to the last bit."""
+def test_rk4_does_the_textbook_arithmetic():
+    """The RK4 on the assembled model (tyres, longitudinal element and mass matrix from the parts,
+    issue 23) against the equations written out plainly, on a batch that mixes every model
+    (unsorted, and a Maxwell element without its damper) and lifts tyres off: equal to rounding
+    (the assembled sums run in another order: 1e-12 of the r.m.s.)."""
     models = np.array(["maxwell", "none", "kelvin_voigt", "maxwell", "kelvin_voigt"], dtype=object)
     kx = np.array([9.1e5, 0.0, 9.1e5, 9.1e5, 0.0])
     cx = np.array([6e3, 0.0, 6e3, 0.0, 2e3])
@@ -124,6 +125,7 @@ def test_rk4_does_the_textbook_arithmetic_bit_for_bit():
     rec, off = _textbook_rk4(p, models, uf, udf, ur, udr, DT_S)
     assert off[0].min() > 0  # every run lifts its front axle off
     for i, key in enumerate(("vertical_m_s2", "pitch_rad_s2", "longitudinal_m_s2", "z_m", "theta_rad")):
-        np.testing.assert_array_equal(got[key], rec[i], err_msg=key)
+        scale = np.sqrt(np.mean(rec[i] ** 2, axis=1, keepdims=True)) + 1e-300
+        assert np.max(np.abs(got[key] - rec[i]) / scale) < 1e-9, key
     np.testing.assert_array_equal(got["lift_off_fraction_front"], off[0])
     np.testing.assert_array_equal(got["lift_off_fraction_rear"], off[1])
