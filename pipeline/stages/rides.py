@@ -136,7 +136,7 @@ def _validate(path: Path, channel_map, scenario_path: Path, speed_km_h: float, t
                 signals = {c: np.concatenate(v) for c, v in parts.items()}
             rec = open_recording(path, channel_map)
         measured = analyse_recording(rec)
-        predicted, fs = rv.predicted_seat(scenario, speed_km_h, track, build)
+        predicted, fs = rv.predicted_seat(scenario, speed_km_h, track)  # shipped tyre data (no measured_tyre_id yet)
     except (RunFileError, ValueError) as exc:
         return {"error": str(exc).splitlines()[0]}
     rows = rv.validation_rows(measured, predicted, fs, track.known_profile, signals)

@@ -90,8 +90,10 @@ def track_of(text, campaign: Path | None = None) -> ValidationTrack:
     raise ValueError(f"track {s!r}: expected 'scenario', an ISO 8608 class A-H or a profile CSV of the campaign")
 
 
-def predicted_seat(scenario, speed_km_h: float, track: ValidationTrack, build: Path | None = None) -> tuple[dict, float]:
+def predicted_seat(scenario, speed_km_h: float, track: ValidationTrack, tyre_data=None) -> tuple[dict, float]:
     """The scenario's predicted seat record at one speed on the recording's track.
+
+    ``tyre_data`` is :func:`tyrelab.vehicle.ride.ride`'s (default: the shipped tyre data).
 
     Returns
     -------
@@ -109,7 +111,7 @@ def predicted_seat(scenario, speed_km_h: float, track: ValidationTrack, build: P
     elif track.kind == "profile":
         s = dataclasses.replace(s, surface=dataclasses.replace(s.surface, kind="profile", profile=track.profile,
                                                                road_class=None, spectrum_g0_m3=None))
-    res = ride(s, build, with_spectra=False, with_signals=True)
+    res = ride(s, tyre_data, with_spectra=False, with_signals=True)
     return next(iter(res.signals.values())), FS_HZ
 
 
