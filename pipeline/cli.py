@@ -103,6 +103,11 @@ def cmd_run(args) -> int:
     if problem:
         print(f"tyrelab run: {problem}", file=sys.stderr)
         return EXIT_USAGE
+    if getattr(args, "explain", False):  # read-only: no lock, nothing written
+        from .stages import explain
+
+        print(explain(_context(args)))
+        return EXIT_OK
 
     def work() -> int:
         results = run_pipeline(_context(args))
@@ -487,6 +492,8 @@ def build_parser() -> argparse.ArgumentParser:
 
     r = sub.add_parser("run", help="run every stage: raw -> warehouse -> report")
     io_options(r)
+    r.add_argument("--explain", action="store_true",
+                   help="print the plan (each stage, why it will or will not run) and the stage graph; run nothing")
     r.set_defaults(func=cmd_run)
     w = sub.add_parser("watch", help="run every stage now and again whenever the raw folder changes "
                                      "(one process: the libraries are loaded once)")

@@ -60,6 +60,7 @@ def test_ingest_and_analyse_other_formats_like_parquet(tmp_path, suffix):
     ctx = Context(raw=raw, build=tmp_path / "build", jobs=1)
     assert run_stage("ingest", ctx).n_ok == 2
     run_stage("analyse", ctx)
+    run_stage("calibrate", ctx)  # writes results
     res = ctx.read_table("results").set_index("run_id")
     assert res.loc["x", "stiffness_kN_per_m"] == pytest.approx(res.loc["p", "stiffness_kN_per_m"], rel=1e-6)
     assert res.loc["x", "stiffness_kN_per_m"] == pytest.approx(300, rel=0.01)

@@ -61,7 +61,7 @@ def test_moved_build_answers_from_another_folder(tmp_path, monkeypatch):
     raw = write_campaign(tmp_path / "raw", [(manifest_row("m1", "m1.parquet"), spring_damper_recording()),
                                             (manifest_row("m2", "m2.parquet", tyre_id="T2"), spring_damper_recording(seed=2))])
     ctx = Context(raw=raw, build=tmp_path / "build", jobs=1)
-    for s in ("ingest", "analyse", "warehouse"):
+    for s in ("ingest", "analyse", "calibrate", "warehouse"):  # calibrate writes results
         run_stage(s, ctx)
     before = query(ctx.build / "warehouse.duckdb", "SELECT count(*) AS n FROM results")["n"].iloc[0]
     assert before == 2

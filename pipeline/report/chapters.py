@@ -131,7 +131,7 @@ CHAPTERS: tuple[Chapter, ...] = (
             "the run's own residual force near the excitation, combined (GUM) with the day's force-plate "
             "check, or with the §3.2.9 limits (±3 %, ±1°) on a day without one (docs/uncertainty.md).",
             (
-                TableSpec("I", "Stiffness and damping by measurement method", "table_i", "calibrate",
+                TableSpec("I", "Stiffness and damping by measurement method", "table_i", "methods",
                           "published_table_i"),
                 TableSpec("", "Force-plate calibration per day", "calibration", "calibrate"),
                 TableSpec("", "Calibration transfer function", "calibration_tf", "calibrate"),

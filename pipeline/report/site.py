@@ -37,7 +37,7 @@ import pandas as pd
 
 from .. import io
 from ..executor import map_alongside, map_in_background, worker_server_state
-from ..stages.state import digest
+from ..itemcache import digest
 from ..warehouse import check_read_only, connect_read_only
 from . import tables
 from .chapters import Chapter, FigureSpec, TableSpec

@@ -7,7 +7,9 @@ damping), stationary tyre:
 * :func:`load_ramp` - slow load-deflection test with rubber creep (§3.4, Fig. 18, Fig. 28);
 * :func:`free_decay` - release from a displaced position, free vibration (§3.4 b);
 * :func:`random_force_response` - the carriage excited by band-limited random
-  force, axle response recorded (§3.4 c).
+  force, axle response recorded (§3.4 c);
+* :func:`table_i` - Table I: the four methods of :mod:`tyrelab.measurement.methods` applied to
+  these experiments, beside the thesis.
 
 The response-based experiments see the linkage stiffness and damping in
 parallel with the tyre, which the apparent-mass method does not (§3.4).
@@ -21,10 +23,16 @@ import numpy as np
 from scipy import fft as sfft
 from scipy import signal
 
-from .instrument import G, RigConfig, _system, carriage_mass_kg
+import pandas as pd
+
+from ..measurement import apparent_mass as am
+from ..measurement.methods import METHODS, TABLE_I_SOURCE, free_vibration, half_power, load_deflection_stiffness
+from ..measurement.recording import frame_tyre_force, recording_arrays
+from . import truth
+from .instrument import G, DayCalibration, RigConfig, _system, carriage_mass_kg, record, simulate_axle
 
 __all__ = ["CREEP_STIFFNESS_RATIO", "CREEP_TIME_S", "Recording", "load_ramp", "free_decay",
-    "random_force_response", "suspended_mass_kg"]
+    "random_force_response", "suspended_mass_kg", "table_i"]
 
 #: Creep of the tyre rubber (§3.4, §4.5.1, Fig. 28): a Kelvin element in series
 #: with the tyre spring. Stiffness ratio chosen so that a slow ramp gives the
@@ -130,3 +138,77 @@ def random_force_response(stiffness_N_per_m: float, damping_N_s_per_m: float, lo
 def suspended_mass_kg(load_kN: float) -> float:
     """Total mass supported by the tyre, L/g (kg): the mass the response methods use."""
     return load_kN * 1e3 / G
+
+
+def table_i(
+    thesis: pd.DataFrame, tyre_id: str = "T1", pressure_bar: float = 1.38, load_kN: float = 18.25, seed: int = 1991
+) -> pd.DataFrame:
+    """Table I from virtual experiments on the stationary tyre, beside the thesis' Table I.
+
+    Our values do not come from the campaign's recordings: no lab run does a
+    load ramp, a free decay and a random-force test on the same tyre, so the
+    four methods are applied to virtual experiments on the truth model's tyre
+    (``source`` column says so).
+
+    The tyre's K and C are the truth model's at 0 km/h, 4 Hz, 14 mm p-p; the
+    apparent mass method analyses a virtual nominal run with
+    :func:`tyrelab.measurement.apparent_mass.apparent_mass_demodulation`; the
+    others analyse this module's recordings (:mod:`tyrelab.measurement.methods`). The response
+    methods use the suspended mass L/g.
+
+    Parameters
+    ----------
+    thesis : DataFrame
+        The published Table I (``method, method_label, stiffness_kN_per_m,
+        damping_kN_s_per_m``; ``raw/published/table_i.csv``).
+    tyre_id, pressure_bar, load_kN, seed :
+        The case (thesis: T1 at 1.38 bar and 1860 kg) and the experiments' seed.
+
+    Returns
+    -------
+    DataFrame
+        ``method``, ``method_label``, ``source``, ``thesis_stiffness_kN_per_m``,
+        ``thesis_damping_kN_s_per_m``, ``stiffness_kN_per_m``,
+        ``damping_kN_s_per_m``, ``stiffness_difference_kN_per_m`` (ours - thesis),
+        ``damping_difference_kN_s_per_m``, ``thesis_stiffness_ratio`` and
+        ``stiffness_ratio`` (to the apparent-mass row), ``thesis_damping_excess_kN_s_per_m``
+        and ``damping_excess_kN_s_per_m`` (over the apparent-mass row), ``truth_*``.
+    """
+    cfg = RigConfig()
+    rng = np.random.default_rng(seed)
+    K = truth.stiffness(tyre_id, pressure_bar, 0.0, load_kN)
+    C = truth.damping(tyre_id, pressure_bar, 0.0, load_kN)
+    m = suspended_mass_kg(load_kN)
+    sig = simulate_axle(K, C, 50.0, rng, cfg, load_kN=load_kN)
+    run = record(sig, DayCalibration(), rng, cfg)
+    accel, _ = recording_arrays(run)
+    d = am.apparent_mass_demodulation(frame_tyre_force(run, cfg.axle_mass_kg), accel.mean(axis=0), cfg.sample_rate_Hz)
+    ours = {"apparent_mass": (float(d.stiffness_N_per_m), float(d.damping_N_s_per_m))}
+    ramp = load_ramp(K, load_kN * 1e3, rng=rng)
+    ours["load_deflection"] = (load_deflection_stiffness(ramp.force_N, ramp.displacement_m), np.nan)
+    dec = free_decay(K, C, load_kN, cfg=cfg, rng=rng)
+    fv = free_vibration(dec.time_s, dec.displacement_m, m)
+    ours["free_vibration"] = (fv["stiffness_N_per_m"], fv["damping_N_s_per_m"])
+    rf = random_force_response(K, C, load_kN, cfg=cfg, rng=rng)
+    hp = half_power(rf.force_N, rf.acceleration_m_s2, cfg.sample_rate_Hz, m)
+    ours["forced_vibration"] = (hp["stiffness_N_per_m"], hp["damping_N_s_per_m"])
+    rows = []
+    th = thesis.set_index("method")
+    missing = [m for m in METHODS if m not in th.index]
+    if missing:
+        raise ValueError(f"published Table I lacks method(s) {missing}")
+    k0, c0 = ours["apparent_mass"]
+    tk0, tc0 = (float(th.loc["apparent_mass", c]) for c in ("stiffness_kN_per_m", "damping_kN_s_per_m"))
+    for method in METHODS:
+        tk, tc = (float(th.loc[method, c]) for c in ("stiffness_kN_per_m", "damping_kN_s_per_m"))
+        k, c = ours[method]
+        rows.append({
+            "method": method, "method_label": th.loc[method, "method_label"], "source": TABLE_I_SOURCE,
+            "thesis_stiffness_kN_per_m": tk, "thesis_damping_kN_s_per_m": tc,
+            "stiffness_kN_per_m": k / 1e3, "damping_kN_s_per_m": c / 1e3,
+            "stiffness_difference_kN_per_m": k / 1e3 - tk, "damping_difference_kN_s_per_m": c / 1e3 - tc,
+            "thesis_stiffness_ratio": tk / tk0, "stiffness_ratio": k / k0,
+            "thesis_damping_excess_kN_s_per_m": tc - tc0, "damping_excess_kN_s_per_m": (c - c0) / 1e3,
+            "truth_stiffness_kN_per_m": K / 1e3, "truth_damping_kN_s_per_m": C / 1e3,
+        })
+    return pd.DataFrame(rows)

@@ -1,7 +1,9 @@
 """Pipeline stages: thin I/O around the pure computations.
 
-:data:`ORDER` lists the stages ``tyrelab run`` executes, in order; each is a
-module of this package with ``run(ctx) -> StageResult``.
+What each stage reads and writes is declared in :data:`tyrelab.stages.dag.STAGES`;
+:data:`ORDER`, the order ``tyrelab run`` executes them in, follows from those declarations. Each
+stage is a module of this package with ``run(ctx) -> StageResult``; :func:`plan` says which
+stages would run and why (``tyrelab run --explain``).
 """
 
 from __future__ import annotations
@@ -11,8 +13,7 @@ import time
 
 from . import state
 from .base import Context, StageResult
-
-ORDER = ["ingest", "analyse", "calibrate", "regress", "simulate", "rides", "warehouse", "report"]
+from .dag import ORDER, STAGES, upstream
 #: Stages that spread per-run work over worker pools.
 PER_RUN = ("ingest", "analyse")
 
@@ -23,13 +24,13 @@ def run_stage(name: str, ctx: Context) -> StageResult:
     The stage module is imported only when it has to run, so a no-op
     ``tyrelab run`` imports none of the heavy libraries.
     """
+    stage = STAGES[name]
     prev = state.load(ctx.build, name)
     cache = state.HashCache(prev.get("hash_cache"))
     state.load_code_index(ctx.build)
-    code = state.code_fingerprint(f"{__name__}.{name}")
-    inputs = state.input_digests(ctx, name, ORDER, cache)
-    later = ORDER[ORDER.index(name) + 1:] if name in ORDER else []
-    reason = state.why_stale(ctx, name, code, inputs, later, cache)
+    code = state.stage_fingerprint(stage)
+    inputs = state.input_digests(ctx, stage, cache)
+    reason = state.why_stale(ctx, stage, code, inputs, cache)
     if reason is None:
         state.save_code_index(ctx.build)
         result = StageResult(name, skipped=True, message="inputs unchanged", **prev.get("counts", {}))
@@ -43,12 +44,15 @@ def run_stage(name: str, ctx: Context) -> StageResult:
         # pools in most stages; after one added run the report's figures are drawn by workers
         # forked from it (~2-3 s into the run, it is ready by then) while this process shapes tables.
         start_worker_server()
-    before = state.snapshot(ctx.build)
     module = importlib.import_module(f"{__name__}.{name}")
-    result = module.run(ctx)
+    ctx.stage = name
+    try:
+        result = module.run(ctx)
+    finally:
+        ctx.stage = None
     counts = {"n_in": result.n_in, "n_ok": result.n_ok, "n_quarantined": result.n_quarantined,
               "n_rejected": result.n_rejected}
-    state.record(ctx, name, code, inputs, before, cache, counts)
+    state.record(ctx, stage, code, inputs, cache, counts)
     state.save_code_index(ctx.build)
     ctx.log.info("%s", result.summary())
     return result
@@ -95,6 +99,39 @@ def run_pipeline(ctx: Context, stages: list[str] | None = None) -> list[StageRes
     return results
 
 
+def plan(ctx: Context, stages: list[str] | None = None) -> list[tuple[str, str | None]]:
+    """Which of ``stages`` (default :data:`ORDER`) ``tyrelab run`` would run, and why; runs nothing.
+
+    Returns ``(stage, reason)`` pairs in run order: ``reason`` is None for a stage that is up to date
+    and stays so. A stage that is up to date now but reads what an earlier stage of the plan will
+    rewrite is listed with the reason "after <stages>, if they change its inputs" (it is decided
+    once they ran, as ``make`` does).
+    """
+    out: list[tuple[str, str | None]] = []
+    running: set[str] = set()
+    state.load_code_index(ctx.build)
+    for name in stages or ORDER:
+        stage = STAGES[name]
+        cache = state.HashCache(state.load(ctx.build, name).get("hash_cache"))
+        reason = state.why_stale(ctx, stage, state.stage_fingerprint(stage), state.input_digests(ctx, stage, cache),
+                                 cache)
+        before = sorted(upstream(name) & running, key=ORDER.index)
+        if reason is None and before:
+            reason = f"after {', '.join(before)}, if they change its inputs"
+        if reason is not None:
+            running.add(name)
+        out.append((name, reason))
+    return out
+
+
+def explain(ctx: Context, stages: list[str] | None = None) -> str:
+    """:func:`plan` as text, one stage a line, then the stage graph (:func:`tyrelab.stages.dag.graph_text`)."""
+    from .dag import graph_text
+
+    lines = [f"{name:<10} {'runs: ' + reason if reason else 'up to date: skipped'}" for name, reason in plan(ctx, stages)]
+    return "\n".join(["plan:", *lines, "", "stage graph (tyrelab.stages.dag.STAGES):", graph_text()])
+
+
 def _worker_server_ready() -> bool:
     """Whether this process started a worker server that is ready, without importing anything heavy."""
     import sys
@@ -136,4 +173,4 @@ def _passed_qc(ctx: Context) -> int | str:
     return n
 
 
-__all__ = ["Context", "StageResult", "ORDER", "run_stage", "run_pipeline"]
+__all__ = ["Context", "StageResult", "ORDER", "STAGES", "run_stage", "run_pipeline", "plan", "explain"]

@@ -3,17 +3,18 @@
 Reads the ``manifest`` table and the per-run Parquet files written by ingest,
 calls :func:`tyrelab.measurement.recording.analyse_batch` (the estimators of
 :mod:`tyrelab.measurement.apparent_mass` and the QC) on batches of
-equal-length runs (vectorised), and writes the ``results`` table (one row
-per measurement run; calibration runs are the calibrate stage's).
+equal-length runs (vectorised), and writes the table ``stages/analysed`` (one row
+per measurement run; calibration runs are the calibrate stage's), which the calibrate stage
+completes into ``results``: each table has one writer (:mod:`tyrelab.stages.dag`).
 
 Both estimators are stored: the thesis' Welch H1 read at the excitation bin
 (``welch_*`` columns) and the phase-locked synchronous demodulation used
 downstream (``stiffness_kN_per_m``, ``damping_kN_s_per_m``).
 
-Incremental: the stage is skipped when the ``manifest`` table is unchanged
-(``INPUTS``, see :mod:`tyrelab.stages.state`); otherwise a run whose
-``input_hash`` (file SHA-256, manifest row, :data:`ANALYSIS_VERSION` and the
-source of the estimators) matches the previous ``results`` row is not
+Incremental: the stage is skipped when what it reads (:data:`tyrelab.stages.dag.STAGES`) is
+unchanged (see :mod:`tyrelab.stages.state`); otherwise a run whose
+``input_hash`` (file SHA-256, manifest row, and the code fingerprint of this stage: its source
+and that of every module it imports, :func:`tyrelab.stages.state.code_fingerprint`) matches the previous ``stages/analysed`` row is not
 re-analysed. Batches go to :func:`tyrelab.executor.map_batches` as file
 paths, so any executor gives the same bytes.
 """
@@ -30,28 +31,20 @@ import numpy as np
 import pandas as pd
 import pyarrow.parquet as pq
 
-from ..measurement import apparent_mass as am
 from ..measurement import qc
-from ..measurement import recording
-from ..measurement import uncertainty as unc
 from ..measurement.recording import analyse_batch
 from ..tyre.sizes import lugs_per_side, tyre_rolling_circumference_m
 from ..executor import map_batches
 from .base import Context, Progress, StageResult, write_quarantine
+from .dag import ANALYSED
+from .state import code_fingerprint
 from ..rawformat import CHANNELS
 
-__all__ = ["INPUTS", "ANALYSIS_VERSION", "ESTIMATOR_SOURCE", "BATCH", "CONDITION_COLUMNS", "input_hash",
+__all__ = ["OUTPUT", "BATCH", "CONDITION_COLUMNS", "input_hash",
     "load_signals", "wheel_interference_Hz", "batches", "analyse_paths", "reuse_freed_memory", "run", "empty_results"]
 
-#: What the stage reads (see :mod:`tyrelab.stages.state`).
-INPUTS = ["manifest", "tyres"]
-#: Bump when the analysis changes in a way that changes results.
-ANALYSIS_VERSION = "2"
-#: Source of the estimators and QC; a change re-analyses every run.
-ESTIMATOR_SOURCE = hashlib.sha256(
-    Path(am.__file__).read_bytes() + Path(qc.__file__).read_bytes() + Path(recording.__file__).read_bytes()
-    + Path(unc.__file__).read_bytes()
-).hexdigest()[:16]
+#: The table the stage writes (declared in :data:`tyrelab.stages.dag.STAGES`); calibrate reads it.
+OUTPUT = ANALYSED
 #: Runs analysed together in one vectorised call.
 BATCH = 32
 
@@ -61,9 +54,11 @@ CONDITION_COLUMNS = [
 ]
 
 
-def input_hash(sha256: str, row_hash: str) -> str:
-    """Hash of everything a run's result depends on."""
-    return hashlib.sha256(f"{sha256}|{row_hash}|{ANALYSIS_VERSION}|{ESTIMATOR_SOURCE}".encode()).hexdigest()
+def input_hash(sha256: str, row_hash: str, code: str) -> str:
+    """Hash of everything a run's result depends on: its file's bytes (``sha256``), its manifest row
+    (``row_hash``) and the stage's ``code`` fingerprint (a change to any module it imports — the
+    estimators, QC, uncertainty, tyre sizes — re-analyses every run; no hand-kept list or version)."""
+    return hashlib.sha256(f"{sha256}|{row_hash}|{code}".encode()).hexdigest()
 
 
 def load_signals(paths: list[str]) -> tuple[np.ndarray, np.ndarray]:
@@ -176,13 +171,14 @@ def run(ctx: Context) -> StageResult:
     res = StageResult("analyse")
     manifest = ctx.read_table("manifest") if ctx.has_table("manifest") else pd.DataFrame()
     if manifest.empty:
-        ctx.write_table("results", empty_results())  # an empty view with its columns, not no view
+        ctx.write_table(OUTPUT, empty_results())  # an empty table with its columns, not no table
         write_quarantine(ctx, "analyse", [])
         res.seconds = time.perf_counter() - t0
         return res
     runs = manifest[manifest["kind"].fillna("measurement") == "measurement"].copy()
-    runs["input_hash"] = [input_hash(s, h) for s, h in zip(runs["sha256"], runs["row_hash"])]
-    previous = ctx.read_table("results") if ctx.has_table("results") and not ctx.force else pd.DataFrame()
+    code = code_fingerprint(__name__)
+    runs["input_hash"] = [input_hash(s, h, code) for s, h in zip(runs["sha256"], runs["row_hash"])]
+    previous = pd.DataFrame() if ctx.force else _previous(ctx)
     reuse = (
         previous[previous["input_hash"].isin(set(runs["input_hash"]))]
         if not previous.empty and "input_hash" in previous
@@ -221,7 +217,7 @@ def run(ctx: Context) -> StageResult:
         ]
         for q in quarantine:
             ctx.log.error("%s: %s", q["file"], q["reason"])
-    ctx.write_table("results", results)
+    ctx.write_table(OUTPUT, results)
     write_quarantine(ctx, "analyse", quarantine)
     res.n_ok = int(results["qc_ok"].sum()) if not results.empty else 0
     res.n_quarantined = len(quarantine)
@@ -229,6 +225,14 @@ def run(ctx: Context) -> StageResult:
     res.message = f"{len(reuse)} reused, {len(new)} analysed" + (f", {flagged} flagged by QC" if flagged else "")
     res.seconds = time.perf_counter() - t0
     return res
+
+
+def _previous(ctx: Context) -> pd.DataFrame:
+    """The stage's last output, whose rows may be reused; empty if missing or unreadable (a damaged build)."""
+    try:
+        return pd.read_parquet(ctx.table(OUTPUT))
+    except (OSError, ValueError):
+        return pd.DataFrame()
 
 
 def empty_results() -> pd.DataFrame:

@@ -14,7 +14,7 @@ from .. import io
 if TYPE_CHECKING:  # imported where used: a no-op run never needs pandas
     import pandas as pd
 
-__all__ = ["Context", "StageResult", "Progress", "QUARANTINE_COLUMNS", "write_quarantine"]
+__all__ = ["Context", "StageResult", "Progress", "QUARANTINE_COLUMNS", "write_quarantine", "quarantine_table"]
 
 log = logging.getLogger("tyrelab")
 
@@ -50,6 +50,9 @@ class Context:
     scheduler: str | None = None
     calibration_correct: bool = False
     log: logging.Logger = field(default=log, repr=False)
+    #: The stage running (set by :func:`tyrelab.stages.run_stage`): a table it writes must be one it
+    #: declares (:data:`tyrelab.stages.dag.STAGES`), so the declarations cannot drift from the code.
+    stage: str | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         self.raw = Path(self.raw).resolve()
@@ -66,21 +69,41 @@ class Context:
         return self.build / "state"
 
     def table(self, name: str) -> Path:
-        """Path of table ``name``: ``build/parquet/<name>.parquet``."""
+        """Path of table ``name``: ``build/parquet/<name>.parquet`` (``stages/analysed``: a table one
+        stage passes to another, below ``parquet/stages/``, not published in the warehouse)."""
         return self.parquet / f"{name}.parquet"
 
     def has_table(self, name: str) -> bool:
-        """Whether table ``name`` exists."""
+        """Whether table ``name`` exists (``quarantine``: whether any stage wrote its part)."""
+        if name == "quarantine":
+            return any(self.table(part).exists() for part in _quarantine_parts())
         return self.table(name).exists()
 
     def read_table(self, name: str) -> pd.DataFrame:
-        """Read table ``name`` into a DataFrame."""
+        """Read table ``name`` into a DataFrame.
+
+        ``quarantine`` is the union of the stages' parts (:func:`quarantine_table`), as the
+        warehouse stage publishes it: right after any stage, not only after a whole run."""
         import pandas as pd
 
+        if name == "quarantine":
+            return quarantine_table(self)
         return pd.read_parquet(self.table(name))
 
     def write_table(self, name: str, df: pd.DataFrame) -> Path:
-        """Write table ``name`` atomically."""
+        """Write table ``name`` atomically.
+
+        Raises
+        ------
+        RuntimeError
+            If the running stage (:attr:`stage`) does not declare the table among its outputs.
+        """
+        if self.stage is not None:
+            from .dag import table, writer
+
+            if writer(table(name)) != self.stage:
+                raise RuntimeError(f"stage {self.stage} writes table {name!r}, which it does not declare: add "
+                                   f"{table(name)!r} to its writes in tyrelab.stages.dag.STAGES")
         return io.write_parquet_atomic(df, self.table(name))
 
 
@@ -146,12 +169,37 @@ class Progress:
 QUARANTINE_COLUMNS = ["campaign", "run_id", "file", "stage", "reason"]
 
 
+_TEXT = {"run_id": "string", "campaign": "string", "file": "string"}
+
+
+def _quarantine_parts() -> dict[str, str]:
+    """Stage -> table name of its quarantine rows (:data:`tyrelab.stages.dag.QUARANTINE_PARTS`)."""
+    from .dag import QUARANTINE_PARTS
+
+    return {f"stages/quarantine_{s}": s for s in QUARANTINE_PARTS}
+
+
 def write_quarantine(ctx: Context, stage: str, entries: list[dict]) -> None:
-    """Replace the quarantine rows of ``stage`` with ``entries`` (other stages' rows are kept)."""
+    """Write the quarantine rows of ``stage`` (its own part, ``parquet/stages/quarantine_<stage>.parquet``:
+    each stage writes only its rows; the warehouse stage publishes the union, :func:`quarantine_table`)."""
     import pandas as pd
 
-    old = ctx.read_table("quarantine") if ctx.has_table("quarantine") else pd.DataFrame(columns=QUARANTINE_COLUMNS)
-    old = old[old["stage"] != stage]
-    new = pd.DataFrame(entries, columns=QUARANTINE_COLUMNS)
-    both = pd.concat([df for df in (old, new) if not df.empty], ignore_index=True) if len(old) or len(new) else new
-    ctx.write_table("quarantine", both.astype({"run_id": "string", "campaign": "string", "file": "string"}))
+    ctx.write_table(f"stages/quarantine_{stage}", pd.DataFrame(entries, columns=QUARANTINE_COLUMNS).astype(_TEXT))
+
+
+def quarantine_table(ctx: Context) -> pd.DataFrame:
+    """The ``quarantine`` table: the rows of every stage's part, in pipeline order.
+
+    A part that is missing or unreadable (a damaged build) contributes no rows; its stage
+    rewrites it on the next run."""
+    import pandas as pd
+
+    parts = []
+    for name in _quarantine_parts():
+        try:
+            parts.append(pd.read_parquet(ctx.table(name)))
+        except (OSError, ValueError):
+            continue
+    parts = [df for df in parts if not df.empty]
+    both = pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=QUARANTINE_COLUMNS)
+    return both.reindex(columns=QUARANTINE_COLUMNS).astype(_TEXT)

@@ -8,8 +8,8 @@ degree over 2-6 Hz. A day passes when all its calibration runs pass.
 Writes ``calibration`` (one row per calibration run: campaign, day, run_id,
 tyre_id, pass, day_pass, max_gain_error_pct, max_phase_error_deg, mean_gain,
 mean_phase_deg) and ``calibration_tf`` (run_id, day, frequency_Hz, gain,
-phase_deg, coherence). Runs after ``analyse``: rewrites ``results`` so that
-runs recorded on a failed day (same campaign and ``recorded_on``) have
+phase_deg, coherence), and ``results``: the analyse stage's table
+(``stages/analysed``) with runs recorded on a failed day (same campaign and ``recorded_on``) have
 ``qc_ok`` False and the reason ``calibration failed on <day>``. Days without
 a calibration run are left as they are.
 
@@ -24,9 +24,6 @@ Uncertainty (issue 14, docs/uncertainty.md): analyse gives every run the
 passed get the day's budget instead (:func:`tyrelab.measurement.uncertainty.day_budget`:
 the day's phase at the run's frequency, the channel gains), combined again
 with the run's own type A part; ``uncertainty_source`` names the day.
-
-Also writes ``table_i`` (thesis Table I: apparent mass vs load-deflection,
-free and forced vibration, from virtual experiments; :mod:`tyrelab.measurement.methods`).
 """
 
 from __future__ import annotations
@@ -38,19 +35,16 @@ import numpy as np
 import pandas as pd
 import pyarrow.parquet as pq
 
-from .. import io, published
+from .. import io
 from ..measurement import calibration as cal
 from ..measurement import uncertainty as unc
 from ..measurement.apparent_mass import tyre_force
-from ..measurement.methods import table_i
 from ..rawformat import ACCEL_CHANNELS, BEAM_CHANNELS, CHANNELS
 from .base import Context, StageResult
+from .dag import ANALYSED
 from .state import ItemCache
 
-__all__ = ["PARAMS", "CALIBRATION_COLUMNS", "TF_COLUMNS", "check_calibration_run", "correct_results", "run"]
-
-#: Context options that change this stage's output (part of its fingerprint).
-PARAMS = ["calibration_correct"]
+__all__ = ["CALIBRATION_COLUMNS", "TF_COLUMNS", "check_calibration_run", "correct_results", "run"]
 
 CALIBRATION_COLUMNS = ["campaign", "day", "run_id", "tyre_id", "pass", "day_pass", "max_gain_error_pct",
                        "max_phase_error_deg", "mean_gain", "mean_phase_deg", "reason"]
@@ -230,8 +224,8 @@ def run(ctx: Context) -> StageResult:
     res.n_ok = int(checks["pass"].sum()) if len(checks) else 0
     failed_days = sorted(days.loc[~days["day_pass"].astype(bool), "day"]) if len(days) else []
     n_flagged = 0
-    if ctx.has_table("results"):
-        results = undo_correction(ctx.read_table("results"))
+    if ctx.has_table(ANALYSED):
+        results = undo_correction(ctx.read_table(ANALYSED))
         if not results.empty and "recorded_on" in results:
             keys = ("campaign", "recorded_on") if "campaign" in results else ("recorded_on",)
             dkeys = ("campaign", "day") if "campaign" in results else ("day",)
@@ -240,10 +234,7 @@ def run(ctx: Context) -> StageResult:
             results = day_uncertainty(results, tf_all, checks, averages, bool(ctx.calibration_correct), cache)
             results = cal.flag_failed_days(results, days, keys, dkeys)
             n_flagged = int(results["qc_reasons"].str.contains("calibration failed on", regex=False).sum())
-            ctx.write_table("results", results)
-    # Table I compares measurement methods on virtual experiments (see methods.table_i).
-    published_i = published.read_published("table_i", ctx.raw)
-    ctx.write_table("table_i", cache.get_or_compute(cache.key("table_i", published_i), lambda: table_i(published_i)))
+        ctx.write_table("results", results)
     cache.prune()
     res.message = (f"{len(days)} days, {len(failed_days)} failed" + (f" ({', '.join(failed_days)})" if failed_days else "")
                    + (f"; {n_flagged} runs flagged" if n_flagged else ""))

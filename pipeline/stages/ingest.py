@@ -12,14 +12,16 @@ Files are hashed, checked and converted in parallel by
 :func:`tyrelab.executor.map_batches` (paths go to the workers, not data).
 
 Incremental: the stage is skipped when no file below ``--raw`` changed size or
-mtime (``INPUTS = ["raw"]``, see :mod:`tyrelab.stages.state`); otherwise a run
+mtime (it reads ``raw``: :data:`tyrelab.stages.dag.STAGES`) and its outputs are as it wrote them
+(:mod:`tyrelab.stages.state`); otherwise a run
 whose file bytes (SHA-256, re-hashed only when size or mtime changed) and
-manifest row are unchanged, and that this code converted, is not re-read, and outputs of runs that
+manifest row are unchanged, that this code converted and whose converted file is still the one it
+wrote (size and mtime), is not re-read, and outputs of runs that
 disappeared from the raw folder are removed. Per-run state
 (``build/state/ingest_runs.json``) is written after the outputs it describes.
 
 Outputs: ``runs/tyre_id=<id>/<run_key>.parquet`` (channels, float32),
-tables ``manifest``, ``tyres``, ``quarantine`` (rows of stage ``ingest``).
+tables ``manifest``, ``tyres`` and its ``quarantine`` rows.
 """
 
 from __future__ import annotations
@@ -48,11 +50,8 @@ from ..tyre.sizes import TyreSizeError, parse_tyre_size
 from .base import Context, Progress, StageResult, write_quarantine
 from .state import code_fingerprint
 
-__all__ = ["INPUTS", "BUILTIN_TYRES", "INFO_KEYS", "discover_campaigns", "run_key", "tyre_partition",
+__all__ = ["BUILTIN_TYRES", "INFO_KEYS", "discover_campaigns", "run_key", "tyre_partition",
     "load_catalogue", "convert_run", "run", "MANIFEST_EXTRA", "manifest_columns"]
-
-#: What the stage reads (see :mod:`tyrelab.stages.state`): every file below ``--raw``.
-INPUTS = ["raw"]
 
 #: The built-in tyre catalogue (thesis Table II).
 BUILTIN_TYRES = resources.builtin_tyres()
@@ -326,6 +325,8 @@ def run(ctx: Context) -> StageResult:
         run_id = row["run_id"]
         out = runs_dir / tyre_partition(row["tyre_id"]) / f"{run_key(run_id)}.parquet"
         row_hash, prev = _row_hash(row), state.get(run_id)
+        if prev and _out_stat(out) != prev.get("out_stat"):
+            prev = None  # its converted file is missing or not what ingest wrote: convert again
         try:  # inside the campaign after symlinks, a regular file: checked before anything opens it
             src = confined_run_path(campaign, row["file"])
         except RunFileError as exc:
@@ -341,8 +342,7 @@ def run(ctx: Context) -> StageResult:
             "sample_rate_Hz": _optional_float(row, "sample_rate_Hz"),
             "channel_map": str(cmap) if cmap.is_file() and src.suffix.lower() in rf.mapped.SUFFIXES else None,
         })
-    cached = [t for t in tasks if not t["touched"] and t["prev"]["row"] == t["row"]
-              and t["prev"]["out"] == t["out"] and Path(t["out"]).exists()]
+    cached = [t for t in tasks if not t["touched"] and t["prev"]["row"] == t["row"] and t["prev"]["out"] == t["out"]]
     cached_ids = {t["run_id"] for t in cached}
     work = [t for t in tasks if t["run_id"] not in cached_ids]
     ctx.log.info("ingest: %d run(s) unchanged, %d to convert", len(cached), len(work))
@@ -359,7 +359,8 @@ def run(ctx: Context) -> StageResult:
             _quarantine_entry(ctx, campaign, t["run_id"], row["file"], d["reason"], plan)
             continue
         new_state[t["run_id"]] = {"size": st.st_size, "mtime_ns": st.st_mtime_ns, "sha256": d["sha256"],
-                                  "row": row_hash, "out": str(out), "info": d["info"], "code": code}
+                                  "row": row_hash, "out": str(out), "info": d["info"], "code": code,
+                                  "out_stat": _out_stat(out)}
         rec = {c: row.get(c) for c in manifest_columns(schema, row)}
         rec.update(campaign=str(campaign), sha256=d["sha256"], row_hash=row_hash, run_path=str(out))
         rec.update((k, d["info"][k]) for k in INFO_KEYS)  # fixed order: same bytes however info was obtained
@@ -390,11 +391,30 @@ def _run_state_path(ctx: Context) -> Path:
     return ctx.state / "ingest_runs.json"
 
 
-def _load_run_state(ctx: Context) -> dict:
+def _out_stat(path) -> list[int] | None:
+    """``[size, mtime_ns]`` of a converted run file (None if missing): a file deleted, truncated or
+    overwritten since ingest wrote it is converted again."""
     try:
-        return json.loads(_run_state_path(ctx).read_text())
-    except (FileNotFoundError, ValueError):
+        st = Path(path).stat()
+    except OSError:
+        return None
+    return [st.st_size, st.st_mtime_ns]
+
+
+_RUN_STATE_KEYS = {"size", "mtime_ns", "sha256", "row", "out", "info", "code"}
+
+
+def _load_run_state(ctx: Context) -> dict:
+    """Per-run state of the last ingest; entries that are not what :func:`run` writes are dropped
+    (a damaged state file is no state: those runs are converted again)."""
+    try:
+        state = json.loads(_run_state_path(ctx).read_text())
+    except (OSError, ValueError):
         return {}
+    if not isinstance(state, dict):
+        return {}
+    return {k: v for k, v in state.items()
+            if isinstance(v, dict) and _RUN_STATE_KEYS <= v.keys() and isinstance(v["info"], dict)}
 
 
 #: Columns ingest adds to the manifest's own.

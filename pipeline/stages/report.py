@@ -15,10 +15,7 @@ from ..report.site import build_site
 from .base import Context, StageResult
 from .state import ItemCache
 
-__all__ = ["CODE_FILES", "run"]
-
-#: The jinja2 templates are code of this stage: a changed template re-renders the report.
-CODE_FILES = ["tyrelab.templates"]
+__all__ = ["run"]
 
 
 def run(ctx: Context) -> StageResult:

@@ -57,10 +57,10 @@ __all__ = ["SEED", "STEMS", "THESIS_XX_STATISTICS", "run", "start_studies_ahead"
            "WarehouseTyres", "scenario_files", "scenario_items", "scenario_task", "run_scenarios", "collect_scenarios"]
 
 SEED = 5007
-#: What the stage reads (see :mod:`tyrelab.stages.state`): the published tables, the ride
-#: scenarios and the per-speed fits a scenario's ``measured_tyre_id`` reads (through the
-#: warehouse). Nothing else: a new recording that leaves these fits alone does not re-run it.
-INPUTS = ["published", "scenarios", "stiffness_pressure_by_speed", "damping_pressure_by_speed"]
+#: The per-speed fits a scenario's ``measured_tyre_id`` reads (through the warehouse). With the
+#: published tables and the ride scenarios they are all the stage reads
+#: (:data:`tyrelab.stages.dag.STAGES`): a new recording that leaves these fits alone does not re-run it.
+FIT_TABLES = ("stiffness_pressure_by_speed", "damping_pressure_by_speed")
 
 #: Published tables the stage reads (stems under ``published/``).
 STEMS = ("table_xii", "table_xiii", "table_xiv", "table_xv", "table_xvi", "table_xvii", "table_xviii", "table_xix", "table_xx",
@@ -105,7 +105,7 @@ def _ride_plan(ctx: Context, files: list[tuple[str, str]], cache: ItemCache) -> 
     fits of the warehouse only if it names a measured tyre (``measured_tyre_id``, the one way a
     scenario reads them). Returns the keys (one per file), the cached results by key, and the
     ``(file, key)`` pairs to run (:func:`scenario_task`)."""
-    fits = [ctx.read_table(t) if ctx.has_table(t) else None for t in INPUTS[2:]]
+    fits = [ctx.read_table(t) if ctx.has_table(t) else None for t in FIT_TABLES]
     keys = []
     for path, source in files:
         text = Path(path).read_bytes()

@@ -1,33 +1,26 @@
-"""Make-style bookkeeping: what each stage consumed, so unchanged stages are skipped.
+"""Make-style bookkeeping: what each stage consumed and produced, so unchanged stages are skipped.
 
-Each stage gets a *fingerprint* stored in ``build/state/<stage>.json``:
+What a stage reads and writes is declared once, in :data:`tyrelab.stages.dag.STAGES`. After a
+stage ran, its *fingerprint* is stored in ``build/state/<stage>.json``:
 
-- ``code``: SHA-256 of the stage module's source and of every ``tyrelab``
-  module it imports (followed transitively, read with :mod:`ast`, so nothing
-  heavy is imported to decide), plus the ``schemas/`` files;
-- ``inputs``: one digest per input. What a stage reads is declared by a
-  module-level literal ``INPUTS = [...]`` in the stage module: table names
-  (``"manifest"`` is ``build/parquet/manifest.parquet``, hashed by content) or
-  ``"raw"`` (every file below ``--raw`` by path, size and mtime — ingest then
-  re-hashes the content of each changed file itself), ``"published"`` (the
-  digitised thesis tables :mod:`tyrelab.published` resolves, by content) or
-  ``"scenarios"`` (the shipped and ``<raw>/scenarios`` ride scenarios, by content). A stage without
-  ``INPUTS`` depends on every file written by the stages before it in
-  :data:`tyrelab.stages.ORDER`, and on the raw files outside campaign folders
-  (``published/``, ``tyres.csv``). Context options named in a stage's
-  ``PARAMS = [...]`` (e.g. ``calibration_correct``) count as inputs;
-- ``outputs``: the files the stage wrote (found by comparing ``build/``
-  before and after it ran) with their content hashes.
+- ``code``: :func:`stage_fingerprint`: SHA-256 of the stage module's source and of every
+  ``tyrelab`` module it imports (followed transitively, read with :mod:`ast`, so nothing heavy is
+  imported to decide), the ``schemas/`` files, the non-Python code it declares
+  (``code:<package>``) and its declaration;
+- ``inputs``: one digest per declared input (:func:`input_digests`): a build file by content, a
+  build folder by the content of every file in it, ``raw`` by the path, size and mtime of every
+  file below ``--raw`` (ingest then re-hashes the content of each changed file itself),
+  ``raw-extras``/``published``/``scenarios`` by content, ``param:<name>`` by value;
+- ``outputs``: one digest per declared output, computed the same way (:func:`output_digests`).
 
-A stage is skipped when its code and input digests equal the recorded ones
-and its outputs exist with the bytes it wrote (outputs that a later stage also
-writes, such as ``results`` rewritten by calibrate, are checked against the later
-stage's record instead). The state file is written only after the stage's
-outputs; a stage interrupted while writing, or whose finished output another
-stage overwrote since, finds an output changed and reruns, so a re-run after
-any interruption converges to the bytes of a clean build.
-Content hashes are cached by (size, mtime) in the state, so a no-op run
-hashes nothing.
+A stage is skipped when its code and input digests equal the recorded ones and every output it
+declares still has the digest it had when the stage wrote it: a missing, truncated or overwritten
+output — a single file below ``parquet/runs/`` or ``reports/runs/`` included — makes its writer
+run again. Each output has one writer, so no stage checks another's files. The state file is
+written only after the stage's outputs, so a stage interrupted while writing finds its state old
+and reruns: a re-run after any interruption converges to the bytes of a clean build. A state file
+that cannot be read, or holds anything but a JSON object (``null``, a list), is no state.
+Content hashes are cached by (size, mtime) in the state, so a no-op run hashes nothing.
 """
 
 from __future__ import annotations
@@ -41,17 +34,17 @@ from pathlib import Path
 
 from .. import io, resources
 from ..buildlock import LOCK_NAME
+from ..itemcache import ItemCache as _ItemCache
+from ..itemcache import digest
 
-__all__ = ["PACKAGE", "BUILTIN_RAW", "UNTRACKED", "declarations", "code_fingerprint", "HashCache",
-    "stat_digest", "raw_digest", "raw_extras", "snapshot", "state_path", "load", "input_digests", "why_stale",
-    "record", "load_code_index", "save_code_index"]
+__all__ = ["PACKAGE", "BUILTIN_RAW", "declarations", "code_fingerprint", "stage_fingerprint", "HashCache",
+    "stat_digest", "folder_digest", "raw_digest", "raw_extras", "state_path", "load", "input_digests",
+    "output_digests", "why_stale", "record", "load_code_index", "save_code_index", "digest", "ItemCache"]
 
 #: Folder of the ``tyrelab`` code, and the name modules are looked up under.
 PACKAGE = "tyrelab"
 #: Built-in raw files every stage may read (tyre catalogue, digitised thesis tables, ride scenarios).
 BUILTIN_RAW = [resources.builtin_tyres(), resources.published_dir(), resources.scenarios_dir()]
-#: Folders of ``build/`` that are not stage outputs tracked here (``cache``: :class:`ItemCache`).
-UNTRACKED = {"state", "runs", "cache"}
 
 
 def _sha(data: bytes) -> str:
@@ -177,14 +170,14 @@ def save_code_index(build: Path) -> None:
 
 
 def declarations(stage_module: str) -> dict:
-    """Module-level literals of a stage module (``INPUTS``, ...), read without importing it."""
+    """Module-level literals of a module (``__all__``, ...), read without importing it."""
     path = _module_file(stage_module)
     return _imports(path, stage_module)[1] if path else {}
 
 
-def code_fingerprint(stage_module: str) -> str:
+def code_fingerprint(stage_module: str, code_files=()) -> str:
     """Hash of the source of ``stage_module``, every ``tyrelab`` module it imports, ``schemas/``,
-    and the files below the folders the stage lists in ``CODE_FILES`` (e.g. templates)."""
+    and the files of the resource packages ``code_files`` (e.g. the report's templates)."""
     seen: dict[str, Path] = {}
     todo = [stage_module]
     while todo:
@@ -204,13 +197,24 @@ def code_fingerprint(stage_module: str) -> str:
     schemas = resources.schemas_dir()
     for p in sorted(schemas.rglob("*.json")):
         h.update(str(p.relative_to(schemas)).encode() + b"\0" + p.read_bytes())
-    # Non-Python files that are code for this stage (e.g. the report's templates): resource
-    # packages named in the stage's ``CODE_FILES``.
-    for package in declarations(stage_module).get("CODE_FILES", []):
+    for package in code_files:
         root = resources.resource_dir(package)
         for p in sorted(q for q in root.rglob("*") if q.is_file() and q.suffix != ".pyc"):
             h.update(f"{package}/{p.relative_to(root)}".encode() + b"\0" + p.read_bytes())
     return h.hexdigest()
+
+
+def stage_fingerprint(stage) -> str:
+    """Code fingerprint of a :class:`~tyrelab.stages.dag.Stage`: its module and the modules it imports
+    (:func:`code_fingerprint`), its ``code:`` packages and its declaration (a stage that now reads or
+    writes something else runs again)."""
+    code = code_fingerprint(stage.module, stage.code_files)
+    return _sha(f"{code}\0{stage!r}".encode())
+
+
+#: Per process: ``(path, size, mtime_ns, inode) -> SHA-256``, shared by every stage's
+#: :class:`HashCache` (the run files ingest wrote are read once, not once per stage reading them).
+_CONTENT: dict[tuple, str] = {}
 
 
 class HashCache:
@@ -228,10 +232,13 @@ class HashCache:
         except FileNotFoundError:
             return "missing"
         hit = self.entries.get(key)
-        if hit and hit[0] == st.st_size and hit[1] == st.st_mtime_ns:
+        if isinstance(hit, list) and len(hit) == 3 and hit[0] == st.st_size and hit[1] == st.st_mtime_ns:
             sha = hit[2]
         else:
-            sha = io.file_sha256(path)
+            memo = (key, st.st_size, st.st_mtime_ns, st.st_ino)
+            sha = _CONTENT.get(memo)
+            if sha is None:
+                sha = _CONTENT[memo] = io.file_sha256(path)
         self.used[key] = [st.st_size, st.st_mtime_ns, sha]
         return sha
 
@@ -284,17 +291,27 @@ def published_digests(raw: Path, cache: HashCache) -> dict[str, str]:
     return {f"published:{p}": cache.digest(p) for p in sorted(folder.glob("*.csv"))}
 
 
-def snapshot(build: Path) -> dict[str, tuple[int, int]]:
-    """(size, mtime) of every file of ``build/`` except state and the per-run dataset."""
-    snap = {}
-    # the untracked folders (state, cache, the per-run dataset: most of a build's files) are not entered
-    untracked = io.regular_files(build, prune=lambda parts: bool(UNTRACKED.intersection(parts[:2])))
-    for p in untracked if build.is_dir() else []:
-        rel = p.relative_to(build)
-        if not UNTRACKED.intersection(rel.parts[:2]) and not p.name.endswith(".tmp") and p.name != LOCK_NAME:
-            st = p.stat()
-            snap[str(rel)] = (st.st_size, st.st_mtime_ns)
-    return snap
+def _folder_files(folder: Path) -> list[Path]:
+    """Regular files below a build folder, but temporaries of a writer (``*.tmp``) and the build lock."""
+    if not folder.is_dir():
+        return []
+    return sorted(p for p in io.regular_files(folder) if not p.name.endswith(".tmp") and p.name != LOCK_NAME)
+
+
+def folder_digest(folder: Path, cache: HashCache) -> str:
+    """Digest of the relative path and content of every file below ``folder`` (``"missing"`` if it
+    is not a folder): changes when any file is added, removed, truncated or rewritten."""
+    if not folder.is_dir():
+        return "missing"
+    h = hashlib.sha256()
+    for p in _folder_files(folder):
+        h.update(f"{p.relative_to(folder)}\0{cache.digest(p)}\n".encode())
+    return h.hexdigest()
+
+
+def _path_digest(build: Path, rel: str, cache: HashCache) -> str:
+    """Digest of a build file or (``rel`` ending in ``/``) folder."""
+    return folder_digest(build / rel, cache) if rel.endswith("/") else cache.digest(build / rel)
 
 
 def state_path(build: Path, stage: str) -> Path:
@@ -303,52 +320,64 @@ def state_path(build: Path, stage: str) -> Path:
 
 
 def load(build: Path, stage: str) -> dict:
-    """The recorded fingerprint of ``stage`` (empty if none or unreadable)."""
+    """The recorded fingerprint of ``stage``; empty if none, unreadable or not a JSON object
+    (``null``, a list, garbage: damaged state is no state)."""
     try:
-        return json.loads(state_path(build, stage).read_text())
-    except (FileNotFoundError, ValueError):
+        state = json.loads(state_path(build, stage).read_text())
+    except (OSError, ValueError):
         return {}
+    if not isinstance(state, dict):
+        return {}
+    for key in ("inputs", "outputs", "counts", "hash_cache"):
+        if not isinstance(state.get(key, {}), dict):
+            return {}
+    return state
 
 
-def input_digests(ctx, stage: str, order: list[str], cache: HashCache) -> dict[str, str]:
-    """Digest of each input of ``stage`` (see the module docstring)."""
-    decl = declarations(f"{PACKAGE}.stages.{stage}")
-    declared = decl.get("INPUTS")
-    # Context options the stage declares in PARAMS are inputs too.
-    digests: dict[str, str] = {f"param:{p}": repr(getattr(ctx, p)) for p in decl.get("PARAMS", [])}
-    if declared is not None:
-        for name in declared:
-            if name == "raw":
-                digests["raw"] = raw_digest(ctx.raw, exclude=ctx.build)
-            elif name == "published":
-                digests.update(published_digests(ctx.raw, cache))
-            elif name == "scenarios":
-                for folder in (resources.scenarios_dir(), Path(ctx.raw) / "scenarios"):
-                    for p in sorted(folder.glob("*.toml")) if folder.is_dir() else []:
-                        digests[f"scenario:{p}"] = cache.digest(p)
-            else:
-                digests[name] = cache.digest(ctx.table(name))
-        return digests
-    own = set(load(ctx.build, stage).get("outputs", {}))
-    for earlier in order[: order.index(stage)] if stage in order else []:
-        for rel in load(ctx.build, earlier).get("outputs", {}):
-            if rel not in own:
-                digests[rel] = cache.digest(ctx.build / rel)
-    for p in raw_extras(ctx.raw, exclude=ctx.build):
-        digests[f"raw:{p}"] = cache.digest(p)
+def input_digests(ctx, stage, cache: HashCache) -> dict[str, str]:
+    """Digest of each input the :class:`~tyrelab.stages.dag.Stage` ``stage`` declares (module docstring)."""
+    from .dag import expand
+
+    digests: dict[str, str] = {f"param:{p}": repr(getattr(ctx, p)) for p in stage.params}
+    for name in stage.reads:
+        if name == "raw":
+            digests["raw"] = raw_digest(ctx.raw, exclude=ctx.build)
+        elif name == "raw-extras":
+            for p in raw_extras(ctx.raw, exclude=ctx.build):
+                digests[f"raw:{p}"] = cache.digest(p)
+        elif name == "published":
+            digests.update(published_digests(ctx.raw, cache))
+        elif name == "scenarios":
+            for folder in (resources.scenarios_dir(), Path(ctx.raw) / "scenarios"):
+                for p in sorted(folder.glob("*.toml")) if folder.is_dir() else []:
+                    digests[f"scenario:{p}"] = cache.digest(p)
+    for rel in expand(stage):
+        digests[rel] = _path_digest(ctx.build, rel, cache)
     return digests
 
 
-def why_stale(ctx, stage: str, code: str, inputs: dict[str, str], later: list[str] | None = None,
-              cache: "HashCache | None" = None) -> str | None:
-    """Why ``stage`` must run (one phrase), or None if it is up to date.
+def output_digests(ctx, stage, cache: HashCache) -> dict[str, str]:
+    """Digest of each output ``stage`` declares (``"missing"`` for one that does not exist)."""
+    return {rel: _path_digest(ctx.build, rel, cache) for rel in stage.writes}
 
-    ``later`` names the stages after it (their outputs are theirs to check);
+
+def _label(key: str) -> str:
+    """Short name of an input for a log line: a table's name, a folder's path, a raw file's name."""
+    if key.startswith("parquet/") and key.endswith(".parquet"):
+        return key[len("parquet/"):-len(".parquet")]
+    if key.endswith("/"):
+        return key
+    return Path(key).name if key.startswith("raw:") or "/" in key else key
+
+
+def why_stale(ctx, stage, code: str, inputs: dict[str, str], cache: HashCache | None = None) -> str | None:
+    """Why ``stage`` (a :class:`~tyrelab.stages.dag.Stage`) must run (one phrase), or None if it is up to date.
+
     ``cache`` hashes the outputs (by size and mtime).
     """
     if ctx.force:
         return "--force"
-    prev = load(ctx.build, stage)
+    prev = load(ctx.build, stage.name)
     if not prev:
         return "no previous run recorded"
     if prev.get("code") != code:
@@ -356,197 +385,54 @@ def why_stale(ctx, stage: str, code: str, inputs: dict[str, str], later: list[st
     old = prev.get("inputs", {})
     changed = sorted(k for k in inputs.keys() | old.keys() if inputs.get(k) != old.get(k))
     if changed:
-        names = [Path(k).name if k.startswith("raw:") or "/" in k else k for k in changed]
+        names = [_label(k) for k in changed]
         more = f" and {len(names) - 3} more" if len(names) > 3 else ""
         return "input(s) changed: " + ", ".join(names[:3]) + more
-    outputs = prev.get("outputs", {})
-    missing = [rel for rel in outputs if not (ctx.build / rel).exists()]
+    # Outputs must still be the bytes this stage wrote: one deleted, truncated or overwritten
+    # (a run file below parquet/runs/ included) makes it rerun, and it alone writes them.
+    recorded = prev.get("outputs", {})
+    now = output_digests(ctx, stage, cache or HashCache())
+    missing = [rel for rel in stage.writes if now[rel] == "missing" != recorded.get(rel)]
     if missing:
         return "output(s) missing: " + ", ".join(missing[:3])
-    # Outputs must still be the bytes this stage wrote, unless a later stage rewrites them too
-    # (calibrate rewrites analyse's ``results``): then the last writer checks them. A stage
-    # interrupted after some outputs, or an earlier stage that re-ran and overwrote a table
-    # this stage had finished (``tyrelab analyse --force`` after ``run``), makes it rerun.
-    cache = cache or HashCache()
-    handed_on = set().union(*(load(ctx.build, s).get("outputs", {}) for s in (later or [])))
-    changed = [rel for rel, sha in outputs.items() if rel not in handed_on and cache.digest(ctx.build / rel) != sha]
+    changed = [rel for rel in stage.writes if now[rel] != recorded.get(rel)]
     if changed:
         return "output(s) changed since this stage wrote them: " + ", ".join(changed[:3])
     return None
 
 
-def record(ctx, stage: str, code: str, inputs: dict[str, str], before: dict, cache: HashCache,
-           counts: dict | None = None) -> None:
-    """Write the state of ``stage`` after it ran (outputs = files it created or changed).
+def record(ctx, stage, code: str, inputs: dict[str, str], cache: HashCache, counts: dict | None = None) -> None:
+    """Write the state of ``stage`` after it ran: its code, inputs and the digests of its outputs.
 
     ``counts`` (runs in, ok, quarantined) are kept so that a skipped stage
     still reports them, and the exit code still says runs are quarantined.
     """
-    after = snapshot(ctx.build)
-    prev = load(ctx.build, stage).get("outputs", {})
-    written = {rel for rel, st in after.items() if before.get(rel) != st}
-    outputs = {rel: cache.digest(ctx.build / rel) for rel in sorted(written | (set(prev) & set(after)))}
-    inputs = {k: v for k, v in inputs.items() if k not in outputs}  # a table it rewrites is not its input
-    state = {"stage": stage, "code": code, "inputs": inputs, "outputs": outputs,
+    outputs = output_digests(ctx, stage, cache)
+    state = {"stage": stage.name, "code": code, "inputs": inputs, "outputs": outputs,
              "counts": counts or {}, "hash_cache": cache.used}
-    io.write_text_atomic(json.dumps(state, indent=1, sort_keys=True), state_path(ctx.build, stage))
+    io.write_text_atomic(json.dumps(state, indent=1, sort_keys=True), state_path(ctx.build, stage.name))
 
 
 # ------------------------------------------------------------------ per-item work inside a stage
 
 
-def digest(obj) -> str:
-    """SHA-256 of a value's content: DataFrames, Series, arrays, mappings, sequences, scalars.
-
-    Two values with the same digest give the same result in every computation
-    of the pipeline (floats are hashed exactly, column names and dtypes count).
-
-    Examples
-    --------
-    >>> digest({"a": 1.0, "b": [1, 2]}) == digest({"b": [1, 2], "a": 1.0})
-    True
-    >>> digest(0.1) == digest(0.2), digest(1) == digest(1.0)
-    (False, False)
-    """
-    h = hashlib.sha256()
-    _feed(h, obj)
-    return h.hexdigest()
-
-
-def _feed(h, obj) -> None:
-    import numpy as np
-    import pandas as pd
-
-    if isinstance(obj, pd.DataFrame):
-        h.update(b"D" + repr([(str(c), str(t)) for c, t in obj.dtypes.items()]).encode())
-        h.update(pd.util.hash_pandas_object(obj, index=False).to_numpy().tobytes() if len(obj.columns) else b"")
-        h.update(repr(len(obj)).encode())
-    elif isinstance(obj, pd.Series):
-        h.update(b"S" + f"{obj.name}|{obj.dtype}".encode())
-        h.update(pd.util.hash_pandas_object(obj, index=False).to_numpy().tobytes())
-    elif isinstance(obj, np.ndarray):
-        h.update(b"A" + f"{obj.dtype}|{obj.shape}".encode() + np.ascontiguousarray(obj).tobytes())
-    elif isinstance(obj, dict):
-        h.update(b"{")
-        for k in sorted(obj, key=repr):
-            h.update(repr(k).encode() + b":")
-            _feed(h, obj[k])
-        h.update(b"}")
-    elif isinstance(obj, (list, tuple)):
-        h.update(b"[" if isinstance(obj, list) else b"(")
-        for v in obj:
-            _feed(h, v)
-            h.update(b",")
-        h.update(b"]")
-    else:
-        if isinstance(obj, np.generic):
-            obj = obj.item()
-        h.update(f"{type(obj).__name__}:{obj!r};".encode())
-
-
-class ItemCache:
-    """Results of the items of one stage (a tyre's fits, a simulated case, a figure), by input digest.
-
-    A stage that recomputes only what changed asks for each item with the
-    digest of everything the item depends on (:func:`digest` of its inputs) and
-    the stage's code fingerprint; a hit returns the stored result, a miss
-    computes and stores it. The dependency is recorded, not guessed: an item is
-    reused only when its own inputs and the code are unchanged, so the stage's
-    outputs equal a clean rebuild's. Entries live in ``build/cache/<stage>/``
-    (pickles written atomically; not stage outputs), ``--force`` ignores them,
-    and :meth:`prune` drops those the last run did not use.
+class ItemCache(_ItemCache):
+    """:class:`tyrelab.itemcache.ItemCache` of a stage, whose code fingerprint is by default the
+    stage's (:func:`stage_fingerprint`: its module, the modules it imports, its declaration).
 
     Parameters
     ----------
     ctx : Context
         The run (``build``, ``force``).
     stage : str
-        Stage name (folder of the entries).
+        Stage name (folder of the entries, ``build/cache/<stage>``).
     code : str, optional
-        Code fingerprint; default :func:`code_fingerprint` of the stage module.
+        Code fingerprint; default :func:`stage_fingerprint` of the stage.
     """
 
     def __init__(self, ctx, stage: str, code: str | None = None):
-        self.folder = Path(ctx.build) / "cache" / stage
-        self.code = code if code is not None else code_fingerprint(f"{PACKAGE}.stages.{stage}")
-        self.force = bool(getattr(ctx, "force", False))
-        self.used: set[str] = set()
-        self.hits = 0
-        self.misses = 0
-        self.counts: dict[str, list[int]] = {}  # kind -> [reused, computed]
+        if code is None:
+            from .dag import STAGES
 
-    def key(self, kind: str, *inputs) -> str:
-        """Key of one item: its kind, the code fingerprint and the digest of its inputs."""
-        return f"{kind}-{digest([self.code, kind, *inputs])[:40]}"
-
-    def has(self, key: str) -> bool:
-        """Whether item ``key`` is stored and may be reused (never with ``--force``), without loading it."""
-        return not self.force and self._path(key).is_file()
-
-    def _path(self, key: str) -> Path:
-        return self.folder / f"{key}.pkl"
-
-    def get(self, key: str):
-        """``(True, value)`` for a stored item, else ``(False, None)``."""
-        self.used.add(key)
-        hit, value = self.load(key)
-        if hit:
-            self.reused(key)
-        return hit, value
-
-    def load(self, key: str):
-        """:meth:`get` without counting the item as used or reused (for a task whose results
-        :meth:`reused` or :meth:`put` account for later)."""
-        if not self.has(key):
-            return False, None
-        try:
-            with open(self._path(key), "rb") as fh:
-                return True, pickle.load(fh)
-        except (OSError, EOFError, pickle.UnpicklingError, AttributeError, ImportError, IndexError, ValueError):
-            return False, None  # unreadable entry: recompute
-
-    def reused(self, key: str) -> None:
-        """Count item ``key`` as used and reused by this run (loaded here or by a worker)."""
-        self.used.add(key)
-        self.hits += 1
-        self.counts.setdefault(key.rsplit("-", 1)[0], [0, 0])[0] += 1
-
-    def put(self, key: str, value) -> None:
-        """Store an item (atomically)."""
-        self.used.add(key)
-        self.misses += 1
-        self.counts.setdefault(key.rsplit("-", 1)[0], [0, 0])[1] += 1
-        with io.atomic_path(self._path(key)) as tmp:
-            with open(tmp, "wb") as fh:
-                pickle.dump(value, fh, protocol=pickle.HIGHEST_PROTOCOL)
-
-    def get_or_compute(self, key: str, compute):
-        """The stored item ``key``, or ``compute()`` stored under it."""
-        hit, value = self.get(key)
-        if not hit:
-            value = compute()
-            self.put(key, value)
-        return value
-
-    def keep(self, keys) -> None:
-        """Count the entries ``keys`` as used by this run without loading them (:meth:`prune` keeps them)."""
-        self.used.update(keys)
-
-    def prune(self) -> int:
-        """Delete the entries this run did not use; return how many."""
-        n = 0
-        for p in self.folder.glob("*.pkl") if self.folder.is_dir() else []:
-            if p.stem not in self.used:
-                p.unlink(missing_ok=True)
-                n += 1
-        return n
-
-    def summary(self, kind: str | None = None, exclude: tuple = ()) -> str:
-        """``"12 reused, 3 computed"`` (of the items of ``kind`` only, if given; else of all kinds
-        but those in ``exclude``)."""
-        if kind:
-            hits, misses = self.counts.get(kind, [0, 0])
-        else:
-            hits = self.hits - sum(self.counts.get(k, [0, 0])[0] for k in exclude)
-            misses = self.misses - sum(self.counts.get(k, [0, 0])[1] for k in exclude)
-        return f"{hits} reused, {misses} computed"
+            code = stage_fingerprint(STAGES[stage]) if stage in STAGES else code_fingerprint(f"{PACKAGE}.stages.{stage}")
+        super().__init__(ctx, stage, code)

@@ -6,6 +6,10 @@ Each ``raw/published/<stem>.csv`` is validated against
 per Parquet table (``results``, ``table_iii`` ...) and ``published_<stem>`` per
 thesis table, and gets the view ``runs`` over the per-run dataset, relative to
 the build folder (:mod:`tyrelab.warehouse`: portable).
+
+It also publishes ``quarantine.parquet``: the union of the rows each stage quarantined, which
+each stage writes to its own part (:func:`tyrelab.stages.base.quarantine_table`), so every table
+has one writer.
 """
 
 from __future__ import annotations
@@ -15,7 +19,7 @@ from pathlib import Path
 
 from .. import io, published
 from ..warehouse import build_warehouse, view_name
-from .base import Context, StageResult
+from .base import Context, StageResult, quarantine_table
 
 __all__ = ["published_tables", "run"]
 
@@ -34,6 +38,7 @@ def published_tables(ctx: Context) -> dict[str, Path]:
 def run(ctx: Context) -> StageResult:
     """Rebuild the warehouse atomically."""
     t0 = time.perf_counter()
+    ctx.write_table("quarantine", quarantine_table(ctx))
     views = build_warehouse(ctx.build / "warehouse.duckdb", ctx.parquet, published_tables(ctx))
     return StageResult("warehouse", n_in=len(views), n_ok=len(views), seconds=time.perf_counter() - t0,
                        message=f"{len(views)} tables and views in {ctx.build / 'warehouse.duckdb'}")

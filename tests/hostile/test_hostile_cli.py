@@ -19,7 +19,7 @@ from tyrelab.warehouse import query
 
 GOOD = spring_damper_recording(duration_s=20.0)
 #: ``tyrelab`` with ``run`` restricted to the stages these tests need (the others take minutes).
-PY = [sys.executable, "-c", "import sys, tyrelab.stages as s; s.ORDER[:] = ['ingest', 'analyse', 'warehouse']\n"
+PY = [sys.executable, "-c", "import sys, tyrelab.stages as s; s.ORDER[:] = ['ingest', 'analyse', 'calibrate', 'warehouse']\n"
       "from tyrelab.cli import main; sys.exit(main(sys.argv[1:]))"]
 
 
@@ -118,7 +118,7 @@ def test_a_file_size_limit_is_one_line_and_the_next_run_repairs(tmp_path):
     raw = write_campaign(tmp_path / "raw", [(manifest_row(f"r{i}", f"r{i}.parquet"), GOOD) for i in range(3)])
     build = tmp_path / "b"
     args = ["--raw", str(raw), "--build", str(build), "--jobs", "1"]
-    for stage in ("ingest", "analyse"):
+    for stage in ("ingest", "analyse", "calibrate"):  # calibrate writes results
         assert run_cli([*PY, stage, *args]).returncode == 0
     # the warehouse write fails: exit 2 with one line, no empty warehouse left as if it were good
     out = run_cli([*PY, "warehouse", *args], preexec_fn=limited(64 * 1024))

@@ -16,7 +16,7 @@ from tyrelab.stages import Context, run_pipeline
 from tyrelab.warehouse import query
 
 GOOD = spring_damper_recording(duration_s=20.0)
-STAGES = ["ingest", "analyse", "warehouse"]
+STAGES = ["ingest", "analyse", "calibrate", "warehouse"]  # calibrate writes results
 
 
 def build(raw, tmp_path, name="b"):

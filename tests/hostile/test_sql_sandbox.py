@@ -15,7 +15,7 @@ def build(tmp_path_factory):
     root = tmp_path_factory.mktemp("sql")
     raw = write_campaign(root / "raw", [(manifest_row("a1", "a1.parquet"), spring_damper_recording(duration_s=20))])
     ctx = Context(raw=raw, build=root / "build", jobs=1)
-    for s in ("ingest", "analyse", "warehouse"):
+    for s in ("ingest", "analyse", "calibrate", "warehouse"):
         run_stage(s, ctx)
     return ctx.build
 

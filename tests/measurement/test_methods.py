@@ -53,7 +53,7 @@ def test_half_power_and_load_deflection_without_linkage_or_creep():
 def test_table_i_structure():
     from tyrelab.published import read_published
 
-    t = methods.table_i(read_published("table_i")).set_index("method")
+    t = ex.table_i(read_published("table_i")).set_index("method")
     assert set(t["source"]) == {methods.TABLE_I_SOURCE}
     assert t.loc["free_vibration", "thesis_stiffness_kN_per_m"] == 485.0
     am = t.loc["apparent_mass"]

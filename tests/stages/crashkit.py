@@ -6,7 +6,7 @@ import sys
 from synthetic import manifest_row, spring_damper_recording, write_campaign
 
 #: The stages these tests exercise (the ones that write the tables and the warehouse).
-STAGES = ["ingest", "analyse", "warehouse"]
+STAGES = ["ingest", "analyse", "calibrate", "warehouse"]  # calibrate writes results
 
 
 def campaign(folder, n=24):

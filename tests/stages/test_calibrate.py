@@ -8,6 +8,7 @@ from tyrelab.generate import write_run
 from tyrelab.rig.campaigns import campaign_plan, simulate_run
 from tyrelab.stages import calibrate
 from tyrelab.stages.base import Context
+from tyrelab.stages.dag import ANALYSED, STAGES
 
 
 def _context_with_days(tmp_path, **options):
@@ -37,7 +38,7 @@ def _context_with_days(tmp_path, **options):
             results[name] = float("nan")
     results["uncertainty_source"] = "§3.2.9 limits"
     results.loc[2, "campaign"] = "c2"
-    ctx.write_table("results", results)
+    ctx.write_table(ANALYSED, results)  # what analyse writes; calibrate completes it into results
     return ctx, good, bad
 
 
@@ -102,7 +103,7 @@ def test_calibration_correction_is_an_option_in_the_fingerprint(tmp_path):
     # runs of the failed day and of a campaign without calibration are left as they were
     assert out.loc["m_bad", "stiffness_N_per_m"] == 4e5 and out.loc["m_other_campaign", "stiffness_N_per_m"] == 4e5
     cache = state.HashCache()
-    on = state.input_digests(ctx, "calibrate", ["analyse", "calibrate"], cache)
+    on = state.input_digests(ctx, STAGES["calibrate"], cache)
     ctx.calibration_correct = False
-    off = state.input_digests(ctx, "calibrate", ["analyse", "calibrate"], cache)
+    off = state.input_digests(ctx, STAGES["calibrate"], cache)
     assert on != off  # switching the option re-runs the stage

@@ -11,8 +11,8 @@ from tyrelab.executor import map_alongside, map_batches, map_in_background, work
 from tyrelab.stages import Context, run_pipeline
 from synthetic import manifest_row, spring_damper_recording, write_campaign
 
-STAGES = ["ingest", "analyse", "warehouse"]
-TABLES = ["manifest.parquet", "results.parquet", "quarantine.parquet", "tyres.parquet"]
+STAGES = ["ingest", "analyse", "calibrate", "warehouse"]
+TABLES = ["manifest.parquet", "stages/analysed.parquet", "quarantine.parquet", "tyres.parquet"]
 
 
 def square(x):

@@ -138,7 +138,7 @@ def test_bad_suite_does_not_change_the_good_runs_in_the_warehouse(tmp_path):
 
     def good_rows(raw, build):
         ctx = Context(raw=raw, build=build, jobs=1)
-        for stage in ("ingest", "analyse", "warehouse"):
+        for stage in ("ingest", "analyse", "calibrate", "warehouse"):
             run_stage(stage, ctx)
         return query(build / "warehouse.duckdb", "SELECT run_id, stiffness_kN_per_m FROM results WHERE qc_ok AND run_id LIKE 'good-%' ORDER BY run_id")
 

@@ -28,13 +28,13 @@ def built(tmp_path_factory):
     write_campaign(raw / "campaign-a", runs)
     build = tmp_path_factory.mktemp("build")
     ctx = Context(raw=raw, build=build, jobs=1)
-    results = [run_stage(s, ctx) for s in ("ingest", "analyse", "warehouse", "report")]
+    results = [run_stage(s, ctx) for s in ("ingest", "analyse", "calibrate", "warehouse", "report")]
     return raw, build, ctx, results
 
 
 def test_every_run_goes_through(built):
     _, _, ctx, results = built
-    assert [r.n_quarantined for r in results] == [0, 0, 0, 0]
+    assert [r.n_quarantined for r in results] == [0, 0, 0, 0, 0]
     assert results[0].n_ok == 6
 
 
@@ -85,7 +85,7 @@ def test_report_written(built):
 
 def test_rerun_reuses_everything(built):
     _, _, ctx, _ = built
-    before = ctx.read_table("results")
+    before = ctx.read_table("stages/analysed")
     r = run_stage("ingest", ctx)
     a = run_stage("analyse", ctx)
     assert r.skipped and a.skipped and r.n_ok == 6  # nothing changed: neither stage recomputes
@@ -93,7 +93,7 @@ def test_rerun_reuses_everything(built):
     a = run_stage("analyse", ctx)
     ctx.force = False
     assert "6 analysed" in a.message
-    pd.testing.assert_frame_equal(before, ctx.read_table("results"))
+    pd.testing.assert_frame_equal(before, ctx.read_table("stages/analysed"))
 
 
 def test_analyze_run_json(built, capsys):

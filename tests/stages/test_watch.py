@@ -14,7 +14,7 @@ from tyrelab.stages import Context, run_pipeline
 from tyrelab.warehouse import query
 from tyrelab.watch import WatchOptions, watch
 
-STAGES = ["ingest", "analyse", "warehouse"]
+STAGES = ["ingest", "analyse", "calibrate", "warehouse"]  # calibrate writes results
 
 
 class FakeTime:
