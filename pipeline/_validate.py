@@ -24,7 +24,8 @@ import math
 
 import numpy as np
 
-__all__ = ["positive", "positive_array", "finite_array", "same_last_axis", "band", "non_negative", "probability"]
+__all__ = ["positive", "positive_array", "finite_array", "same_last_axis", "band", "non_negative", "probability",
+           "positive_int"]
 
 
 def positive(name: str, value) -> float:
@@ -38,6 +39,23 @@ def positive(name: str, value) -> float:
     if not math.isfinite(v) or v <= 0:
         raise ValueError(f"{name} must be finite and positive, got {value!r}")
     return v
+
+
+def positive_int(name: str, value, minimum: int = 1) -> int:
+    """``value`` as an int; ValueError naming ``name`` unless it is an integer >= ``minimum`` (a count).
+
+    Examples
+    --------
+    >>> positive_int("n_cycles", 5)
+    5
+    >>> positive_int("min_run", 0)
+    Traceback (most recent call last):
+    ...
+    ValueError: min_run must be an integer >= 1, got 0
+    """
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+    return int(value)
 
 
 def positive_array(name: str, value, allow_nan: bool = False) -> np.ndarray:

@@ -1,4 +1,5 @@
-"""The ``tyrelab`` command line.
+# PYTHON_ARGCOMPLETE_OK  (shell completion: argcomplete; see `tyrelab completion --help`)
+"""tyrelab: tractor-tyre stiffness and damping from rig recordings, thesis tables, ride vibration.
 
 Verbs (a stable contract; see docs/architecture.md):
 
@@ -17,6 +18,10 @@ Verbs (a stable contract; see docs/architecture.md):
 Exit codes: 0 success; 3 some runs (or a manifest/catalogue) were quarantined; 2 usage or input
 error (also: the build is locked by another writer, an OS error); 130 interrupted; 141 the reader of
 stdout went away (e.g. piped into ``head``).
+
+Global options (``-q``, ``-v``) go before or after the verb; a mistyped verb gets a "did you
+mean"; ``analyse-run`` and ``analyze`` are aliases of ``analyze-run``. Shell completion:
+``tyrelab completion bash`` (argcomplete).
 """
 
 from __future__ import annotations
@@ -26,13 +31,14 @@ import dataclasses
 import json
 import logging
 import math
+import os
 import sys
 from pathlib import Path
 
 from . import __version__
 from .io import os_error_line  # noqa: F401 - also this module's, for the commands' error lines
 
-__all__ = ["cmd_generate", "cmd_run", "cmd_watch", "cmd_stage", "cmd_sql", "cmd_analyze_run", "cmd_estimate_stiffness",
+__all__ = ["EXIT_CODES_HELP", "STAGE_HELP", "ALIASES", "cmd_completion", "cmd_generate", "cmd_run", "cmd_watch", "cmd_stage", "cmd_sql", "cmd_analyze_run", "cmd_estimate_stiffness",
     "cmd_natural_frequencies", "build_parser", "main"]
 
 EXIT_OK, EXIT_USAGE, EXIT_QUARANTINE = 0, 2, 3
@@ -192,7 +198,12 @@ def cmd_sql(args) -> int:
             continue
         if i:
             sys.stdout.write("\n")
-        sys.stdout.write(df.to_csv(index=False) if args.format == "csv" else df.to_string(index=False) + "\n")
+        if args.format == "csv":
+            sys.stdout.write(df.to_csv(index=False))
+        elif df.empty:  # not pandas' "Empty DataFrame / Columns: [...] / Index: []"
+            sys.stdout.write(f"no rows (columns: {', '.join(map(str, df.columns))})\n" if len(df.columns) else "no rows\n")
+        else:
+            sys.stdout.write(df.to_string(index=False) + "\n")
     return EXIT_OK
 
 
@@ -293,7 +304,9 @@ def cmd_natural_frequencies(args) -> int:
         print(f"{prog}: {exc}", file=sys.stderr)
         return EXIT_USAGE
     _warn(prog, out.get("warnings", ()))
-    print(json.dumps(out, indent=2, ensure_ascii=False))
+    from .io import json_safe
+
+    print(json.dumps(json_safe(out), indent=2, ensure_ascii=False))  # a nodal point at infinity: null
     return EXIT_OK
 
 
@@ -327,7 +340,7 @@ def cmd_ride(args) -> int:
     from .vehicle.scenario import ScenarioError, load_scenario
 
     try:
-        scenario = load_scenario(args.scenario)
+        scenario = load_scenario(args.scenario, confine=False)  # the user's own file: any profile path
     except ScenarioError as exc:
         for problem in exc.problems:
             print(f"tyrelab ride: {exc.path}: {problem}", file=sys.stderr)
@@ -363,6 +376,13 @@ def cmd_ride(args) -> int:
             return EXIT_USAGE
         log.info("ride: wrote %s and %s", paths["json"], paths["html"])
     sys.stdout.write(dumps(doc) if args.format == "json" else format_table(doc))
+    return EXIT_OK
+
+
+def cmd_completion(args) -> int:
+    import argcomplete
+
+    sys.stdout.write(argcomplete.shellcode(["tyrelab"], shell=args.shell))
     return EXIT_OK
 
 
@@ -460,19 +480,91 @@ def _size(text: str) -> int:
         raise argparse.ArgumentTypeError(str(exc)) from None
 
 
+#: ``tyrelab --help``: what the command is for and how it is used.
+DESCRIPTION = """tyrelab: tractor-tyre stiffness and damping from rig recordings, the 1991 thesis' tables
+reproduced, and the ride vibration a driver gets (ISO 2631-1, EU 2002/44/EC).
+
+  tyrelab generate --out raw/demo          a seeded virtual campaign to try it on
+  tyrelab run --raw raw/demo               every stage: raw -> build/warehouse.duckdb -> build/reports/
+  tyrelab sql "SELECT * FROM table_iii"    query the warehouse (read-only)
+  tyrelab ride raw/scenarios/mf698t.toml   seat vibration and daily exposure of one tractor
+
+Options of a verb: tyrelab VERB --help. -q/-v work before or after the verb."""
+
+#: What every ``--help`` ends with.
+EXIT_CODES_HELP = """exit codes:
+  0    success
+  2    usage or input error (one line on stderr naming the file, key or option); also: the
+       build is locked by another writer, an operating-system error
+  3    done, but some runs (or a manifest or tyre catalogue) were quarantined
+  130  interrupted (Ctrl-C or SIGTERM)
+  141  the reader of the output went away (e.g. piped into head)"""
+
+#: One line per stage verb (``tyrelab <stage> --help``).
+STAGE_HELP = {
+    "ingest": "validate the raw campaigns against the schemas and convert each run to Parquet (quarantines bad files)",
+    "analyse": "K and C of every measurement run from its tyre force and axle acceleration (thesis §3.2-3.5), QC",
+    "calibrate": "force-plate check of each day's load-beam calibration (thesis §3.6); flags runs of failed days",
+    "regress": "per-tyre stiffness and damping fits, Tables III-X, the size regressions and the formula (ch. 4-5)",
+    "simulate": "carriage and tractor ride simulations, Tables XI-XX, ride scenarios and ISO 2631 exposure (ch. 6-8)",
+    "warehouse": "store every table and the thesis' published tables in build/warehouse.duckdb",
+    "report": "render the static report site build/reports/ from the warehouse",
+}
+
+#: Verb aliases (``tyrelab analyse-run`` = ``tyrelab analyze-run``).
+ALIASES = {"analyze-run": ["analyse-run", "analyze"]}
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with "did you mean" for a mistyped verb or choice, and the exit codes in ``--help``."""
+
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("formatter_class", argparse.RawDescriptionHelpFormatter)
+        kwargs.setdefault("epilog", EXIT_CODES_HELP)
+        super().__init__(*args, **kwargs)
+
+    def error(self, message: str):
+        import difflib
+        import re
+
+        m = re.search(r"invalid choice: '([^']*)' \(choose from (.*)\)", message)
+        if m:
+            choices = re.findall(r"'([^']*)'", m.group(2))
+            close = difflib.get_close_matches(m.group(1), choices, n=3, cutoff=0.6)
+            if not close:  # e.g. "analyse-run": the part before a dash or a spelling variant
+                close = [c for c in choices if c.replace("analyse", "analyze") == m.group(1).replace("analyse", "analyze")]
+            what = "verb" if message.startswith(("argument VERB", "argument command")) else "choice"
+            message = f"unknown {what} '{m.group(1)}'" + (
+                f"; did you mean {' or '.join(repr(c) for c in close)}?" if close else
+                f" (choose from {', '.join(choices)})")
+        super().error(message)
+
+
+def _global_options(parser: argparse.ArgumentParser, on_verb: bool) -> None:
+    """``-q``/``--quiet`` and ``-v``/``--verbose``: on the main parser with their defaults, on each
+    verb with none (``SUPPRESS``), so that either place sets them and a verb never resets them."""
+    default = argparse.SUPPRESS if on_verb else False
+    group = parser.add_mutually_exclusive_group()
+    group.add_argument("-q", "--quiet", action="store_true", default=default,
+                       help="only warnings and errors (no progress bars)")
+    group.add_argument("-v", "--verbose", action="store_true", default=default,
+                       help="also debug messages (why each stage runs, cache decisions)")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (exposed for tests and documentation)."""
     from .stages import ORDER
 
-    p = argparse.ArgumentParser(prog="tyrelab", description=__doc__.split("\n\n")[0])
+    p = _Parser(prog="tyrelab", description=DESCRIPTION)
     p.add_argument("--version", action="version", version=f"tyrelab {__version__}")
-    p.add_argument("-q", "--quiet", action="store_true", help="only warnings and errors")
-    sub = p.add_subparsers(dest="command", required=True)
+    _global_options(p, on_verb=False)
+    sub = p.add_subparsers(dest="command", required=True, metavar="VERB", parser_class=_Parser)
 
     g = sub.add_parser("generate", help="write a seeded virtual campaign (manifest.csv + runs)")
     g.add_argument("--out", required=True, help="campaign folder to write")
-    g.add_argument("--scale", choices=["small", "full"], default="small")
-    g.add_argument("--seed", type=int, default=1991)
+    g.add_argument("--scale", choices=["small", "full"], default="small",
+                   help="small: ~190 runs, a build in about a minute (default); full: the whole virtual campaign")
+    g.add_argument("--seed", type=int, default=1991, help="random seed: the same seed gives the same bytes (default 1991)")
     g.add_argument("--no-scatter", dest="scatter", action="store_false",
                    help="no run-to-run / day-to-day tyre scatter (thesis §3.6 repeatability is on by default: "
                         "K 2 %% + 1.5 %% per day, C 4 %% + 3 %% per day, standard deviations)")
@@ -485,7 +577,8 @@ def build_parser() -> argparse.ArgumentParser:
         sp.add_argument("--build", default="build", help="output folder (default build/)")
         sp.add_argument("--force", action="store_true", help="recompute everything")
         sp.add_argument("--jobs", type=_jobs, default=None, help="worker processes (default: cores)")
-        sp.add_argument("--executor", choices=["local", "dask"], default="local")
+        sp.add_argument("--executor", choices=["local", "dask"], default="local",
+                        help="local: worker processes on this machine (default); dask: a dask.distributed cluster")
         sp.add_argument("--scheduler", default=None, help="dask scheduler address (with --executor dask)")
         sp.add_argument("--calibration-correct", action="store_true",
                         help="correct runs by their day's force-plate transfer function (thesis §3.6)")
@@ -504,14 +597,18 @@ def build_parser() -> argparse.ArgumentParser:
     w.add_argument("--max-runs", type=int, default=None, help="stop after this many pipeline runs (default: until Ctrl-C)")
     w.set_defaults(func=cmd_watch)
     for name in ORDER:
-        s = sub.add_parser(name, help=f"run the {name} stage only")
+        s = sub.add_parser(name, help=STAGE_HELP.get(name, f"run the {name} stage only"),
+                           description=f"{STAGE_HELP.get(name, f'the {name} stage')} (this stage only; "
+                                       "'tyrelab run' runs every stage that is out of date)")
         io_options(s)
         s.set_defaults(func=cmd_stage, stage=name)
 
     q = sub.add_parser("sql", help="read-only SQL query of the warehouse")
     q.add_argument("query", help='e.g. "SELECT * FROM table_iii"')
-    q.add_argument("--build", default="build")
-    q.add_argument("--format", choices=["table", "csv", "json"], default="table")
+    q.add_argument("--build", default="build", help="build folder holding warehouse.duckdb (default build/)")
+    q.add_argument("--format", choices=["table", "csv", "json"], default="table",
+                   help="table: aligned text, 'no rows' for an empty result (default); csv; json: one array per "
+                        "statement")
     q.add_argument("--memory-limit", type=_size, default="2GiB", metavar="SIZE",
                    help="DuckDB memory limit, e.g. 512MB, 8GiB (default 2GiB)")
     q.add_argument("--max-spill", type=_size, default="4GiB", metavar="SIZE",
@@ -520,8 +617,10 @@ def build_parser() -> argparse.ArgumentParser:
                    help="stop a statement after this many seconds (default 300; 0: no limit)")
     q.set_defaults(func=cmd_sql)
 
-    a = sub.add_parser("analyze-run", help="K and C of one recording (raw format v1), as JSON")
-    a.add_argument("file")
+    a = sub.add_parser("analyze-run", aliases=ALIASES["analyze-run"],
+                       help="K and C of one recording (raw format v1), as JSON (aliases: analyse-run, analyze; "
+                            "the stage over a whole campaign is 'analyse')")
+    a.add_argument("file", help="recording: .parquet, .csv, .mf4 or .tdms (raw format v1)")
     a.add_argument("--axle-mass", type=_positive, required=True, help="axle+wheel+tyre mass M_a, kg")
     a.add_argument("--sample-rate", type=_positive, default=None, metavar="HZ",
                    help="sampling rate, Hz: checked against time_s, or the time base of a file without time_s")
@@ -534,7 +633,11 @@ def build_parser() -> argparse.ArgumentParser:
     e.add_argument("--size", required=True, help="tyre size, e.g. 480/70R38, IF 710/70R42 173D, 13.6R38")
     e.add_argument("--pressure", type=_non_negative, required=True, help="inflation pressure, bar")
     e.add_argument("--age", type=_non_negative, default=1.0, help="tyre age, years (default 1)")
-    e.add_argument("--front-undriven", action="store_true", help="undriven ribbed front tyre rule (thesis §8.2)")
+    front = e.add_mutually_exclusive_group()
+    front.add_argument("--front-undriven", action="store_true",
+                       help="an undriven ribbed front tyre: K = 134/(7.5*18) W R P (thesis §8.2)")
+    front.add_argument("--front-traction", dest="front_undriven", action="store_false",
+                       help="a traction tyre, driven front or rear: the size formula (the default)")
     e.add_argument("--water-ballast", action="store_true", help="water-ballasted tyre (+25 %%)")
     e.add_argument("--build", default=None, metavar="DIR",
                    help="use the formula fitted to the tyres measured in DIR's warehouse (table formula_fit) and "
@@ -553,7 +656,11 @@ def build_parser() -> argparse.ArgumentParser:
     n.add_argument("--front-pressure", type=_non_negative, required=True, help="front inflation pressure, bar")
     n.add_argument("--rear-tyre", required=True, help="rear tyre size, e.g. 13.6R38")
     n.add_argument("--rear-pressure", type=_non_negative, required=True, help="rear inflation pressure, bar")
-    n.add_argument("--front-traction", action="store_true", help="front tyres are traction tyres (4WD): size formula")
+    front = n.add_mutually_exclusive_group()
+    front.add_argument("--front-traction", action="store_true",
+                       help="front tyres are traction tyres (four-wheel drive): the size formula")
+    front.add_argument("--front-undriven", dest="front_traction", action="store_false",
+                       help="front tyres undriven and ribbed: K = 134/(7.5*18) W R P (thesis §8.2; the default)")
     n.add_argument("--front-water-ballast", action="store_true", help="front tyres water-ballasted (+25 %%)")
     n.add_argument("--age", type=_non_negative, default=1.0, help="tyre age, years (default 1, thesis §8.2)")
     n.add_argument("--front-stiffness", type=_positive, default=None, help="override: front stiffness per tyre, kN/m")
@@ -579,7 +686,8 @@ def build_parser() -> argparse.ArgumentParser:
     rd.add_argument("scenario", help="scenario file (schema: tyrelab.schemas scenario.json)")
     rd.add_argument("--build", default=None, help="build folder whose warehouse holds measured tyres")
     rd.add_argument("--out", default=None, help="folder to write ride.json and ride.html into")
-    rd.add_argument("--format", choices=["json", "table"], default="json")
+    rd.add_argument("--format", choices=["json", "table"], default="json",
+                    help="json: the ride document (default); table: a text summary per speed")
     rd.add_argument("--front-pressure", type=_positive, nargs="+", default=None, metavar="BAR",
                     help="front pressures to sweep, bar (default: the scenario's)")
     rd.add_argument("--rear-pressure", type=_positive, nargs="+", default=None, metavar="BAR",
@@ -593,7 +701,8 @@ def build_parser() -> argparse.ArgumentParser:
                     help="most pressure pairs a sweep may run (default 400; more is refused with an estimate)")
     rd.add_argument("--max-samples", type=_whole(10**12), default=None, metavar="N",
                     help="most 1 kHz samples the command may simulate over all pairs and speeds (default 10 million)")
-    rd.add_argument("--executor", choices=["local", "dask"], default="local")
+    rd.add_argument("--executor", choices=["local", "dask"], default="local",
+                    help="local: worker processes on this machine (default); dask: a dask.distributed cluster")
     rd.add_argument("--scheduler", default=None, help="dask scheduler address (with --executor dask)")
     rd.set_defaults(func=cmd_ride)
 
@@ -604,8 +713,20 @@ def build_parser() -> argparse.ArgumentParser:
     ex.add_argument("--hours", type=_positive, default=8.0, help="daily hours of the recorded task (default 8)")
     ex.add_argument("--task", nargs=3, action="append", metavar=("NAME", "FILE", "HOURS"),
                     help="a task of the day: its name, recording and daily hours (repeat for each task)")
-    ex.add_argument("--format", choices=["json", "table"], default="json")
+    ex.add_argument("--format", choices=["json", "table"], default="json",
+                    help="json: the exposure document (default); table: a text summary per task")
     ex.set_defaults(func=cmd_exposure)
+
+    c = sub.add_parser("completion", help="print the shell code that completes tyrelab's verbs and options",
+                       description="Tab completion by argcomplete. Enable it for this shell with\n"
+                                   "  eval \"$(tyrelab completion bash)\"     (zsh: tyrelab completion zsh)\n"
+                                   "or for every new shell by adding that line to ~/.bashrc (~/.zshrc); fish:\n"
+                                   "  tyrelab completion fish > ~/.config/fish/completions/tyrelab.fish")
+    c.add_argument("shell", choices=["bash", "zsh", "fish", "tcsh", "powershell"], help="the shell to complete in")
+    c.set_defaults(func=cmd_completion)
+
+    for verb in {id(sp): sp for sp in sub.choices.values()}.values():  # an alias shares its verb's parser
+        _global_options(verb, on_verb=True)
     return p
 
 
@@ -640,6 +761,23 @@ def _caused_by_interrupt(exc: BaseException) -> bool:
     return False
 
 
+def _configure_output(args) -> None:
+    """Logging by ``-q``/``-v`` on stderr, and progress bars unless ``-q`` (drawn only on a terminal)."""
+    from . import progress
+
+    level = logging.WARNING if args.quiet else logging.DEBUG if args.verbose else logging.INFO
+    root = logging.getLogger()
+    if not any(isinstance(h, progress.StderrHandler) for h in root.handlers):
+        handler = progress.StderrHandler()
+        handler.setFormatter(logging.Formatter("%(message)s"))
+        root.addHandler(handler)
+    root.setLevel(level)
+    if args.verbose:  # the libraries' own debug chatter is not ours
+        for name in ("matplotlib", "PIL", "asyncio", "fsspec", "numba", "distributed"):
+            logging.getLogger(name).setLevel(logging.INFO)
+    progress.configure(bars=not args.quiet)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``tyrelab`` console script.
 
@@ -655,10 +793,20 @@ def main(argv: list[str] | None = None) -> int:
     single_threaded_blas()  # before anything imports numpy (see its docstring)
     if argv is None:
         command_gc()
-    args = build_parser().parse_args(argv)
-    logging.basicConfig(
-        level=logging.WARNING if args.quiet else logging.INFO, format="%(message)s", stream=sys.stderr
-    )
+    try:  # Ctrl-C while the options are read (a type such as --memory-limit's imports DuckDB)
+        parser = build_parser()
+        if "_ARGCOMPLETE" in os.environ:  # the shell asks for completions (tyrelab completion SHELL)
+            import argcomplete
+
+            argcomplete.autocomplete(parser)
+        args = parser.parse_args(argv)
+    except KeyboardInterrupt:
+        verb = next((a for a in (sys.argv[1:] if argv is None else argv) if not a.startswith("-")), "")
+        print(f"tyrelab {verb}: interrupted" if verb else "tyrelab: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    if args.quiet and args.verbose:  # one before the verb, the other after it
+        parser.error("argument -v/--verbose: not allowed with argument -q/--quiet")
+    _configure_output(args)
     import signal
     import threading
 

@@ -340,10 +340,15 @@ class Background:
     def __init__(self, pool: ProcessPoolExecutor, futures: list):
         self._pool, self._futures = pool, futures
 
-    def results(self) -> list[Any]:
-        """``[fn(b) for b in batches]``, waiting for the workers; the pool ends either way."""
+    def results(self, on_done: Callable[[int], None] | None = None) -> list[Any]:
+        """``[fn(b) for b in batches]``, waiting for the workers (``on_done(i)`` as batch ``i``'s
+        result is taken, in order); the pool ends either way."""
         try:
-            out = [f.result() for f in self._futures]
+            out = []
+            for i, f in enumerate(self._futures):
+                out.append(f.result())
+                if on_done is not None:
+                    on_done(i)
         except BaseException:
             self.abandon()
             raise

@@ -52,7 +52,7 @@ import pyarrow.parquet as pq
 from . import io
 
 __all__ = ["READ_ONLY_STATEMENTS", "SANDBOX_SETTINGS", "SPILL_FOLDER", "QueryLimits", "QueryTimeout", "WriteRefused",
-    "view_name", "build_warehouse", "connect_read_only", "check_read_only", "query", "query_all", "parse_size"]
+    "view_name", "build_warehouse", "warehouse_path", "connect_read_only", "check_read_only", "query", "query_all", "parse_size"]
 
 log = logging.getLogger("tyrelab")
 
@@ -317,6 +317,21 @@ def build_warehouse(db_path: Path, parquet_dir: Path, published: dict[str, Path]
     return list(sources)
 
 
+def warehouse_path(path: str | Path) -> Path:
+    """The warehouse file: ``path`` itself, or ``path/warehouse.duckdb`` when ``path`` is a build
+    folder (as ``tyrelab sql --build`` takes it).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> build = Path(tempfile.mkdtemp())
+    >>> warehouse_path(build) == build / "warehouse.duckdb", warehouse_path(build / "w.duckdb").name
+    (True, 'w.duckdb')
+    """
+    path = Path(path)
+    return path / "warehouse.duckdb" if path.is_dir() else path
+
+
 def connect_read_only(db_path: Path, limits: QueryLimits | None = None) -> duckdb.DuckDBPyConnection:
     """Open the warehouse read-only and sandboxed (many readers may do so while the pipeline writes).
 
@@ -335,7 +350,7 @@ def connect_read_only(db_path: Path, limits: QueryLimits | None = None) -> duckd
     is read-only; ``limits`` also bounds the memory (DuckDB's default, 80 % of the machine's,
     without). The statement timeout is :func:`query_all`'s.
     """
-    db_path = Path(db_path)
+    db_path = warehouse_path(db_path)
     if not db_path.is_file():
         what = "no warehouse yet - run 'tyrelab run' first" if not db_path.exists() else "not a regular file"
         raise FileNotFoundError(f"{db_path}: {what}")
@@ -434,6 +449,8 @@ def _statement(con: duckdb.DuckDBPyConnection, statement: str, timeout_s: float 
 def query_all(db_path: Path, sql: str, limits: QueryLimits | None = None) -> list[pd.DataFrame]:
     """Run one or several read-only statements (``;``-separated); return one DataFrame each.
 
+    ``db_path`` is the warehouse file or the build folder holding it (:func:`warehouse_path`).
+
     ``limits`` bounds memory, spill space and the time of each statement (:class:`QueryLimits`).
 
     Raises
@@ -453,5 +470,6 @@ def query_all(db_path: Path, sql: str, limits: QueryLimits | None = None) -> lis
 
 
 def query(db_path: Path, sql: str, limits: QueryLimits | None = None) -> pd.DataFrame:
-    """Run a read-only query against the warehouse and return a DataFrame (of the last statement)."""
+    """Run a read-only query against the warehouse (the file, or the build folder holding it) and
+    return a DataFrame (of the last statement)."""
     return query_all(db_path, sql, limits)[-1]

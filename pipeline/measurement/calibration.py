@@ -84,6 +84,9 @@ def check_calibration(tf: pd.DataFrame, band_Hz: tuple[float, float] = CHECK_BAN
         ``pass`` (bool), ``max_gain_error_pct``, ``max_phase_error_deg``,
         ``mean_gain``, ``mean_phase_deg`` over ``band_Hz``.
     """
+    band_Hz = band("band_Hz", band_Hz)
+    gain_tolerance = positive("gain_tolerance", gain_tolerance)
+    phase_tolerance_deg = positive("phase_tolerance_deg", phase_tolerance_deg)
     b = tf[(tf["frequency_Hz"] >= band_Hz[0]) & (tf["frequency_Hz"] <= band_Hz[1])]
     if b.empty:
         return {"pass": False, "max_gain_error_pct": np.nan, "max_phase_error_deg": np.nan,

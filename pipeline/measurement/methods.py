@@ -20,7 +20,7 @@ import numpy as np
 import pandas as pd
 from scipy import signal
 
-from .._validate import band, positive, same_last_axis
+from .._validate import band, positive, positive_int, same_last_axis
 from .apparent_mass import h1_spectrum
 
 __all__ = ["METHODS", "TABLE_I_SOURCE", "load_deflection_stiffness", "free_vibration", "half_power"]
@@ -62,6 +62,7 @@ def free_vibration(time_s: np.ndarray, response: np.ndarray, mass_kg: float, n_c
         ``stiffness_N_per_m``, ``damping_N_s_per_m``, ``natural_frequency_Hz``, ``damping_ratio``.
     """
     mass_kg = positive("mass_kg", mass_kg)
+    n_cycles = positive_int("n_cycles", n_cycles, minimum=2)  # a decrement needs two cycles
     t = np.asarray(time_s, dtype=float)
     x = np.asarray(response, dtype=float)
     same_last_axis(time_s=t, response=x)

@@ -19,6 +19,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from .._validate import positive_int
 from . import apparent_mass as am
 
 __all__ = ["MIN_COHERENCE", "MAX_AMPLITUDE_DRIFT", "MAX_FREQUENCY_DRIFT_HZ", "BLOCK_S", "clipped",
@@ -48,6 +49,7 @@ def clipped(x: np.ndarray, full_scale=None, min_run: int = 3, min_count: int = 5
     -------
     bool, or ndarray of bool of shape (channels,)
     """
+    min_run, min_count = positive_int("min_run", min_run), positive_int("min_count", min_count)
     x = np.asarray(x)
     if not np.issubdtype(x.dtype, np.floating):
         x = x.astype(float)

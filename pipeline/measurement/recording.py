@@ -44,7 +44,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from .._validate import positive, positive_array
+from .._validate import band, positive, positive_array
 from ..rawformat import ACCEL_CHANNELS, BEAM_CHANNELS, CHANNELS, TIME, check_run
 from . import apparent_mass as am
 from . import qc
@@ -303,6 +303,7 @@ def dominant_frequency_Hz(accel_m_s2: np.ndarray, sample_rate_Hz: float, low_Hz:
     12.0
     """
     positive("sample_rate_Hz", sample_rate_Hz)
+    band("low_Hz, high_Hz", (low_Hz, high_Hz))
     a = np.asarray(accel_m_s2, dtype=float)
     a = a - a.mean()
     power = np.abs(np.fft.rfft(a * np.hanning(a.size))) ** 2

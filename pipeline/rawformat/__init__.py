@@ -127,6 +127,17 @@ def check_run(df: pd.DataFrame, excitation_frequency_Hz: float, sample_rate_Hz: 
     RunFileError
         With a one-line reason.
     """
+    # the manifest's numbers (excitation_frequency_Hz 0: not known, no cycle check; sample_rate_Hz None: not given)
+    for name, value, least in (("excitation_frequency_Hz", excitation_frequency_Hz, 0.0), ("sample_rate_Hz", sample_rate_Hz, None)):
+        if value is None and name == "sample_rate_Hz":
+            continue
+        try:
+            ok = np.isfinite(float(value)) and (float(value) >= least if least is not None else float(value) > 0)
+        except (TypeError, ValueError):
+            ok = False
+        if not ok:
+            raise RunFileError(f"{name} must be finite and {'non-negative' if least is not None else 'positive'}, "
+                               f"got {value!r}")
     missing = [c for c in ["time_s", *CHANNELS] if c not in df.columns]
     if missing:
         raise RunFileError(f"missing channel(s) {', '.join(missing)}")

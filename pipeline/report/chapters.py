@@ -11,7 +11,24 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-__all__ = ["TableSpec", "FigureSpec", "Chapter", "CHAPTERS", "SPOKE_FIGURES"]
+__all__ = ["TableSpec", "FigureSpec", "Chapter", "CHAPTERS", "SPOKE_FIGURES", "ABBREVIATIONS"]
+
+
+#: Abbreviations spelled out once on every page that uses them (first use on the page).
+ABBREVIATIONS = {
+    "SBT": "the artificial standard rough track (thesis §7.3; here a seeded stand-in of the ISO/TR 5007 "
+           "slatted track)",
+    "HH": "the Hussey Highway, an unmetalled farm track (thesis §7.3; here a seeded ISO 8608 class D track)",
+    "EAV": "exposure action value of EU Directive 2002/44/EC, A(8) = 0.5 m/s²",
+    "ELV": "exposure limit value of EU Directive 2002/44/EC, A(8) = 1.15 m/s²",
+    "A(8)": "daily vibration exposure normalised to 8 h",
+    "VDV": "vibration dose value (m/s^1.75)",
+    "a_wz": "frequency-weighted r.m.s. vertical seat acceleration (ISO 2631-1, W_k), m/s²",
+    "a_wx": "frequency-weighted r.m.s. fore-and-aft acceleration (ISO 2631-1, W_d), m/s²",
+    "a_v": "vector sum of the weighted r.m.s. accelerations (ISO 2631-1), m/s²",
+    "CG": "centre of gravity",
+    "PSD": "power spectral density",
+}
 
 
 @dataclass(frozen=True)
@@ -39,12 +56,16 @@ class TableSpec:
     thesis_rename : dict
         Renames of the thesis table's columns before joining.
     columns : tuple of str
-        For plain (non-comparison) tables: columns shown (all when empty).
+        Columns shown (all when empty); of a comparison table, the key and extra columns (its
+        compared quantities are always shown).
     note : str
         Explanation shown under the caption.
     is_input : bool
         A thesis table the simulations take as printed (XV, XIX): shown with the
         thesis values and the note, never as "not produced yet".
+    gaps : tuple of str
+        Why ours differs from the thesis where ``docs/findings.md`` or ``docs/simulation.md``
+        explains it: one sentence each, ending with the document and section.
     """
 
     number: str
@@ -59,6 +80,7 @@ class TableSpec:
     columns: tuple[str, ...] = ()
     note: str = ""
     is_input: bool = False
+    gaps: tuple[str, ...] = ()
 
     @property
     def anchor(self) -> str:
@@ -132,7 +154,11 @@ CHAPTERS: tuple[Chapter, ...] = (
             "check, or with the §3.2.9 limits (±3 %, ±1°) on a day without one (docs/uncertainty.md).",
             (
                 TableSpec("I", "Stiffness and damping by measurement method", "table_i", "methods",
-                          "published_table_i"),
+                          "published_table_i",
+                          gaps=("Our values are about 41 % above the printed ones because our virtual rig follows "
+                                "Table III (633 kN/m for stationary T1 at 1.38 bar where Table I prints 450); the "
+                                "ratios between the methods are what we reproduce (docs/findings.md, "
+                                "\"Chapter 3\").",)),
                 TableSpec("", "Force-plate calibration per day", "calibration", "calibrate"),
                 TableSpec("", "Calibration transfer function", "calibration_tf", "calibrate"),
             )),
@@ -162,7 +188,11 @@ CHAPTERS: tuple[Chapter, ...] = (
                 TableSpec("VI", "Summary of the factors affecting stiffness", "table_vi", "regress",
                           "published_table_vi"),
                 TableSpec("", "Size regressions (Figs 30–31): ours and from the printed Table III",
-                          "size_regressions", "regress"),
+                          "size_regressions", "regress",
+                          columns=("fit", "source", "condition", "selection", "n", "finding"),
+                          gaps=("No choice of up to three further excluded tyres reproduces all three printed "
+                                "numbers of the K_c-against-R fit, and the W·R fit's printed intercept 0.297 lies "
+                                "inside its 95 % interval (docs/findings.md, \"Chapters 4–5\").",)),
                 FigureSpec("30", "ΔK_p against section width × rim diameter", "pressure_dependence_vs_wr",
                            ("table_iii", "tyres", "size_regressions"), "regress"),
                 FigureSpec("31", "Carcass stiffness against rim diameter", "carcass_stiffness_vs_rim",
@@ -190,7 +220,10 @@ CHAPTERS: tuple[Chapter, ...] = (
                 _spoke("spoke_deflection", "48", "Modelled damping against tyre deflection"),
                 TableSpec("", "Spoke-model coefficients fitted to our damping per tyre", "spoke_fit", "regress",
                           columns=("tyre_id", "size", "n_runs", "speeds_km_h", "c_coulomb_kN_per_rad",
-                                   "c_viscous_kN_s_per_m_per_rad", "max_abs_error_percent", "status")),
+                                   "c_viscous_kN_s_per_m_per_rad", "max_abs_error_percent", "status"),
+                          gaps=("T3's damping rises with speed and F1's falls too fast for any non-negative pair of "
+                                "coefficients, and the viscous/Coulomb ratio is 0.8–1.2 s/m, not Fig. 45's 4 "
+                                "(docs/findings.md, \"Chapters 4–5\").",)),
             )),
     Chapter("ch6-carriage", "Chapter 6 — single-wheel carriage",
             "Simulated ride of the single-wheel carriage (tyre T4) on the artificial rough track, "
@@ -213,9 +246,9 @@ CHAPTERS: tuple[Chapter, ...] = (
                 FigureSpec("51", "Power spectral estimates of the track profile", "profile_spectra",
                            ("profile_spectra",), "simulate"),
                 TableSpec("XIII", "Accuracy of the carriage predictions, surveyed profile", "table_xiii", "simulate",
-                          "published_table_xiii"),
+                          "published_table_xiii", gaps=("Our \"measured\" vibration comes from a reference virtual vehicle (dry-friction linkage, lift-off, a seeded stand-in for the surveyed tracks), not from the thesis' recordings, so these statistics reproduce the thesis' pattern, not its values (docs/simulation.md, \"The reference ('measured') vehicles\").",)),
                 TableSpec("XIV", "Accuracy of the carriage predictions, recorded profile", "table_xiv", "simulate",
-                          "published_table_xiv"),
+                          "published_table_xiv", gaps=("Our \"measured\" vibration comes from a reference virtual vehicle (dry-friction linkage, lift-off, a seeded stand-in for the surveyed tracks), not from the thesis' recordings, so these statistics reproduce the thesis' pattern, not its values (docs/simulation.md, \"The reference ('measured') vehicles\").",)),
                 FigureSpec("54", "Measured and predicted rms acceleration", "carriage_rms",
                            ("carriage_comparisons",), "simulate"),
                 FigureSpec("55", "Ratio errors of the rms acceleration", "carriage_ratio_errors",
@@ -237,7 +270,7 @@ CHAPTERS: tuple[Chapter, ...] = (
                           values={c: c for c in ("rear_stiffness_kN_per_m", "front_stiffness_kN_per_m",
                                                  "rear_damping_kN_s_per_m", "front_damping_kN_s_per_m")}),
                 TableSpec("XVII", "Accuracy of the tractor predictions", "table_xvii", "simulate",
-                          "published_table_xvii"),
+                          "published_table_xvii", gaps=("Our \"measured\" vibration comes from a reference virtual vehicle (dry-friction linkage, lift-off, a seeded stand-in for the surveyed tracks), not from the thesis' recordings, so these statistics reproduce the thesis' pattern, not its values (docs/simulation.md, \"The reference ('measured') vehicles\").",)),
                 TableSpec("XVIII", "Effect of longitudinal tyre stiffness and damping", "table_xviii", "simulate",
                           "published_table_xviii"),
             )),
@@ -248,7 +281,11 @@ CHAPTERS: tuple[Chapter, ...] = (
                 TableSpec("XIX", "Tractor data", "table_xix", "simulate", "published_table_xix", is_input=True,
                           note="An input table: simulate takes these values as printed (see simulate_inputs)."),
                 TableSpec("XX", "Predicted and measured natural frequencies", "table_xx", "simulate",
-                          "published_table_xx"),
+                          "published_table_xx",
+                          gaps=("The thesis' rear formula stiffnesses are 1.4–2.4 kN/m above what its printed formula "
+                                "gives, and the Deutz and David Brown front stiffnesses follow neither of its rules at "
+                                "the printed pressures (docs/findings.md, \"Chapter 8\"; docs/simulation.md, "
+                                "\"Table XX findings\").",)),
                 TableSpec("", "Ratio errors of the natural frequencies", "table_xx_statistics", "simulate",
                           columns=("stiffness_source", "basis", "n", "mean", "sd", "p_within_10", "p_within_30",
                                    "thesis_printed_mean", "thesis_printed_sd", "thesis_printed_p_within_10"),

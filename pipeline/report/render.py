@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 import subprocess
 from datetime import datetime, timezone
 from pathlib import Path
@@ -11,10 +12,12 @@ from pathlib import Path
 import jinja2
 import numpy as np
 import pandas as pd
+from markupsafe import Markup, escape
 
 from .. import __version__, resources
+from .tables import Note
 
-__all__ = ["TEMPLATE_DIR", "environment", "format_number", "code_version", "provenance", "UNITS", "column_label"]
+__all__ = ["TEMPLATE_DIR", "environment", "format_number", "breakable", "abbreviations_used", "SYMBOLS", "code_version", "provenance", "UNITS", "column_label"]
 
 #: Templates live in the repository's ``reports/`` folder.
 TEMPLATE_DIR = resources.templates_dir()
@@ -31,11 +34,35 @@ def environment() -> jinja2.Environment:
     )
     env.filters["num"] = format_number
     env.filters["label"] = column_label
+    env.filters["breakable"] = breakable
+    env.tests["note"] = lambda value: isinstance(value, Note)
     return env
 
 
-def format_number(value, digits: int = 3) -> str:
-    """Format a cell: numbers to ``digits`` significant decimals, blanks for missing."""
+def breakable(value) -> Markup:
+    """Cell text that may wrap after ``_``, ``/`` and ``,`` (``stationary_free_vibration``), escaped.
+
+    Examples
+    --------
+    >>> str(breakable("stationary_free_vibration"))
+    'stationary_<wbr>free_<wbr>vibration'
+    """
+    text = str(escape(value))
+    return Markup(text.replace("_", "_<wbr>").replace("/", "/<wbr>").replace(",", ",<wbr>"))
+
+
+def format_number(value, digits: int = 3, decimals: int | None = None) -> str:
+    """Format a cell: "–" for missing, yes/no for booleans, a number with ``decimals`` fixed
+    decimals when given (one format for a whole column), else with at most ``digits`` decimals
+    (trailing zeros dropped); no thousands separators, so a number copies into any tool.
+
+    Examples
+    --------
+    >>> format_number(2241.4832), format_number(2241.4832, decimals=0), format_number(0.5, decimals=3)
+    ('2241.483', '2241', '0.500')
+    >>> format_number(float("nan")), format_number(True), format_number(-0.0001, decimals=2)
+    ('–', 'yes', '0.00')
+    """
     if value is None or (isinstance(value, float) and math.isnan(value)) or value is pd.NA:
         return "–"
     if isinstance(value, (bool, np.bool_)):
@@ -44,9 +71,14 @@ def format_number(value, digits: int = 3) -> str:
         return str(int(value))
     if isinstance(value, (float, np.floating)):
         v = float(value)
+        if not math.isfinite(v):
+            return "∞" if v > 0 else "−∞"
+        if decimals is not None:
+            text = f"{v:.{decimals}f}"
+            return text[1:] if text.startswith("-") and float(text) == 0 else text
         if v != 0 and (abs(v) >= 1e5 or abs(v) < 1e-3):
             return f"{v:.{digits}g}"
-        return f"{v:,.{digits}f}".rstrip("0").rstrip(".") if "." in f"{v:.{digits}f}" else f"{v:,.0f}"
+        return f"{v:.{digits}f}".rstrip("0").rstrip(".")
     return str(value)
 
 
@@ -103,9 +135,35 @@ UNITS = {
 }
 
 
+#: Symbols that keep their underscore in a header: the names the CLI and the JSON use (``a_wz``).
+SYMBOLS = re.compile(r"(?<![A-Za-z0-9])a (w[xyz]|v)(?![A-Za-z0-9])")
+
+
 def column_label(name: str) -> str:
-    """A readable header from a column name: ``speed_km_h`` -> ``speed (km/h)``."""
+    """A readable header from a column name: ``speed_km_h`` -> ``speed (km/h)``; the ISO 2631
+    symbols keep the spelling of the CLI and the JSON (``a_wz_m_s2`` -> ``a_wz (m/s²)``).
+
+    Examples
+    --------
+    >>> column_label("speed_km_h"), column_label("expected_a_wz_m_s2"), column_label("a_v_m_s2")
+    ('speed (km/h)', 'expected a_wz (m/s²)', 'a_v (m/s²)')
+    """
     for suffix, unit in UNITS.items():
         if name.endswith(suffix):
-            return name[: -len(suffix)].replace("_", " ") + unit
-    return name.replace("_", " ")
+            return SYMBOLS.sub(r"a_\1", name[: -len(suffix)].replace("_", " ")) + unit
+    return SYMBOLS.sub(r"a_\1", name.replace("_", " "))
+
+
+def abbreviations_used(html: str, abbreviations: dict[str, str]) -> list[tuple[str, str]]:
+    """The ``abbreviations`` whose short form appears in the page's text (markup, style and
+    figures' SVG code aside), in the order of the dict.
+
+    Examples
+    --------
+    >>> abbreviations_used("<p>SBT and HH tracks</p><style>.HH{}</style>", {"HH": "Hussey", "EAV": "x", "SBT": "s"})
+    [('HH', 'Hussey'), ('SBT', 's')]
+    """
+    text = re.sub(r"(?s)<(style|script)\b.*?</\1>", " ", html).replace("<wbr>", "")
+    text = re.sub(r"<[^>]+>", " ", text)
+    return [(a, meaning) for a, meaning in abbreviations.items()
+            if re.search(rf"(?<![A-Za-z0-9_]){re.escape(a)}(?![A-Za-z0-9_])", text)]

@@ -16,8 +16,9 @@ from .. import __version__, io
 from ..vehicle.ride import RideResult, result_json
 from . import ride_figures as rf
 from .render import environment
+from .tables import significant_decimals
 
-__all__ = ["SPEED_COLUMNS", "format_table", "figures", "render_page", "write_outputs", "dumps", "variants",
+__all__ = ["SPEED_COLUMNS", "format_table", "figures", "psd_edge_note", "render_page", "write_outputs", "dumps", "variants",
            "variant_label", "swept_keys"]
 
 #: Columns of the per-speed table (text and HTML), in order.
@@ -129,7 +130,8 @@ def figures(results: list[RideResult]) -> list[dict]:
         out.append({"caption": "Highest-axis a_w against rear pressure, one line per front pressure.",
                     "svg": rf.aw_against_pressure(speeds)})
     out += [
-        {"caption": f"Seat acceleration PSD (0.1 Hz bandwidth) per speed and axis ({variant_label(first)}).",
+        {"caption": f"Seat acceleration PSD (0.1 Hz bandwidth) per speed and axis ({variant_label(first)}). "
+                    + psd_edge_note(first),
          "svg": rf.seat_psd(first.spectra)},
         {"caption": "Seat transmissibility per axis from ground input (every wheel in phase with the wheelbase delay; "
                     f"lateral: left/right in anti-phase; no enveloping) ({variant_label(first)}).",
@@ -138,15 +140,41 @@ def figures(results: list[RideResult]) -> list[dict]:
     return out
 
 
+def psd_edge_note(result: RideResult) -> str:
+    """Why the PSD curves drop to nothing at a frequency that grows with speed (the track's band edge).
+
+    A track has no unevenness shorter than its shortest wavelength, so at speed ``v`` the ground
+    input ends at ``v × n_max`` (``n_max`` in cycles/m); above it only the estimate's leakage is
+    left, more than six decades down, which the figure does not draw.
+    """
+    import inspect
+
+    from ..vehicle import profiles
+
+    surface = result.scenario.surface
+    if surface.kind != "iso8608":
+        return ("Each curve stops where the track's unevenness stops: above v / (shortest wavelength of the "
+                "profile) the ground gives no input, and what is left is more than six decades down (not drawn).")
+    n_max = inspect.signature(profiles.iso8608_track).parameters["n_max_cycles_per_m"].default
+    v = min(result.scenario.exposure.speeds_km_h)
+    return (f"Each curve drops where the track's unevenness ends: a generated ISO 8608 track holds wavelengths "
+            f"down to {1 / n_max:.2f} m ({n_max:g} cycles/m, the standard's band), so at speed v the ground input "
+            f"stops at v × {n_max:g} cycles/m ({v / 3.6 * n_max:.1f} Hz at {v:g} km/h); above it only the "
+            f"estimate's leakage is left, more than six decades down (not drawn).")
+
+
 def render_page(results: list[RideResult], doc: dict | None = None) -> str:
     """The self-contained HTML page of a ride (no time stamp)."""
     doc = doc or result_json(results)
     rows = _rows(doc)
     cols = [c for c in SPEED_COLUMNS if c in rows[0] and (c not in ("front_pressure_bar", "rear_pressure_bar")
                                                           or "sweep" in doc)]
+    # one number format per column (decimals by the column's magnitude: 604.649 and 12.418 h read 605, 12)
+    decimals = {c: significant_decimals([r[c] for r in rows if isinstance(r[c], float)]) for c in cols
+                if any(isinstance(r[c], float) for r in rows)}
     return environment().get_template("ride.html.j2").render(
         r=doc, description=results[0].scenario.description, columns=cols, rows=rows, figures=figures(results),
-        variants=variants(results), three_d=results[0].scenario.tractor.three_d, version=__version__)
+        variants=variants(results), three_d=results[0].scenario.tractor.three_d, version=__version__, decimals=decimals)
 
 
 def write_outputs(results: list[RideResult], out: str | Path) -> dict[str, Path]:

@@ -38,13 +38,16 @@ import pandas as pd
 from .. import io
 from ..executor import map_alongside, map_in_background, worker_server_state
 from ..itemcache import digest
+from ..progress import Progress
 from ..warehouse import check_read_only, connect_read_only
 from . import tables
-from .chapters import Chapter, FigureSpec, TableSpec
-from .pages import ChapterPage, Page, registered, run_page_name
-from .render import environment, provenance
+from markupsafe import escape
 
-__all__ = ["MAX_PLAIN_ROWS", "POOL_MIN_FIGURES", "Missing", "Warehouse", "resolve_table",
+from .chapters import ABBREVIATIONS, Chapter, FigureSpec, TableSpec
+from .pages import ChapterPage, Page, registered, run_page_name
+from .render import abbreviations_used, environment, provenance
+
+__all__ = ["MAX_PLAIN_ROWS", "POOL_MIN_FIGURES", "Missing", "Warehouse", "resolve_table", "table_queries",
     "shape_table", "resolve_figure", "chapter_items", "run_page_name", "read_signals", "run_item", "SiteBuild",
     "build_site"]
 
@@ -154,7 +157,18 @@ def resolve_table(wh: Warehouse, spec: TableSpec, cache=None) -> dict:
     else:
         key = cache.key("table", dataclasses.asdict(spec), ours, published)
         shaped = cache.get_or_compute(key, lambda: shape_table(spec, ours, published))
-    return {"kind": "table", "spec": spec, **shaped}
+    return {"kind": "table", "spec": spec, **shaped, "queries": table_queries(wh, spec)}
+
+
+def table_queries(wh: Warehouse, spec: TableSpec) -> list[str]:
+    """The queries a page shows under a table: those that run in ``tyrelab sql`` on this warehouse
+    (our values: ``spec.ours_sql`` or the whole view; the digitised thesis table)."""
+    queries = []
+    if spec.view in wh:
+        queries.append(spec.ours_sql or f"SELECT * FROM {spec.view}")
+    if spec.published and spec.published in wh:
+        queries.append(f"SELECT * FROM {spec.published}")
+    return queries
 
 
 def shape_table(spec: TableSpec, ours: pd.DataFrame | None, published: pd.DataFrame) -> dict:
@@ -175,7 +189,7 @@ def shape_table(spec: TableSpec, ours: pd.DataFrame | None, published: pd.DataFr
             keys = [c for c in common if not tables._is_numeric(ours[c]) or c in tables.NUMERIC_KEYS]
             df = tables.compare_frames(ours, published, keys, {c: c for c in common if c not in keys})
         if tables.find_pairs(df.columns):
-            item.update(mode="comparison", shaped=tables.shape_comparison(df))
+            item.update(mode="comparison", shaped=tables.shape_comparison(df, columns=spec.columns))
         else:
             item.update(mode="plain", plain=tables.plain_table(df, list(spec.columns) or None, MAX_PLAIN_ROWS))
     elif not published.empty:
@@ -278,19 +292,25 @@ class FigureSet:
         if background is not None:
             background.abandon()
 
-    def draw_all(self) -> None:
+    @property
+    def to_draw(self) -> int:
+        """Figures :meth:`draw_all` will draw (not in the cache), once :meth:`start` ran."""
+        return len(getattr(self, "_todo", ()))
+
+    def draw_all(self, on_done=None) -> None:
         """The figures not in the cache: collected from the workers of :meth:`start`, else drawn in
         parallel by this process and ``jobs - 1`` workers (:func:`tyrelab.executor.map_alongside`;
-        by this process alone when fewer than :data:`POOL_MIN_FIGURES` and no worker server is ready)."""
+        by this process alone when fewer than :data:`POOL_MIN_FIGURES` and no worker server is ready);
+        ``on_done(i)`` after each."""
         if not hasattr(self, "_todo"):
             self.start()
         todo, background, self._background = self._todo, self._background, None
         if background is not None:
-            svgs = background.results()
+            svgs = background.results(on_done)
         else:
             ready = worker_server_state() == "ready"
             svgs = map_alongside(draw, [self.tasks[k] for k in todo],
-                                 self.jobs if len(todo) >= POOL_MIN_FIGURES or ready else 1)
+                                 self.jobs if len(todo) >= POOL_MIN_FIGURES or ready else 1, on_done=on_done)
         for key, svg in zip(todo, svgs):
             self.svgs[key] = svg
             if self.cache:
@@ -453,6 +473,16 @@ class SiteBuild:
                 for it in self.items(page) if it.get("missing") and not it["missing"].empty]
 
 
+def _spell_out(html: str) -> str:
+    """The page with its abbreviations (:data:`~tyrelab.report.chapters.ABBREVIATIONS` that appear
+    in it) spelled out once, under the title."""
+    used = abbreviations_used(html, ABBREVIATIONS)
+    if not used or "</h1>\n" not in html:
+        return html
+    line = "; ".join(f"<strong>{escape(a)}</strong>: {escape(m)}" for a, m in used)
+    return html.replace("</h1>\n", f'</h1>\n<p class="abbr">Abbreviations on this page — {line}.</p>\n', 1)
+
+
 def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1, pages: list[Page] | None = None) -> dict:
     """Render every registered page of the report into ``out``.
 
@@ -493,18 +523,20 @@ def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1, pages:
         for name, task in page.figures(site):
             figs.request(name, task)
     figs.start()  # with a worker server ready the figures are drawn while the tables are shaped
+    progress = Progress("report: figures and pages", figs.to_draw + len(pages_), unit="items")
     try:
         site.shape_tables()
-        figs.draw_all()
+        figs.draw_all(on_done=lambda i: progress.step())
     except BaseException:
         figs.abandon()
+        progress.close()
         raise
 
     for page in pages_:
         outputs = list(page.render(site))
         for o in outputs:
-            html = env.get_template(o.template).render(prov=prov, nav=nav, root=o.root, here=page.slug,
-                                                       title=o.title, **o.context)
+            html = _spell_out(env.get_template(o.template).render(prov=prov, nav=nav, root=o.root, here=page.slug,
+                                                                  title=o.title, **o.context))
             path = out / o.path
             if not path.is_file() or path.read_text(encoding="utf-8") != html:  # unchanged pages keep their mtime
                 io.write_text_atomic(html, path)
@@ -514,6 +546,7 @@ def build_site(db: Path, out: Path, raw: Path, cache=None, jobs: int = 1, pages:
             for stale in (out / page.folder).glob("*.html"):
                 if stale not in keep:
                     stale.unlink()
+        progress.step()
 
     items = [it for page in pages_ if isinstance(page, ChapterPage) for it in site.items(page)]
     missing = site.missing()

@@ -20,7 +20,9 @@ in :data:`ABS_TOL` (e.g. the ±8 kN/m standard error of K_c, thesis §4.3.1).
 
 from __future__ import annotations
 
+import dataclasses
 import math
+import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -28,7 +30,8 @@ import pandas as pd
 
 __all__ = ["REL_TOL", "ABS_TOL", "NUMERIC_KEYS", "HIDDEN", "EXTRAS", "Pair", "Shaped", "find_pairs",
     "tolerance", "shape_comparison", "compare_frames", "thesis_only", "plain_table", "campaign_summary",
-    "select_runs", "interval_text"]
+    "select_runs", "interval_text", "pair_decimals", "significant_decimals", "natural_order", "Note",
+    "LONG_TEXT_CHARS", "MAX_DECIMALS"]
 
 #: Relative tolerance beyond which a difference is highlighted.
 REL_TOL = 0.05
@@ -57,12 +60,17 @@ EXTRAS = ("n",)
 
 @dataclass(frozen=True)
 class Pair:
-    """One compared quantity: its label and the thesis, ours and difference columns."""
+    """One compared quantity: its label and the thesis, ours and difference columns.
+
+    ``decimals`` is how many decimals ours, its interval and Δ are shown with (the same for every
+    row: one format per quantity, :func:`pair_decimals`); None until :func:`shape_comparison` sets it.
+    """
 
     label: str
     thesis: str
     ours: str
     difference: str | None = None
+    decimals: int | None = None
 
 
 @dataclass
@@ -83,6 +91,11 @@ class Shaped:
         (thesis, ours, difference, off) per pair).
     n_off : int
         Number of highlighted differences.
+    notes : list of str
+        Long texts moved out of their cells (:class:`Note`), note 1 first.
+    not_compared : list of dict
+        Rows (as ``rows``) with the thesis' values and none of ours, when other rows have ours:
+        the thesis' conditions this campaign did not measure, shown behind a count.
     """
 
     keys: list[str]
@@ -90,6 +103,8 @@ class Shaped:
     extras: list[str]
     rows: list[dict] = field(default_factory=list)
     n_off: int = 0
+    notes: list[str] = field(default_factory=list)
+    not_compared: list[dict] = field(default_factory=list)
 
 
 def find_pairs(columns) -> list[Pair]:
@@ -150,7 +165,7 @@ def _is_numeric(s: pd.Series) -> bool:
     return pd.api.types.is_numeric_dtype(s) and not pd.api.types.is_bool_dtype(s)
 
 
-def shape_comparison(df: pd.DataFrame, extras: tuple[str, ...] = EXTRAS) -> Shaped:
+def shape_comparison(df: pd.DataFrame, extras: tuple[str, ...] = EXTRAS, columns: tuple[str, ...] = ()) -> Shaped:
     """Split ``df`` into key columns, compared pairs and extras; flag differences.
 
     Parameters
@@ -159,12 +174,14 @@ def shape_comparison(df: pd.DataFrame, extras: tuple[str, ...] = EXTRAS) -> Shap
         A table with comparison columns (see :func:`find_pairs`).
     extras : tuple of str, optional
         Plain columns to keep when present.
+    columns : tuple of str, optional
+        When given, the only key and extra columns shown (the compared pairs are always shown).
 
     Returns
     -------
     Shaped
     """
-    pairs = find_pairs(df.columns)
+    pairs = [dataclasses.replace(p, decimals=pair_decimals(df, p)) for p in find_pairs(df.columns)]
     used = {c for p in pairs for c in (p.thesis, p.ours, p.difference) if c}
     keys = [
         c for c in df.columns
@@ -174,9 +191,12 @@ def shape_comparison(df: pd.DataFrame, extras: tuple[str, ...] = EXTRAS) -> Shap
         and (not _is_numeric(df[c]) or c in NUMERIC_KEYS)
     ]
     extra = [c for c in extras if c in df.columns and c not in used]
+    if columns:
+        keys = [c for c in keys if c in columns]
+        extra = [c for c in extra if c in columns]
     shaped = Shaped(keys=keys, pairs=pairs, extras=extra)
     for rec in df.to_dict(orient="records"):
-        cells = {c: rec[c] for c in keys + extra}
+        cells = {c: _noted(rec[c], shaped.notes) for c in keys + extra}
         row_pairs = []
         for p in pairs:
             t, o = _num(rec[p.thesis]), _num(rec[p.ours])
@@ -184,12 +204,84 @@ def shape_comparison(df: pd.DataFrame, extras: tuple[str, ...] = EXTRAS) -> Shap
             off = bool(np.isfinite(d) and np.isfinite(t) and abs(d) > tolerance(t, p.label))
             shaped.n_off += off
             row_pairs.append((t, o, d, off))
-        shaped.rows.append({"cells": cells, "pairs": row_pairs, "intervals": [interval_text(rec, p.ours) for p in pairs]})
+        shaped.rows.append({"cells": cells, "pairs": row_pairs,
+                            "intervals": [interval_text(rec, p.ours, p.decimals) for p in pairs]})
+    compared = [r for r in shaped.rows if any(np.isfinite(o) for _, o, _, _ in r["pairs"])]
+    if compared and len(compared) < len(shaped.rows):
+        shaped.not_compared = [r for r in shaped.rows if not any(np.isfinite(o) for _, o, _, _ in r["pairs"])]
+        shaped.rows = compared
     return shaped
 
 
-def interval_text(rec: dict, column: str) -> str:
+#: Most decimals a compared quantity is shown with.
+MAX_DECIMALS = 4
+
+
+def pair_decimals(df: pd.DataFrame, pair: Pair) -> int:
+    """Decimals of ours and Δ for one compared quantity, the same in every row.
+
+    Where ours carries 95 % intervals, two significant digits of the median half-width (the
+    uncertainty decides the digits); else one decimal more than the thesis prints (the largest
+    count among its rows), so a difference within the thesis' precision still shows. At most
+    :data:`MAX_DECIMALS`.
+
+    Examples
+    --------
+    >>> df = pd.DataFrame({"thesis_k": [134.0, 120.0], "k": [124.31, 118.2],
+    ...                    "k_ci_low": [96.0, 110.0], "k_ci_high": [152.6, 126.4]})
+    >>> pair_decimals(df, Pair("k", "thesis_k", "k"))
+    0
+    >>> pair_decimals(pd.DataFrame({"thesis_f": [2.76, 3.5], "f": [2.7523, 3.488]}), Pair("f", "thesis_f", "f"))
+    3
+    """
+    widths = [(_num(hi) - _num(lo)) / 2 for lo, hi in
+              (_interval_columns(rec, pair.ours) for rec in df.to_dict(orient="records"))
+              if np.isfinite(_num(lo)) and np.isfinite(_num(hi))] if len(df) else []
+    widths = [w for w in widths if w > 0]
+    if widths:
+        return int(min(MAX_DECIMALS, max(0, 1 - math.floor(math.log10(float(np.median(widths)))))))
+    printed = [_decimals(t) for t in map(_num, df[pair.thesis]) if np.isfinite(t)] if pair.thesis in df else []
+    if printed:
+        return min(MAX_DECIMALS, max(printed) + 1)
+    ours = [abs(v) for v in map(_num, df[pair.ours]) if np.isfinite(v) and v != 0] if pair.ours in df else []
+    return significant_decimals(ours)
+
+
+def significant_decimals(values, digits: int = 3) -> int:
+    """Decimals that show ``digits`` significant digits of the median magnitude of ``values`` (0 for
+    whole numbers, at most :data:`MAX_DECIMALS`): one format for a whole column.
+
+    Examples
+    --------
+    >>> significant_decimals([424.0, 10.364, 2241.483]), significant_decimals([0.0123, 0.02]), significant_decimals([3.0, 4.0])
+    (0, 4, 0)
+    """
+    vals = [abs(float(v)) for v in values if v is not None and np.isfinite(float(v))]
+    if not vals or all(float(v).is_integer() for v in vals):
+        return 0
+    nonzero = [v for v in vals if v > 0]
+    if not nonzero:
+        return 0
+    return int(min(MAX_DECIMALS, max(0, digits - 1 - math.floor(math.log10(float(np.median(nonzero)))))))
+
+
+def _interval_columns(rec: dict, column: str) -> tuple:
+    """The (low, high) values of ``column``'s 95 % interval in ``rec`` (None, None without one)."""
+    low, high = f"{column}_ci_low", f"{column}_ci_high"
+    if low not in rec:
+        parts = column.split("_")
+        for i in range(len(parts) - 1, 0, -1):
+            stem, unit = "_".join(parts[:i]), "_".join(parts[i:])
+            if f"{stem}_ci95_low_{unit}" in rec:
+                low, high = f"{stem}_ci95_low_{unit}", f"{stem}_ci95_high_{unit}"
+                break
+    return rec.get(low), rec.get(high)
+
+
+def interval_text(rec: dict, column: str, decimals: int | None = None) -> str:
     """The 95 % interval of ``column`` as ``[low, high]``, or ``""`` if the row has none.
+
+    ``decimals`` as the value's (:func:`pair_decimals`); default: three significant digits of the width.
 
     Read from ``<column>_ci_low``/``_ci_high`` (a fit's interval), or, for a column named
     ``<stem>_<unit>``, from ``<stem>_ci95_low_<unit>``/``<stem>_ci95_high_<unit>`` (a
@@ -203,19 +295,13 @@ def interval_text(rec: dict, column: str) -> str:
     '[2.551, 2.962]'
     >>> interval_text({"k": 1.0}, "k")
     ''
+    >>> interval_text({"k_ci_low": 140.04, "k_ci_high": 151.2}, "k", decimals=0)
+    '[140, 151]'
     """
-    low, high = f"{column}_ci_low", f"{column}_ci_high"
-    if low not in rec:
-        parts = column.split("_")
-        for i in range(len(parts) - 1, 0, -1):
-            stem, unit = "_".join(parts[:i]), "_".join(parts[i:])
-            if f"{stem}_ci95_low_{unit}" in rec:
-                low, high = f"{stem}_ci95_low_{unit}", f"{stem}_ci95_high_{unit}"
-                break
-    lo, hi = _num(rec.get(low)), _num(rec.get(high))
+    lo, hi = map(_num, _interval_columns(rec, column))
     if not (np.isfinite(lo) and np.isfinite(hi)):
         return ""
-    digits = max(0, 2 - int(np.floor(np.log10(max(abs(hi - lo), 1e-12)))))
+    digits = decimals if decimals is not None else max(0, 2 - int(np.floor(np.log10(max(abs(hi - lo), 1e-12)))))
     return f"[{lo:.{digits}f}, {hi:.{digits}f}]"
 
 
@@ -264,7 +350,32 @@ def compare_frames(ours: pd.DataFrame, thesis: pd.DataFrame, keys: list[str], va
         out[f"thesis_{o}"] = pd.to_numeric(m[f"thesis_{o}"], errors="coerce")
         out[o] = pd.to_numeric(m[o], errors="coerce")
         out[f"{o}_difference"] = out[o] - out[f"thesis_{o}"]
-    return out.reset_index(drop=True)
+    return natural_order(out, keys)
+
+
+def _sort_text(s: pd.Series) -> pd.Series:
+    """Sort key of a column: numbers as numbers, text with its digit runs as numbers (T2 < T10)."""
+    num = pd.to_numeric(s, errors="coerce")
+    if num.notna().sum() == s.notna().sum():
+        return num
+    return s.map(lambda v: re.sub(r"\d+", lambda m: m.group().zfill(12), str(v).lower()) if pd.notna(v) else None)
+
+
+def natural_order(df: pd.DataFrame, keys: list[str]) -> pd.DataFrame:
+    """``df`` ordered by ``keys``, numbers as numbers (5 < 7.5 < 10, not "10" < "5") and text
+    naturally (T2 < T10); missing keys last; a stable sort, the index renumbered.
+
+    Examples
+    --------
+    >>> natural_order(pd.DataFrame({"speed": [10, 12.5, 5, 7.5]}), ["speed"])["speed"].tolist()
+    [5.0, 7.5, 10.0, 12.5]
+    """
+    keys = [k for k in keys if k in df.columns]
+    if not keys or df.empty:
+        return df.reset_index(drop=True)
+    order = pd.DataFrame({i: _sort_text(df[k]) for i, k in enumerate(keys)})
+    index = order.sort_values(list(range(len(keys))), kind="mergesort", na_position="last").index
+    return df.loc[index].reset_index(drop=True)
 
 
 def thesis_only(thesis: pd.DataFrame, value_columns: tuple[str, ...] = ()) -> pd.DataFrame:
@@ -291,11 +402,42 @@ def plain_table(df: pd.DataFrame, columns: list[str] | None = None, max_rows: in
     Returns
     -------
     dict
-        ``columns``, ``rows`` (list of lists), ``n_total``, ``truncated``.
+        ``columns``, ``rows`` (list of lists; a text longer than :data:`LONG_TEXT_CHARS` is a
+        :class:`Note`), ``n_total``, ``truncated``, ``notes`` (the long texts, note 1 first) and
+        ``decimals`` (per column: decimals of a non-integer numeric column, else None).
     """
     cols = [c for c in columns if c in df.columns] if columns else [c for c in df.columns if c not in HIDDEN]
-    rows = df[cols].head(max_rows).to_dict(orient="split")["data"]
-    return {"columns": cols, "rows": rows, "n_total": len(df), "truncated": len(df) > max_rows}
+    shown = df[cols].head(max_rows)
+    rows = shown.to_dict(orient="split")["data"]
+    notes: list[str] = []
+    rows = [[_noted(v, notes) for v in row] for row in rows]
+    decimals = {c: significant_decimals(pd.to_numeric(shown[c], errors="coerce").dropna()) for c in cols
+                if _is_numeric(shown[c]) and not pd.api.types.is_integer_dtype(shown[c])}
+    return {"columns": cols, "rows": rows, "n_total": len(df), "truncated": len(df) > max_rows, "notes": notes,
+            "decimals": [decimals.get(c) for c in cols]}
+
+
+#: Text longer than this (characters) leaves its table cell for a numbered note below the table.
+LONG_TEXT_CHARS = 90
+
+
+def _noted(value, notes: list[str]):
+    """``value``, or a :class:`Note` (its text appended to ``notes`` once) when it is a long text."""
+    if isinstance(value, str) and len(value) > LONG_TEXT_CHARS:
+        if value not in notes:
+            notes.append(value)
+        return Note(notes.index(value) + 1)
+    return value
+
+
+@dataclass(frozen=True)
+class Note:
+    """A table cell whose long text is shown below the table as note ``number``."""
+
+    number: int
+
+    def __str__(self) -> str:
+        return f"note {self.number}"
 
 
 def campaign_summary(manifest: pd.DataFrame, results: pd.DataFrame, quarantine: pd.DataFrame,

@@ -11,6 +11,7 @@ from __future__ import annotations
 import importlib
 import time
 
+from .. import progress
 from . import state
 from .base import Context, StageResult
 from .dag import ORDER, STAGES, upstream
@@ -50,6 +51,7 @@ def run_stage(name: str, ctx: Context) -> StageResult:
         result = module.run(ctx)
     finally:
         ctx.stage = None
+        progress.close_all()  # a bar the stage left (an error, Ctrl-C) leaves the terminal
     counts = {"n_in": result.n_in, "n_ok": result.n_ok, "n_quarantined": result.n_quarantined,
               "n_rejected": result.n_rejected}
     state.record(ctx, stage, code, inputs, cache, counts)

@@ -31,6 +31,7 @@ import numpy as np
 import pandas as pd
 import pyarrow.parquet as pq
 
+from ..measurement.calibration import CALIBRATION_REASON
 from ..measurement import qc
 from ..measurement.recording import analyse_batch
 from ..tyre.sizes import lugs_per_side, tyre_rolling_circumference_m
@@ -165,6 +166,12 @@ def analyse_paths(task: dict) -> pd.DataFrame:
     return analyse_batch(accel, beams, masses, task["sample_rate_Hz"], interference)
 
 
+def _flagged_by_analyse(reasons: str) -> bool:
+    """Whether a run's ``qc_reasons`` hold a reason of this stage's QC (not calibrate's day flag)."""
+    prefix = CALIBRATION_REASON.split("{")[0]
+    return any(r and not r.startswith(prefix) for r in reasons.split("; "))
+
+
 def run(ctx: Context) -> StageResult:
     """Analyse every measurement run in ``manifest``; write ``results``."""
     t0 = time.perf_counter()
@@ -219,7 +226,9 @@ def run(ctx: Context) -> StageResult:
             ctx.log.error("%s: %s", q["file"], q["reason"])
     ctx.write_table(OUTPUT, results)
     write_quarantine(ctx, "analyse", quarantine)
-    res.n_ok = int(results["qc_ok"].sum()) if not results.empty else 0
+    # this stage's QC only: calibrate adds "calibration failed on <day>" to the results it keeps
+    own_flag = results["qc_reasons"].fillna("").map(_flagged_by_analyse) if not results.empty else pd.Series([], dtype=bool)
+    res.n_ok = int((~own_flag & results["excitation_frequency_measured_Hz"].notna()).sum()) if not results.empty else 0
     res.n_quarantined = len(quarantine)
     flagged = len(results) - res.n_ok - len(quarantine) if not results.empty else 0
     res.message = f"{len(reuse)} reused, {len(new)} analysed" + (f", {flagged} flagged by QC" if flagged else "")

@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from .. import io
+from ..progress import Progress  # noqa: F401 - the stages' progress (a bar on a terminal, else log lines)
 
 if TYPE_CHECKING:  # imported where used: a no-op run never needs pandas
     import pandas as pd
@@ -133,37 +134,6 @@ class StageResult:
         if self.n_rejected:
             text += f", {self.n_rejected} file(s) rejected"
         return f"{text}; {self.message}" if self.message else text
-
-
-class Progress:
-    """Log ``done/total`` and rate at most every ``every_s`` seconds.
-
-    Parameters
-    ----------
-    label : str
-        What is being counted, e.g. ``"analyse"``.
-    total : int
-        Number of items.
-    """
-
-    def __init__(self, label: str, total: int, every_s: float = 2.0, logger: logging.Logger = log):
-        self.label, self.total, self.every_s, self.log = label, total, every_s, logger
-        self.t0 = self._last = time.perf_counter()
-        self.done = 0
-
-    def step(self, n: int = 1) -> None:
-        """Count ``n`` items done; log if enough time has passed or at the end."""
-        self.done += n
-        now = time.perf_counter()
-        if now - self._last >= self.every_s or self.done == self.total:
-            rate = self.done / max(now - self.t0, 1e-9)
-            self.log.info("%s: %d/%d runs (%.0f runs/s)", self.label, self.done, self.total, rate)
-            self._last = now
-
-    @property
-    def elapsed(self) -> float:
-        """Seconds since the start."""
-        return time.perf_counter() - self.t0
 
 
 QUARANTINE_COLUMNS = ["campaign", "run_id", "file", "stage", "reason"]

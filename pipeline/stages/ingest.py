@@ -64,6 +64,10 @@ MAX_PARTITION_BYTES = 240
 INFO_KEYS = ("sample_rate_Hz", "n_samples", "duration_s")
 
 
+#: A campaign's list of vehicle recordings (raw format of :mod:`tyrelab.rawformat.rides`).
+RIDES_FILE = "rides.csv"
+
+
 def run_key(run_id: str) -> str:
     """A file-name-safe, unique key for a run id (:func:`tyrelab.io.safe_name`)."""
     return io.safe_name(run_id)
@@ -269,8 +273,11 @@ def _plan(ctx: Context, schema: dict, campaigns: list[Path], sizes_ok: dict) -> 
                 plan.todo.append((campaign, row))
             if run_id is not None:
                 seen.setdefault(run_id, str(manifest_path))
+        recordings = _ride_files(campaign)
         for f in sorted(_run_files(campaign)):
             rel = f.relative_to(campaign)
+            if str(rel) in recordings:
+                continue  # a vehicle recording of rides.csv (issue 24), not a tyre run
             if str(rel) not in listed and f.name not in listed:
                 reject(None, str(rel), "file has no row in manifest.csv")
     return plan
@@ -281,11 +288,25 @@ def _run_files(campaign: Path):
 
     Special files (FIFOs, devices) are skipped with a warning by :func:`tyrelab.io.regular_files`."""
     for f in io.regular_files(campaign):
-        if f.suffix.lower() not in RUN_SUFFIXES or f.name in ("manifest.csv", "tyres.csv"):
+        if f.suffix.lower() not in RUN_SUFFIXES or f.name in ("manifest.csv", "tyres.csv", RIDES_FILE):
             continue
         if any((p / "manifest.csv").is_file() for p in f.parents if p != campaign and campaign in p.parents):
             continue
         yield f
+
+
+def _ride_files(campaign: Path) -> set[str]:
+    """The files a campaign's ``rides.csv`` lists (relative paths as written): vehicle
+    recordings, read by their own stage, never tyre runs. A ``rides.csv`` that cannot be read
+    lists nothing here; the stage that reads recordings reports it."""
+    path = campaign / RIDES_FILE
+    if not path.is_file():
+        return set()
+    try:
+        files = pd.read_csv(path, usecols=["file"], dtype=str)["file"].dropna()
+    except (OSError, ValueError, UnicodeDecodeError, pd.errors.ParserError):
+        return set()
+    return {str(Path(f)) for f in files}
 
 
 def _sweep(runs_dir: Path, keep: set[str]) -> None:
@@ -380,8 +401,9 @@ def run(ctx: Context) -> StageResult:
     # leaves its runs' files without a row and exited 0).
     result.n_rejected = max(plan.rejected, unlisted)
     result.n_in = result.n_ok + result.n_quarantined
-    converted = sum(1 for d in done.values() if d.get("converted"))
-    result.message = f"{converted} converted, {len(done) - converted} unchanged" + (
+    converted = sum(1 for d in done.values() if d.get("converted") is True)
+    unchanged = sum(1 for d in done.values() if not d.get("converted") and "reason" not in d)  # refused: neither
+    result.message = f"{converted} converted, {unchanged} unchanged" + (
         f"; {unlisted} file/manifest/catalogue problem(s) without a run id" if unlisted else "")
     result.seconds = time.perf_counter() - t0
     return result

@@ -50,7 +50,7 @@ from ..vehicle import bounce_pitch, ride, studies
 from ..vehicle import published_layouts as layouts
 from ..vehicle.model import assemble
 from ..vehicle.scenario import ScenarioError, load_scenario
-from .base import Context, StageResult, write_quarantine
+from .base import Context, Progress, StageResult, write_quarantine
 from .state import ItemCache
 
 __all__ = ["SEED", "STEMS", "THESIS_XX_STATISTICS", "run", "start_studies_ahead", "abandon_studies_ahead",
@@ -293,7 +293,8 @@ def run(ctx: Context) -> StageResult:
     ride_items = [("ride", item) for item in scenario_items([f for f, _ in ride_todo], ctx.build)]
     model = thesis_stiffness_model(*(pub[t] for t in THESIS_TABLES))
     items = todo + ride_items + [("table_xx", (layouts.tractors(pub["table_xix"]), pub["table_xx"], model))]
-    outputs = map_batches(_task, items, ctx)
+    progress = Progress("simulate", len(items), logger=ctx.log, unit="studies/scenarios")
+    outputs = map_batches(_task, items, ctx, on_done=lambda i: progress.step())
     for (name, _), value in zip(todo, outputs):
         done[name] = _keep_study(cache, name, keys[name], value, case_keys)
     ride_outputs, xx = outputs[len(todo):len(todo) + len(ride_items)], outputs[-1]

@@ -214,7 +214,10 @@ def tractor_natural_frequencies(
         the stiffness uncertainties ``front_tyre_stiffness_u_kN_per_m``,
         ``rear_tyre_stiffness_u_kN_per_m`` and the frequencies' ``frequency_1_u_Hz``,
         ``frequency_2_u_Hz``, ``frequency_1_Hz_ci95``, ``frequency_2_Hz_ci95`` ([low, high])
-        from them (:func:`frequency_uncertainty`, ``frequency_interval_method``).
+        from them (:func:`frequency_uncertainty`, ``frequency_interval_method``);
+        ``natural_frequencies_Hz`` and ``nodal_points_m`` (``bounce``, ``pitch``: the same two
+        frequencies by mode, and each mode's nodal point ahead of the CG in m, inf for a mode that
+        does not pitch; :func:`mode_shapes`), as ``tyrelab ride`` reports them.
     """
     warnings: list[str] = []
     uf, ur = 0.0, 0.0
@@ -243,6 +246,7 @@ def tractor_natural_frequencies(
     f1, f2 = natural_frequencies(
         mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m, 2e3 * kf, 2e3 * kr
     )
+    modes = mode_shapes(mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m, 2e3 * kf, 2e3 * kr)
     (u1, u2), (ci1, ci2) = frequency_uncertainty(mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m,
                                                  kf, kr, uf, ur)
     return {
@@ -257,6 +261,9 @@ def tractor_natural_frequencies(
         "frequency_1_Hz_ci95": list(ci1),
         "frequency_2_Hz_ci95": list(ci2),
         "frequency_interval_method": FREQUENCY_INTERVAL_METHOD,
+        # the modes by name, as ``tyrelab ride`` reports them (mode_shapes: the same eigenproblem)
+        "natural_frequencies_Hz": {k: modes[k]["frequency_Hz"] for k in ("bounce", "pitch")},
+        "nodal_points_m": {k: modes[k]["nodal_point_ahead_of_cg_m"] for k in ("bounce", "pitch")},
         "warnings": warnings,
     }
 

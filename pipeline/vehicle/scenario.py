@@ -381,7 +381,7 @@ def _section_values(doc: dict, name: str) -> tuple[dict | None, list[str]]:
     return node, []
 
 
-def _validate(doc: dict, base_dir: Path) -> list[str]:
+def _validate(doc: dict, base_dir: Path, confine: bool = True) -> list[str]:
     """Every problem of a parsed TOML document (empty list when it is valid)."""
     problems: list[str] = []
     sections = _sections()
@@ -439,7 +439,7 @@ def _validate(doc: dict, base_dir: Path) -> list[str]:
             if "profile" not in surf:
                 problems.append("surface.profile (a CSV path) is required with kind = \"profile\"")
             elif isinstance(surf["profile"], str):
-                problems += _profile_problems(base_dir, surf["profile"])
+                problems += _profile_problems(base_dir, surf["profile"], confine)
     return problems
 
 
@@ -612,11 +612,14 @@ def _parts_problems(doc: dict) -> list[str]:
     return problems
 
 
-def _resolve_inside(base_dir: Path, relative: str) -> tuple[Path | None, str | None]:
-    """``base_dir / relative`` if it stays inside ``base_dir``, else a problem."""
+def _resolve_inside(base_dir: Path, relative: str, confine: bool = True) -> tuple[Path | None, str | None]:
+    """``base_dir / relative`` if it stays inside ``base_dir``, else a problem; without ``confine``
+    (a scenario file the user names) any path, absolute or relative to ``base_dir``."""
     if "\0" in relative:
         return None, f"surface.profile {relative!r}: a path cannot hold a NUL character"
     rel = Path(relative)
+    if not confine:
+        return (base_dir / rel).resolve(), None
     if rel.is_absolute():
         return None, f"surface.profile {relative!r}: give a path relative to the scenario file"
     full = (base_dir / rel).resolve()
@@ -625,8 +628,8 @@ def _resolve_inside(base_dir: Path, relative: str) -> tuple[Path | None, str | N
     return full, None
 
 
-def _profile_problems(base_dir: Path, relative: str) -> list[str]:
-    full, problem = _resolve_inside(base_dir, relative)
+def _profile_problems(base_dir: Path, relative: str, confine: bool = True) -> list[str]:
+    full, problem = _resolve_inside(base_dir, relative, confine)
     if problem:
         return [problem]
     try:
@@ -694,7 +697,7 @@ def _floats(table: dict) -> dict:
     return {k: (v if isinstance(v, (str, bool)) else float(v)) for k, v in table.items()}
 
 
-def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
+def _build(doc: dict, path: Path | None, base_dir: Path, confine: bool = True) -> Scenario:
     t, s, surf, ex = doc["tractor"], doc.get("seat", {}), doc["surface"], doc["exposure"]
     sim = doc.get("simulation", {})
     sweep = doc.get("sweep", {})
@@ -710,7 +713,7 @@ def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
             formula=str(d.get("formula", "thesis")),
         )
 
-    profile = _resolve_inside(base_dir, surf["profile"])[0] if "profile" in surf else None
+    profile = _resolve_inside(base_dir, surf["profile"], confine)[0] if "profile" in surf else None
     return Scenario(
         name=doc["name"],
         description=doc.get("description", ""),
@@ -741,7 +744,8 @@ def _build(doc: dict, path: Path | None, base_dir: Path) -> Scenario:
     )
 
 
-def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | None = None) -> Scenario:
+def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | None = None, *,
+                   confine: bool = True) -> Scenario:
     """Parse and check scenario TOML text.
 
     Parameters
@@ -753,6 +757,10 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
         must stay inside.
     path : path, optional
         File name used in messages.
+    confine : bool, optional
+        ``surface.profile`` must be a relative path inside ``base_dir`` (default: campaign
+        scenarios the pipeline walks). False for a file the user names (``tyrelab ride FILE``):
+        an absolute path, or one relative to ``base_dir`` anywhere.
 
     Raises
     ------
@@ -792,10 +800,10 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
     except RecursionError:  # arrays nested thousands deep
         raise ScenarioError(where, ["not valid TOML: nested too deeply"]) from None
     base = Path(base_dir)
-    problems = _validate(doc, base)
+    problems = _validate(doc, base, confine)
     if problems:
         raise ScenarioError(where, problems)
-    scenario = _build(doc, Path(path) if path is not None else None, base)
+    scenario = _build(doc, Path(path) if path is not None else None, base, confine)
     problems = scenario_problems(scenario)  # what the model can represent (scenario_limits.LIMITS)
     if problems:
         raise ScenarioError(where, problems)
@@ -806,8 +814,8 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
 MAX_SCENARIO_BYTES = 1_000_000
 
 
-def load_scenario(path: str | Path) -> Scenario:
-    """Read and check a scenario file (see :func:`parse_scenario`).
+def load_scenario(path: str | Path, *, confine: bool = True) -> Scenario:
+    """Read and check a scenario file (see :func:`parse_scenario`, ``confine`` included).
 
     Raises
     ------
@@ -823,7 +831,7 @@ def load_scenario(path: str | Path) -> Scenario:
         text = p.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise ScenarioError(p, [f"cannot read: {exc.strerror if isinstance(exc, OSError) else exc}"]) from None
-    return parse_scenario(text, p.resolve().parent, p)
+    return parse_scenario(text, p.resolve().parent, p, confine=confine)
 
 
 def with_overrides(

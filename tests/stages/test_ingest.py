@@ -1,5 +1,7 @@
 """Ingest basics; the full bad-input suite is in test_ingest_robustness.py."""
 
+from pathlib import Path
+
 import pandas as pd
 
 from tyrelab.stages import Context, run_stage
@@ -32,6 +34,8 @@ def test_bad_run_quarantined_good_runs_proceed(tmp_path):
     q = ctx.read_table("quarantine").set_index("run_id")
     assert "corrupt" in q.loc["bad", "reason"] and q.loc["bad", "file"].endswith("bad.parquet")
     assert "pressure_bar" in q.loc["neg", "reason"] and "minimum" in q.loc["neg", "reason"]
+    # a fresh build: the corrupt file is neither converted nor unchanged (issue 26: "1 converted, 1 unchanged")
+    assert r.message == "1 converted, 0 unchanged"
 
 
 def test_campaign_tyres_csv_extends_catalogue(tmp_path):
@@ -71,3 +75,21 @@ def test_runs_converted_by_other_code_are_converted_again(tmp_path):
     kept["r0"]["code"] = "an older version"
     path.write_text(json.dumps(kept))
     assert ingest_run(ctx).message == "1 converted, 1 unchanged"
+
+
+def test_vehicle_recordings_of_rides_csv_are_not_orphan_runs(tmp_path):
+    """A campaign's rides.csv lists vehicle recordings (issue 24; ``tyrelab generate`` writes
+    them into the demo campaign): ingest must not reject them, nor rides.csv itself, as files
+    without a manifest row (that made ``tyrelab run`` on the demo exit 3). A stray file still is."""
+    raw = write_campaign(tmp_path / "raw", [(manifest_row("ok", "ok.parquet"), spring_damper_recording())])
+    (raw / "rides").mkdir()
+    t = pd.DataFrame({"time_s": [0.0, 0.01], "seat_z_m_s2": [0.0, 0.1]})
+    t.to_parquet(raw / "rides" / "r1.parquet")
+    t.to_csv(raw / "rides" / "r2.csv", index=False)
+    t.to_parquet(raw / "stray.parquet")
+    pd.DataFrame({"ride_id": ["r1", "r2"], "file": ["rides/r1.parquet", "rides/r2.csv"]}).to_csv(
+        raw / "rides.csv", index=False)
+    ctx = Context(raw=raw, build=tmp_path / "build", jobs=1)
+    assert run_stage("ingest", ctx).n_ok == 1
+    q = ctx.read_table("quarantine")
+    assert [Path(f).name for f in q["file"]] == ["stray.parquet"], q

@@ -110,7 +110,7 @@ def test_tractor_frequencies_dict_and_overrides():
     assert set(r) == {"front_tyre_stiffness_kN_per_m", "rear_tyre_stiffness_kN_per_m", "frequency_1_Hz", "frequency_2_Hz",
                       "warnings", "front_tyre_stiffness_u_kN_per_m", "rear_tyre_stiffness_u_kN_per_m",  # issue 14
                       "frequency_1_u_Hz", "frequency_2_u_Hz", "frequency_1_Hz_ci95", "frequency_2_Hz_ci95",
-                      "frequency_interval_method"}
+                      "frequency_interval_method", "natural_frequencies_Hz", "nodal_points_m"}
     assert [w.split(":")[0] for w in r["warnings"]] == ["front tyre 7.50-16", "front tyre 7.50-16"]  # smaller than F1
     o = bp.tractor_natural_frequencies(3235, 2669, 1.33, 0.71, "7.50-16", 2.06, "13.6-38", 1.1,
                                        front_stiffness_kN_per_m=247, rear_stiffness_kN_per_m=306)

@@ -1,0 +1,244 @@
+"""The command line as an engineer reads it (issue 26): global options anywhere, "did you mean",
+aliases, help on every option with the exit codes, completion, the same names as ``ride``."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import logging
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from tyrelab import cli, progress
+
+sys.path.insert(0, str(Path(__file__).parent / "vehicle"))
+from test_ride import scenario_text, write  # noqa: E402
+
+
+def _verbs(parser):
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return sub.choices
+
+
+@pytest.mark.parametrize("argv", [["-q", "sql", "SELECT 1"], ["sql", "-q", "SELECT 1"], ["sql", "SELECT 1", "--quiet"]])
+def test_global_options_before_or_after_the_verb(argv):
+    args = cli.build_parser().parse_args(argv)
+    assert args.quiet is True and args.verbose is False and args.command == "sql"
+
+
+def test_verbose_after_the_verb_and_never_with_quiet(capsys):
+    args = cli.build_parser().parse_args(["run", "--raw", "x", "-v"])
+    assert args.verbose and not args.quiet
+    with pytest.raises(SystemExit) as info:
+        cli.main(["-q", "run", "--verbose"])
+    assert info.value.code == 2 and "not allowed with" in capsys.readouterr().err
+
+
+def test_verbose_logs_debug(tmp_path):
+    cli._configure_output(argparse.Namespace(quiet=False, verbose=True))
+    try:
+        assert logging.getLogger("tyrelab").getEffectiveLevel() == logging.DEBUG
+        cli._configure_output(argparse.Namespace(quiet=True, verbose=False))
+        assert logging.getLogger("tyrelab").getEffectiveLevel() == logging.WARNING and not progress._bars_wanted
+    finally:
+        cli._configure_output(argparse.Namespace(quiet=False, verbose=False))
+
+
+@pytest.mark.parametrize("typed,suggested", [("analyse-rn", "analyse-run"), ("natural-frequency", "natural-frequencies"),
+                                             ("estimate-stifness", "estimate-stiffness"), ("sqll", "sql")])
+def test_a_mistyped_verb_gets_did_you_mean(capsys, typed, suggested):
+    with pytest.raises(SystemExit) as info:
+        cli.main([typed])
+    err = capsys.readouterr().err.strip().splitlines()[-1]
+    assert info.value.code == 2
+    assert err.startswith(f"tyrelab: error: unknown verb '{typed}'; did you mean") and repr(suggested) in err, err
+
+
+@pytest.mark.parametrize("alias", ["analyze-run", "analyse-run", "analyze"])
+def test_analyze_run_aliases(alias):
+    args = cli.build_parser().parse_args([alias, "r.csv", "--axle-mass", "100"])
+    assert args.func is cli.cmd_analyze_run and args.axle_mass == 100
+
+
+def test_every_option_of_every_verb_has_help_and_every_help_has_the_exit_codes():
+    parser = cli.build_parser()
+    missing = []
+    for name, verb in [("tyrelab", parser), *_verbs(parser).items()]:
+        assert "exit codes:" in verb.format_help() and "130" in verb.format_help(), name
+        for action in verb._actions:
+            if isinstance(action, (argparse._HelpAction, argparse._SubParsersAction)):
+                continue
+            if not action.help or action.help == argparse.SUPPRESS:
+                missing.append(f"{name} {'/'.join(action.option_strings) or action.dest}")
+    assert missing == []
+    stage_helps = {_verbs(parser)[s].description for s in cli.STAGE_HELP}
+    assert len(stage_helps) == len(cli.STAGE_HELP)  # each stage verb says what it does
+    assert "The ``tyrelab`` command line" not in parser.format_help()
+
+
+def test_completion_script_from_argcomplete(capsys):
+    assert cli.main(["completion", "bash"]) == 0
+    script = capsys.readouterr().out
+    assert "tyrelab" in script and "complete " in script and "_ARGCOMPLETE" in script
+    head = Path(cli.__file__).read_text(encoding="utf-8")[:1024]
+    assert "PYTHON_ARGCOMPLETE_OK" in head  # argcomplete completes the console script
+
+
+def test_completion_offers_the_verbs(monkeypatch):
+    """What argcomplete answers the shell for ``tyrelab ana<TAB>``."""
+    import argcomplete
+
+    line = "tyrelab ana"
+    monkeypatch.setenv("_ARGCOMPLETE", "1")
+    monkeypatch.setenv("COMP_LINE", line)
+    monkeypatch.setenv("COMP_POINT", str(len(line)))
+    monkeypatch.setenv("_ARGCOMPLETE_IFS", "\n")
+    out = []
+
+    class Sink:
+        def write(self, data):
+            out.append(data if isinstance(data, str) else data.decode())
+
+        def flush(self):
+            pass
+
+    with pytest.raises(SystemExit):
+        argcomplete.autocomplete(cli.build_parser(), output_stream=Sink(), exit_method=sys.exit)
+    offered = "".join(out).split()
+    assert {"analyse", "analyze-run", "analyse-run"} <= set(offered), offered
+
+
+NF = ["natural-frequencies", "--mass", "4700", "--pitch-inertia", "5500", "--front-distance", "1.56",
+      "--rear-distance", "0.95", "--front-tyre", "14.9R28", "--front-pressure", "1.6", "--rear-tyre", "18.4R38",
+      "--rear-pressure", "1.2"]
+
+
+def test_natural_frequencies_by_mode_with_nodal_points(capsys):
+    assert cli.main(NF) == 0
+    out = json.loads(capsys.readouterr().out)
+    modes = out["natural_frequencies_Hz"]
+    assert sorted([modes["bounce"], modes["pitch"]]) == pytest.approx([out["frequency_1_Hz"], out["frequency_2_Hz"]])
+    # independent check of a nodal point: the mode (z, θ) with x = -z/θ leaves the point x at rest,
+    # so the undamped equations of motion hold there: K·v = ω² M·v for v = (z, θ) = (-x, 1)
+    kf, kr = 2e3 * out["front_tyre_stiffness_kN_per_m"], 2e3 * out["rear_tyre_stiffness_kN_per_m"]
+    a, b, m, inertia = 1.56, 0.95, 4700.0, 5500.0
+    stiffness = np.array([[kf + kr, kf * a - kr * b], [kf * a - kr * b, kf * a * a + kr * b * b]])
+    for mode in ("bounce", "pitch"):
+        x, w2 = out["nodal_points_m"][mode], (2 * math.pi * modes[mode]) ** 2
+        v = np.array([-x, 1.0])
+        assert stiffness @ v == pytest.approx(w2 * np.array([m, inertia]) * v, rel=1e-9)
+    assert abs(out["nodal_points_m"]["bounce"]) > abs(out["nodal_points_m"]["pitch"])
+
+
+def test_a_pure_bounce_mode_has_no_nodal_point(capsys):
+    """Front and rear alike about the CG: bounce does not pitch; its nodal point is null in JSON."""
+    argv = NF[:]
+    argv[argv.index("0.95")] = "1.56"
+    argv += ["--front-stiffness", "300", "--rear-stiffness", "300"]
+    assert cli.main(argv) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["nodal_points_m"]["bounce"] is None and out["nodal_points_m"]["pitch"] == pytest.approx(0, abs=1e-9)
+
+
+def test_both_spellings_of_the_front_tyre_in_both_verbs(capsys):
+    def run(argv):
+        assert cli.main(argv) == 0
+        return capsys.readouterr().out
+
+    assert run(NF + ["--front-undriven"]) == run(NF)  # natural-frequencies: undriven is the default
+    assert run(NF + ["--front-traction"]) != run(NF)
+    es = ["estimate-stiffness", "--size", "14.9R28", "--pressure", "1.6", "--format", "json"]
+    assert run(es + ["--front-traction"]) == run(es)  # estimate-stiffness: the size formula is the default
+    assert run(es + ["--front-undriven"]) != run(es)
+    with pytest.raises(SystemExit):
+        cli.main(es + ["--front-traction", "--front-undriven"])
+    assert "not allowed with" in capsys.readouterr().err
+
+
+@pytest.fixture(scope="module")
+def tiny_warehouse(tmp_path_factory) -> Path:
+    import duckdb
+
+    build = tmp_path_factory.mktemp("build")
+    con = duckdb.connect(str(build / "warehouse.duckdb"))
+    con.execute("CREATE TABLE quarantine AS SELECT 'c' AS campaign, 'r1' AS run_id, 'f' AS file, 'ingest' AS stage, "
+                "'bad' AS reason")
+    con.close()
+    return build
+
+
+def test_an_empty_result_says_no_rows(tiny_warehouse, capsys):
+    q = "SELECT * FROM quarantine WHERE stage = 'analyse'"
+    assert cli.main(["sql", "--build", str(tiny_warehouse), q]) == 0
+    out = capsys.readouterr().out
+    assert out == "no rows (columns: campaign, run_id, file, stage, reason)\n"
+    assert cli.main(["sql", "--build", str(tiny_warehouse), "--format", "csv", q]) == 0
+    assert capsys.readouterr().out == "campaign,run_id,file,stage,reason\n"  # CSV keeps its header
+    assert cli.main(["sql", "--build", str(tiny_warehouse), "--format", "json", q]) == 0
+    assert capsys.readouterr().out == "[]\n"
+
+
+def test_warehouse_query_takes_the_build_folder(tiny_warehouse):
+    from tyrelab import warehouse
+
+    by_folder = warehouse.query(tiny_warehouse, "SELECT * FROM quarantine")
+    by_file = warehouse.query(tiny_warehouse / "warehouse.duckdb", "SELECT * FROM quarantine")
+    pd.testing.assert_frame_equal(by_folder, by_file)
+    with pytest.raises(FileNotFoundError, match="no warehouse yet"):
+        warehouse.query(tiny_warehouse / "nothing", "SELECT 1")
+
+
+def test_ride_takes_an_absolute_profile_path_for_the_users_own_file(tmp_path, capsys):
+    from tyrelab.vehicle.scenario import ScenarioError, load_scenario
+
+    track = tmp_path / "elsewhere" / "track.csv"
+    track.parent.mkdir()
+    x = np.arange(0.0, 400.0, 0.05)
+    pd.DataFrame({"distance_m": x, "height_m": 0.01 * np.sin(2 * np.pi * x / 3.0)}).to_csv(track, index=False)
+    (tmp_path / "mine").mkdir()
+    path = write(tmp_path / "mine", scenario_text(f'kind = "profile"\nprofile = "{track}"', speeds="[8]"))
+    with pytest.raises(ScenarioError, match="give a path relative to the scenario file"):
+        load_scenario(path)  # campaign scenarios stay confined to their folder
+    assert load_scenario(path, confine=False).surface.profile == track
+    assert cli.main(["-q", "ride", str(path), "--format", "table"]) == 0
+    assert "test tractor" in capsys.readouterr().out
+
+
+def test_progress_bar_only_on_a_terminal_and_not_under_quiet(monkeypatch, capsys):
+    class Tty:
+        def __init__(self, real):
+            self.real = real
+
+        def isatty(self):
+            return True
+
+        def __getattr__(self, name):
+            return getattr(self.real, name)
+
+    progress.configure(bars=True)
+    try:
+        p = progress.Progress("analyse", 2, logger=logging.getLogger("test"))
+        assert p.bar is None  # pytest's stderr is not a terminal
+        monkeypatch.setattr(sys, "stderr", Tty(sys.stderr))
+        p = progress.Progress("analyse", 2, logger=logging.getLogger("test"))
+        assert p.bar is not None
+        p.step(2)
+        assert p.bar is None and progress._open == []  # removed at the end
+        progress.configure(bars=False)  # -q
+        assert progress.Progress("analyse", 2).bar is None
+    finally:
+        progress.configure(bars=False)
+        progress.close_all()
+
+
+def test_analyse_counts_its_own_qc_flags_not_calibrates():
+    from tyrelab.stages.analyse import _flagged_by_analyse
+
+    assert not _flagged_by_analyse("calibration failed on 1989-05-04")
+    assert _flagged_by_analyse("coherence 0.42 below 0.8; calibration failed on 1989-05-04")
+    assert not _flagged_by_analyse("")
