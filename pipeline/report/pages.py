@@ -40,6 +40,7 @@ import pandas as pd
 from . import tables
 from .chapters import CHAPTERS, Chapter, FigureSpec, TableSpec
 from .docs import DOCS, document
+from .measured_page import MEASURED_RIDE
 
 __all__ = ["Output", "Page", "ChapterPage", "IndexPage", "RunsPage", "DocsPage", "PAGES", "register", "registered",
            "run_page_name"]
@@ -277,4 +278,5 @@ register(IndexPage())
 for _number, _chapter in enumerate(CHAPTERS):
     register(ChapterPage(_chapter, order=10 * (_number + 1)))
 register(RunsPage())
+register(ChapterPage(MEASURED_RIDE, order=10 * (len(CHAPTERS) + 1)))
 register(DocsPage())
