@@ -289,3 +289,15 @@ def test_ride_table_one_number_format_per_quantity_under_the_reports_names():
     assert "bounce 2.73 Hz [2.54, 2.91] (node 2.46 m ahead of the CG)" in text
     assert "pitch 3.48 Hz [3.25, 3.70] (node 0.48 m behind the CG)" in text
     assert column_label("a_wz_m_s2") == "a_wz (m/s²)"
+
+
+def test_progress_iterate_counts_an_item_when_the_body_is_done_with_it(caplog):
+    p = progress.Progress("rides: c1", 3, logger=logging.getLogger("tyrelab"), unit="recordings")
+    seen = []
+    with caplog.at_level(logging.INFO, logger="tyrelab"):
+        for item in p.iterate(["a", "b", "c"]):
+            seen.append((item, p.done))
+            if item == "b":
+                continue  # a refused row is counted too
+    assert seen == [("a", 0), ("b", 1), ("c", 2)] and p.done == 3
+    assert "rides: c1: 3/3 recordings" in caplog.text
