@@ -10,7 +10,7 @@ import pandas as pd
 import pytest
 
 import tyrelab
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 from tyrelab import executor, io
 from tyrelab.cli import EXIT_BROKEN_PIPE, main
 

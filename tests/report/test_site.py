@@ -3,7 +3,7 @@
 import re
 from pathlib import Path
 
-from small_campaign import EVIL_TYRE
+from tests.report.small_campaign import EVIL_TYRE
 
 THESIS_TABLES = ["III", "IV", "V", "VI", "VII", "VIII", "IX", "X", "XI", "XII", "XIII", "XIV", "XV", "XVI",
                  "XVII", "XVIII", "XIX", "XX"]

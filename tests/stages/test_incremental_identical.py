@@ -15,10 +15,12 @@ from pathlib import Path
 
 import pytest
 
-from synthetic import edit_csv as _edit_csv
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import edit_csv as _edit_csv
+from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 from tyrelab import resources
 from tyrelab.stages import ORDER, Context, run_pipeline
+
+pytestmark = pytest.mark.long  # collected first: see tests/conftest.py
 
 FAST = [s for s in ORDER if s != "simulate"]  # simulate has its own (slow) test below
 

@@ -10,12 +10,13 @@ from pathlib import Path
 
 import pytest
 
-from crashkit import start_run
+from tests.stages.crashkit import start_run
 from tyrelab.buildlock import LOCK_NAME
 from tyrelab.warehouse import query
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "hostile"))
-from hostilekit import calibrated_campaign  # noqa: E402
+from tests.hostile.hostilekit import calibrated_campaign  # noqa: E402
+
+pytestmark = pytest.mark.long  # collected first: see tests/conftest.py
 
 SHORT = ["ingest", "analyse", "calibrate", "warehouse"]
 ALL = ["ingest", "analyse", "calibrate", "regress", "simulate", "warehouse", "report"]

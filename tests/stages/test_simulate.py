@@ -10,7 +10,7 @@ import shutil
 import numpy as np
 import pandas as pd
 import pytest
-from comparisons import assert_differences_are_ours_minus_thesis
+from tests.comparisons import assert_differences_are_ours_minus_thesis
 
 from tyrelab import published
 from tyrelab.stages import simulate
@@ -204,7 +204,7 @@ def test_studies_no_stage_took_are_ended(ctx, tmp_path):
 
 def _edit_first_row(path, column, factor):
     """Multiply ``column`` of the first row of a published CSV by ``factor``; return that row."""
-    from synthetic import edit_csv
+    from tests.synthetic import edit_csv
 
     first = edit_csv(path, lambda rows: rows[0].update({column: f"{float(rows[0][column]) * factor:.3f}"}))[0]
     assert first["characteristics"] == "rolling"
