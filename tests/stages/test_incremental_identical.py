@@ -68,6 +68,7 @@ def _assert_same_as_clean(raw: Path, build: Path, stages: list[str], caplog) -> 
     return log
 
 
+@pytest.mark.slow  # 176 s on 2 busy cores; runs in `make test-all`, not in the default run
 def test_add_remove_change_edit_published_match_clean_rebuild(tmp_path, caplog, monkeypatch):
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "631152000")
     raw, build = tmp_path / "raw", tmp_path / "build"

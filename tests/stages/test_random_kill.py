@@ -53,6 +53,7 @@ def converges(raw, build, stages, kills, seed):
         assert now.keys() == clean.keys() and [k for k in now if now[k] != clean[k]] == []
 
 
+@pytest.mark.slow  # 57 s on 2 busy cores; runs in `make test-all`, not in the default run
 def test_random_kills_converge_to_the_clean_bytes(tmp_path):
     raw = calibrated_campaign(tmp_path / "raw" / "c", per_day=2)
     converges(raw, tmp_path / "build", SHORT, kills=2, seed=11)

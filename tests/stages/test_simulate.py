@@ -170,6 +170,7 @@ def test_tractor_runs_record_their_solution_path(ctx):
     assert (runs["method_used"] == "exact").any() and lifted.any()
 
 
+@pytest.mark.slow  # 70 s on 2 busy cores; runs in `make test-all`, not in the default run
 def test_studies_started_ahead_give_the_tables_of_the_stage_alone(ctx, tmp_path):
     """``run_pipeline`` starts the chapter 6-7 studies ahead on a first build; the stage takes
     their results: the same bytes as the shared build, which ran them itself (``--jobs 1``)."""
