@@ -24,6 +24,8 @@ table                          contents
                                published Table III and to our tyres, beside the printed coefficients;
                                leave-one-tyre-out errors of the refit and of the printed formula
 ``formula_fit_loto``           per tyre × pressure: the leave-one-tyre-out predictions behind those
+``damping_fit``                C = c0 + c_A A + c_v v + c_P P fitted to the Table VII lines and to ours
+                               (damping of an unmeasured tyre, :mod:`tyrelab.tyre.damping_fit`)
 ``spoke_force``                Fig. 43 data; ``spoke_speed`` Figs 44–45; ``spoke_frequency``
                                Fig. 46; ``spoke_amplitude`` Fig. 47; ``spoke_deflection`` Fig. 48
 ``spoke_fit`` / ``spoke_fit_points``  Coulomb and viscous coefficients per tyre from our damping
@@ -52,6 +54,7 @@ import pandas as pd
 
 from .. import published
 from ..tyre import conditions as cond
+from ..tyre import damping_fit as dfit
 from ..tyre import formula_accuracy as fa
 from ..tyre import formula_fit as ff
 from ..tyre import models
@@ -62,7 +65,7 @@ from .base import Context, StageResult
 from .state import ItemCache
 
 __all__ = ["FIT_INPUT_COLUMNS", "PUBLISHED", "FACTORS", "read_published", "read_tyres", "tyre_fits", "tyre_fits_each",
-           "all_tyre_fits", "formula_fits", "compute", "run"]
+           "all_tyre_fits", "formula_fits", "damping_fits", "compute", "run"]
 
 #: The ``results`` columns the per-tyre fits read (:mod:`tyrelab.tyre.conditions` and the
 #: runs' uncertainties): the fits are given only these, and a tyre's cache key is the digest
@@ -232,6 +235,25 @@ def formula_fits(predictions: list[pd.DataFrame]) -> tuple[pd.DataFrame, pd.Data
     return table, loto_df
 
 
+def damping_fits(table_vii: pd.DataFrame | None, damping_by_speed: pd.DataFrame,
+                 tyres: pd.DataFrame | None) -> pd.DataFrame:
+    """Table ``damping_fit``: the Table VII model of the published lines and of ours (a row with a
+    ``reason`` where a source cannot be fitted)."""
+    fits, reasons = [], {}
+    if tyres is None or "tyre_id" not in tyres:
+        return dfit.damping_table([], {"published": "no tyres table", "ours": "no tyres table"})
+    sources = [("published", table_vii), ("ours", damping_by_speed)]
+    for source, lines in sources:
+        if lines is None or lines.empty:
+            reasons[source] = "no damping lines"
+            continue
+        try:
+            fits.append(dfit.fit_damping(dfit.damping_points(lines, tyres, source), source))
+        except ValueError as exc:
+            reasons[source] = str(exc)
+    return dfit.damping_table(fits, reasons)
+
+
 def _spoke_curves() -> dict[str, pd.DataFrame]:
     """Figs 43-48 of the spoke model (no data: they change only with the code)."""
     return {"spoke_force": spoke.force_curves(), "spoke_speed": spoke.speed_curves(),
@@ -292,6 +314,7 @@ def compute(results: pd.DataFrame, tyres: pd.DataFrame | None,
     out["formula_predictions"] = pd.concat(preds, ignore_index=True)
     out["formula_accuracy"] = pd.concat(acc, ignore_index=True)
     out["formula_fit"], out["formula_fit_loto"] = formula_fits(preds)
+    out["damping_fit"] = damping_fits(published.get("table_vii"), c_speed, tyres)
 
     out.update(memo("spoke_curves", (), _spoke_curves))
     out["spoke_fit"], out["spoke_fit_points"] = fits["spoke_fit"], fits["spoke_fit_points"]

@@ -30,6 +30,7 @@ import pandas as pd
 from scipy.stats import norm
 from scipy.stats import t as student_t
 
+from .. import _validate
 from . import conditions as cond
 from .sizes import TyreSizeError, parse_tyre_size
 from .stiffness import traction_tyre_stiffness
@@ -50,7 +51,9 @@ PRED_COLUMNS = ["source", "tyre_id", "size", "position", "age_years", "age_assum
 
 
 def p_within(mean: float, sd: float, limit: float = 10.0) -> float:
-    """P(|e| < limit) for e ~ N(mean, sd) (thesis §4.5.3, §6.4), via ``scipy.stats.norm``."""
+    """P(|e| < limit) for e ~ N(mean, sd) (thesis §4.5.3, §6.4), via ``scipy.stats.norm``; NaN for a
+    non-finite moment or sd <= 0 (too few errors to have one)."""
+    limit = _validate.positive("limit", limit)
     if not (np.isfinite(mean) and np.isfinite(sd)) or sd <= 0:
         return float("nan")
     return float(norm.cdf((limit - mean) / sd) - norm.cdf((-limit - mean) / sd))

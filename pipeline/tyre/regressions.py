@@ -32,6 +32,7 @@ import pandas as pd
 from statsmodels.regression.linear_model import OLS, WLS
 from statsmodels.tools.tools import add_constant
 
+from .. import _validate
 from . import conditions as cond
 
 __all__ = ["STIFFNESS", "DAMPING", "FIT_COLUMNS", "fit_line", "fit_mean", "measured_tyres",
@@ -114,6 +115,7 @@ def fit_line(x, y, *, alpha: float = 0.05, u=None) -> dict:
         are NaN and ``reason`` says why; with two points the standard errors
         and intervals are NaN (no residual degrees of freedom).
     """
+    alpha = _validate.probability("alpha", alpha)
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
     uu = np.full(x.shape, np.nan) if u is None else np.asarray(u, dtype=float)
@@ -169,6 +171,7 @@ def fit_mean(y, *, alpha: float = 0.05) -> dict:
     dict
         ``n, mean, se, ci_low, ci_high, sd, reason``.
     """
+    alpha = _validate.probability("alpha", alpha)
     y = np.asarray(y, dtype=float)
     y = y[np.isfinite(y)]
     out = {"n": int(len(y)), "mean": np.nan, "se": np.nan, "ci_low": np.nan, "ci_high": np.nan,

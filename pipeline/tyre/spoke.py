@@ -39,6 +39,7 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import lsq_linear
 
+from .. import _validate
 from . import conditions as cond
 from .sizes import parse_tyre_size
 
@@ -79,6 +80,7 @@ def unloaded_radius_m(size: str, aspect_ratio: float = ASPECT_RATIO_DEFAULT) -> 
         Section height over section width.
     """
     s = parse_tyre_size(size)
+    aspect_ratio = _validate.positive("aspect_ratio", aspect_ratio)
     return 0.0254 * (s.rim_diameter_in / 2.0 + aspect_ratio * s.section_width_in)
 
 
@@ -173,6 +175,14 @@ def damping_basis(speed_km_h, frequency_Hz=FREQUENCY_HZ, amplitude_m=AMPLITUDE_M
     ``c1 g_coulomb + c2 g_viscous`` (Ns/m for c1 in N/rad and c2 in Ns/m/rad).
     Energy per cycle / (π A² ω), thesis §5.5.2. Arguments broadcast.
     """
+    _validate.positive_array("frequency_Hz", frequency_Hz)
+    _validate.positive_array("amplitude_m", amplitude_m)
+    _validate.positive_array("h_over_r0", h_over_r0)
+    _validate.positive("r0", r0)
+    if not isinstance(n_time, (int, np.integer)) or n_time < 8:
+        raise ValueError(f"n_time must be an integer >= 8, got {n_time!r}")
+    if np.any(np.asarray(speed_km_h, dtype=float) < 0) or not np.all(np.isfinite(np.asarray(speed_km_h, dtype=float))):
+        raise ValueError(f"speed_km_h must be finite and non-negative, got {speed_km_h!r}")
     h, h_dot, w, omega, a = _cycle(speed_km_h, frequency_Hz, amplitude_m, h_over_r0, r0, n_time)
     period = 2 * np.pi / omega
     norm = np.pi * a**2 * omega

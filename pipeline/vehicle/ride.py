@@ -7,8 +7,10 @@ weighted accelerations and the EU Directive 2002/44/EC daily exposure:
 1. **Tyres** (:func:`resolve_tyres`): stiffness and damping per tyre and speed,
    from an override, a measured tyre of the warehouse (``K = K_c + ΔK_p P`` and
    ``C = C_c + ΔC P`` per speed, tables ``stiffness_pressure_by_speed`` /
-   ``damping_pressure_by_speed``) or the thesis formula (§4.5.3, §8.2); damping
-   without either is the mean of the thesis' Table VII traction tyres.
+   ``damping_pressure_by_speed``; below the first rolling speed the rolling value,
+   :func:`tyrelab.tyre.speed_dependence.at_speeds`) or the fitted formula (§4.5.3,
+   §8.2; ``[tyres.*] formula``: the thesis' or the build's); damping without either
+   from the model fitted to the thesis' Table VII lines (:mod:`tyrelab.tyre.damping_fit`).
 2. **Model**: the pitch-plane tractor of :mod:`tyrelab.vehicle.tractor` (same
    equations, wheelbase delay, rear longitudinal element). While both axles stay
    on the ground the model is linear; :func:`state_space` writes it as
@@ -50,6 +52,7 @@ from scipy import linalg, signal
 from .. import published
 from .._validate import positive
 from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
+from ..tyre.speed_dependence import at_speeds
 from ..tyre.stiffness import estimate_stiffness
 from . import bounce_pitch
 from . import enveloping as ev
@@ -198,12 +201,31 @@ def _formula_stiffness(spec, tyre_data=None) -> tuple[float, str, list[str], flo
     return est.stiffness_kN_per_m, rule, list(est.warnings), est.stiffness_u_kN_per_m or 0.0
 
 
-def _thesis_damping(pressure_bar: float, speeds_km_h) -> np.ndarray:
-    """Mean of the thesis' Table VII traction tyres, ``C_c + ΔC P``, at each speed (kN s/m)."""
-    t = published.read_published("table_vii")
-    t = t.assign(c=t["carcass_damping_kN_s_per_m"] + t["pressure_dependence_kN_s_per_m_bar"] * pressure_bar)
-    mean = t.groupby("speed_km_h")["c"].mean()
-    return np.interp(np.asarray(speeds_km_h, float), mean.index.to_numpy(float), mean.to_numpy(float))
+def _model_damping(spec, speeds_km_h) -> tuple[np.ndarray, str, list[str]]:
+    """Damping of an unmeasured tyre per speed from the Table VII model (:mod:`tyrelab.tyre.damping_fit`),
+    its source text and warnings (the interval at the first speed, where the model extrapolates)."""
+    from ..tyre import damping_fit
+
+    fit = damping_fit.fit_damping(damping_fit.damping_points(published.read_published("table_vii"),
+                                                             published.read_published("table_ii")))
+    preds = [fit.predict(spec.pressure_bar, float(v), spec.age_years, size=parse_tyre_size(spec.size).designation)
+             for v in np.asarray(speeds_km_h, float)]
+    c = np.array([p.damping_kN_s_per_m for p in preds])
+    b = fit.coefficients
+    src = (f"Table VII model C = {b[0]:.3g} {b[1]:+.3g} A {b[2]:+.3g} v {b[3]:+.3g} P (kN s/m; {fit.n_tyres} "
+           f"traction tyres, cluster-robust by tyre)")
+    lo, hi = preds[0].interval_kN_s_per_m
+    warnings = [f"damping not given: the Table VII damping model gives {c[0]:.2f} kN s/m at "
+                f"{float(np.asarray(speeds_km_h, float)[0]):g} km/h (95 % prediction interval {max(lo, 0.0):.2f} to "
+                f"{hi:.2f}; a rough stand-in, typical 0.8-3 kN s/m, §5.6)"]
+    v = np.asarray(speeds_km_h, float)
+    held = [(float(a), p.speed_used_km_h) for a, p in zip(v, preds) if p.speed_used_km_h != float(a)]
+    if held:
+        lo_v, hi_v = fit.ranges["speed_km_h"]
+        warnings.append(f"speeds {', '.join(f'{a:g}' for a, _ in held)} km/h are outside the damping model's "
+                        f"{lo_v:g}-{hi_v:g} km/h: evaluated at the nearest of those")
+    warnings += sorted({w for p in preds for w in p.warnings if not w.startswith("speed ")})
+    return c, src, warnings
 
 
 def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
@@ -211,8 +233,10 @@ def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
 
     Order of precedence per quantity: the scenario's override, the measured tyre
     (``measured_tyre_id``, from ``tyre_data.measured``; speeds interpolated, held
-    outside the measured range), the formula (stiffness, ``tyre_data.stiffness_model``)
-    or the mean of the thesis' Table VII (damping). ``tyre_data`` default
+    outside the measured range; a rolling tyre takes the rolling values only,
+    :func:`~tyrelab.tyre.speed_dependence.at_speeds`), the fitted formula (stiffness,
+    ``tyre_data.stiffness_model``: ``formula`` = thesis or build) or the Table VII damping
+    model (damping, with its prediction interval in the warnings). ``tyre_data`` default
     :class:`ShippedTyres` (no warehouse).
 
     Raises
@@ -234,7 +258,7 @@ def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
             k, k_src = per_speed(spec.stiffness_kN_per_m, lists, speeds), "override (scenario)"
         elif spec.measured_tyre_id:
             sp, val = tyre_data.measured("stiffness_pressure_by_speed", spec.measured_tyre_id, spec.pressure_bar)
-            k = np.interp(speeds, sp, val)
+            k = at_speeds(sp, val, speeds)  # rolling values for a rolling tyre (§4.5.1)
             k_src = f"measured tyre {spec.measured_tyre_id}: K = Kc + dKp P per speed (stiffness_pressure_by_speed)"
         else:
             k0, k_src, warnings, k_u = _formula_stiffness(spec, tyre_data)
@@ -243,12 +267,11 @@ def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
             c, c_src = per_speed(spec.damping_kN_s_per_m, lists, speeds), "override (scenario)"
         elif spec.measured_tyre_id:
             sp, val = tyre_data.measured("damping_pressure_by_speed", spec.measured_tyre_id, spec.pressure_bar)
-            c = np.interp(speeds, sp, val)
+            c = at_speeds(sp, val, speeds)
             c_src = f"measured tyre {spec.measured_tyre_id}: C = Cc + dC P per speed (damping_pressure_by_speed)"
         else:
-            c = _thesis_damping(spec.pressure_bar, speeds)
-            c_src = "mean of the thesis' Table VII traction tyres, Cc + dC P (no damping given)"
-            warnings.append("damping not given: the thesis' Table VII mean is a rough stand-in (typical 0.8-3 kN s/m, §5.6)")
+            c, c_src, c_warnings = _model_damping(spec, speeds)
+            warnings += c_warnings
         if np.any(k <= 0):
             raise ValueError(f"tyres.{axle}: stiffness {k.min():.1f} kN/m is not positive")
         size = parse_tyre_size(spec.size)
