@@ -126,6 +126,9 @@ def damping_points(lines: pd.DataFrame, tyres: pd.DataFrame, source: str = "publ
         ``tyre_id, size, age_years`` and ``group`` or ``position`` (ribbed fronts left out;
         a missing age is 0, as for Table II's new tyres).
     """
+    _validate.frame("lines", lines, ["tyre_id", "speed_km_h"])
+    _validate.frame("tyres", tyres, ["tyre_id", "size", "age_years"])
+    _validate.positive_array("grid_bar", grid_bar)
     cc = "carcass_damping_kN_s_per_m" if "carcass_damping_kN_s_per_m" in lines else "intercept"
     dc = "pressure_dependence_kN_s_per_m_bar" if "pressure_dependence_kN_s_per_m_bar" in lines else "slope"
     cat = tyres.assign(tyre_id=tyres["tyre_id"].astype(str)).drop_duplicates("tyre_id", keep="last").set_index("tyre_id")
@@ -154,6 +157,7 @@ def fit_damping(points: pd.DataFrame, source: str = "published") -> DampingFit:
     ValueError
         With fewer than 5 tyres or a design that cannot separate age, speed and pressure.
     """
+    _validate.frame("points", points, ["tyre_id", "size", "age_years", "speed_km_h", "pressure_bar", "damping_kN_s_per_m"])
     from statsmodels.regression.linear_model import OLS
 
     p = points.dropna(subset=["age_years", "speed_km_h", "pressure_bar", "damping_kN_s_per_m"])
@@ -179,6 +183,7 @@ def fit_damping(points: pd.DataFrame, source: str = "published") -> DampingFit:
 
 def damping_table(fits: list[DampingFit], reasons: dict[str, str] | None = None) -> pd.DataFrame:
     """Table ``damping_fit``: one row per fitted source, plus a row with the reason for each that could not be."""
+    _validate.instances("fits", fits, DampingFit)
     rows = [f.row() for f in fits] + [{"source": s, "reason": r} for s, r in sorted((reasons or {}).items())]
     cols = ["source", "n_tyres", "n_points", "r_squared", "residual_sd_kN_s_per_m"]
     cols += [c for name in DAMPING_TERMS for c in (name, f"{name}_se")]

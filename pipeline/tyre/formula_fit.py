@@ -67,6 +67,8 @@ def design_matrix(sizes, age_years, pressure_bar) -> np.ndarray:
     >>> design_matrix(["13.6R38"], [1.0], [1.2]).round(2).tolist()
     [[1.0, 38.0, 1.0, 620.16]]
     """
+    _validate.non_negative_array("age_years", age_years)
+    _validate.non_negative_array("pressure_bar", pressure_bar)
     s = [_size(x) for x in sizes]
     a = np.asarray(age_years, float)
     p = np.asarray(pressure_bar, float)
@@ -244,6 +246,7 @@ def fit_formula(points: pd.DataFrame, source: str = "published") -> FormulaFit:
         With fewer than 5 tyres (4 coefficients and a cluster-robust covariance need
         more tyres than coefficients) or a design that cannot separate the terms.
     """
+    _validate.frame("points", points)
     from statsmodels.regression.linear_model import OLS, WLS
 
     p = _points(points)
@@ -296,6 +299,7 @@ def leave_one_tyre_out(points: pd.DataFrame, source: str = "ours") -> pd.DataFra
         100 (predicted − measured)/measured). Tyres whose left-out fit cannot be made
         (fewer than 5 others) are skipped.
     """
+    _validate.frame("points", points)
     p = _points(points)
     rows = []
     printed = np.asarray(PRINTED_COEFFICIENTS)
@@ -375,6 +379,8 @@ def front_rule(table_iii: pd.DataFrame, table_ii: pd.DataFrame, front_id: str = 
     ValueError
         If ``front_id`` or fewer than 3 traction tyres have a rolling ΔK_p.
     """
+    _validate.frame("table_iii", table_iii, ["tyre_id", "condition", "pressure_dependence_kN_per_m_bar", "size"])
+    _validate.frame("table_ii", table_ii, ["tyre_id", "size"])
     rolling = table_iii.loc[(table_iii["condition"] == "rolling")
                             & table_iii["pressure_dependence_kN_per_m_bar"].notna()].copy()
     rolling["tyre_id"] = rolling["tyre_id"].astype(str)
@@ -404,6 +410,7 @@ def fit_table(fits: list[FormulaFit]) -> pd.DataFrame:
     with null statistics; each fit adds a row (:meth:`FormulaFit.row`) with the printed
     value and the difference in standard errors, ``<term>_vs_printed_se``.
     """
+    _validate.instances("fits", fits, FormulaFit)
     printed = {"source": "thesis_printed", "method": "thesis §4.5.3: three separate regressions (Figs 26, 30, 31)",
                **dict(zip(TERMS, PRINTED_COEFFICIENTS))}
     rows = [printed]

@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from .. import _validate
 from . import metrics as mt
 from .measured_ride import RecordingAnalysis, analyse_signals
 
@@ -71,6 +72,7 @@ def track_of(text, campaign: Path | None = None) -> ValidationTrack:
     >>> track_of("ISO 8608 class d").road_class, track_of("").kind
     ('D', 'scenario')
     """
+    _validate.instance("text", text, (str, float, type(None)))  # a blank cell of a table reads as None or NaN
     s = "" if text is None or (isinstance(text, float) and math.isnan(text)) else str(text).strip()
     if s.lower() in ("", "scenario"):
         return ValidationTrack("scenario")
@@ -90,8 +92,10 @@ def track_of(text, campaign: Path | None = None) -> ValidationTrack:
     raise ValueError(f"track {s!r}: expected 'scenario', an ISO 8608 class A-H or a profile CSV of the campaign")
 
 
-def predicted_seat(scenario, speed_km_h: float, track: ValidationTrack, build: Path | None = None) -> tuple[dict, float]:
+def predicted_seat(scenario, speed_km_h: float, track: ValidationTrack, tyre_data=None) -> tuple[dict, float]:
     """The scenario's predicted seat record at one speed on the recording's track.
+
+    ``tyre_data`` is :func:`tyrelab.vehicle.ride.ride`'s (default: the shipped tyre data).
 
     Returns
     -------
@@ -99,6 +103,8 @@ def predicted_seat(scenario, speed_km_h: float, track: ValidationTrack, build: P
         ``seat_z_m_s2``, ``seat_x_m_s2`` -> samples (the pitch-plane model has no y).
     fs_Hz : float
     """
+    _validate.non_negative("speed_km_h", speed_km_h)
+    _validate.instance("track", track, ValidationTrack)
     from .ride import FS_HZ, ride
     from .scenario import with_overrides
 
@@ -109,7 +115,7 @@ def predicted_seat(scenario, speed_km_h: float, track: ValidationTrack, build: P
     elif track.kind == "profile":
         s = dataclasses.replace(s, surface=dataclasses.replace(s.surface, kind="profile", profile=track.profile,
                                                                road_class=None, spectrum_g0_m3=None))
-    res = ride(s, build, with_spectra=False, with_signals=True)
+    res = ride(s, tyre_data, with_spectra=False, with_signals=True)
     return next(iter(res.signals.values())), FS_HZ
 
 
@@ -128,7 +134,7 @@ def _envelope_similarity(measured: np.ndarray, fs_m: float, f_m: float, predicte
 
 def validation_rows(measured: RecordingAnalysis, predicted_signals: dict, predicted_fs_Hz: float,
                     known_profile: bool, measured_signals: dict | None = None) -> list[dict]:
-    """Per seat axis recorded and predicted: the measured-vs-predicted values.
+    """Per seat axis recorded and predicted (and moved by the model): the measured-vs-predicted values.
 
     Parameters
     ----------
@@ -148,12 +154,16 @@ def validation_rows(measured: RecordingAnalysis, predicted_signals: dict, predic
         ``measured_peak_frequency_Hz, predicted_peak_frequency_Hz, measured_half_power_width_Hz,
         predicted_half_power_width_Hz, envelope_similarity``.
     """
+    _validate.instance("measured", measured, RecordingAnalysis)
+    _validate.positive("predicted_fs_Hz", predicted_fs_Hz)
     predicted = analyse_signals(predicted_signals, predicted_fs_Hz)
     rows = []
     for axis, c in SEAT_AXES.items():
         if c not in measured.channels or c not in predicted.channels:
             continue
         m, p = measured.channels[c], predicted.channels[c]
+        if not p.a_w_m_s2 > 0:  # an axis the model does not move (e.g. fore-aft without a longitudinal model)
+            continue
         r = math.nan
         if known_profile and measured_signals is not None and c in measured_signals:
             r = _envelope_similarity(np.asarray(measured_signals[c], float), measured.sample_rate_Hz,
@@ -185,6 +195,8 @@ def validation_statistics(rows: pd.DataFrame) -> pd.DataFrame:
         ``axis, quantity`` (``a_w``, ``peak_frequency``, ``half_power_width``, and
         ``envelope_similarity`` with its mean and sd only), ``n, mean, sd, p_within_10, p_within_30``.
     """
+    if rows is not None:
+        _validate.frame("rows", rows)
     cols = ["axis", "quantity", "n", "mean", "sd", "p_within_10", "p_within_30"]
     out = []
     if rows is None or rows.empty:
