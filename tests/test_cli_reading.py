@@ -75,8 +75,11 @@ def test_every_option_of_every_verb_has_help_and_every_help_has_the_exit_codes()
             if not action.help or action.help == argparse.SUPPRESS:
                 missing.append(f"{name} {'/'.join(action.option_strings) or action.dest}")
     assert missing == []
-    stage_helps = {_verbs(parser)[s].description for s in cli.STAGE_HELP}
-    assert len(stage_helps) == len(cli.STAGE_HELP)  # each stage verb says what it does
+    from tyrelab.stages import ORDER
+
+    stage_helps = {_verbs(parser)[s].description for s in ORDER}
+    assert len(stage_helps) == len(ORDER)  # each stage verb says what it does, a new stage included
+    assert not [s for s in ORDER if _verbs(parser)[s].description.startswith(f"the {s} stage")]  # no stand-in
     assert "The ``tyrelab`` command line" not in parser.format_help()
 
 
