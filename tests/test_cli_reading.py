@@ -16,7 +16,7 @@ import pytest
 
 from tyrelab import cli, progress
 
-from tests.vehicle.test_ride import scenario_text, write
+from tests.scenarios import scenario_text, write
 
 
 def _verbs(parser):
