@@ -10,6 +10,8 @@ from tyrelab.cli import main
 from tyrelab.rig import population as pop
 from tyrelab.tyre.formula_fit import PRINTED_COEFFICIENTS, design_matrix
 
+pytestmark = pytest.mark.long  # collected first: see tests/conftest.py (a generated campaign through five stages)
+
 
 def test_population_is_seeded_and_follows_its_coefficients():
     a, b = pop.tyre_population(6, seed=3), pop.tyre_population(6, seed=3)
