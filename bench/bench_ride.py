@@ -35,7 +35,8 @@ import numpy as np  # noqa: E402
 
 from tyrelab.resources import scenarios_dir  # noqa: E402
 from tyrelab.vehicle import ride  # noqa: E402
-from tyrelab.vehicle.scenario import load_scenario, parse_scenario, with_overrides  # noqa: E402
+from tyrelab.scenario_io import load_scenario, parse_scenario  # noqa: E402
+from tyrelab.vehicle.scenario import with_overrides  # noqa: E402
 from tyrelab.vehicle.tractor import simulate_tractor  # noqa: E402
 
 

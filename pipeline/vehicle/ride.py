@@ -59,7 +59,7 @@ from . import lti
 from . import metrics as mt
 from . import profiles as pr
 from .carriage import GRAVITY_M_S2
-from .scenario import Scenario, read_profile_csv, with_overrides, with_values
+from .scenario import Scenario, with_overrides, with_values
 from .carriage import half_step_input
 from .model import Axle, Ballast, Cab, Chassis, Implement, Parts, SeatPoint, assemble
 from .tractor import Tractor, simulate, tractor_parts
@@ -538,7 +538,10 @@ def build_profile(scenario: Scenario) -> Track:
         prof = pr.slatted_track(seed=s.seed, length_m=s.length_m)
         spectrum, source = None, ""
     else:
-        x, left, right = read_profile_csv(s.profile)
+        if s.profile_data is None:
+            raise ValueError(f"surface.profile {s.profile}: its data were not read (read scenarios with "
+                             "tyrelab.scenario_io.load_scenario or parse_scenario)")
+        x, left, right = s.profile_data
         dx = float(np.median(np.diff(x)))
         # the CSV's own grid: (end - start)/dx is a whole number up to the rounding of the
         # distances written in the file, which must not drop the last sample
@@ -1412,7 +1415,7 @@ def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, 
     Examples
     --------
     >>> from tyrelab.resources import scenarios_dir
-    >>> from tyrelab.vehicle.scenario import load_scenario
+    >>> from tyrelab.scenario_io import load_scenario
     >>> sc = load_scenario(scenarios_dir() / "modern_tractor.toml")
     >>> t = expected_sweep(sc, [1.2, 1.6], [1.2], [8.0])
     >>> row = t.iloc[1]

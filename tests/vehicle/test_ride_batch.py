@@ -9,7 +9,8 @@ import pytest
 from tyrelab.resources import scenarios_dir
 from tyrelab.vehicle import ride
 from tyrelab.vehicle.model import assemble
-from tyrelab.vehicle.scenario import parse_scenario, with_overrides
+from tyrelab.scenario_io import parse_scenario
+from tyrelab.vehicle.scenario import with_overrides
 
 COLUMNS = ["a_wz_m_s2", "a_wx_m_s2", "a_wy_m_s2", "expected_a_wz_m_s2", "expected_a_wx_m_s2", "expected_a_wy_m_s2",
            "vdv_m_s1_75", "crest_factor", "hours_to_eav"]
