@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from . import _validate
 from .vehicle.scenario import Scenario, ScenarioError
 from .vehicle.scenario import parse_scenario as _parse_text
 
@@ -34,6 +35,7 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarr
         Naming the file and every problem (missing columns, non-numeric values,
         distances not strictly increasing, fewer than 16 points).
     """
+    _validate.instance("path", path, (str, Path))
     path = Path(path)
     if not path.is_file():
         raise ValueError(f"{path}: no such file")
@@ -95,6 +97,7 @@ def load_scenario(path: str | Path, *, confine: bool = True) -> Scenario:
     ScenarioError
         If the file cannot be read or has problems (all listed).
     """
+    _validate.instance("path", path, (str, Path))
     p = Path(path)
     try:
         if not p.is_file():  # a folder, a FIFO, /dev/zero (read for ever)

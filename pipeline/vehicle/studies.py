@@ -33,6 +33,7 @@ import math
 import numpy as np
 import pandas as pd
 
+from .. import _validate
 from . import carriage as cm
 from . import enveloping as ev
 from . import iso2631
@@ -179,6 +180,9 @@ def carriage_case_inputs(
     >>> cases[0]["footprint_m"] == cases[1]["footprint_m"]  # one condition, one footprint
     True
     """
+    _validate.frame("table_xii", table_xii)
+    _validate.frame("stationary", stationary)
+    _validate.positive("surface_stiffness_factor", surface_stiffness_factor)
     problems: list[str] = []
     stat = _by_condition(stationary, table_xii["load_condition"], "stationary", "row", problems)
     _refuse(problems)
@@ -230,6 +234,10 @@ def carriage_study(
         ``cases`` (list, per row of ``table_xii``: its runs, comparisons and example
         records, for a later call's ``cases``).
     """
+    _validate.frame("table_xii", table_xii)
+    _validate.frame("stationary", stationary)
+    _validate.positive_int("seed", seed, minimum=0)
+    _validate.positive("surface_stiffness_factor", surface_stiffness_factor)
     conds = table_xii.reset_index(drop=True)
     cases = _given_cases(cases, len(conds), "row positions", "table_xii")
     problems: list[str] = []
@@ -447,6 +455,8 @@ def longitudinal_grid(table_xviii: pd.DataFrame | None = None) -> dict[str, list
     >>> g["kelvin_voigt"][:3], g["maxwell"]
     ([(0.0, 0.0), (455.0, 0.0), (455.0, 1.0)], [(455.0, 1.0), (455.0, 3.0), (455.0, 5.0)])
     """
+    if table_xviii is not None:
+        _validate.frame("table_xviii", table_xviii)
     if table_xviii is None:
         from .. import published
 
@@ -472,6 +482,10 @@ def tractor_case_inputs(
     recomputes only the cases whose inputs changed. The sweep's case also reads the
     longitudinal elements of ``table_xviii`` (:func:`longitudinal_grid`, default the shipped one).
     """
+    _validate.frame("table_xv", table_xv)
+    _validate.frame("table_xvi", table_xvi)
+    _validate.choice("farm_class", farm_class, tuple("ABCDEFGH"))
+    _validate.positive("duration_s", duration_s)
     rolling = table_xvi[table_xvi["characteristics"] == "rolling"].reset_index(drop=True)
     xv, stat = _tractor_conditions(table_xv, table_xvi, rolling)
     out = []
@@ -537,6 +551,11 @@ def tractor_study(
         ``table_xviii`` (ours), ``spectra`` (farm track profiles); ``cases`` (list, per
         rolling row: its runs, for a later call's ``cases``).
     """
+    _validate.frame("table_xv", table_xv)
+    _validate.frame("table_xvi", table_xvi)
+    _validate.positive_int("seed", seed, minimum=0)
+    _validate.choice("farm_class", farm_class, tuple("ABCDEFGH"))
+    _validate.positive("duration_s", duration_s)
     hh_est = pr.add_lead_in(pr.iso8608_track(farm_class, seed=seed + 10), LEAD_IN_M)
     hh_true = pr.add_lead_in(pr.iso8608_track(farm_class, seed=seed + 11), LEAD_IN_M)
     # surveyed SBT estimate: slat tops with survey error (same for both tracks)
