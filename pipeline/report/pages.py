@@ -39,6 +39,7 @@ import pandas as pd
 
 from . import tables
 from .chapters import CHAPTERS, Chapter, FigureSpec, TableSpec
+from .measured_page import MEASURED_RIDE
 
 __all__ = ["Output", "Page", "ChapterPage", "IndexPage", "RunsPage", "PAGES", "register", "registered",
            "run_page_name"]
@@ -256,3 +257,4 @@ register(IndexPage())
 for _number, _chapter in enumerate(CHAPTERS):
     register(ChapterPage(_chapter, order=10 * (_number + 1)))
 register(RunsPage())
+register(ChapterPage(MEASURED_RIDE, order=10 * (len(CHAPTERS) + 1)))

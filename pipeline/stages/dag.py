@@ -118,7 +118,7 @@ SIMULATE_TABLES = (
 )
 #: Stages whose rows make up the ``quarantine`` table, each in its own part
 #: (:func:`quarantine_part`); the warehouse stage publishes their union, in this order.
-QUARANTINE_PARTS = ("ingest", "analyse", "simulate")
+QUARANTINE_PARTS = ("ingest", "analyse", "simulate", "rides")
 
 
 #: The analyse stage's table (one row per measurement run), which calibrate completes into ``results``.
@@ -153,6 +153,10 @@ STAGES: dict[str, Stage] = {s.name: s for s in (
                                                                  "damping_pressure_by_speed")),
           writes=(*_tables(*SIMULATE_TABLES), quarantine_part("simulate")),
           doc="profiles, carriage and tractor studies, Table XX, ISO 2631, ride scenarios"),
+    Stage("rides", reads=("raw", *_tables("stiffness_pressure_by_speed", "damping_pressure_by_speed")),
+          writes=(*_tables("recordings", "recording_axes", "recording_spectra", "exposure_days", "ride_validation",
+                           "ride_validation_statistics"), quarantine_part("rides")),
+          doc="vehicle recordings (rides.csv): whole-body vibration, daily exposure, predictions checked"),
     Stage("warehouse", reads=("parquet/*.parquet", *(quarantine_part(s) for s in QUARANTINE_PARTS), "parquet/runs/",
                               "published"),
           writes=("parquet/published/", table("quarantine"), "warehouse.duckdb"),

@@ -302,11 +302,13 @@ def _ride_files(campaign: Path) -> set[str]:
     path = campaign / RIDES_FILE
     if not path.is_file():
         return set()
-    try:
-        files = pd.read_csv(path, usecols=["file"], dtype=str)["file"].dropna()
-    except (OSError, ValueError, UnicodeDecodeError, pd.errors.ParserError):
+    try:  # the project's reader: separator, BOM, decimal commas and size bound as the rides stage reads it
+        frame = read_delimited(path, load_schema("raw_rides")).frame
+    except RunFileError:
         return set()
-    return {str(Path(f)) for f in files}
+    if "file" not in frame.columns:
+        return set()
+    return {str(Path(str(f).strip())) for f in frame["file"].dropna() if str(f).strip()}
 
 
 def _sweep(runs_dir: Path, keep: set[str]) -> None:

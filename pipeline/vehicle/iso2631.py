@@ -411,7 +411,8 @@ class ResponseFilter:
     Chunks of any length go in; each :meth:`process` returns, per response, the filtered
     samples ready so far, and :meth:`finish` the rest, so the outputs have exactly the
     input's length and equal those of filtering the whole record (zero before and after,
-    as :func:`weighted_signal`'s zero padding). Memory: the taps and one chunk.
+    as :func:`weighted_signal`'s zero padding). Memory: the taps and one block (2^18 samples or 8× the
+    taps) per response.
 
     Parameters
     ----------
@@ -439,20 +440,26 @@ class ResponseFilter:
         if len(n_taps) != 1:
             raise ValueError("responses must have the same number of taps")
         self._n_taps = n_taps.pop()
+        # one power-of-two FFT per block of new samples (at least 2^18 and 8× the taps): a
+        # power of two is 1.6× faster than the 5-smooth length next to it, and a block as long
+        # as the FFT allows spends the fewest FFTs per sample
+        self._nfft = 1 << max(18, int(math.ceil(math.log2(8 * self._n_taps))))
+        self._block = self._nfft - (self._n_taps - 1)
         self._history = np.zeros(self._n_taps - 1)
+        self._pending: list[np.ndarray] = []
+        self._n_pending = 0
         self._skip = self._lead  # outputs before t = 0 of the record
         self._spectra: dict[int, list[np.ndarray]] = {}
 
-    def _convolve(self, chunk: np.ndarray) -> list[np.ndarray]:
+    def _convolve(self, chunk: np.ndarray, nfft: int) -> list[np.ndarray]:
         from scipy import fft
 
         buf = np.concatenate((self._history, chunk))
         self._history = buf[buf.size - (self._n_taps - 1):] if self._n_taps > 1 else buf[:0]
-        nfft = fft.next_fast_len(buf.size, real=True)
         spectra = self._spectra.get(nfft)
         if spectra is None:
             spectra = [fft.rfft(t, nfft) for t in self._taps]
-            self._spectra = {nfft: spectra}  # chunks come in a few sizes: keep the last
+            self._spectra[nfft] = spectra
         b = fft.rfft(buf, nfft)
         out = [fft.irfft(b * s, nfft)[self._n_taps - 1: buf.size] for s in spectra]
         if self._skip:
@@ -461,15 +468,38 @@ class ResponseFilter:
             self._skip -= k
         return out
 
-    def process(self, chunk) -> list[np.ndarray]:
-        """Filter the next chunk; returns one array per response (the first calls lag by the lead)."""
-        chunk = np.asarray(chunk, dtype=float)
-        if chunk.size == 0:
+    def _blocks(self, final: bool) -> list[np.ndarray]:
+        """Filter the pending samples in whole blocks (and, if ``final``, the rest)."""
+        if not self._pending:
             return [np.empty(0) for _ in self._taps]
-        return self._convolve(chunk)
+        data = np.concatenate(self._pending) if len(self._pending) > 1 else self._pending[0]
+        n_full = data.size // self._block * self._block
+        parts = [self._convolve(data[i:i + self._block], self._nfft) for i in range(0, n_full, self._block)]
+        rest = data[n_full:]
+        if final and rest.size:
+            parts.append(self._convolve(rest, 1 << int(math.ceil(math.log2(rest.size + self._n_taps - 1)))))
+            rest = rest[:0]
+        self._pending, self._n_pending = ([rest], rest.size) if rest.size else ([], 0)
+        if not parts:
+            return [np.empty(0) for _ in self._taps]
+        return [np.concatenate([p[j] for p in parts]) if len(parts) > 1 else parts[0][j]
+                for j in range(len(self._taps))]
+
+    def process(self, chunk) -> list[np.ndarray]:
+        """Filter the next chunk; returns one array per response, the outputs ready so far (they lag
+        the input by up to a block)."""
+        chunk = np.asarray(chunk, dtype=float)
+        if chunk.size:
+            self._pending.append(chunk)
+            self._n_pending += chunk.size
+        if self._n_pending < self._block:
+            return [np.empty(0) for _ in self._taps]
+        return self._blocks(final=False)
 
     def finish(self) -> list[np.ndarray]:
-        """The last ``lead`` output samples (the record continued by zeros)."""
-        n = self._lead
-        self._lead = 0
-        return self._convolve(np.zeros(n)) if n else [np.empty(0) for _ in self._taps]
+        """The remaining output samples (the record continued by zeros for the lead)."""
+        if self._lead:
+            self._pending.append(np.zeros(self._lead))
+            self._n_pending += self._lead
+            self._lead = 0
+        return self._blocks(final=True)

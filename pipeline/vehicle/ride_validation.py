@@ -92,8 +92,10 @@ def track_of(text, campaign: Path | None = None) -> ValidationTrack:
     raise ValueError(f"track {s!r}: expected 'scenario', an ISO 8608 class A-H or a profile CSV of the campaign")
 
 
-def predicted_seat(scenario, speed_km_h: float, track: ValidationTrack, build: Path | None = None) -> tuple[dict, float]:
+def predicted_seat(scenario, speed_km_h: float, track: ValidationTrack, tyre_data=None) -> tuple[dict, float]:
     """The scenario's predicted seat record at one speed on the recording's track.
+
+    ``tyre_data`` is :func:`tyrelab.vehicle.ride.ride`'s (default: the shipped tyre data).
 
     Returns
     -------
@@ -113,7 +115,7 @@ def predicted_seat(scenario, speed_km_h: float, track: ValidationTrack, build: P
     elif track.kind == "profile":
         s = dataclasses.replace(s, surface=dataclasses.replace(s.surface, kind="profile", profile=track.profile,
                                                                road_class=None, spectrum_g0_m3=None))
-    res = ride(s, build, with_spectra=False, with_signals=True)
+    res = ride(s, tyre_data, with_spectra=False, with_signals=True)
     return next(iter(res.signals.values())), FS_HZ
 
 
@@ -132,7 +134,7 @@ def _envelope_similarity(measured: np.ndarray, fs_m: float, f_m: float, predicte
 
 def validation_rows(measured: RecordingAnalysis, predicted_signals: dict, predicted_fs_Hz: float,
                     known_profile: bool, measured_signals: dict | None = None) -> list[dict]:
-    """Per seat axis recorded and predicted: the measured-vs-predicted values.
+    """Per seat axis recorded and predicted (and moved by the model): the measured-vs-predicted values.
 
     Parameters
     ----------
@@ -160,6 +162,8 @@ def validation_rows(measured: RecordingAnalysis, predicted_signals: dict, predic
         if c not in measured.channels or c not in predicted.channels:
             continue
         m, p = measured.channels[c], predicted.channels[c]
+        if not p.a_w_m_s2 > 0:  # an axis the model does not move (e.g. fore-aft without a longitudinal model)
+            continue
         r = math.nan
         if known_profile and measured_signals is not None and c in measured_signals:
             r = _envelope_similarity(np.asarray(measured_signals[c], float), measured.sample_rate_Hz,

@@ -8,6 +8,7 @@ published file must be the clean build's bytes. ``SOURCE_DATE_EPOCH`` fixes the 
 
 from __future__ import annotations
 
+import itertools
 import json
 import logging
 from pathlib import Path
@@ -130,13 +131,14 @@ def test_a_damaged_output_is_rebuilt_by_its_writer(clean, caplog):
     assert "recomputed: nothing" in _run(raw, build, caplog)
 
 
-#: What a damaged state file may hold, one per stage.
+#: What a damaged state file may hold; every stage of :data:`FAST` gets one, in turn (there are
+#: more stages than kinds of damage).
 DAMAGE = ["null", "[]", "[1, 2]", '"text"', "{garbage", '{"inputs": 3}', ""]
 
 
 def test_damaged_state_is_no_state(clean, caplog):
     raw, build, files = clean
-    for name, content in zip(FAST, DAMAGE):
+    for name, content in zip(FAST, itertools.cycle(DAMAGE)):
         (build / "state" / f"{name}.json").write_text(content)
     (build / "state" / "ingest_runs.json").write_text('{"r001": null, "r002": [], "r003": {"size": 1}}')
     log = _run(raw, build, caplog)

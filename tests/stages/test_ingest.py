@@ -93,3 +93,14 @@ def test_vehicle_recordings_of_rides_csv_are_not_orphan_runs(tmp_path):
     assert run_stage("ingest", ctx).n_ok == 1
     q = ctx.read_table("quarantine")
     assert [Path(f).name for f in q["file"]] == ["stray.parquet"], q
+
+
+def test_a_rides_csv_is_read_by_the_project_reader(tmp_path):
+    """``rides.csv`` written as a spreadsheet writes it (``;`` separated, a BOM) lists its
+    recordings to ingest as it does to the rides stage: they are not orphan tyre runs."""
+    raw = write_campaign(tmp_path / "raw", [(manifest_row("ok", "ok.parquet"), spring_damper_recording())])
+    pd.DataFrame({"time_s": [0.0, 0.01], "seat_z_m_s2": [0.0, 0.1]}).to_parquet(raw / "r1.parquet")
+    (raw / "rides.csv").write_bytes("\ufeffride_id;file;speed_km_h\nr1;r1.parquet;12,5\n".encode())
+    ctx = Context(raw=raw, build=tmp_path / "build", jobs=1)
+    assert run_stage("ingest", ctx).n_ok == 1
+    assert ctx.read_table("quarantine").empty

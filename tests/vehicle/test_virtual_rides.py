@@ -59,3 +59,15 @@ def test_readme_exposure_example_is_the_real_output(demo, monkeypatch, capsys):
     monkeypatch.chdir(demo)
     assert main(argv[1:]) == 0
     assert capsys.readouterr().out == expected
+
+
+def test_readme_validation_example_is_the_real_output(demo, monkeypatch, capsys):
+    text = README.read_text(encoding="utf-8")
+    section = re.search(r"## Check a prediction against a recording\n(.*?)\n## ", text, re.S).group(1)
+    commands = re.search(r"```sh\n(.*?)```", section, re.S).group(1).strip().splitlines()
+    expected = re.search(r"```text\n(.*?)```", section, re.S).group(1)
+    monkeypatch.chdir(demo)
+    for line in commands:
+        argv = shlex.split(line, comments=True)
+        assert main(["-q", *argv[1:]]) == 0
+    assert capsys.readouterr().out == expected

@@ -1,0 +1,290 @@
+"""Rides: vehicle recordings -> whole-body vibration, daily exposure, predictions checked (issue 24).
+
+Every campaign folder of ``--raw`` holding ``rides.csv`` (``schemas/raw_rides.json``; beside or
+instead of ``manifest.csv``) lists recordings of a vehicle's seat and cab floor
+(:mod:`tyrelab.rawformat.rides`). Per recording, streamed in bounded memory, the analysis of
+:mod:`tyrelab.vehicle.measured_ride`; for a row naming a ``scenario`` (a TOML of the campaign),
+the check against that scenario's prediction at the row's speed on the row's track
+(:mod:`tyrelab.vehicle.ride_validation`); per vehicle and day, the daily exposure of the rows
+with ``task`` and ``hours_per_day`` (:mod:`tyrelab.vehicle.daily_exposure`).
+
+A row that cannot be used — schema problem, duplicate ``ride_id``, a ``file``/``scenario``/profile
+outside the campaign or missing, a bad scenario, a bad recording — goes to the ``quarantine``
+table with one line naming it; the other rows go through. A ``rides.csv`` that cannot be read is
+rejected as a whole (exit 3). Each recording's analysis and validation is kept by the digest of
+what it reads (:class:`tyrelab.stages.state.ItemCache`): an added or edited recording is the only
+one analysed again.
+
+Tables: ``recordings`` (one row per recording), ``recording_axes`` (per recording and channel),
+``recording_spectra`` (seat PSDs, measured and predicted, for the report), ``exposure_days``,
+``ride_validation`` (per recording and axis), ``ride_validation_statistics``.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from .. import io
+from ..rawformat import RunFileError
+from ..rawformat.files import confined_run_path, read_delimited
+from ..schema import load_schema, row_problems
+from .base import Context, StageResult, write_quarantine
+from .state import ItemCache
+
+__all__ = ["INPUTS", "OUTPUTS", "discover_ride_campaigns", "run"]
+
+INPUTS = ["raw", "stiffness_pressure_by_speed", "damping_pressure_by_speed"]
+OUTPUTS = ["recordings", "recording_axes", "recording_spectra", "exposure_days", "ride_validation",
+           "ride_validation_statistics"]
+#: Upper frequency of the stored spectra, Hz.
+SPECTRA_MAX_HZ = 20.0
+#: Columns of each table when it has no row (so the warehouse still has the table, with its columns).
+EMPTY_COLUMNS = {
+    "recordings": ["ride_id", "campaign", "file", "vehicle", "speed_km_h", "track", "recorded_on", "scenario", "task",
+                   "hours_per_day", "sample_rate_Hz", "duration_s", "a_v_m_s2", "dz_m_s2", "channels", "warnings"],
+    "recording_axes": ["ride_id", "channel", "axis", "weighting", "a_w_m_s2", "vdv_m_s1_75", "mtvv_m_s2", "crest_factor",
+                       "rms_method_sufficient", "method_reasons", "unweighted_rms", "peak_frequency_Hz",
+                       "half_power_width_Hz", "duration_s"],
+    "recording_spectra": ["ride_id", "source", "channel", "frequency_Hz", "psd_m2_s4_per_Hz"],
+    "exposure_days": ["campaign", "vehicle", "recorded_on", "tasks", "hours_per_day", "a8_m_s2", "a8_axis",
+                      "vdv_daily_m_s1_75", "vdv_daily_axis", "hours_to_eav", "hours_to_elv", "exposure_points", "verdict",
+                      "dzd_m_s2"],
+    "ride_validation": ["ride_id", "campaign", "file", "vehicle", "speed_km_h", "track", "recorded_on", "scenario", "task",
+                        "axis", "measured_a_w_m_s2", "predicted_a_w_m_s2", "ratio_a_w", "measured_peak_frequency_Hz",
+                        "predicted_peak_frequency_Hz", "measured_half_power_width_Hz", "predicted_half_power_width_Hz",
+                        "envelope_similarity"],
+}
+
+
+def _frame(name: str, rows) -> pd.DataFrame:
+    if isinstance(rows, pd.DataFrame):
+        return rows if len(rows.columns) else pd.DataFrame(columns=EMPTY_COLUMNS[name])
+    return pd.DataFrame(rows) if rows else pd.DataFrame({c: pd.Series(dtype="object") for c in EMPTY_COLUMNS[name]})
+
+
+def discover_ride_campaigns(raw: Path) -> list[Path]:
+    """Folders holding ``rides.csv``: ``raw`` itself, else every folder below it that does."""
+    raw = Path(raw)
+    if (raw / "rides.csv").is_file():
+        return [raw]
+    return sorted(p.parent for p in raw.rglob("rides.csv") if p.is_file())
+
+
+def _analyse(path: Path, channel_map) -> dict:
+    """Analysis rows of one recording, or ``{"error": reason}``."""
+    from ..rawformat.rides import open_recording
+    from ..vehicle.measured_ride import analyse_recording
+
+    try:
+        a = analyse_recording(open_recording(path, channel_map))
+    except RunFileError as exc:
+        return {"error": str(exc)}
+    axes = []
+    spectra = []
+    for c, r in a.channels.items():
+        axes.append({"channel": c, "axis": c.split("_")[-2] if c.endswith("_m_s2") else "",
+                     "weighting": r.weighting or "", "a_w_m_s2": r.a_w_m_s2, "vdv_m_s1_75": r.vdv_m_s1_75,
+                     "mtvv_m_s2": r.mtvv_m_s2, "crest_factor": r.crest_factor,
+                     "rms_method_sufficient": bool(r.method.get("rms_method_sufficient", True)) if r.weighting else None,
+                     "method_reasons": "; ".join(r.method.get("reasons", [])),
+                     "unweighted_rms": r.unweighted_rms, "peak_frequency_Hz": r.peak_frequency_Hz,
+                     "half_power_width_Hz": r.half_power_width_Hz, "duration_s": r.duration_s})
+        if c.startswith("seat_") and r.frequency_Hz.size:
+            keep = (r.frequency_Hz > 0) & (r.frequency_Hz <= SPECTRA_MAX_HZ)
+            spectra.append({"channel": c, "frequency_Hz": r.frequency_Hz[keep], "psd": r.psd[keep]})
+    ax = a.axes()
+    summary = {"sample_rate_Hz": a.sample_rate_Hz, "duration_s": a.duration_s, "a_v_m_s2": a.a_v(),
+               "dz_m_s2": a.dz_m_s2, "channels": ",".join(a.channels),
+               **{f"seat_factor_{k}": v for k, v in a.seat_factor().items()},
+               **{f"a_w_{k}_m_s2": ax[k]["a_w_m_s2"] for k in ax},
+               **{f"vdv_{k}_m_s1_75": ax[k]["vdv_m_s1_75"] for k in ax},
+               "warnings": "; ".join(a.warnings)}
+    return {"summary": summary, "axes": axes, "spectra": spectra,
+            "exposure": {k: (ax[k]["a_w_m_s2"], ax[k]["vdv_m_s1_75"]) for k in ax}}
+
+
+def _validate(path: Path, channel_map, scenario_path: Path, speed_km_h: float, track, build: Path) -> dict:
+    """Validation rows of one recording against its scenario's prediction, or ``{"error": reason}``."""
+    from ..rawformat.rides import open_recording
+    from ..vehicle import ride_validation as rv
+    from ..vehicle.measured_ride import analyse_recording
+    from ..vehicle.scenario import ScenarioError, load_scenario
+
+    try:
+        scenario = load_scenario(scenario_path)
+    except ScenarioError as exc:
+        return {"error": f"scenario {scenario_path.name}: {'; '.join(exc.problems)}"}
+    try:
+        rec = open_recording(path, channel_map)
+        signals = None
+        if track.known_profile:
+            n = 0
+            parts: dict = {c: [] for c in rec.channels}
+            for chunk in rec.chunks():
+                n += chunk.time_s.size
+                if n / rec.sample_rate_Hz > rv.MAX_ENVELOPE_S:
+                    parts = None
+                    break
+                for c in rec.channels:
+                    parts[c].append(chunk.channels[c])
+            if parts is not None:
+                signals = {c: np.concatenate(v) for c, v in parts.items()}
+            rec = open_recording(path, channel_map)
+        measured = analyse_recording(rec)
+        predicted, fs = rv.predicted_seat(scenario, speed_km_h, track)  # shipped tyre data (no measured_tyre_id yet)
+    except (RunFileError, ValueError) as exc:
+        return {"error": str(exc).splitlines()[0]}
+    rows = rv.validation_rows(measured, predicted, fs, track.known_profile, signals)
+    from ..vehicle.measured_ride import analyse_signals
+
+    pred = analyse_signals(predicted, fs)
+    spectra = []
+    for c, r in pred.channels.items():
+        if c.startswith("seat_") and r.frequency_Hz.size:
+            keep = (r.frequency_Hz > 0) & (r.frequency_Hz <= SPECTRA_MAX_HZ)
+            spectra.append({"channel": c, "frequency_Hz": r.frequency_Hz[keep], "psd": r.psd[keep]})
+    return {"rows": rows, "spectra": spectra}
+
+
+def _plain(row: dict) -> dict:
+    return {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in row.items()}
+
+
+def run(ctx: Context) -> StageResult:
+    """Analyse every recording of every ``rides.csv``; write the tables and quarantine rows."""
+    from ..rawformat import load_channel_map
+    from ..vehicle import ride_validation as rv
+    from ..vehicle.daily_exposure import TaskExposure, daily_exposure
+    from ..vehicle.scenario import ScenarioError, load_scenario
+
+    t0 = time.perf_counter()
+    schema = load_schema("raw_rides")
+    cache = ItemCache(ctx, "rides")
+    quarantine: list[dict] = []
+    recordings, axes, spectra, validation, tasks = [], [], [], [], []
+    seen: dict[str, str] = {}
+    n_in = n_rejected = 0
+    tyre_tables = [io.file_sha256(ctx.table(t)) if ctx.has_table(t) else "" for t in INPUTS[1:]]
+
+    def refuse(campaign: Path, ride_id, file, reason: str) -> None:
+        quarantine.append({"campaign": str(campaign), "run_id": None if ride_id is None else str(ride_id),
+                           "file": None if file is None else str(file), "stage": "rides", "reason": reason})
+        ctx.log.warning("rides: %s: %s: %s", campaign.name, ride_id if ride_id is not None else "rides.csv", reason)
+
+    for campaign in discover_ride_campaigns(ctx.raw):
+        try:
+            table = read_delimited(campaign / "rides.csv", schema)
+        except RunFileError as exc:
+            n_rejected += 1
+            refuse(campaign, None, "rides.csv", f"rides.csv: {exc}")
+            continue
+        frame = table.frame
+        whole, by_row = row_problems(frame, schema)
+        if whole:
+            n_rejected += 1
+            refuse(campaign, None, "rides.csv", "rides.csv: " + "; ".join(whole))
+            continue
+        channel_map = None
+        if (campaign / "channel_map.json").is_file():
+            try:
+                channel_map = load_channel_map(campaign / "channel_map.json")
+            except RunFileError as exc:
+                channel_map = None
+                ctx.log.warning("rides: %s: channel_map.json: %s", campaign.name, exc)
+        for i, row in enumerate(frame.to_dict("records")):
+            n_in += 1
+            ride_id, file = row.get("ride_id"), row.get("file")
+            if by_row.get(i):
+                refuse(campaign, ride_id, file, "; ".join(by_row[i]))
+                continue
+            if ride_id in seen:
+                refuse(campaign, ride_id, file, f"duplicate ride_id (also in {seen[ride_id]})")
+                continue
+            seen[ride_id] = str(campaign)
+            try:
+                path = confined_run_path(campaign, file)
+            except RunFileError as exc:
+                refuse(campaign, ride_id, file, str(exc))
+                continue
+            scenario_path = track = None
+            try:
+                track = rv.track_of(row.get("track"), campaign)
+                if isinstance(row.get("scenario"), str) and row["scenario"].strip():
+                    scenario_path = confined_run_path(campaign, row["scenario"].strip())
+                    load_scenario(scenario_path)
+            except (ValueError, RunFileError) as exc:
+                problems = exc.problems if isinstance(exc, ScenarioError) else [str(exc)]
+                refuse(campaign, ride_id, file, f"scenario {row.get('scenario')}: {'; '.join(problems)}"
+                       if isinstance(exc, (ScenarioError, RunFileError)) else str(exc))
+                continue
+            digest = io.file_sha256(path)
+            key = cache.key("recording", digest, str(path.suffix), channel_map)
+            result = cache.get_or_compute(key, lambda: _analyse(path, channel_map))
+            if "error" in result:
+                refuse(campaign, ride_id, file, result["error"])
+                continue
+            speed = float(row["speed_km_h"])
+            ident = {"ride_id": ride_id, "campaign": str(campaign), "file": str(file), "vehicle": row["vehicle"],
+                     "speed_km_h": speed, "track": str(row.get("track") or "scenario"),
+                     "recorded_on": str(row["recorded_on"]), "scenario": row.get("scenario") or None,
+                     "task": row.get("task") or None}
+            hours = row.get("hours_per_day")
+            hours = float(hours) if hours not in (None, "") and not (isinstance(hours, float) and math.isnan(hours)) \
+                else None
+            recordings.append({**ident, "hours_per_day": hours, **result["summary"]})
+            axes.extend({"ride_id": ride_id, **a} for a in result["axes"])
+            for s in result["spectra"]:
+                spectra.append(pd.DataFrame({"ride_id": ride_id, "source": "measured", "channel": s["channel"],
+                                             "frequency_Hz": s["frequency_Hz"], "psd_m2_s4_per_Hz": s["psd"]}))
+            if hours and row.get("task") and result["exposure"]:
+                tasks.append((ident, hours, result))
+            if scenario_path is not None:
+                vkey = cache.key("validation", digest, io.file_sha256(scenario_path), speed, repr(track), tyre_tables,
+                                 channel_map)
+                val = cache.get_or_compute(vkey, lambda: _validate(path, channel_map, scenario_path, speed, track,
+                                                                   ctx.build))
+                if "error" in val:
+                    refuse(campaign, ride_id, file, f"prediction: {val['error']}")
+                    continue
+                validation.extend({**ident, **r} for r in val["rows"])
+                for s in val["spectra"]:
+                    spectra.append(pd.DataFrame({"ride_id": ride_id, "source": "predicted", "channel": s["channel"],
+                                                 "frequency_Hz": s["frequency_Hz"],
+                                                 "psd_m2_s4_per_Hz": s["psd"]}))
+    days = []
+    by_day: dict = {}
+    for ident, hours, result in tasks:
+        by_day.setdefault((ident["campaign"], ident["vehicle"], ident["recorded_on"]), []).append((ident, hours, result))
+    for (campaign, vehicle, day), items in sorted(by_day.items()):
+        try:
+            d = daily_exposure([TaskExposure(i["task"], h, {k: v[0] for k, v in r["exposure"].items()},
+                                             {k: v[1] for k, v in r["exposure"].items()}, r["summary"]["duration_s"],
+                                             r["summary"]["dz_m_s2"]) for i, h, r in items])
+        except ValueError as exc:
+            refuse(Path(campaign), None, "rides.csv", f"{vehicle} on {day}: {exc}")
+            continue
+        days.append({"campaign": campaign, "vehicle": vehicle, "recorded_on": day, "tasks": len(items),
+                     "hours_per_day": d["hours_per_day"], "a8_m_s2": d["a8_m_s2"], "a8_axis": d["a8_axis"],
+                     **{f"a8_{k}_m_s2": v for k, v in d["a8_axes_m_s2"].items()},
+                     "vdv_daily_m_s1_75": d["vdv_daily_m_s1_75"], "vdv_daily_axis": d["vdv_daily_axis"],
+                     "hours_to_eav": d["hours_to_eav"], "hours_to_elv": d["hours_to_elv"],
+                     "exposure_points": d["exposure_points"], "verdict": d["verdict"], "dzd_m_s2": d["dzd_m_s2"]})
+    val_frame = _frame("ride_validation", validation)
+    ctx.write_table("recordings", _frame("recordings", recordings))
+    ctx.write_table("recording_axes", _frame("recording_axes", axes))
+    ctx.write_table("recording_spectra", _frame("recording_spectra", pd.concat(spectra, ignore_index=True) if spectra
+                                                else []))
+    ctx.write_table("exposure_days", _frame("exposure_days", days))
+    ctx.write_table("ride_validation", val_frame)
+    ctx.write_table("ride_validation_statistics", rv.validation_statistics(val_frame))
+    write_quarantine(ctx, "rides", quarantine)
+    cache.prune()
+    n_bad = sum(1 for q in quarantine if q["run_id"] is not None)
+    return StageResult("rides", n_in=n_in, n_ok=len(recordings), n_quarantined=n_bad, n_rejected=n_rejected,
+                       seconds=time.perf_counter() - t0,
+                       message=f"recordings {cache.summary('recording')}, validations {cache.summary('validation')}")
