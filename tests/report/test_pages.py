@@ -8,10 +8,10 @@ from tyrelab.report import pages, site
 from tyrelab.report.chapters import Chapter, FigureSpec, TableSpec
 
 
-def test_registry_lists_index_chapters_ride_and_runs_in_order():
+def test_registry_lists_index_chapters_ride_runs_and_docs_in_order():
     slugs = [p.slug for p in pages.registered()]
-    assert slugs[0] == "index" and slugs[-1] == "runs"
-    assert slugs[1:-1] == [c.slug for c in pages.CHAPTERS] + ["measured-ride"]  # issue 24's page after the chapters
+    assert slugs[0] == "index" and slugs[-2:] == ["runs", "docs"]
+    assert slugs[1:-2] == [c.slug for c in pages.CHAPTERS] + ["measured-ride"]  # issue 24's page after the chapters
     with pytest.raises(ValueError, match="'runs' is already registered"):
         pages.register(pages.RunsPage())
 

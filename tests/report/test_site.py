@@ -43,6 +43,9 @@ def test_site_is_offline_with_working_relative_links(small_report):
         for href in re.findall(r'href="([^"#]+)', html):
             assert not href.startswith(("/", "http:", "https:", "file:")), (path, href)
             assert (path.parent / href).exists(), (path, href)
+        for href, anchor in re.findall(r'href="([^"#]*)#([^"]+)"', html):  # a section: its id is there
+            target = (path.parent / href) if href else path
+            assert f'id="{anchor}"' in target.read_text(encoding="utf-8"), (path, href, anchor)
 
 
 def test_index_summary_provenance_and_size(small_report):
