@@ -180,7 +180,7 @@ def _study_plan(pub: dict, cache: ItemCache, folder: Path) -> tuple[dict, dict, 
     keys = {"tractor": cache.key("tractor", mass, tyres, studies.longitudinal_grid(xviii), SEED),
             "carriage": cache.key("carriage", xii, stationary, SEED)}
     case_keys, problems = {}, []
-    for name, what, cases in (("tractor", "tractor study (table_xv, table_xvi, table_xviii)",
+    for name, what, cases in (("tractor", "tractor study (table_xv, table_xvi)",
                                lambda: studies.tractor_case_inputs(mass, tyres, table_xviii=xviii)),
                               ("carriage", "carriage study (table_xii)", lambda: studies.carriage_case_inputs(xii, stationary))):
         try:
