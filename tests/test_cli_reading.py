@@ -16,8 +16,7 @@ import pytest
 
 from tyrelab import cli, progress
 
-sys.path.insert(0, str(Path(__file__).parent / "vehicle"))
-from test_ride import scenario_text, write  # noqa: E402
+from tests.vehicle.test_ride import scenario_text, write
 
 
 def _verbs(parser):

@@ -26,6 +26,7 @@ def test_a_page_without_render_cannot_be_made():
         Forgetful()
 
 
+@pytest.mark.slow  # 51 s on 2 busy cores; runs in `make test-all`, not in the default run
 def test_a_new_page_is_one_registration(small_report, tmp_path):
     """A page registered beside the built-in ones gets its file, a navigation link and an index
     entry, and its table and figure come from the warehouse like a chapter's."""

@@ -3,7 +3,9 @@
 import re
 from pathlib import Path
 
-from small_campaign import EVIL_TYRE
+import pytest
+
+from tests.report.small_campaign import EVIL_TYRE
 
 THESIS_TABLES = ["III", "IV", "V", "VI", "VII", "VIII", "IX", "X", "XI", "XII", "XIII", "XIV", "XV", "XVI",
                  "XVII", "XVIII", "XIX", "XX"]
@@ -85,6 +87,7 @@ def _server_ready():
     return worker_server_state() == "ready"
 
 
+@pytest.mark.slow  # 81 s on 2 busy cores; runs in `make test-all`, not in the default run
 def test_figures_drawn_in_the_background_give_the_same_pages(small_report, tmp_path, monkeypatch):
     """Every figure drawn by workers forked from the worker server (while the tables are shaped)
     gives the bytes of the same site drawn in this process.
