@@ -88,7 +88,7 @@ def test_build_without_a_fit_is_one_line(tmp_path, capsys):
 def test_scenario_formula_build_uses_the_lab_fit(population_build, tmp_path):
     from tyrelab.stages.simulate import WarehouseTyres
     from tyrelab.vehicle import ride
-    from tyrelab.vehicle.scenario import ScenarioError, load_scenario
+    from tyrelab.scenario_io import ScenarioError, load_scenario
 
     _, build = population_build
     text = """
