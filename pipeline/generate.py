@@ -42,7 +42,7 @@ def write_run(run: pd.DataFrame, path: Path) -> None:
 def write_rides(out: Path, seed: int) -> int:
     """Write the virtual tractors' recordings, their scenarios and ``rides.csv``; returns the count."""
     from .resources import scenarios_dir
-    from .vehicle.scenario import load_scenario
+    from .scenario_io import load_scenario
     from .vehicle.virtual_rides import RIDE_PLAN, ride_plan, virtual_recordings
 
     scenarios = {file: load_scenario(scenarios_dir() / file) for file, *_ in RIDE_PLAN}

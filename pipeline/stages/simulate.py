@@ -49,7 +49,7 @@ from ..tyre.models import THESIS_TABLES, thesis_stiffness_model
 from ..vehicle import bounce_pitch, ride, studies
 from ..vehicle import published_layouts as layouts
 from ..vehicle.model import assemble
-from ..vehicle.scenario import ScenarioError, load_scenario
+from ..scenario_io import ScenarioError, load_scenario
 from .base import Context, Progress, StageResult, write_quarantine
 from .state import ItemCache
 
@@ -143,11 +143,12 @@ def _carriage_tables(car: dict) -> dict:
 def _study(item: tuple) -> dict:
     """One chapter 6/7 study: the tables the stage keeps, with its ``cases`` and the positions of
     those it was given (``reused``)."""
-    name, (first, second, done) = item
+    name, (*tables, done) = item
     if name == "carriage":
-        car = studies.carriage_study(first, second, seed=SEED, cases=done)
+        car = studies.carriage_study(*tables, seed=SEED, cases=done)
         return {**_carriage_tables(car), "cases": car["cases"], "reused": sorted(done)}
-    return {**studies.tractor_study(first, second, seed=SEED, cases=done), "reused": sorted(done)}
+    mass, tyres, xviii = tables
+    return {**studies.tractor_study(mass, tyres, seed=SEED, cases=done, table_xviii=xviii), "reused": sorted(done)}
 
 
 def _task(item: tuple):
@@ -175,9 +176,12 @@ def _study_plan(pub: dict, cache: ItemCache, folder: Path) -> tuple[dict, dict, 
     xii = layouts.carriage_rolling(pub["table_xii"])
     stationary = layouts.carriage_stationary(pub["table_xii"])
     mass, tyres = layouts.tractor_mass(pub["table_xv"]), layouts.tractor_tyres(pub["table_xvi"])
-    keys = {"tractor": cache.key("tractor", mass, tyres, SEED), "carriage": cache.key("carriage", xii, stationary, SEED)}
+    xviii = pub["table_xviii"]  # the sweep's longitudinal elements: <raw>/published when it has one
+    keys = {"tractor": cache.key("tractor", mass, tyres, studies.longitudinal_grid(xviii), SEED),
+            "carriage": cache.key("carriage", xii, stationary, SEED)}
     case_keys, problems = {}, []
-    for name, what, cases in (("tractor", "tractor study (table_xv, table_xvi)", lambda: studies.tractor_case_inputs(mass, tyres)),
+    for name, what, cases in (("tractor", "tractor study (table_xv, table_xvi)",
+                               lambda: studies.tractor_case_inputs(mass, tyres, table_xviii=xviii)),
                               ("carriage", "carriage study (table_xii)", lambda: studies.carriage_case_inputs(xii, stationary))):
         try:
             case_keys[name] = [cache.key(f"{name}-case", c, SEED) for c in cases()]
@@ -185,7 +189,7 @@ def _study_plan(pub: dict, cache: ItemCache, folder: Path) -> tuple[dict, dict, 
             problems.append(f"{what}: {exc}")
     if problems:
         raise published.PublishedTableError(f"{folder}: {'; '.join(problems)}")
-    return keys, {"tractor": (mass, tyres), "carriage": (xii, stationary)}, case_keys
+    return keys, {"tractor": (mass, tyres, xviii), "carriage": (xii, stationary)}, case_keys
 
 
 #: Item kinds of the studies' cases in the stage's cache (counted apart in its message).

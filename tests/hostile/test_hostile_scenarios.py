@@ -11,7 +11,7 @@ from tests.scenarios import scenario_text
 from tyrelab.cli import main
 from tyrelab.stages import simulate as simulate_stage
 from tyrelab.vehicle import ride
-from tyrelab.vehicle.scenario import ScenarioError, load_scenario, parse_scenario
+from tyrelab.scenario_io import ScenarioError, load_scenario, parse_scenario
 from tyrelab.vehicle.scenario_limits import LIMITS, work_estimate
 
 #: The ride tests' scenario, named "hostile", without an exposure time (one template: tests.scenarios).

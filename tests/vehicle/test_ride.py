@@ -14,7 +14,7 @@ from tyrelab import cli
 from tyrelab.stages import simulate as simulate_stage
 from tyrelab.vehicle import iso2631, ride
 from tyrelab.vehicle import profiles as pr
-from tyrelab.vehicle.scenario import ScenarioError, load_scenario, parse_scenario
+from tyrelab.scenario_io import ScenarioError, load_scenario, parse_scenario
 from tyrelab.vehicle.tractor import Tractor, simulate_tractor
 
 
