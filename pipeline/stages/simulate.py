@@ -450,6 +450,29 @@ class WarehouseTyres(ride.ShippedTyres):
         except ValueError as exc:
             raise ValueError(f'formula = "build": {db}: {exc}') from None
 
+    def damping_model(self, formula: str):
+        """The Table VII damping model, or the build's own fit (table ``damping_fit``, source
+        ``ours``) for ``"build"``: an unmeasured tyre's damping follows the same choice as its stiffness."""
+        from ..tyre.damping_fit import DampingFit
+        from ..warehouse import query
+
+        if formula != "build":
+            return super().damping_model(formula)
+        db = self._db()
+        if not db.is_file():
+            raise ValueError(f'formula = "build": no warehouse at {db}')
+        try:
+            table = query(db, "SELECT * FROM damping_fit")
+        except Exception as exc:  # noqa: BLE001 - a warehouse without the table is the user's input problem
+            raise ValueError(f'formula = "build": cannot read damping_fit from {db} ({str(exc).splitlines()[0]})') from None
+        rows = table.loc[table["source"].astype(str) == "ours"]
+        if rows.empty:
+            raise ValueError(f'formula = "build": {db}: damping_fit has no \'ours\' row')
+        try:
+            return DampingFit.from_row(rows.iloc[0].to_dict())
+        except ValueError as exc:
+            raise ValueError(f'formula = "build": {db}: {exc}') from None
+
 
 # --------------------------------------------------------------------------- ride scenarios (issue 13)
 def scenario_files(raw: Path | None) -> list[tuple[str, str]]:

@@ -108,9 +108,53 @@ class DampingFit:
                "residual_sd_kN_s_per_m": self.residual_sd_kN_s_per_m, "sizes": " ".join(self.sizes)}
         for name, b, se in zip(DAMPING_TERMS, self.coefficients, self.standard_errors()):
             out[name], out[f"{name}_se"] = b, se
+        for i, a in enumerate(DAMPING_TERMS):  # the whole covariance, so a fit can be read back (from_row)
+            for j in range(i, len(DAMPING_TERMS)):
+                out[f"cov_{a}_{DAMPING_TERMS[j]}"] = self.covariance[i][j]
         for name, (lo, hi) in self.ranges.items():
             out[f"{name}_min"], out[f"{name}_max"] = lo, hi
         return out
+
+    @classmethod
+    def from_row(cls, row) -> "DampingFit":
+        """The fit one ``damping_fit`` row (:meth:`row`) holds: how a build's damping model is read back.
+
+        Raises
+        ------
+        ValueError
+            If ``row`` lacks a coefficient, the covariance or the counts (a row with a ``reason``).
+
+        Examples
+        --------
+        >>> f = DampingFit("x", (0.9, 0.1, -0.06, 0.42), ((0.01, 0.0, 0.0, 0.0), (0.0, 0.02, 0.0, 0.0),
+        ...                (0.0, 0.0, 0.03, 0.0), (0.0, 0.0, 0.0, 0.04)), 0.2, 0.9, 5, 55,
+        ...                {"speed_km_h": (10.0, 20.0)}, ("13.6-38",))
+        >>> DampingFit.from_row(f.row()) == f
+        True
+        """
+        get = row.get if hasattr(row, "get") else (lambda k, d=None: getattr(row, k, d))
+        names = list(DAMPING_TERMS) + [f"cov_{a}_{b}" for i, a in enumerate(DAMPING_TERMS) for b in DAMPING_TERMS[i:]]
+        names += ["n_tyres", "n_points", "residual_sd_kN_s_per_m", "r_squared"]
+        values = {k: get(k) for k in names}
+        bad = sorted(k for k, v in values.items() if v is None or not math.isfinite(float(v)))
+        if bad:
+            raise ValueError(f"row: damping_fit row of {get('source')!r} has no {', '.join(bad)}"
+                             + (f" ({get('reason')})" if isinstance(get("reason"), str) else ""))
+        n = len(DAMPING_TERMS)
+        cov = [[0.0] * n for _ in range(n)]
+        for i, a in enumerate(DAMPING_TERMS):
+            for j in range(i, n):
+                cov[i][j] = cov[j][i] = float(values[f"cov_{a}_{DAMPING_TERMS[j]}"])
+        ranges = {}
+        for name in ("age_years", "speed_km_h", "pressure_bar"):
+            lo, hi = get(f"{name}_min"), get(f"{name}_max")
+            if lo is not None and hi is not None and math.isfinite(float(lo)) and math.isfinite(float(hi)):
+                ranges[name] = (float(lo), float(hi))
+        sizes = get("sizes")
+        return cls(str(get("source")), tuple(float(values[t]) for t in DAMPING_TERMS),
+                   tuple(tuple(r) for r in cov), float(values["residual_sd_kN_s_per_m"]), float(values["r_squared"]),
+                   int(values["n_tyres"]), int(values["n_points"]), ranges,
+                   tuple(str(sizes).split()) if isinstance(sizes, str) else ())
 
 
 def damping_points(lines: pd.DataFrame, tyres: pd.DataFrame, source: str = "published",
@@ -189,4 +233,5 @@ def damping_table(fits: list[DampingFit], reasons: dict[str, str] | None = None)
     cols += [c for name in DAMPING_TERMS for c in (name, f"{name}_se")]
     cols += [f"{n}_{e}" for n in ("age_years", "speed_km_h", "pressure_bar") for e in ("min", "max")]
     cols += ["sizes", "reason"]
+    cols += [f"cov_{a}_{b}" for i, a in enumerate(DAMPING_TERMS) for b in DAMPING_TERMS[i:]]
     return pd.DataFrame(rows).reindex(columns=cols)

@@ -197,6 +197,13 @@ class ShippedTyres:
             raise ValueError('formula = "build" needs --build (a warehouse with table formula_fit)')
         return _thesis_stiffness_model()
 
+    def damping_model(self, formula: str):
+        """The :class:`~tyrelab.tyre.damping_fit.DampingFit` for an unmeasured tyre of ``[tyres.*] formula``:
+        the Table VII model (``"thesis"``); ``"build"`` needs a warehouse."""
+        if formula == "build":
+            raise ValueError('formula = "build" needs --build (a warehouse with table damping_fit)')
+        return _damping_fit()
+
 
 @functools.lru_cache(maxsize=1)
 def _thesis_stiffness_model():
@@ -213,20 +220,24 @@ def _formula_stiffness(spec, tyre_data=None) -> tuple[float, str, list[str], flo
     return est.stiffness_kN_per_m, rule, list(est.warnings), est.stiffness_u_kN_per_m or 0.0
 
 
-def _model_damping(spec, speeds_km_h) -> tuple[np.ndarray, str, list[str]]:
-    """Damping of an unmeasured tyre per speed from the Table VII model (:mod:`tyrelab.tyre.damping_fit`),
+def _model_damping(spec, speeds_km_h, tyre_data=None) -> tuple[np.ndarray, str, list[str]]:
+    """Damping of an unmeasured tyre per speed from the damping model of ``[tyres.*] formula``
+    (:mod:`tyrelab.tyre.damping_fit`: the Table VII lines', or the build's own for ``"build"``),
     its source text and warnings (the interval at the first speed, where the model extrapolates)."""
-    from ..tyre import damping_fit
-
-    fit = _damping_fit()
+    formula = getattr(spec, "formula", "thesis")
+    get_model = getattr(tyre_data, "damping_model", None)  # a caller's tyre data without one: the shipped model
+    fit = get_model(formula) if get_model is not None else _damping_fit()
+    published_model = fit.source == "published"
+    which = "Table VII model" if published_model else "build's damping model (its measured tyres)"
     preds = [fit.predict(spec.pressure_bar, float(v), spec.age_years, size=parse_tyre_size(spec.size).designation)
              for v in np.asarray(speeds_km_h, float)]
     c = np.array([p.damping_kN_s_per_m for p in preds])
     b = fit.coefficients
-    src = (f"Table VII model C = {b[0]:.3g} {b[1]:+.3g} A {b[2]:+.3g} v {b[3]:+.3g} P (kN s/m; {fit.n_tyres} "
+    src = (f"{which} C = {b[0]:.3g} {b[1]:+.3g} A {b[2]:+.3g} v {b[3]:+.3g} P (kN s/m; {fit.n_tyres} "
            f"traction tyres, cluster-robust by tyre)")
     lo, hi = preds[0].interval_kN_s_per_m
-    warnings = [f"damping not given: the Table VII damping model gives {c[0]:.2f} kN s/m at "
+    warnings = [f"damping not given: the {'Table VII damping model' if published_model else which} gives "
+                f"{c[0]:.2f} kN s/m at "
                 f"{float(np.asarray(speeds_km_h, float)[0]):g} km/h (95 % prediction interval {max(lo, 0.0):.2f} to "
                 f"{hi:.2f}; a rough stand-in, typical 0.8-3 kN s/m, §5.6)"]
     v = np.asarray(speeds_km_h, float)
@@ -291,7 +302,7 @@ def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
             c = at_speeds(sp, val, speeds)
             c_src = f"measured tyre {spec.measured_tyre_id}: C = Cc + dC P per speed (damping_pressure_by_speed)"
         else:
-            c, c_src, c_warnings = _model_damping(spec, speeds)
+            c, c_src, c_warnings = _model_damping(spec, speeds, tyre_data)
             warnings += c_warnings
         if np.any(k <= 0):
             raise ValueError(f"tyres.{axle}: stiffness {k.min():.1f} kN/m is not positive")

@@ -9,6 +9,7 @@ import pytest
 from tyrelab.cli import main
 from tyrelab.rig import population as pop
 from tyrelab.tyre.formula_fit import PRINTED_COEFFICIENTS, design_matrix
+from tyrelab.warehouse import query
 
 pytestmark = pytest.mark.long  # collected first: see tests/conftest.py (a generated campaign through five stages)
 
@@ -123,6 +124,14 @@ hours_per_day = 6
     true_k = float(design_matrix(["16.9R34"], [2], [1.2])[0] @ np.asarray(pop.MODERN_COEFFICIENTS))
     assert "fitted to the build's tyres" in lab.stiffness_source
     assert abs(lab.stiffness_kN_per_m[0] - true_k) < abs(thesis.stiffness_kN_per_m[0] - true_k)
+    # damping of the unmeasured tyre follows the same choice: the build's own damping_fit row ('ours'),
+    # evaluated by hand here from the warehouse's coefficients (speed held inside the fit's range)
+    ours = query(build / "warehouse.duckdb", "SELECT * FROM damping_fit WHERE source = 'ours'").iloc[0]
+    v = min(max(10.0, ours["speed_km_h_min"]), ours["speed_km_h_max"])
+    by_hand = ours["intercept"] + ours["age"] * 2 + ours["speed"] * v + ours["pressure"] * 1.2
+    assert lab.damping_source.startswith("build's damping model") and thesis.damping_source.startswith("Table VII")
+    assert lab.damping_kN_s_per_m[0] == pytest.approx(by_hand, rel=1e-12)
+    assert any("build's damping model" in w for w in lab.warnings)
     path.write_text(text.replace("FORMULA", "build"))
     with pytest.raises(ValueError, match='formula = "build" needs --build'):
         ride.resolve_tyres(load_scenario(path), None)
