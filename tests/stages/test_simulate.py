@@ -262,3 +262,34 @@ def test_edited_rows_resimulate_their_cases_only(ctx, tmp_path):
     pd.testing.assert_frame_equal(ours[~case], theirs[~case], check_exact=True)  # the other cases: from the cache
     rolling = case & (ours["characteristics"] != "stationary")
     assert (ours.loc[rolling, "rear_damping_kN_s_per_m"] != theirs.loc[rolling, "rear_damping_kN_s_per_m"]).all()
+
+
+def test_tables_xiii_xiv_xvii_come_from_the_recordings(ctx, tmp_path, monkeypatch):
+    """Issue 24: the "measured" side of Tables XIII, XIV and XVII is the campaign's recordings
+    (rides.csv rows naming a study run). A campaign without them still builds: the thesis'
+    columns stay, ours are gaps (no value), nothing is quarantined, and no run is "recorded"."""
+    from tyrelab.stages import run_stage
+
+    raw, build = tmp_path / "raw", tmp_path / "build"
+    shutil.copytree(ctx.raw, raw)
+    shutil.copytree(ctx.build, build)  # its item cache: the tractor's predictions are reused
+    tables = ("table_xiii", "table_xiv", "table_xvii")
+    before = {t: ctx.read_table(t) for t in tables}
+    for t in tables:
+        assert before[t][["ours_rolling", "ours_stationary"]].notna().all().all(), t
+    assert (ctx.read_table("carriage_runs")["source"] == "recording").sum() == 12
+    assert (ctx.read_table("tractor_runs")["source"] == "recording").sum() == 28
+    (raw / "rides.csv").unlink()
+    monkeypatch.setattr(simulate, "scenario_files", lambda raw: [])  # the ride scenarios are not the point here
+    c = Context(raw=raw, build=build, jobs=1)
+    run_stage("rides", c)
+    result = run_stage("simulate", c)
+    assert "recordings of the studies: 0 carriage, 0 tractor" in result.message
+    for t in tables:
+        after = c.read_table(t)
+        assert after[["ours_rolling", "ours_stationary", "difference_rolling", "difference_stationary"]].isna().all().all(), t
+        pd.testing.assert_frame_equal(after.filter(like="thesis_"), before[t].filter(like="thesis_"))
+    measured = c.read_table("table_xviii").set_index("row").filter(like="_ours").iloc[-1]
+    assert measured.isna().all()
+    assert not (c.read_table("carriage_runs")["source"] == "recording").any()
+    assert c.read_table("stages/quarantine_simulate").empty
