@@ -25,7 +25,7 @@ import math
 import numpy as np
 
 __all__ = ["positive", "positive_array", "finite_array", "same_last_axis", "band", "non_negative", "probability",
-           "positive_int"]
+           "positive_int", "frame", "choice", "instances", "instance", "non_negative_array"]
 
 
 def positive(name: str, value) -> float:
@@ -63,18 +63,24 @@ def positive_array(name: str, value, allow_nan: bool = False) -> np.ndarray:
 
     With ``allow_nan``, NaN ("not known", e.g. no excitation found) passes through.
     """
+    return _signed_array(name, value, allow_nan, strict=True)
+
+
+def _signed_array(name: str, value, allow_nan: bool, strict: bool) -> np.ndarray:
+    """:func:`positive_array` (``strict``) and :func:`non_negative_array`."""
     try:
         if np.asarray(value).dtype == bool:
             raise ValueError(f"{name} must be numbers, got booleans {value!r}")
         a = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be numbers, got {value!r}") from None
-    ok = np.isfinite(a) & (a > 0)
+    ok = np.isfinite(a) & ((a > 0) if strict else (a >= 0))
     if allow_nan:
         ok |= np.isnan(a)
     if not ok.all():
+        word = "positive" if strict else "non-negative"
         shown = a.tolist() if a.size <= 6 else f"{a.size} values, {int((~ok).sum())} bad"
-        raise ValueError(f"{name} must be {'positive (or NaN)' if allow_nan else 'finite and positive'}, got {shown}")
+        raise ValueError(f"{name} must be {f'{word} (or NaN)' if allow_nan else f'finite and {word}'}, got {shown}")
     return a
 
 
@@ -143,3 +149,94 @@ def probability(name: str, value) -> float:
     if not 0 < v < 1:
         raise ValueError(f"{name} must be a number in (0, 1), got {value!r}")
     return v
+
+
+def frame(name: str, value, columns=()):
+    """``value`` if it is a DataFrame holding ``columns``; ValueError naming ``name`` (and the missing columns) otherwise.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> frame("results", pd.DataFrame({"tyre_id": ["T1"]}), ["tyre_id"]).shape
+    (1, 1)
+    >>> frame("results", pd.DataFrame({"tyre_id": ["T1"]}), ["tyre_id", "speed_km_h"])
+    Traceback (most recent call last):
+    ...
+    ValueError: results lacks column(s) speed_km_h
+    """
+    import pandas as pd
+
+    if not isinstance(value, pd.DataFrame):
+        raise ValueError(f"{name} must be a table (pandas DataFrame), got {type(value).__name__}")
+    missing = [str(c) for c in columns if c not in value.columns]
+    if missing:
+        raise ValueError(f"{name} lacks column(s) {', '.join(missing)}")
+    return value
+
+
+def choice(name: str, value, options):
+    """``value`` if it is one of ``options``; ValueError naming ``name`` and the options otherwise.
+
+    Examples
+    --------
+    >>> choice("name", "Wx", ("Wk", "Wd"))
+    Traceback (most recent call last):
+    ...
+    ValueError: name must be one of 'Wk', 'Wd', got 'Wx'
+    """
+    try:
+        ok = value in options
+    except TypeError:
+        ok = False
+    if not ok:
+        raise ValueError(f"{name} must be one of {', '.join(repr(o) for o in options)}, got {value!r}")
+    return value
+
+
+def instances(name: str, value, kind) -> list:
+    """``value`` as a list whose every element is a ``kind``; ValueError naming ``name`` otherwise.
+
+    Examples
+    --------
+    >>> instances("fits", [1.0, "x"], float)
+    Traceback (most recent call last):
+    ...
+    ValueError: fits must be a list of float, got str at position 1
+    """
+    try:
+        items = list(value)
+    except TypeError:
+        raise ValueError(f"{name} must be a list of {kind.__name__}, got {type(value).__name__}") from None
+    for i, item in enumerate(items):
+        if not isinstance(item, kind):
+            raise ValueError(f"{name} must be a list of {kind.__name__}, got {type(item).__name__} at position {i}")
+    return items
+
+
+def non_negative_array(name: str, value, allow_nan: bool = False) -> np.ndarray:
+    """``value`` as a float array; ValueError naming ``name`` unless every element is finite and >= 0.
+
+    With ``allow_nan``, NaN ("not known") passes through.
+
+    Examples
+    --------
+    >>> non_negative_array("speed_km_h", [0.0, 10.0]).tolist()
+    [0.0, 10.0]
+    """
+    return _signed_array(name, value, allow_nan, strict=False)
+
+
+def instance(name: str, value, kind):
+    """``value`` if it is a ``kind``; ValueError naming ``name`` otherwise (a scenario, a tractor, a profile).
+
+    Examples
+    --------
+    >>> instance("scenario", "modern.toml", dict)
+    Traceback (most recent call last):
+    ...
+    ValueError: scenario must be a dict, got str
+    """
+    if not isinstance(value, kind):
+        kinds = " or ".join(k.__name__ for k in (kind if isinstance(kind, tuple) else (kind,)))
+        raise ValueError(f"{name} must be a {kinds}, got {type(value).__name__}")
+    return value

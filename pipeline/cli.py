@@ -69,7 +69,7 @@ def cmd_generate(args) -> int:
     from .generate import generate_campaign
 
     summary = generate_campaign(Path(args.out), scale=args.scale, seed=args.seed, scatter=args.scatter,
-                                rides=args.rides)
+                                rides=args.rides, tyre_population=getattr(args, "tyre_population", 0))
     log.info("generate: %s", json.dumps(summary, default=str))
     return EXIT_OK
 
@@ -298,7 +298,7 @@ def cmd_natural_frequencies(args) -> int:
             age_years=args.age, front_stiffness_kN_per_m=args.front_stiffness,
             rear_stiffness_kN_per_m=args.rear_stiffness, front_stiffness_u_kN_per_m=args.front_stiffness_u,
             rear_stiffness_u_kN_per_m=args.rear_stiffness_u,
-            stiffness_model=_stiffness_model(prog, None),
+            stiffness_model=_stiffness_model(prog, getattr(args, "build", None)),
         )
     except (TyreSizeError, ValueError) as exc:
         print(f"{prog}: {exc}", file=sys.stderr)
@@ -441,6 +441,17 @@ def _positive(text: str) -> float:
     return value
 
 
+def _population(text: str) -> int:
+    """argparse type: a tyre population size, an integer 0-99."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text} is not an integer") from None
+    if not 0 <= value <= 99:
+        raise argparse.ArgumentTypeError(f"{text} is not from 0 to 99")
+    return value
+
+
 def _non_negative(text: str) -> float:
     """argparse type: a finite float >= 0."""
     value = _finite(text)
@@ -570,6 +581,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "K 2 %% + 1.5 %% per day, C 4 %% + 3 %% per day, standard deviations)")
     g.add_argument("--no-rides", dest="rides", action="store_false",
                    help="no seat recordings of virtual tractors (rides.csv, rides/; written by default)")
+    g.add_argument("--tyre-population", type=_population, default=0, metavar="N",
+                   help="measure N (1-99) generated tyres whose true stiffness follows other coefficients than the "
+                        "thesis' formula, instead of the thesis' programme (tyres.csv and generator.json record them)")
     g.set_defaults(func=cmd_generate)
 
     def io_options(sp):
@@ -670,6 +684,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "for a given stiffness)")
     n.add_argument("--rear-stiffness-u", type=float, default=None,
                    help="standard uncertainty of the rear stiffness per tyre, kN/m (default: as for the front)")
+    n.add_argument("--build", default=None, metavar="DIR",
+                   help="estimate the stiffnesses with the formula fitted to the tyres measured in DIR's warehouse "
+                        "(table formula_fit) instead of the thesis'")
     n.set_defaults(func=cmd_natural_frequencies)
 
     x = sub.add_parser("export-tyre", help="a measured tyre as MF-Tyre .tir file(s) plus K(P), C(P) per speed (CSV, JSON)",

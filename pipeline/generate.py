@@ -5,7 +5,8 @@ The only I/O around :mod:`tyrelab.rig`: builds the plan
 (:func:`tyrelab.rig.campaigns.simulate_run`) and writes a campaign folder in
 raw format v1 (docs/architecture.md): ``manifest.csv`` and ``runs/<run_id>.parquet``.
 All tyres are Table II tyres of the built-in catalogue, so no ``tyres.csv`` is
-written. With ``rides`` (the command's default), also seat and cab-floor recordings of
+written, unless a generated tyre population is asked for (``tyre_population``). With
+``rides`` (the command's default), also seat and cab-floor recordings of
 virtual tractors (:mod:`tyrelab.vehicle.virtual_rides`): ``rides.csv``,
 ``rides/<ride_id>.parquet`` and the scenarios they name, ``rides/<scenario>.toml``; and the
 recordings of the thesis' carriage and MF698T made by virtual vehicles
@@ -28,7 +29,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from . import __version__, io
-from .rig.campaigns import MANIFEST_COLUMNS, campaign_plan, simulate_run
+from .rig.campaigns import MANIFEST_COLUMNS, campaign_plan, population_plan, simulate_run
 from .rig.instrument import NO_SCATTER, RigConfig
 
 __all__ = ["write_run", "write_rides", "write_study_recordings", "generate_campaign"]
@@ -92,7 +93,7 @@ def write_rides(out: Path, seed: int, tractors: bool = True, studies: bool = Tru
 
 
 def generate_campaign(out: Path, scale: str = "small", seed: int = 1991, scatter: bool = True,
-                      rides: bool = False) -> dict:
+                      rides: bool = False, tyre_population: int = 0) -> dict:
     """Simulate and write a virtual campaign folder.
 
     Parameters
@@ -110,6 +111,12 @@ def generate_campaign(out: Path, scale: str = "small", seed: int = 1991, scatter
         ``day_scatter``; the default). False (``--no-scatter``): every run's
         tyre is exactly the truth model, for estimator benchmarks and
         truth-recovery tests.
+    tyre_population : int
+        0 (default): the thesis' programme on the Table II tyres. N > 0: pressure x speed
+        sweeps of N generated tyres whose true rolling stiffness follows other coefficients
+        than the thesis' formula (:mod:`tyrelab.rig.population`; seeded from ``seed``); their
+        catalogue goes to ``tyres.csv`` and the true coefficients, ages and deviations to
+        ``generator.json`` (``population``), so a refit can be checked against the truth.
 
     Returns
     -------
@@ -120,7 +127,14 @@ def generate_campaign(out: Path, scale: str = "small", seed: int = 1991, scatter
     t0 = time.perf_counter()
     out = Path(out)
     cfg = RigConfig() if scatter else dataclasses.replace(RigConfig(), **NO_SCATTER)
-    plan = campaign_plan(scale, cfg)
+    population = ()
+    if tyre_population:
+        from .rig.population import MODERN_COEFFICIENTS, catalogue_rows, tyre_population as make_population
+
+        population = make_population(int(tyre_population), seed)
+        plan = population_plan(population, scale, cfg)
+    else:
+        plan = campaign_plan(scale, cfg)
     (out / "runs").mkdir(parents=True, exist_ok=True)
     amplitudes = []
     for row in plan.to_dict("records"):
@@ -137,6 +151,15 @@ def generate_campaign(out: Path, scale: str = "small", seed: int = 1991, scatter
     meta = {"generator": "tyrelab virtual dynamic tyre test vehicle (tyrelab.rig)", "scale": scale, "seed": seed,
             "scatter": {"run": list(cfg.run_scatter), "day": list(cfg.day_scatter)},
             "tyrelab_version": __version__, "runs": int(len(plan))}
+    if population:
+        cat = pd.DataFrame(catalogue_rows(population))
+        io.write_text_atomic(cat.to_csv(index=False, float_format="%.6g", lineterminator="\n"), out / "tyres.csv")
+        meta["population"] = {
+            "coefficients": dict(zip(("intercept_kN_per_m", "rim_diameter_kN_per_m_in", "age_kN_per_m_year",
+                                      "wrp_kN_per_m_in2_bar"), MODERN_COEFFICIENTS)),
+            "tyres": [{"tyre_id": m.params.tyre_id, "size": m.params.size, "age_years": m.params.age_years,
+                       "deviation": round(m.deviation, 6), "carcass_stiffness_kN_per_m": round(m.params.k_rolling[0], 6),
+                       "pressure_dependence_kN_per_m_bar": round(m.params.k_rolling[1], 6)} for m in population]}
     n_rides = write_rides(out, seed) if rides else 0
     if rides:
         meta["rides"] = n_rides

@@ -43,6 +43,7 @@ import errno
 import logging
 import os
 import re
+from collections.abc import Callable
 from pathlib import Path
 
 import duckdb
@@ -229,7 +230,8 @@ def _search_path(con: duckdb.DuckDBPyConnection, folder: Path) -> None:
 
 
 def build_warehouse(db_path: Path, parquet_dir: Path, published: dict[str, Path] | None = None,
-                    store: str = "tables", block_size_bytes: int = BLOCK_SIZE_BYTES) -> list[str]:
+                    store: str = "tables", block_size_bytes: int = BLOCK_SIZE_BYTES,
+                    on_table: Callable[[int, int], None] | None = None) -> list[str]:
     """Create the warehouse at ``db_path`` atomically; return its table and view names.
 
     Parameters
@@ -245,6 +247,8 @@ def build_warehouse(db_path: Path, parquet_dir: Path, published: dict[str, Path]
         to the file's folder (portable). ``"views"``: views over absolute paths.
     block_size_bytes : int
         Block size of the file: a power of two from 16384 to 262144.
+    on_table : callable, optional
+        Called as ``on_table(done, total)`` after each table or view is made (for progress).
 
     Raises
     ------
@@ -288,8 +292,10 @@ def build_warehouse(db_path: Path, parquet_dir: Path, published: dict[str, Path]
             con.execute("USE warehouse")
             _search_path(con, home)
             con.execute("BEGIN TRANSACTION")  # one commit (one WAL sync) for every table, not one each
-            for sql in statements:
+            for i, sql in enumerate(statements, start=1):
                 con.execute(sql)
+                if on_table is not None:
+                    on_table(i, len(statements))
             con.execute("COMMIT")
             con.execute("USE memory")
             con.execute("DETACH warehouse")  # checkpoints: everything is in the file

@@ -102,3 +102,12 @@ def test_store_views_is_the_absolute_path_layout(tmp_path):
         build_warehouse(tmp_path / "w.duckdb", pq_dir, store="copy")
     with pytest.raises(ValueError, match="block_size_bytes"):
         build_warehouse(tmp_path / "w.duckdb", pq_dir, block_size_bytes=20000)
+
+
+def test_each_table_made_is_counted_for_progress(tmp_path):
+    pq_dir = tmp_path / "parquet"
+    for name in ("a", "b", "c"):
+        io.write_parquet_atomic(pd.DataFrame({"x": [1]}), pq_dir / f"{name}.parquet")
+    calls = []
+    names = build_warehouse(tmp_path / "w.duckdb", pq_dir, on_table=lambda done, total: calls.append((done, total)))
+    assert names == ["a", "b", "c"] and calls == [(1, 3), (2, 3), (3, 3)]

@@ -200,6 +200,19 @@ CHAPTERS: tuple[Chapter, ...] = (
                 TableSpec("", "Accuracy of the empirical stiffness formula (§4.5)", "formula_accuracy", "regress"),
                 FigureSpec("32", "Predicted against measured tyre stiffness", "predicted_vs_measured",
                            ("formula_predictions",), "regress"),
+                TableSpec("", "The formula K = a + b R + c A + d W R P as a fitted model: the printed coefficients, "
+                          "the refit on the printed Table III and the refit on our tyres (WLS, cluster-robust by "
+                          "tyre; leave-one-tyre-out errors beside the printed formula's)", "formula_fit", "regress",
+                          columns=("source", "n_tyres", "n_points", "r_squared", "relative_residual_sd_percent",
+                                   "intercept", "intercept_se", "rim_diameter", "rim_diameter_se", "age", "age_se",
+                                   "wrp", "wrp_se", "loto_mean_abs_error_percent", "printed_mean_abs_error_percent",
+                                   "loto_coverage_fraction", "reason"),
+                          note="The thesis built its coefficients from three separate regressions (Figs 26, 30, 31); "
+                               "one joint fit gives each within two standard errors (docs/regressions.md). "
+                               "estimate-stiffness quotes the printed formula with the refit's interval; "
+                               "--build uses our fit."),
+                FigureSpec("", "Width of the formula's 95 % prediction interval against W·R", "formula_interval_width",
+                           ("formula_fit",), "regress", module="tyre_figures"),
             )),
     Chapter("ch5-damping", "Chapter 5 — tyre damping",
             "Damping C = C_c + ΔC_p·P per tyre and speed (§5.3) and the rotating-spoke model (§5.5).",
@@ -214,6 +227,11 @@ CHAPTERS: tuple[Chapter, ...] = (
                           "published_table_ix"),
                 TableSpec("X", "Summary of the factors affecting damping", "table_x", "regress",
                           "published_table_x"),
+                TableSpec("", "Damping of an unmeasured tyre: C = c0 + c_A A + c_v v + c_P P fitted to the Table VII "
+                          "lines and to ours (cluster-robust by tyre)", "damping_fit", "regress",
+                          columns=("source", "n_tyres", "n_points", "r_squared", "residual_sd_kN_s_per_m", "intercept",
+                                   "intercept_se", "age", "age_se", "speed", "speed_se", "pressure", "pressure_se",
+                                   "speed_km_h_min", "speed_km_h_max", "sizes", "reason")),
                 _spoke("spoke_speed", "44–45", "Apparent viscous damping of the spoke model against rolling speed"),
                 _spoke("spoke_frequency", "46", "Modelled damping against forcing frequency"),
                 _spoke("spoke_amplitude", "47", "Modelled damping against vibration amplitude"),

@@ -31,6 +31,7 @@ from __future__ import annotations
 
 import hashlib
 import re
+from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from typing import Any, Iterable
 
@@ -71,8 +72,8 @@ class Output:
         return "../" * self.path.count("/")
 
 
-class Page:
-    """A registered page of the report (subclass, set the attributes and override :meth:`render`).
+class Page(ABC):
+    """A registered page of the report (subclass, set the attributes and implement :meth:`render`).
 
     Attributes
     ----------
@@ -112,9 +113,9 @@ class Page:
         """``(name, FigureTask)`` pairs of the figures the page shows, requested before any is drawn."""
         return ()
 
+    @abstractmethod
     def render(self, site) -> Iterable[Output]:
-        """The page's files."""
-        raise NotImplementedError(f"{type(self).__name__}.render")
+        """The page's files (every page implements it: a class without it cannot be instantiated)."""
 
 
 @dataclass(frozen=True)

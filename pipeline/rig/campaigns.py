@@ -38,7 +38,7 @@ from .instrument import RigConfig
 __all__ = ["MANIFEST_COLUMNS", "TRACK_LENGTH_M", "RUN_DURATION_S", "CALIBRATION_DURATION_S",
     "CALIBRATION_BAND_HZ", "MISCALIBRATED_BEAM_GAIN_ERROR", "FIRST_DAY", "SILSOE_SPEEDS", "BERLIN_SPEEDS",
     "LOADS_KN", "AMPLITUDES_MM_PP", "FREQUENCIES_HZ", "TORQUE_SPEEDS", "SURFACE_SPEEDS", "duration_s",
-    "pressures", "nominal_pressure", "campaign_plan", "run_seed", "plan_truth", "rms_to_pp_mm", "day_state",
+    "pressures", "nominal_pressure", "campaign_plan", "population_plan", "run_seed", "plan_truth", "rms_to_pp_mm", "day_state",
     "simulate_run", "run_scatter"]
 
 MANIFEST_COLUMNS = [
@@ -91,7 +91,7 @@ class _Planner:
         self.counter: dict[str, int] = {}
         self.gain_error = 0.0
 
-    def new_day(self, tyre_id: str, gain_error: float = 0.0, note: str = "") -> None:
+    def new_day(self, tyre_id: str, gain_error: float = 0.0, note: str = "", pressure_bar: float | None = None) -> None:
         self.day_index += 1
         d = FIRST_DAY
         n = self.day_index
@@ -102,7 +102,8 @@ class _Planner:
         self.day = d
         self.gain_error = gain_error
         run_id = f"cal_{d.strftime('%Y%m%d')}"
-        self.rows.append(self._row(run_id, "calibration", tyre_id, 0.0, nominal_pressure(tyre_id), truth.NOMINAL_LOAD_KN,
+        p0 = nominal_pressure(tyre_id) if pressure_bar is None else pressure_bar
+        self.rows.append(self._row(run_id, "calibration", tyre_id, 0.0, p0, truth.NOMINAL_LOAD_KN,
                                    4.5, float("nan"), 0.0, "concrete", CALIBRATION_DURATION_S,
                                    "force plate, band-limited random 1-8 Hz (§3.2.9); frequency = band centre" + note))
 
@@ -214,6 +215,33 @@ def campaign_plan(scale: str = "small", cfg: RigConfig = RigConfig()) -> pd.Data
     return df
 
 
+def population_plan(population, scale: str = "small", cfg: RigConfig = RigConfig()) -> pd.DataFrame:
+    """Pressure x speed sweeps of a generated tyre population (:func:`tyrelab.rig.population.tyre_population`).
+
+    One day per tyre (force-plate calibration first); ``small``: three pressures over the
+    tyre's range at 0, 10 and 15 km/h (enough for its Table III lines and the formula
+    refit); ``full``: five pressures at the Silsoe speeds. Each row carries the tyre's
+    :class:`~tyrelab.rig.truth.TyreParams` in ``plan_tyre`` (not written), which
+    :func:`simulate_run` uses instead of the Table II catalogue.
+    """
+    if scale not in ("small", "full"):
+        raise ValueError(f"scale must be 'small' or 'full', not {scale!r}")
+    pl = _Planner(cfg)
+    tyres = {}
+    for member in population:
+        t = member.params
+        tyres[t.tyre_id] = t
+        lo, hi = t.pressure_range_bar
+        ps = tuple(round(float(p), 2) for p in np.linspace(lo, hi, 5 if scale == "full" else 3))
+        pl.new_day(t.tyre_id, pressure_bar=float(min(max(truth.NOMINAL_PRESSURE_BAR, lo), hi)))
+        for p in ps:
+            for v in (SILSOE_SPEEDS if scale == "full" else (0.0, 10.0, 15.0)):
+                pl.run("sweep", t.tyre_id, v, p)
+    df = pd.DataFrame(pl.rows)
+    df["plan_tyre"] = df["tyre_id"].map(tyres)
+    return df
+
+
 def run_seed(seed: int, run_id: str) -> np.random.SeedSequence:
     """Deterministic per-run seed from (campaign seed, run_id), order independent."""
     import hashlib
@@ -275,7 +303,7 @@ def simulate_run(row, seed: int, cfg: RigConfig = RigConfig(), keep_signals: boo
     from .instrument import record, simulate_axle
 
     get = row.get if hasattr(row, "get") else (lambda k, d=None: getattr(row, k, d))
-    tyre = truth.tyre_params(get("tyre_id"))
+    tyre = get("plan_tyre", None) or truth.tyre_params(get("tyre_id"))
     rng = np.random.default_rng(run_seed(seed, get("run_id")))
     day = day_state(seed, get("recorded_on"), float(get("plan_beam_gain_error", 0.0) or 0.0), cfg)
     kind = get("kind", "measurement")

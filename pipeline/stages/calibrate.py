@@ -40,11 +40,11 @@ from ..measurement import calibration as cal
 from ..measurement import uncertainty as unc
 from ..measurement.apparent_mass import tyre_force
 from ..rawformat import ACCEL_CHANNELS, BEAM_CHANNELS, CHANNELS
-from .base import Context, StageResult
+from .base import Context, Progress, StageResult
 from .dag import ANALYSED
 from .state import ItemCache
 
-__all__ = ["CALIBRATION_COLUMNS", "TF_COLUMNS", "check_calibration_run", "correct_results", "run"]
+__all__ = ["CALIBRATION_COLUMNS", "TF_COLUMNS", "check_calibration_run", "correct_results", "passing_days", "day_uncertainty", "run"]
 
 CALIBRATION_COLUMNS = ["campaign", "day", "run_id", "tyre_id", "pass", "day_pass", "max_gain_error_pct",
                        "max_phase_error_deg", "mean_gain", "mean_phase_deg", "reason"]
@@ -128,14 +128,23 @@ RECOMBINE_INPUTS = ["stiffness_N_per_m", "damping_N_s_per_m", "excitation_freque
                     "stiffness_u_stat_N_per_m", "damping_u_stat_N_s_per_m", "uncertainty_dof_stat", "axle_mass_kg"]
 
 
+def passing_days(checks: pd.DataFrame) -> pd.DataFrame:
+    """The check rows of the days that passed, one per (campaign, day)."""
+    if checks.empty:
+        return checks
+    return checks[checks["pass"].astype(bool) & checks["day_pass"].astype(bool)].drop_duplicates(["campaign", "day"])
+
+
 def day_uncertainty(results: pd.DataFrame, tfs: pd.DataFrame, checks: pd.DataFrame, averages: dict,
-                    corrected: bool, cache: ItemCache | None = None) -> pd.DataFrame:
+                    corrected: bool, cache: ItemCache | None = None, on_day=None) -> pd.DataFrame:
     """Recombine the uncertainty of runs on passing days with their day's budget (see module docstring).
 
     With ``cache``, each passing day's recombination is kept under the digest of its runs'
     :data:`RECOMBINE_INPUTS`, its transfer function and options: a run added on one day
     recomputes that day only (a day budget per run is ~0.5 ms: 0.5 s for the full campaign).
+    ``on_day()``, if given, is called once per day of :func:`passing_days` when it is done.
     """
+    on_day = on_day or (lambda: None)
     out = results.copy()
     needed = {"stiffness_u_stat_N_per_m", "damping_u_stat_N_s_per_m", "uncertainty_dof_stat"}
     if out.empty or not needed <= set(out.columns):
@@ -162,12 +171,12 @@ def day_uncertainty(results: pd.DataFrame, tfs: pd.DataFrame, checks: pd.DataFra
                unc.limits_budget().source)
     if checks.empty or tfs.empty:
         return out
-    good = checks[checks["pass"].astype(bool) & checks["day_pass"].astype(bool)].drop_duplicates(["campaign", "day"])
-    for r in good.itertuples(index=False):
+    for r in passing_days(checks).itertuples(index=False):
         tf = tfs[tfs["run_id"] == r.run_id]
         sel = (out["campaign"].astype(str) == str(r.campaign)) & (out["recorded_on"].astype(str) == str(r.day))
         idx = np.flatnonzero(sel.to_numpy() & ok)
         if tf.empty or not len(idx):
+            on_day()
             continue
         source, n_avg = f"calibration {r.day}", averages.get(r.run_id, 1)
 
@@ -177,10 +186,11 @@ def day_uncertainty(results: pd.DataFrame, tfs: pd.DataFrame, checks: pd.DataFra
 
         if cache is None:
             assign(idx, compute(), source)
-            continue
-        key = cache.key("day", out.iloc[idx][RECOMBINE_INPUTS].reset_index(drop=True), tf.reset_index(drop=True),
-                        n_avg, bool(corrected), source)
-        assign(idx, cache.get_or_compute(key, compute), source)
+        else:
+            key = cache.key("day", out.iloc[idx][RECOMBINE_INPUTS].reset_index(drop=True), tf.reset_index(drop=True),
+                            n_avg, bool(corrected), source)
+            assign(idx, cache.get_or_compute(key, compute), source)
+        on_day()
     return out
 
 
@@ -196,6 +206,7 @@ def run(ctx: Context) -> StageResult:
     if not manifest.empty and "kind" in manifest:
         cal_runs = manifest[manifest["kind"].fillna("measurement") == "calibration"]
         res.n_in = len(cal_runs)
+        progress = Progress("calibrate: force-plate checks", len(cal_runs), logger=ctx.log)
         for _, r in cal_runs.sort_values("run_id").iterrows():
             fs = _sample_rate(r)
             path, mass = r["run_path"], float(r["axle_mass_kg"])
@@ -210,6 +221,7 @@ def run(ctx: Context) -> StageResult:
                 tf.insert(0, "day", day)
                 tf.insert(0, "campaign", str(r.get("campaign", "")))
                 tfs.append(tf)
+            progress.step()
     checks = pd.DataFrame(rows)
     if checks.empty:
         checks = pd.DataFrame(columns=CALIBRATION_COLUMNS)
@@ -231,7 +243,11 @@ def run(ctx: Context) -> StageResult:
             dkeys = ("campaign", "day") if "campaign" in results else ("day",)
             if ctx.calibration_correct:
                 results = correct_results(results, tf_all, checks)
-            results = day_uncertainty(results, tf_all, checks, averages, bool(ctx.calibration_correct), cache)
+            progress = Progress("calibrate: uncertainty of passing days", len(passing_days(checks)), logger=ctx.log,
+                                unit="days")
+            results = day_uncertainty(results, tf_all, checks, averages, bool(ctx.calibration_correct), cache,
+                                      on_day=progress.step)
+            progress.close()
             results = cal.flag_failed_days(results, days, keys, dkeys)
             n_flagged = int(results["qc_reasons"].str.contains("calibration failed on", regex=False).sum())
         ctx.write_table("results", results)

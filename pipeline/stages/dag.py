@@ -106,7 +106,8 @@ def _tables(*names: str) -> tuple[str, ...]:
 REGRESS_TABLES = (
     "table_iii", "stiffness_pressure_by_speed", "damping_pressure_by_speed", "table_vii", "factor_regressions",
     "table_iv", "table_viii", "surface_cells", "table_v", "table_ix", "table_vi", "table_x", "size_regressions",
-    "size_regression_search", "formula_predictions", "formula_accuracy", "formula_fit", "formula_fit_loto", "spoke_force", "spoke_speed",
+    "size_regression_search", "formula_predictions", "formula_accuracy", "formula_fit", "formula_fit_loto", "damping_fit",
+    "spoke_force", "spoke_speed",
     "spoke_frequency", "spoke_amplitude", "spoke_deflection", "spoke_fit", "spoke_fit_points",
 )
 #: Tables simulate writes (thesis chapters 6-8 and the ride scenarios; :mod:`tyrelab.stages.simulate`).

@@ -24,6 +24,8 @@ table                          contents
                                published Table III and to our tyres, beside the printed coefficients;
                                leave-one-tyre-out errors of the refit and of the printed formula
 ``formula_fit_loto``           per tyre × pressure: the leave-one-tyre-out predictions behind those
+``damping_fit``                C = c0 + c_A A + c_v v + c_P P fitted to the Table VII lines and to ours
+                               (damping of an unmeasured tyre, :mod:`tyrelab.tyre.damping_fit`)
 ``spoke_force``                Fig. 43 data; ``spoke_speed`` Figs 44–45; ``spoke_frequency``
                                Fig. 46; ``spoke_amplitude`` Fig. 47; ``spoke_deflection`` Fig. 48
 ``spoke_fit`` / ``spoke_fit_points``  Coulomb and viscous coefficients per tyre from our damping
@@ -52,17 +54,18 @@ import pandas as pd
 
 from .. import published
 from ..tyre import conditions as cond
+from ..tyre import damping_fit as dfit
 from ..tyre import formula_accuracy as fa
 from ..tyre import formula_fit as ff
 from ..tyre import models
 from ..tyre import regressions as reg
 from ..tyre import size_regressions as sr
 from ..tyre import spoke
-from .base import Context, StageResult
+from .base import Context, Progress, StageResult
 from .state import ItemCache
 
 __all__ = ["FIT_INPUT_COLUMNS", "PUBLISHED", "FACTORS", "read_published", "read_tyres", "tyre_fits", "tyre_fits_each",
-           "all_tyre_fits", "formula_fits", "compute", "run"]
+           "FIT_PASSES", "ACROSS_TYRE_STEPS", "all_tyre_fits", "formula_fits", "damping_fits", "compute", "run"]
 
 #: The ``results`` columns the per-tyre fits read (:mod:`tyrelab.tyre.conditions` and the
 #: runs' uncertainties): the fits are given only these, and a tyre's cache key is the digest
@@ -118,14 +121,27 @@ def tyre_fits_each(results: pd.DataFrame, tyre_ids: list[str], tyres: pd.DataFra
                 "spoke_fit": spokes[t][0], "spoke_fit_points": spokes[t][1]} for t in tyre_ids}
 
 
-def all_tyre_fits(results: pd.DataFrame, tyres: pd.DataFrame | None, cache=None) -> dict[str, pd.DataFrame]:
+#: The tyres to refit are fitted in at most this many passes of :func:`tyre_fits_each` (progress
+#: between passes). On the full campaign 4 passes cost ~1.1x the CPU of one, 8 passes ~1.25x and
+#: a pass per tyre ~1.5x (bench/bench_fit_passes.py, docs/benchmarks.md).
+FIT_PASSES = 4
+#: Steps of :func:`compute` after the per-tyre fits (for progress): Tables III-X, the size
+#: regressions, the formula fits and spoke model.
+ACROSS_TYRE_STEPS = 3
+
+
+def all_tyre_fits(results: pd.DataFrame, tyres: pd.DataFrame | None, cache=None,
+                  on_done=None) -> dict[str, pd.DataFrame]:
     """:func:`tyre_fits` of every measured tyre, each computed from its own runs (reused from
     ``cache`` when that tyre's runs and catalogue row are unchanged), in the all-tyre order.
 
     The fits read the :data:`FIT_INPUT_COLUMNS` of ``results`` only (a tyre's cache key is their
     digest). The runs are grouped by tyre once; the tyres not in the cache are fitted together
-    in one pass (:func:`tyre_fits_each`: the same per-tyre tables as one :func:`tyre_fits` per tyre).
+    in at most :data:`FIT_PASSES` passes (:func:`tyre_fits_each`: the same per-tyre tables as one
+    :func:`tyre_fits` per tyre). ``on_done(n)``, if given, is called with the number of tyres
+    each pass (or cache look-up) finished.
     """
+    on_done = on_done or (lambda n: None)
     tyre_ids = reg.measured_tyres(results)
     if not tyre_ids:
         return tyre_fits(results, tyre_ids, tyres)
@@ -144,14 +160,18 @@ def all_tyre_fits(results: pd.DataFrame, tyres: pd.DataFrame | None, cache=None)
         hit, value = cache.get(keys[t])
         if hit:
             parts[t] = value
+            on_done(1)
         else:
             todo.append(t)
-    if todo:
-        mine = np.sort(np.concatenate([rows_of[t] for t in todo]))
-        for t, value in tyre_fits_each(results.iloc[mine], todo, tyres).items():
+    size = -(-len(todo) // FIT_PASSES)
+    for start in range(0, len(todo), size or 1):
+        some = todo[start:start + size]
+        mine = np.sort(np.concatenate([rows_of[t] for t in some]))
+        for t, value in tyre_fits_each(results.iloc[mine], some, tyres).items():
             parts[t] = value
             if cache is not None:
                 cache.put(keys[t], value)
+        on_done(len(some))
     parts = [parts[t] for t in tyre_ids]
     out = {name: _text_columns(pd.concat([p[name] for p in parts], ignore_index=True)) for name in parts[0]}
     # factor_regressions orders rows by factor, response, then tyre: restore that order
@@ -232,6 +252,25 @@ def formula_fits(predictions: list[pd.DataFrame]) -> tuple[pd.DataFrame, pd.Data
     return table, loto_df
 
 
+def damping_fits(table_vii: pd.DataFrame | None, damping_by_speed: pd.DataFrame,
+                 tyres: pd.DataFrame | None) -> pd.DataFrame:
+    """Table ``damping_fit``: the Table VII model of the published lines and of ours (a row with a
+    ``reason`` where a source cannot be fitted)."""
+    fits, reasons = [], {}
+    if tyres is None or "tyre_id" not in tyres:
+        return dfit.damping_table([], {"published": "no tyres table", "ours": "no tyres table"})
+    sources = [("published", table_vii), ("ours", damping_by_speed)]
+    for source, lines in sources:
+        if lines is None or lines.empty:
+            reasons[source] = "no damping lines"
+            continue
+        try:
+            fits.append(dfit.fit_damping(dfit.damping_points(lines, tyres, source), source))
+        except ValueError as exc:
+            reasons[source] = str(exc)
+    return dfit.damping_table(fits, reasons)
+
+
 def _spoke_curves() -> dict[str, pd.DataFrame]:
     """Figs 43-48 of the spoke model (no data: they change only with the code)."""
     return {"spoke_force": spoke.force_curves(), "spoke_speed": spoke.speed_curves(),
@@ -240,16 +279,19 @@ def _spoke_curves() -> dict[str, pd.DataFrame]:
 
 
 def compute(results: pd.DataFrame, tyres: pd.DataFrame | None,
-            published: dict[str, pd.DataFrame | None], cache=None) -> dict[str, pd.DataFrame]:
+            published: dict[str, pd.DataFrame | None], cache=None, on_done=None) -> dict[str, pd.DataFrame]:
     """All regress tables from in-memory inputs (no I/O); see the module docstring.
 
     ``cache`` (a :class:`tyrelab.stages.state.ItemCache`) keeps the per-tyre fits and the parts
     that read only the published tables; the across-tyre tables are recomputed from them.
+    ``on_done(n)``, if given, counts progress: one per measured tyre, then
+    :data:`ACROSS_TYRE_STEPS` steps.
     """
+    step = on_done or (lambda n: None)
     memo = (lambda kind, inputs, fn: cache.get_or_compute(cache.key(kind, *inputs), fn)) if cache else \
         (lambda kind, inputs, fn: fn())
     out: dict[str, pd.DataFrame] = {}
-    fits = all_tyre_fits(results, tyres, cache)
+    fits = all_tyre_fits(results, tyres, cache, step)
     k_cond, c_speed, rates = fits["k_cond"], fits["c_speed"], fits["rates"]
 
     out["table_iii"] = reg.table_iii(k_cond, published.get("table_iii"))
@@ -271,6 +313,7 @@ def compute(results: pd.DataFrame, tyres: pd.DataFrame | None,
     out["table_vi"] = reg.summary_rates(out["stiffness_pressure_by_speed"], rates, reg.STIFFNESS,
                                         published=published.get("table_vi"))
     out["table_x"] = reg.summary_rates(c_speed, rates, reg.DAMPING, published=published.get("table_x"))
+    step(1)
 
     ours_iii = k_cond.rename(columns={"intercept": "carcass_stiffness_kN_per_m",
                                       "slope": "pressure_dependence_kN_per_m_bar"})
@@ -286,15 +329,18 @@ def compute(results: pd.DataFrame, tyres: pd.DataFrame | None,
         preds.append(pub["predictions"])
         acc.append(pub["accuracy"])
     out["size_regressions"] = pd.concat(size_rows, ignore_index=True)
+    step(1)
     out["size_regression_search"] = pd.concat(searches, ignore_index=True) if searches else pd.DataFrame(
         columns=["fit", "condition", "change", "n", "intercept", "slope", "r_squared", "matches_printed",
                  "distance", "source"])
     out["formula_predictions"] = pd.concat(preds, ignore_index=True)
     out["formula_accuracy"] = pd.concat(acc, ignore_index=True)
     out["formula_fit"], out["formula_fit_loto"] = formula_fits(preds)
+    out["damping_fit"] = damping_fits(published.get("table_vii"), c_speed, tyres)
 
     out.update(memo("spoke_curves", (), _spoke_curves))
     out["spoke_fit"], out["spoke_fit_points"] = fits["spoke_fit"], fits["spoke_fit_points"]
+    step(1)
     return out
 
 
@@ -306,10 +352,12 @@ def run(ctx: Context) -> StageResult:
     if not results.empty and "tyre_id" in results:
         results["tyre_id"] = results["tyre_id"].astype(str)
     cache = ItemCache(ctx, "regress")
-    tables = compute(results, read_tyres(ctx), read_published(ctx), cache)
+    progress = Progress("regress", len(reg.measured_tyres(results)) + ACROSS_TYRE_STEPS + 1, logger=ctx.log, unit="steps")
+    tables = compute(results, read_tyres(ctx), read_published(ctx), cache, on_done=progress.step)
     cache.prune()
     for name, df in tables.items():
         ctx.write_table(name, df.reset_index(drop=True))
+    progress.step()
     t3 = tables["table_iii"]
     fitted = t3.loc[t3["carcass_stiffness_kN_per_m"].notna(), "tyre_id"].nunique()
     res.n_in = len(results)

@@ -19,7 +19,7 @@ from pathlib import Path
 
 from .. import io, published
 from ..warehouse import build_warehouse, view_name
-from .base import Context, StageResult, quarantine_table
+from .base import Context, Progress, StageResult, quarantine_table
 
 __all__ = ["published_tables", "run"]
 
@@ -39,6 +39,15 @@ def run(ctx: Context) -> StageResult:
     """Rebuild the warehouse atomically."""
     t0 = time.perf_counter()
     ctx.write_table("quarantine", quarantine_table(ctx))
-    views = build_warehouse(ctx.build / "warehouse.duckdb", ctx.parquet, published_tables(ctx))
+    bar: list[Progress] = []  # made at the first table, when the number of tables is known
+
+    def on_table(done: int, total: int) -> None:
+        if not bar:
+            bar.append(Progress("warehouse", total, logger=ctx.log, unit="tables"))
+        bar[0].step()
+
+    views = build_warehouse(ctx.build / "warehouse.duckdb", ctx.parquet, published_tables(ctx), on_table=on_table)
+    for b in bar:
+        b.close()
     return StageResult("warehouse", n_in=len(views), n_ok=len(views), seconds=time.perf_counter() - t0,
                        message=f"{len(views)} tables and views in {ctx.build / 'warehouse.duckdb'}")

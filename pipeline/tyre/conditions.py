@@ -47,6 +47,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from .. import _validate
+
 __all__ = ["REFERENCE_SURFACE", "NOMINAL_FREQUENCY_HZ", "FREQUENCY_TOLERANCE_HZ", "NOMINAL_AMPLITUDE_MM_PP",
     "NOMINAL_TORQUE_KNM", "ROLLING_POOL_KM_H", "STANDARD_PRESSURE_BAR", "SPEED_DECIMALS", "PRESSURE_DECIMALS",
     "LOAD_DECIMALS", "FACTORS", "RESULTS_COLUMNS", "with_columns", "usable", "on_reference_surface",
@@ -90,8 +92,16 @@ RESULTS_COLUMNS = [
 ]
 
 
+def _numbers(name: str, values) -> np.ndarray:
+    try:
+        return np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be numbers, got {values!r}") from None
+
+
 def with_columns(results: pd.DataFrame) -> pd.DataFrame:
     """``results`` with any missing :data:`RESULTS_COLUMNS` added as nulls (e.g. an empty table)."""
+    _validate.frame("results", results)
     missing = [c for c in RESULTS_COLUMNS if c not in results.columns]
     if not missing:
         return results
@@ -118,6 +128,7 @@ def usable(results: pd.DataFrame) -> pd.Series:
     -------
     Series of bool, aligned with ``results``.
     """
+    _validate.frame("results", results)
     kind = _col(results, "kind", "measurement").fillna("measurement").astype(str)
     qc = _col(results, "qc_ok", True).fillna(False).astype(bool)
     return (kind == "measurement") & qc
@@ -125,24 +136,28 @@ def usable(results: pd.DataFrame) -> pd.Series:
 
 def on_reference_surface(results: pd.DataFrame) -> pd.Series:
     """Runs on concrete (case-insensitive); missing surface counts as concrete."""
+    _validate.frame("results", results)
     s = _col(results, "surface", REFERENCE_SURFACE).fillna(REFERENCE_SURFACE).astype(str)
     return s.str.strip().str.lower() == REFERENCE_SURFACE
 
 
 def at_nominal_torque(results: pd.DataFrame) -> pd.Series:
     """Runs without driving torque (missing torque counts as 0 kNm)."""
+    _validate.frame("results", results)
     t = pd.to_numeric(_col(results, "torque_kNm", 0.0), errors="coerce").fillna(0.0)
     return (t - NOMINAL_TORQUE_KNM).abs() < 1e-9
 
 
 def at_nominal_frequency(results: pd.DataFrame) -> pd.Series:
     """Runs at nominal excitation 4 Hz ± 0.5 Hz (nominal, not measured, frequency)."""
+    _validate.frame("results", results)
     f = pd.to_numeric(_col(results, "excitation_frequency_Hz", np.nan), errors="coerce")
     return (f - NOMINAL_FREQUENCY_HZ).abs() <= FREQUENCY_TOLERANCE_HZ + 1e-9
 
 
 def at_nominal_amplitude(results: pd.DataFrame) -> pd.Series:
     """Runs at nominal amplitude 10–18 mm peak-to-peak (nominal amplitude)."""
+    _validate.frame("results", results)
     a = pd.to_numeric(_col(results, "amplitude_mm_pp", np.nan), errors="coerce")
     lo, hi = NOMINAL_AMPLITUDE_MM_PP
     return (a >= lo - 1e-9) & (a <= hi + 1e-9)
@@ -170,8 +185,9 @@ def nominal(results: pd.DataFrame, *, except_for: str | None = None) -> pd.Serie
     -------
     Series of bool.
     """
+    _validate.frame("results", results)
     if except_for is not None and except_for not in _NOMINAL_TESTS and except_for not in FACTORS:
-        raise ValueError(f"unknown condition {except_for!r}")
+        raise ValueError(f"except_for: unknown condition {except_for!r}")
     mask = usable(results)
     for name, test in _NOMINAL_TESTS.items():
         if name != except_for:
@@ -191,6 +207,8 @@ def speed_condition(speed_km_h) -> pd.Series:
     -------
     Series of object (str or None).
     """
+    _validate.non_negative_array("speed_km_h", pd.to_numeric(pd.Series(speed_km_h, dtype=object), errors="coerce"),
+                                allow_nan=True)
     v = pd.Series(pd.to_numeric(pd.Series(speed_km_h), errors="coerce").to_numpy(), dtype=float)
     lo, hi = ROLLING_POOL_KM_H
     out = pd.Series([None] * len(v), dtype=object, index=v.index)
@@ -204,6 +222,7 @@ def table_iii_runs(results: pd.DataFrame) -> pd.DataFrame:
 
     Thesis §4.3.1, Table III. Returns a copy of the selected rows.
     """
+    _validate.frame("results", results, ["speed_km_h"])
     sel = results.loc[nominal(results)].copy()
     sel["condition"] = speed_condition(sel["speed_km_h"]).to_numpy()
     return sel.loc[sel["condition"].notna()]
@@ -222,6 +241,8 @@ def regressor(results: pd.DataFrame, factor: str) -> pd.Series:
     -------
     Series of float in the factor's unit (:data:`FACTORS`).
     """
+    _validate.frame("results", results)
+    _validate.choice("factor", factor, tuple(FACTORS))
     nominal_col, measured_col, _ = FACTORS[factor]
     x = pd.to_numeric(_col(results, nominal_col, np.nan), errors="coerce").astype(float)
     if measured_col is not None and measured_col in results.columns:
@@ -235,6 +256,7 @@ def factor_runs(results: pd.DataFrame, factor: str) -> pd.DataFrame:
 
     Adds column ``x`` (the regressor, :func:`regressor`). Thesis §4.3.3–4.3.6, §5.3.3–5.3.6.
     """
+    _validate.frame("results", results)
     if factor not in FACTORS:
         raise ValueError(f"unknown factor {factor!r}; expected one of {sorted(FACTORS)}")
     free = factor if factor in _NOMINAL_TESTS else None
@@ -257,6 +279,7 @@ def hold_levels(runs: pd.DataFrame, cols: list[str]) -> np.ndarray:
     >>> hold_levels(pd.DataFrame({"load_kN": [10.04, None]}), ["load_kN"]).ravel().tolist()
     [10.0, -1.0]
     """
+    _validate.frame("runs", runs, cols)
     keys = np.empty((len(runs), len(cols)), dtype=float)
     for j, c in enumerate(cols):
         keys[:, j] = np.round(pd.to_numeric(runs[c], errors="coerce").to_numpy(dtype=float, na_value=np.nan),
@@ -273,6 +296,7 @@ def n_distinct(values) -> int:
     >>> n_distinct(np.array([1.0, 1.0, np.nan, 2.0]))
     2
     """
+    values = _numbers("values", values)
     values = np.asarray(values, dtype=float)
     values = values[~np.isnan(values)]
     return int(len(np.unique(values))) if len(values) else 0
@@ -367,9 +391,12 @@ def hold_constant(
     note : str
         Empty, or why the runs were pooled.
     """
+    _validate.frame("runs", runs)
     cols = [c for c in hold if c in runs.columns]
     if not cols or runs.empty:
         return runs, {c: None for c in hold}, ""
+    if x not in runs.columns:
+        raise ValueError(f"x: runs has no column {x!r}")
     xs = pd.to_numeric(runs[x], errors="coerce").to_numpy(dtype=float, na_value=np.nan)
     pos, levels, note = hold_level(xs, hold_levels(runs, cols), cols, hold, prefer)
     return (runs if pos is None else runs.loc[runs.index[pos]]), levels, note

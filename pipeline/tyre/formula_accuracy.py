@@ -30,6 +30,7 @@ import pandas as pd
 from scipy.stats import norm
 from scipy.stats import t as student_t
 
+from .. import _validate
 from . import conditions as cond
 from .sizes import TyreSizeError, parse_tyre_size
 from .stiffness import traction_tyre_stiffness
@@ -50,7 +51,9 @@ PRED_COLUMNS = ["source", "tyre_id", "size", "position", "age_years", "age_assum
 
 
 def p_within(mean: float, sd: float, limit: float = 10.0) -> float:
-    """P(|e| < limit) for e ~ N(mean, sd) (thesis §4.5.3, §6.4), via ``scipy.stats.norm``."""
+    """P(|e| < limit) for e ~ N(mean, sd) (thesis §4.5.3, §6.4), via ``scipy.stats.norm``; NaN for a
+    non-finite moment or sd <= 0 (too few errors to have one)."""
+    limit = _validate.positive("limit", limit)
     if not (np.isfinite(mean) and np.isfinite(sd)) or sd <= 0:
         return float("nan")
     return float(norm.cdf((limit - mean) / sd) - norm.cdf((-limit - mean) / sd))
@@ -87,6 +90,10 @@ def _formula(size, p, age):
         return traction_tyre_stiffness(size, p, age)
     except (TyreSizeError, ValueError, TypeError):
         return np.nan
+
+
+#: Columns of a Table III-like table the predictions read.
+_LINE_COLUMNS = ("tyre_id", "condition", "carcass_stiffness_kN_per_m", "pressure_dependence_kN_per_m_bar")
 
 
 def _lines(table: pd.DataFrame) -> dict:
@@ -135,6 +142,11 @@ def predictions_from_table(table: pd.DataFrame, tyres: pd.DataFrame | None,
     DataFrame
         :data:`PRED_COLUMNS`, one row per traction tyre × grid pressure.
     """
+    _validate.frame("table", table, _LINE_COLUMNS)
+    if tyres is not None:
+        _validate.frame("tyres", tyres, ["tyre_id"])
+    _validate.positive_array("rear_grid", rear_grid)
+    _validate.positive_array("front_grid", front_grid)
     info = _tyre_info(tyres).set_index("tyre_id")
     lines = _lines(table)
     own_size = dict(zip(table["tyre_id"].astype(str), table["size"])) if "size" in table else {}
@@ -159,6 +171,10 @@ def predictions_from_recordings(results: pd.DataFrame, our_table_iii: pd.DataFra
     (:func:`conditions.table_iii_runs`) per tyre and measured pressure; the
     stationary prediction is our stationary Table III line at that pressure.
     """
+    _validate.frame("results", results)
+    _validate.frame("our_table_iii", our_table_iii, _LINE_COLUMNS)
+    if tyres is not None:
+        _validate.frame("tyres", tyres, ["tyre_id"])
     info = _tyre_info(tyres).set_index("tyre_id")
     if results.empty:
         return pd.DataFrame(columns=PRED_COLUMNS)
@@ -189,6 +205,9 @@ def accuracy_summary(pred: pd.DataFrame, source: str) -> pd.DataFrame:
         within_10_percent_fraction, p_within_10_percent_normal`` and the printed
         ``thesis_*`` values with differences (thesis §4.5.3).
     """
+    _validate.frame("pred", pred)
+    if len(pred):
+        _validate.frame("pred", pred, ["formula_error_percent", "stationary_error_percent"])
     rows = []
     for method in ("formula", "stationary"):
         e = pred[f"{method}_error_percent"].to_numpy(float) if len(pred) else np.array([])
@@ -262,10 +281,11 @@ class FormulaErrorModel:
 
 def formula_error_model(table: pd.DataFrame, tyres: pd.DataFrame | None) -> FormulaErrorModel:
     """:class:`FormulaErrorModel` from a Table III-like table and a tyres table."""
+    _validate.frame("table", table, _LINE_COLUMNS)
     pred = predictions_from_table(table, tyres)
     e = pred["formula_error_percent"].to_numpy(float)
     ok = np.isfinite(e)
     if ok.sum() < 3:
-        raise ValueError("too few formula predictions to estimate its error")
+        raise ValueError("table: too few formula predictions to estimate its error")
     return FormulaErrorModel(float(e[ok].mean()), float(e[ok].std(ddof=1)), int(ok.sum()),
                              int(pred.loc[ok, "tyre_id"].nunique()))

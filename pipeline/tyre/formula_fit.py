@@ -39,6 +39,7 @@ import numpy as np
 import pandas as pd
 from scipy.stats import t as student_t
 
+from .. import _validate
 from .sizes import TyreSize, TyreSizeError, parse_tyre_size
 
 __all__ = ["TERMS", "TERM_UNITS", "POINT_COLUMNS", "PRINTED_COEFFICIENTS", "FormulaPrediction", "FormulaFit", "design_matrix", "fit_formula",
@@ -66,6 +67,8 @@ def design_matrix(sizes, age_years, pressure_bar) -> np.ndarray:
     >>> design_matrix(["13.6R38"], [1.0], [1.2]).round(2).tolist()
     [[1.0, 38.0, 1.0, 620.16]]
     """
+    _validate.non_negative_array("age_years", age_years)
+    _validate.non_negative_array("pressure_bar", pressure_bar)
     s = [_size(x) for x in sizes]
     a = np.asarray(age_years, float)
     p = np.asarray(pressure_bar, float)
@@ -149,8 +152,7 @@ class FormulaFit:
 
     def coverage_factor(self, level: float = 0.95) -> float:
         """Student t factor for ``level`` on :attr:`dof` degrees of freedom."""
-        if not 0 < level < 1:
-            raise ValueError(f"level must be in (0, 1), got {level!r}")
+        level = _validate.probability("level", level)
         return float(student_t.ppf(0.5 + level / 2, self.dof))
 
     def predict(self, size, pressure_bar: float, age_years: float = 1.0, *, level: float = 0.95) -> FormulaPrediction:
@@ -164,11 +166,25 @@ class FormulaFit:
         >>> round(p.stiffness_kN_per_m, 1), round(p.standard_uncertainty_kN_per_m, 2)
         (303.6, 30.36)
         """
-        if not (math.isfinite(pressure_bar) and pressure_bar >= 0):
-            raise ValueError(f"pressure_bar must be a non-negative number, got {pressure_bar!r}")
-        if not (math.isfinite(age_years) and age_years >= 0):
-            raise ValueError(f"age_years must be a non-negative number, got {age_years!r}")
-        x0 = design_matrix([size], [age_years], [pressure_bar])[0]
+        s = _size(size)
+        return self.predict_terms(s.rim_diameter_in, s.width_times_rim_in2, pressure_bar, age_years, level=level)
+
+    def predict_terms(self, rim_diameter_in: float, wr_in2: float, pressure_bar: float, age_years: float = 1.0, *,
+                      level: float = 0.95) -> FormulaPrediction:
+        """:meth:`predict` from the terms themselves: rim diameter R (in), W·R (in²), P (bar), A (years).
+
+        Examples
+        --------
+        >>> f = FormulaFit("x", (172.0, -1.77, 5.6, 0.34), tuple(tuple(0.0 for _ in range(4)) for _ in range(4)),
+        ...                0.1, 30.0, 0.9, 14, 56)
+        >>> round(f.predict_terms(38, 13.6 * 38, 1.1, 1).stiffness_kN_per_m, 1)
+        303.6
+        """
+        rim = _validate.positive("rim_diameter_in", rim_diameter_in)
+        wr = _validate.positive("wr_in2", wr_in2)
+        pressure_bar = _validate.non_negative("pressure_bar", pressure_bar)
+        age_years = _validate.non_negative("age_years", age_years)
+        x0 = np.array([1.0, rim, age_years, wr * pressure_bar])
         k = float(x0 @ np.asarray(self.coefficients))
         var_mean = float(x0 @ np.asarray(self.covariance) @ x0)
         u = math.sqrt(max(var_mean, 0.0) + (self.relative_residual_sd * k) ** 2)
@@ -230,6 +246,7 @@ def fit_formula(points: pd.DataFrame, source: str = "published") -> FormulaFit:
         With fewer than 5 tyres (4 coefficients and a cluster-robust covariance need
         more tyres than coefficients) or a design that cannot separate the terms.
     """
+    _validate.frame("points", points)
     from statsmodels.regression.linear_model import OLS, WLS
 
     p = _points(points)
@@ -282,6 +299,7 @@ def leave_one_tyre_out(points: pd.DataFrame, source: str = "ours") -> pd.DataFra
         100 (predicted − measured)/measured). Tyres whose left-out fit cannot be made
         (fewer than 5 others) are skipped.
     """
+    _validate.frame("points", points)
     p = _points(points)
     rows = []
     printed = np.asarray(PRINTED_COEFFICIENTS)
@@ -344,10 +362,8 @@ class FrontRule:
         >>> round(p.stiffness_kN_per_m, 1), round(p.standard_uncertainty_kN_per_m, 1)
         (268.0, 37.9)
         """
-        if not (math.isfinite(pressure_bar) and pressure_bar >= 0):
-            raise ValueError(f"pressure_bar must be a non-negative number, got {pressure_bar!r}")
-        if not 0 < level < 1:
-            raise ValueError(f"level must be in (0, 1), got {level!r}")
+        pressure_bar = _validate.non_negative("pressure_bar", pressure_bar)
+        level = _validate.probability("level", level)
         s = _size(size)
         k = self.coefficient_kN_per_m_in2_bar * s.width_times_rim_in2 * pressure_bar
         u = k * self.relative_sd * math.sqrt(2.0)
@@ -363,6 +379,8 @@ def front_rule(table_iii: pd.DataFrame, table_ii: pd.DataFrame, front_id: str = 
     ValueError
         If ``front_id`` or fewer than 3 traction tyres have a rolling ΔK_p.
     """
+    _validate.frame("table_iii", table_iii, ["tyre_id", "condition", "pressure_dependence_kN_per_m_bar", "size"])
+    _validate.frame("table_ii", table_ii, ["tyre_id", "size"])
     rolling = table_iii.loc[(table_iii["condition"] == "rolling")
                             & table_iii["pressure_dependence_kN_per_m_bar"].notna()].copy()
     rolling["tyre_id"] = rolling["tyre_id"].astype(str)
@@ -392,6 +410,7 @@ def fit_table(fits: list[FormulaFit]) -> pd.DataFrame:
     with null statistics; each fit adds a row (:meth:`FormulaFit.row`) with the printed
     value and the difference in standard errors, ``<term>_vs_printed_se``.
     """
+    _validate.instances("fits", fits, FormulaFit)
     printed = {"source": "thesis_printed", "method": "thesis §4.5.3: three separate regressions (Figs 26, 30, 31)",
                **dict(zip(TERMS, PRINTED_COEFFICIENTS))}
     rows = [printed]

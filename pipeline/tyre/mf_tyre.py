@@ -41,6 +41,7 @@ import numpy as np
 import pandas as pd
 from scipy import stats
 
+from .. import _validate
 from .sizes import TyreSize, parse_tyre_size
 
 __all__ = [
@@ -187,6 +188,8 @@ def measured_tyre(
         If the tyre is not in the catalogue, or has neither a rolling stiffness fit
         nor measured catalogue coefficients; the message names the tyre.
     """
+    _validate.frame("tyres", tyres, ["tyre_id", "size"])
+    damping_speed_km_h = _validate.positive("damping_speed_km_h", damping_speed_km_h)
     ids = tyres["tyre_id"].astype(str)
     if tyre_id not in set(ids):
         raise ValueError(f"tyre_id {tyre_id!r} is not in the tyre catalogue")
@@ -244,9 +247,8 @@ def tir_parameters(tyre: MeasuredTyre, pressure_bar: float) -> dict[str, list[tu
     ValueError
         If ``pressure_bar`` is not positive or the stiffness there is not positive.
     """
-    p0 = float(pressure_bar)
-    if not p0 > 0:
-        raise ValueError(f"pressure_bar {pressure_bar} is not positive")
+    _validate.instance("tyre", tyre, MeasuredTyre)
+    p0 = _validate.positive("pressure_bar", pressure_bar)
     k0 = float(tyre.stiffness.at(p0))
     if not k0 > 0:
         raise ValueError(f"pressure_bar {p0}: the measured line gives K = {k0:.1f} kN/m, not positive")
@@ -310,6 +312,7 @@ def property_file(tyre: MeasuredTyre, pressure_bar: float, *, tool: str = "tyrel
     >>> [line.split("$")[0].strip() for line in text.splitlines() if line.startswith(("VERTICAL_", "PFZ1"))]
     ['VERTICAL_STIFFNESS       = 396000.0', 'VERTICAL_DAMPING         = 1580.0', 'PFZ1                     = 0.696969697']
     """
+    _validate.instance("tyre", tyre, MeasuredTyre)
     lines = [
         "[MDI_HEADER]",
         "FILE_TYPE                = 'tir'",
@@ -357,9 +360,8 @@ def pressure_table(
         ``t(1 - alpha/2, n - 2) x`` :meth:`PressureLine.se_bound` (conservative: the
         intercept-slope covariance is not stored).
     """
-    if not 0 < alpha < 1:
-        raise ValueError(f"alpha {alpha} is outside (0, 1)")
-    p = np.unique(np.asarray(pressures_bar, dtype=float))
+    alpha = _validate.probability("alpha", alpha)
+    p = np.unique(_validate.positive_array("pressures_bar", pressures_bar))
     rows = []
     for name, table, unit in (("stiffness", stiffness_by_speed, "kN_per_m"), ("damping", damping_by_speed, "kN_s_per_m")):
         t = table.loc[(table["tyre_id"].astype(str) == tyre_id) & pd.to_numeric(table["slope"], errors="coerce").notna()]

@@ -13,6 +13,7 @@ import dataclasses
 import numpy as np
 import pandas as pd
 
+from .. import _validate
 from . import formula_accuracy as fa
 from .formula_fit import TERMS, FormulaFit, fit_formula, front_rule
 from .stiffness import FormulaDataRange, StiffnessModel
@@ -30,11 +31,13 @@ def thesis_points(table_ii: pd.DataFrame, table_iii: pd.DataFrame) -> pd.DataFra
     :func:`tyrelab.tyre.formula_accuracy.predictions_from_table`: ``K_c + ΔK_p P`` on the
     rear/front pressure grids, sizes and ages from Table II (Berlin tyres new: 0 years).
     """
+    _validate.frame("table_ii", table_ii, ["tyre_id", "size"])
     return fa.predictions_from_table(table_iii, table_ii)
 
 
 def thesis_formula_fit(table_ii: pd.DataFrame, table_iii: pd.DataFrame) -> FormulaFit:
     """:func:`~tyrelab.tyre.formula_fit.fit_formula` of :func:`thesis_points` (``source = "published"``)."""
+    _validate.frame("table_ii", table_ii, ["tyre_id", "size"])
     return fit_formula(thesis_points(table_ii, table_iii), "published")
 
 
@@ -48,6 +51,7 @@ def thesis_stiffness_model(table_ii: pd.DataFrame, table_iii: pd.DataFrame, tabl
     >>> m.formula.n_tyres, m.formula.n_points, m.front.n_tyres
     (16, 80, 16)
     """
+    _validate.frame("table_vi", table_vi)
     return StiffnessModel("thesis", thesis_formula_fit(table_ii, table_iii), front_rule(table_iii, table_ii),
                           FormulaDataRange.from_tables(table_ii, table_iii, table_vi), point="printed")
 
@@ -55,6 +59,7 @@ def thesis_stiffness_model(table_ii: pd.DataFrame, table_iii: pd.DataFrame, tabl
 def fit_row(fit: FormulaFit) -> dict:
     """:meth:`FormulaFit.row` plus what :func:`fit_from_row` needs: the covariance
     (``cov_<term>_<term>``, upper triangle) and the data ranges (``<range>_min``/``_max``)."""
+    _validate.instance("fit", fit, FormulaFit)
     row = fit.row()
     cov = np.asarray(fit.covariance)
     for i, a in enumerate(TERMS):
@@ -109,6 +114,8 @@ def build_stiffness_model(formula_fit_table: pd.DataFrame, thesis: StiffnessMode
     ValueError
         If the table has no usable row of ``source``.
     """
+    _validate.frame("formula_fit_table", formula_fit_table, ["source"])
+    _validate.instance("thesis", thesis, StiffnessModel)
     rows = formula_fit_table.loc[formula_fit_table["source"].astype(str) == source]
     if rows.empty:
         raise ValueError(f"formula_fit has no '{source}' row (fewer than 5 measured traction tyres?)")

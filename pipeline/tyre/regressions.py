@@ -32,6 +32,7 @@ import pandas as pd
 from statsmodels.regression.linear_model import OLS, WLS
 from statsmodels.tools.tools import add_constant
 
+from .. import _validate
 from . import conditions as cond
 
 __all__ = ["STIFFNESS", "DAMPING", "FIT_COLUMNS", "fit_line", "fit_mean", "measured_tyres",
@@ -66,6 +67,9 @@ def between_run_variance(x, y, u) -> float:
     >>> round(between_run_variance(x, y, np.full(4, 0.01)), 4) > 0, between_run_variance(x, y, np.full(4, 1.0))
     (True, 0.0)
     """
+    x, y = _validate.finite_array("x", x, 3), _validate.finite_array("y", y, 3)
+    u = _validate.positive_array("u", u)
+    _validate.same_last_axis(x=x, y=y, u=u)
     x, y, u = (np.asarray(v, dtype=float) for v in (x, y, u))
     design = np.column_stack([np.ones_like(x), x])
 
@@ -114,6 +118,7 @@ def fit_line(x, y, *, alpha: float = 0.05, u=None) -> dict:
         are NaN and ``reason`` says why; with two points the standard errors
         and intervals are NaN (no residual degrees of freedom).
     """
+    alpha = _validate.probability("alpha", alpha)
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
     uu = np.full(x.shape, np.nan) if u is None else np.asarray(u, dtype=float)
@@ -169,6 +174,7 @@ def fit_mean(y, *, alpha: float = 0.05) -> dict:
     dict
         ``n, mean, se, ci_low, ci_high, sd, reason``.
     """
+    alpha = _validate.probability("alpha", alpha)
     y = np.asarray(y, dtype=float)
     y = y[np.isfinite(y)]
     out = {"n": int(len(y)), "mean": np.nan, "se": np.nan, "ci_low": np.nan, "ci_high": np.nan,
@@ -195,6 +201,7 @@ def _speed(s: pd.Series) -> pd.Series:
 
 def measured_tyres(results: pd.DataFrame) -> list[str]:
     """Tyre ids with at least one measurement run, sorted (the tyres "in our data")."""
+    _validate.frame("results", results)
     if results.empty or "tyre_id" not in results.columns:
         return []
     kind = results.get("kind", pd.Series("measurement", index=results.index)).fillna("measurement")
@@ -304,6 +311,9 @@ def pressure_regressions(
         (intercept = carcass value, slope = pressure dependence per bar),
         ``held_load_kN``, ``note``.
     """
+    _validate.frame("results", results)
+    _validate.choice("response", response, (STIFFNESS, DAMPING))
+    _validate.choice("by", by, ("condition", "speed"))
     runs, keys, grid = _pressure_runs(results, by, tyre_ids)
     return _fit_groups(runs, keys, grid, response, *_PRESSURE_HOLD)
 
@@ -351,6 +361,10 @@ def pressure_regressions_each(
     >>> pressure_regressions_each(pd.DataFrame(), tyre_ids=["T1"])["T1"][STIFFNESS]["n"].tolist()
     [0, 0]
     """
+    _validate.frame("results", results)
+    for response in responses:
+        _validate.choice("responses", response, (STIFFNESS, DAMPING))
+    _validate.choice("by", by, ("condition", "speed"))
     tyre_ids = [str(t) for t in tyre_ids]
     runs, keys, grid = _pressure_runs(results, by, tyre_ids)
     out: dict[str, dict[str, pd.DataFrame]] = {t: {} for t in tyre_ids}
@@ -382,6 +396,10 @@ def factor_regressions(
         ``tyre_id, speed_km_h, response, factor, factor_unit, rate_unit``, the fit
         (slope = rate), ``held_pressure_bar``, ``held_load_kN``, ``note``.
     """
+    _validate.frame("results", results)
+    _validate.choice("factor", factor, tuple(cond.FACTORS))
+    for response in responses:
+        _validate.choice("responses", response, (STIFFNESS, DAMPING))
     runs, grid, hold = _factor_runs(results, factor)
     rows = {response: _fit_rows(runs, _FACTOR_KEYS, grid, response, hold, _FACTOR_PREFER, design="x_design")
             for response in responses}
@@ -470,6 +488,8 @@ def surface_effects(results: pd.DataFrame, response: str = STIFFNESS) -> tuple[p
         Per non-concrete surface: ``surface, n_cells, change_percent, se, ci_low, ci_high,
         sd, tyres, reason``.
     """
+    _validate.frame("results", results)
+    _validate.choice("response", response, (STIFFNESS, DAMPING))
     cell_cols = ["surface", "tyre_id", "speed_km_h", "pressure_bar", "load_kN", "n_surface",
                  "n_concrete", "surface_mean", "concrete_mean", "change_percent"]
     sum_cols = ["surface", "n_cells", "change_percent", "se", "ci_low", "ci_high", "sd", "tyres", "reason"]
@@ -536,6 +556,9 @@ def compare_with_thesis(
         then the remaining columns of ``ours``; also a boolean ``in_thesis``. Rows
         of either side without a partner are kept (thesis columns null for new tyres).
     """
+    _validate.frame("ours", ours, [*keys, *values])
+    if thesis is not None:
+        _validate.frame("thesis", thesis)
     ours = ours.copy()
     th_cols = {pub: f"thesis_{col}" for col, pub in values.items()}
     if thesis is None or thesis.empty:
@@ -592,6 +615,9 @@ def table_iii(fit: pd.DataFrame, published: pd.DataFrame | None) -> pd.DataFrame
         ``raw/published/table_iii.csv`` (tyre_id, size, condition, carcass_stiffness_kN_per_m,
         pressure_dependence_kN_per_m_bar, r_squared, r_squared_qualifier).
     """
+    _validate.frame("fit", fit, ["tyre_id", "condition"])
+    if published is not None:
+        _validate.frame("published", published)
     ours = _fit_renamed(fit, "carcass_stiffness_kN_per_m", "pressure_dependence_kN_per_m_bar")
     pub = None if published is None else published.loc[
         published[["carcass_stiffness_kN_per_m", "pressure_dependence_kN_per_m_bar"]].notna().any(axis=1)]
@@ -608,6 +634,9 @@ def table_vii(fit: pd.DataFrame, published: pd.DataFrame | None) -> pd.DataFrame
 
     ``fit`` is :func:`pressure_regressions` of damping by speed.
     """
+    _validate.frame("fit", fit, ["tyre_id", "speed_km_h"])
+    if published is not None:
+        _validate.frame("published", published)
     ours = _fit_renamed(fit, "carcass_damping_kN_s_per_m", "pressure_dependence_kN_s_per_m_bar")
     return compare_with_thesis(
         ours, published, ["tyre_id", "speed_km_h"],
@@ -631,6 +660,8 @@ def amplitude_table(rates: pd.DataFrame, published: pd.DataFrame | None, respons
         ``"stiffness_kN_per_m"`` (Table IV, thesis §4.3.4) or ``"damping_kN_s_per_m"``
         (Table VIII, §5.3.4).
     """
+    _validate.frame("rates", rates)
+    _validate.choice("response", response, (STIFFNESS, DAMPING))
     col = "stiffness_rate_kN_per_m_per_mm" if response == STIFFNESS else "damping_rate_kN_s_per_m_per_mm"
     sub = rates.loc[(rates["response"] == response) & (rates["factor"] == "amplitude")]
     sub = sub.drop(columns=["response", "factor", "factor_unit", "rate_unit"])
@@ -645,6 +676,8 @@ def surface_table(summary: pd.DataFrame, published: pd.DataFrame | None, respons
     ``published`` is ``table_v.csv`` (surface, stiffness_change_percent) or ``table_ix.csv``
     (surface, damping_change_percent). Surfaces are matched case- and space-insensitively.
     """
+    _validate.frame("summary", summary)
+    _validate.choice("response", response, (STIFFNESS, DAMPING))
     col = "stiffness_change_percent" if response == STIFFNESS else "damping_change_percent"
     ours = summary.rename(columns={"change_percent": col, "se": f"{col}_se",
                                    "ci_low": f"{col}_ci_low", "ci_high": f"{col}_ci_high"})
@@ -699,6 +732,11 @@ def summary_rates(
         ``factor, measured_range, unit, thesis_value, thesis_change_text, value,
         value_difference, n, se, ci_low, ci_high, basis, reason``.
     """
+    _validate.frame("by_speed", by_speed)
+    _validate.frame("rates", rates)
+    _validate.choice("response", response, (STIFFNESS, DAMPING))
+    pressure_bar = _validate.positive("pressure_bar", pressure_bar)
+    rolling_min_km_h = _validate.non_negative("rolling_min_km_h", rolling_min_km_h)
     response_unit = _RESPONSE_UNIT.get(response, response)
     rows = []
     bs = by_speed.dropna(subset=["slope"]).copy()

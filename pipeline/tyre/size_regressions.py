@@ -23,6 +23,7 @@ import itertools
 import numpy as np
 import pandas as pd
 
+from .. import _validate
 from .regressions import fit_line
 from .sizes import TyreSizeError, parse_tyre_size
 
@@ -78,6 +79,9 @@ def tyre_points(table: pd.DataFrame, tyres: pd.DataFrame | None = None) -> pd.Da
         Adds ``size_used, section_width_in, rim_diameter_in, wr_in2, age_years``
         and ``size_in_table`` (the table's own designation).
     """
+    _validate.frame("table", table, ["tyre_id", "condition", "carcass_stiffness_kN_per_m", "pressure_dependence_kN_per_m_bar"])
+    if tyres is not None:
+        _validate.frame("tyres", tyres)
     t = table.copy()
     t["tyre_id"] = t["tyre_id"].astype(str)
     t["size_in_table"] = t["size"] if "size" in t else None
@@ -102,6 +106,10 @@ def tyre_points(table: pd.DataFrame, tyres: pd.DataFrame | None = None) -> pd.Da
 
 def select(points: pd.DataFrame, spec: dict, *, exclude=None, include=None, condition=None) -> pd.DataFrame:
     """Rows of one fit's selection: condition, include/exclude lists, non-null x and y."""
+    _validate.frame("points", points, ["tyre_id", "condition"])
+    missing = [] if not isinstance(spec, dict) else [k for k in ("x", "y", "exclude", "include", "condition") if k not in spec]
+    if not isinstance(spec, dict) or missing:
+        raise ValueError(f"spec must be a fit of THESIS_FITS (x, y, exclude, include, condition), got {spec!r}")
     exclude = spec["exclude"] if exclude is None else exclude
     include = spec["include"] if include is None else include
     condition = spec["condition"] if condition is None else condition
@@ -151,6 +159,9 @@ def selection_search(points: pd.DataFrame, name: str, *, max_excluded: int = 3,
         ``fit, condition, change, n, intercept, slope, r_squared, matches_printed``, sorted with
         the matching selections first, then by how close r² and slope come.
     """
+    _validate.frame("points", points, ["tyre_id", "condition"])
+    _validate.choice("name", name, tuple(THESIS_FITS))
+    max_excluded = _validate.positive_int("max_excluded", max_excluded, minimum=0)
     spec = THESIS_FITS[name]
     cond = condition or spec["condition"]
     base = select(points, spec, condition=cond)
@@ -187,6 +198,8 @@ def selection_search(points: pd.DataFrame, name: str, *, max_excluded: int = 3,
 
 def variants(points: pd.DataFrame, name: str) -> pd.DataFrame:
     """The fit under the other plausible data choices: stationary, pooled, through origin."""
+    _validate.frame("points", points, ["tyre_id", "condition"])
+    _validate.choice("name", name, tuple(THESIS_FITS))
     spec = THESIS_FITS[name]
     rows = []
     for cond in ("rolling", "stationary", "pooled"):
@@ -282,6 +295,9 @@ def size_regressions(table: pd.DataFrame, tyres: pd.DataFrame | None, source: st
         thesis_slope, thesis_r_squared``, differences, ``reproduces_printed``,
         ``finding`` and ``thesis_ref``.
     """
+    _validate.frame("table", table, ["tyre_id", "condition", "carcass_stiffness_kN_per_m", "pressure_dependence_kN_per_m_bar"])
+    if tyres is not None:
+        _validate.frame("tyres", tyres)
     points = tyre_points(table, tyres) if not table.empty else pd.DataFrame(
         columns=["tyre_id", "condition", "wr_in2", "rim_diameter_in", "age_years",
                  "carcass_stiffness_kN_per_m", "pressure_dependence_kN_per_m_bar"])

@@ -27,6 +27,8 @@ import math
 import re
 from dataclasses import dataclass
 
+from .. import _validate
+
 __all__ = [
     "DEFAULT_ASPECT_RATIO",
     "FLEXION_LOAD_FACTOR",
@@ -476,6 +478,5 @@ def lugs_per_side(circumference_m: float, *, ribbed: bool = False, catalogue: fl
         return int(round(n))
     if ribbed:
         return 0
-    if not (circumference_m > 0):
-        raise ValueError(f"circumference_m {circumference_m} is not positive")
-    return max(int(round(float(circumference_m) / LUG_PITCH_m)), 8)
+    circumference_m = _validate.positive("circumference_m", circumference_m)
+    return max(int(round(circumference_m / LUG_PITCH_m)), 8)

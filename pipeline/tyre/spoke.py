@@ -39,6 +39,7 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import lsq_linear
 
+from .. import _validate
 from . import conditions as cond
 from .sizes import parse_tyre_size
 
@@ -79,11 +80,13 @@ def unloaded_radius_m(size: str, aspect_ratio: float = ASPECT_RATIO_DEFAULT) -> 
         Section height over section width.
     """
     s = parse_tyre_size(size)
+    aspect_ratio = _validate.positive("aspect_ratio", aspect_ratio)
     return 0.0254 * (s.rim_diameter_in / 2.0 + aspect_ratio * s.section_width_in)
 
 
 def contact_half_angle(h, r0):
     """Half-angle α = acos(h / r0) of the contact zone, rad (0 when h ≥ r0)."""
+    r0 = _validate.positive("r0", r0)
     return np.arccos(np.clip(np.asarray(h, dtype=float) / r0, -1.0, 1.0))
 
 
@@ -99,6 +102,7 @@ def spoke_rate(theta, h, h_dot, wheel_rate_rad_s):
     wheel_rate_rad_s : array-like
         θ̇, rad/s.
     """
+    _validate.non_negative_array("wheel_rate_rad_s", wheel_rate_rad_s)
     c = np.cos(theta)
     return h_dot / c + h * wheel_rate_rad_s * np.sin(theta) / c**2
 
@@ -124,6 +128,10 @@ def vertical_force(h, h_dot, wheel_rate_rad_s, r0, c_coulomb, c_viscous):
     c_viscous : float
         Viscous coefficient per radian of tyre, Ns/m/rad.
     """
+    _validate.non_negative_array("wheel_rate_rad_s", wheel_rate_rad_s)
+    r0 = _validate.positive("r0", r0)
+    _validate.finite_array("c_coulomb", np.atleast_1d(c_coulomb))  # negative in an unconstrained fit (spoke_fit)
+    _validate.finite_array("c_viscous", np.atleast_1d(c_viscous))
     h = np.asarray(h, dtype=float)
     h_dot = np.asarray(h_dot, dtype=float)
     alpha = contact_half_angle(h, r0)
@@ -139,6 +147,9 @@ def vertical_force_spokes(h, h_dot, wheel_angle_rad, wheel_rate_rad_s, r0, c_cou
     stands for ``2π / n`` rad of tyre. Arguments broadcast like
     :func:`vertical_force`; the spoke axis is appended last and summed.
     """
+    n_spokes = _validate.positive_int("n_spokes", n_spokes)
+    r0 = _validate.positive("r0", r0)
+    _validate.non_negative_array("wheel_rate_rad_s", wheel_rate_rad_s)
     h = np.asarray(h, dtype=float)[..., None]
     hd = np.asarray(h_dot, dtype=float)[..., None]
     w = np.asarray(wheel_rate_rad_s, dtype=float)[..., None]
@@ -173,6 +184,14 @@ def damping_basis(speed_km_h, frequency_Hz=FREQUENCY_HZ, amplitude_m=AMPLITUDE_M
     ``c1 g_coulomb + c2 g_viscous`` (Ns/m for c1 in N/rad and c2 in Ns/m/rad).
     Energy per cycle / (π A² ω), thesis §5.5.2. Arguments broadcast.
     """
+    _validate.positive_array("frequency_Hz", frequency_Hz)
+    _validate.positive_array("amplitude_m", amplitude_m)
+    _validate.positive_array("h_over_r0", h_over_r0)
+    _validate.positive("r0", r0)
+    if not isinstance(n_time, (int, np.integer)) or n_time < 8:
+        raise ValueError(f"n_time must be an integer >= 8, got {n_time!r}")
+    if np.any(np.asarray(speed_km_h, dtype=float) < 0) or not np.all(np.isfinite(np.asarray(speed_km_h, dtype=float))):
+        raise ValueError(f"speed_km_h must be finite and non-negative, got {speed_km_h!r}")
     h, h_dot, w, omega, a = _cycle(speed_km_h, frequency_Hz, amplitude_m, h_over_r0, r0, n_time)
     period = 2 * np.pi / omega
     norm = np.pi * a**2 * omega
@@ -207,6 +226,8 @@ def equivalent_damping(speed_km_h, frequency_Hz=FREQUENCY_HZ, amplitude_m=AMPLIT
     ndarray
         Broadcast shape of the inputs.
     """
+    _validate.finite_array("c_coulomb", np.atleast_1d(c_coulomb))  # negative in an unconstrained fit (spoke_fit)
+    _validate.finite_array("c_viscous", np.atleast_1d(c_viscous))
     g1, g2 = damping_basis(speed_km_h, frequency_Hz, amplitude_m, h_over_r0, r0, n_time)
     return c_coulomb * g1 + c_viscous * g2
 
@@ -235,6 +256,7 @@ def fit_coefficients(speed_km_h, damping, frequency_Hz=FREQUENCY_HZ, amplitude_m
         ``c_coulomb, c_viscous, fitted (ndarray), relative_error (ndarray),
         max_abs_relative_error, n, status``.
     """
+    _validate.finite_array("damping", damping)
     v = np.asarray(speed_km_h, dtype=float)
     y = np.asarray(damping, dtype=float)
     g1, g2 = damping_basis(v, frequency_Hz, amplitude_m, h_over_r0, r0)
@@ -273,6 +295,10 @@ def force_curves(speeds_km_h=(0.5, 1, 2, 5, 10, 20), c_coulomb=1.0, c_viscous=0.
     DataFrame
         ``speed_km_h, h_dot_m_per_s, force_N, c_coulomb_N_per_rad, c_viscous_N_s_per_m_per_rad``.
     """
+    _validate.non_negative_array("speeds_km_h", speeds_km_h)
+    n_points = _validate.positive_int("n_points", n_points, minimum=2)
+    r0 = _validate.positive("r0", r0)
+    h_over_r0 = _validate.positive("h_over_r0", h_over_r0)
     hd = np.linspace(-1, 1, n_points) * AMPLITUDE_M * 2 * np.pi * FREQUENCY_HZ
     v = np.asarray(speeds_km_h, dtype=float)[:, None]
     f = vertical_force(h_over_r0 * r0, hd[None, :], v * _KMH / r0, r0, c_coulomb, c_viscous)
@@ -314,6 +340,9 @@ def speed_curves(speeds_km_h=None, r0=R0_13_6R38_M) -> pd.DataFrame:
     Models: ``coulomb`` (Fig. 44, c1 = 1 N/rad), ``combined`` (Fig. 45, c1 = 0.25 N/rad,
     c2 = 1 Ns/m/rad) and ``viscous`` (c2 = 1 Ns/m/rad alone, for reference).
     """
+    r0 = _validate.positive("r0", r0)
+    if speeds_km_h is not None:
+        _validate.non_negative_array("speeds_km_h", speeds_km_h)
     v = np.r_[0.1, 0.2, 0.3, 0.5, 0.75, np.arange(1.0, 20.01, 0.5)] if speeds_km_h is None else speeds_km_h
     parts = [
         _curve("44", "speed_km_h", v, [0], FREQUENCY_HZ, AMPLITUDE_M, H_OVER_R0, 1.0, 0.0, "coulomb", r0),
@@ -330,6 +359,9 @@ _FIG_SPEEDS = (1.0, 5.0, 10.0, 15.0, 20.0)
 def frequency_curves(frequencies_Hz=np.arange(1.0, 8.01, 0.25), speeds_km_h=_FIG_SPEEDS,
                      r0=R0_13_6R38_M) -> pd.DataFrame:
     """Fig. 46: equivalent damping vs excitation frequency at several speeds (Fig. 45 coefficients)."""
+    _validate.positive_array("frequencies_Hz", frequencies_Hz)
+    _validate.non_negative_array("speeds_km_h", speeds_km_h)
+    r0 = _validate.positive("r0", r0)
     return _curve("46", "frequency_Hz", frequencies_Hz, speeds_km_h, FREQUENCY_HZ, AMPLITUDE_M,
                   H_OVER_R0, C_COULOMB_FIG45_N_PER_RAD, C_VISCOUS_FIG45_N_S_PER_M_PER_RAD, "combined", r0)
 
@@ -337,6 +369,9 @@ def frequency_curves(frequencies_Hz=np.arange(1.0, 8.01, 0.25), speeds_km_h=_FIG
 def amplitude_curves(amplitudes_mm=np.arange(2.0, 15.01, 0.5), speeds_km_h=_FIG_SPEEDS,
                      r0=R0_13_6R38_M) -> pd.DataFrame:
     """Fig. 47: equivalent damping vs amplitude (±2–15 mm, i.e. 4–30 mm p-p as measured)."""
+    _validate.positive_array("amplitudes_mm", amplitudes_mm)
+    _validate.non_negative_array("speeds_km_h", speeds_km_h)
+    r0 = _validate.positive("r0", r0)
     return _curve("47", "amplitude_mm", amplitudes_mm, speeds_km_h, FREQUENCY_HZ, AMPLITUDE_M,
                   H_OVER_R0, C_COULOMB_FIG45_N_PER_RAD, C_VISCOUS_FIG45_N_S_PER_M_PER_RAD, "combined", r0)
 
@@ -344,6 +379,11 @@ def amplitude_curves(amplitudes_mm=np.arange(2.0, 15.01, 0.5), speeds_km_h=_FIG_
 def deflection_curves(deflection_percent=np.arange(2.0, 15.01, 0.5), speeds_km_h=_FIG_SPEEDS,
                       r0=R0_13_6R38_M) -> pd.DataFrame:
     """Fig. 48: equivalent damping vs tyre deflection (1 − h/r0, %); 8 % is the thesis' h = 0.92 r0."""
+    d = _validate.positive_array("deflection_percent", deflection_percent)
+    if np.any(d >= 100):
+        raise ValueError(f"deflection_percent must be below 100, got {d.max():g}")
+    _validate.non_negative_array("speeds_km_h", speeds_km_h)
+    r0 = _validate.positive("r0", r0)
     return _curve("48", "deflection_percent", deflection_percent, speeds_km_h, FREQUENCY_HZ,
                   AMPLITUDE_M, H_OVER_R0, C_COULOMB_FIG45_N_PER_RAD, C_VISCOUS_FIG45_N_S_PER_M_PER_RAD,
                   "combined", r0)
@@ -392,6 +432,9 @@ def fit_tyres(results: pd.DataFrame, tyres: pd.DataFrame | None = None, *,
     points : DataFrame
         Per tyre and speed: measured and fitted damping (kNs/m) and error.
     """
+    _validate.frame("results", results)
+    min_speed_km_h = _validate.positive("min_speed_km_h", min_speed_km_h)
+    h_over_r0 = _validate.positive("h_over_r0", h_over_r0)
     items = list(_fit_items(results, tyres, None, min_speed_km_h, h_over_r0))
     return _fit_frames([row for _, row, _ in items], [p for _, _, p in items if p is not None])
 
@@ -410,6 +453,9 @@ def fit_tyres_each(results: pd.DataFrame, tyres: pd.DataFrame | None = None, *, 
     >>> len(fits), len(points)
     (0, 0)
     """
+    _validate.frame("results", results)
+    min_speed_km_h = _validate.positive("min_speed_km_h", min_speed_km_h)
+    h_over_r0 = _validate.positive("h_over_r0", h_over_r0)
     tyre_ids = [str(t) for t in tyre_ids]
     out = {t: _fit_frames([], []) for t in tyre_ids}  # a tyre without rows: no fit, as fit_tyres
     for tid, row, pts in _fit_items(results, tyres, set(tyre_ids), min_speed_km_h, h_over_r0):

@@ -71,8 +71,8 @@ def traction_tyre_stiffness(size: str | TyreSize, pressure_bar: float, age_years
     303.6
     """
     s = _size(size)
-    if pressure_bar < 0:
-        raise ValueError(f"pressure {pressure_bar} bar is negative")
+    pressure_bar = _validate.non_negative("pressure_bar", pressure_bar)
+    age_years = _validate.non_negative("age_years", age_years)
     return (
         FORMULA_INTERCEPT_kN_per_m
         + FORMULA_RIM_kN_per_m_in * s.rim_diameter_in
@@ -93,8 +93,7 @@ def undriven_front_tyre_stiffness(size: str | TyreSize, pressure_bar: float) -> 
         Stiffness K in kN/m.
     """
     s = _size(size)
-    if pressure_bar < 0:
-        raise ValueError(f"pressure {pressure_bar} bar is negative")
+    pressure_bar = _validate.non_negative("pressure_bar", pressure_bar)
     return FRONT_UNDRIVEN_kN_per_m_in2_bar * s.section_width_in * s.rim_diameter_in * pressure_bar
 
 
@@ -126,6 +125,9 @@ def estimate_tyre_stiffness(
 _FRONT_RIBBED = "front_ribbed"
 
 
+_THESIS_SOURCE = "thesis Tables II, III (sizes, ages) and VI (pressure)"
+
+
 @dataclass(frozen=True)
 class FormulaDataRange:
     """Ranges of the thesis' measurements that the stiffness rules rest on.
@@ -154,7 +156,7 @@ class FormulaDataRange:
     age_years: tuple[float, float]
     front_wr_in2: tuple[float, float]
     front_rim_diameter_in: tuple[float, float]
-    source: str = "thesis Tables II, III (sizes, ages) and VI (pressure)"
+    source: str = "thesis Tables II, III (sizes, ages) and VI (pressure)"  # = _THESIS_SOURCE
 
     @classmethod
     def from_tables(
@@ -198,14 +200,15 @@ class FormulaDataRange:
         )
 
 
-def _outside(name: str, value: float, lo: float, hi: float, unit: str, what: str) -> str | None:
+def _outside(name: str, value: float, lo: float, hi: float, unit: str, what: str,
+             whose: str = "the thesis' data") -> str | None:
     """One warning if ``value`` lies outside [lo, hi], saying by how much."""
     if lo <= value <= hi:
         return None
     side, by, ref = ("below", lo - value, lo) if value < lo else ("above", value - hi, hi)
     span = f"{lo:g}" if lo == hi else f"{lo:g}-{hi:g}"
     return (
-        f"{name} = {value:.4g} {unit} is {side} the thesis' data ({what}: {span} {unit}) "
+        f"{name} = {value:.4g} {unit} is {side} {whose} ({what}: {span} {unit}) "
         f"by {by:.3g} {unit} ({100 * by / ref:.1f} %)"
     )
 
@@ -247,22 +250,25 @@ def range_warnings(
     P = 2.4 bar is above the thesis' data (pressure range of Table VI: 0.7-2 bar) by 0.4 bar (20.0 %)
     """
     s = _size(size)
-    if not pressure_bar >= 0:
-        raise ValueError(f"pressure_bar {pressure_bar} is negative")
-    if not age_years >= 0:
-        raise ValueError(f"age_years {age_years} is negative")
+    pressure_bar = _validate.non_negative("pressure_bar", pressure_bar)
+    age_years = _validate.non_negative("age_years", age_years)
     r = data_range
     if r is None:
         checks = []
     elif undriven_front:
         checks = [("W·R", s.width_times_rim_in2, r.front_wr_in2, "in²", "the ribbed front tyre F1"),
                   ("R", s.rim_diameter_in, r.front_rim_diameter_in, "in", "the ribbed front tyre F1")]
+    elif r.source != _THESIS_SOURCE:  # a build's fit: its own tyres' ranges
+        checks = [(n, v, rng, unit, r.source) for n, v, rng, unit in (
+            ("W·R", s.width_times_rim_in2, r.wr_in2, "in²"), ("R", s.rim_diameter_in, r.rim_diameter_in, "in"),
+            ("A", float(age_years), r.age_years, "years"), ("P", float(pressure_bar), r.pressure_bar, "bar"))]
     else:
         checks = [("W·R", s.width_times_rim_in2, r.wr_in2, "in²", "traction tyres of Tables II-III"),
                   ("R", s.rim_diameter_in, r.rim_diameter_in, "in", "traction tyres of Tables II-III"),
                   ("A", float(age_years), r.age_years, "years", "tyre ages of Table II")]
         checks.append(("P", float(pressure_bar), r.pressure_bar, "bar", "pressure range of Table VI"))
-    out = [w for name, v, (lo, hi), unit, what in checks if (w := _outside(name, v, lo, hi, unit, what))]
+    whose = "the thesis' data" if r is None or r.source == _THESIS_SOURCE or undriven_front else "the data"
+    out = [w for name, v, (lo, hi), unit, what in checks if (w := _outside(name, v, lo, hi, unit, what, whose))]
     if s.flexion_class:
         name = {"IF": "improved flexion", "VF": "very high flexion"}[s.flexion_class]
         out.append(f"{s.flexion_class} tyre: the thesis measured no {name} tyres, which carry "

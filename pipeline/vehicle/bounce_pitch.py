@@ -23,6 +23,7 @@ import numpy as np
 import pandas as pd
 from scipy import linalg
 
+from .. import _validate
 from ..tyre.stiffness import estimate_stiffness
 from .metrics import ratio_error_statistics
 from .model import Axle, Chassis, Parts, assemble
@@ -74,13 +75,11 @@ def natural_frequencies(
     >>> round(f1, 4), round(f2, 4)   # sqrt(2e5/1000)/2pi, sqrt(2e5*1/250)/2pi
     (2.2508, 4.5016)
     """
-    m, inertia = float(mass_kg), float(pitch_inertia_kg_m2)
-    l1, l2 = float(front_distance_m), float(rear_distance_m)
-    kf, kr = float(front_stiffness_N_per_m_axle), float(rear_stiffness_N_per_m_axle)
-    if m <= 0 or inertia <= 0:
-        raise ValueError("mass and pitch inertia must be positive")
-    if kf <= 0 or kr <= 0:
-        raise ValueError("axle stiffnesses must be positive")
+    m, inertia = _validate.positive("mass_kg", mass_kg), _validate.positive("pitch_inertia_kg_m2", pitch_inertia_kg_m2)
+    l1 = _validate.non_negative("front_distance_m", front_distance_m)
+    l2 = _validate.non_negative("rear_distance_m", rear_distance_m)
+    kf = _validate.positive("front_stiffness_N_per_m_axle", front_stiffness_N_per_m_axle)
+    kr = _validate.positive("rear_stiffness_N_per_m_axle", rear_stiffness_N_per_m_axle)
     if l1 < 0 or l2 < 0 or l1 + l2 <= 0:
         raise ValueError("axle distances must be non-negative with a positive wheelbase")
     if not all(math.isfinite(v) for v in (m, inertia, l1, l2, kf, kr, kf * l1 * l1 + kr * l2 * l2)):
@@ -94,6 +93,14 @@ def natural_frequencies(
         raise ValueError(f"mass_kg {m:g} and pitch_inertia_kg_m2 {inertia:g} with axle stiffnesses {kf:g}, {kr:g} "
                          "N/m give no finite natural frequency (far too small a mass or inertia)")
     return float(f[0]), float(f[1])
+
+
+def _check(positive: dict, non_negative: dict) -> None:
+    """ValueError naming the first argument of ``positive`` not > 0 or of ``non_negative`` not >= 0."""
+    for name, value in positive.items():
+        _validate.positive(name, value)
+    for name, value in non_negative.items():
+        _validate.non_negative(name, value)
 
 
 def _matrices(m, inertia, l1, l2, kf, kr) -> tuple[np.ndarray, np.ndarray]:
@@ -135,6 +142,10 @@ def mode_shapes(
     >>> round(m["pitch"]["frequency_Hz"], 4), abs(m["pitch"]["nodal_point_ahead_of_cg_m"])
     (4.5016, 0.0)
     """
+    _check(positive=dict(mass_kg=mass_kg, pitch_inertia_kg_m2=pitch_inertia_kg_m2,
+                         front_stiffness_N_per_m_axle=front_stiffness_N_per_m_axle,
+                         rear_stiffness_N_per_m_axle=rear_stiffness_N_per_m_axle),
+           non_negative=dict(front_distance_m=front_distance_m, rear_distance_m=rear_distance_m))
     f = natural_frequencies(mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m,
                             front_stiffness_N_per_m_axle, rear_stiffness_N_per_m_axle)
     stiffness, mass = _matrices(float(mass_kg), float(pitch_inertia_kg_m2), float(front_distance_m),
@@ -219,6 +230,9 @@ def tractor_natural_frequencies(
         frequencies by mode, and each mode's nodal point ahead of the CG in m, inf for a mode that
         does not pitch; :func:`mode_shapes`), as ``tyrelab ride`` reports them.
     """
+    _validate.non_negative("front_pressure_bar", front_pressure_bar)
+    _validate.non_negative("rear_pressure_bar", rear_pressure_bar)
+    _validate.non_negative("age_years", age_years)
     warnings: list[str] = []
     uf, ur = 0.0, 0.0
     if front_stiffness_kN_per_m is not None:
@@ -295,6 +309,10 @@ def frequency_uncertainty(mass_kg: float, pitch_inertia_kg_m2: float, front_dist
     >>> u1, u2
     (0.0, 0.0)
     """
+    _check(positive=dict(mass_kg=mass_kg, pitch_inertia_kg_m2=pitch_inertia_kg_m2,
+                         front_tyre_kN_per_m=front_tyre_kN_per_m, rear_tyre_kN_per_m=rear_tyre_kN_per_m),
+           non_negative=dict(front_distance_m=front_distance_m, rear_distance_m=rear_distance_m,
+                             front_u_kN_per_m=front_u_kN_per_m, rear_u_kN_per_m=rear_u_kN_per_m))
     k = np.array([front_tyre_kN_per_m, rear_tyre_kN_per_m], dtype=float)
     u = np.array([front_u_kN_per_m, rear_u_kN_per_m], dtype=float)
 
@@ -355,6 +373,12 @@ def frequency_rounding_range(
     ndarray, shape (2, 2)
         ``[[f1_low, f1_high], [f2_low, f2_high]]`` in Hz.
     """
+    _check(positive=dict(mass=mass, pitch_inertia=pitch_inertia, front_stiffness_kN_per_m=front_stiffness_kN_per_m,
+                         rear_stiffness_kN_per_m=rear_stiffness_kN_per_m),
+           non_negative=dict(front_distance=front_distance, rear_distance=rear_distance))
+    if not isinstance(rounding, dict):
+        raise ValueError(f"rounding must be a dict of half-widths, got {type(rounding).__name__}")
+    _validate.non_negative_array("rounding", list(rounding.values()))
     values = dict(mass=mass, pitch_inertia=pitch_inertia, front_distance=front_distance, rear_distance=rear_distance,
                   front_stiffness_kN_per_m=front_stiffness_kN_per_m, rear_stiffness_kN_per_m=rear_stiffness_kN_per_m)
     names = list(values)
@@ -404,6 +428,9 @@ def table_xx(tractors: pd.DataFrame, published: pd.DataFrame | None = None, stif
         (:func:`frequency_uncertainty`); the measured-stiffness rows have none
         (the thesis states no uncertainty for them): NaN.
     """
+    _validate.frame("tractors", tractors)
+    if published is not None:
+        _validate.frame("published", published)
     rows = []
     pub = published if published is not None else pd.DataFrame()
     for t in tractors.itertuples(index=False):
@@ -498,6 +525,7 @@ def table_xx_statistics(table: pd.DataFrame) -> pd.DataFrame:
     DataFrame
         ``stiffness_source, basis (thesis|ours), n, mean, sd, p_within_10, p_within_30``.
     """
+    _validate.frame("table", table)
     rows = []
     for source, g in table.groupby("stiffness_source", sort=False):
         for basis in ("thesis", "ours"):

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import integrate, interpolate
 
+from .. import _validate
 from .._validate import positive
 from . import lti
 
@@ -95,6 +96,7 @@ class Carriage:
 
 def damped_natural_frequency(carriage: Carriage) -> float:
     """Damped natural frequency f_n sqrt(1 - zeta^2), Hz."""
+    _validate.instance("carriage", carriage, Carriage)
     z = carriage.damping_ratio
     return carriage.natural_frequency_Hz * math.sqrt(max(1 - z * z, 0.0))
 
@@ -122,6 +124,9 @@ def ground_input(
     -------
     t_s, u_m, u_dot_m_s : ndarray
     """
+    speed_m_s, dt_s = positive("speed_m_s", speed_m_s), positive("dt_s", dt_s)
+    if not float(x_end_m) > float(x_start_m):
+        raise ValueError(f"x_end_m must lie beyond x_start_m, got {x_start_m!r} to {x_end_m!r}")
     spline = interpolate.CubicSpline(np.asarray(x_m, float), np.asarray(elevation_m, float))
     n = int(math.floor((x_end_m - x_start_m) / (speed_m_s * dt_s))) + 1
     t = np.arange(n) * dt_s
@@ -165,6 +170,7 @@ def state_space(c: Carriage) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.nda
 
     State ``[z, z']``, inputs ``[u, u']``, outputs ``[z, z', z'']``.
     """
+    _validate.instance("c", c, Carriage)
     m, k, cc, cp = c.mass_kg, c.stiffness_N_per_m, c.damping_N_s_per_m, c.parasitic_damping_N_s_per_m
     a = np.array([[0.0, 1.0], [-k / m, -(cc + cp) / m]])
     b = np.array([[0.0, 0.0], [k / m, cc / m]])
@@ -374,6 +380,10 @@ def simulate_ivp(
     dict
         ``t_s``, ``z_m``, ``v_m_s``, ``a_m_s2`` at multiples of ``dt_out_s``.
     """
+    _validate.instance("carriage", carriage, Carriage)
+    for _name, _value in (("speed_m_s", speed_m_s), ("t_end_s", t_end_s), ("dt_out_s", dt_out_s), ("rtol", rtol),
+                          ("atol", atol), ("max_step_s", max_step_s)):
+        positive(_name, _value)
     spline = interpolate.CubicSpline(np.asarray(x_m, float), np.asarray(elevation_m, float))
     ds = spline.derivative()
     u0 = float(spline(x_start_m))
@@ -402,6 +412,8 @@ def acceleration_response(carriage: Carriage, frequency_Hz) -> np.ndarray:
 
     ``H = -w^2 (K + j w C) / (K - M w^2 + j w (C + C_p))``.
     """
+    _validate.instance("carriage", carriage, Carriage)
+    _validate.non_negative_array("frequency_Hz", frequency_Hz)
     w = 2 * math.pi * np.asarray(frequency_Hz, dtype=float)
     k, c, m, cp = (
         carriage.stiffness_N_per_m,
@@ -423,6 +435,8 @@ def response_psd(
     -------
     f_Hz, psd_m2_s4_per_Hz : ndarray
     """
+    _validate.instance("carriage", carriage, Carriage)
+    speed_m_s = positive("speed_m_s", speed_m_s)
     n = np.asarray(n_cycles_per_m, dtype=float)
     f = n * speed_m_s
     g = np.asarray(profile_psd_m3, dtype=float) / speed_m_s

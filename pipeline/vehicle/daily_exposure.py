@@ -25,6 +25,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+from .. import _validate
 from . import iso2631, iso2631_5
 
 __all__ = ["TaskExposure", "daily_exposure", "verdict", "EXPOSURE_VERDICTS", "MAX_HOURS_PER_DAY"]
@@ -78,6 +79,7 @@ def verdict(a8_m_s2: float) -> str:
     >>> verdict(0.49), verdict(0.6), verdict(1.2)
     ('below action value', 'above action value', 'above limit value')
     """
+    a8_m_s2 = _validate.non_negative("a8_m_s2", a8_m_s2)
     if a8_m_s2 > iso2631.EU_LIMIT_A8_M_S2:
         return EXPOSURE_VERDICTS[2]
     return EXPOSURE_VERDICTS[1] if a8_m_s2 > iso2631.EU_ACTION_A8_M_S2 else EXPOSURE_VERDICTS[0]

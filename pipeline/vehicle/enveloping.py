@@ -24,6 +24,8 @@ import math
 import numpy as np
 from scipy import signal
 
+from .. import _validate
+
 __all__ = [
     "contact_length",
     "fixed_footprint",
@@ -44,8 +46,17 @@ def contact_length(radius_m: float, deflection_m: float) -> float:
     >>> round(contact_length(0.742, 0.05), 3)
     0.536
     """
+    radius_m = _validate.positive("radius_m", radius_m)
+    deflection_m = _validate.non_negative("deflection_m", deflection_m)
     d = max(float(deflection_m), 0.0)
     return 2.0 * math.sqrt(max(2.0 * radius_m * d - d * d, 0.0))
+
+
+def _fraction(name: str, value) -> float:
+    v = _validate.non_negative(name, value)
+    if v > 1:
+        raise ValueError(f"{name} must be from 0 to 1, got {value!r}")
+    return v
 
 
 def _moving(heights, window: np.ndarray) -> np.ndarray:
@@ -73,12 +84,16 @@ def fixed_footprint(heights_m, dx_m: float, footprint_m: float) -> np.ndarray:
     ndarray
         Enveloped elevations, same length (ends padded with the end values).
     """
+    dx_m = _validate.positive("dx_m", dx_m)
+    footprint_m = _validate.non_negative("footprint_m", footprint_m)
     n = max(1, int(round(footprint_m / dx_m)) | 1)  # odd, so it is centred
     return _moving(heights_m, np.ones(n))
 
 
 def tapered_window(n_samples: int, taper_fraction: float = 0.5) -> np.ndarray:
     """Normalised Tukey window used as the tapered moving average (sums to 1)."""
+    n_samples = _validate.positive_int("n_samples", n_samples)
+    taper_fraction = _fraction("taper_fraction", taper_fraction)
     w = signal.windows.tukey(max(int(n_samples), 1), alpha=taper_fraction, sym=True)
     if w.sum() == 0:  # n = 1
         w = np.ones(1)
@@ -109,6 +124,9 @@ def tapered_moving_average(heights_m, dx_m: float, footprint_m: float, taper_fra
     ndarray
         Enveloped elevations, m.
     """
+    dx_m = _validate.positive("dx_m", dx_m)
+    footprint_m = _validate.non_negative("footprint_m", footprint_m)
+    taper_fraction = _fraction("taper_fraction", taper_fraction)
     total = footprint_m * (1.0 + taper_fraction / 2.0)
     n = max(1, int(round(total / dx_m)) | 1)
     return _moving(heights_m, tapered_window(n, taper_fraction))
@@ -134,6 +152,8 @@ def rigid_tread_band(heights_m, dx_m: float, radius_m: float) -> np.ndarray:
     ndarray
         Enveloped elevations, m.
     """
+    dx_m = _validate.positive("dx_m", dx_m)
+    radius_m = _validate.positive("radius_m", radius_m)
     h = np.asarray(heights_m, dtype=float)
     k = int(math.floor(radius_m / dx_m))
     padded = np.concatenate([np.full(k, h[0]), h, np.full(k, h[-1])])

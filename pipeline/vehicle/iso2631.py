@@ -24,6 +24,7 @@ import math
 
 import numpy as np
 
+from .. import _validate
 from .._validate import positive
 
 __all__ = [
@@ -114,6 +115,8 @@ def weighting_response(frequency_Hz, name: str = "Wk") -> np.ndarray:
     >>> round(float(abs(weighting_response(1.0, "Wk"))), 3)
     0.482
     """
+    _validate.choice("name", name, tuple(WEIGHTINGS))
+    _validate.non_negative_array("frequency_Hz", frequency_Hz)
     num, den = _polys(name)
     s = 2j * math.pi * np.asarray(frequency_Hz, dtype=float)
     return np.polyval(num, s) / np.polyval(den, s)
@@ -209,6 +212,7 @@ def vibration_dose_value(weighted_m_s2, fs_Hz: float) -> float:
 
 def crest_factor(weighted_m_s2) -> float:
     """Crest factor: peak |a_w| over rms a_w (ISO 2631-1 §6.2.1; > 9 needs VDV)."""
+    _validate.finite_array("weighted_m_s2", weighted_m_s2)
     aw = np.asarray(weighted_m_s2, dtype=float)
     rms = float(np.sqrt(np.mean(aw**2)))
     return float(np.max(np.abs(aw)) / rms) if rms > 0 else math.nan
@@ -216,6 +220,8 @@ def crest_factor(weighted_m_s2) -> float:
 
 def daily_exposure_a8(weighted_rms_m_s2: float, exposure_hours: float = 8.0) -> float:
     """Daily exposure A(8) = a_w sqrt(T/8 h), m/s^2 (Directive 2002/44/EC Annex B)."""
+    _validate.non_negative_array("weighted_rms_m_s2", weighted_rms_m_s2, allow_nan=True)
+    exposure_hours = _validate.non_negative("exposure_hours", exposure_hours)
     return float(weighted_rms_m_s2 * math.sqrt(exposure_hours / 8.0))
 
 
@@ -242,6 +248,8 @@ def evaluate(
         ``vdv_m_s1_75`` (record), ``vdv_daily_m_s1_75`` (extrapolated to the exposure),
         ``crest_factor, a8_m_s2, exceeds_action, exceeds_limit``.
     """
+    _validate.choice("axis", axis, tuple(AXIS_FACTOR))
+    _validate.non_negative("exposure_hours", exposure_hours)
     name = "Wk" if axis == "z" else "Wd"
     k = AXIS_FACTOR[axis]
     a = np.asarray(acceleration_m_s2, dtype=float)
@@ -325,6 +333,8 @@ def vector_sum(a_wx_m_s2: float, a_wy_m_s2: float, a_wz_m_s2: float) -> float:
     >>> round(vector_sum(0.3, 0.2, 0.5), 4)
     0.7105
     """
+    for _name, _value in (("a_wx_m_s2", a_wx_m_s2), ("a_wy_m_s2", a_wy_m_s2), ("a_wz_m_s2", a_wz_m_s2)):
+        _validate.non_negative_array(_name, _value, allow_nan=True)
     k = AXIS_FACTOR
     return float(math.sqrt((k["x"] * a_wx_m_s2) ** 2 + (k["y"] * a_wy_m_s2) ** 2 + (k["z"] * a_wz_m_s2) ** 2))
 
@@ -347,6 +357,8 @@ def method_check(a_w_m_s2: float, crest: float, mtvv_m_s2: float, vdv_m_s1_75: f
     >>> method_check(1.0, 12.0, 1.2, 10.0, 3600.0)["reasons"]
     ['crest factor 12 > 9']
     """
+    _validate.non_negative_array("a_w_m_s2", a_w_m_s2, allow_nan=True)
+    _validate.non_negative("duration_s", duration_s)
     mtvv_ratio = mtvv_m_s2 / a_w_m_s2 if a_w_m_s2 > 0 else math.nan
     vdv_ratio = vdv_m_s1_75 / (a_w_m_s2 * duration_s**0.25) if a_w_m_s2 > 0 and duration_s > 0 else math.nan
     reasons = []

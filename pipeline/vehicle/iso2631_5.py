@@ -31,6 +31,7 @@ import math
 
 import numpy as np
 
+from .. import _validate
 from .._validate import positive
 
 __all__ = [
@@ -76,6 +77,7 @@ def spine_response(frequency_Hz) -> np.ndarray:
     >>> round(float(abs(spine_response(f_peak))), 2)
     1.56
     """
+    _validate.non_negative_array("frequency_Hz", frequency_Hz)
     s = 2j * math.pi * np.asarray(frequency_Hz, dtype=float)
     w, z = SPINE_ZERO
     h = 1.0 + 2.0 * z * s / w + (s / w) ** 2
@@ -106,6 +108,7 @@ def positive_peaks(response_m_s2) -> np.ndarray:
     >>> positive_peaks(np.array([0.5, 2.0, -1.0, 3.0, 1.0, 0.0, -2.0, 0.1]))
     array([2. , 3. , 0.1])
     """
+    _validate.finite_array("response_m_s2", response_m_s2, min_samples=0)
     a = np.asarray(response_m_s2, dtype=float)
     pos = np.concatenate(([False], a > 0, [False]))
     starts = np.flatnonzero(~pos[:-1] & pos[1:])
@@ -120,6 +123,7 @@ def dose_from_peaks(peaks_m_s2) -> float:
     >>> round(dose_from_peaks([1.0, 1.0]), 6)
     1.201034
     """
+    _validate.non_negative_array("peaks_m_s2", peaks_m_s2)
     p = np.asarray(peaks_m_s2, dtype=float)
     return float(DOSE_FACTOR * np.sum(p**6) ** (1.0 / 6.0))
 

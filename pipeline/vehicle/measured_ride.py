@@ -38,6 +38,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import _validate
 from .._validate import positive
 from . import iso2631, iso2631_5
 from . import metrics as mt
@@ -284,6 +285,9 @@ def analyse_recording(recording) -> RecordingAnalysis:
     tyrelab.rawformat.RunFileError
         From the reader, if a later chunk is bad (NaN, time going back, irregular).
     """
+    if not all(hasattr(recording, a) for a in ("sample_rate_Hz", "offsets", "channels", "chunks", "warnings")):
+        raise ValueError(f"recording must be an opened recording (rawformat.rides.open_recording), got "
+                         f"{type(recording).__name__}")
     analysers = {c: ChannelAnalyser(c, recording.sample_rate_Hz, recording.offsets[c]) for c in recording.channels}
     for chunk in recording.chunks():
         for c, a in analysers.items():

@@ -18,6 +18,7 @@ import numpy as np
 import pandas as pd
 from scipy import signal, stats
 
+from .. import _validate
 from .._validate import positive
 
 __all__ = [
@@ -37,6 +38,7 @@ __all__ = [
 
 def rms(x) -> float:
     """Root mean square of the mean-removed record (same unit as ``x``)."""
+    _validate.finite_array("x", x, min_samples=0)
     a = np.asarray(x, dtype=float)
     return float(np.sqrt(np.mean((a - a.mean()) ** 2)))
 
@@ -69,6 +71,7 @@ def acceleration_psd(x, fs_Hz: float, bandwidth_Hz: float = 0.1) -> tuple[np.nda
 
 def band_rms(f_Hz, psd, f_low_Hz: float, f_high_Hz: float) -> float:
     """rms from a PSD between two frequencies (thesis §7.4: 0.5-10 Hz)."""
+    _validate.band("f_low_Hz", (f_low_Hz, f_high_Hz))
     f = np.asarray(f_Hz)
     p = np.asarray(psd)
     m = (f >= f_low_Hz) & (f <= f_high_Hz)
@@ -90,6 +93,7 @@ def spectral_peak(f_Hz, psd, f_low_Hz: float = 0.5, f_high_Hz: float = 10.0) -> 
         ``half_power_width_Hz``, ``width_over_frequency`` (≈ 2 ζ for a lightly damped
         single mode).
     """
+    _validate.band("f_low_Hz", (f_low_Hz, f_high_Hz))
     f = np.asarray(f_Hz, dtype=float)
     p = np.asarray(psd, dtype=float)
     idx = np.flatnonzero((f >= f_low_Hz) & (f <= f_high_Hz))
@@ -134,6 +138,9 @@ def spectral_peaks(
     min_separation_Hz : float
         Minimum distance between reported peaks.
     """
+    n_peaks = _validate.positive_int("n_peaks", n_peaks)
+    _validate.band("f_low_Hz", (f_low_Hz, f_high_Hz))
+    min_separation_Hz = _validate.non_negative("min_separation_Hz", min_separation_Hz)
     f = np.asarray(f_Hz, dtype=float)
     p = np.asarray(psd, dtype=float)
     m = (f >= f_low_Hz) & (f <= f_high_Hz)
@@ -166,6 +173,7 @@ def envelope(x, fs_Hz: float, centre_Hz: float, cutoff_Hz: float = 0.5) -> np.nd
     ndarray
         Envelope, same unit and length as ``x``. A sine of amplitude A gives A.
     """
+    cutoff_Hz = positive("cutoff_Hz", cutoff_Hz)
     fs_Hz = positive("fs_Hz", fs_Hz)
     a = np.asarray(x, dtype=float)
     a = a - a.mean()
@@ -208,6 +216,8 @@ def envelope_similarity(env_x, env_y, fs_Hz: float, max_lag_s: float = 1.0) -> f
 
 def envelope_error(env_predicted, env_measured) -> float:
     """Normalised rms envelope error: rms(pred - meas) / rms(meas) (thesis §6.4.3, Fig. 60)."""
+    _validate.finite_array("env_predicted", env_predicted)
+    _validate.finite_array("env_measured", env_measured)
     p = np.asarray(env_predicted, dtype=float)
     m = np.asarray(env_measured, dtype=float)
     n = min(p.size, m.size)
@@ -234,6 +244,9 @@ def compare_records(
         ``ratio_width_over_frequency``; ``envelope_correlation`` and
         ``envelope_error``.
     """
+    fs_Hz = positive("fs_Hz", fs_Hz)
+    bandwidth_Hz = positive("bandwidth_Hz", bandwidth_Hz)
+    envelope_cutoff_Hz = positive("envelope_cutoff_Hz", envelope_cutoff_Hz)
     mp = record_metrics(predicted, fs_Hz, bandwidth_Hz)
     mm = record_metrics(measured, fs_Hz, bandwidth_Hz)
     env_p = envelope(predicted, fs_Hz, mp["peak_frequency_Hz"], envelope_cutoff_Hz)
@@ -272,6 +285,7 @@ def ratio_error_statistics(ratios, tolerances=(0.1, 0.3)) -> dict:
     >>> round(s["mean"], 3), round(s["sd"], 3), round(s["p_within_10"], 3)
     (1.0, 0.1, 0.683)
     """
+    _validate.positive_array("tolerances", tolerances)
     r = np.asarray(ratios, dtype=float)
     r = r[np.isfinite(r)]
     out: dict = {"n": int(r.size)}
@@ -318,6 +332,7 @@ def accuracy_table(comparisons: pd.DataFrame, by: str = "characteristics") -> pd
         ratio quantities, and ``mean, sd`` of ``envelope_correlation`` and
         ``envelope_error``.
     """
+    _validate.frame("comparisons", comparisons, [by])
     groups = {k: g for k, g in comparisons.groupby(by, sort=False)}
     rows = []
     for quantity, col in _XIII_ROWS:

@@ -384,6 +384,8 @@ class Assembly:
 
 def coordinate_output(name: str) -> str:
     """Output name of a coordinate: ``z`` -> ``z_m``, ``th`` -> ``theta_rad``, an angle ``_rad``."""
+    if not isinstance(name, str) or not name:
+        raise ValueError(f"name must be a coordinate name (text), got {name!r}")
     special = {"z": "z_m", "th": "theta_rad", "x": "x_m", "phi": "phi_rad"}
     if name in special:
         return special[name]
@@ -416,6 +418,7 @@ def assemble(parts: Parts) -> Assembly:
     ...                [8.5e5 * 1.54 - 6.6e5 * 0.896, 8.5e5 * 1.54**2 + 6.6e5 * 0.896**2]]
     True
     """
+    _validate.instance("parts", parts, Parts)
     ch, three_d = parts.chassis, parts.three_d
     _validate.positive("chassis.mass_kg", ch.mass_kg)
     _validate.positive("chassis.pitch_inertia_kg_m2", ch.pitch_inertia_kg_m2)

@@ -136,6 +136,7 @@ def spectral_synthesis(
     ndarray
         Elevations in m, zero mean.
     """
+    g0_m3 = _validate.positive("g0_m3", g0_m3)
     dx_m = _validate.positive("dx_m", dx_m)
     if int(n_samples) < 2:
         raise ValueError(f"n_samples must be at least 2, got {n_samples!r}")
@@ -186,6 +187,10 @@ def slatted_track(
     Profile
         ``meta`` holds ``slat_x_m``, ``left_slats_m``, ``right_slats_m``.
     """
+    seed = _validate.positive_int("seed", seed, minimum=0)
+    length_m = _validate.positive("length_m", length_m)
+    dx_m = _validate.positive("dx_m", dx_m)
+    g0_m3 = _validate.positive("g0_m3", g0_m3)
     rng = np.random.default_rng(seed)
     pitch = SLAT_WIDTH_M + SLAT_GAP_M
     n_slats = int(round(length_m / pitch))
@@ -228,6 +233,10 @@ def slat_surface(track: Profile, side: str = "left") -> np.ndarray:
     ndarray
         Elevation at ``track.x_m``, m.
     """
+    _validate.instance("track", track, Profile)
+    _validate.choice("side", side, ("left", "right"))
+    if "slat_x_m" not in track.meta:
+        raise ValueError("track must be a slatted_track (its meta has no slats)")
     slat_x = track.meta["slat_x_m"]
     tops = track.meta[f"{side}_slats_m"]
     pitch = SLAT_WIDTH_M + SLAT_GAP_M
@@ -334,6 +343,8 @@ def add_lead_in(profile: Profile, lead_in_m: float = 5.0) -> Profile:
     Lets a simulation start at rest on level ground; ``meta['lead_in_m']`` records
     the offset so analyses can skip it.
     """
+    _validate.instance("profile", profile, Profile)
+    lead_in_m = _validate.non_negative("lead_in_m", lead_in_m)
     dx = profile.dx_m
     k = int(round(lead_in_m / dx))
     x = np.arange(profile.x_m.size + 2 * k) * dx
@@ -358,6 +369,9 @@ def profile_spectrum(elevation_m, dx_m: float, segment_m: float = 12.8) -> tuple
     n_cycles_per_m, psd_m3 : ndarray
         Spatial frequency (cycles/m) and PSD in m^2/(cycles/m).
     """
+    _validate.finite_array("elevation_m", elevation_m, min_samples=2)
+    dx_m = _validate.positive("dx_m", dx_m)
+    segment_m = _validate.positive("segment_m", segment_m)
     h = np.asarray(elevation_m, dtype=float)
     nper = min(h.size, int(round(segment_m / dx_m)))
     return signal.welch(h, fs=1.0 / dx_m, window="hann", nperseg=nper, noverlap=nper // 2, detrend="linear")

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import pandas as pd
 
+from .. import _validate
+
 __all__ = [
     "carriage_rolling",
     "carriage_stationary",
@@ -75,12 +77,14 @@ def _as_bool(s: pd.Series) -> pd.Series:
 def carriage_rolling(xii: pd.DataFrame) -> pd.DataFrame:
     """Table XII rolling rows: ``speed_km_h, actual_speed_m_s, load_condition, load_kg,
     damping_kN_s_per_m, stiffness_kN_per_m`` (input of :func:`studies.carriage_study`)."""
+    _validate.frame("xii", xii, ["characteristics", "nominal_speed_km_h"])
     rolling = xii[xii["characteristics"] == "rolling"].rename(columns={"nominal_speed_km_h": "speed_km_h"})
     return rolling.reset_index(drop=True)
 
 
 def carriage_stationary(xii: pd.DataFrame) -> pd.DataFrame:
     """Table XII stationary rows: ``load_condition, load_kg, damping_kN_s_per_m, stiffness_kN_per_m``."""
+    _validate.frame("xii", xii, ["characteristics", "load_condition", "load_kg", "damping_kN_s_per_m", "stiffness_kN_per_m"])
     cols = ["load_condition", "load_kg", "damping_kN_s_per_m", "stiffness_kN_per_m"]
     return xii.loc[xii["characteristics"] == "stationary", cols].reset_index(drop=True)
 
@@ -91,6 +95,7 @@ def carriage_accuracy(table: pd.DataFrame) -> pd.DataFrame:
     Labels follow :func:`tyrelab.vehicle.metrics.accuracy_table`; the ``>``
     qualifiers of '>0.9999' cells are dropped (the value 0.9999 is kept).
     """
+    _validate.frame("table", table, ["quantity", "statistic", "rolling", "stationary"])
     rows = []
     for r in table.itertuples(index=False):
         if r.quantity == "envelope":
@@ -108,6 +113,7 @@ def tractor_mass(xv: pd.DataFrame) -> pd.DataFrame:
     Columns ``load_condition, mass_class, front_pressure_bar, rear_pressure_bar,
     mass_kg, pitch_inertia_kg_m2, cg_height_m, cg_to_rear_axle_m, wheelbase_m``.
     """
+    _validate.frame("xv", xv, ["parameter", "condition", "value", "value_text"])
     v = {(r.parameter, r.condition): r.value for r in xv.itertuples(index=False)}
     text = {(r.parameter, r.condition): str(r.value_text).strip() for r in xv.itertuples(index=False)}
     conditions = sorted(c for p, c in v if p == "load_case")
@@ -132,11 +138,13 @@ def tractor_mass(xv: pd.DataFrame) -> pd.DataFrame:
 
 def tractor_tyres(xvi: pd.DataFrame) -> pd.DataFrame:
     """Table XVI as :func:`studies.tractor_study` reads it (the digitised layout already is)."""
+    _validate.frame("xvi", xvi)
     return xvi.reset_index(drop=True)
 
 
 def tractor_accuracy(xvii: pd.DataFrame) -> pd.DataFrame:
     """Table XVII as ``track, quantity, statistic, thesis_rolling, thesis_stationary``."""
+    _validate.frame("xvii", xvii, ["surface", "quantity", "component", "statistic", "rolling", "stationary"])
     rows = [
         (
             r.surface,
@@ -152,6 +160,7 @@ def tractor_accuracy(xvii: pd.DataFrame) -> pd.DataFrame:
 
 def longitudinal_sweep(xviii: pd.DataFrame) -> pd.DataFrame:
     """Table XVIII: the sweep columns plus ``row`` = ``predicted`` | ``measured``."""
+    _validate.frame("xviii", xviii, [*_XVIII_COLUMNS, "is_measured"])
     out = xviii[_XVIII_COLUMNS].astype(float)
     out["row"] = _as_bool(xviii["is_measured"]).map({True: "measured", False: "predicted"})
     return out.reset_index(drop=True)
@@ -160,6 +169,7 @@ def longitudinal_sweep(xviii: pd.DataFrame) -> pd.DataFrame:
 def tractors(xix: pd.DataFrame) -> pd.DataFrame:
     """Table XIX with boolean ``four_wheel_drive`` and ``front_water_ballast``
     (input of :func:`bounce_pitch.table_xx`)."""
+    _validate.frame("xix", xix, ["four_wheel_drive", "front_water_ballast"])
     out = xix.copy()
     for c in ("four_wheel_drive", "front_water_ballast"):
         out[c] = _as_bool(out[c])

@@ -7,8 +7,10 @@ weighted accelerations and the EU Directive 2002/44/EC daily exposure:
 1. **Tyres** (:func:`resolve_tyres`): stiffness and damping per tyre and speed,
    from an override, a measured tyre of the warehouse (``K = K_c + ΔK_p P`` and
    ``C = C_c + ΔC P`` per speed, tables ``stiffness_pressure_by_speed`` /
-   ``damping_pressure_by_speed``) or the thesis formula (§4.5.3, §8.2); damping
-   without either is the mean of the thesis' Table VII traction tyres.
+   ``damping_pressure_by_speed``; below the first rolling speed the rolling value,
+   :func:`tyrelab.tyre.speed_dependence.at_speeds`) or the fitted formula (§4.5.3,
+   §8.2; ``[tyres.*] formula``: the thesis' or the build's); damping without either
+   from the model fitted to the thesis' Table VII lines (:mod:`tyrelab.tyre.damping_fit`).
 2. **Model**: the pitch-plane tractor of :mod:`tyrelab.vehicle.tractor` (same
    equations, wheelbase delay, rear longitudinal element). While both axles stay
    on the ground the model is linear; :func:`state_space` writes it as
@@ -47,9 +49,11 @@ import numpy as np
 import pandas as pd
 from scipy import linalg, signal
 
+from .. import _validate
 from .. import published
 from .._validate import positive
 from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
+from ..tyre.speed_dependence import at_speeds
 from ..tyre.stiffness import estimate_stiffness
 from . import bounce_pitch
 from . import enveloping as ev
@@ -60,7 +64,7 @@ from . import profiles as pr
 from .carriage import GRAVITY_M_S2
 from .scenario import Scenario, read_profile_csv, with_overrides, with_values
 from .carriage import half_step_input
-from .model import Axle, Ballast, Cab, Chassis, Implement, Parts, SeatPoint, assemble
+from .model import Assembly, Axle, Ballast, Cab, Chassis, Implement, Parts, SeatPoint, assemble
 from .tractor import Tractor, simulate, tractor_parts
 from .scenario_limits import MIN_VERDICT_DURATION_S
 
@@ -198,12 +202,31 @@ def _formula_stiffness(spec, tyre_data=None) -> tuple[float, str, list[str], flo
     return est.stiffness_kN_per_m, rule, list(est.warnings), est.stiffness_u_kN_per_m or 0.0
 
 
-def _thesis_damping(pressure_bar: float, speeds_km_h) -> np.ndarray:
-    """Mean of the thesis' Table VII traction tyres, ``C_c + ΔC P``, at each speed (kN s/m)."""
-    t = published.read_published("table_vii")
-    t = t.assign(c=t["carcass_damping_kN_s_per_m"] + t["pressure_dependence_kN_s_per_m_bar"] * pressure_bar)
-    mean = t.groupby("speed_km_h")["c"].mean()
-    return np.interp(np.asarray(speeds_km_h, float), mean.index.to_numpy(float), mean.to_numpy(float))
+def _model_damping(spec, speeds_km_h) -> tuple[np.ndarray, str, list[str]]:
+    """Damping of an unmeasured tyre per speed from the Table VII model (:mod:`tyrelab.tyre.damping_fit`),
+    its source text and warnings (the interval at the first speed, where the model extrapolates)."""
+    from ..tyre import damping_fit
+
+    fit = damping_fit.fit_damping(damping_fit.damping_points(published.read_published("table_vii"),
+                                                             published.read_published("table_ii")))
+    preds = [fit.predict(spec.pressure_bar, float(v), spec.age_years, size=parse_tyre_size(spec.size).designation)
+             for v in np.asarray(speeds_km_h, float)]
+    c = np.array([p.damping_kN_s_per_m for p in preds])
+    b = fit.coefficients
+    src = (f"Table VII model C = {b[0]:.3g} {b[1]:+.3g} A {b[2]:+.3g} v {b[3]:+.3g} P (kN s/m; {fit.n_tyres} "
+           f"traction tyres, cluster-robust by tyre)")
+    lo, hi = preds[0].interval_kN_s_per_m
+    warnings = [f"damping not given: the Table VII damping model gives {c[0]:.2f} kN s/m at "
+                f"{float(np.asarray(speeds_km_h, float)[0]):g} km/h (95 % prediction interval {max(lo, 0.0):.2f} to "
+                f"{hi:.2f}; a rough stand-in, typical 0.8-3 kN s/m, §5.6)"]
+    v = np.asarray(speeds_km_h, float)
+    held = [(float(a), p.speed_used_km_h) for a, p in zip(v, preds) if p.speed_used_km_h != float(a)]
+    if held:
+        lo_v, hi_v = fit.ranges["speed_km_h"]
+        warnings.append(f"speeds {', '.join(f'{a:g}' for a, _ in held)} km/h are outside the damping model's "
+                        f"{lo_v:g}-{hi_v:g} km/h: evaluated at the nearest of those")
+    warnings += sorted({w for p in preds for w in p.warnings if not w.startswith("speed ")})
+    return c, src, warnings
 
 
 def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
@@ -211,8 +234,10 @@ def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
 
     Order of precedence per quantity: the scenario's override, the measured tyre
     (``measured_tyre_id``, from ``tyre_data.measured``; speeds interpolated, held
-    outside the measured range), the formula (stiffness, ``tyre_data.stiffness_model``)
-    or the mean of the thesis' Table VII (damping). ``tyre_data`` default
+    outside the measured range; a rolling tyre takes the rolling values only,
+    :func:`~tyrelab.tyre.speed_dependence.at_speeds`), the fitted formula (stiffness,
+    ``tyre_data.stiffness_model``: ``formula`` = thesis or build) or the Table VII damping
+    model (damping, with its prediction interval in the warnings). ``tyre_data`` default
     :class:`ShippedTyres` (no warehouse).
 
     Raises
@@ -220,6 +245,7 @@ def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
     ValueError
         When a measured tyre cannot be found.
     """
+    _validate.instance("scenario", scenario, Scenario)
     tyre_data = tyre_data or ShippedTyres()
     speeds = np.asarray(scenario.exposure.speeds_km_h, float)
     lists = scenario.exposure.list_speeds_km_h
@@ -234,7 +260,7 @@ def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
             k, k_src = per_speed(spec.stiffness_kN_per_m, lists, speeds), "override (scenario)"
         elif spec.measured_tyre_id:
             sp, val = tyre_data.measured("stiffness_pressure_by_speed", spec.measured_tyre_id, spec.pressure_bar)
-            k = np.interp(speeds, sp, val)
+            k = at_speeds(sp, val, speeds)  # rolling values for a rolling tyre (§4.5.1)
             k_src = f"measured tyre {spec.measured_tyre_id}: K = Kc + dKp P per speed (stiffness_pressure_by_speed)"
         else:
             k0, k_src, warnings, k_u = _formula_stiffness(spec, tyre_data)
@@ -243,12 +269,11 @@ def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
             c, c_src = per_speed(spec.damping_kN_s_per_m, lists, speeds), "override (scenario)"
         elif spec.measured_tyre_id:
             sp, val = tyre_data.measured("damping_pressure_by_speed", spec.measured_tyre_id, spec.pressure_bar)
-            c = np.interp(speeds, sp, val)
+            c = at_speeds(sp, val, speeds)
             c_src = f"measured tyre {spec.measured_tyre_id}: C = Cc + dC P per speed (damping_pressure_by_speed)"
         else:
-            c = _thesis_damping(spec.pressure_bar, speeds)
-            c_src = "mean of the thesis' Table VII traction tyres, Cc + dC P (no damping given)"
-            warnings.append("damping not given: the thesis' Table VII mean is a rough stand-in (typical 0.8-3 kN s/m, §5.6)")
+            c, c_src, c_warnings = _model_damping(spec, speeds)
+            warnings += c_warnings
         if np.any(k <= 0):
             raise ValueError(f"tyres.{axle}: stiffness {k.min():.1f} kN/m is not positive")
         size = parse_tyre_size(spec.size)
@@ -264,6 +289,8 @@ def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
 
 def build_tractor(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Tractor:
     """The :class:`~tyrelab.vehicle.tractor.Tractor` at speed index ``i`` (axle = two tyres, SI)."""
+    _validate.instance("scenario", scenario, Scenario)
+    _validate.positive_int("i", i, minimum=0)
     t = scenario.tractor
     return Tractor(
         mass_kg=t.mass_kg, pitch_inertia_kg_m2=t.pitch_inertia_kg_m2, front_distance_m=t.front_distance_m,
@@ -285,6 +312,8 @@ def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Part
     the longitudinal element. Without ``tractor.roll_inertia_kg_m2`` the parts are those of the
     pitch-plane :class:`~tyrelab.vehicle.tractor.Tractor` of :func:`build_tractor`.
     """
+    _validate.instance("scenario", scenario, Scenario)
+    _validate.positive_int("i", i, minimum=0)
     t, seat = scenario.tractor, scenario.seat
     lon = t.longitudinal_model
     kx = 1e3 * t.longitudinal_stiffness_kN_per_m if lon != "none" else 0.0
@@ -343,6 +372,7 @@ def state_names(tractor: Tractor) -> list[str]:
     >>> state_names(Tractor(1000, 250, 1.0, 1.0, 0.5, 1e5, 1e5, 0.0, 0.0, 1e5, 1e3, "maxwell"))
     ['z', 'th', 'vz', 'vth', 'vx', 'q']
     """
+    _validate.instance("tractor", tractor, Tractor)
     return assemble(tractor_parts(tractor)).state_names()
 
 
@@ -368,6 +398,7 @@ def state_space(tractor: Tractor, seat_ahead_m: float = 0.0, seat_height_m: floa
     >>> sorted(np.round(np.abs(np.linalg.eigvals(a)) / (2 * np.pi), 4).tolist())
     [2.2508, 2.2508, 4.5016, 4.5016]
     """
+    _validate.instance("tractor", tractor, Tractor)
     parts = tractor_parts(tractor, SeatPoint(float(seat_ahead_m), 0.0, float(seat_height_m)))
     return assemble(parts).linear(OUTPUTS).abcd
 
@@ -403,6 +434,7 @@ def simulate_state_space(a, b, c, d, w, dt_s: float = DT_S, outputs=None) -> np.
     >>> round(float(y[0, -1]), 6), round(1 - math.exp(-1), 6)
     (0.632121, 0.632121)
     """
+    dt_s = positive("dt_s", dt_s)
     a, b, c, d = (np.atleast_2d(np.asarray(v, float)) for v in (a, b, c, d))
     if outputs is not None:
         c, d = c[list(outputs)], d[list(outputs)]
@@ -431,6 +463,7 @@ def frequency_response(a, b, c, d, frequency_Hz) -> np.ndarray:
     -------
     ndarray, shape (p, m, n_f)
     """
+    _validate.non_negative_array("frequency_Hz", frequency_Hz)
     a, b, c, d = (np.atleast_2d(np.asarray(v, float)) for v in (a, b, c, d))
     lam, vecs = np.linalg.eig(a)
     cv = c @ vecs
@@ -445,6 +478,9 @@ def enveloping_response(kind: str, footprint_m: float, dx_m: float, n_cycles_per
 
     ``none`` and ``rigid_band`` (nonlinear; no transfer function) give 1.
     """
+    _validate.choice("kind", kind, ("none", "fixed", "tapered", "rigid_band"))
+    _validate.non_negative("footprint_m", footprint_m)
+    positive("dx_m", dx_m)
     n = np.asarray(n_cycles_per_m, float)
     if kind == "fixed":
         taps = np.ones(max(1, int(round(footprint_m / dx_m)) | 1))
@@ -474,6 +510,8 @@ def ground_response(h: np.ndarray, frequency_Hz, speed_m_s: float, wheelbase_m: 
     -------
     ndarray, shape (p, n_f)
     """
+    positive("speed_m_s", speed_m_s)
+    _validate.non_negative("wheelbase_m", wheelbase_m)
     jw = 2j * math.pi * np.asarray(frequency_Hz, float)
     front = (h[:, 0] + jw * h[:, 1]) * env_front
     rear = (h[:, 2] + jw * h[:, 3]) * env_rear * np.exp(-jw * wheelbase_m / speed_m_s)
@@ -497,6 +535,7 @@ class Track:
 
 def build_profile(scenario: Scenario) -> Track:
     """Generate or read the scenario's track, add the lead-in, describe its spectrum."""
+    _validate.instance("scenario", scenario, Scenario)
     s = scenario.surface
     lead = max(s.lead_in_m, scenario.tractor.wheelbase_m + 1.0)
     side = None
@@ -598,6 +637,9 @@ def axle_inputs(track: pr.Profile, kind: str, footprints: tuple[float, float], r
     -------
     uf, udf, ur, udr : ndarray, shape (2 n_steps - 1,)
     """
+    _validate.instance("track", track, pr.Profile)
+    positive("speed_m_s", speed_m_s)
+    _validate.positive_int("n_steps", n_steps)
     hf = _envelope(track, kind, footprints[0], radii[0])
     hr = hf if (footprints[0] == footprints[1] and radii[0] == radii[1]) or kind == "none" else \
         _envelope(track, kind, footprints[1], radii[1])
@@ -613,6 +655,9 @@ def tyre_inputs(asm, track: pr.Profile, kind: str, footprints: tuple[float, floa
     ``(tyres, 2 n_steps - 1)``: the axle-mean input of :func:`axle_inputs` in the pitch plane; in
     3-D each wheel on its own side's track (enveloped with its axle's footprint), the rear one a
     wheelbase later, each side's offset at the start removed."""
+    _validate.instance("asm", asm, Assembly)
+    positive("speed_m_s", speed_m_s)
+    _validate.positive_int("n_steps", n_steps)
     if asm.parts.three_d:
         u, du = {}, {}
         for side in ("left", "right"):
@@ -669,6 +714,7 @@ def expected_rms(response: np.ndarray, frequency_Hz, input_psd, weighting: str) 
         One-sided input PSD (unit²/Hz) at the same frequencies.
     weighting : {"Wk", "Wd"}
     """
+    _validate.choice("weighting", weighting, tuple(iso2631.WEIGHTINGS))
     f = np.asarray(frequency_Hz, float)
     w = np.abs(iso2631.weighting_response(f, weighting))
     return float(math.sqrt(np.trapezoid(np.abs(response) ** 2 * w**2 * np.asarray(input_psd, float), f)))
@@ -746,6 +792,7 @@ def modes(asm) -> tuple[dict, dict]:
     The pitch-plane tractor on rigid axles is thesis §8.2's beam on two springs
     (:func:`tyrelab.vehicle.bounce_pitch.mode_shapes`, the same eigenproblem).
     """
+    _validate.instance("asm", asm, Assembly)
     p = asm.parts
     if _is_beam(asm):
         ms = bounce_pitch.mode_shapes(p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m,
@@ -829,6 +876,7 @@ def ride(scenario: Scenario, tyre_data=None, with_spectra: bool = True,
     -------
     RideResult
     """
+    _validate.instance("scenario", scenario, Scenario)
     tyres = resolve_tyres(scenario, tyre_data)
     track = build_profile(scenario)
     seat = scenario.seat
@@ -955,6 +1003,7 @@ def seat_axes(scenario: Scenario) -> dict[str, str]:
     """Seat axis (``z``, ``x``, and ``y`` in 3-D) -> the assembly output that gives it: the seat
     point's acceleration in space, or with ``[seat] gravity_tilt`` what a body-fixed
     accelerometer reads (plus ``g θ`` fore-aft and ``g φ`` lateral)."""
+    _validate.instance("scenario", scenario, Scenario)
     tilt = "_tilt" if scenario.seat.gravity_tilt else ""
     axes = {"z": "seat_vertical_m_s2", "x": f"seat_longitudinal{tilt}_m_s2"}
     if scenario.tractor.three_d:
@@ -976,6 +1025,8 @@ def input_cross_spectra(tyres: list[str], side_spectrum, f_Hz, v: float, wheelba
     """The tyres' input cross-spectral matrix (tyres, tyres, f), m²/Hz: per pair the two tracks'
     spectrum or cross-spectrum (``G_LL``, ``G_RR``, ``G_LR`` at ``n = f/v``, per Hz ``/v``) times
     ``exp(-jω (τ_i - τ_j))``, ``τ`` = 0 front, ``wheelbase/v`` rear (the front/rear delay)."""
+    positive("v", v)
+    _validate.non_negative("wheelbase_m", wheelbase_m)
     n_s, g_ll, g_rr, g_lr = side_spectrum
     n = np.asarray(f_Hz, float) / v
     g = {("left", "left"): np.interp(n, n_s, g_ll), ("right", "right"): np.interp(n, n_s, g_rr),
@@ -1101,6 +1152,10 @@ def ride_sweep(
         Pressure pairs front-major, then the swept keys in order (the last varying fastest);
         :attr:`RideResult.variant` names each variant's swept values.
     """
+    if max_variants is not None:
+        _validate.positive_int("max_variants", max_variants)
+    if max_samples is not None:
+        _validate.positive_int("max_samples", max_samples)
     fronts = list(front_pressures_bar or scenario.sweep.front_pressures_bar or [scenario.front.pressure_bar])
     rears = list(rear_pressures_bar or scenario.sweep.rear_pressures_bar or [scenario.rear.pressure_bar])
     swept = {**scenario.sweep.keys, **(sets or {})}
@@ -1169,6 +1224,8 @@ def result_json(results: list[RideResult]) -> dict:
     (one object per pair with ``front_pressure_bar``, ``rear_pressure_bar``,
     ``tyres``, ``natural_frequencies_Hz``, ``nodal_points_m``, ``speeds``).
     """
+    if not _validate.instances("results", results, RideResult):
+        raise ValueError("results must hold at least one RideResult")
     def block(r: RideResult) -> dict:
         return {
             "tyres": {ax: _tyre_json(r.tyres[ax]) for ax in ("front", "rear")},
@@ -1196,6 +1253,7 @@ def results_table(results: list[RideResult], scenario_id: str | None = None) -> 
 
     ``is_nominal`` marks the pair of the scenario's own tyre pressures.
     """
+    _validate.instances("results", results, RideResult)
     frames = []
     for r in results:
         df = r.speeds.copy()

@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from .. import _validate
 from . import metrics as mt
 from .measured_ride import RecordingAnalysis, analyse_signals
 
@@ -71,6 +72,7 @@ def track_of(text, campaign: Path | None = None) -> ValidationTrack:
     >>> track_of("ISO 8608 class d").road_class, track_of("").kind
     ('D', 'scenario')
     """
+    _validate.instance("text", text, (str, float, type(None)))  # a blank cell of a table reads as None or NaN
     s = "" if text is None or (isinstance(text, float) and math.isnan(text)) else str(text).strip()
     if s.lower() in ("", "scenario"):
         return ValidationTrack("scenario")
@@ -101,6 +103,8 @@ def predicted_seat(scenario, speed_km_h: float, track: ValidationTrack, tyre_dat
         ``seat_z_m_s2``, ``seat_x_m_s2`` -> samples (the pitch-plane model has no y).
     fs_Hz : float
     """
+    _validate.non_negative("speed_km_h", speed_km_h)
+    _validate.instance("track", track, ValidationTrack)
     from .ride import FS_HZ, ride
     from .scenario import with_overrides
 
@@ -150,6 +154,8 @@ def validation_rows(measured: RecordingAnalysis, predicted_signals: dict, predic
         ``measured_peak_frequency_Hz, predicted_peak_frequency_Hz, measured_half_power_width_Hz,
         predicted_half_power_width_Hz, envelope_similarity``.
     """
+    _validate.instance("measured", measured, RecordingAnalysis)
+    _validate.positive("predicted_fs_Hz", predicted_fs_Hz)
     predicted = analyse_signals(predicted_signals, predicted_fs_Hz)
     rows = []
     for axis, c in SEAT_AXES.items():
@@ -189,6 +195,8 @@ def validation_statistics(rows: pd.DataFrame) -> pd.DataFrame:
         ``axis, quantity`` (``a_w``, ``peak_frequency``, ``half_power_width``, and
         ``envelope_similarity`` with its mean and sd only), ``n, mean, sd, p_within_10, p_within_30``.
     """
+    if rows is not None:
+        _validate.frame("rows", rows)
     cols = ["axis", "quantity", "n", "mean", "sd", "p_within_10", "p_within_30"]
     out = []
     if rows is None or rows.empty:

@@ -41,6 +41,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from .. import _validate as _checks
 from ..schema import load_schema
 from ..tyre.sizes import TyreSizeError, parse_tyre_size
 from .scenario_limits import scenario_problems
@@ -446,6 +447,7 @@ def _validate(doc: dict, base_dir: Path, confine: bool = True) -> list[str]:
 def numeric_key(key: str) -> dict | None:
     """The schema field of a numeric scenario key ``"section.key"`` (``"tyres.front.pressure_bar"``),
     or None when it is not one."""
+    _checks.instance("key", key, str)
     section, _, name = key.rpartition(".")
     f = _sections().get(section, {}).get("fields", {}).get(name)
     return f if f is not None and f["type"] in ("number", "number_or_numbers") else None
@@ -473,6 +475,7 @@ def parse_sets(items) -> dict:
     >>> parse_sets(["implement.mass_kg=500,1000", "tyres.rear.pressure_bar=1.2"])
     {'implement.mass_kg': (500.0, 1000.0), 'tyres.rear.pressure_bar': (1.2,)}
     """
+    _checks.instances("items", items, str)
     out, problems = {}, []
     for item in items:
         key, sep, text = str(item).partition("=")
@@ -508,6 +511,7 @@ def with_values(scenario: Scenario, values: dict) -> Scenario:
     >>> with_values(s, {"tractor.mass_kg": 5000, "tyres.rear.pressure_bar": 1.4}).tractor.mass_kg
     5000.0
     """
+    _checks.instance("scenario", scenario, Scenario)
     if not scenario.doc:
         raise ValueError("scenario: built in memory, not from TOML (with_values needs the parsed file)")
     doc = {k: (dict(v) if isinstance(v, dict) else v) for k, v in scenario.doc.items()}
@@ -653,6 +657,7 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarr
         Naming the file and every problem (missing columns, non-numeric values,
         distances not strictly increasing, fewer than 16 points).
     """
+    _checks.instance("path", path, (str, Path))
     path = Path(path)
     if not path.is_file():
         raise ValueError(f"{path}: no such file")
@@ -792,6 +797,7 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
     >>> s.tractor.wheelbase_m, s.exposure.speeds_km_h, s.front.traction
     (2.51, (4.0, 8.0), False)
     """
+    _checks.instance("text", text, str)
     where = str(path) if path is not None else "<scenario>"
     try:
         doc = tomllib.loads(text)
@@ -822,6 +828,7 @@ def load_scenario(path: str | Path, *, confine: bool = True) -> Scenario:
     ScenarioError
         If the file cannot be read or has problems (all listed).
     """
+    _checks.instance("path", path, (str, Path))
     p = Path(path)
     try:
         if not p.is_file():  # a folder, a FIFO, /dev/zero (read for ever)

@@ -27,6 +27,8 @@ import math
 
 import numpy as np
 
+from .. import _validate
+
 __all__ = ["LIMITS", "MAX_VARIANTS", "MAX_SAMPLES", "MIN_VERDICT_DURATION_S", "BYTES_PER_SAMPLE",
            "SECONDS_PER_SAMPLE", "scenario_problems", "override_problems", "work_estimate", "work_problems"]
 
@@ -185,6 +187,7 @@ def work_estimate(scenario, n_variants: int, speeds_km_h=None) -> dict:
     >>> e["samples"], round(e["memory_GB"], 1), round(e["seconds"])
     (7740000, 2.3, 19)
     """
+    _validate.positive_int("n_variants", n_variants)
     speeds = list(speeds_km_h or scenario.exposure.speeds_km_h)
     span_m = scenario.surface.length_m + scenario.surface.lead_in_m + \
         scenario.tractor.front_distance_m + scenario.tractor.rear_distance_m

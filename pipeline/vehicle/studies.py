@@ -30,6 +30,7 @@ import math
 import numpy as np
 import pandas as pd
 
+from .. import _validate
 from . import carriage as cm
 from . import enveloping as ev
 from . import iso2631
@@ -44,16 +45,14 @@ __all__ = [
     "tractor_case_inputs",
     "longitudinal_grid",
     "tractor_study",
-    "carriage_track",
-    "carriage_steps",
     "carriage_key",
-    "tractor_tracks",
     "tractor_key",
-    "tractor_record_window",
     "run_metrics",
-    "tractor_inputs",
     "with_tractor_recordings",
 ]
+# carriage_track, carriage_steps, tractor_tracks, tractor_inputs and tractor_record_window are
+# shared with tyrelab.vehicle.study_recordings (the virtual vehicles drive the studies' tracks
+# and are recorded over the studies' windows); not part of the public interface.
 
 #: T4 13.6R38 rolling circumference 4.66 m (thesis §6.5.3) -> radius, m.
 T4_ROLLING_RADIUS_M = 4.66 / (2 * math.pi)
@@ -181,6 +180,9 @@ def carriage_case_inputs(
     >>> cases[0]["footprint_m"] == cases[1]["footprint_m"]  # one condition, one footprint
     True
     """
+    _validate.frame("table_xii", table_xii)
+    _validate.frame("stationary", stationary)
+    _validate.positive("surface_stiffness_factor", surface_stiffness_factor)
     problems: list[str] = []
     stat = _by_condition(stationary, table_xii["load_condition"], "stationary", "row", problems)
     _refuse(problems)
@@ -228,8 +230,17 @@ def carriage_steps(speeds_m_s, track_end_m: float) -> tuple[np.ndarray, np.ndarr
 
 
 def carriage_key(row: dict) -> tuple[float, str]:
-    """The key of a carriage run (a Table XII row or a recording): ``(speed_km_h, load_condition)``."""
-    return float(row["speed_km_h"]), str(row["load_condition"])
+    """The key of a carriage run (a Table XII row or a recording): ``(speed_km_h, load_condition)``.
+
+    Examples
+    --------
+    >>> carriage_key({"speed_km_h": "12.5", "load_condition": "heavy"})
+    (12.5, 'heavy')
+    """
+    try:
+        return float(row["speed_km_h"]), str(row["load_condition"])
+    except (KeyError, TypeError, ValueError):
+        raise ValueError(f"row: needs a speed_km_h number and a load_condition, got {row!r:.120}") from None
 
 
 def _accuracy(kept: pd.DataFrame, estimate: str) -> pd.DataFrame:
@@ -292,6 +303,10 @@ def carriage_study(
         ``cases`` (list, per row of ``table_xii``: its runs, comparisons and example
         records, for a later call's ``cases``).
     """
+    _validate.frame("table_xii", table_xii)
+    _validate.frame("stationary", stationary)
+    _validate.positive_int("seed", seed, minimum=0)
+    _validate.positive("surface_stiffness_factor", surface_stiffness_factor)
     conds = table_xii.reset_index(drop=True)
     cases = _given_cases(cases, len(conds), "row positions", "table_xii")
     problems: list[str] = []
@@ -490,6 +505,8 @@ def longitudinal_grid(table_xviii: pd.DataFrame | None = None) -> dict[str, list
     >>> g["kelvin_voigt"][:3], g["maxwell"]
     ([(0.0, 0.0), (455.0, 0.0), (455.0, 1.0)], [(455.0, 1.0), (455.0, 3.0), (455.0, 5.0)])
     """
+    if table_xviii is not None:
+        _validate.frame("table_xviii", table_xviii)
     if table_xviii is None:
         from .. import published
 
@@ -513,6 +530,10 @@ def tractor_case_inputs(
     everything (the tracks are seeded). A cache keyed on these (the simulate stage's)
     recomputes only the cases whose inputs changed.
     """
+    _validate.frame("table_xv", table_xv)
+    _validate.frame("table_xvi", table_xvi)
+    _validate.choice("farm_class", farm_class, tuple("ABCDEFGH"))
+    _validate.positive("duration_s", duration_s)
     rolling = table_xvi[table_xvi["characteristics"] == "rolling"].reset_index(drop=True)
     xv, stat = _tractor_conditions(table_xv, table_xvi, rolling)
     return [
@@ -576,6 +597,11 @@ def tractor_study(
         ``table_xviii`` (ours), ``spectra`` (farm track profiles); ``cases`` (list, per
         rolling row: its runs, for a later call's ``cases``).
     """
+    _validate.frame("table_xv", table_xv)
+    _validate.frame("table_xvi", table_xvi)
+    _validate.positive_int("seed", seed, minimum=0)
+    _validate.choice("farm_class", farm_class, tuple("ABCDEFGH"))
+    _validate.positive("duration_s", duration_s)
     tracks = tractor_tracks(seed, farm_class)
     hh_est, hh_true, sbt_est = tracks["HH estimate"], tracks["HH"], tracks["SBT estimate"]
     rolling = table_xvi[table_xvi["characteristics"] == "rolling"].reset_index(drop=True)
@@ -673,8 +699,20 @@ def tractor_tracks(seed: int = 5007, farm_class: str = "D") -> dict:
 
 
 def tractor_key(row: dict) -> tuple[int, str, float]:
-    """The key of a tractor run (a Table XVI row or a recording): ``(load_condition, track, speed_km_h)``."""
-    return int(float(row["load_condition"])), str(row["track"]), float(row["speed_km_h"])
+    """The key of a tractor run (a Table XVI row or a recording): ``(load_condition, track, speed_km_h)``.
+
+    Examples
+    --------
+    >>> tractor_key({"load_condition": "1", "track": "SBT", "speed_km_h": 10})
+    (1, 'SBT', 10.0)
+    """
+    try:
+        lc, track, speed = int(float(row["load_condition"])), row["track"], float(row["speed_km_h"])
+    except (KeyError, TypeError, ValueError):
+        lc = track = None
+    if lc is None or track not in ("SBT", "HH"):
+        raise ValueError(f"row: needs a load_condition number, a track SBT or HH and a speed_km_h, got {row!r:.120}")
+    return lc, str(track), speed
 
 
 def with_tractor_recordings(study: dict, recordings: dict | None) -> dict:
@@ -691,6 +729,10 @@ def with_tractor_recordings(study: dict, recordings: dict | None) -> dict:
         rows (``characteristics`` ``reference``) are measured by the same
         :func:`run_metrics` as the predictions. Without any, Table XVII has no values.
     """
+    if not isinstance(study, dict) or not {"runs", "spectra"} <= set(study):
+        raise ValueError("study: expected tractor_study's result (a dict with runs and spectra)")
+    if recordings is not None and not isinstance(recordings, dict):
+        raise ValueError(f"recordings: expected a dict (tractor_key -> channels), got {type(recordings).__name__}")
     runs = study["runs"]
     runs = runs[runs["source"] == "prediction"]
     rows = []
@@ -762,9 +804,11 @@ def run_metrics(label: dict, profile: str, vertical_m_s2, pitch_rad_s2, longitud
     and three highest peaks of the vertical PSD, ISO 2631-1 values (W_k on the vertical, W_d on
     the longitudinal). A channel given as None is NaN in the row."""
     nan = float("nan")
-    vert = np.asarray(vertical_m_s2, float)
-    pitch = None if pitch_rad_s2 is None else np.asarray(pitch_rad_s2, float)
-    lon = None if longitudinal_m_s2 is None else np.asarray(longitudinal_m_s2, float)
+    n = int(10 * FS_HZ)  # the 0.1 Hz PSD needs 10 s
+    vert = _validate.finite_array("vertical_m_s2", vertical_m_s2, min_samples=n)
+    pitch = None if pitch_rad_s2 is None else _validate.finite_array("pitch_rad_s2", pitch_rad_s2, min_samples=n)
+    lon = None if longitudinal_m_s2 is None else _validate.finite_array("longitudinal_m_s2", longitudinal_m_s2,
+                                                                       min_samples=n)
     fv, pv = mt.acceleration_psd(vert, FS_HZ, 0.1)
     peaks = mt.spectral_peaks(fv, pv, 3)
     two = mt.spectral_peaks(fv, pv, 2)

@@ -37,6 +37,7 @@ import zlib
 import numpy as np
 import pandas as pd
 
+from .. import _validate
 from . import carriage as cm
 from . import studies
 from .tractor import PARAMETERS, Tractor, simulate_tractor
@@ -79,6 +80,10 @@ def carriage_recordings(table_xii: pd.DataFrame, stationary: pd.DataFrame, seed:
         :func:`~tyrelab.vehicle.studies.carriage_key` -> vertical acceleration, m/s², at
         :data:`tyrelab.vehicle.studies.FS_HZ` from the end of the lead-in.
     """
+    _validate.frame("table_xii", table_xii)
+    _validate.frame("stationary", stationary)
+    _validate.positive_int("seed", seed, minimum=0)
+    _validate.positive("surface_stiffness_factor", surface_stiffness_factor)
     conds = table_xii.reset_index(drop=True)
     track, lead, est_by_load, x = studies.carriage_track(conds, seed, surface_stiffness_factor)
     speeds = conds["actual_speed_m_s"].to_numpy(float)
@@ -112,6 +117,11 @@ def tractor_recordings(table_xv: pd.DataFrame, table_xvi: pd.DataFrame, seed: in
         "longitudinal_m_s2"}`` at :data:`tyrelab.vehicle.studies.FS_HZ`, the study's record
         window (:func:`~tyrelab.vehicle.studies.tractor_record_window`).
     """
+    _validate.frame("table_xv", table_xv)
+    _validate.frame("table_xvi", table_xvi)
+    _validate.positive_int("seed", seed, minimum=0)
+    _validate.choice("farm_class", farm_class, tuple("ABCDEFGH"))
+    _validate.positive("duration_s", duration_s)
     tracks = studies.tractor_tracks(seed, farm_class)
     rolling = table_xvi[table_xvi["characteristics"] == "rolling"].reset_index(drop=True)
     xv = table_xv.set_index(table_xv["load_condition"].astype(int))
@@ -187,6 +197,9 @@ def study_recordings(pub: dict, seed: int) -> tuple[pd.DataFrame, dict, pd.DataF
     """
     from . import published_layouts as layouts
 
+    if not isinstance(pub, dict) or not {"table_xii", "table_xv", "table_xvi"} <= set(pub):
+        raise ValueError("pub: expected a dict of the published tables table_xii, table_xv and table_xvi")
+    _validate.positive_int("seed", seed, minimum=0)
     xii = layouts.carriage_rolling(pub["table_xii"])
     rows, frames = [], {}
 

@@ -125,6 +125,7 @@ def tractor_parts(tractor: Tractor, seat: SeatPoint | None = None) -> Parts:
     >>> p.rear.longitudinal_model, p.rear.tyre_stiffness_N_per_m
     ('maxwell', 50000.0)
     """
+    _validate.instance("tractor", tractor, Tractor)
     model = str(tractor.longitudinal_model)
     if model not in LONGITUDINAL_MODELS:
         raise ValueError(f"longitudinal_model {model!r}: expected one of {LONGITUDINAL_MODELS}")

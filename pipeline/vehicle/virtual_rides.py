@@ -25,6 +25,8 @@ import zlib
 import numpy as np
 import pandas as pd
 
+from .. import _validate
+
 __all__ = ["RIDE_PLAN", "RECORDING_FS_HZ", "SENSOR_NOISE_M_S2", "ride_plan", "virtual_recordings"]
 
 #: Sampling rate of the recordings, Hz.
@@ -47,6 +49,7 @@ def ride_plan(scenarios: dict) -> pd.DataFrame:
     scenarios : dict
         Scenario file name of :data:`RIDE_PLAN` -> its loaded :class:`~tyrelab.vehicle.scenario.Scenario`.
     """
+    _validate.instance("scenarios", scenarios, dict)
     rows = []
     for file, vehicle, task, hours, day in RIDE_PLAN:
         sc = scenarios[file]
@@ -80,6 +83,8 @@ def virtual_recordings(scenario, key: str, seed: int) -> tuple[dict, dict]:
         The factors the virtual tractor differs by (``mass_factor``, ``front_stiffness_factor``,
         ``rear_stiffness_factor``).
     """
+    _validate.instance("key", key, str)
+    _validate.positive_int("seed", seed, minimum=0)
     from scipy import signal
 
     from .ride import FS_HZ, resolve_tyres, ride

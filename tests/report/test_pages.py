@@ -16,6 +16,16 @@ def test_registry_lists_index_chapters_ride_and_runs_in_order():
         pages.register(pages.RunsPage())
 
 
+def test_a_page_without_render_cannot_be_made():
+    """``Page.render`` is abstract: a page class that forgets it fails when made, not when the
+    report is half written."""
+    class Forgetful(pages.Page):
+        slug, title, order = "forgetful", "Forgetful", 50
+
+    with pytest.raises(TypeError, match="render"):
+        Forgetful()
+
+
 def test_a_new_page_is_one_registration(small_report, tmp_path):
     """A page registered beside the built-in ones gets its file, a navigation link and an index
     entry, and its table and figure come from the warehouse like a chapter's."""

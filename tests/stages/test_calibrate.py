@@ -107,3 +107,19 @@ def test_calibration_correction_is_an_option_in_the_fingerprint(tmp_path):
     ctx.calibration_correct = False
     off = state.input_digests(ctx, STAGES["calibrate"], cache)
     assert on != off  # switching the option re-runs the stage
+
+
+def test_progress_of_the_checks_and_of_the_passing_days(tmp_path, caplog):
+    """Without a terminal each step logs its count at the end (a bar on a terminal: tyrelab.progress)."""
+    import logging
+
+    ctx, good, bad = _context_with_days(tmp_path)
+    days = []
+    calibrate.day_uncertainty(ctx.read_table(ANALYSED), pd.DataFrame(), pd.DataFrame(), {}, False,
+                              on_day=lambda: days.append(1))
+    with caplog.at_level(logging.INFO, logger="tyrelab"):
+        calibrate.run(ctx)
+    assert days == []  # nothing checked, no day
+    assert "calibrate: force-plate checks: 2/2 runs" in caplog.text
+    assert "calibrate: uncertainty of passing days: 1/1 days" in caplog.text
+    assert len(calibrate.passing_days(ctx.read_table("calibration"))) == 1

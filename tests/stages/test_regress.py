@@ -202,3 +202,21 @@ def test_tyre_fits_in_one_pass_equal_one_tyre_at_a_time():
     assert (k["weighting"] != "OLS").any()  # the WLS path is exercised
     assert each["T7"]["k_speed"]["note"].str.startswith("pooled").any()  # and the pooled one
     assert each["T8"]["k_cond"]["n"].eq(0).all() and each["ZZ1"]["spoke_fit"]["size"].isna().all()
+
+
+def test_progress_counts_every_tyre_then_each_step_and_passes_change_nothing(monkeypatch):
+    """``compute(on_done=...)`` counts one per measured tyre (fitted in at most ``FIT_PASSES``
+    passes), then ``ACROSS_TYRE_STEPS``; how the tyres are split into passes changes no table."""
+    from tyrelab.itemcache import digest
+    from tyrelab.tyre.regressions import measured_tyres
+
+    results, tyres = _mixed_results(), pd.read_csv(REPO_RAW / "tyres.csv")
+    published = {name: None for name in regress.PUBLISHED}
+    counted = []
+    monkeypatch.setattr(regress, "FIT_PASSES", 2)
+    two = regress.compute(results, tyres, published, on_done=counted.append)
+    n = len(measured_tyres(results))
+    assert counted == [-(-n // 2), n - -(-n // 2)] + [1] * regress.ACROSS_TYRE_STEPS
+    monkeypatch.setattr(regress, "FIT_PASSES", 1)
+    one = regress.compute(results, tyres, published)
+    assert {k: digest(v) for k, v in two.items()} == {k: digest(v) for k, v in one.items()}

@@ -75,3 +75,12 @@ def test_first_order_frequency_uncertainty_agrees_with_monte_carlo():
     assert u2 == pytest.approx(samples[:, 1].std(), rel=0.08)
     with pytest.raises(ValueError, match="rear_stiffness_u_kN_per_m"):
         tractor_natural_frequencies(*args, "7.50-16", 2.06, "13.6-38", 1.1, rear_stiffness_u_kN_per_m=-1.0)
+
+
+def test_natural_frequencies_with_undriven_fronts_carry_a_front_uncertainty(capsys):
+    """Issue 27, checked by: the undriven front rule (F1 alone) is no longer certain."""
+    assert main(["natural-frequencies", *LEYLAND]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["front_tyre_stiffness_u_kN_per_m"] > 0.1 * out["front_tyre_stiffness_kN_per_m"]
+    lo, hi = out["frequency_2_Hz_ci95"]
+    assert hi - lo > 0.1  # the front axle's mode: ±0.005 Hz when the front rule had no uncertainty

@@ -97,20 +97,3 @@ def test_bad_parts_are_refused_naming_the_parameter():
                        Axle("rear", -B, KR, CR)))
     with pytest.raises(ValueError, match="chassis.mass_kg"):
         assemble(Parts(Chassis(0.0, I_PITCH, H), Axle("front", A, KF, CF), Axle("rear", -B, KR, CR)))
-
-
-@pytest.mark.parametrize("call, name", [
-    (lambda: __import__("tyrelab.vehicle.profiles", fromlist=["x"]).iso8608_track(dx_m=0), "dx_m"),
-    (lambda: __import__("tyrelab.vehicle.profiles", fromlist=["x"]).iso8608_track(length_m=-1), "length_m"),
-    (lambda: __import__("tyrelab.vehicle.carriage", fromlist=["x"]).simulate_nonlinear(
-        __import__("tyrelab.vehicle.carriage", fromlist=["x"]).Carriage(1000.0, 1e5, 1e3), [0.0] * 3, [0.0] * 3, dt_s=0),
-     "dt_s"),
-    (lambda: __import__("tyrelab.vehicle.tractor", fromlist=["x"]).simulate_tractor(
-        Tractor(M, I_PITCH, A, B, H, 2 * KF, 2 * KR, 2 * CF, 2 * CR), [0.0] * 3, [0.0] * 3, [0.0] * 3, [0.0] * 3, dt_s=0),
-     "dt_s"),
-    (lambda: __import__("tyrelab.vehicle.ride", fromlist=["x"]).seat_filter(0.0, 0.3), "natural_frequency_Hz"),
-    (lambda: __import__("tyrelab.vehicle.profiles", fromlist=["x"]).isotropic_coherence([0.1], 0.0), "track_width_m"),
-])
-def test_public_vehicle_functions_name_the_bad_parameter(call, name):
-    with pytest.raises(ValueError, match=name):
-        call()
