@@ -34,7 +34,7 @@ ride scenario is cached under the digest of what it reads; those not cached
 and Table XX run side by side in one :func:`tyrelab.executor.map_batches` call
 (``--jobs``/``--executor``), longest first. The tractor runs are
 exact while both axles are in contact and RK4 across lift-off, ``tractor_runs.method_used``
-(``exact`` or ``exact+rk4``; ``recording`` rows have none) says which.
+(``exact`` or ``exact+rk4``; ``recording`` for the recorded runs) says which.
 
 Everything is seeded (``SEED``), so the same command gives the same bytes. If the
 warehouse holds ``results`` with rolling T4 stiffness on a flat surface at the

@@ -742,7 +742,7 @@ def with_tractor_recordings(study: dict, recordings: dict | None) -> dict:
                  "longitudinal": "recorded"}
         rows.append({**run_metrics(label, rec.get("label", "recording"), rec.get("vertical_m_s2"),
                                    rec.get("pitch_rad_s2"), rec.get("longitudinal_m_s2")),
-                     "source": "recording"})
+                     "method_used": "recording", "source": "recording"})
     if rows:
         runs = pd.concat([runs, pd.DataFrame(rows)], ignore_index=True)
     return {**study, **_tractor_tables(runs.reset_index(drop=True)), "spectra": study["spectra"]}

@@ -50,7 +50,7 @@ def test_side_by_side_keeps_unprinted_rows(ctx):
     assert list(hh["statistic"]) == ["mean_ratio_error", "sd_ratio_error", "p_within_10", "p_within_30"]
     assert hh["thesis_rolling"].iloc[0] == 2.08 and hh["thesis_rolling"].iloc[2:].isna().all()
     x = ctx.read_table("table_xviii").set_index("row")
-    assert x.loc["measured (ours: reference virtual tractor)", "vertical_rms_m_s2_thesis"] == 1.79
+    assert x.loc["measured (ours: recording, load condition 1, SBT, 10 km/h)", "vertical_rms_m_s2_thesis"] == 1.79
 
 
 def test_table_xiii_rolling_beats_stationary(ctx):
@@ -164,6 +164,8 @@ def test_mf698t_scenario_reproduces_the_chapter_7_runs(ctx):
 def test_tractor_runs_record_their_solution_path(ctx):
     """Runs that lift a tyre were switched (exact in contact, RK4 across lift-off); the others exact."""
     runs = ctx.read_table("tractor_runs")
+    assert set(runs.loc[runs["source"] == "recording", "method_used"]) == {"recording"}
+    runs = runs[runs["source"] == "prediction"]
     lifted = (runs["lift_off_fraction_front"] > 0) | (runs["lift_off_fraction_rear"] > 0)
     assert set(runs.loc[lifted, "method_used"]) == {"exact+rk4"}
     assert set(runs.loc[~lifted, "method_used"]) <= {"exact", "exact+rk4"}
@@ -176,9 +178,10 @@ def test_studies_started_ahead_give_the_tables_of_the_stage_alone(ctx, tmp_path)
     import logging
 
     ahead = Context(raw=ctx.raw, build=tmp_path / "build", jobs=2, log=logging.getLogger("tyrelab.test"))
-    assert simulate.start_studies_ahead(ahead) == ["tractor", "carriage"]
+    # the tractor's predictions only: the carriage's cases compare with recordings the rides stage writes
+    assert simulate.start_studies_ahead(ahead) == ["tractor"]
     assert simulate.start_studies_ahead(ahead) == []  # once
-    for table in ("stiffness_pressure_by_speed", "damping_pressure_by_speed"):  # the ride scenarios' inputs
+    for table in ("stiffness_pressure_by_speed", "damping_pressure_by_speed", "recordings"):  # the stage's inputs
         if ctx.has_table(table):
             ahead.parquet.mkdir(parents=True, exist_ok=True)
             shutil.copy(ctx.table(table), ahead.table(table))
@@ -224,7 +227,7 @@ def test_edited_rows_resimulate_their_cases_only(ctx, tmp_path):
         shutil.copytree(ctx.raw / "scenarios", raw / "scenarios")
     shutil.copytree(ctx.build / "cache" / "simulate", build / "cache" / "simulate")
     edited = Context(raw=raw, build=build, jobs=1, log=logging.getLogger("tyrelab.test"))
-    for table in ("stiffness_pressure_by_speed", "damping_pressure_by_speed"):  # the ride scenarios' inputs
+    for table in ("stiffness_pressure_by_speed", "damping_pressure_by_speed", "recordings"):  # the stage's inputs
         if ctx.has_table(table):
             edited.parquet.mkdir(parents=True, exist_ok=True)
             shutil.copy(ctx.table(table), edited.table(table))
@@ -233,7 +236,7 @@ def test_edited_rows_resimulate_their_cases_only(ctx, tmp_path):
 
     # and one cached case unreadable (a torn or foreign file): it is computed again and replaced
     case_keys = simulate._study_plan(simulate._read(edited)[0], simulate.ItemCache(edited, "simulate"),
-                                     raw / "published")[2]
+                                     raw / "published", simulate.read_study_recordings(edited)[0])[2]
     torn = build / "cache" / "simulate" / f"{case_keys['carriage'][5]}.pkl"
     torn.write_bytes(torn.read_bytes()[:100])
 
@@ -258,7 +261,7 @@ def test_edited_rows_resimulate_their_cases_only(ctx, tmp_path):
     ours, theirs = edited.read_table("tractor_runs"), ctx.read_table("tractor_runs")
     case = ((ours["load_condition"] == int(xvi["load_condition"])) & (ours["track"] == xvi["track"])
             & (ours["speed_km_h"] == float(xvi["speed_km_h"])))
-    assert case.sum() == 3 + 11  # rolling, stationary, reference and the Table XVIII sweep (load 1, SBT, 10 km/h)
+    assert case.sum() == 3 + 11  # rolling, stationary, recorded and the Table XVIII sweep (load 1, SBT, 10 km/h)
     pd.testing.assert_frame_equal(ours[~case], theirs[~case], check_exact=True)  # the other cases: from the cache
     rolling = case & (ours["characteristics"] != "stationary")
     assert (ours.loc[rolling, "rear_damping_kN_s_per_m"] != theirs.loc[rolling, "rear_damping_kN_s_per_m"]).all()
