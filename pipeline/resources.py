@@ -11,6 +11,7 @@ package                     repository folder  contents
 ``tyrelab.schemas``         ``schemas/``       Table Schemas (raw format, catalogue, thesis)
 ``tyrelab.templates``       ``reports/``       jinja2 templates of the report
 ``tyrelab.data``            ``raw/``           ``tyres.csv``, ``published/*.csv``, ``scenarios/``
+``tyrelab.docs``            ``docs/``          the documents (``*.md``) the report links to
 ==========================  =================  ===========================================
 
 The same code therefore reads the same files from an editable checkout and
@@ -31,8 +32,8 @@ from functools import cache
 from importlib.resources import files
 from pathlib import Path
 
-__all__ = ["resource_dir", "package_dir", "schemas_dir", "templates_dir", "data_dir", "published_dir", "builtin_tyres",
-           "scenarios_dir"]
+__all__ = ["resource_dir", "package_dir", "schemas_dir", "templates_dir", "data_dir", "docs_dir", "published_dir",
+           "builtin_tyres", "scenarios_dir"]
 
 
 def resource_dir(package: str) -> Path:
@@ -65,6 +66,12 @@ def templates_dir() -> Path:
 def data_dir() -> Path:
     """Folder of the shipped data (``raw/``: catalogue, thesis tables, scenarios)."""
     return resource_dir("tyrelab.data")
+
+
+@cache
+def docs_dir() -> Path:
+    """Folder of the project's documents (``docs/``: the ``*.md`` the report renders and links to)."""
+    return resource_dir("tyrelab.docs")
 
 
 def published_dir() -> Path:

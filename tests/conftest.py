@@ -1,18 +1,11 @@
 import fcntl
 import logging
 import os
-import sys
-from pathlib import Path
 
 import pytest
 
-HERE = Path(__file__).resolve().parent
-sys.path.insert(0, str(HERE))
-sys.path.insert(0, str(HERE / "report"))
-
-from small_campaign import build_small_report  # noqa: E402
-
-from tyrelab.stages import Context  # noqa: E402
+from tests.report.small_campaign import build_small_report
+from tyrelab.stages import Context
 
 
 @pytest.fixture(scope="session")
@@ -40,33 +33,12 @@ def full_report(tmp_path_factory) -> Context:
     return Context(raw=root / "raw", build=root / "build", jobs=1, log=logging.getLogger("tyrelab.test"))
 
 
-#: Test files with the longest tests (``pytest --durations``), collected first and in this
-#: order, so that pytest-xdist, which hands out tests round-robin in collection order, starts
-#: them at once on different workers instead of leaving one for the end of the run.
-LONG_FIRST = (
-    "stages/test_incremental_identical.py",
-    "report/test_chapters_6_8.py",  # builds the shared full_report while the other worker goes on
-    "test_end_to_end.py",
-    "stages/test_concurrency.py",
-    "stages/test_executor.py",
-    "stages/test_build_lock.py",
-    "stages/test_random_kill.py",
-    "hostile/test_hostile_cli.py",
-    "stages/test_crash_safety.py",
-)
-
-
 def pytest_collection_modifyitems(config, items):
-    """Put the tests of :data:`LONG_FIRST` first (a stable sort: the rest keep their order)."""
-    rank = {name: i for i, name in enumerate(LONG_FIRST)}
-
-    def key(item) -> int:
-        path = Path(str(item.path)).resolve()
-        if HERE not in path.parents:
-            return len(rank)
-        return rank.get(path.relative_to(HERE).as_posix(), len(rank))
-
-    items.sort(key=key)
+    """Collect the tests marked ``long`` (``pytestmark = pytest.mark.long`` in a file whose tests take
+    many seconds in the default run) first, so that pytest-xdist, which hands out tests
+    round-robin in collection order, starts them at once on different workers instead of leaving
+    one for the end of the run. A stable sort: the rest keep their order."""
+    items.sort(key=lambda item: item.get_closest_marker("long") is None)
 
 
 _skipped_browser: list[str] = []

@@ -16,8 +16,7 @@ import pytest
 
 from tyrelab import cli, progress
 
-sys.path.insert(0, str(Path(__file__).parent / "vehicle"))
-from test_ride import scenario_text, write  # noqa: E402
+from tests.vehicle.test_ride import scenario_text, write
 
 
 def _verbs(parser):
@@ -242,3 +241,50 @@ def test_analyse_counts_its_own_qc_flags_not_calibrates():
     assert not _flagged_by_analyse("calibration failed on 1989-05-04")
     assert _flagged_by_analyse("coherence 0.42 below 0.8; calibration failed on 1989-05-04")
     assert not _flagged_by_analyse("")
+
+
+def _ride_doc() -> dict:
+    """A ride document whose hours span 6 to 1985 h and a_w 0.07 to 1.35 m/s² (the demo's modern tractor)."""
+    speeds = []
+    for v, aw, hours in ((4, 0.0731, 375.31), (8, 0.5691, 6.1702), (12, 1.3521, 2.1123)):
+        speeds.append({"speed_km_h": v, "a_wz_m_s2": aw, "expected_a_wz_m_s2": aw * 0.97, "a_wx_m_s2": aw * 0.7,
+                       "a_v_m_s2": aw * 1.4, "vdv_m_s1_75": aw * 5.3, "crest_factor": 3.5, "lift_off_fraction_front": 0.0,
+                       "lift_off_fraction_rear": 0.0, "a8_m_s2": aw, "hours_to_eav": hours, "hours_to_elv": hours * 5.29,
+                       "verdict": "above action value" if aw > 0.5 else "below action value", "simulation": "linear"})
+    tyre = {"size": "380/85R28", "pressure_bar": 1.6, "stiffness_kN_per_m": 355.920315, "damping_kN_s_per_m": 1.089412,
+            "stiffness_source": "formula", "damping_source": "model", "stiffness_u_kN_per_m": 24.768423}
+    return {"name": "modern", "track": "ISO 8608 class C", "hours_per_day": 8.0, "tyres": {"front": tyre, "rear": tyre},
+            "natural_frequencies_Hz": {"bounce": 2.725845, "pitch": 3.476311},
+            "natural_frequencies_Hz_ci95": {"bounce": [2.539125, 2.912566], "pitch": [3.252511, 3.70011]},
+            "nodal_points_m": {"bounce": 2.461186, "pitch": -0.475467}, "warnings": [], "speeds": speeds}
+
+
+def test_ride_table_one_number_format_per_quantity_under_the_reports_names():
+    """``tyrelab ride --format table``: 375 h and 6.17 h once read "375" and "6.170"; now each quantity
+    has one format (significant digits by its uncertainty where it has one) and each column the
+    report's name (``a_wz (m/s²)``, the JSON's ``a_wz_m_s2``)."""
+    import re
+
+    from tyrelab.report.ride_page import QUANTITIES, format_table, number_formats
+    from tyrelab.report.render import column_label
+
+    doc = _ride_doc()
+    text = format_table(doc)
+    lines = text.splitlines()
+    first = next(i for i, line in enumerate(lines) if line.split()[:1] == ["speed"])
+    rows = [line.split() for line in lines[first:] if re.match(r"\s*\d", line)]
+    assert len(rows) == 3
+    header = " ".join(lines[first:first + 4])
+    for label in ("a_wz", "expected", "(m/s²)", "hours", "eav", "elv", "lift off"):
+        assert label in header
+    assert "a wz" not in text and "h->EAV" not in text
+    fmt = number_formats(doc)
+    for cols in QUANTITIES.values():  # every column of one quantity: the same decimals
+        assert len({fmt["columns"][c] for c in cols}) == 1
+    hours = [r[-6:-4] for r in rows]  # hours to EAV and ELV, before the two-word verdict and the simulation
+    assert {len(h.partition(".")[2]) for pair in hours for h in pair} == {fmt["columns"]["hours_to_eav"]} == {1}
+    assert hours[0] == ["375.3", "1985.4"] and hours[1] == ["6.2", "32.6"]
+    assert "K = 356 ± 49 kN/m" in text  # 1.96 u = 48.5: two significant digits, the value to the same place
+    assert "bounce 2.73 Hz [2.54, 2.91] (node 2.46 m ahead of the CG)" in text
+    assert "pitch 3.48 Hz [3.25, 3.70] (node 0.48 m behind the CG)" in text
+    assert column_label("a_wz_m_s2") == "a_wz (m/s²)"

@@ -13,6 +13,8 @@ from tyrelab.generate import generate_campaign
 from tyrelab.rig import truth
 from tyrelab.stages import Context, run_stage
 
+pytestmark = pytest.mark.long  # collected first: see tests/conftest.py
+
 
 @pytest.fixture(scope="module")
 def warehouse(tmp_path_factory):

@@ -7,7 +7,7 @@ import pytest
 
 from tyrelab.rawformat.mapped import FormatError, load_channel_map, read_mapped
 from tyrelab.stages import Context, run_stage
-from synthetic import CHANNELS, manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import CHANNELS, manifest_row, spring_damper_recording, write_campaign
 
 G = 9.80665
 #: Lab channel names; accelerations recorded in g, forces in kN.

@@ -3,7 +3,7 @@
 import re
 from pathlib import Path
 
-from synthetic import spring_damper_recording
+from tests.synthetic import spring_damper_recording
 
 README = Path(__file__).resolve().parents[1] / "README.md"
 

@@ -6,7 +6,7 @@ import pandas as pd
 from tyrelab import io
 from tyrelab.stages import Context, run_stage
 from tyrelab.warehouse import build_warehouse, query
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 
 
 def test_runs_view_decodes_tyre_ids(tmp_path):

@@ -54,6 +54,8 @@ def test_wheel_in_a_fresh_venv_runs_generate_run_sql_report(tmp_path):
     assert p.returncode == 0 and '"n":169' in p.stdout.replace(" ", ""), p.stdout + p.stderr
     report = empty / "build" / "reports" / "index.html"
     assert report.is_file() and "tyrelab" in report.read_text(encoding="utf-8").lower()
+    # the documents the chapters link to are shipped (tyrelab.docs) and rendered beside them
+    assert 'id="chapter-3"' in (empty / "build" / "reports" / "docs" / "findings.html").read_text(encoding="utf-8")
     # the library, from the same venv, on one of the generated runs
     code = ("import csv, tyrelab; row = next(r for r in csv.DictReader(open('raw/manifest.csv')) "
             "if r['kind'] == 'measurement'); res = tyrelab.analyze_recording('raw/' + row['file'], "

@@ -11,7 +11,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-__all__ = ["TableSpec", "FigureSpec", "Chapter", "CHAPTERS", "SPOKE_FIGURES", "ABBREVIATIONS"]
+from .docs import Gap
+
+__all__ = ["TableSpec", "FigureSpec", "Chapter", "CHAPTERS", "SPOKE_FIGURES", "ABBREVIATIONS", "Gap",
+           "REFERENCE_VEHICLE_GAP"]
 
 
 #: Abbreviations spelled out once on every page that uses them (first use on the page).
@@ -63,9 +66,9 @@ class TableSpec:
     is_input : bool
         A thesis table the simulations take as printed (XV, XIX): shown with the
         thesis values and the note, never as "not produced yet".
-    gaps : tuple of str
+    gaps : tuple of Gap
         Why ours differs from the thesis where ``docs/findings.md`` or ``docs/simulation.md``
-        explains it: one sentence each, ending with the document and section.
+        explains it: one sentence each and the section that explains it (a link on the page).
     """
 
     number: str
@@ -80,7 +83,7 @@ class TableSpec:
     columns: tuple[str, ...] = ()
     note: str = ""
     is_input: bool = False
-    gaps: tuple[str, ...] = ()
+    gaps: tuple[Gap, ...] = ()
 
     @property
     def anchor(self) -> str:
@@ -130,6 +133,12 @@ class Chapter:
     items: tuple = ()
 
 
+#: Why the ch. 6-7 accuracy statistics (Tables XIII, XIV, XVII) differ from the thesis'.
+REFERENCE_VEHICLE_GAP = Gap("Our \"measured\" vibration comes from a reference virtual vehicle (dry-friction linkage, "
+                            "lift-off, a seeded stand-in for the surveyed tracks), not from the thesis' recordings, so "
+                            "these statistics reproduce the thesis' pattern, not its values.",
+                            "simulation", 'The reference ("measured") vehicles')
+
 #: Spoke-model curves: table -> (x column, x label, thesis figure).
 SPOKE_FIGURES = {
     "spoke_speed": ("speed_km_h", "rolling speed (km/h)", "Figs 44–45"),
@@ -155,10 +164,10 @@ CHAPTERS: tuple[Chapter, ...] = (
             (
                 TableSpec("I", "Stiffness and damping by measurement method", "table_i", "methods",
                           "published_table_i",
-                          gaps=("Our values are about 41 % above the printed ones because our virtual rig follows "
-                                "Table III (633 kN/m for stationary T1 at 1.38 bar where Table I prints 450); the "
-                                "ratios between the methods are what we reproduce (docs/findings.md, "
-                                "\"Chapter 3\").",)),
+                          gaps=(Gap("Our values are about 41 % above the printed ones because our virtual rig "
+                                    "follows Table III (633 kN/m for stationary T1 at 1.38 bar where Table I prints "
+                                    "450); the ratios between the methods are what we reproduce.",
+                                    "findings", "Chapter 3"),)),
                 TableSpec("", "Force-plate calibration per day", "calibration", "calibrate"),
                 TableSpec("", "Calibration transfer function", "calibration_tf", "calibrate"),
             )),
@@ -190,9 +199,9 @@ CHAPTERS: tuple[Chapter, ...] = (
                 TableSpec("", "Size regressions (Figs 30–31): ours and from the printed Table III",
                           "size_regressions", "regress",
                           columns=("fit", "source", "condition", "selection", "n", "finding"),
-                          gaps=("No choice of up to three further excluded tyres reproduces all three printed "
-                                "numbers of the K_c-against-R fit, and the W·R fit's printed intercept 0.297 lies "
-                                "inside its 95 % interval (docs/findings.md, \"Chapters 4–5\").",)),
+                          gaps=(Gap("No choice of up to three further excluded tyres reproduces all three printed "
+                                    "numbers of the K_c-against-R fit, and the W·R fit's printed intercept 0.297 "
+                                    "lies inside its 95 % interval.", "findings", "Chapters 4–5"),)),
                 FigureSpec("30", "ΔK_p against section width × rim diameter", "pressure_dependence_vs_wr",
                            ("table_iii", "tyres", "size_regressions"), "regress"),
                 FigureSpec("31", "Carcass stiffness against rim diameter", "carcass_stiffness_vs_rim",
@@ -239,9 +248,9 @@ CHAPTERS: tuple[Chapter, ...] = (
                 TableSpec("", "Spoke-model coefficients fitted to our damping per tyre", "spoke_fit", "regress",
                           columns=("tyre_id", "size", "n_runs", "speeds_km_h", "c_coulomb_kN_per_rad",
                                    "c_viscous_kN_s_per_m_per_rad", "max_abs_error_percent", "status"),
-                          gaps=("T3's damping rises with speed and F1's falls too fast for any non-negative pair of "
-                                "coefficients, and the viscous/Coulomb ratio is 0.8–1.2 s/m, not Fig. 45's 4 "
-                                "(docs/findings.md, \"Chapters 4–5\").",)),
+                          gaps=(Gap("T3's damping rises with speed and F1's falls too fast for any non-negative "
+                                    "pair of coefficients, and the viscous/Coulomb ratio is 0.8–1.2 s/m, not Fig. "
+                                    "45's 4.", "findings", "Chapters 4–5"),)),
             )),
     Chapter("ch6-carriage", "Chapter 6 — single-wheel carriage",
             "Simulated ride of the single-wheel carriage (tyre T4) on the artificial rough track, "
@@ -264,9 +273,9 @@ CHAPTERS: tuple[Chapter, ...] = (
                 FigureSpec("51", "Power spectral estimates of the track profile", "profile_spectra",
                            ("profile_spectra",), "simulate"),
                 TableSpec("XIII", "Accuracy of the carriage predictions, surveyed profile", "table_xiii", "simulate",
-                          "published_table_xiii", gaps=("Our \"measured\" vibration comes from a reference virtual vehicle (dry-friction linkage, lift-off, a seeded stand-in for the surveyed tracks), not from the thesis' recordings, so these statistics reproduce the thesis' pattern, not its values (docs/simulation.md, \"The reference ('measured') vehicles\").",)),
+                          "published_table_xiii", gaps=(REFERENCE_VEHICLE_GAP,)),
                 TableSpec("XIV", "Accuracy of the carriage predictions, recorded profile", "table_xiv", "simulate",
-                          "published_table_xiv", gaps=("Our \"measured\" vibration comes from a reference virtual vehicle (dry-friction linkage, lift-off, a seeded stand-in for the surveyed tracks), not from the thesis' recordings, so these statistics reproduce the thesis' pattern, not its values (docs/simulation.md, \"The reference ('measured') vehicles\").",)),
+                          "published_table_xiv", gaps=(REFERENCE_VEHICLE_GAP,)),
                 FigureSpec("54", "Measured and predicted rms acceleration", "carriage_rms",
                            ("carriage_comparisons",), "simulate"),
                 FigureSpec("55", "Ratio errors of the rms acceleration", "carriage_ratio_errors",
@@ -288,7 +297,7 @@ CHAPTERS: tuple[Chapter, ...] = (
                           values={c: c for c in ("rear_stiffness_kN_per_m", "front_stiffness_kN_per_m",
                                                  "rear_damping_kN_s_per_m", "front_damping_kN_s_per_m")}),
                 TableSpec("XVII", "Accuracy of the tractor predictions", "table_xvii", "simulate",
-                          "published_table_xvii", gaps=("Our \"measured\" vibration comes from a reference virtual vehicle (dry-friction linkage, lift-off, a seeded stand-in for the surveyed tracks), not from the thesis' recordings, so these statistics reproduce the thesis' pattern, not its values (docs/simulation.md, \"The reference ('measured') vehicles\").",)),
+                          "published_table_xvii", gaps=(REFERENCE_VEHICLE_GAP,)),
                 TableSpec("XVIII", "Effect of longitudinal tyre stiffness and damping", "table_xviii", "simulate",
                           "published_table_xviii"),
             )),
@@ -300,10 +309,12 @@ CHAPTERS: tuple[Chapter, ...] = (
                           note="An input table: simulate takes these values as printed (see simulate_inputs)."),
                 TableSpec("XX", "Predicted and measured natural frequencies", "table_xx", "simulate",
                           "published_table_xx",
-                          gaps=("The thesis' rear formula stiffnesses are 1.4–2.4 kN/m above what its printed formula "
-                                "gives, and the Deutz and David Brown front stiffnesses follow neither of its rules at "
-                                "the printed pressures (docs/findings.md, \"Chapter 8\"; docs/simulation.md, "
-                                "\"Table XX findings\").",)),
+                          gaps=(Gap("The thesis' rear formula stiffnesses are 1.4–2.4 kN/m above what its printed "
+                                    "formula gives, and the Deutz and David Brown front stiffnesses follow neither of "
+                                    "its rules at the printed pressures.", "findings", "Chapter 8"),
+                                Gap("With the thesis' own printed stiffnesses, 16 of the 20 frequencies recompute "
+                                    "within 0.01 Hz of Table XX: the differences come from the stiffnesses, not the "
+                                    "model.", "simulation", "Table XX findings"))),
                 TableSpec("", "Ratio errors of the natural frequencies", "table_xx_statistics", "simulate",
                           columns=("stiffness_source", "basis", "n", "mean", "sd", "p_within_10", "p_within_30",
                                    "thesis_printed_mean", "thesis_printed_sd", "thesis_printed_p_within_10"),

@@ -39,9 +39,10 @@ import pandas as pd
 
 from . import tables
 from .chapters import CHAPTERS, Chapter, FigureSpec, TableSpec
+from .docs import DOCS, document
 from .measured_page import MEASURED_RIDE
 
-__all__ = ["Output", "Page", "ChapterPage", "IndexPage", "RunsPage", "PAGES", "register", "registered",
+__all__ = ["Output", "Page", "ChapterPage", "IndexPage", "RunsPage", "DocsPage", "PAGES", "register", "registered",
            "run_page_name"]
 
 
@@ -229,6 +230,26 @@ class IndexPage(Page):
                                           100)})]
 
 
+@dataclass(frozen=True)
+class DocsPage(Page):
+    """The documents the chapter pages link to (:data:`tyrelab.report.docs.DOCS`), rendered into
+    ``docs/<name>.html``: a gap's "why" (:class:`~tyrelab.report.docs.Gap`) links to its section."""
+
+    slug: str = "docs"
+    title: str = "Documents — findings, simulation, uncertainty"
+    order: float = 1100
+    folder: str | None = "docs"
+
+    @property
+    def href(self) -> str:
+        return f"{self.folder}/{DOCS[0]}.html"
+
+    def render(self, site):
+        documents = [document(name) for name in DOCS]
+        return [Output(f"{self.folder}/{d.name}.html", "doc.html.j2", d.title, {"doc": d, "documents": documents})
+                for d in documents]
+
+
 #: The registry: every page of the report (see :func:`register`).
 PAGES: list[Page] = []
 
@@ -258,3 +279,4 @@ for _number, _chapter in enumerate(CHAPTERS):
     register(ChapterPage(_chapter, order=10 * (_number + 1)))
 register(RunsPage())
 register(ChapterPage(MEASURED_RIDE, order=10 * (len(CHAPTERS) + 1)))
+register(DocsPage())

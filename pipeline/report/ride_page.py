@@ -8,6 +8,7 @@ so the same scenario gives the same bytes.
 from __future__ import annotations
 
 import json
+import textwrap
 from pathlib import Path
 
 import pandas as pd
@@ -15,10 +16,10 @@ import pandas as pd
 from .. import __version__, io
 from ..vehicle.ride import RideResult, result_json
 from . import ride_figures as rf
-from .render import environment
-from .tables import significant_decimals
+from .render import column_label, environment, format_number
+from .tables import significant_decimals, uncertainty_decimals
 
-__all__ = ["SPEED_COLUMNS", "format_table", "figures", "psd_edge_note", "render_page", "write_outputs", "dumps", "variants",
+__all__ = ["SPEED_COLUMNS", "QUANTITIES", "number_formats", "format_table", "figures", "psd_edge_note", "render_page", "write_outputs", "dumps", "variants",
            "variant_label", "swept_keys"]
 
 #: Columns of the per-speed table (text and HTML), in order.
@@ -27,12 +28,21 @@ SPEED_COLUMNS = ["speed_km_h", "front_pressure_bar", "rear_pressure_bar", "a_wz_
                  "lift_off_fraction_front", "lift_off_fraction_rear", "a8_m_s2", "hours_to_eav", "hours_to_elv",
                  "verdict", "simulation"]
 
-_SHORT = {"speed_km_h": "km/h", "front_pressure_bar": "Pf bar", "rear_pressure_bar": "Pr bar", "a_wz_m_s2": "a_wz",
-          "expected_a_wz_m_s2": "(exp.)", "a_wx_m_s2": "a_wx", "expected_a_wx_m_s2": "(exp.)", "a_wy_m_s2": "a_wy",
-          "expected_a_wy_m_s2": "(exp.)", "a_v_m_s2": "a_v",
-          "vdv_m_s1_75": "VDV", "crest_factor": "CF", "lift_off_fraction_front": "lift F",
-          "lift_off_fraction_rear": "lift R", "a8_m_s2": "A(8)", "hours_to_eav": "h->EAV", "hours_to_elv": "h->ELV",
-          "verdict": "verdict", "simulation": "simulation"}
+#: Per-speed columns that hold one quantity and so share one number format (:func:`number_formats`).
+QUANTITIES = {
+    "weighted acceleration": ("a_wz_m_s2", "expected_a_wz_m_s2", "a_wx_m_s2", "expected_a_wx_m_s2", "a_wy_m_s2",
+                              "expected_a_wy_m_s2", "a_v_m_s2", "a8_m_s2"),
+    "vibration dose value": ("vdv_m_s1_75",),
+    "crest factor": ("crest_factor",),
+    "lift-off fraction": ("lift_off_fraction_front", "lift_off_fraction_rear"),
+    "hours": ("hours_to_eav", "hours_to_elv"),
+}
+#: Columns shown as given (the scenario's speeds and pressures).
+KEY_COLUMNS = ("speed_km_h", "front_pressure_bar", "rear_pressure_bar")
+#: Narrowest column of ``--format table`` (a header wraps at word boundaries within it).
+MIN_HEADER_WIDTH = 8
+#: Coverage factor of the 95 % intervals of a tyre stiffness (normal; as the natural frequencies').
+COVERAGE_95 = 1.96
 
 
 def dumps(doc: dict) -> str:
@@ -45,32 +55,118 @@ def _rows(doc: dict) -> list[dict]:
     return [row for b in blocks for row in b["speeds"]]
 
 
+def _columns(doc: dict, rows: list[dict]) -> list[str]:
+    return [c for c in SPEED_COLUMNS if c in rows[0] and (c not in ("front_pressure_bar", "rear_pressure_bar")
+                                                          or "sweep" in doc)]
+
+
+def number_formats(doc: dict) -> dict:
+    """Decimals of each quantity of a ride document, one format per quantity wherever it is shown
+    (``--format table`` and the ``--out`` page).
+
+    Where the quantity has an uncertainty (a tyre stiffness from the formula, the natural
+    frequencies' 95 % intervals) two significant digits of it decide
+    (:func:`~tyrelab.report.tables.uncertainty_decimals`); else three significant digits of the
+    quantity's median magnitude over every row and column that holds it
+    (:func:`~tyrelab.report.tables.significant_decimals`; :data:`QUANTITIES`).
+
+    Returns
+    -------
+    dict
+        ``columns`` (per-speed column -> decimals; the :data:`KEY_COLUMNS` are absent: shown as
+        given), ``stiffness``, ``damping``, ``frequency``, ``nodal``; and ``frequency_intervals``:
+        whether a natural frequency has a 95 % interval of non-zero width.
+    """
+    rows = _rows(doc)
+    blocks = doc.get("sweep") or [doc]
+    columns = {}
+    for cols in QUANTITIES.values():
+        values = [r[c] for r in rows for c in cols if c in r and isinstance(r[c], (int, float))]
+        for c in cols:
+            columns[c] = significant_decimals(values)
+    tyres = [b["tyres"][axle] for b in blocks for axle in ("front", "rear")]
+    u = [COVERAGE_95 * t.get("stiffness_u_kN_per_m", 0.0) for t in tyres if t.get("stiffness_u_kN_per_m")]
+    stiffness = uncertainty_decimals(u) if u else significant_decimals([t["stiffness_kN_per_m"] for t in tyres])
+    ci = [(hi - lo) / 2 for b in blocks for lo, hi in b.get("natural_frequencies_Hz_ci95", {}).values()
+          if lo is not None and hi is not None and hi > lo]
+    freqs = [f for b in blocks for f in b["natural_frequencies_Hz"].values() if f is not None]
+    nodal = [x for b in blocks for x in b.get("nodal_points_m", {}).values() if x is not None]
+    return {"columns": columns, "stiffness": stiffness,
+            "damping": significant_decimals([t["damping_kN_s_per_m"] for t in tyres]),
+            "frequency": uncertainty_decimals(ci) if ci else significant_decimals(freqs), "frequency_intervals": bool(ci),
+            "nodal": significant_decimals(nodal)}
+
+
+def _cell(value, decimals: int | None) -> str:
+    if value is None:
+        return "inf"  # hours to a value the vibration never reaches
+    if isinstance(value, str):
+        return value
+    return f"{value:g}" if decimals is None else format_number(float(value), decimals=decimals)
+
+
+def _text_table(header: list[str], cells: list[list[str]], numeric: list[bool]) -> list[str]:
+    """Lines of a plain-text table; each header is the report's column label wrapped over lines
+    (its unit on the last) to the width of the column's values or longest word."""
+    wrapped = []
+    for h, col in zip(header, zip(*cells) if cells else [()] * len(header)):
+        name, _, unit = h.partition(" (")
+        words = name.split()
+        width = max([len(v) for v in col] + [len(w) for w in words] + [len(unit) + 1 if unit else 0, MIN_HEADER_WIDTH])
+        lines = textwrap.wrap(name, width=width, break_long_words=False) + ([f"({unit}"] if unit else [])
+        wrapped.append((width, lines))
+    depth = max(len(lines) for _, lines in wrapped)
+    out = []
+    for i in range(depth):
+        parts = []
+        for (width, lines), num in zip(wrapped, numeric):
+            text = lines[i] if i < len(lines) else ""
+            parts.append(text.rjust(width) if num else text.ljust(width))
+        out.append("  ".join(parts).rstrip())
+    for row in cells:
+        out.append("  ".join(v.rjust(w) if num else v.ljust(w) for v, (w, _), num in zip(row, wrapped, numeric)).rstrip())
+    return out
+
+
 def format_table(doc: dict) -> str:
-    """A plain-text summary of a ride document (what ``--format table`` prints)."""
+    """A plain-text summary of a ride document (what ``--format table`` prints): the JSON's
+    quantities under the report's names (``a_wz (m/s²)``), one number format per quantity
+    (:func:`number_formats`)."""
+    fmt = number_formats(doc)
     lines = [f"{doc['name']}", f"  track: {doc['track']}; daily exposure {doc['hours_per_day']:g} h"]
     for axle in ("front", "rear"):
         t = doc["tyres"][axle]
-        lines.append(f"  {axle:5s} {t['size']} at {t['pressure_bar']:g} bar: K = {t['stiffness_kN_per_m']:.1f} kN/m "
-                     f"({t['stiffness_source']}), C = {t['damping_kN_s_per_m']:.2f} kN s/m ({t['damping_source']})")
-    nf, nodal = doc["natural_frequencies_Hz"], doc["nodal_points_m"]
-    lines.append(f"  bounce {nf['bounce']:.2f} Hz (node {nodal['bounce']:+.2f} m ahead of CG), "
-                 f"pitch {nf['pitch']:.2f} Hz (node {nodal['pitch']:+.2f} m)" if nodal["bounce"] is not None
-                 else f"  bounce {nf['bounce']:.2f} Hz, pitch {nf['pitch']:.2f} Hz")
+        u = COVERAGE_95 * (t.get("stiffness_u_kN_per_m") or 0.0)
+        k = format_number(t["stiffness_kN_per_m"], decimals=fmt["stiffness"]) + (
+            f" ± {format_number(u, decimals=fmt['stiffness'])}" if u > 0 else "")
+        lines.append(f"  {axle:5s} {t['size']} at {t['pressure_bar']:g} bar: K = {k} kN/m "
+                     f"({t['stiffness_source']}), C = {format_number(t['damping_kN_s_per_m'], decimals=fmt['damping'])} "
+                     f"kN s/m ({t['damping_source']})")
+    nf, nodal, ci = doc["natural_frequencies_Hz"], doc["nodal_points_m"], doc.get("natural_frequencies_Hz_ci95", {})
+    parts = []
+    for mode in ("bounce", "pitch"):
+        text = f"{mode} {format_number(nf[mode], decimals=fmt['frequency'])} Hz"
+        lo, hi = ci.get(mode, (None, None))
+        if lo is not None and hi is not None and hi > lo:
+            text += (f" [{format_number(lo, decimals=fmt['frequency'])}, "
+                     f"{format_number(hi, decimals=fmt['frequency'])}]")
+        if nodal.get(mode) is not None:
+            where = "ahead of" if nodal[mode] >= 0 else "behind"
+            text += f" (node {format_number(abs(nodal[mode]), decimals=fmt['nodal'])} m {where} the CG)"
+        parts.append(text)
+    lines.append("  " + ", ".join(parts))
+    if fmt["frequency_intervals"]:
+        lines.append("  [ ]: 95 % interval from the tyre stiffness uncertainty; K ± the 95 % half-width")
     for w in doc.get("warnings", []):
         lines.append(f"  warning: {w}")
-    df = pd.DataFrame(_rows(doc))
-    cols = [c for c in SPEED_COLUMNS if c in df and (c not in ("front_pressure_bar", "rear_pressure_bar")
-                                                      or "sweep" in doc)]
-    show = df[cols].copy()
-    for c in cols:
-        if c in ("speed_km_h", "front_pressure_bar", "rear_pressure_bar"):
-            show[c] = show[c].map(lambda v: f"{v:g}")
-        elif c not in ("verdict", "simulation"):
-            show[c] = show[c].map(lambda v: "inf" if v is None else f"{v:.3g}" if abs(v) >= 100 else f"{v:.3f}")
-    show.columns = [_SHORT[c] for c in cols]
-    lines.append(show.to_string(index=False))
-    lines.append("  a_w in m/s² (a_wz W_k, a_wx and a_wy W_d; exp. = frequency-domain expectation); VDV m/s^1.75; "
-                 "A(8) = max(1.4 a_wx, 1.4 a_wy, a_wz) sqrt(T/8 h)")
+    rows = _rows(doc)
+    cols = _columns(doc, rows)
+    cells = [[_cell(r[c], fmt["columns"].get(c)) for c in cols] for r in rows]
+    numeric = [c not in ("verdict", "simulation") for c in cols]
+    lines += _text_table([column_label(c) for c in cols], cells, numeric)
+    lines.append("  a_wz: W_k-weighted, a_wx and a_wy: W_d-weighted r.m.s. (ISO 2631-1); expected: the "
+                 "frequency-domain expectation; a_v: vector sum; a8 = A(8) = max(1.4 a_wx, 1.4 a_wy, a_wz) "
+                 "sqrt(T/8 h); vdv: vibration dose value; inf: never reached")
     return "\n".join(lines) + "\n"
 
 
@@ -167,14 +263,11 @@ def render_page(results: list[RideResult], doc: dict | None = None) -> str:
     """The self-contained HTML page of a ride (no time stamp)."""
     doc = doc or result_json(results)
     rows = _rows(doc)
-    cols = [c for c in SPEED_COLUMNS if c in rows[0] and (c not in ("front_pressure_bar", "rear_pressure_bar")
-                                                          or "sweep" in doc)]
-    # one number format per column (decimals by the column's magnitude: 604.649 and 12.418 h read 605, 12)
-    decimals = {c: significant_decimals([r[c] for r in rows if isinstance(r[c], float)]) for c in cols
-                if any(isinstance(r[c], float) for r in rows)}
+    fmt = number_formats(doc)  # one number format per quantity, as --format table
     return environment().get_template("ride.html.j2").render(
-        r=doc, description=results[0].scenario.description, columns=cols, rows=rows, figures=figures(results),
-        variants=variants(results), three_d=results[0].scenario.tractor.three_d, version=__version__, decimals=decimals)
+        r=doc, description=results[0].scenario.description, columns=_columns(doc, rows), rows=rows,
+        figures=figures(results), variants=variants(results), three_d=results[0].scenario.tractor.three_d,
+        version=__version__, decimals=fmt["columns"], fmt=fmt)
 
 
 def write_outputs(results: list[RideResult], out: str | Path) -> dict[str, Path]:

@@ -6,7 +6,8 @@ the pure functions of :mod:`tyrelab.report.tables` and
 :mod:`tyrelab.report.figures`, and writes one HTML file per page:
 
 the pages registered in :mod:`tyrelab.report.pages` (:data:`~tyrelab.report.pages.PAGES`: the
-index, one page per thesis chapter and the Ride page, the run drill-downs). :func:`build_site`
+index, one page per thesis chapter and the Ride page, the run drill-downs, the documents the
+chapters link to). :func:`build_site`
 knows no page by name: it asks each registered page for its tables and figures, then for its
 files (a new page is one :func:`~tyrelab.report.pages.register` call).
 
@@ -44,6 +45,7 @@ from . import tables
 from markupsafe import escape
 
 from .chapters import ABBREVIATIONS, Chapter, FigureSpec, TableSpec
+from .docs import gap_link
 from .pages import ChapterPage, Page, registered, run_page_name
 from .render import abbreviations_used, environment, provenance
 
@@ -157,7 +159,8 @@ def resolve_table(wh: Warehouse, spec: TableSpec, cache=None) -> dict:
     else:
         key = cache.key("table", dataclasses.asdict(spec), ours, published)
         shaped = cache.get_or_compute(key, lambda: shape_table(spec, ours, published))
-    return {"kind": "table", "spec": spec, **shaped, "queries": table_queries(wh, spec)}
+    return {"kind": "table", "spec": spec, **shaped, "queries": table_queries(wh, spec),
+            "gaps": [gap_link(g) for g in spec.gaps]}
 
 
 def table_queries(wh: Warehouse, spec: TableSpec) -> list[str]:

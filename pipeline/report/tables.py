@@ -30,7 +30,7 @@ import pandas as pd
 
 __all__ = ["REL_TOL", "ABS_TOL", "NUMERIC_KEYS", "HIDDEN", "EXTRAS", "Pair", "Shaped", "find_pairs",
     "tolerance", "shape_comparison", "compare_frames", "thesis_only", "plain_table", "campaign_summary",
-    "select_runs", "interval_text", "pair_decimals", "significant_decimals", "natural_order", "Note",
+    "select_runs", "interval_text", "pair_decimals", "uncertainty_decimals", "significant_decimals", "natural_order", "Note",
     "LONG_TEXT_CHARS", "MAX_DECIMALS"]
 
 #: Relative tolerance beyond which a difference is highlighted.
@@ -239,12 +239,28 @@ def pair_decimals(df: pd.DataFrame, pair: Pair) -> int:
               if np.isfinite(_num(lo)) and np.isfinite(_num(hi))] if len(df) else []
     widths = [w for w in widths if w > 0]
     if widths:
-        return int(min(MAX_DECIMALS, max(0, 1 - math.floor(math.log10(float(np.median(widths)))))))
+        return uncertainty_decimals(widths)
     printed = [_decimals(t) for t in map(_num, df[pair.thesis]) if np.isfinite(t)] if pair.thesis in df else []
     if printed:
         return min(MAX_DECIMALS, max(printed) + 1)
     ours = [abs(v) for v in map(_num, df[pair.ours]) if np.isfinite(v) and v != 0] if pair.ours in df else []
     return significant_decimals(ours)
+
+
+def uncertainty_decimals(half_widths) -> int:
+    """Decimals that show two significant digits of the median of ``half_widths`` (a quantity's 95 %
+    interval half-widths, or any uncertainty of it; at most :data:`MAX_DECIMALS`): the uncertainty
+    decides the digits, and the value is shown to the same decimal place.
+
+    Examples
+    --------
+    >>> uncertainty_decimals([48.5]), uncertainty_decimals([0.187, 0.22]), uncertainty_decimals([1e-9])
+    (0, 2, 4)
+    """
+    widths = [float(w) for w in half_widths if w is not None and np.isfinite(float(w)) and float(w) > 0]
+    if not widths:
+        raise ValueError("half_widths must hold a positive finite value")
+    return int(min(MAX_DECIMALS, max(0, 1 - math.floor(math.log10(float(np.median(widths)))))))
 
 
 def significant_decimals(values, digits: int = 3) -> int:

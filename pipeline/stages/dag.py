@@ -13,7 +13,8 @@
   ``published``             the digitised thesis tables :mod:`tyrelab.published` resolves, by content
   ``scenarios``             the shipped and ``<raw>/scenarios`` ride scenarios, by content
   ``param:<name>``          a :class:`~tyrelab.stages.base.Context` option (``calibration_correct``)
-  ``code:<package>``        non-Python files that are code of the stage (the report's templates)
+  ``code:<package>``        non-Python files that are code of the stage (the report's templates and
+                            the documents it renders)
   ========================  ==========================================================================
 
   A path may hold ``*`` (``parquet/*.parquet``: every table another stage declares there).
@@ -161,7 +162,7 @@ STAGES: dict[str, Stage] = {s.name: s for s in (
                               "published"),
           writes=("parquet/published/", table("quarantine"), "warehouse.duckdb"),
           doc="publish the thesis tables and the quarantine; build warehouse.duckdb"),
-    Stage("report", reads=("warehouse.duckdb", "parquet/runs/", "raw-extras", "code:tyrelab.templates"),
+    Stage("report", reads=("warehouse.duckdb", "parquet/runs/", "raw-extras", "code:tyrelab.templates", "code:tyrelab.docs"),
           writes=("reports/",),
           doc="render the static site from the warehouse"),
 )}

@@ -16,7 +16,7 @@ import shutil
 from pathlib import Path
 
 import pytest
-from small_campaign import EVIL_TYRE
+from tests.report.small_campaign import EVIL_TYRE
 
 pytestmark = pytest.mark.browser
 

@@ -13,9 +13,11 @@ from pathlib import Path
 
 import pytest
 
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 from tyrelab.cli import main
 from tyrelab.warehouse import query
+
+pytestmark = pytest.mark.long  # collected first: see tests/conftest.py
 
 GOOD = spring_damper_recording(duration_s=20.0)
 #: ``tyrelab`` with ``run`` restricted to the stages these tests need (the others take minutes).
@@ -259,7 +261,7 @@ def test_published_tables_that_do_not_fit_together_are_one_line(tmp_path, capsys
     whose Table XVI has none for load condition 4: one line naming the folder and both problems,
     exit 2, no table written. A table that does not match its schema: one line too (it was a
     traceback from the stage commands and `run`)."""
-    from synthetic import edit_csv
+    from tests.synthetic import edit_csv
     from tyrelab import resources
 
     raw = tmp_path / "raw"

@@ -10,7 +10,7 @@ import pandas as pd
 import pytest
 
 import tyrelab
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 from tyrelab import executor, io
 from tyrelab.cli import EXIT_BROKEN_PIPE, main
 
@@ -35,6 +35,7 @@ def test_jobs_out_of_range_is_refused_before_any_stage(tmp_path, capsys, verb, j
     assert not (tmp_path / "build").exists()
 
 
+@pytest.mark.slow  # 75 s on 2 busy cores; runs in `make test-all`, not in the default run
 def test_a_folder_tree_1100_levels_deep(tmp_path):
     raw = write_campaign(tmp_path / "raw", [(manifest_row("a1", "a1.parquet"), GOOD)])
     here = os.getcwd()

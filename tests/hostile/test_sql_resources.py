@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 from tyrelab.cli import main
 from tyrelab.stages import Context, run_stage
 from tyrelab.warehouse import SPILL_FOLDER, QueryLimits, QueryTimeout, connect_read_only, parse_size, query

@@ -4,7 +4,7 @@ import json
 
 import pytest
 
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 from tyrelab.cli import main
 from tyrelab.stages import Context, run_stage
 from tyrelab.warehouse import WriteRefused, connect_read_only, query, query_all

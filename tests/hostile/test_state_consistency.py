@@ -2,7 +2,7 @@
 
 import pytest
 
-from hostilekit import calibrated_campaign
+from tests.hostile.hostilekit import calibrated_campaign
 from tyrelab.stages import Context, run_pipeline, run_stage
 
 STAGES = ["ingest", "analyse", "calibrate"]

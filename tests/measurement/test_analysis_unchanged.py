@@ -14,7 +14,7 @@ import math
 
 import pytest
 
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 from tyrelab.rig.campaigns import campaign_plan, simulate_run
 from tyrelab.stages import Context, run_stage
 

@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 
 from tyrelab.measurement import apparent_mass as am
-from synthetic import CHANNELS, spring_damper_recording
+from tests.synthetic import CHANNELS, spring_damper_recording
 
 
 def split(df):

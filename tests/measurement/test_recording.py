@@ -12,7 +12,7 @@ import tyrelab
 from tyrelab.api import analyze_recording
 from tyrelab.measurement.recording import RecordingResult, analyse_frame
 from tyrelab.rawformat import RunFileError
-from synthetic import spring_damper_recording
+from tests.synthetic import spring_damper_recording
 
 #: The JSON keys of ``tyrelab analyze-run`` (a contract: add, never rename).
 ANALYZE_RUN_KEYS = {

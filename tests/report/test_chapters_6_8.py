@@ -18,6 +18,8 @@ import pytest
 from tyrelab.report.render import format_number
 from tyrelab.report.tables import find_pairs
 
+pytestmark = pytest.mark.long  # collected first: see tests/conftest.py
+
 #: (page, table number, stage output, rows that must have our value for every pair)
 TABLES = [
     ("ch6-carriage.html", "xiii", "table_xiii", 16),

@@ -136,7 +136,7 @@ def test_measured_tyre_from_catalogue_coefficients_alone():
 
 
 def test_default_file_name_is_safe_for_any_tyre_id(small_report, tmp_path, monkeypatch, capsys):
-    from small_campaign import EVIL_TYRE
+    from tests.report.small_campaign import EVIL_TYRE
 
     monkeypatch.chdir(tmp_path)
     assert main(["export-tyre", EVIL_TYRE, "--build", str(small_report.build)]) == 0

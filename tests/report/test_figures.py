@@ -6,7 +6,7 @@ import numpy as np
 import pandas as pd
 
 from tyrelab.report import figures
-from synthetic import spring_damper_recording
+from tests.synthetic import spring_damper_recording
 
 
 def _results():

@@ -8,10 +8,10 @@ from tyrelab.report import pages, site
 from tyrelab.report.chapters import Chapter, FigureSpec, TableSpec
 
 
-def test_registry_lists_index_chapters_ride_and_runs_in_order():
+def test_registry_lists_index_chapters_ride_runs_and_docs_in_order():
     slugs = [p.slug for p in pages.registered()]
-    assert slugs[0] == "index" and slugs[-1] == "runs"
-    assert slugs[1:-1] == [c.slug for c in pages.CHAPTERS] + ["measured-ride"]  # issue 24's page after the chapters
+    assert slugs[0] == "index" and slugs[-2:] == ["runs", "docs"]
+    assert slugs[1:-2] == [c.slug for c in pages.CHAPTERS] + ["measured-ride"]  # issue 24's page after the chapters
     with pytest.raises(ValueError, match="'runs' is already registered"):
         pages.register(pages.RunsPage())
 
@@ -26,6 +26,7 @@ def test_a_page_without_render_cannot_be_made():
         Forgetful()
 
 
+@pytest.mark.slow  # 51 s on 2 busy cores; runs in `make test-all`, not in the default run
 def test_a_new_page_is_one_registration(small_report, tmp_path):
     """A page registered beside the built-in ones gets its file, a navigation link and an index
     entry, and its table and figure come from the warehouse like a chapter's."""

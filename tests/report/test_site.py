@@ -3,7 +3,9 @@
 import re
 from pathlib import Path
 
-from small_campaign import EVIL_TYRE
+import pytest
+
+from tests.report.small_campaign import EVIL_TYRE
 
 THESIS_TABLES = ["III", "IV", "V", "VI", "VII", "VIII", "IX", "X", "XI", "XII", "XIII", "XIV", "XV", "XVI",
                  "XVII", "XVIII", "XIX", "XX"]
@@ -43,6 +45,9 @@ def test_site_is_offline_with_working_relative_links(small_report):
         for href in re.findall(r'href="([^"#]+)', html):
             assert not href.startswith(("/", "http:", "https:", "file:")), (path, href)
             assert (path.parent / href).exists(), (path, href)
+        for href, anchor in re.findall(r'href="([^"#]*)#([^"]+)"', html):  # a section: its id is there
+            target = (path.parent / href) if href else path
+            assert f'id="{anchor}"' in target.read_text(encoding="utf-8"), (path, href, anchor)
 
 
 def test_index_summary_provenance_and_size(small_report):
@@ -82,6 +87,7 @@ def _server_ready():
     return worker_server_state() == "ready"
 
 
+@pytest.mark.slow  # 81 s on 2 busy cores; runs in `make test-all`, not in the default run
 def test_figures_drawn_in_the_background_give_the_same_pages(small_report, tmp_path, monkeypatch):
     """Every figure drawn by workers forked from the worker server (while the tables are shaped)
     gives the bytes of the same site drawn in this process.

@@ -106,7 +106,20 @@ def test_independent_recording_solve_ivp():
     assert Cest == pytest.approx(C, rel=0.03)
 
 
-def test_generate_small_is_deterministic_and_in_raw_v1(tmp_path):
+def test_generate_small_is_deterministic_and_in_raw_v1(tmp_path, monkeypatch):
+    """Two campaigns of the same seed are the same bytes. On a two-run plan (the small plan's first
+    measurement run and first calibration run: every kind of file the generator writes), not the
+    whole campaign twice: the runs are simulated one by one from (row, seed), so two runs prove it."""
+    from tyrelab import generate as gen
+
+    whole = gen.campaign_plan
+
+    def two_runs(scale, cfg):
+        plan = whole(scale, cfg)
+        return pd.concat([plan[plan["kind"] == kind].head(1) for kind in ("measurement", "calibration")])
+
+    monkeypatch.setattr(gen, "campaign_plan", two_runs)
+
     def digest(folder: Path) -> str:
         h = hashlib.sha256()
         for p in sorted(folder.rglob("*")):

@@ -3,7 +3,7 @@
 import subprocess
 import sys
 
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 
 #: The stages these tests exercise (the ones that write the tables and the warehouse).
 STAGES = ["ingest", "analyse", "calibrate", "warehouse"]  # calibrate writes results

@@ -3,7 +3,7 @@
 import numpy as np
 
 from tyrelab.stages.analyse import analyse_batch, load_signals
-from synthetic import CHANNELS, spring_damper_recording
+from tests.synthetic import CHANNELS, spring_damper_recording
 
 
 def batch(*recordings):
@@ -51,7 +51,7 @@ def test_reversed_acceleration_sign_is_flagged():
 
 def test_excitation_not_found_quarantine_names_the_file(tmp_path):
     from tyrelab.stages import Context, run_stage
-    from synthetic import manifest_row, write_campaign
+    from tests.synthetic import manifest_row, write_campaign
 
     flat = spring_damper_recording(amplitude_mm_pp=0.0)
     raw = write_campaign(tmp_path / "raw", [(manifest_row("flat", "flat.parquet"), flat)])

@@ -9,10 +9,12 @@ import time
 
 import pytest
 
-from crashkit import campaign, start_run
+from tests.stages.crashkit import campaign, start_run
 from tyrelab.buildlock import LOCK_NAME, BuildLock, BuildLocked
 from tyrelab.cli import main
 from tyrelab.warehouse import query
+
+pytestmark = pytest.mark.long  # collected first: see tests/conftest.py
 
 QUERY = "SELECT run_id, stiffness_kN_per_m FROM results ORDER BY run_id"
 

@@ -1,11 +1,14 @@
+import pytest
 """`tyrelab sql` works while a pipeline run is rewriting the tables and the warehouse."""
 
 import subprocess
 import sys
 import time
 
-from crashkit import campaign, start_run
+from tests.stages.crashkit import campaign, start_run
 from tyrelab.warehouse import query
+
+pytestmark = pytest.mark.long  # collected first: see tests/conftest.py
 
 
 def test_queries_while_the_pipeline_writes(tmp_path):

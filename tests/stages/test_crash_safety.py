@@ -11,8 +11,10 @@ from pathlib import Path
 
 import pytest
 
-from crashkit import STAGES, campaign, start_run
+from tests.stages.crashkit import STAGES, campaign, start_run
 from tyrelab.warehouse import query
+
+pytestmark = pytest.mark.long  # collected first: see tests/conftest.py
 
 QUERY = "SELECT run_id, stiffness_kN_per_m, damping_kN_s_per_m FROM results ORDER BY run_id"
 

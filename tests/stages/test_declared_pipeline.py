@@ -15,10 +15,12 @@ from pathlib import Path
 
 import pytest
 
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 from tyrelab.cli import main
 from tyrelab.stages import ORDER, STAGES, Context, explain, plan, run_pipeline
 from tyrelab.stages import dag
+
+pytestmark = pytest.mark.long  # collected first: see tests/conftest.py
 
 #: simulate reads only published tables and scenarios (its own slow test is in test_simulate.py).
 FAST = [s for s in ORDER if s != "simulate"]

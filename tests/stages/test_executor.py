@@ -9,7 +9,9 @@ import pytest
 
 from tyrelab.executor import map_alongside, map_batches, map_in_background, worker_server_state
 from tyrelab.stages import Context, run_pipeline
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
+
+pytestmark = pytest.mark.long  # collected first: see tests/conftest.py
 
 STAGES = ["ingest", "analyse", "calibrate", "warehouse"]
 TABLES = ["manifest.parquet", "stages/analysed.parquet", "quarantine.parquet", "tyres.parquet"]

@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 
 from tyrelab.stages import Context, dag, run_pipeline
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 
 STAGES = ["ingest", "analyse", "calibrate", "warehouse"]  # calibrate writes results
 
@@ -136,7 +136,7 @@ def test_changed_template_changes_only_the_report_fingerprint(tmp_path, monkeypa
 
 def test_build_folder_inside_raw_does_not_make_runs_stale(tmp_path):
     from tyrelab.stages import Context, run_stage
-    from synthetic import manifest_row, spring_damper_recording, write_campaign
+    from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 
     raw = write_campaign(tmp_path / "raw" / "c", [(manifest_row("a", "a.parquet"), spring_damper_recording())]).parent
     ctx = Context(raw=raw, build=raw / "build", jobs=1)

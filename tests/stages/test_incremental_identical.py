@@ -15,10 +15,12 @@ from pathlib import Path
 
 import pytest
 
-from synthetic import edit_csv as _edit_csv
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import edit_csv as _edit_csv
+from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 from tyrelab import resources
 from tyrelab.stages import ORDER, Context, run_pipeline
+
+pytestmark = pytest.mark.long  # collected first: see tests/conftest.py
 
 FAST = [s for s in ORDER if s != "simulate"]  # simulate has its own (slow) test below
 
@@ -66,6 +68,7 @@ def _assert_same_as_clean(raw: Path, build: Path, stages: list[str], caplog) -> 
     return log
 
 
+@pytest.mark.slow  # 176 s on 2 busy cores; runs in `make test-all`, not in the default run
 def test_add_remove_change_edit_published_match_clean_rebuild(tmp_path, caplog, monkeypatch):
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "631152000")
     raw, build = tmp_path / "raw", tmp_path / "build"

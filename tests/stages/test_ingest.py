@@ -6,7 +6,7 @@ import pandas as pd
 
 from tyrelab.stages import Context, run_stage
 from tyrelab.stages.ingest import discover_campaigns, run_key, tyre_partition
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 
 
 def test_discover_campaigns(tmp_path):

@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 
 from tyrelab.cli import main
 from tyrelab.stages import Context, run_stage
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 
 GOOD = spring_damper_recording(duration_s=20.0)
 

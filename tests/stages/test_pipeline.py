@@ -10,7 +10,7 @@ import pytest
 from tyrelab.cli import main
 from tyrelab.stages import Context, run_stage
 from tyrelab.warehouse import query
-from synthetic import manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 
 K_C, DK_P, C_C, DC = 150e3, 180e3, 1000.0, 400.0  # N/m, N/m/bar, N s/m, N s/m/bar
 

@@ -10,12 +10,13 @@ from pathlib import Path
 
 import pytest
 
-from crashkit import start_run
+from tests.stages.crashkit import start_run
 from tyrelab.buildlock import LOCK_NAME
 from tyrelab.warehouse import query
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "hostile"))
-from hostilekit import calibrated_campaign  # noqa: E402
+from tests.hostile.hostilekit import calibrated_campaign  # noqa: E402
+
+pytestmark = pytest.mark.long  # collected first: see tests/conftest.py
 
 SHORT = ["ingest", "analyse", "calibrate", "warehouse"]
 ALL = ["ingest", "analyse", "calibrate", "regress", "simulate", "warehouse", "report"]
@@ -52,6 +53,7 @@ def converges(raw, build, stages, kills, seed):
         assert now.keys() == clean.keys() and [k for k in now if now[k] != clean[k]] == []
 
 
+@pytest.mark.slow  # 57 s on 2 busy cores; runs in `make test-all`, not in the default run
 def test_random_kills_converge_to_the_clean_bytes(tmp_path):
     raw = calibrated_campaign(tmp_path / "raw" / "c", per_day=2)
     converges(raw, tmp_path / "build", SHORT, kills=2, seed=11)

@@ -7,7 +7,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from comparisons import assert_differences_are_ours_minus_thesis
+from tests.comparisons import assert_differences_are_ours_minus_thesis
 
 from tyrelab.stages import regress
 from tyrelab.stages.base import Context

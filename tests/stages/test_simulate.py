@@ -10,7 +10,7 @@ import shutil
 import numpy as np
 import pandas as pd
 import pytest
-from comparisons import assert_differences_are_ours_minus_thesis
+from tests.comparisons import assert_differences_are_ours_minus_thesis
 
 from tyrelab import published
 from tyrelab.stages import simulate
@@ -172,6 +172,7 @@ def test_tractor_runs_record_their_solution_path(ctx):
     assert (runs["method_used"] == "exact").any() and lifted.any()
 
 
+@pytest.mark.slow  # 70 s on 2 busy cores; runs in `make test-all`, not in the default run
 def test_studies_started_ahead_give_the_tables_of_the_stage_alone(ctx, tmp_path):
     """``run_pipeline`` starts the chapter 6-7 studies ahead on a first build; the stage takes
     their results: the same bytes as the shared build, which ran them itself (``--jobs 1``)."""
@@ -207,7 +208,7 @@ def test_studies_no_stage_took_are_ended(ctx, tmp_path):
 
 def _edit_first_row(path, column, factor):
     """Multiply ``column`` of the first row of a published CSV by ``factor``; return that row."""
-    from synthetic import edit_csv
+    from tests.synthetic import edit_csv
 
     first = edit_csv(path, lambda rows: rows[0].update({column: f"{float(rows[0][column]) * factor:.3f}"}))[0]
     assert first["characteristics"] == "rolling"

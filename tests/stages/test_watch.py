@@ -8,7 +8,7 @@ from pathlib import Path
 
 import pytest
 
-from synthetic import edit_csv, manifest_row, spring_damper_recording, write_campaign
+from tests.synthetic import edit_csv, manifest_row, spring_damper_recording, write_campaign
 from tyrelab import cli
 from tyrelab.stages import Context, run_pipeline
 from tyrelab.warehouse import query

@@ -1,6 +1,6 @@
 import pytest
 
-from tyre_synthetic import make_results
+from tests.tyre.tyre_synthetic import make_results
 
 
 @pytest.fixture

@@ -2,7 +2,7 @@ import pandas as pd
 
 from tyrelab.tyre import conditions as cond
 
-from tyre_synthetic import make_results, run
+from tests.tyre.tyre_synthetic import make_results, run
 
 
 def test_nominal_excludes_each_non_nominal_condition():

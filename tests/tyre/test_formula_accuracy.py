@@ -4,8 +4,8 @@ import pytest
 
 from tyrelab.tyre import formula_accuracy as fa
 from tyrelab.tyre.stiffness import traction_tyre_stiffness
-from thesis_tables import table_iii, tyres
-from tyre_synthetic import run
+from tests.tyre.thesis_tables import table_iii, tyres
+from tests.tyre.tyre_synthetic import run
 
 
 def test_normal_probabilities_match_thesis_statements():
@@ -47,7 +47,7 @@ def test_published_table_iii_accuracy():
         # ours is the normal-theory P (the column the report pairs it with is not found by name)
         assert row.p_within_10_percent_difference == pytest.approx(row.p_within_10_percent_normal - p, abs=1e-12)
         assert abs(row.p_within_10_percent_difference) > 1e-3
-    from comparisons import assert_differences_are_ours_minus_thesis
+    from tests.comparisons import assert_differences_are_ours_minus_thesis
 
     assert assert_differences_are_ours_minus_thesis(s.reset_index(), "formula accuracy") >= 4
 

@@ -3,7 +3,7 @@ import pandas as pd
 import pytest
 
 from tyrelab.tyre import regressions as reg
-from tyre_synthetic import TRUTH, make_results, run
+from tests.tyre.tyre_synthetic import TRUTH, make_results, run
 
 # Thesis Table III rows used as literal published values (thesis §4.3.1).
 PUBLISHED_III = pd.DataFrame(

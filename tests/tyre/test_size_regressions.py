@@ -2,7 +2,7 @@ import numpy as np
 import pytest
 
 from tyrelab.tyre import size_regressions as sr
-from thesis_tables import table_iii, tyres
+from tests.tyre.thesis_tables import table_iii, tyres
 
 
 def test_points_use_table_ii_sizes_and_wr():
@@ -52,7 +52,7 @@ def test_published_rim_fit_coefficients_close_but_r2_not():
     assert not r.reproduces_printed and "NOT reproduced" in r.finding
     # the printed values of §4.5.3 beside ours, differences ours - thesis
     assert (r.thesis_intercept, r.thesis_slope, r.thesis_r_squared) == (172.0, -1.77, 0.70)
-    from comparisons import assert_differences_are_ours_minus_thesis
+    from tests.comparisons import assert_differences_are_ours_minus_thesis
 
     assert assert_differences_are_ours_minus_thesis(out.reset_index(), "size regressions") >= 5
 

@@ -3,7 +3,7 @@ import pandas as pd
 import pytest
 
 from tyrelab.tyre import spoke
-from tyre_synthetic import run
+from tests.tyre.tyre_synthetic import run
 
 ALPHA = np.arccos(spoke.H_OVER_R0)
 OMEGA = 2 * np.pi * spoke.FREQUENCY_HZ

@@ -86,6 +86,7 @@ def tractor_tables():
     return mass, tyres.loc[keep].reset_index(drop=True)
 
 
+@pytest.mark.slow  # 35 s on 2 busy cores; runs in `make test-all`, not in the default run
 def test_tractor_cached_cases_give_the_full_study_to_the_bit(tractor_tables):
     full = studies.tractor_study(*tractor_tables)
     assert len(full["cases"]) == 3 and [len(c) for c in full["cases"]] == [2 + 11, 2, 2]  # predictions only

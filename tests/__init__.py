@@ -1,0 +1,1 @@
+"""Tests of tyrelab (a package: helpers import as ``tests.<module>``)."""
