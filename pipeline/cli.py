@@ -337,7 +337,7 @@ def cmd_ride(args) -> int:
 
     from .report.ride_page import dumps, format_table, write_outputs
     from .vehicle.ride import result_json, ride_sweep
-    from .vehicle.scenario import ScenarioError, load_scenario
+    from .scenario_io import ScenarioError, load_scenario
 
     try:
         scenario = load_scenario(args.scenario, confine=False)  # the user's own file: any profile path

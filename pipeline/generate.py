@@ -68,7 +68,7 @@ def write_rides(out: Path, seed: int, tractors: bool = True, studies: bool = Tru
     (:func:`write_study_recordings`), which the simulate stage compares its predictions with.
     """
     from .resources import scenarios_dir
-    from .vehicle.scenario import load_scenario
+    from .scenario_io import load_scenario
     from .vehicle.virtual_rides import RIDE_PLAN, ride_plan, virtual_recordings
 
     parts = []

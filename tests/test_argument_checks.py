@@ -103,7 +103,7 @@ def _slatted():
 
 
 def _scenario():
-    from tyrelab.vehicle.scenario import load_scenario
+    from tyrelab.scenario_io import load_scenario
 
     return load_scenario(Path(__file__).resolve().parents[1] / "raw" / "scenarios" / "modern_tractor.toml")
 
@@ -380,6 +380,11 @@ ROWS = [
     (f"{VE}.ride.input_cross_spectra", dict(tyres=["front", "rear"], side_spectrum=None, f_Hz=[1.0], v=0.0, wheelbase_m=2.5), "v"),
     (f"{VE}.ride.ride", dict(scenario="modern.toml"), "scenario"),
     (f"{VE}.ride.ride_sweep", dict(scenario=_scenario, max_variants=0), "max_variants"),
+    (f"{VE}.ride.ride_variants", dict(scenarios=["modern.toml"]), "scenarios"),
+    (f"{VE}.ride.expected_sweep", dict(scenario="modern.toml", front_pressures_bar=[1.0], rear_pressures_bar=[1.0]), "scenario"),
+    (f"{VE}.ride.expected_sweep", dict(scenario=_scenario, front_pressures_bar=[], rear_pressures_bar=[1.0]), "front_pressures_bar"),
+    (f"{VE}.ride.expected_weighted_rms", dict(a=np.zeros((1, 2, 2)), b=np.zeros((1, 2, 4)), c=np.zeros((1, 1, 2)), d=np.zeros((1, 1, 3)), tyres=["front", "rear"], grid={}, env={}, seat_tf=None, axes=["z"]), "a"),
+    (f"{VE}.ride.expected_weighted_rms", dict(a=np.zeros((1, 2, 2)), b=np.zeros((1, 2, 4)), c=np.zeros((1, 1, 2)), d=np.zeros((1, 1, 4)), tyres=["front", "rear"], grid={}, env={}, seat_tf=None, axes=["z"], chunk=0), "chunk"),
     (f"{VE}.ride.result_json", dict(results=[]), "results"),
     (f"{VE}.ride.results_table", dict(results=[None]), "results"),
     # vehicle/ride_validation.py
@@ -388,9 +393,9 @@ ROWS = [
     (f"{VE}.ride_validation.validation_rows", dict(measured=None, predicted_signals={}, predicted_fs_Hz=FS, known_profile=False), "measured"),
     (f"{VE}.ride_validation.validation_statistics", dict(rows=[1, 2]), "rows"),
     # vehicle/scenario.py
-    (f"{VE}.scenario.load_scenario", dict(path=3), "path"),
+    ("tyrelab.scenario_io.load_scenario", dict(path=3), "path"),
     (f"{VE}.scenario.parse_scenario", dict(text=b"name = 1"), "text"),
-    (f"{VE}.scenario.read_profile_csv", dict(path=3), "path"),
+    ("tyrelab.scenario_io.read_profile_csv", dict(path=3), "path"),
     (f"{VE}.scenario.with_overrides", dict(scenario=_scenario, front_pressure_bar=-1.0), "front_pressure_bar"),
     (f"{VE}.scenario.with_values", dict(scenario="modern.toml", values={"tractor.mass_kg": 2.0}), "scenario"),
     (f"{VE}.scenario.numeric_key", dict(key=3), "key"),

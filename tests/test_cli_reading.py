@@ -193,7 +193,7 @@ def test_warehouse_query_takes_the_build_folder(tiny_warehouse):
 
 
 def test_ride_takes_an_absolute_profile_path_for_the_users_own_file(tmp_path, capsys):
-    from tyrelab.vehicle.scenario import ScenarioError, load_scenario
+    from tyrelab.scenario_io import ScenarioError, load_scenario
 
     track = tmp_path / "elsewhere" / "track.csv"
     track.parent.mkdir()

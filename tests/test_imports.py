@@ -35,10 +35,7 @@ UPPER = ("tyrelab.stages", "tyrelab.report", "tyrelab.cli", "tyrelab.warehouse",
 #: Module cycles that exist today and are being removed: each entry is the exact set of modules
 #: of one cycle (a strongly connected component of the import graph) and who removes it.
 #: Remove an entry when its cycle is gone; the test fails while a listed cycle is missing.
-ALLOWED_MODULE_CYCLES = {
-    # scenario_limits reads a profile CSV through scenario.read_profile_csv (function-level import)
-    frozenset({"tyrelab.vehicle.scenario", "tyrelab.vehicle.scenario_limits"}): "issue 25 (vehicle/scenario_limits.py)",
-}
+ALLOWED_MODULE_CYCLES: dict[frozenset, str] = {}  # none left (issue 23 removed vehicle.scenario <-> scenario_limits)
 #: Upward arrows (importer, imported module) from a pure package that exist and are being removed,
 #: and who removes them (none left: issue 23 moved the scenario tasks out of vehicle/ride.py).
 ALLOWED_UPWARD: dict[tuple[str, str], str] = {}

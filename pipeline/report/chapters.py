@@ -331,6 +331,10 @@ CHAPTERS: tuple[Chapter, ...] = (
                 FigureSpec("", "Seat a_w (highest axis: a_wz, 1.4·a_wx or 1.4·a_wy) against speed per scenario, at the "
                                "scenario's tyre pressures; lines: the levels that reach EAV and ELV in 8 h",
                            "ride_aw_speed", ("ride_results",), "simulate", module="ride_figures"),
+                FigureSpec("", "Seat a_w per axis (a_wz; 1.4·a_wx; 1.4·a_wy in 3-D) against speed per scenario, at the "
+                               "scenario's tyre pressures (dotted, a single scenario: the frequency-domain expectation); "
+                               "lines: the levels that reach EAV and ELV in 8 h",
+                           "ride_aw_axes_speed", ("ride_results",), "simulate", module="ride_figures"),
                 TableSpec("", "Ride scenarios: seat vibration per speed", "ride_results", "simulate",
                           ours_sql="SELECT scenario, speed_km_h, front_pressure_bar, rear_pressure_bar, a_wz_m_s2, "
                                    "expected_a_wz_m_s2, a_wx_m_s2, a_wy_m_s2, a_v_m_s2, vdv_m_s1_75, crest_factor, "

@@ -24,7 +24,7 @@ from ..vehicle import iso2631
 from .figures import MARKERS, _figure, _has, _plain_log, to_svg
 
 __all__ = ["seat_psd", "seat_transmissibility", "aw_against_speed", "aw_against_pressure", "ride_aw_speed",
-           "study_aw_speed", "exposure_levels", "hours_heatmap"]
+           "study_aw_speed", "exposure_levels", "hours_heatmap", "ride_aw_axes_speed"]
 
 
 def exposure_levels(hours_per_day: float) -> dict[str, float]:
@@ -200,6 +200,17 @@ def ride_aw_speed(ride_results: pd.DataFrame) -> str | None:
     ax.set_ylim(bottom=0)
     ax.legend(loc="upper left", bbox_to_anchor=(0.0, 0.93))
     return to_svg(fig)
+
+
+def ride_aw_axes_speed(ride_results: pd.DataFrame) -> str | None:
+    """Report: per-axis a_wz, 1.4 a_wx and (3-D) 1.4 a_wy against speed, one line per scenario at its
+    own tyre pressures (:func:`aw_against_speed` with the scenarios as its variants)."""
+    if not _has(ride_results, "scenario", "speed_km_h", "a_wz_m_s2", "a_wx_m_s2"):
+        return None
+    r = ride_results
+    if "is_nominal" in r:
+        r = r[r["is_nominal"].astype(bool)]
+    return aw_against_speed(r.assign(variant=r["scenario"].astype(str).str[:48]), 8.0)
 
 
 def study_aw_speed(iso: pd.DataFrame) -> str | None:

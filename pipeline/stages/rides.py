@@ -119,7 +119,7 @@ def _validate(path: Path, channel_map, scenario_path: Path, speed_km_h: float, t
     from ..rawformat.rides import open_recording
     from ..vehicle import ride_validation as rv
     from ..vehicle.measured_ride import analyse_recording
-    from ..vehicle.scenario import ScenarioError, load_scenario
+    from ..scenario_io import ScenarioError, load_scenario
 
     try:
         scenario = load_scenario(scenario_path)
@@ -166,7 +166,7 @@ def run(ctx: Context) -> StageResult:
     from ..rawformat import load_channel_map
     from ..vehicle import ride_validation as rv
     from ..vehicle.daily_exposure import TaskExposure, daily_exposure
-    from ..vehicle.scenario import ScenarioError, load_scenario
+    from ..scenario_io import ScenarioError, load_scenario
 
     t0 = time.perf_counter()
     schema = load_schema("raw_rides")

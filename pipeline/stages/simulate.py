@@ -57,7 +57,7 @@ from ..tyre.models import THESIS_TABLES, thesis_stiffness_model
 from ..vehicle import bounce_pitch, ride, studies
 from ..vehicle import published_layouts as layouts
 from ..vehicle.model import assemble
-from ..vehicle.scenario import ScenarioError, load_scenario
+from ..scenario_io import ScenarioError, load_scenario
 from .base import Context, Progress, StageResult, write_quarantine
 from .state import ItemCache
 
@@ -156,7 +156,8 @@ def _study(item: tuple) -> dict:
         xii, stationary, recordings = args
         car = studies.carriage_study(xii, stationary, seed=SEED, cases=done, recordings=recordings)
         return {**_carriage_tables(car), "cases": car["cases"], "reused": sorted(done)}
-    return {**studies.tractor_study(*args, seed=SEED, cases=done), "reused": sorted(done)}
+    mass, tyres, xviii = args
+    return {**studies.tractor_study(mass, tyres, seed=SEED, cases=done, table_xviii=xviii), "reused": sorted(done)}
 
 
 def _task(item: tuple):
@@ -264,10 +265,12 @@ def _study_plan(pub: dict, cache: ItemCache, folder: Path, carriage_recordings: 
     mass, tyres = layouts.tractor_mass(pub["table_xv"]), layouts.tractor_tyres(pub["table_xvi"])
     recs = carriage_recordings or {}
     digests = {k: d for k, (d, _) in recs.items()}
-    keys = {"tractor": cache.key("tractor", mass, tyres, SEED),
+    xviii = pub["table_xviii"]  # the sweep's longitudinal elements: <raw>/published when it has one
+    keys = {"tractor": cache.key("tractor", mass, tyres, studies.longitudinal_grid(xviii), SEED),
             "carriage": cache.key("carriage", xii, stationary, SEED, sorted(digests.items()))}
     case_keys, problems = {}, []
-    for name, what, cases in (("tractor", "tractor study (table_xv, table_xvi)", lambda: studies.tractor_case_inputs(mass, tyres)),
+    for name, what, cases in (("tractor", "tractor study (table_xv, table_xvi)",
+                               lambda: studies.tractor_case_inputs(mass, tyres, table_xviii=xviii)),
                               ("carriage", "carriage study (table_xii)", lambda: studies.carriage_case_inputs(xii, stationary))):
         try:  # a carriage case reads its run's recording (its digest); a tractor case predictions only
             case_keys[name] = [cache.key(f"{name}-case", c, SEED,
@@ -277,7 +280,8 @@ def _study_plan(pub: dict, cache: ItemCache, folder: Path, carriage_recordings: 
             problems.append(f"{what}: {exc}")
     if problems:
         raise published.PublishedTableError(f"{folder}: {'; '.join(problems)}")
-    return keys, {"tractor": (mass, tyres), "carriage": (xii, stationary, {k: a for k, (_, a) in recs.items()})}, case_keys
+    return keys, {"tractor": (mass, tyres, xviii),
+                  "carriage": (xii, stationary, {k: a for k, (_, a) in recs.items()})}, case_keys
 
 
 #: Item kinds of the studies' cases in the stage's cache (counted apart in its message).

@@ -95,16 +95,25 @@ class FohSystem:
             if x0.shape != (self.n_states,):
                 raise ValueError(f"x0: expected shape ({self.n_states},), got {x0.shape}")
             q0 = self.inv @ (x0 - self.gamma2 @ w[:, 0])
+        # the modal inputs g_k = (V^-1 B_d) w_k of every mode at once, real and imaginary parts in
+        # real arithmetic; a real mode (real eigenvalue and input row) runs a real filter
+        keep = [i for i in range(self.n_states) if self.mu[i].imag >= 0]
+        wk = w[:, :-1]
+        g_re = self.g_in[keep].real @ wk
+        g_im = self.g_in[keep].imag @ wk
         modes = []
-        for i in range(self.n_states):  # modal recursion q_{k+1} = mu q_k + g_k; a conjugate pair counted once, twice
+        for j, i in enumerate(keep):  # modal recursion q_{k+1} = mu q_k + g_k; a conjugate pair counted once, twice
             mu = self.mu[i]
-            if mu.imag < 0:
-                continue
             factor = 2.0 if mu.imag > 0 else 1.0
-            g = self.g_in[i].real @ w[:, :-1] + 1j * (self.g_in[i].imag @ w[:, :-1])
-            q = np.empty(w.shape[1], dtype=complex)
-            q[0] = q0[i]
-            q[1:] = signal.lfilter([1.0], [1.0, -mu], g, zi=[mu * q0[i]])[0]
+            real = mu.imag == 0 and q0[i].imag == 0 and not g_im[j].any()
+            if real:
+                g, mu_i, q_0 = g_re[j], mu.real, q0[i].real
+                q = np.empty(w.shape[1])
+            else:
+                g, mu_i, q_0 = g_re[j] + 1j * g_im[j], mu, q0[i]
+                q = np.empty(w.shape[1], dtype=complex)
+            q[0] = q_0
+            q[1:] = signal.lfilter([1.0], [1.0, -mu_i], g, zi=[mu_i * q_0])[0]
             modes.append((i, factor, q))
         return modes, w, self.dd @ w
 
@@ -116,9 +125,19 @@ class FohSystem:
         rows = list(rows)
         at = slice(0, stop, step)
         y = direct[rows, at]
-        for i, factor, q in modes:
-            y += np.outer(factor * self.cv[rows, i].real, q[at].real)
-            y -= np.outer(factor * self.cv[rows, i].imag, q[at].imag)
+        if not modes:
+            return y
+        # y += sum over modes of factor (Re c Re q - Im c Im q), as two real matrix products
+        idx = [i for i, _, _ in modes]
+        fac = np.array([f for _, f, _ in modes])
+        cv = self.cv[np.ix_(rows, idx)] * fac
+        q_re = np.array([q[at].real for _, _, q in modes])
+        cplx = [j for j, (_, _, q) in enumerate(modes) if np.iscomplexobj(q)]
+        q_im = np.array([modes[j][2][at].imag for j in cplx]) if cplx else None
+        for r in range(len(rows)):  # row by row: a row's numbers do not depend on the other rows asked for
+            y[r] += cv[r].real @ q_re
+            if cplx:
+                y[r] -= cv[r, cplx].imag @ q_im
         return y
 
     def state_at(self, kept, k: int) -> np.ndarray:

@@ -38,6 +38,7 @@ added to the tractor.
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -370,6 +371,61 @@ class Assembly:
             raise ValueError(f"outputs: unknown {missing} (known: {', '.join(out_rows)})")
         out = np.array([out_rows[o] for o in wanted]).reshape(len(wanted), n + ni)
         return LinearModel(rows[:, :n], rows[:, n:], out[:, :n], out[:, n:], tuple(names), self.inputs, tuple(wanted))
+
+    def linear_tyres(self, outputs, stiffness_N_per_m: dict, damping_N_s_per_m: dict | None = None):
+        """:meth:`linear` for many values of the axles' tyre stiffness and damping at once.
+
+        The model in contact is affine in each tyre element's stiffness and damping (they enter
+        the force rows linearly, and ``M⁻¹`` and the output rows are fixed), so the model of
+        other tyres is this one plus the per-unit change times the difference: two more
+        assemblies per axle and quantity, then numpy over the variants (a pressure sweep's
+        linear models without assembling each).
+
+        Parameters
+        ----------
+        outputs : sequence of str
+            As :meth:`linear`.
+        stiffness_N_per_m, damping_N_s_per_m : dict
+            Axle (``front``/``rear``) -> per-tyre values, shape (V,); an axle not given keeps
+            its parts' value.
+
+        Returns
+        -------
+        a, b, c, d : ndarray
+            Shapes (V, n, n), (V, n, m), (V, p, n), (V, p, m).
+
+        Examples
+        --------
+        >>> p = Parts(Chassis(5120.0, 6210.0, 0.838), Axle("front", 1.54, 4.25e5, 1.5e3),
+        ...           Axle("rear", -0.896, 3.3e5, 1e3))
+        >>> a, b, c, d = assemble(p).linear_tyres(["seat_vertical_m_s2"], {"front": np.array([2e5, 4.25e5])})
+        >>> bool(np.allclose(a[1], assemble(p).linear().a, rtol=1e-12, atol=0))
+        True
+        """
+        import copy
+
+        base = self.linear(outputs)
+        given = {("tyre_stiffness_N_per_m", k): np.asarray(v, float) for k, v in stiffness_N_per_m.items()}
+        given.update({("tyre_damping_N_s_per_m", k): np.asarray(v, float) for k, v in (damping_N_s_per_m or {}).items()})
+        n_var = {v.shape for v in given.values()}
+        if len(n_var) != 1 or len(next(iter(n_var))) != 1:
+            raise ValueError(f"stiffness_N_per_m, damping_N_s_per_m: one 1-D array of the same length each, got {n_var}")
+        size = next(iter(n_var))[0]
+        out = [np.repeat(m[None], size, axis=0) for m in base.abcd]
+        per = 1.0 if self.parts.three_d else 2.0  # the pitch plane: the axle's two tyres in one element
+        for (attr, axle), values in given.items():
+            if axle not in ("front", "rear"):
+                raise ValueError(f"stiffness_N_per_m, damping_N_s_per_m: unknown axle {axle!r}")
+            x0 = float(getattr(getattr(self.parts, axle), attr))
+            step = abs(x0) if x0 != 0 else 1.0
+            other = copy.copy(self)
+            field_ = "stiffness" if "stiffness" in attr else "damping"
+            other.elements = [dataclasses.replace(e, **{field_: per * (x0 + step)})
+                              if e.input is not None and e.name.startswith(axle) else e for e in self.elements]
+            moved = other.linear(outputs)
+            for m, m0, m1 in zip(out, base.abcd, moved.abcd):
+                m += (values - x0)[:, None, None] * ((m1 - m0) / step)[None]
+        return tuple(out)
 
     # ----------------------------------------------------------------- undamped modes
     def undamped(self, coordinates=None) -> tuple[np.ndarray, np.ndarray, tuple[str, ...]]:

@@ -40,6 +40,7 @@ SI inside; km/h, kN/m and bar at the edges, as in the key names.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import itertools
 import math
 from dataclasses import dataclass, field
@@ -62,7 +63,7 @@ from . import lti
 from . import metrics as mt
 from . import profiles as pr
 from .carriage import GRAVITY_M_S2
-from .scenario import Scenario, read_profile_csv, with_overrides, with_values
+from .scenario import Scenario, with_overrides, with_values
 from .carriage import half_step_input
 from .model import Assembly, Axle, Ballast, Cab, Chassis, Implement, Parts, SeatPoint, assemble
 from .tractor import Tractor, simulate, tractor_parts
@@ -94,7 +95,11 @@ __all__ = [
     "modes",
     "input_cross_spectra",
     "ride",
+    "ride_variants",
+    "RideCache",
     "ride_sweep",
+    "expected_weighted_rms",
+    "expected_sweep",
     "result_json",
     "results_table",
     "VERDICTS",
@@ -190,7 +195,13 @@ class ShippedTyres:
         """The :class:`~tyrelab.tyre.stiffness.StiffnessModel` of ``[tyres.*] formula``."""
         if formula == "build":
             raise ValueError('formula = "build" needs --build (a warehouse with table formula_fit)')
-        return published.thesis_stiffness_model()
+        return _thesis_stiffness_model()
+
+
+@functools.lru_cache(maxsize=1)
+def _thesis_stiffness_model():
+    """The shipped thesis stiffness model (built once per process: a sweep asks for it per variant)."""
+    return published.thesis_stiffness_model()
 
 
 def _formula_stiffness(spec, tyre_data=None) -> tuple[float, str, list[str], float]:
@@ -207,8 +218,7 @@ def _model_damping(spec, speeds_km_h) -> tuple[np.ndarray, str, list[str]]:
     its source text and warnings (the interval at the first speed, where the model extrapolates)."""
     from ..tyre import damping_fit
 
-    fit = damping_fit.fit_damping(damping_fit.damping_points(published.read_published("table_vii"),
-                                                             published.read_published("table_ii")))
+    fit = _damping_fit()
     preds = [fit.predict(spec.pressure_bar, float(v), spec.age_years, size=parse_tyre_size(spec.size).designation)
              for v in np.asarray(speeds_km_h, float)]
     c = np.array([p.damping_kN_s_per_m for p in preds])
@@ -227,6 +237,15 @@ def _model_damping(spec, speeds_km_h) -> tuple[np.ndarray, str, list[str]]:
                         f"{lo_v:g}-{hi_v:g} km/h: evaluated at the nearest of those")
     warnings += sorted({w for p in preds for w in p.warnings if not w.startswith("speed ")})
     return c, src, warnings
+
+
+@functools.lru_cache(maxsize=1)
+def _damping_fit():
+    """The Table VII damping model fitted to the shipped tables (once per process: a sweep asks per variant)."""
+    from ..tyre import damping_fit
+
+    return damping_fit.fit_damping(damping_fit.damping_points(published.read_published("table_vii"),
+                                                             published.read_published("table_ii")))
 
 
 def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
@@ -560,7 +579,10 @@ def build_profile(scenario: Scenario) -> Track:
         prof = pr.slatted_track(seed=s.seed, length_m=s.length_m)
         spectrum, source = None, ""
     else:
-        x, left, right = read_profile_csv(s.profile)
+        if s.profile_data is None:
+            raise ValueError(f"surface.profile {s.profile}: its data were not read (read scenarios with "
+                             "tyrelab.scenario_io.load_scenario or parse_scenario)")
+        x, left, right = s.profile_data
         dx = float(np.median(np.diff(x)))
         # the CSV's own grid: (end - start)/dx is a whole number up to the rounding of the
         # distances written in the file, which must not drop the last sample
@@ -856,8 +878,49 @@ def _mode_intervals(asm, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: flo
     return {m: [base[m] - 1.96 * math.sqrt(var[m]), base[m] + 1.96 * math.sqrt(var[m])] for m in base}
 
 
+class RideCache:
+    """What the runs of several variants share in one process: the tracks (by surface), each wheel
+    track enveloped (by footprint or radius) and the seat filter's discretisation. :func:`ride_sweep`
+    passes one to all its variants; a caller running variants one by one may pass its own."""
+
+    def __init__(self):
+        self.tracks: dict = {}
+        self.enveloped: dict = {}
+        self.seat: dict = {}
+
+    def track(self, scenario: Scenario) -> tuple[tuple, Track]:
+        """(key, :class:`Track`) of ``scenario``'s surface (:func:`build_profile`, once per surface)."""
+        t = scenario.tractor
+        key = (scenario.surface, t.wheelbase_m, t.three_d, _track_width_m(scenario))
+        if key not in self.tracks:
+            self.tracks[key] = build_profile(scenario)
+        return key, self.tracks[key]
+
+    def envelope(self, key: tuple, track: pr.Profile, side: str, kind: str, footprint_m: float,
+                 radius_m: float) -> np.ndarray:
+        """One wheel track (``left``, ``right`` or the axle ``mean`` of the two enveloped) enveloped."""
+        what = footprint_m if kind in ("tapered", "fixed") else radius_m if kind == "rigid_band" else None
+        k = (key, side, kind, what)
+        if k not in self.enveloped:
+            if side == "mean":
+                self.enveloped[k] = 0.5 * (self.envelope(key, track, "left", kind, footprint_m, radius_m)
+                                           + self.envelope(key, track, "right", kind, footprint_m, radius_m))
+            else:
+                self.enveloped[k] = _envelope_side(track, side, kind, footprint_m, radius_m)
+        return self.enveloped[k]
+
+    def seat_system(self, seat) -> lti.FohSystem | None:
+        """The linear seat suspension discretised at :data:`DT_S` (None for a rigid seat)."""
+        if seat.suspension != "linear":
+            return None
+        k = (seat.natural_frequency_Hz, seat.damping_ratio)
+        if k not in self.seat:
+            self.seat[k] = lti.discretise(*seat_filter(*k), DT_S)
+        return self.seat[k]
+
+
 def ride(scenario: Scenario, tyre_data=None, with_spectra: bool = True,
-         with_signals: bool = False) -> RideResult:
+         with_signals: bool = False, cache: RideCache | None = None) -> RideResult:
     """Simulate a scenario at every speed and evaluate the seat vibration.
 
     Parameters
@@ -871,122 +934,216 @@ def ride(scenario: Scenario, tyre_data=None, with_spectra: bool = True,
     with_signals : bool
         Also keep the seat's predicted records (:attr:`RideResult.signals`), e.g. to compare
         with a recording (:mod:`tyrelab.vehicle.ride_validation`).
+    cache : RideCache, optional
+        Share tracks, enveloped wheel tracks and the seat filter with other calls.
 
     Returns
     -------
     RideResult
     """
     _validate.instance("scenario", scenario, Scenario)
+    return ride_variants([scenario], tyre_data, with_spectra, with_signals, cache)[0]
+
+
+def ride_variants(scenarios, tyre_data=None, with_spectra: bool = True, with_signals: bool = False,
+                  cache: RideCache | None = None) -> list[RideResult]:
+    """:func:`ride` for several scenarios (variants) at once, batched: the runs are taken speed by
+    speed, so the wheel inputs of a speed are built once for every variant that shares its track,
+    footprints and radii, and a run's record is reduced to its numbers as soon as it is simulated.
+    Each result is what :func:`ride` gives for that scenario alone."""
+    for k, sc in enumerate(scenarios):
+        _validate.instance(f"scenarios[{k}]", sc, Scenario)
+    cache = cache or RideCache()
+    preps = [_prepare(sc, tyre_data, cache) for sc in scenarios]
+    for p in preps:
+        p["with_spectra"], p["with_signals"] = with_spectra, with_signals
+    groups: dict = {}
+    for j, p in enumerate(preps):
+        for i, speed in enumerate(p["speeds"]):
+            v = speed / 3.6
+            start, stop = _record_window(p["track"], p["wb"], v, p["sc"].simulation.duration_s)
+            groups.setdefault((p["track_key"], v, start, stop), []).append((j, i))
+    for (track_key, v, start, stop), members in groups.items():
+        inputs: dict = {}  # wheel input (full steps) -> (u, du), this speed only
+        for j, i in members:
+            _linear_run(preps[j], i, v, start, stop, track_key, inputs, cache)
+        del inputs
+    for p in preps:
+        _redo_lifting(p)
+    return [_finish(p) for p in preps]
+
+
+def _prepare(scenario: Scenario, tyre_data, cache: RideCache) -> dict:
+    """Per variant: tyres, track, seat filter, outputs; the runs are filled in by :func:`_linear_run`."""
     tyres = resolve_tyres(scenario, tyre_data)
-    track = build_profile(scenario)
-    seat = scenario.seat
-    seat_ss = seat_filter(seat.natural_frequency_Hz, seat.damping_ratio) if seat.suspension == "linear" else None
-    hours = scenario.exposure.hours_per_day
-    wb = scenario.tractor.wheelbase_m
-    radii = (tyres["front"].radius_m, tyres["rear"].radius_m)
-    f_grid = np.geomspace(*FIGURE_BAND_HZ, 300)
-    rows, spectra, trans, signals = [], [], [], {}
-    warnings = [f"tyres.{ax}: {w}" for ax in ("front", "rear") for w in tyres[ax].warnings]
-    speeds = scenario.exposure.speeds_km_h
+    track_key, track = cache.track(scenario)
     axes = seat_axes(scenario)  # axis -> output name
-    seat_outputs = tuple(axes.values())
-    runs = []  # per speed: assembly, window, footprints, linear model, outputs, method, lift-off flags
-    for i, speed in enumerate(speeds):
-        v = speed / 3.6
-        asm = assemble(build_parts(scenario, tyres, i))
-        start, stop = _record_window(track, wb, v, scenario.simulation.duration_s)
-        fp = (float(tyres["front"].footprint_m[i]), float(tyres["rear"].footprint_m[i]))
-        u, du = tyre_inputs(asm, track.profile, scenario.surface.enveloping, fp, radii, v, wb, stop)
-        forces = tuple(f"{t}_force_N" for t in asm.tyres)
-        lm = asm.linear(seat_outputs + forces)
-        w = np.empty((2 * len(asm.tyres), stop))
-        w[0::2], w[1::2] = u[:, ::2], du[:, ::2]
-        y = lti.discretise(*lm.abcd, DT_S).run(w)
-        static = asm.static_tyre_loads_N()
-        off = _axle_flags(asm, {t: y[len(seat_outputs) + j] <= -static[t] for j, t in enumerate(asm.tyres)})
-        runs.append({"asm": asm, "v": v, "start": start, "stop": stop, "fp": fp, "lm": lm, "y": y[:len(seat_outputs)],
-                     "off": off, "method": "linear"})
-    # runs whose tyres would pull: the nonlinear model, batched (exact in contact, RK4 across the
-    # lift-off intervals, as the ch. 7 study)
-    redo = [k for k, r in enumerate(runs) if scenario.simulation.lift_off and r["off"][:, r["start"]:r["stop"]].any()]
-    if redo:
-        n_max = max(runs[k]["stop"] for k in redo)
-        inputs = [tyre_inputs(runs[k]["asm"], track.profile, scenario.surface.enveloping, runs[k]["fp"], radii,
-                              runs[k]["v"], wb, n_max) for k in redo]
-        asms = [runs[k]["asm"] for k in redo]
-        forces = tuple(f"{t}_force_N" for t in asms[0].tyres)
-        sim = simulate(asms, np.array([x[0] for x in inputs]), np.array([x[1] for x in inputs]), DT_S, lift_off=True,
-                       method="auto", record=seat_outputs + forces)
-        for row_i, k in enumerate(redo):
-            r = runs[k]
-            static = r["asm"].static_tyre_loads_N()
-            r["y"] = np.vstack([sim[o][row_i, :r["stop"]] for o in seat_outputs])
-            # off the ground: the tyre force at minus its static load (the clamp), to rounding
-            r["off"] = _axle_flags(r["asm"], {t: sim[f"{t}_force_N"][row_i, :r["stop"]] <= -static[t] * (1 - 1e-6)
-                                              for t in r["asm"].tyres})
-            r["method"] = "nonlinear (tyre lift-off)"
-    nat, nodal = _modes(runs[0]["asm"])
-    nat_ci = _mode_intervals(runs[0]["asm"], tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
+    return {"sc": scenario, "tyres": tyres, "track": track, "track_key": track_key,
+            "wb": scenario.tractor.wheelbase_m, "speeds": scenario.exposure.speeds_km_h, "axes": axes,
+            "seat_sys": cache.seat_system(scenario.seat),
+            "seat_ss": seat_filter(scenario.seat.natural_frequency_Hz, scenario.seat.damping_ratio)
+            if scenario.seat.suspension == "linear" else None,
+            "radii": (tyres["front"].radius_m, tyres["rear"].radius_m), "runs": {}}
+
+
+def _wheel_inputs(p: dict, asm, fp, v: float, n_steps: int, track_key, inputs: dict, cache: RideCache):
+    """Ground elevation and rate under each tyre element of ``asm`` at the full steps (the exact
+    path's inputs ``w``, rows ``u, u'`` per tyre): the even samples of :func:`tyre_inputs`."""
+    track, kind, wb = p["track"].profile, p["sc"].surface.enveloping, p["wb"]
+    sides = ("left", "right") if asm.parts.three_d else ("mean",)
+
+    def wheel(side: str, axle: int):
+        key = (track_key, side, axle, kind, fp[axle], p["radii"][axle], v, n_steps)
+        if key not in inputs:
+            h = cache.envelope(track_key, track, side, kind, fp[axle], p["radii"][axle])
+            inputs[key] = half_step_input(track.x_m, h, v, n_steps, wb if axle == 0 else 0.0, DT_S, half_steps=False)
+        return inputs[key]
+
+    rows = {}
+    for side in sides:
+        (uf, udf), (ur, udr) = wheel(side, 0), wheel(side, 1)
+        u0 = 0.5 * (uf[0] + ur[0])
+        rows["front" if side == "mean" else f"front_{side}"] = (uf - u0, udf)
+        rows["rear" if side == "mean" else f"rear_{side}"] = (ur - u0, udr)
+    w = np.empty((2 * len(asm.tyres), n_steps))
+    for j, t in enumerate(asm.tyres):
+        w[2 * j], w[2 * j + 1] = rows[t]
+    return w
+
+
+def _linear_run(p: dict, i: int, v: float, start: int, stop: int, track_key, inputs: dict, cache: RideCache) -> None:
+    """Speed ``i`` of variant ``p`` on the exact linear path; a run whose tyres stay on the ground
+    (or without lift-off) is reduced to its numbers now, one that would pull is left for
+    :func:`_redo_lifting`."""
+    sc, tyres = p["sc"], p["tyres"]
+    asm = assemble(build_parts(sc, tyres, i))
+    fp = (float(tyres["front"].footprint_m[i]), float(tyres["rear"].footprint_m[i]))
+    seat_outputs = tuple(p["axes"].values())
+    lm = asm.linear(seat_outputs + tuple(f"{t}_force_N" for t in asm.tyres))
+    w = _wheel_inputs(p, asm, fp, v, stop, track_key, inputs, cache)
+    system = lti.discretise(*lm.abcd, DT_S)
+    kept = system.modes(w)
+    ns = len(seat_outputs)
+    forces = system.outputs(kept, range(ns, ns + len(asm.tyres)))
+    static = asm.static_tyre_loads_N()
+    off = _axle_flags(asm, {t: forces[j] <= -static[t] for j, t in enumerate(asm.tyres)})
+    run = {"asm": asm, "v": v, "start": start, "stop": stop, "fp": fp, "lm": lm, "method": "linear",
+           "lift": tuple(float(o[start:stop].mean()) for o in off)}
+    p["runs"][i] = run
+    if sc.simulation.lift_off and off[:, start:stop].any():
+        return  # the nonlinear model, batched per variant (_redo_lifting)
+    _reduce(p, i, system.outputs(kept, range(ns)))
+
+
+def _redo_lifting(p: dict) -> None:
+    """The runs of ``p`` whose tyres would pull: the nonlinear model, batched (exact in contact,
+    RK4 across the lift-off intervals, as the ch. 7 study)."""
+    sc = p["sc"]
+    redo = [i for i, r in sorted(p["runs"].items()) if "row" not in r]
+    if not redo:
+        return
+    seat_outputs = tuple(p["axes"].values())
+    runs = [p["runs"][i] for i in redo]
+    n_max = max(r["stop"] for r in runs)
+    inputs = [tyre_inputs(r["asm"], p["track"].profile, sc.surface.enveloping, r["fp"], p["radii"], r["v"], p["wb"],
+                          n_max) for r in runs]
+    asms = [r["asm"] for r in runs]
+    forces = tuple(f"{t}_force_N" for t in asms[0].tyres)
+    sim = simulate(asms, np.array([x[0] for x in inputs]), np.array([x[1] for x in inputs]), DT_S, lift_off=True,
+                   method="auto", record=seat_outputs + forces)
+    for row_i, (i, r) in enumerate(zip(redo, runs)):
+        static = r["asm"].static_tyre_loads_N()
+        # off the ground: the tyre force at minus its static load (the clamp), to rounding
+        off = _axle_flags(r["asm"], {t: sim[f"{t}_force_N"][row_i, :r["stop"]] <= -static[t] * (1 - 1e-6)
+                                     for t in r["asm"].tyres})
+        r["lift"] = tuple(float(o[r["start"]:r["stop"]].mean()) for o in off)
+        r["method"] = "nonlinear (tyre lift-off)"
+        _reduce(p, i, np.vstack([sim[o][row_i, :r["stop"]] for o in seat_outputs]))
+
+
+def _reduce(p: dict, i: int, y: np.ndarray) -> None:
+    """The numbers of run ``i`` of ``p`` from its seat-point records ``y`` (one row per seat axis)."""
+    sc, tyres, r, axes = p["sc"], p["tyres"], p["runs"][i], p["axes"]
+    hours = sc.exposure.hours_per_day
+    speed = p["speeds"][i]
+    start, stop, v = r["start"], r["stop"], r["v"]
+    series = dict(zip(axes, y))
+    floor = {ax: sig[start:stop] for ax, sig in series.items()}
+    if p["seat_sys"] is not None:
+        series["z"] = p["seat_sys"].run(series["z"][None, :])[0]
+    series = {ax: sig[start:stop] for ax, sig in series.items()}
     weightings = {"x": "Wd", "y": "Wd", "z": "Wk"}
-    for i, (speed, r) in enumerate(zip(speeds, runs)):
-        v, start, stop, fp, method = r["v"], r["start"], r["stop"], r["fp"], r["method"]
-        a_m, b_m, c_m, d_m = r["lm"].abcd
-        lift = tuple(float(o[start:stop].mean()) for o in r["off"])
-        series = dict(zip(axes, r["y"]))
-        floor = {ax: sig[start:stop] for ax, sig in series.items()}
-        if seat_ss is not None:
-            series["z"] = simulate_state_space(*seat_ss, series["z"][None, :])[0]
-        series = {ax: sig[start:stop] for ax, sig in series.items()}
-        if with_signals:  # the cab floor beneath the seat: before the seat suspension (the model's seat x, y have none)
-            signals[float(speed)] = {**{f"seat_{ax}_m_s2": sig for ax, sig in series.items()},
-                                     **{f"floor_{ax}_m_s2": sig for ax, sig in floor.items()}}
-        weighted = {ax: iso2631.weighted_signal(sig, FS_HZ, weightings[ax]) for ax, sig in series.items()}
-        aw = {ax: float(np.sqrt(np.mean(sig**2))) for ax, sig in weighted.items()}
-        aw.setdefault("y", 0.0)  # the pitch-plane model has no lateral motion
-        vdv = max(iso2631.AXIS_FACTOR[ax] * iso2631.vibration_dose_value(sig, FS_HZ) for ax, sig in weighted.items())
-        duration = series["z"].size / FS_HZ
-        # frequency-domain path: linear model, ground spectra, enveloping and delay
-        expected = _expected(scenario, track, r, seat_ss, axes, v)
-        row = {
-            "speed_km_h": float(speed),
-            "front_pressure_bar": tyres["front"].pressure_bar,
-            "rear_pressure_bar": tyres["rear"].pressure_bar,
-            "front_stiffness_kN_per_m": float(tyres["front"].stiffness_kN_per_m[i]),
-            "rear_stiffness_kN_per_m": float(tyres["rear"].stiffness_kN_per_m[i]),
-            "front_damping_kN_s_per_m": float(tyres["front"].damping_kN_s_per_m[i]),
-            "rear_damping_kN_s_per_m": float(tyres["rear"].damping_kN_s_per_m[i]),
-            "a_wz_m_s2": aw["z"],
-            "a_wx_m_s2": aw["x"],
-            "a_wy_m_s2": aw["y"],
-            "expected_a_wz_m_s2": expected["z"],
-            "expected_a_wx_m_s2": expected["x"],
-            "expected_a_wy_m_s2": expected.get("y", 0.0),
-            "vdv_m_s1_75": vdv,
-            "vdv_daily_m_s1_75": float(vdv * (hours * 3600.0 / duration) ** 0.25),
-            "crest_factor": iso2631.crest_factor(weighted["z"]),
-            "lift_off_fraction_front": lift[0],
-            "lift_off_fraction_rear": lift[1],
-            **exposure(aw["z"], aw["x"], hours, aw["y"]),
-            "hours_per_day": hours,
-            "duration_s": duration,
-            "simulation": method,
-        }
-        if duration < MIN_VERDICT_DURATION_S:  # the exposure numbers stay; the verdict is withheld
-            row["verdict"] = f"no verdict: record {duration:.2f} s, shorter than {MIN_VERDICT_DURATION_S:g} s"
-            warnings.append(f"{speed:g} km/h: the seat record is {duration:.2f} s, shorter than "
-                            f"{MIN_VERDICT_DURATION_S:g} s: too short for a reliable exposure verdict "
-                            "(lengthen surface.length_m or simulation.duration_s)")
-        rows.append(row)
-        if with_spectra:
-            psd = {ax: mt.acceleration_psd(sig, FS_HZ, 0.1) for ax, sig in series.items()}
-            fz = psd["z"][0]
-            band = (fz >= FIGURE_BAND_HZ[0]) & (fz <= FIGURE_BAND_HZ[1])
-            spectra.append(pd.DataFrame({"speed_km_h": float(speed), "frequency_Hz": fz[band],
-                                         **{f"seat_{AXIS_WORDS[ax]}_psd_m2_s4_per_Hz": psd[ax][1][band] for ax in axes}}))
-            trans.append(_transmissibility(r, axes, seat_ss, f_grid, v, wb, float(speed)))
+    weighted = {ax: iso2631.weighted_signal(sig, FS_HZ, weightings[ax]) for ax, sig in series.items()}
+    aw = {ax: float(np.sqrt(np.mean(sig**2))) for ax, sig in weighted.items()}
+    aw.setdefault("y", 0.0)  # the pitch-plane model has no lateral motion
+    vdv = max(iso2631.AXIS_FACTOR[ax] * iso2631.vibration_dose_value(sig, FS_HZ) for ax, sig in weighted.items())
+    duration = series["z"].size / FS_HZ
+    # frequency-domain path: linear model, ground spectra, enveloping and delay
+    expected = _expected(sc, p["track"], r, p["seat_ss"], axes, v)
+    row = {
+        "speed_km_h": float(speed),
+        "front_pressure_bar": tyres["front"].pressure_bar,
+        "rear_pressure_bar": tyres["rear"].pressure_bar,
+        "front_stiffness_kN_per_m": float(tyres["front"].stiffness_kN_per_m[i]),
+        "rear_stiffness_kN_per_m": float(tyres["rear"].stiffness_kN_per_m[i]),
+        "front_damping_kN_s_per_m": float(tyres["front"].damping_kN_s_per_m[i]),
+        "rear_damping_kN_s_per_m": float(tyres["rear"].damping_kN_s_per_m[i]),
+        "a_wz_m_s2": aw["z"],
+        "a_wx_m_s2": aw["x"],
+        "a_wy_m_s2": aw["y"],
+        "expected_a_wz_m_s2": expected["z"],
+        "expected_a_wx_m_s2": expected["x"],
+        "expected_a_wy_m_s2": expected.get("y", 0.0),
+        "vdv_m_s1_75": vdv,
+        "vdv_daily_m_s1_75": float(vdv * (hours * 3600.0 / duration) ** 0.25),
+        "crest_factor": iso2631.crest_factor(weighted["z"]),
+        "lift_off_fraction_front": r["lift"][0],
+        "lift_off_fraction_rear": r["lift"][1],
+        **exposure(aw["z"], aw["x"], hours, aw["y"]),
+        "hours_per_day": hours,
+        "duration_s": duration,
+        "simulation": r["method"],
+    }
+    if duration < MIN_VERDICT_DURATION_S:  # the exposure numbers stay; the verdict is withheld
+        row["verdict"] = f"no verdict: record {duration:.2f} s, shorter than {MIN_VERDICT_DURATION_S:g} s"
+        r["warning"] = (f"{speed:g} km/h: the seat record is {duration:.2f} s, shorter than "
+                        f"{MIN_VERDICT_DURATION_S:g} s: too short for a reliable exposure verdict "
+                        "(lengthen surface.length_m or simulation.duration_s)")
+    r["row"] = row
+    if p["with_signals"]:
+        r["signals"] = {**{f"seat_{ax}_m_s2": sig for ax, sig in series.items()},
+                        **{f"floor_{ax}_m_s2": sig for ax, sig in floor.items()}}
+    if p["with_spectra"]:
+        psd = {ax: mt.acceleration_psd(sig, FS_HZ, 0.1) for ax, sig in series.items()}
+        fz = psd["z"][0]
+        band = (fz >= FIGURE_BAND_HZ[0]) & (fz <= FIGURE_BAND_HZ[1])
+        r["spectra"] = pd.DataFrame({"speed_km_h": float(speed), "frequency_Hz": fz[band],
+                                     **{f"seat_{AXIS_WORDS[ax]}_psd_m2_s4_per_Hz": psd[ax][1][band] for ax in axes}})
+        r["trans"] = _transmissibility(r, axes, p["seat_ss"], np.geomspace(*FIGURE_BAND_HZ, 300), v, p["wb"],
+                                       float(speed))
+
+
+def _finish(p: dict) -> RideResult:
+    """The :class:`RideResult` of variant ``p`` from its reduced runs (in speed order)."""
+    sc, tyres, track, axes = p["sc"], p["tyres"], p["track"], p["axes"]
+    warnings = [f"tyres.{ax}: {w}" for ax in ("front", "rear") for w in tyres[ax].warnings]
+    rows, spectra, trans, signals = [], [], [], {}
+    for i, speed in enumerate(p["speeds"]):
+        r = p["runs"][i]
+        rows.append(r["row"])
+        if "warning" in r:
+            warnings.append(r["warning"])
+        if "signals" in r:  # the cab floor beneath the seat: before the seat suspension (the model's seat x, y have none)
+            signals[float(speed)] = r.pop("signals")
+        if "spectra" in r:
+            spectra.append(r.pop("spectra"))
+            trans.append(r.pop("trans"))
+    first = p["runs"][0]["asm"]
+    nat, nodal = _modes(first)
+    nat_ci = _mode_intervals(first, tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
     cols = ["speed_km_h", "frequency_Hz"]
     return RideResult(
-        scenario=scenario, tyres=tyres, natural_frequencies_Hz=nat, nodal_points_m=nodal,
+        scenario=sc, tyres=tyres, natural_frequencies_Hz=nat, nodal_points_m=nodal,
         speeds=pd.DataFrame(rows),
         spectra=pd.concat(spectra, ignore_index=True) if spectra else pd.DataFrame(columns=cols),
         transmissibility=pd.concat(trans, ignore_index=True) if trans else pd.DataFrame(columns=cols),
@@ -1042,35 +1199,145 @@ def input_cross_spectra(tyres: list[str], side_spectrum, f_Hz, v: float, wheelba
 
 
 def _expected(scenario: Scenario, track: Track, r: dict, seat_ss, axes: dict, v: float) -> dict:
-    """Expected weighted r.m.s. per seat axis from the frequency-domain path."""
-    fp, wb = r["fp"], scenario.tractor.wheelbase_m
-    weightings = {"x": "Wd", "y": "Wd", "z": "Wk"}
-    if not r["asm"].parts.three_d:  # the pitch plane: the axle-mean spectrum (as the ch. 7 study)
+    """Expected weighted r.m.s. per seat axis of one run from the frequency-domain path
+    (:func:`expected_weighted_rms` of its linear model)."""
+    grid = _fd_grid(scenario, track, v)
+    env = {axle: enveloping_response(scenario.surface.enveloping, r["fp"][j], track.profile.dx_m, grid["n"])
+           for j, axle in enumerate(("front", "rear"))}
+    lm = r["lm"]
+    seat_tf = _seat_tf(seat_ss, grid["f"]) if seat_ss is not None else None
+    na = len(axes)
+    out = expected_weighted_rms(lm.a[None], lm.b[None], lm.c[None, :na], lm.d[None, :na], r["asm"].tyres, grid, env,
+                                seat_tf, list(axes))
+    return {ax: float(val[0]) for ax, val in out.items()}
+
+
+def _fd_grid(scenario: Scenario, track: Track, v: float) -> dict:
+    """The frequency-domain path's grid at speed ``v`` (m/s): frequencies ``f`` (Hz, up to the
+    Nyquist frequency of the time path), wavenumbers ``n`` (cycles/m) for the enveloping filters,
+    and the ground input: the pitch plane's axle-mean spectrum ``s_u`` (m²/Hz, as the ch. 7 study),
+    in 3-D the tyres' full cross-spectral matrix (:func:`input_cross_spectra`)."""
+    wb = scenario.tractor.wheelbase_m
+    if not scenario.tractor.three_d:
         n_s, g_s = track.spectrum
         f_s = n_s * v
         keep = f_s <= FS_HZ / 2
-        f_s, n_k, s_u = f_s[keep], n_s[keep], g_s[keep] / v
-        h = frequency_response(*r["lm"].abcd, f_s)
-        env = [enveloping_response(scenario.surface.enveloping, fp[j], track.profile.dx_m, n_k) for j in (0, 1)]
-        g_resp = ground_response(h, f_s, v, wb, env[0], env[1])
-        g_resp[0] = g_resp[0] * (_seat_tf(seat_ss, f_s) if seat_ss is not None else 1.0)
-        return {ax: expected_rms(g_resp[k], f_s, s_u, weightings[ax]) for k, ax in enumerate(axes)}
-    # 3-D: the full input cross-spectral matrix (left/right coherence, front/rear delay)
-    n_s = track.side_spectrum[0]
-    f_s = n_s * v
+        return {"f": f_s[keep], "n": n_s[keep], "s_u": g_s[keep] / v, "wb": wb, "v": v}
+    f_s = track.side_spectrum[0] * v
     f_s = f_s[f_s <= FS_HZ / 2]
-    n_k = f_s / v
-    env = {axle: enveloping_response(scenario.surface.enveloping, fp[j], track.profile.dx_m, n_k)
-           for j, axle in enumerate(("front", "rear"))}
-    h, tyres = _wheel_responses(r, f_s, v, env)
-    s_in = input_cross_spectra(tyres, track.side_spectrum, f_s, v, wb)
-    out = {}
-    for k, ax in enumerate(axes):
-        hk = h[k] * (_seat_tf(seat_ss, f_s) if (seat_ss is not None and ax == "z") else 1.0)
-        s_y = np.einsum("if,ijf,jf->f", hk, s_in, np.conj(hk)).real
-        w = np.abs(iso2631.weighting_response(f_s, weightings[ax]))
-        out[ax] = float(math.sqrt(max(np.trapezoid(s_y * w**2, f_s), 0.0)))
+    return {"f": f_s, "n": f_s / v, "side_spectrum": track.side_spectrum, "wb": wb, "v": v}
+
+
+def expected_weighted_rms(a, b, c, d, tyres, grid: dict, env: dict, seat_tf, axes, chunk: int = 64) -> dict:
+    """Expected ISO 2631-1 weighted r.m.s. of outputs of many linear models on one frequency grid.
+
+    For each model ``(A, B, C, D)`` (stacked, leading axis: the variants) with inputs ``u, u'`` per
+    tyre (:meth:`tyrelab.vehicle.model.Assembly.linear`), the response of output ``p`` to tyre
+    ``t``'s ground displacement is, modally (``A = V Λ V⁻¹``, ``c = C V``, ``b = V⁻¹ B``),
+    ``h_pt(jω) = env_t [ Σ_k c_pk b_k,u' + D_p,u + jω D_p,u' + Σ_k c_pk (b_k,u + λ_k b_k,u') / (jω - λ_k) ]``
+    (``(b_u + jω b_u') / (jω - λ) = b_u' + (b_u + λ b_u') / (jω - λ)``): one small matrix product
+    per variant over the frequencies. The output spectrum is ``h S h^H`` (``S`` the tyres' input
+    cross-spectral matrix; the pitch plane: ``|Σ_t h_t e^{-jωτ_t}|² S_u``, the rear tyre a wheelbase
+    later) and the expected value ``sqrt(∫ S_y |W|² df)`` (W_k on ``z``, W_d on ``x``, ``y``; the seat
+    suspension's transmissibility ``seat_tf`` on ``z``).
+
+    Parameters
+    ----------
+    a, b, c, d : ndarray, shape (V, n, n), (V, n, 2T), (V, p, n), (V, p, 2T)
+        The variants' linear models, rows of ``c``/``d`` in the order of ``axes``.
+    tyres : sequence of str
+        The tyre elements (``front``/``rear`` or ``front_left``, ...), the inputs' order.
+    grid : dict
+        :func:`_fd_grid`.
+    env : dict
+        Axle (``front``/``rear``) -> enveloping transfer function on the grid: shape (F,) for
+        all variants, (V, F), or ``(table, index)``: row ``index[v]`` of ``table`` for variant ``v``.
+    seat_tf : ndarray or None
+        Seat suspension transmissibility on the grid (applied to ``z``).
+    axes : sequence of str
+        Seat axes of the output rows (``z``, ``x``, ``y``).
+    chunk : int
+        Variants per vectorised step (memory).
+
+    Returns
+    -------
+    dict
+        Axis -> ndarray (V,), m/s².
+    """
+    _validate.positive_int("chunk", chunk)
+    a, b, c, d = (np.asarray(x, float) for x in (a, b, c, d))
+    if not (a.ndim == 3 and a.shape[1] == a.shape[2] and b.shape[:2] == a.shape[:2] and c.shape[0] == a.shape[0]
+            and c.shape[2] == a.shape[1] and d.shape == (c.shape[0], c.shape[1], b.shape[2])
+            and b.shape[2] == 2 * len(tyres) and c.shape[1] >= len(axes)):
+        raise ValueError(f"a, b, c, d: shapes {a.shape}, {b.shape}, {c.shape}, {d.shape} are not (V, n, n), "
+                         f"(V, n, 2T), (V, p, n), (V, p, 2T) with T = {len(tyres)} tyres and p >= {len(axes)} axes")
+    f = np.asarray(grid["f"], float)
+    jw = 2j * math.pi * f
+    n_t = len(tyres)
+    axle = [t.split("_")[0] for t in tyres]
+    weight2 = {ax: np.abs(iso2631.weighting_response(f, {"x": "Wd", "y": "Wd", "z": "Wk"}[ax])) ** 2 for ax in axes}
+    seat2 = np.abs(seat_tf) ** 2 if seat_tf is not None else None
+    if "s_u" in grid:  # the pitch plane: rear a wheelbase later, one spectrum
+        delay = np.array([np.exp(-jw * grid["wb"] / grid["v"]) if t.startswith("rear") else np.ones_like(jw)
+                          for t in tyres])
+        s_in = None
+    else:
+        s_in = input_cross_spectra(list(tyres), grid["side_spectrum"], f, grid["v"], grid["wb"])
+    out = {ax: np.empty(a.shape[0]) for ax in axes}
+    n_p, n_s = len(axes), a.shape[1]
+    for lo in range(0, a.shape[0], chunk):
+        sl = slice(lo, lo + chunk)
+        lam, vecs = np.linalg.eig(a[sl])
+        cv = c[sl][:, :n_p] @ vecs  # (V, p, n)
+        vb = np.linalg.solve(vecs, b[sl].astype(complex))  # (V, n, 2T)
+        vb_u, vb_du = vb[:, :, 0::2], vb[:, :, 1::2]
+        nv = lam.shape[0]
+        # modal part h = beta (V, p T, n) times 1/(jw - lam) (V, n, F), in real arithmetic: one real
+        # matrix product [[Re b, -Im b], [Im b, Re b]] [Re r; Im r] per variant
+        beta = (cv[:, :, :, None] * (vb_u + lam[:, :, None] * vb_du)[:, None, :, :]).transpose(0, 1, 3, 2)
+        beta = beta.reshape(nv, n_p * n_t, n_s)
+        big = np.empty((nv, 2 * n_p * n_t, 2 * n_s))
+        big[:, :n_p * n_t, :n_s], big[:, :n_p * n_t, n_s:] = beta.real, -beta.imag
+        big[:, n_p * n_t:, :n_s], big[:, n_p * n_t:, n_s:] = beta.imag, beta.real
+        # 1/(jw - lam) = (re - j im) / (re² + im²), re = -Re lam, im = w - Im lam: (V, 2n, F)
+        basis = np.empty((nv, 2 * n_s, f.size))
+        im = np.subtract(2 * math.pi * f[None, None, :], lam.imag[:, :, None], out=basis[:, n_s:])
+        inv = np.multiply(im, im)
+        inv += (lam.real**2)[:, :, None]
+        np.reciprocal(inv, out=inv)
+        np.multiply(inv, -lam.real[:, :, None], out=basis[:, :n_s])
+        np.multiply(inv, im, out=im)
+        np.negative(im, out=im)
+        h2 = np.matmul(big, basis).reshape(nv, 2, n_p, n_t, f.size)
+        # direct part alpha0 + jw alpha1: alpha0 = c b_u' + D_u, alpha1 = D_u' (real)
+        alpha0 = cv @ vb_du + d[sl][:, :n_p, 0::2]  # (V, p, T)
+        h_re = h2[:, 0] + alpha0.real[..., None]
+        h_im = h2[:, 1] + alpha0.imag[..., None] + (2 * math.pi * f) * d[sl][:, :n_p, 1::2][..., None]
+        env_t = np.stack([_rows(env[x], sl, nv, f.size) for x in axle], axis=1)  # (V, T, F)
+        h_re *= env_t[:, None]
+        h_im *= env_t[:, None]
+        for k, ax in enumerate(axes):
+            if s_in is None:  # |sum_t h_t e^{-jw tau_t}|² S_u
+                r_re = (h_re[:, k] * delay.real - h_im[:, k] * delay.imag).sum(axis=1)
+                r_im = (h_re[:, k] * delay.imag + h_im[:, k] * delay.real).sum(axis=1)
+                s_y = (r_re**2 + r_im**2) * grid["s_u"]
+            else:
+                hk = h_re[:, k] + 1j * h_im[:, k]
+                s_y = np.einsum("vif,ijf,vjf->vf", hk, s_in, np.conj(hk)).real
+            if seat2 is not None and ax == "z":
+                s_y = s_y * seat2
+            out[ax][sl] = np.sqrt(np.maximum(np.trapezoid(s_y * weight2[ax], f, axis=-1), 0.0))
     return out
+
+
+def _rows(env, sl: slice, nv: int, n_f: int) -> np.ndarray:
+    """An axle's enveloping transfer function for the variants ``sl``: one row for all, a row per
+    variant, or ``(table, index)`` (a row of ``table`` per variant)."""
+    if isinstance(env, tuple):
+        table, index = env
+        return np.asarray(table, float)[np.asarray(index)[sl]]
+    env = np.asarray(env, float)
+    return np.broadcast_to(env, (nv, n_f)) if env.ndim < 2 else env[sl]
 
 
 def _transmissibility(r: dict, axes: dict, seat_ss, f_grid, v: float, wb: float, speed: float) -> pd.DataFrame:
@@ -1106,10 +1373,14 @@ def _seat_tf(seat_ss, f_Hz) -> np.ndarray:
     return frequency_response(*seat_ss, f_Hz)[0, 0]
 
 
-def _ride_batch(item: tuple) -> RideResult:
-    """Executor task: one scenario variant (module level, picklable)."""
-    scenario, tyre_data, with_spectra = item
-    return ride(scenario, tyre_data, with_spectra)
+def _ride_batch(item: tuple) -> list[RideResult]:
+    """Executor task: a chunk of scenario variants, batched (:func:`ride_variants`; module level, picklable)."""
+    scenarios, tyre_data, with_spectra = item
+    return ride_variants(scenarios, tyre_data, with_spectra)
+
+
+#: Variants per executor task of :func:`ride_sweep` (a task shares its wheel inputs between them).
+SWEEP_CHUNK = 25
 
 
 def ride_sweep(
@@ -1176,14 +1447,98 @@ def ride_sweep(
             for combo in combos:
                 base = with_values(scenario, combo) if combo else scenario
                 variants.append((with_overrides(base, speeds_km_h, pf, pr_), combo))
-    items = [(v, tyre_data, with_spectra) for v, _ in variants]
-    if map_fn is None or len(items) == 1:
-        results = [_ride_batch(i) for i in items]
-    else:
-        results = map_fn(_ride_batch, items)
+    scenarios = [v for v, _ in variants]
+    if map_fn is None or len(scenarios) == 1:
+        results = ride_variants(scenarios, tyre_data, with_spectra)
+    else:  # chunks of variants to the caller's executor, each batched in its task
+        size = max(1, min(SWEEP_CHUNK, -(-len(scenarios) // 8)))
+        chunks = [(scenarios[k:k + size], tyre_data, with_spectra) for k in range(0, len(scenarios), size)]
+        results = [r for chunk in map_fn(_ride_batch, chunks) for r in chunk]
     for r, (_, combo) in zip(results, variants):
         r.variant = dict(combo)
     return results
+
+
+def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, speeds_km_h=None,
+                   tyre_data=None, cache: RideCache | None = None) -> pd.DataFrame:
+    """The frequency-domain expectation alone (no simulation) for every front × rear pressure
+    pair and speed: a large pressure study in seconds.
+
+    The tyres are resolved once per axle and pressure, the linear models of all pairs at a speed
+    come from one assembly (:meth:`tyrelab.vehicle.model.Assembly.linear_tyres`) and their
+    expected weighted r.m.s. from one batched :func:`expected_weighted_rms`; each number is the
+    ``expected_a_w*_m_s2`` :func:`ride` gives for that pair, speed and the scenario's track spectrum.
+
+    Returns
+    -------
+    DataFrame
+        One row per pair and speed: ``front_pressure_bar``, ``rear_pressure_bar``, ``speed_km_h``,
+        ``expected_a_wz_m_s2``, ``expected_a_wx_m_s2``, ``expected_a_wy_m_s2``, and the exposure
+        of these (``a8_m_s2``, ``hours_to_eav``, ``hours_to_elv``, ``verdict``) at the scenario's
+        hours per day.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> sc = load_scenario(scenarios_dir() / "modern_tractor.toml")
+    >>> t = expected_sweep(sc, [1.2, 1.6], [1.2], [8.0])
+    >>> row = t.iloc[1]
+    >>> r = ride(with_overrides(sc, [8.0], 1.6, 1.2), with_spectra=False).speeds.iloc[0]
+    >>> bool(abs(row["expected_a_wz_m_s2"] / r["expected_a_wz_m_s2"] - 1) < 1e-9)
+    True
+    """
+    _validate.instance("scenario", scenario, Scenario)
+    cache = cache or RideCache()
+    fronts, rears = [float(x) for x in front_pressures_bar], [float(x) for x in rear_pressures_bar]
+    if not fronts or not rears:
+        raise ValueError("front_pressures_bar, rear_pressures_bar: give at least one pressure each")
+    base = with_overrides(scenario, speeds_km_h, fronts[0], rears[0])
+    from . import scenario_limits as limits
+
+    bad = limits.override_problems(speeds_km_h, fronts, rears)
+    if bad:
+        raise ValueError("; ".join(bad))
+    speeds = base.exposure.speeds_km_h
+    front = {pf: resolve_tyres(with_overrides(base, None, pf, rears[0]), tyre_data)["front"] for pf in fronts}
+    rear = {pr_: resolve_tyres(with_overrides(base, None, fronts[0], pr_), tyre_data)["rear"] for pr_ in rears}
+    _, track = cache.track(base)
+    axes = seat_axes(base)
+    tyres0 = {"front": front[fronts[0]], "rear": rear[rears[0]]}
+    seat = base.seat
+    seat_ss = seat_filter(seat.natural_frequency_Hz, seat.damping_ratio) if seat.suspension == "linear" else None
+    pf_all = np.repeat(fronts, len(rears))
+    pr_all = np.tile(rears, len(fronts))
+    frames = []
+    for i, speed in enumerate(speeds):
+        v = speed / 3.6
+        asm = assemble(build_parts(base, tyres0, i))
+        k = {"front": np.array([1e3 * front[p].stiffness_kN_per_m[i] for p in pf_all]),
+             "rear": np.array([1e3 * rear[p].stiffness_kN_per_m[i] for p in pr_all])}
+        c = {"front": np.array([1e3 * front[p].damping_kN_s_per_m[i] for p in pf_all]),
+             "rear": np.array([1e3 * rear[p].damping_kN_s_per_m[i] for p in pr_all])}
+        a, b, cc, d = asm.linear_tyres(tuple(axes.values()), k, c)
+        grid = _fd_grid(base, track, v)
+        env_f = {p: enveloping_response(base.surface.enveloping, float(front[p].footprint_m[i]), track.profile.dx_m,
+                                        grid["n"]) for p in fronts}
+        env_r = {p: enveloping_response(base.surface.enveloping, float(rear[p].footprint_m[i]), track.profile.dx_m,
+                                        grid["n"]) for p in rears}
+        env = {"front": (np.array([env_f[p] for p in fronts]), np.repeat(np.arange(len(fronts)), len(rears))),
+               "rear": (np.array([env_r[p] for p in rears]), np.tile(np.arange(len(rears)), len(fronts)))}
+        seat_tf = _seat_tf(seat_ss, grid["f"]) if seat_ss is not None else None
+        got = expected_weighted_rms(a, b, cc, d, asm.tyres, grid, env, seat_tf, list(axes))
+        frame = pd.DataFrame({"front_pressure_bar": pf_all, "rear_pressure_bar": pr_all, "speed_km_h": float(speed),
+                              **{f"expected_a_w{ax}_m_s2": got[ax] for ax in axes}})
+        frames.append(frame)
+    out = pd.concat(frames, ignore_index=True)
+    if "expected_a_wy_m_s2" not in out:
+        out["expected_a_wy_m_s2"] = 0.0
+    hours = base.exposure.hours_per_day
+    ex = [exposure(z, x, hours, y) for z, x, y in
+          zip(out["expected_a_wz_m_s2"], out["expected_a_wx_m_s2"], out["expected_a_wy_m_s2"])]
+    for key in ("a8_m_s2", "hours_to_eav", "hours_to_elv", "verdict"):
+        out[key] = [e[key] for e in ex]
+    return out
 
 
 def _clean(v):

@@ -1,12 +1,13 @@
 """Ride scenario files: a tractor, its tyres, a track and speeds, in TOML (issue 13).
 
-A scenario is read with the standard library's :mod:`tomllib` and checked
+A scenario's text is parsed with the standard library's :mod:`tomllib` and checked
 against ``schemas/scenario.json`` (every key, its type, unit and bounds are
 documented there; :func:`key_table` prints them). Every problem is collected
 and :class:`ScenarioError` lists them all at once, so a user fixes a file in
 one pass. The result is a tree of small frozen dataclasses; nothing is
 computed here (stiffness, profiles and the simulation live in
-:mod:`tyrelab.vehicle.ride`).
+:mod:`tyrelab.vehicle.ride`), and no file is read: :mod:`tyrelab.scenario_io` reads scenario files
+and track profiles and passes them in.
 
 Example (``raw/scenarios/modern_tractor.toml`` is a complete one)::
 
@@ -60,9 +61,7 @@ __all__ = [
     "ImplementSpec",
     "BallastSpec",
     "ScenarioError",
-    "load_scenario",
     "parse_scenario",
-    "read_profile_csv",
     "key_table",
     "with_overrides",
     "with_values",
@@ -214,6 +213,8 @@ class SurfaceSpec:
     enveloping: str = "tapered"
     lead_in_m: float = 5.0
     tracks: str = "independent"
+    #: ``(distance_m, left_m, right_m)`` of ``profile`` as read (:func:`parse_scenario`'s reader).
+    profile_data: tuple | None = field(default=None, compare=False, repr=False)
 
 
 @dataclass(frozen=True)
@@ -382,9 +383,12 @@ def _section_values(doc: dict, name: str) -> tuple[dict | None, list[str]]:
     return node, []
 
 
-def _validate(doc: dict, base_dir: Path, confine: bool = True) -> list[str]:
-    """Every problem of a parsed TOML document (empty list when it is valid)."""
+def _validate(doc: dict, base_dir: Path, confine: bool = True, read_profile=None,
+              profiles: dict | None = None) -> list[str]:
+    """Every problem of a parsed TOML document (empty list when it is valid); a profile read with
+    ``read_profile`` goes to ``profiles``."""
     problems: list[str] = []
+    profiles = {} if profiles is None else profiles
     sections = _sections()
     # unknown keys and tables at every level
     known_top = {k for k in sections[""]["fields"]} | {s.split(".")[0] for s in sections if s}
@@ -440,7 +444,7 @@ def _validate(doc: dict, base_dir: Path, confine: bool = True) -> list[str]:
             if "profile" not in surf:
                 problems.append("surface.profile (a CSV path) is required with kind = \"profile\"")
             elif isinstance(surf["profile"], str):
-                problems += _profile_problems(base_dir, surf["profile"], confine)
+                problems += _profile_problems(base_dir, surf["profile"], confine, read_profile, profiles)
     return problems
 
 
@@ -507,6 +511,7 @@ def with_values(scenario: Scenario, values: dict) -> Scenario:
     Examples
     --------
     >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
     >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
     >>> with_values(s, {"tractor.mass_kg": 5000, "tyres.rear.pressure_bar": 1.4}).tractor.mass_kg
     5000.0
@@ -527,10 +532,13 @@ def with_values(scenario: Scenario, values: dict) -> Scenario:
         node[parts[-1]] = float(value)
     where = str(scenario.path) if scenario.path is not None else "<scenario>"
     base = scenario.base_dir or Path(".")
-    problems = _validate(doc, base)
+    data = scenario.surface.profile_data  # the profile cannot be swept: its data as read
+    profiles: dict = {}
+    # the profile path was checked when the scenario was read
+    problems = _validate(doc, base, False, (lambda _path: data) if data is not None else None, profiles)
     if problems:
         raise ScenarioError(where, problems)
-    out = _build(doc, scenario.path, base)
+    out = _build(doc, scenario.path, base, False, profiles)
     problems = scenario_problems(out)  # what the model can represent (scenario_limits.LIMITS)
     if problems:
         raise ScenarioError(where, problems)
@@ -632,65 +640,20 @@ def _resolve_inside(base_dir: Path, relative: str, confine: bool = True) -> tupl
     return full, None
 
 
-def _profile_problems(base_dir: Path, relative: str, confine: bool = True) -> list[str]:
+def _profile_problems(base_dir: Path, relative: str, confine: bool, read_profile, profiles: dict) -> list[str]:
+    """Resolve ``surface.profile`` and read it with the caller's ``read_profile`` (path -> distance,
+    left, right); the data go to ``profiles`` (full path -> data) for :func:`_build`."""
     full, problem = _resolve_inside(base_dir, relative, confine)
     if problem:
         return [problem]
+    if read_profile is None:
+        return [f"surface.profile {relative!r}: no profile reader given (tyrelab.scenario_io.parse_scenario "
+                "and load_scenario read profiles)"]
     try:
-        read_profile_csv(full)
+        profiles[full] = read_profile(full)
     except ValueError as exc:
         return [f"surface.profile: {exc}"]
     return []
-
-
-def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Read a profile CSV: ``distance_m`` and ``height_m`` or ``height_left_m``/``height_right_m``.
-
-    Returns
-    -------
-    distance_m, left_m, right_m : ndarray
-        As written (not resampled); ``left == right`` for a single ``height_m``.
-
-    Raises
-    ------
-    ValueError
-        Naming the file and every problem (missing columns, non-numeric values,
-        distances not strictly increasing, fewer than 16 points).
-    """
-    _checks.instance("path", path, (str, Path))
-    path = Path(path)
-    if not path.is_file():
-        raise ValueError(f"{path}: no such file")
-    try:
-        df = pd.read_csv(path)
-    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
-        raise ValueError(f"{path}: not a readable CSV ({str(exc).splitlines()[0]})") from None
-    problems = []
-    if "distance_m" not in df:
-        problems.append("no distance_m column")
-    if "height_m" in df:
-        cols = ["height_m", "height_m"]
-    elif "height_left_m" in df and "height_right_m" in df:
-        cols = ["height_left_m", "height_right_m"]
-    else:
-        cols = []
-        problems.append("no height_m column (or height_left_m and height_right_m)")
-    if problems:
-        raise ValueError(f"{path}: {'; '.join(problems)} (columns: {', '.join(map(str, df.columns))})")
-    num = {c: pd.to_numeric(df[c], errors="coerce") for c in {"distance_m", *cols}}
-    for c, v in num.items():
-        if v.isna().any():
-            problems.append(f"{c} has {int(v.isna().sum())} missing or non-numeric values")
-    if problems:
-        raise ValueError(f"{path}: {'; '.join(problems)}")
-    x = num["distance_m"].to_numpy(float)
-    if len(x) < 16:
-        problems.append(f"only {len(x)} points (need at least 16)")
-    elif not np.all(np.diff(x) > 0):
-        problems.append("distance_m is not strictly increasing")
-    if problems:
-        raise ValueError(f"{path}: {'; '.join(problems)}")
-    return x, num[cols[0]].to_numpy(float), num[cols[1]].to_numpy(float)
 
 
 def _speed_values(v):
@@ -702,7 +665,7 @@ def _floats(table: dict) -> dict:
     return {k: (v if isinstance(v, (str, bool)) else float(v)) for k, v in table.items()}
 
 
-def _build(doc: dict, path: Path | None, base_dir: Path, confine: bool = True) -> Scenario:
+def _build(doc: dict, path: Path | None, base_dir: Path, confine: bool = True, profiles: dict | None = None) -> Scenario:
     t, s, surf, ex = doc["tractor"], doc.get("seat", {}), doc["surface"], doc["exposure"]
     sim = doc.get("simulation", {})
     sweep = doc.get("sweep", {})
@@ -737,6 +700,7 @@ def _build(doc: dict, path: Path | None, base_dir: Path, confine: bool = True) -
             spectrum_g0_m3=surf.get("spectrum_g0_m3"), spectrum_waviness=float(surf.get("spectrum_waviness", 2.0)),
             spectrum_correlated=surf.get("spectrum_correlated"), enveloping=surf.get("enveloping", "tapered"),
             lead_in_m=float(surf.get("lead_in_m", 5.0)), tracks=surf.get("tracks", "independent"),
+            profile_data=(profiles or {}).get(profile),
         ),
         exposure=ExposureSpec(tuple(float(v) for v in ex["speeds_km_h"]), float(ex.get("hours_per_day", 8.0))),
         simulation=SimulationSpec(sim.get("duration_s"), bool(sim.get("lift_off", True))),
@@ -750,7 +714,7 @@ def _build(doc: dict, path: Path | None, base_dir: Path, confine: bool = True) -
 
 
 def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | None = None, *,
-                   confine: bool = True) -> Scenario:
+                   confine: bool = True, read_profile=None) -> Scenario:
     """Parse and check scenario TOML text.
 
     Parameters
@@ -766,6 +730,11 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
         ``surface.profile`` must be a relative path inside ``base_dir`` (default: campaign
         scenarios the pipeline walks). False for a file the user names (``tyrelab ride FILE``):
         an absolute path, or one relative to ``base_dir`` anywhere.
+    read_profile : callable, optional
+        ``path -> (distance_m, left_m, right_m)`` for ``kind = "profile"`` (this module reads no
+        file: :func:`tyrelab.scenario_io.parse_scenario` and ``load_scenario`` pass
+        :func:`tyrelab.scenario_io.read_profile_csv`); the data are kept in
+        ``surface.profile_data``.
 
     Raises
     ------
@@ -806,39 +775,15 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
     except RecursionError:  # arrays nested thousands deep
         raise ScenarioError(where, ["not valid TOML: nested too deeply"]) from None
     base = Path(base_dir)
-    problems = _validate(doc, base, confine)
+    profiles: dict = {}
+    problems = _validate(doc, base, confine, read_profile, profiles)
     if problems:
         raise ScenarioError(where, problems)
-    scenario = _build(doc, Path(path) if path is not None else None, base, confine)
+    scenario = _build(doc, Path(path) if path is not None else None, base, confine, profiles)
     problems = scenario_problems(scenario)  # what the model can represent (scenario_limits.LIMITS)
     if problems:
         raise ScenarioError(where, problems)
     return scenario
-
-
-#: Largest scenario file read, bytes (the shipped ones are ~2 kB).
-MAX_SCENARIO_BYTES = 1_000_000
-
-
-def load_scenario(path: str | Path, *, confine: bool = True) -> Scenario:
-    """Read and check a scenario file (see :func:`parse_scenario`, ``confine`` included).
-
-    Raises
-    ------
-    ScenarioError
-        If the file cannot be read or has problems (all listed).
-    """
-    _checks.instance("path", path, (str, Path))
-    p = Path(path)
-    try:
-        if not p.is_file():  # a folder, a FIFO, /dev/zero (read for ever)
-            raise ScenarioError(p, ["not a regular file"] if p.exists() else ["cannot read: No such file or directory"])
-        if p.stat().st_size > MAX_SCENARIO_BYTES:
-            raise ScenarioError(p, [f"{p.stat().st_size} bytes: a scenario file is at most {MAX_SCENARIO_BYTES}"])
-        text = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise ScenarioError(p, [f"cannot read: {exc.strerror if isinstance(exc, OSError) else exc}"]) from None
-    return parse_scenario(text, p.resolve().parent, p, confine=confine)
 
 
 def with_overrides(

@@ -126,18 +126,13 @@ def scenario_problems(scenario) -> list[str]:
     if not problems and surf.dx_m > surf.length_m / 16:
         problems.append(f"surface.dx_m: {surf.dx_m:g} m is longer than surface.length_m / 16 "
                         f"({surf.length_m / 16:g} m): the track needs at least 16 points")
-    if surf.kind == "profile" and surf.profile is not None:
-        problems += _profile_problems(surf.profile)
+    if surf.kind == "profile" and surf.profile_data is not None:
+        problems += _profile_problems(*surf.profile_data)
     return problems
 
 
-def _profile_problems(path) -> list[str]:
-    from .scenario import read_profile_csv
-
-    try:
-        x, left, right = read_profile_csv(path)
-    except ValueError:
-        return []  # the schema check names it
+def _profile_problems(x, left, right) -> list[str]:
+    """What the model cannot take of a profile's data (distance, left and right heights, m)."""
     problems = []
     if not np.isfinite(x).all():
         problems.append("surface.profile: distance_m has values that are not finite")

@@ -519,7 +519,8 @@ def longitudinal_grid(table_xviii: pd.DataFrame | None = None) -> dict[str, list
 
 
 def tractor_case_inputs(
-    table_xv: pd.DataFrame, table_xvi: pd.DataFrame, farm_class: str = "D", duration_s: float = 30.0
+    table_xv: pd.DataFrame, table_xvi: pd.DataFrame, farm_class: str = "D", duration_s: float = 30.0,
+    table_xviii: pd.DataFrame | None = None,
 ) -> list[dict]:
     """What each case of :func:`tractor_study` reads, one dict per rolling row of ``table_xvi``.
 
@@ -528,7 +529,8 @@ def tractor_case_inputs(
     Table XVIII sweep). It reads its row, the stationary row and the Table XV row of
     its load condition, and the study's track and duration; with the seed that is
     everything (the tracks are seeded). A cache keyed on these (the simulate stage's)
-    recomputes only the cases whose inputs changed.
+    recomputes only the cases whose inputs changed. The sweep's case also reads the
+    longitudinal elements of ``table_xviii`` (:func:`longitudinal_grid`, default the shipped one).
     """
     _validate.frame("table_xv", table_xv)
     _validate.frame("table_xvi", table_xvi)
@@ -536,11 +538,19 @@ def tractor_case_inputs(
     _validate.positive("duration_s", duration_s)
     rolling = table_xvi[table_xvi["characteristics"] == "rolling"].reset_index(drop=True)
     xv, stat = _tractor_conditions(table_xv, table_xvi, rolling)
-    return [
-        {"row": _plain(r), "stationary": _plain(stat.loc[int(r["load_condition"])]),
-         "mass": _plain(xv.loc[int(r["load_condition"])]), "farm_class": farm_class, "duration_s": float(duration_s)}
-        for _, r in rolling.iterrows()
-    ]
+    out = []
+    for _, r in rolling.iterrows():
+        case = {"row": _plain(r), "stationary": _plain(stat.loc[int(r["load_condition"])]),
+                "mass": _plain(xv.loc[int(r["load_condition"])]), "farm_class": farm_class, "duration_s": float(duration_s)}
+        if _is_sweep_case(r):
+            case["longitudinal_grid"] = longitudinal_grid(table_xviii)
+        out.append(case)
+    return out
+
+
+def _is_sweep_case(row) -> bool:
+    """The rolling row that holds the Table XVIII sweep: load condition 1, SBT, 10 km/h."""
+    return int(row["load_condition"]) == 1 and row["track"] == "SBT" and row["speed_km_h"] == 10
 
 
 def tractor_study(
@@ -637,7 +647,7 @@ def tractor_study(
         est = sbt_est if r["track"] == "SBT" else hh_est
         case.append(({**label, "characteristics": "rolling", "longitudinal": "none"}, {**base, **roll_k}, est, r["track"] != "SBT"))
         case.append(({**label, "characteristics": "stationary", "longitudinal": "none"}, {**base, **stat_k}, est, r["track"] != "SBT"))
-        if lc == 1 and r["track"] == "SBT" and r["speed_km_h"] == 10:
+        if _is_sweep_case(r):
             for model, pairs in longitudinal_grid(table_xviii).items():
                 for k_kn, c_kn in pairs:
                     case.append(

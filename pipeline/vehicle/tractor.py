@@ -368,24 +368,29 @@ class _Plan:
         return self.tmp[shape]
 
     def dot(self, columns, x, out, start=None):
-        """``out = start + Σ_j g[:, j] x[j]`` (``start`` None: 0)."""
-        tmp = self._buffer(out.shape)
-        if start is None:
-            out[...] = 0.0
-        else:
-            out[...] = start
-        for j, col in columns:
-            np.multiply(col, x[j], out=tmp)
-            np.add(out, tmp, out=out)
-        return out
+        """``out = start + Σ_j g[:, j] x[j]`` (``start`` None: 0), summed in column order (without a
+        start the first product is the first partial sum: ``0 + a`` is ``a``)."""
+        return self._sum(columns, x, out, start)
 
     def tdot(self, rows, f, out):
         """``out = Σ_i g[i] f[i]`` (the transposed product: generalised forces)."""
-        tmp = self._buffer(out.shape)
-        out[...] = 0.0
-        for i, row in rows:
-            np.multiply(row, f[i], out=tmp)
-            np.add(out, tmp, out=out)
+        return self._sum(rows, f, out, None)
+
+    def _sum(self, terms, x, out, start):
+        if start is None:
+            if not terms:
+                out[...] = 0.0
+                return out
+            j, col = terms[0]
+            np.multiply(col, x[j], out=out)
+            terms = terms[1:]
+        else:
+            out[...] = start
+        if terms:
+            tmp = self._buffer(out.shape)
+            for j, col in terms:
+                np.multiply(col, x[j], out=tmp)
+                np.add(out, tmp, out=out)
         return out
 
 

@@ -9,7 +9,7 @@ import pytest
 from tyrelab.cli import main
 from tyrelab.stages import simulate as simulate_stage
 from tyrelab.vehicle import ride
-from tyrelab.vehicle.scenario import ScenarioError, load_scenario, parse_scenario
+from tyrelab.scenario_io import ScenarioError, load_scenario, parse_scenario
 from tyrelab.vehicle.scenario_limits import LIMITS, work_estimate
 
 TRACTOR = dict(mass_kg=4700.0, pitch_inertia_kg_m2=5500.0, front_distance_m=1.56, rear_distance_m=0.95, cg_height_m=0.95)

@@ -48,3 +48,16 @@ def test_run_spectra_recovers_the_stiffness_at_the_excitation():
     assert at["coherence"] > 0.99
     svg = figures.run_drilldown(rec, sp, 4.0, 250.0)
     assert "excitation 4 Hz" in svg and "K = 250 kN/m" in svg
+
+
+def test_ride_page_draws_a_w_per_axis_one_line_per_scenario():
+    from tyrelab.report import ride_figures
+
+    rows = [{"scenario": name, "speed_km_h": v, "a_wz_m_s2": 0.1 * v, "a_wx_m_s2": 0.05 * v, "a_wy_m_s2": 0.02 * v,
+             "is_nominal": nominal} for name in ("tractor A", "tractor B") for v in (4.0, 8.0) for nominal in (True, False)]
+    svg = ride_figures.ride_aw_axes_speed(pd.DataFrame(rows))
+    assert svg is not None
+    for title in ("a_wz (vertical", "1.4 a_wx (fore-aft", "1.4 a_wy (lateral"):
+        assert title in svg, title
+    assert "tractor A" in svg and "tractor B" in svg
+    assert ride_figures.ride_aw_axes_speed(pd.DataFrame()) is None

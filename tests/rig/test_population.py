@@ -10,6 +10,8 @@ from tyrelab.cli import main
 from tyrelab.rig import population as pop
 from tyrelab.tyre.formula_fit import PRINTED_COEFFICIENTS, design_matrix
 
+pytestmark = pytest.mark.long  # collected first: see tests/conftest.py (a generated campaign through five stages)
+
 
 def test_population_is_seeded_and_follows_its_coefficients():
     a, b = pop.tyre_population(6, seed=3), pop.tyre_population(6, seed=3)
@@ -86,7 +88,7 @@ def test_build_without_a_fit_is_one_line(tmp_path, capsys):
 def test_scenario_formula_build_uses_the_lab_fit(population_build, tmp_path):
     from tyrelab.stages.simulate import WarehouseTyres
     from tyrelab.vehicle import ride
-    from tyrelab.vehicle.scenario import ScenarioError, load_scenario
+    from tyrelab.scenario_io import ScenarioError, load_scenario
 
     _, build = population_build
     text = """

@@ -11,7 +11,7 @@ from tyrelab.resources import scenarios_dir
 from tyrelab.stages import run_stage
 from tyrelab.stages.base import Context
 from tyrelab.vehicle import ride_validation as rv
-from tyrelab.vehicle.scenario import load_scenario
+from tyrelab.scenario_io import load_scenario
 
 ROWS = "ride_id,file,vehicle,speed_km_h,track,recorded_on,scenario,task,hours_per_day,notes\n"
 

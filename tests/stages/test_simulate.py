@@ -297,3 +297,26 @@ def test_tables_xiii_xiv_xvii_come_from_the_recordings(ctx, tmp_path, monkeypatc
     assert measured.isna().all()
     assert not (c.read_table("carriage_runs")["source"] == "recording").any()
     assert c.read_table("stages/quarantine_simulate").empty
+
+
+def test_the_tractor_sweep_reads_table_xviii_of_the_raw_folder(tmp_path):
+    """An edited <raw>/published/table_xviii.csv reaches the ch. 7 study (its inputs and the cache
+    keys of the study and of the sweep's case), not the shipped copy."""
+    shutil.copytree(published.SHIPPED_DIR, tmp_path / "published")
+    path = tmp_path / "published" / "table_xviii.csv"
+    table = pd.read_csv(path)
+    table.loc[2, "longitudinal_damping_kN_s_per_m"] = 2.0
+    table.to_csv(path, index=False)
+
+    class Keys:  # the ItemCache's key, readable
+        @staticmethod
+        def key(*args):
+            return repr(args)
+
+    edited = {s: published.read_published(s, tmp_path) for s in simulate.STEMS}
+    shipped = {s: published.read_published(s) for s in simulate.STEMS}
+    keys, inputs, cases = simulate._study_plan(edited, Keys(), tmp_path / "published")
+    keys0, _, cases0 = simulate._study_plan(shipped, Keys(), published.SHIPPED_DIR)
+    assert inputs["tractor"][2] is edited["table_xviii"]
+    assert keys["tractor"] != keys0["tractor"] and keys["carriage"] == keys0["carriage"]
+    assert [a != b for a, b in zip(cases["tractor"], cases0["tractor"])] == [True] + [False] * (len(cases0["tractor"]) - 1)

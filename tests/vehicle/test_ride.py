@@ -13,7 +13,7 @@ from tyrelab import cli
 from tyrelab.stages import simulate as simulate_stage
 from tyrelab.vehicle import iso2631, ride
 from tyrelab.vehicle import profiles as pr
-from tyrelab.vehicle.scenario import ScenarioError, load_scenario, parse_scenario
+from tyrelab.scenario_io import ScenarioError, load_scenario, parse_scenario
 from tyrelab.vehicle.tractor import Tractor, simulate_tractor
 
 TRACTOR = dict(mass_kg=4700.0, pitch_inertia_kg_m2=5500.0, front_distance_m=1.56, rear_distance_m=0.95, cg_height_m=0.95)

@@ -10,7 +10,7 @@ import pytest
 
 from tyrelab import cli
 from tyrelab.vehicle import iso2631, ride
-from tyrelab.vehicle.scenario import ScenarioError, load_scenario, parse_scenario
+from tyrelab.scenario_io import ScenarioError, load_scenario, parse_scenario
 
 M, I_PITCH, I_ROLL, A, B, H = 4700.0, 5500.0, 2400.0, 1.56, 0.95, 0.95
 TF, TR = 1.90, 1.80

@@ -10,7 +10,7 @@ from tyrelab.rawformat.rides import open_recording
 from tyrelab.resources import scenarios_dir
 from tyrelab.vehicle import measured_ride
 from tyrelab.vehicle import ride_validation as rv
-from tyrelab.vehicle.scenario import load_scenario
+from tyrelab.scenario_io import load_scenario
 
 
 @pytest.fixture(scope="module")

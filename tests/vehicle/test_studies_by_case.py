@@ -159,3 +159,17 @@ def test_tables_that_do_not_fit_together_are_refused_with_every_problem(tables, 
     with pytest.raises(ValueError, match="^table_xv has no row for load condition 1; table_xvi has no stationary row "
                                          "for load condition 2$"):
         studies.tractor_study(mass[mass["load_condition"] != 1], no_stat)
+
+
+def test_the_sweep_case_reads_table_xviii(tractor_tables):
+    """The Table XVIII sweep's longitudinal elements come from the table given (an edited
+    <raw>/published one): only the case holding the sweep (the first) reads it."""
+    mass, tyres = tractor_tables
+    xviii = read_published("table_xviii")
+    before = studies.tractor_case_inputs(mass, tyres, table_xviii=xviii)
+    assert repr(before) == repr(studies.tractor_case_inputs(mass, tyres))  # the default is the shipped table
+    edited = xviii.copy()
+    edited.loc[2, "longitudinal_damping_kN_s_per_m"] = 2.0  # 455/1 -> 455/2 kN s/m
+    after = studies.tractor_case_inputs(mass, tyres, table_xviii=edited)
+    assert _changed(before, after) == [True, False, False]
+    assert (455.0, 2.0) in after[0]["longitudinal_grid"]["kelvin_voigt"]

@@ -1,0 +1,110 @@
+"""Reading ride scenario files and track profiles (issues 13, 23): the file side of
+:mod:`tyrelab.vehicle.scenario`, which parses TOML text and takes the profile's data, reading no
+file itself (the pure package takes data, not paths).
+
+:func:`load_scenario` reads a scenario file (bounded in size) and :func:`parse_scenario` parses
+text, both reading a ``kind = "profile"`` track with :func:`read_profile_csv`; the CLI, the
+simulate stage, the campaign generator and the benchmarks read scenarios through here.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from . import _validate
+from .vehicle.scenario import Scenario, ScenarioError
+from .vehicle.scenario import parse_scenario as _parse_text
+
+__all__ = ["MAX_SCENARIO_BYTES", "ScenarioError", "load_scenario", "parse_scenario", "read_profile_csv"]
+
+
+def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Read a profile CSV: ``distance_m`` and ``height_m`` or ``height_left_m``/``height_right_m``.
+
+    Returns
+    -------
+    distance_m, left_m, right_m : ndarray
+        As written (not resampled); ``left == right`` for a single ``height_m``.
+
+    Raises
+    ------
+    ValueError
+        Naming the file and every problem (missing columns, non-numeric values,
+        distances not strictly increasing, fewer than 16 points).
+    """
+    _validate.instance("path", path, (str, Path))
+    path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"{path}: no such file")
+    try:
+        df = pd.read_csv(path)
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
+        raise ValueError(f"{path}: not a readable CSV ({str(exc).splitlines()[0]})") from None
+    problems = []
+    if "distance_m" not in df:
+        problems.append("no distance_m column")
+    if "height_m" in df:
+        cols = ["height_m", "height_m"]
+    elif "height_left_m" in df and "height_right_m" in df:
+        cols = ["height_left_m", "height_right_m"]
+    else:
+        cols = []
+        problems.append("no height_m column (or height_left_m and height_right_m)")
+    if problems:
+        raise ValueError(f"{path}: {'; '.join(problems)} (columns: {', '.join(map(str, df.columns))})")
+    num = {c: pd.to_numeric(df[c], errors="coerce") for c in {"distance_m", *cols}}
+    for c, v in num.items():
+        if v.isna().any():
+            problems.append(f"{c} has {int(v.isna().sum())} missing or non-numeric values")
+    if problems:
+        raise ValueError(f"{path}: {'; '.join(problems)}")
+    x = num["distance_m"].to_numpy(float)
+    if len(x) < 16:
+        problems.append(f"only {len(x)} points (need at least 16)")
+    elif not np.all(np.diff(x) > 0):
+        problems.append("distance_m is not strictly increasing")
+    if problems:
+        raise ValueError(f"{path}: {'; '.join(problems)}")
+    return x, num[cols[0]].to_numpy(float), num[cols[1]].to_numpy(float)
+
+
+def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | None = None, *,
+                   confine: bool = True) -> Scenario:
+    """:func:`tyrelab.vehicle.scenario.parse_scenario` with profiles read by :func:`read_profile_csv`.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> s = parse_scenario((scenarios_dir() / "mf698t.toml").read_text(), scenarios_dir())
+    >>> s.surface.kind, s.surface.profile_data is None
+    ('iso8608', True)
+    """
+    return _parse_text(text, base_dir, path, confine=confine, read_profile=read_profile_csv)
+
+
+#: Largest scenario file read, bytes (the shipped ones are ~2 kB).
+MAX_SCENARIO_BYTES = 1_000_000
+
+
+def load_scenario(path: str | Path, *, confine: bool = True) -> Scenario:
+    """Read and check a scenario file (see :func:`parse_scenario`, ``confine`` included).
+
+    Raises
+    ------
+    ScenarioError
+        If the file cannot be read or has problems (all listed).
+    """
+    _validate.instance("path", path, (str, Path))
+    p = Path(path)
+    try:
+        if not p.is_file():  # a folder, a FIFO, /dev/zero (read for ever)
+            raise ScenarioError(p, ["not a regular file"] if p.exists() else ["cannot read: No such file or directory"])
+        if p.stat().st_size > MAX_SCENARIO_BYTES:
+            raise ScenarioError(p, [f"{p.stat().st_size} bytes: a scenario file is at most {MAX_SCENARIO_BYTES}"])
+        text = p.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise ScenarioError(p, [f"cannot read: {exc.strerror if isinstance(exc, OSError) else exc}"]) from None
+    return parse_scenario(text, p.resolve().parent, p, confine=confine)
