@@ -522,6 +522,13 @@ STAGE_HELP = {
     "report": "render the static report site build/reports/ from the warehouse",
 }
 
+def _stage_help(name: str) -> str:
+    """The help of a stage verb: :data:`STAGE_HELP`, else the stage's declared ``doc`` (dag.STAGES)."""
+    from .stages.dag import STAGES
+
+    return STAGE_HELP.get(name) or STAGES[name].doc
+
+
 #: Verb aliases (``tyrelab analyse-run`` = ``tyrelab analyze-run``).
 ALIASES = {"analyze-run": ["analyse-run", "analyze"]}
 
@@ -611,8 +618,8 @@ def build_parser() -> argparse.ArgumentParser:
     w.add_argument("--max-runs", type=int, default=None, help="stop after this many pipeline runs (default: until Ctrl-C)")
     w.set_defaults(func=cmd_watch)
     for name in ORDER:
-        s = sub.add_parser(name, help=STAGE_HELP.get(name, f"run the {name} stage only"),
-                           description=f"{STAGE_HELP.get(name, f'the {name} stage')} (this stage only; "
+        s = sub.add_parser(name, help=_stage_help(name),
+                           description=f"{_stage_help(name)} (this stage only; "
                                        "'tyrelab run' runs every stage that is out of date)")
         io_options(s)
         s.set_defaults(func=cmd_stage, stage=name)

@@ -114,6 +114,24 @@ class Progress:
             self.log.info("%s: %d/%d %s (%.0f %s/s)", self.label, self.done, self.total, self.unit, rate, self.unit)
             self._last = now
 
+    def iterate(self, items):
+        """Yield each of ``items`` and count it done when the loop body has finished with it (a
+        ``continue`` included), then close: ``for row in progress.iterate(rows): ...``.
+
+        Examples
+        --------
+        >>> import logging
+        >>> p = Progress("rides", 2, logger=logging.getLogger("doctest"))
+        >>> [p.done for _ in p.iterate("ab")], p.done
+        ([0, 1], 2)
+        """
+        try:
+            for item in items:
+                yield item
+                self.step()
+        finally:
+            self.close()
+
     def close(self) -> None:
         """Remove the bar (if any) from the terminal; safe to call twice."""
         bar, self.bar = self.bar, None

@@ -16,7 +16,7 @@ import pytest
 
 from tyrelab import cli, progress
 
-from tests.vehicle.test_ride import scenario_text, write
+from tests.scenarios import scenario_text, write
 
 
 def _verbs(parser):
@@ -75,8 +75,11 @@ def test_every_option_of_every_verb_has_help_and_every_help_has_the_exit_codes()
             if not action.help or action.help == argparse.SUPPRESS:
                 missing.append(f"{name} {'/'.join(action.option_strings) or action.dest}")
     assert missing == []
-    stage_helps = {_verbs(parser)[s].description for s in cli.STAGE_HELP}
-    assert len(stage_helps) == len(cli.STAGE_HELP)  # each stage verb says what it does
+    from tyrelab.stages import ORDER
+
+    stage_helps = {_verbs(parser)[s].description for s in ORDER}
+    assert len(stage_helps) == len(ORDER)  # each stage verb says what it does, a new stage included
+    assert not [s for s in ORDER if _verbs(parser)[s].description.startswith(f"the {s} stage")]  # no stand-in
     assert "The ``tyrelab`` command line" not in parser.format_help()
 
 
@@ -288,3 +291,15 @@ def test_ride_table_one_number_format_per_quantity_under_the_reports_names():
     assert "bounce 2.73 Hz [2.54, 2.91] (node 2.46 m ahead of the CG)" in text
     assert "pitch 3.48 Hz [3.25, 3.70] (node 0.48 m behind the CG)" in text
     assert column_label("a_wz_m_s2") == "a_wz (m/s²)"
+
+
+def test_progress_iterate_counts_an_item_when_the_body_is_done_with_it(caplog):
+    p = progress.Progress("rides: c1", 3, logger=logging.getLogger("tyrelab"), unit="recordings")
+    seen = []
+    with caplog.at_level(logging.INFO, logger="tyrelab"):
+        for item in p.iterate(["a", "b", "c"]):
+            seen.append((item, p.done))
+            if item == "b":
+                continue  # a refused row is counted too
+    assert seen == [("a", 0), ("b", 1), ("c", 2)] and p.done == 3
+    assert "rides: c1: 3/3 recordings" in caplog.text

@@ -35,7 +35,7 @@ from .. import io
 from ..rawformat import RunFileError
 from ..rawformat.files import confined_run_path, read_delimited
 from ..schema import load_schema, row_problems
-from .base import Context, StageResult, write_quarantine
+from .base import Context, Progress, StageResult, write_quarantine
 from .state import ItemCache
 
 __all__ = ["INPUTS", "OUTPUTS", "discover_ride_campaigns", "run"]
@@ -202,7 +202,8 @@ def run(ctx: Context) -> StageResult:
             except RunFileError as exc:
                 channel_map = None
                 ctx.log.warning("rides: %s: channel_map.json: %s", campaign.name, exc)
-        for i, row in enumerate(frame.to_dict("records")):
+        progress = Progress(f"rides: {campaign.name}", len(frame), logger=ctx.log, unit="recordings")
+        for i, row in enumerate(progress.iterate(frame.to_dict("records"))):
             n_in += 1
             ride_id, file = row.get("ride_id"), row.get("file")
             if by_row.get(i):

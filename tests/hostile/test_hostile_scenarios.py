@@ -1,40 +1,21 @@
 """Scenario values the model cannot take, unbounded sweeps, bad scenarios in the pipeline (issue 25,
 classes 1, 2 and 6): each one line naming the key and its bound, refused before any work."""
 
+import functools
 import os
 from pathlib import Path
 
 import pytest
 
+from tests.scenarios import scenario_text
 from tyrelab.cli import main
 from tyrelab.stages import simulate as simulate_stage
 from tyrelab.vehicle import ride
 from tyrelab.scenario_io import ScenarioError, load_scenario, parse_scenario
 from tyrelab.vehicle.scenario_limits import LIMITS, work_estimate
 
-TRACTOR = dict(mass_kg=4700.0, pitch_inertia_kg_m2=5500.0, front_distance_m=1.56, rear_distance_m=0.95, cg_height_m=0.95)
-
-
-def text(surface='kind = "iso8608"\nclass = "C"\nlength_m = 60', speeds="[8]", tractor=None, front="", extra="",
-         name="hostile"):
-    body = "\n".join(f"{k} = {v}" for k, v in {**TRACTOR, **(tractor or {})}.items())
-    return f"""
-name = "{name}"
-[tractor]
-{body}
-[tyres.front]
-size = "14.9R28"
-pressure_bar = 1.6
-{front}
-[tyres.rear]
-size = "18.4R38"
-pressure_bar = 1.2
-[surface]
-{surface}
-[exposure]
-speeds_km_h = {speeds}
-{extra}
-"""
+#: The ride tests' scenario, named "hostile", without an exposure time (one template: tests.scenarios).
+text = functools.partial(scenario_text, name="hostile", hours_per_day=None)
 
 
 @pytest.mark.parametrize("kwargs, key", [

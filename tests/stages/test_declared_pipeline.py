@@ -22,7 +22,8 @@ from tyrelab.stages import dag
 
 pytestmark = pytest.mark.long  # collected first: see tests/conftest.py
 
-#: simulate reads only published tables and scenarios (its own slow test is in test_simulate.py).
+#: simulate reads only published tables and scenarios; its outputs are deleted from a copy of the
+#: shared build of every stage (the tests at the end).
 FAST = [s for s in ORDER if s != "simulate"]
 
 
@@ -183,3 +184,55 @@ def test_the_architecture_document_shows_the_declared_graph():
     doc = (Path(__file__).resolve().parents[2] / "docs" / "architecture.md").read_text(encoding="utf-8")
     block = doc.split("<!-- stage-graph:begin", 1)[1].split("<!-- stage-graph:end -->", 1)[0]
     assert block.split("```\n", 1)[1].rsplit("\n```", 1)[0] == dag.graph_text()
+
+
+def test_every_declared_output_is_a_file_the_deletion_tests_take(clean, full_report):
+    """Each output a stage declares is a file of the clean build above (every stage but simulate)
+    or of the shared build of every stage (simulate), so that deleting "any single output file"
+    (the tests above and below) reaches every declared output."""
+    _, _, files = clean
+    simulate_files = _outputs(full_report.build)
+    for stage in STAGES.values():
+        have = simulate_files if stage.name == "simulate" else files
+        for out in stage.writes:
+            assert any(dag._covers(out, name) for name in have), (stage.name, out)
+
+
+def _simulate_outputs(build: Path) -> dict[str, bytes]:
+    return {n: b for n, b in _outputs(build).items() if dag.writer(n) == "simulate"}
+
+
+def _copy_of_the_full_build(full_report, tmp_path) -> Path:
+    import shutil
+
+    build = tmp_path / "build"
+    shutil.copytree(full_report.build, build, ignore=shutil.ignore_patterns(".tyrelab.lock"))
+    return build
+
+
+#: One simulate output deleted in the default run (the slow test below takes each in turn).
+SIMULATE_SAMPLE = "parquet/table_xviii.parquet"
+
+
+def _restores(full_report, build: Path, names: list[str], caplog) -> None:
+    clean = _simulate_outputs(build)
+    assert SIMULATE_SAMPLE in clean and len(clean) == len(dag.STAGES["simulate"].writes)
+    for name in names:
+        (build / name).unlink()
+        caplog.clear()
+        with caplog.at_level(logging.INFO, logger="tyrelab"):
+            run_pipeline(Context(raw=full_report.raw, build=build, jobs=1), ["simulate"])
+        assert "simulate: recomputing" in caplog.text, name
+        now = _simulate_outputs(build)
+        assert [n for n in clean if now.get(n) != clean[n]] == [], name
+
+
+def test_a_deleted_simulate_output_is_restored_byte_for_byte(full_report, tmp_path, caplog):
+    build = _copy_of_the_full_build(full_report, tmp_path)
+    _restores(full_report, build, [SIMULATE_SAMPLE], caplog)
+
+
+@pytest.mark.slow
+def test_deleting_any_single_simulate_output_restores_the_clean_bytes(full_report, tmp_path, caplog):
+    build = _copy_of_the_full_build(full_report, tmp_path)
+    _restores(full_report, build, sorted(_simulate_outputs(build)), caplog)

@@ -9,44 +9,13 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from tests.scenarios import TRACTOR, scenario_text, write
 from tyrelab import cli
 from tyrelab.stages import simulate as simulate_stage
 from tyrelab.vehicle import iso2631, ride
 from tyrelab.vehicle import profiles as pr
 from tyrelab.scenario_io import ScenarioError, load_scenario, parse_scenario
 from tyrelab.vehicle.tractor import Tractor, simulate_tractor
-
-TRACTOR = dict(mass_kg=4700.0, pitch_inertia_kg_m2=5500.0, front_distance_m=1.56, rear_distance_m=0.95, cg_height_m=0.95)
-
-
-def scenario_text(surface: str, speeds="[8]", tractor_extra="", seat="", tyres_extra="", extra="") -> str:
-    body = "\n".join(f"{k} = {v}" for k, v in TRACTOR.items())
-    return f"""
-name = "test tractor"
-[tractor]
-{body}
-{tractor_extra}
-{seat}
-[tyres.front]
-size = "14.9R28"
-pressure_bar = 1.6
-{tyres_extra}
-[tyres.rear]
-size = "18.4R38"
-pressure_bar = 1.2
-[surface]
-{surface}
-[exposure]
-speeds_km_h = {speeds}
-hours_per_day = 6
-{extra}
-"""
-
-
-def write(tmp_path: Path, text: str, name: str = "s.toml") -> Path:
-    p = tmp_path / name
-    p.write_text(text)
-    return p
 
 
 # ------------------------------------------------------------------ checked by: sinusoid
@@ -282,7 +251,7 @@ def test_pressure_sweep_through_the_executor(tmp_path):
 
 def test_per_speed_values_and_overrides(tmp_path):
     text = scenario_text('kind = "iso8608"\nclass = "B"\nlength_m = 30', "[10, 20]",
-                         tyres_extra="stiffness_kN_per_m = [300, 400]\ndamping_kN_s_per_m = 1.5")
+                         front="stiffness_kN_per_m = [300, 400]\ndamping_kN_s_per_m = 1.5")
     sc = load_scenario(write(tmp_path, text))
     t = ride.resolve_tyres(ride.with_overrides(sc, [15.0]))
     assert t["front"].stiffness_kN_per_m.tolist() == [350.0] and t["front"].stiffness_source == "override (scenario)"
@@ -479,7 +448,7 @@ def test_build_tractor_puts_two_tyres_on_each_axle(tmp_path):
     text = scenario_text('kind = "iso8608"\nclass = "A"\nlength_m = 10', "[10, 20]",
                          'longitudinal_model = "kelvin_voigt"\nlongitudinal_stiffness_kN_per_m = 400\n'
                          'longitudinal_damping_kN_s_per_m = 2.5',
-                         tyres_extra="stiffness_kN_per_m = [300, 400]\ndamping_kN_s_per_m = 1.5")
+                         front="stiffness_kN_per_m = [300, 400]\ndamping_kN_s_per_m = 1.5")
     sc = load_scenario(write(tmp_path, text))
     tyres = ride.resolve_tyres(sc)
     t = ride.build_tractor(sc, tyres, 1)
@@ -523,7 +492,7 @@ def test_natural_frequency_intervals_with_one_tyre_given_and_one_from_the_formul
     the rear tyre's uncertainty alone, as bounce_pitch.frequency_uncertainty's first-order ones."""
     from tyrelab.vehicle.bounce_pitch import frequency_uncertainty
 
-    text = scenario_text('kind = "iso8608"\nclass = "A"\nlength_m = 10', "[10]", tyres_extra="stiffness_kN_per_m = 300")
+    text = scenario_text('kind = "iso8608"\nclass = "A"\nlength_m = 10', "[10]", front="stiffness_kN_per_m = 300")
     res = ride.ride(load_scenario(write(tmp_path, text)), with_spectra=False)
     kf, kr = res.tyres["front"].stiffness_kN_per_m[0], res.tyres["rear"].stiffness_kN_per_m[0]
     assert res.tyres["front"].stiffness_u_kN_per_m == 0 and res.tyres["rear"].stiffness_u_kN_per_m > 0
