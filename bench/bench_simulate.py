@@ -14,7 +14,8 @@ shared, wall times are not comparable between runs):
     switched runs' accelerations, relative to each run's r.m.s.);
 * the two studies themselves (:func:`~tyrelab.vehicle.studies.tractor_study`,
   :func:`~tyrelab.vehicle.studies.carriage_study`);
-* the ch. 6 reference batch (the carriage study's nonlinear runs) by
+* the ch. 6 reference batch (the virtual carriage's nonlinear runs, which make the demo's
+  recordings: :func:`tyrelab.vehicle.study_recordings.carriage_recordings`) by
   :func:`~tyrelab.vehicle.carriage.simulate_nonlinear` (state as one array, buffers, about half
   the numpy calls a step) and by the plain RK4 loop it replaced (``textbook_carriage``, the
   baseline): CPU of each, ratio, and whether the outputs are bit-identical;
@@ -95,8 +96,10 @@ def _capture_carriage(xii, stationary) -> tuple:
         return real(*args, **kw)
 
     carriage.simulate_nonlinear = recorder
-    try:
-        studies.carriage_study(xii, stationary, seed=5007)
+    try:  # the virtual carriage's runs (issue 24: they make the recordings, not the study)
+        from tyrelab.vehicle.study_recordings import carriage_recordings
+
+        carriage_recordings(xii, stationary, seed=5007)
     finally:
         carriage.simulate_nonlinear = real
     (args, kw), = seen

@@ -8,7 +8,11 @@ All tyres are Table II tyres of the built-in catalogue, so no ``tyres.csv`` is
 written, unless a generated tyre population is asked for (``tyre_population``). With
 ``rides`` (the command's default), also seat and cab-floor recordings of
 virtual tractors (:mod:`tyrelab.vehicle.virtual_rides`): ``rides.csv``,
-``rides/<ride_id>.parquet`` and the scenarios they name, ``rides/<scenario>.toml``. Output is byte-for-byte reproducible for the same (scale, seed): each
+``rides/<ride_id>.parquet`` and the scenarios they name, ``rides/<scenario>.toml``; and the
+recordings of the thesis' carriage and MF698T made by virtual vehicles
+(:mod:`tyrelab.vehicle.study_recordings`; ``study`` rows of ``rides.csv``, the slatted
+track's slat tops in ``rides/slatted_track.csv``), which the ``simulate`` stage compares its
+chapter 6-7 predictions with. Output is byte-for-byte reproducible for the same (scale, seed): each
 run's generator is seeded from (seed, run_id), Parquet is written by pyarrow
 without timestamps, the manifest with fixed float formatting.
 """
@@ -28,7 +32,7 @@ from . import __version__, io
 from .rig.campaigns import MANIFEST_COLUMNS, campaign_plan, population_plan, simulate_run
 from .rig.instrument import NO_SCATTER, RigConfig
 
-__all__ = ["write_run", "write_rides", "generate_campaign"]
+__all__ = ["write_run", "write_rides", "write_study_recordings", "generate_campaign"]
 
 
 def write_run(run: pd.DataFrame, path: Path) -> None:
@@ -39,21 +43,51 @@ def write_run(run: pd.DataFrame, path: Path) -> None:
         pq.write_table(table, tmp, compression="zstd", use_byte_stream_split=True, write_statistics=True)
 
 
-def write_rides(out: Path, seed: int) -> int:
-    """Write the virtual tractors' recordings, their scenarios and ``rides.csv``; returns the count."""
+def write_study_recordings(out: Path, seed: int) -> pd.DataFrame:
+    """Write the recordings of the thesis' carriage and MF698T made by the virtual vehicles of
+    :mod:`tyrelab.vehicle.study_recordings` (``rides/ch6_*``, ``rides/ch7_*``) and the slatted
+    track's slat tops (``rides/slatted_track.csv``); returns their ``rides.csv`` rows."""
+    from . import published
+    from .vehicle.study_recordings import study_recordings
+
+    rows, frames, track = study_recordings(
+        {t: published.read_published(t) for t in ("table_xii", "table_xv", "table_xvi")}, seed)
+    (out / "rides").mkdir(parents=True, exist_ok=True)
+    for file, frame in frames.items():
+        write_run(frame, out / file)
+    io.write_text_atomic(track.to_csv(index=False, float_format="%.6g", lineterminator="\n"),
+                         out / "rides" / "slatted_track.csv")
+    return rows
+
+
+def write_rides(out: Path, seed: int, tractors: bool = True, studies: bool = True) -> int:
+    """Write ``rides.csv`` and its recordings; returns the count.
+
+    ``tractors``: the virtual tractors' seat and cab-floor recordings and the scenarios they
+    name (:mod:`tyrelab.vehicle.virtual_rides`). ``studies``: the chapter 6-7 recordings
+    (:func:`write_study_recordings`), which the simulate stage compares its predictions with.
+    """
     from .resources import scenarios_dir
     from .scenario_io import load_scenario
     from .vehicle.virtual_rides import RIDE_PLAN, ride_plan, virtual_recordings
 
-    scenarios = {file: load_scenario(scenarios_dir() / file) for file, *_ in RIDE_PLAN}
-    plan = ride_plan(scenarios)
-    (out / "rides").mkdir(parents=True, exist_ok=True)
-    for scenario_file, rows in plan.groupby("scenario", sort=False):
-        name = Path(scenario_file).name
-        io.write_text_atomic((scenarios_dir() / name).read_text(encoding="utf-8"), out / scenario_file)
-        frames, _ = virtual_recordings(scenarios[name], name, seed)
-        for row in rows.itertuples():
-            write_run(frames[float(row.speed_km_h)], out / row.file)
+    parts = []
+    if tractors:
+        scenarios = {file: load_scenario(scenarios_dir() / file) for file, *_ in RIDE_PLAN}
+        plan = ride_plan(scenarios)
+        (out / "rides").mkdir(parents=True, exist_ok=True)
+        for scenario_file, rows in plan.groupby("scenario", sort=False):
+            name = Path(scenario_file).name
+            io.write_text_atomic((scenarios_dir() / name).read_text(encoding="utf-8"), out / scenario_file)
+            frames, _ = virtual_recordings(scenarios[name], name, seed)
+            for row in rows.itertuples():
+                write_run(frames[float(row.speed_km_h)], out / row.file)
+        parts.append(plan)
+    if studies:
+        parts.append(write_study_recordings(out, seed))
+    if not parts:
+        return 0
+    plan = pd.concat(parts, ignore_index=True)
     io.write_text_atomic(plan.to_csv(index=False, float_format="%.6g", lineterminator="\n"), out / "rides.csv")
     return int(len(plan))
 

@@ -408,6 +408,17 @@ ROWS = [
     (f"{VE}.studies.tractor_case_inputs", dict(table_xv=pd.DataFrame(), table_xvi=pd.DataFrame(), farm_class="Z"), "farm_class"),
     (f"{VE}.studies.longitudinal_grid", dict(table_xviii="table_xviii.csv"), "table_xviii"),
     (f"{VE}.studies.tractor_study", dict(table_xv=pd.DataFrame(), table_xvi=pd.DataFrame(), duration_s=0.0), "duration_s"),
+    (f"{VE}.studies.carriage_key", dict(row={"speed_km_h": "fast", "load_condition": "heavy"}), "row"),
+    (f"{VE}.studies.tractor_key", dict(row={"load_condition": 1, "track": "road", "speed_km_h": 10}), "row"),
+    (f"{VE}.studies.run_metrics", dict(label={}, profile="p", vertical_m_s2=[0.0, NAN], pitch_rad_s2=None,
+                                       longitudinal_m_s2=None), "vertical_m_s2"),
+    (f"{VE}.studies.with_tractor_recordings", dict(study={"runs": pd.DataFrame()}, recordings=None), "study"),
+    # vehicle/study_recordings.py
+    (f"{VE}.study_recordings.carriage_recordings", dict(table_xii=pd.DataFrame(), stationary=pd.DataFrame(),
+                                                         surface_stiffness_factor=0.0), "surface_stiffness_factor"),
+    (f"{VE}.study_recordings.tractor_recordings", dict(table_xv=pd.DataFrame(), table_xvi=pd.DataFrame(),
+                                                        farm_class="Z"), "farm_class"),
+    (f"{VE}.study_recordings.study_recordings", dict(pub={"table_xii": None}, seed=1), "pub"),
     # vehicle/tractor.py
     (f"{VE}.tractor.tractor_parts", dict(tractor=None), "tractor"),
     (f"{VE}.tractor.simulate", dict(assemblies=lambda: [_assembly()], u_half=np.zeros((2, 3)), du_half=np.zeros((2, 3)), dt_s=0.0), "dt_s"),

@@ -126,7 +126,8 @@ def _frames(path: Path, columns: list[str], chunk_rows: int, channel_map: dict |
         if suffix == ".parquet":
             pf = _parquet(path)
             for batch in pf.iter_batches(batch_size=chunk_rows, columns=columns):
-                yield batch.to_pandas()
+                # straight to numpy (no DataFrame): a null becomes NaN, which _checked refuses
+                yield {name: col.to_numpy(zero_copy_only=False) for name, col in zip(batch.schema.names, batch.columns)}
         elif suffix == ".csv":
             with pd.read_csv(path, usecols=lambda c: c in columns, chunksize=chunk_rows) as reader:
                 yield from reader
@@ -160,12 +161,19 @@ def _header(path: Path, channel_map: dict | None) -> list[str]:
     return ["time_s", *RIDE_CHANNELS]  # mapped: the map decides; missing channels are dropped later
 
 
-def _checked(frame: pd.DataFrame, channels, row0: int) -> Chunk:
+def _checked(frame, channels, row0: int) -> Chunk:
+    """A chunk's ``time_s`` and ``channels`` as float arrays (``frame``: a DataFrame, or a dict of
+    arrays from Parquet), each sample finite."""
     out = {}
+    names = frame.keys() if isinstance(frame, dict) else frame.columns
     for c in ("time_s", *channels):
-        if c not in frame.columns:
+        if c not in names:
             raise RunFileError(f"channel {c} is missing")
-        v = pd.to_numeric(frame[c], errors="coerce").to_numpy(dtype=float)
+        v = frame[c]
+        if isinstance(v, np.ndarray) and v.dtype.kind in "fiu":
+            v = v.astype(float, copy=False)
+        else:
+            v = pd.to_numeric(pd.Series(v) if isinstance(v, np.ndarray) else v, errors="coerce").to_numpy(dtype=float)
         bad = ~np.isfinite(v)
         if bad.any():
             i = int(np.flatnonzero(bad)[0])

@@ -134,10 +134,10 @@ class Chapter:
 
 
 #: Why the ch. 6-7 accuracy statistics (Tables XIII, XIV, XVII) differ from the thesis'.
-REFERENCE_VEHICLE_GAP = Gap("Our \"measured\" vibration comes from a reference virtual vehicle (dry-friction linkage, "
-                            "lift-off, a seeded stand-in for the surveyed tracks), not from the thesis' recordings, so "
-                            "these statistics reproduce the thesis' pattern, not its values.",
-                            "simulation", 'The reference ("measured") vehicles')
+REFERENCE_VEHICLE_GAP = Gap("Our \"measured\" vibration is the campaign's recordings, in the demo those of virtual "
+                            "vehicles (dry-friction linkage, lift-off, a seeded stand-in for the surveyed tracks), not "
+                            "the thesis' recordings, so these statistics reproduce the thesis' pattern, not its values.",
+                            "simulation", 'The "measured" side: recordings (issue 24)')
 
 #: Spoke-model curves: table -> (x column, x label, thesis figure).
 SPOKE_FIGURES = {

@@ -15,7 +15,9 @@ rejected as a whole (exit 3). Each recording's analysis and validation is kept b
 what it reads (:class:`tyrelab.stages.state.ItemCache`): an added or edited recording is the only
 one analysed again.
 
-Tables: ``recordings`` (one row per recording), ``recording_axes`` (per recording and channel),
+Tables: ``recordings`` (one row per recording; with the file's digest ``file_sha256`` and the
+thesis study it is a run of, ``study``/``load_condition``/``study_track``, which the
+``simulate`` stage reads), ``recording_axes`` (per recording and channel),
 ``recording_spectra`` (seat PSDs, measured and predicted, for the report), ``exposure_days``,
 ``ride_validation`` (per recording and axis), ``ride_validation_statistics``.
 """
@@ -41,12 +43,16 @@ __all__ = ["INPUTS", "OUTPUTS", "discover_ride_campaigns", "run"]
 INPUTS = ["raw", "stiffness_pressure_by_speed", "damping_pressure_by_speed"]
 OUTPUTS = ["recordings", "recording_axes", "recording_spectra", "exposure_days", "ride_validation",
            "ride_validation_statistics"]
+#: Columns of ``rides.csv`` naming a thesis study's run (the simulate stage reads these recordings
+#: by ``file_sha256``, Tables XIII, XIV, XVII).
+STUDY_COLUMNS = ("study", "load_condition", "study_track")
 #: Upper frequency of the stored spectra, Hz.
 SPECTRA_MAX_HZ = 20.0
 #: Columns of each table when it has no row (so the warehouse still has the table, with its columns).
 EMPTY_COLUMNS = {
     "recordings": ["ride_id", "campaign", "file", "vehicle", "speed_km_h", "track", "recorded_on", "scenario", "task",
-                   "hours_per_day", "sample_rate_Hz", "duration_s", "a_v_m_s2", "dz_m_s2", "channels", "warnings"],
+                   "hours_per_day", "sample_rate_Hz", "duration_s", "a_v_m_s2", "dz_m_s2", "channels", "warnings",
+                   "study", "load_condition", "study_track", "file_sha256"],
     "recording_axes": ["ride_id", "channel", "axis", "weighting", "a_w_m_s2", "vdv_m_s1_75", "mtvv_m_s2", "crest_factor",
                        "rms_method_sufficient", "method_reasons", "unweighted_rms", "peak_frequency_Hz",
                        "half_power_width_Hz", "duration_s"],
@@ -237,7 +243,9 @@ def run(ctx: Context) -> StageResult:
             hours = row.get("hours_per_day")
             hours = float(hours) if hours not in (None, "") and not (isinstance(hours, float) and math.isnan(hours)) \
                 else None
-            recordings.append({**ident, "hours_per_day": hours, **result["summary"]})
+            study = {k: (str(row[k]).strip() if isinstance(row.get(k), str) and row[k].strip() else None)
+                     for k in STUDY_COLUMNS}
+            recordings.append({**ident, "hours_per_day": hours, **result["summary"], **study, "file_sha256": digest})
             axes.extend({"ride_id": ride_id, **a} for a in result["axes"])
             for s in result["spectra"]:
                 spectra.append(pd.DataFrame({"ride_id": ride_id, "source": "measured", "channel": s["channel"],

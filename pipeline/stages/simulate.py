@@ -16,17 +16,25 @@ executor): ``ride_scenarios`` (one row per scenario), ``ride_results`` (one row 
 scenario × speed × pressure pair). A wrong scenario is quarantined with its problems;
 the others still run.
 
-The carriage (ch. 6) and tractor (ch. 7) studies are cached as a whole under the digest of
-the tables each reads, and each of their cases under the digest of what the case reads: a
-carriage case is one Table XII rolling row (its reference run and four predictions,
-:func:`tyrelab.vehicle.studies.carriage_case_inputs`), a tractor case one Table XVI rolling row
-(its rolling, stationary and reference runs, :func:`tyrelab.vehicle.studies.tractor_case_inputs`),
-so that an edited row re-simulates only the cases that read it; each ride scenario is cached
-under the digest of what it reads; those not cached
+The "measured" side of the carriage (ch. 6) and tractor (ch. 7) studies is *recordings*: the
+``rides`` stage's ``recordings`` rows that name a ``study`` run (``rides.csv``), read from their
+files (:func:`read_study_recordings`); no measured number is made here. A run without a
+recording has predictions but no comparison; without any, Tables XIII, XIV and XVII have no
+values of ours (gaps) and the recordings' problems are quarantine rows. The demo campaign's
+recordings are made by the virtual carriage and tractor of
+:mod:`tyrelab.vehicle.study_recordings` (``tyrelab generate``).
+
+The studies are cached as a whole under the digest of what each reads, and each of their cases
+under the digest of what the case reads: a carriage case is one Table XII rolling row (its four
+predictions and its recording's digest, :func:`tyrelab.vehicle.studies.carriage_case_inputs`),
+a tractor case one Table XVI rolling row (its rolling and stationary predictions,
+:func:`tyrelab.vehicle.studies.tractor_case_inputs`; the recordings are compared afresh, a
+cheap step), so that an edited row or recording re-simulates only the cases that read it; each
+ride scenario is cached under the digest of what it reads; those not cached
 and Table XX run side by side in one :func:`tyrelab.executor.map_batches` call
 (``--jobs``/``--executor``), longest first. The tractor runs are
 exact while both axles are in contact and RK4 across lift-off, ``tractor_runs.method_used``
-(``exact`` or ``exact+rk4``) says which.
+(``exact`` or ``exact+rk4``; ``recording`` for the recorded runs) says which.
 
 Everything is seeded (``SEED``), so the same command gives the same bytes. If the
 warehouse holds ``results`` with rolling T4 stiffness on a flat surface at the
@@ -143,11 +151,12 @@ def _carriage_tables(car: dict) -> dict:
 def _study(item: tuple) -> dict:
     """One chapter 6/7 study: the tables the stage keeps, with its ``cases`` and the positions of
     those it was given (``reused``)."""
-    name, (*tables, done) = item
+    name, (*args, done) = item
     if name == "carriage":
-        car = studies.carriage_study(*tables, seed=SEED, cases=done)
+        xii, stationary, recordings = args
+        car = studies.carriage_study(xii, stationary, seed=SEED, cases=done, recordings=recordings)
         return {**_carriage_tables(car), "cases": car["cases"], "reused": sorted(done)}
-    mass, tyres, xviii = tables
+    mass, tyres, xviii = args
     return {**studies.tractor_study(mass, tyres, seed=SEED, cases=done, table_xviii=xviii), "reused": sorted(done)}
 
 
@@ -163,7 +172,85 @@ def _task(item: tuple):
     return _study((kind, payload))
 
 
-def _study_plan(pub: dict, cache: ItemCache, folder: Path) -> tuple[dict, dict, dict]:
+def read_study_recordings(ctx: Context) -> tuple[dict, dict, list[dict]]:
+    """The recordings of the chapter 6-7 runs: the ``rides`` stage's ``recordings`` rows with a
+    ``study`` (``rides.csv``), each read from its file through the raw ride reader
+    (:func:`tyrelab.rawformat.rides.open_recording`) if its content is the one the rides stage
+    ingested (``file_sha256``). The offset (mean) of each channel is removed: a recording's DC
+    part is no vibration (a DC-coupled accelerometer reads 1 g).
+
+    Returns
+    -------
+    carriage : dict
+        :func:`~tyrelab.vehicle.studies.carriage_key` -> ``(digest, floor_z_m_s2 array)``.
+    tractor : dict
+        :func:`~tyrelab.vehicle.studies.tractor_key` -> ``(digest, {"label", "vertical_m_s2",
+        "pitch_rad_s2", "longitudinal_m_s2"})``.
+    problems : list of dict
+        Quarantine rows, one line each (wrong sampling rate, channel missing, changed since
+        ingested, duplicate run); the study goes on without that recording.
+    """
+    from .. import io
+    from ..rawformat import RunFileError, load_channel_map
+    from ..rawformat.rides import open_recording
+
+    carriage, tractor, problems = {}, {}, []
+    if not ctx.has_table("recordings"):
+        return carriage, tractor, problems
+    table = ctx.read_table("recordings")
+    if "study" not in table.columns:
+        return carriage, tractor, problems
+    for row in table[table["study"].notna()].to_dict("records"):
+        campaign, file = Path(str(row["campaign"])), str(row["file"])
+
+        def refuse(reason: str) -> None:
+            problems.append({"campaign": str(campaign), "run_id": str(row["ride_id"]), "file": file,
+                             "stage": "simulate", "reason": f"{row['study']} study: {reason}"})
+            ctx.log.warning("simulate: %s: %s study: %s", row["ride_id"], row["study"], reason)
+
+        path = campaign / file
+        try:
+            if not path.is_file() or io.file_sha256(path) != row["file_sha256"]:
+                refuse("the recording changed or went since the rides stage read it (run the rides stage)")
+                continue
+            cmap = load_channel_map(campaign / "channel_map.json") if (campaign / "channel_map.json").is_file() else None
+            rec = open_recording(path, cmap)
+            if abs(rec.sample_rate_Hz - studies.FS_HZ) > 1e-6 * studies.FS_HZ:
+                refuse(f"sampled at {rec.sample_rate_Hz:g} Hz; the study's records are {studies.FS_HZ:g} Hz")
+                continue
+            if "floor_z_m_s2" not in rec.channels:
+                refuse("no floor_z_m_s2 channel (the body's vertical acceleration)")
+                continue
+            parts: dict = {c: [] for c in rec.channels}
+            for chunk in rec.chunks():
+                for c in rec.channels:
+                    parts[c].append(chunk.channels[c])
+        except (RunFileError, OSError) as exc:
+            refuse(str(exc).splitlines()[0])
+            continue
+        signals = {c: (lambda x: x - x.mean())(np.concatenate(v).astype(float)) for c, v in parts.items()}
+        try:
+            if row["study"] == "carriage":
+                key, value = studies.carriage_key(row), signals["floor_z_m_s2"]
+                found = carriage
+            else:
+                key = studies.tractor_key({**row, "track": row.get("study_track")})
+                value = {"label": f"recording {row['ride_id']}", "vertical_m_s2": signals["floor_z_m_s2"],
+                         "pitch_rad_s2": signals.get("pitch_rad_s2"), "longitudinal_m_s2": signals.get("floor_x_m_s2")}
+                found = tractor
+        except (TypeError, ValueError, KeyError):
+            refuse(f"load_condition {row.get('load_condition')!r} / study_track {row.get('study_track')!r} do not "
+                   "name a run of the study")
+            continue
+        if key in found:
+            refuse(f"a second recording of the run {key} (the first is used)")
+            continue
+        found[key] = (row["file_sha256"], value)
+    return carriage, tractor, problems
+
+
+def _study_plan(pub: dict, cache: ItemCache, folder: Path, carriage_recordings: dict | None = None
+                ) -> tuple[dict, dict, dict]:
     """The chapter 6 and 7 studies: cache key and inputs of each (``"tractor"``, ``"carriage"``),
     and the cache keys of each one's cases (one per Table XII or XVI rolling row).
 
@@ -176,20 +263,25 @@ def _study_plan(pub: dict, cache: ItemCache, folder: Path) -> tuple[dict, dict, 
     xii = layouts.carriage_rolling(pub["table_xii"])
     stationary = layouts.carriage_stationary(pub["table_xii"])
     mass, tyres = layouts.tractor_mass(pub["table_xv"]), layouts.tractor_tyres(pub["table_xvi"])
+    recs = carriage_recordings or {}
+    digests = {k: d for k, (d, _) in recs.items()}
     xviii = pub["table_xviii"]  # the sweep's longitudinal elements: <raw>/published when it has one
     keys = {"tractor": cache.key("tractor", mass, tyres, studies.longitudinal_grid(xviii), SEED),
-            "carriage": cache.key("carriage", xii, stationary, SEED)}
+            "carriage": cache.key("carriage", xii, stationary, SEED, sorted(digests.items()))}
     case_keys, problems = {}, []
     for name, what, cases in (("tractor", "tractor study (table_xv, table_xvi)",
                                lambda: studies.tractor_case_inputs(mass, tyres, table_xviii=xviii)),
                               ("carriage", "carriage study (table_xii)", lambda: studies.carriage_case_inputs(xii, stationary))):
-        try:
-            case_keys[name] = [cache.key(f"{name}-case", c, SEED) for c in cases()]
+        try:  # a carriage case reads its run's recording (its digest); a tractor case predictions only
+            case_keys[name] = [cache.key(f"{name}-case", c, SEED,
+                                         digests.get(studies.carriage_key(c["row"])) if name == "carriage" else None)
+                               for c in cases()]
         except ValueError as exc:  # tables that do not fit together (an edited <raw>/published)
             problems.append(f"{what}: {exc}")
     if problems:
         raise published.PublishedTableError(f"{folder}: {'; '.join(problems)}")
-    return keys, {"tractor": (mass, tyres, xviii), "carriage": (xii, stationary)}, case_keys
+    return keys, {"tractor": (mass, tyres, xviii),
+                  "carriage": (xii, stationary, {k: a for k, (_, a) in recs.items()})}, case_keys
 
 
 #: Item kinds of the studies' cases in the stage's cache (counted apart in its message).
@@ -241,7 +333,9 @@ def start_studies_ahead(ctx: Context) -> list[str]:
         keys, inputs, case_keys = _study_plan(pub, cache, published.published_dir(ctx.raw))
     except published.PublishedTableError:
         return []  # the stage reports it, after the stages before it have run
-    todo = [name for name in keys if not cache.has(keys[name])]
+    # the tractor's predictions read no recording; the carriage's cases compare with the
+    # recordings, which the rides stage (after this point) may still change
+    todo = [name for name in keys if name == "tractor" and not cache.has(keys[name])]
     if not todo:
         return []
     pool = worker_pool(len(todo))
@@ -284,7 +378,8 @@ def run(ctx: Context) -> StageResult:
     # Table XX run side by side, one executor call (tyrelab.executor.map_batches), longest first:
     # with two workers the tractor study runs on one while the carriage study, the scenarios and
     # Table XX share the other
-    keys, inputs, case_keys = _study_plan(pub, cache, published.published_dir(ctx.raw))
+    car_recs, tr_recs, rec_problems = read_study_recordings(ctx)
+    keys, inputs, case_keys = _study_plan(pub, cache, published.published_dir(ctx.raw), car_recs)
     cache.keep([k for ks in case_keys.values() for k in ks])  # a cached study's cases stay for the next edit
     done = {name: v for name, k in keys.items() for hit, v in [cache.get(k)] if hit}
     for name in [n for n in keys if n not in done]:
@@ -302,7 +397,9 @@ def run(ctx: Context) -> StageResult:
     for (name, _), value in zip(todo, outputs):
         done[name] = _keep_study(cache, name, keys[name], value, case_keys)
     ride_outputs, xx = outputs[len(todo):len(todo) + len(ride_items)], outputs[-1]
-    car, tr = done["carriage"], done["tractor"]
+    car = done["carriage"]
+    # the "measured" side: the recordings (no measured number is made here; none: the tables' gaps)
+    tr = studies.with_tractor_recordings(done["tractor"], {k: v for k, (_, v) in tr_recs.items()})
 
     # chapter 6: carriage
     xiii = _side_by_side(
@@ -325,7 +422,7 @@ def run(ctx: Context) -> StageResult:
         how="left",
         suffixes=("_ours", "_thesis"),
     )
-    ref = tr["reference_xviii"].iloc[0]
+    ref = tr["reference_xviii"].iloc[0] if len(tr["reference_xviii"]) else pd.Series(dtype=float)
     meas = thesis_xviii[thesis_xviii["row"] == "measured"].iloc[0]
     xviii = pd.concat(
         [
@@ -333,11 +430,11 @@ def run(ctx: Context) -> StageResult:
             pd.DataFrame(
                 [
                     {
-                        "row": "measured (ours: reference virtual tractor)",
-                        "longitudinal": "maxwell",
-                        "longitudinal_stiffness_kN_per_m": studies.REFERENCE_LONGITUDINAL[0] / 1e3,
-                        "longitudinal_damping_kN_s_per_m": studies.REFERENCE_LONGITUDINAL[1] / 1e3,
-                        **{f"{c}_ours": ref[c] for c in ("vertical_rms_m_s2", "pitch_rms_rad_s2", "peak_1_Hz", "peak_2_Hz", "peak_3_Hz")},
+                        "row": "measured (ours: recording, load condition 1, SBT, 10 km/h)",
+                        "longitudinal": "recorded",
+                        "longitudinal_stiffness_kN_per_m": float("nan"),  # not in a recording
+                        "longitudinal_damping_kN_s_per_m": float("nan"),
+                        **{f"{c}_ours": ref.get(c, float("nan")) for c in ("vertical_rms_m_s2", "pitch_rms_rad_s2", "peak_1_Hz", "peak_2_Hz", "peak_3_Hz")},
                         **{f"{c}_thesis": meas[c] for c in ("vertical_rms_m_s2", "pitch_rms_rad_s2", "peak_1_Hz", "peak_2_Hz", "peak_3_Hz")},
                     }
                 ]
@@ -383,7 +480,7 @@ def run(ctx: Context) -> StageResult:
     tables["ride_scenarios"], tables["ride_results"], bad = _ride_finish(ctx, files, cache, ride_keys, ride_done, ride_todo,
                                                                          ride_outputs)
     write_quarantine(ctx, "simulate", [{"campaign": None, "run_id": None, "file": b["file"], "stage": "simulate",
-                                        "reason": b["reason"]} for b in bad])
+                                        "reason": b["reason"]} for b in bad] + rec_problems)
 
     for name, df in tables.items():
         ctx.write_table(name, df.reset_index(drop=True))
@@ -395,7 +492,8 @@ def run(ctx: Context) -> StageResult:
         n_ok=n_runs + len(files) - len(bad),
         n_quarantined=len(bad),
         seconds=time.perf_counter() - t0,
-        message=f"{len(tables)} tables; {len(files) - len(bad)} ride scenarios; studies {cache.summary(exclude=CASE_KINDS)}; "
+        message=f"{len(tables)} tables; {len(files) - len(bad)} ride scenarios; recordings of the studies: "
+                f"{len(car_recs)} carriage, {len(tr_recs)} tractor; studies {cache.summary(exclude=CASE_KINDS)}; "
                 f"carriage cases {cache.summary('carriage-case')}; tractor cases {cache.summary('tractor-case')}; "
                 "slatted track is a seeded stand-in",
     )

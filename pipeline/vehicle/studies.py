@@ -1,29 +1,26 @@
 """The chapter 6 and 7 validation studies as pure functions (no file I/O).
 
 **What "measured" means here.** The thesis compared simulations with vibration
-measured on the real carriage and tractor. We have no such recordings, so the
-"measured" side is a *reference virtual vehicle* that includes what the linear
-prediction model leaves out (see ``docs/simulation.md``):
+recorded on the real carriage and tractor (§6.3, §7.1). Here the "measured" side is
+*recordings*: arrays the caller passes (``recordings``), read by the ``simulate`` stage
+from the campaign's vehicle recordings (``rides.csv`` rows with a ``study``, ingested by
+the ``rides`` stage). Nothing here makes a measured number: the predictions are compared
+with whatever was recorded, and a run without a recording has no comparison. The demo
+campaign's recordings come from the *virtual carriage and tractor* of
+:mod:`tyrelab.vehicle.study_recordings` (``tyrelab generate``), which include what the
+linear prediction model leaves out (see ``docs/simulation.md``).
 
-carriage (ch. 6)
-    tyre stiffness 0.9 x rolling (the slat-surface drop of Table V) and rolling
-    damping; linkage friction as Coulomb friction (150 N) instead of the 1 kNs/m
-    viscous damper the thesis assumed (§6.5.2 names it as the likely error);
-    tyre lift-off; the true slat surface, gaps included, enveloped by a rigid tread
-    band then the tapered moving average (the predictions use the tapered filter
-    only). Predictions use the linear model and a profile *estimate*: the
-    "surveyed" estimate (slat tops with ±3 mm survey error, §6.3 a) or the
-    "recorded" estimate (the enveloped locus plus a 1 mm noise floor and a spurious
-    narrow-band peak at 1.35 cycles/m with 13x the power, as Fig. 51 and §6.5.1
-    describe; both seeded).
-tractor (ch. 7)
-    the rolling Table XVI characteristics, a Maxwell rear longitudinal element
-    (455 kN/m, 3 kNs/m per tyre, §7.5's proposal), lift-off, the true slatted track
-    (SBT) or, for the farm track (HH), another realisation of the same ISO 8608
-    class (the thesis' survey was years older than the runs, §7.3).
+Predictions use the linear models and a profile *estimate*: for the carriage the
+"surveyed" estimate (slat tops with ±3 mm survey error, §6.3 a) or the "recorded"
+estimate (the enveloped locus plus a 1 mm noise floor and a spurious narrow-band peak at
+1.35 cycles/m with 13x the power, as Fig. 51 and §6.5.1 describe; both seeded); for the
+tractor the surveyed slatted track (SBT) or the farm track's (HH) survey, another
+realisation of the same ISO 8608 class (the thesis' survey was years older than the runs,
+§7.3). Every measure of a recording is made by the same function as the prediction's
+(:func:`tyrelab.vehicle.metrics.compare_records`, :func:`run_metrics`).
 
-Agreement statistics therefore measure how far the linear prediction is from this
-reference, not from the thesis' tractor; they are reported beside the thesis'.
+Agreement statistics therefore measure how far the linear prediction is from the
+recordings, not from the thesis' tractor; they are reported beside the thesis'.
 """
 
 from __future__ import annotations
@@ -48,22 +45,25 @@ __all__ = [
     "tractor_case_inputs",
     "longitudinal_grid",
     "tractor_study",
+    "carriage_key",
+    "tractor_key",
+    "run_metrics",
+    "with_tractor_recordings",
 ]
+# carriage_track, carriage_steps, tractor_tracks, tractor_inputs and tractor_record_window are
+# shared with tyrelab.vehicle.study_recordings (the virtual vehicles drive the studies' tracks
+# and are recorded over the studies' windows); not part of the public interface.
 
 #: T4 13.6R38 rolling circumference 4.66 m (thesis §6.5.3) -> radius, m.
 T4_ROLLING_RADIUS_M = 4.66 / (2 * math.pi)
 #: Approximate 7.50-18 front tyre radius, m (0.8 m overall diameter).
 FRONT_7_50_18_RADIUS_M = 0.40
-#: Reference linkage friction of the virtual carriage, N.
-REFERENCE_COULOMB_FRICTION_N = 150.0
 #: Survey error of slat heights (uniform, ±), m (thesis §6.3 a: ±3 mm).
 SURVEY_ERROR_M = 0.003
 #: Recorded-estimate noise floor (rms), m (§6.5.1: about 1 mm).
 RECORDED_NOISE_RMS_M = 0.001
 #: Recorded-estimate spurious peak (§6.5.1): centre, half-width (cycles/m), power factor.
 RECORDED_SPIKE = (1.35, 0.05, 13.0)
-#: Reference rear longitudinal Maxwell element per tyre (N/m, N s/m).
-REFERENCE_LONGITUDINAL = (455e3, 3e3)
 DT_S = 1e-3
 LEAD_IN_M = 5.0
 FS_HZ = 1.0 / DT_S
@@ -198,14 +198,77 @@ def carriage_case_inputs(
     ]
 
 
+def carriage_track(conds: pd.DataFrame, seed: int, surface_stiffness_factor: float) -> tuple:
+    """The slatted track of the carriage study and its profiles per load condition.
+
+    Returns ``(track, lead, est_by_load, x)``: the track (:func:`tyrelab.vehicle.profiles.slatted_track`,
+    seeded by ``seed``), the lead-in in samples, per load condition the enveloped ``true``
+    surface and the ``surveyed``/``recorded`` estimates (:func:`profile_estimates`, seed
+    ``seed + 1``) with the lead-in, and the distance axis, m. The virtual carriage that records
+    the "measured" runs (:mod:`tyrelab.vehicle.study_recordings`) drives over ``true``; the
+    predictions read the estimates.
+    """
+    track = pr.slatted_track(seed=seed)
+    dx = track.dx_m
+    lead = int(round(LEAD_IN_M / dx))
+    est_by_load = {}
+    for load, footprint in _footprints(conds, surface_stiffness_factor).items():
+        est = profile_estimates(track, T4_ROLLING_RADIUS_M, footprint, seed + 1)
+        est_by_load[load] = {k: np.concatenate([np.full(lead, v[0]), v, np.full(lead, v[-1])]) for k, v in est.items()}
+        est_by_load[load]["footprint_m"] = footprint
+    x = np.arange(track.x_m.size + 2 * lead) * dx
+    return track, lead, est_by_load, x
+
+
+def carriage_steps(speeds_m_s, track_end_m: float) -> tuple[np.ndarray, np.ndarray]:
+    """Per run at ``speeds_m_s``: the first sample after the lead-in and the number of
+    samples to the track's end (at :data:`DT_S`); a record is ``[start:stop]``."""
+    v = np.asarray(speeds_m_s, float)
+    start = np.ceil(LEAD_IN_M / (v * DT_S)).astype(int)
+    stop = np.floor((LEAD_IN_M + track_end_m) / (v * DT_S)).astype(int) + 1
+    return start, stop
+
+
+def carriage_key(row: dict) -> tuple[float, str]:
+    """The key of a carriage run (a Table XII row or a recording): ``(speed_km_h, load_condition)``.
+
+    Examples
+    --------
+    >>> carriage_key({"speed_km_h": "12.5", "load_condition": "heavy"})
+    (12.5, 'heavy')
+    """
+    try:
+        return float(row["speed_km_h"]), str(row["load_condition"])
+    except (KeyError, TypeError, ValueError):
+        raise ValueError(f"row: needs a speed_km_h number and a load_condition, got {row!r:.120}") from None
+
+
+def _accuracy(kept: pd.DataFrame, estimate: str) -> pd.DataFrame:
+    """Table XIII/XIV (ours) of the comparisons of one profile estimate; without any (no
+    recordings) the table's rows with no value (a gap, not an error)."""
+    rows = kept[kept["profile_estimate"] == estimate] if len(kept) else kept
+    if not len(rows):
+        shape = mt.accuracy_table(pd.DataFrame({"characteristics": ["rolling"], "profile_estimate": [estimate],
+                                                **{c: [np.nan] for _, c in mt._XIII_ROWS},
+                                                "envelope_correlation": [np.nan], "envelope_error": [np.nan]}))
+        return shape[["quantity", "statistic"]].assign(rolling=np.nan, stationary=np.nan)
+    table = mt.accuracy_table(rows, by="characteristics")
+    for name in ("rolling", "stationary"):
+        if name not in table:
+            table[name] = np.nan
+    return table
+
+
 def carriage_study(
     table_xii: pd.DataFrame,
     stationary: pd.DataFrame,
     seed: int = 5007,
     surface_stiffness_factor: float = 0.9,
     cases: dict | None = None,
+    recordings: dict | None = None,
 ) -> dict[str, pd.DataFrame]:
-    """Chapter 6: carriage runs of Tables XI/XII, rolling vs stationary, two estimates.
+    """Chapter 6: carriage runs of Tables XI/XII, rolling vs stationary, two estimates,
+    compared with the recordings of the runs.
 
     Parameters
     ----------
@@ -222,14 +285,20 @@ def carriage_study(
         Cases computed before, by row position in ``table_xii``: items of a previous
         result's ``cases`` whose inputs (:func:`carriage_case_inputs`) are unchanged.
         Only the other rows are simulated; the result is the same, to the bit, as
-        simulating every row (each run is simulated on its own: the batch of
-        reference runs is elementwise).
+        simulating every row (each run is simulated on its own).
+    recordings : dict, optional
+        The "measured" side: :func:`carriage_key` ``(speed_km_h, load_condition)`` -> the
+        carriage body's vertical acceleration, m/s², at :data:`FS_HZ` from the end of the
+        lead-in (the track's start; a recording in the raw ride format, e.g. of the virtual
+        carriage of :mod:`tyrelab.vehicle.study_recordings`). A run without one has its
+        predictions but no comparison; with none, Tables XIII and XIV have no values.
 
     Returns
     -------
     dict of DataFrame
-        ``runs`` (one row per run with its metrics and ISO 2631 values),
-        ``comparisons`` (one row per prediction vs reference), ``table_xiii``,
+        ``runs`` (one row per run with its metrics and ISO 2631 values; ``source``
+        ``prediction`` or ``recording``, the latter with ``characteristics`` ``reference``),
+        ``comparisons`` (one row per prediction vs recording), ``table_xiii``,
         ``table_xiv`` (ours, layout of the thesis), ``spectra`` (profile spectra);
         ``cases`` (list, per row of ``table_xii``: its runs, comparisons and example
         records, for a later call's ``cases``).
@@ -243,29 +312,20 @@ def carriage_study(
     problems: list[str] = []
     stat = _by_condition(stationary, conds["load_condition"], "stationary", "row", problems)
     _refuse(problems)
-    track = pr.slatted_track(seed=seed)
-    dx = track.dx_m
-    lead = int(round(LEAD_IN_M / dx))
-    est_by_load = {}
-    for load, footprint in _footprints(conds, surface_stiffness_factor).items():
-        est = profile_estimates(track, T4_ROLLING_RADIUS_M, footprint, seed + 1)
-        est_by_load[load] = {k: np.concatenate([np.full(lead, v[0]), v, np.full(lead, v[-1])]) for k, v in est.items()}
-        est_by_load[load]["footprint_m"] = footprint
-    x = np.arange(track.x_m.size + 2 * lead) * dx
+    track, lead, est_by_load, x = carriage_track(conds, seed, surface_stiffness_factor)
+    recordings = recordings or {}
     todo = [i for i in range(len(conds)) if i not in cases]
     if todo:
+        recs = [recordings.get(carriage_key(c)) for c in conds.iloc[todo].to_dict("records")]
         new = _carriage_cases(conds.iloc[todo], stat, x, est_by_load,
-                              track.x_m[-1], surface_stiffness_factor)
+                              track.x_m[-1], surface_stiffness_factor, recs)
         cases.update(zip(todo, new))
     ordered = [cases[i] for i in range(len(conds))]
     runs = [r for case in ordered for r in case["runs"]]
     comparisons = pd.DataFrame([r for case in ordered for r in case["comparisons"]])
     records = {k: v for case in ordered for k, v in case["records"].items()}
-    kept = comparisons[~comparisons["speed_km_h"].isin([5.0, 7.5])]
-    tables = {
-        est: mt.accuracy_table(kept[kept["profile_estimate"] == est], by="characteristics")
-        for est in ("surveyed", "recorded")
-    }
+    kept = comparisons[~comparisons["speed_km_h"].isin([5.0, 7.5])] if len(comparisons) else comparisons
+    tables = {est: _accuracy(kept, est) for est in ("surveyed", "recorded")}
     fp = est_by_load[conds["load_condition"].iloc[0]]
     spectra = pr.spectra_table(
         {
@@ -276,7 +336,7 @@ def carriage_study(
             "recorded_estimate": fp["recorded"][lead:-lead],
             "true_enveloped": fp["true"][lead:-lead],
         },
-        dx,
+        track.dx_m,
     )
     spectra.insert(0, "track", track.label)
     return {
@@ -293,58 +353,46 @@ def carriage_study(
 
 
 def _carriage_cases(conds: pd.DataFrame, stat: pd.DataFrame, x: np.ndarray, est_by_load: dict, track_end_m: float,
-                    surface_stiffness_factor: float) -> list[dict]:
-    """The cases of :func:`carriage_study` for the rows ``conds``: each its ``runs`` and
-    ``comparisons`` rows and its example ``records`` (those of 12.5 km/h, heavy)."""
+                    surface_stiffness_factor: float, recordings: list) -> list[dict]:
+    """The cases of :func:`carriage_study` for the rows ``conds`` (and their ``recordings``, an
+    array or None each): each its ``runs`` and ``comparisons`` rows and its example ``records``
+    (those of 12.5 km/h, heavy)."""
     speeds = conds["actual_speed_m_s"].to_numpy(float)
-    n_steps = np.floor((LEAD_IN_M + track_end_m) / (speeds * DT_S)).astype(int) + 1
-    n_max = int(n_steps.max())
-
-    # reference ("measured") runs: nonlinear, batched
-    uh = np.empty((len(conds), 2 * n_max - 1))
-    udh = np.empty_like(uh)
-    for i, (_, c) in enumerate(conds.iterrows()):
-        u, ud = cm.half_step_input(x, est_by_load[c["load_condition"]]["true"], speeds[i], n_max, dt_s=DT_S)
-        uh[i], udh[i] = u - u[0], ud
-    ref_car = cm.Carriage(
-        mass_kg=conds["load_kg"].to_numpy(float),
-        stiffness_N_per_m=surface_stiffness_factor * 1e3 * conds["stiffness_kN_per_m"].to_numpy(float),
-        damping_N_s_per_m=1e3 * conds["damping_kN_s_per_m"].to_numpy(float),
-        parasitic_damping_N_s_per_m=0.0,
-        coulomb_friction_N=REFERENCE_COULOMB_FRICTION_N,
-    )
-    # each run's lift-off fraction over its own samples, not the batch's longest run
-    ref = cm.simulate_nonlinear(ref_car, uh, udh, DT_S, lift_off=True, n_steps=n_steps)
-    del uh, udh
-
+    starts, stops = carriage_steps(speeds, track_end_m)
     out = []
     for i, (_, c) in enumerate(conds.iterrows()):
         runs, comps, records = [], [], {}
         v = speeds[i]
-        start = int(math.ceil(LEAD_IN_M / (v * DT_S)))
-        stop = int(n_steps[i])
-        measured = ref["a_m_s2"][i, start:stop]
+        start, stop = int(starts[i]), int(stops[i])
+        measured = recordings[i]
+        if measured is not None:
+            measured = np.asarray(measured, float)
+            stop = start + min(stop - start, measured.size)  # a recording may be shorter than the track
+            measured = measured[:stop - start]
         base = {
             "speed_km_h": float(c["speed_km_h"]),
             "actual_speed_m_s": v,
             "load_condition": c["load_condition"],
             "load_kg": float(c["load_kg"]),
         }
-        runs.append(
-            {
-                **base,
-                "characteristics": "reference",
-                "profile_estimate": "true",
-                "quoted_stiffness_kN_per_m": float(c["stiffness_kN_per_m"]),
-                "stiffness_kN_per_m": surface_stiffness_factor * float(c["stiffness_kN_per_m"]),
-                "damping_kN_s_per_m": float(c["damping_kN_s_per_m"]),
-                "parasitic_damping_kN_s_per_m": 0.0,
-                "coulomb_friction_N": REFERENCE_COULOMB_FRICTION_N,
-                "lift_off_fraction": float(ref["lift_off_fraction"][i]),
-                **mt.record_metrics(measured, FS_HZ),
-                **{f"iso_{k}": val for k, val in iso2631.evaluate(measured, FS_HZ, "z").items()},
-            }
-        )
+        if measured is not None:
+            nan = float("nan")  # what the recorded carriage is made of is not in its recording
+            runs.append(
+                {
+                    **base,
+                    "characteristics": "reference",
+                    "profile_estimate": "true",
+                    "quoted_stiffness_kN_per_m": nan,
+                    "stiffness_kN_per_m": nan,
+                    "damping_kN_s_per_m": nan,
+                    "parasitic_damping_kN_s_per_m": nan,
+                    "coulomb_friction_N": nan,
+                    "lift_off_fraction": nan,
+                    **mt.record_metrics(measured, FS_HZ),
+                    **{f"iso_{k}": val for k, val in iso2631.evaluate(measured, FS_HZ, "z").items()},
+                    "source": "recording",
+                }
+            )
         st = stat.loc[c["load_condition"]]
         chars = {
             "rolling": (float(c["stiffness_kN_per_m"]), float(c["damping_kN_s_per_m"])),
@@ -356,8 +404,9 @@ def _carriage_cases(conds: pd.DataFrame, stat: pd.DataFrame, x: np.ndarray, est_
                 h = est_by_load[c["load_condition"]][estimate]
                 _, u, ud = cm.ground_input(x, h, v, DT_S, 0.0, (stop - 1) * v * DT_S + 1e-9)
                 pred = cm.simulate_linear(car, u - u[0], ud, DT_S)["a_m_s2"][start:stop]
-                comp = mt.compare_records(pred, measured, FS_HZ)
-                comps.append({**base, "characteristics": name, "profile_estimate": estimate, **comp})
+                if measured is not None:
+                    comp = mt.compare_records(pred, measured, FS_HZ)
+                    comps.append({**base, "characteristics": name, "profile_estimate": estimate, **comp})
                 runs.append(
                     {
                         **base,
@@ -371,11 +420,12 @@ def _carriage_cases(conds: pd.DataFrame, stat: pd.DataFrame, x: np.ndarray, est_
                         "lift_off_fraction": 0.0,
                         **mt.record_metrics(pred, FS_HZ),
                         **{f"iso_{k}": val for k, val in iso2631.evaluate(pred, FS_HZ, "z").items()},
+                        "source": "prediction",
                     }
                 )
                 if c["speed_km_h"] == 12.5 and c["load_condition"] == "heavy":
                     records[(name, estimate)] = pred
-        if c["speed_km_h"] == 12.5 and c["load_condition"] == "heavy":
+        if c["speed_km_h"] == 12.5 and c["load_condition"] == "heavy" and measured is not None:
             records[("reference", "true")] = measured
         out.append({"runs": runs, "comparisons": comps, "records": records})
     return out
@@ -411,7 +461,7 @@ def record_spectra(records: dict, fs_Hz: float, speed_km_h: float, f_max_Hz: flo
         columns=["speed_km_h", "series", "frequency_Hz", "psd_m2_s4_per_Hz"])
 
 
-def _tractor_inputs(profile: pr.Profile, radii, footprints, speed, wheelbase, n_steps):
+def tractor_inputs(profile: pr.Profile, radii, footprints, speed, wheelbase, n_steps):
     """Axle inputs (mean of left/right enveloped tracks), rear delayed by wheelbase/speed."""
     dx = profile.dx_m
     out = []
@@ -511,12 +561,14 @@ def tractor_study(
     duration_s: float = 30.0,
     cases: dict | None = None,
     table_xviii: pd.DataFrame | None = None,
+    recordings: dict | None = None,
 ) -> dict[str, pd.DataFrame]:
     """Chapter 7: MF698T on the slatted track (SBT) and a farm track (HH).
 
     Runs every rolling row of Table XVI with (a) the rolling and (b) the stationary
     characteristics (both Kelvin-Voigt vertical only, no longitudinal element, lift-off
-    allowed, profile estimate), and (c) the reference vehicle (see module docstring).
+    allowed, profile estimate), and compares them with (c) the recordings of the runs
+    (``recordings``, :func:`with_tractor_recordings`).
     Then the Table XVIII sweep at 10 km/h, SBT, load condition 1: rear Kelvin-Voigt
     longitudinal element for the thesis' (k, c) pairs, plus Maxwell variants.
 
@@ -543,6 +595,10 @@ def tractor_study(
         items of a previous result's ``cases`` whose inputs (:func:`tractor_case_inputs`)
         are unchanged. Only the other cases are simulated; the result is the same, to
         the bit, as simulating all of them (the batched tractor runs are independent).
+        A case holds predictions only: the recordings are compared afresh each call.
+    recordings : dict, optional
+        The "measured" side (:func:`with_tractor_recordings`); without any, Table XVII has
+        no values.
 
     Returns
     -------
@@ -556,21 +612,8 @@ def tractor_study(
     _validate.positive_int("seed", seed, minimum=0)
     _validate.choice("farm_class", farm_class, tuple("ABCDEFGH"))
     _validate.positive("duration_s", duration_s)
-    hh_est = pr.add_lead_in(pr.iso8608_track(farm_class, seed=seed + 10), LEAD_IN_M)
-    hh_true = pr.add_lead_in(pr.iso8608_track(farm_class, seed=seed + 11), LEAD_IN_M)
-    # surveyed SBT estimate: slat tops with survey error (same for both tracks)
-    rng = np.random.default_rng(seed + 1)
-    base_track = pr.slatted_track(seed=seed)
-    noisy = {}
-    for s in ("left", "right"):
-        slats = base_track.meta[f"{s}_slats_m"] + rng.uniform(-SURVEY_ERROR_M, SURVEY_ERROR_M, base_track.meta["slat_x_m"].size)
-        noisy[s] = np.interp(base_track.x_m, base_track.meta["slat_x_m"], slats)
-    sbt_est = pr.add_lead_in(base_track.replace(left_m=noisy["left"], right_m=noisy["right"]), LEAD_IN_M)
-    # true SBT: gap-resolved surface, rigid tread band inside _tractor_inputs
-    sbt_true = pr.add_lead_in(
-        base_track.replace(left_m=pr.slat_surface(base_track, "left"), right_m=pr.slat_surface(base_track, "right")),
-        LEAD_IN_M,
-    )
+    tracks = tractor_tracks(seed, farm_class)
+    hh_est, hh_true, sbt_est = tracks["HH estimate"], tracks["HH"], tracks["SBT estimate"]
     rolling = table_xvi[table_xvi["characteristics"] == "rolling"].reset_index(drop=True)
     xv, stat = _tractor_conditions(table_xv, table_xvi, rolling)
     cases = _given_cases(cases, len(rolling), "rolling-row positions", "table_xvi")
@@ -601,18 +644,9 @@ def tractor_study(
             front_damping_N_s_per_m=2e3 * s["front_damping_kN_s_per_m"],
             rear_damping_N_s_per_m=2e3 * s["rear_damping_kN_s_per_m"],
         )
-        est, true = (sbt_est, sbt_true) if r["track"] == "SBT" else (hh_est, hh_true)
-        kx, cx = REFERENCE_LONGITUDINAL
+        est = sbt_est if r["track"] == "SBT" else hh_est
         case.append(({**label, "characteristics": "rolling", "longitudinal": "none"}, {**base, **roll_k}, est, r["track"] != "SBT"))
         case.append(({**label, "characteristics": "stationary", "longitudinal": "none"}, {**base, **stat_k}, est, r["track"] != "SBT"))
-        case.append(
-            (
-                {**label, "characteristics": "reference", "longitudinal": "maxwell"},
-                {**base, **roll_k, "longitudinal_stiffness_N_per_m": 2 * kx, "longitudinal_damping_N_s_per_m": 2 * cx, "longitudinal_model": "maxwell"},
-                true,
-                r["track"] != "SBT",
-            )
-        )
         if _is_sweep_case(r):
             for model, pairs in longitudinal_grid(table_xviii).items():
                 for k_kn, c_kn in pairs:
@@ -641,7 +675,87 @@ def tractor_study(
         cases.update(new)
     results = [cases[i][j] for i, j in order]
     ordered = [cases[i] for i in range(len(specs))]
-    return {**_tractor_tables(pd.DataFrame(results), hh_est, hh_true), "cases": ordered}
+    spectra = pr.spectra_table(
+        {"farm_track_estimate_left": hh_est.left_m, "farm_track_reference_left": hh_true.left_m}, hh_est.dx_m
+    )
+    spectra.insert(0, "track", hh_est.label)
+    predicted = pd.DataFrame(results).assign(source="prediction")
+    return {**with_tractor_recordings({"runs": predicted, "spectra": spectra}, recordings), "cases": ordered}
+
+
+def tractor_tracks(seed: int = 5007, farm_class: str = "D") -> dict:
+    """The tracks of the tractor study, each with its lead-in: ``SBT`` (the true slatted track,
+    gaps resolved; the tread band is applied per axle), ``SBT estimate`` (slat tops with the
+    survey error, seed ``seed + 1``), ``HH`` (the farm track driven: a realisation of ISO 8608
+    class ``farm_class``, seed ``seed + 11``) and ``HH estimate`` (the survey, another
+    realisation, seed ``seed + 10``: the thesis' survey was years older than the runs, §7.3).
+    The predictions read the estimates; the virtual tractor that records the "measured" runs
+    (:mod:`tyrelab.vehicle.study_recordings`) drives over ``SBT`` and ``HH``."""
+    hh_est = pr.add_lead_in(pr.iso8608_track(farm_class, seed=seed + 10), LEAD_IN_M)
+    hh_true = pr.add_lead_in(pr.iso8608_track(farm_class, seed=seed + 11), LEAD_IN_M)
+    rng = np.random.default_rng(seed + 1)
+    base_track = pr.slatted_track(seed=seed)
+    noisy = {}
+    for side in ("left", "right"):
+        slats = base_track.meta[f"{side}_slats_m"] + rng.uniform(-SURVEY_ERROR_M, SURVEY_ERROR_M,
+                                                                 base_track.meta["slat_x_m"].size)
+        noisy[side] = np.interp(base_track.x_m, base_track.meta["slat_x_m"], slats)
+    sbt_est = pr.add_lead_in(base_track.replace(left_m=noisy["left"], right_m=noisy["right"]), LEAD_IN_M)
+    sbt_true = pr.add_lead_in(
+        base_track.replace(left_m=pr.slat_surface(base_track, "left"), right_m=pr.slat_surface(base_track, "right")),
+        LEAD_IN_M,
+    )
+    return {"SBT": sbt_true, "SBT estimate": sbt_est, "HH": hh_true, "HH estimate": hh_est}
+
+
+def tractor_key(row: dict) -> tuple[int, str, float]:
+    """The key of a tractor run (a Table XVI row or a recording): ``(load_condition, track, speed_km_h)``.
+
+    Examples
+    --------
+    >>> tractor_key({"load_condition": "1", "track": "SBT", "speed_km_h": 10})
+    (1, 'SBT', 10.0)
+    """
+    try:
+        lc, track, speed = int(float(row["load_condition"])), row["track"], float(row["speed_km_h"])
+    except (KeyError, TypeError, ValueError):
+        lc = track = None
+    if lc is None or track not in ("SBT", "HH"):
+        raise ValueError(f"row: needs a load_condition number, a track SBT or HH and a speed_km_h, got {row!r:.120}")
+    return lc, str(track), speed
+
+
+def with_tractor_recordings(study: dict, recordings: dict | None) -> dict:
+    """A tractor study's tables with its predictions compared against ``recordings``.
+
+    Parameters
+    ----------
+    study : dict
+        :func:`tractor_study`'s result (its ``runs`` with ``source`` ``prediction`` are kept;
+        rows of earlier recordings are replaced).
+    recordings : dict or None
+        :func:`tractor_key` -> ``{"label": str, "vertical_m_s2", "pitch_rad_s2",
+        "longitudinal_m_s2": arrays at FS_HZ}`` (any missing channel NaN-valued). Their
+        rows (``characteristics`` ``reference``) are measured by the same
+        :func:`run_metrics` as the predictions. Without any, Table XVII has no values.
+    """
+    if not isinstance(study, dict) or not {"runs", "spectra"} <= set(study):
+        raise ValueError("study: expected tractor_study's result (a dict with runs and spectra)")
+    if recordings is not None and not isinstance(recordings, dict):
+        raise ValueError(f"recordings: expected a dict (tractor_key -> channels), got {type(recordings).__name__}")
+    runs = study["runs"]
+    runs = runs[runs["source"] == "prediction"]
+    rows = []
+    for key, rec in sorted((recordings or {}).items()):
+        lc, track, speed = key
+        label = {"load_condition": lc, "track": track, "speed_km_h": speed, "characteristics": "reference",
+                 "longitudinal": "recorded"}
+        rows.append({**run_metrics(label, rec.get("label", "recording"), rec.get("vertical_m_s2"),
+                                   rec.get("pitch_rad_s2"), rec.get("longitudinal_m_s2")),
+                     "method_used": "recording", "source": "recording"})
+    if rows:
+        runs = pd.concat([runs, pd.DataFrame(rows)], ignore_index=True)
+    return {**study, **_tractor_tables(runs.reset_index(drop=True)), "spectra": study["spectra"]}
 
 
 def _tractor_runs(group: list, duration_s: float) -> list[dict]:
@@ -656,7 +770,7 @@ def _tractor_runs(group: list, duration_s: float) -> list[dict]:
         key = (id(prof), v, wb)
         if key not in input_cache:
             radii = {"front": 0.0 if farm else FRONT_7_50_18_RADIUS_M, "rear": 0.0 if farm else T4_ROLLING_RADIUS_M}
-            input_cache[key] = _tractor_inputs(prof, radii, {"front": 0.25, "rear": 0.45}, v, wb, n_steps)
+            input_cache[key] = tractor_inputs(prof, radii, {"front": 0.25, "rear": 0.45}, v, wb, n_steps)
         input_keys.append(key)
     arrs = [np.array([input_cache[key][j] for key in input_keys]) for j in range(4)]
     del input_cache
@@ -665,56 +779,78 @@ def _tractor_runs(group: list, duration_s: float) -> list[dict]:
     sim = simulate_tractor(Tractor(**params, longitudinal_model=models), *arrs, DT_S)
     del arrs
     for i, (label, kw, prof, farm) in enumerate(group):
-        v = label["speed_km_h"] / 3.6
         wb = kw["front_distance_m"] + kw["rear_distance_m"]
-        start = int(math.ceil((LEAD_IN_M - wb) / (v * DT_S))) if LEAD_IN_M > wb else 0
-        length = min(duration_s, (prof.x_m[-1] - 2 * LEAD_IN_M) / v) if label["track"] == "SBT" else duration_s
-        stop = start + int(round(length / DT_S))
-        vert = sim["vertical_m_s2"][i, start:stop]
-        pitch = sim["pitch_rad_s2"][i, start:stop]
-        lon = sim["longitudinal_m_s2"][i, start:stop]
-        fv, pv = mt.acceleration_psd(vert, FS_HZ, 0.1)
-        fp, pp = mt.acceleration_psd(pitch, FS_HZ, 0.1)
-        peaks = mt.spectral_peaks(fv, pv, 3)
-        two = mt.spectral_peaks(fv, pv, 2)
-        iso_z = iso2631.evaluate(vert, FS_HZ, "z")
-        iso_x = iso2631.evaluate(lon, FS_HZ, "x")
-        results.append(
-            {
-                "sweep": False,
-                **label,
-                "front_stiffness_kN_per_m": kw["front_stiffness_N_per_m"] / 2e3,
-                "rear_stiffness_kN_per_m": kw["rear_stiffness_N_per_m"] / 2e3,
-                "front_damping_kN_s_per_m": kw["front_damping_N_s_per_m"] / 2e3,
-                "rear_damping_kN_s_per_m": kw["rear_damping_N_s_per_m"] / 2e3,
-                "longitudinal_stiffness_kN_per_m": kw.get("longitudinal_stiffness_N_per_m", 0.0) / 2e3,
-                "longitudinal_damping_kN_s_per_m": kw.get("longitudinal_damping_N_s_per_m", 0.0) / 2e3,
-                "profile": prof.label,
-                "duration_s": vert.size / FS_HZ,
-                "vertical_rms_m_s2": mt.band_rms(fv, pv, 0.5, 10.0),
-                "pitch_rms_rad_s2": mt.band_rms(fp, pp, 0.5, 10.0),
-                "first_peak_Hz": two[0],
-                "second_peak_Hz": two[1],
-                "peak_1_Hz": peaks[0],
-                "peak_2_Hz": peaks[1],
-                "peak_3_Hz": peaks[2],
-                "lift_off_fraction_front": float(sim["lift_off_fraction_front"][i]),
-                "lift_off_fraction_rear": float(sim["lift_off_fraction_rear"][i]),
-                "iso_vertical_weighted_rms_m_s2": iso_z["weighted_rms_m_s2"],
-                "iso_longitudinal_weighted_rms_m_s2": iso_x["weighted_rms_m_s2"],
-                "iso_vertical_vdv_m_s1_75": iso_z["vdv_m_s1_75"],
-                "iso_vertical_crest_factor": iso_z["crest_factor"],
-                "iso_a8_m_s2": max(iso_z["a8_m_s2"], iso_x["a8_m_s2"]),
-                "iso_exceeds_action": bool(max(iso_z["a8_m_s2"], iso_x["a8_m_s2"]) > iso2631.EU_ACTION_A8_M_S2),
-                "iso_exceeds_limit": bool(max(iso_z["a8_m_s2"], iso_x["a8_m_s2"]) > iso2631.EU_LIMIT_A8_M_S2),
-                "method_used": str(sim["method_used"][i]),
-            }
-        )
+        start, stop = tractor_record_window(label, wb, prof.x_m[-1], duration_s)
+        row = run_metrics(label, prof.label, sim["vertical_m_s2"][i, start:stop], sim["pitch_rad_s2"][i, start:stop],
+                          sim["longitudinal_m_s2"][i, start:stop])
+        row.update({
+            "front_stiffness_kN_per_m": kw["front_stiffness_N_per_m"] / 2e3,
+            "rear_stiffness_kN_per_m": kw["rear_stiffness_N_per_m"] / 2e3,
+            "front_damping_kN_s_per_m": kw["front_damping_N_s_per_m"] / 2e3,
+            "rear_damping_kN_s_per_m": kw["rear_damping_N_s_per_m"] / 2e3,
+            "longitudinal_stiffness_kN_per_m": kw.get("longitudinal_stiffness_N_per_m", 0.0) / 2e3,
+            "longitudinal_damping_kN_s_per_m": kw.get("longitudinal_damping_N_s_per_m", 0.0) / 2e3,
+            "lift_off_fraction_front": float(sim["lift_off_fraction_front"][i]),
+            "lift_off_fraction_rear": float(sim["lift_off_fraction_rear"][i]),
+            "method_used": str(sim["method_used"][i]),
+        })
+        results.append(row)
     return results
 
 
-def _tractor_tables(runs: pd.DataFrame, hh_est: pr.Profile, hh_true: pr.Profile) -> dict:
-    """Tables XVII, XVIII, the Table XVIII reference row and the farm-track spectra from the runs."""
+def tractor_record_window(label: dict, wheelbase_m: float, track_length_m: float, duration_s: float = 30.0) -> tuple[int, int]:
+    """``(start, stop)`` samples of a tractor run's record (at :data:`FS_HZ`, from the start of
+    the lead-in): from when the front axle reaches the track, ``duration_s`` long (on SBT at
+    most the track's length)."""
+    v = label["speed_km_h"] / 3.6
+    start = int(math.ceil((LEAD_IN_M - wheelbase_m) / (v * DT_S))) if LEAD_IN_M > wheelbase_m else 0
+    length = min(duration_s, (track_length_m - 2 * LEAD_IN_M) / v) if label["track"] == "SBT" else duration_s
+    return start, start + int(round(length / DT_S))
+
+
+def run_metrics(label: dict, profile: str, vertical_m_s2, pitch_rad_s2, longitudinal_m_s2) -> dict:
+    """The chapter 7 measures of one tractor record, predicted or recorded alike (thesis §7.4):
+    r.m.s. 0.5-10 Hz of the vertical and pitch accelerations from their 0.1 Hz PSDs, the two
+    and three highest peaks of the vertical PSD, ISO 2631-1 values (W_k on the vertical, W_d on
+    the longitudinal). A channel given as None is NaN in the row."""
+    nan = float("nan")
+    n = int(10 * FS_HZ)  # the 0.1 Hz PSD needs 10 s
+    vert = _validate.finite_array("vertical_m_s2", vertical_m_s2, min_samples=n)
+    pitch = None if pitch_rad_s2 is None else _validate.finite_array("pitch_rad_s2", pitch_rad_s2, min_samples=n)
+    lon = None if longitudinal_m_s2 is None else _validate.finite_array("longitudinal_m_s2", longitudinal_m_s2,
+                                                                       min_samples=n)
+    fv, pv = mt.acceleration_psd(vert, FS_HZ, 0.1)
+    peaks = mt.spectral_peaks(fv, pv, 3)
+    two = mt.spectral_peaks(fv, pv, 2)
+    if pitch is not None:
+        fp, pp = mt.acceleration_psd(pitch, FS_HZ, 0.1)
+    iso_z = iso2631.evaluate(vert, FS_HZ, "z")
+    iso_x = iso2631.evaluate(lon, FS_HZ, "x") if lon is not None else {"weighted_rms_m_s2": nan, "a8_m_s2": nan}
+    a8 = max(iso_z["a8_m_s2"], iso_x["a8_m_s2"]) if lon is not None else iso_z["a8_m_s2"]
+    return {
+        "sweep": bool(label.get("sweep", False)),
+        **label,
+        "profile": profile,
+        "duration_s": vert.size / FS_HZ,
+        "vertical_rms_m_s2": mt.band_rms(fv, pv, 0.5, 10.0),
+        "pitch_rms_rad_s2": mt.band_rms(fp, pp, 0.5, 10.0) if pitch is not None else nan,
+        "first_peak_Hz": two[0],
+        "second_peak_Hz": two[1],
+        "peak_1_Hz": peaks[0],
+        "peak_2_Hz": peaks[1],
+        "peak_3_Hz": peaks[2],
+        "iso_vertical_weighted_rms_m_s2": iso_z["weighted_rms_m_s2"],
+        "iso_longitudinal_weighted_rms_m_s2": iso_x["weighted_rms_m_s2"],
+        "iso_vertical_vdv_m_s1_75": iso_z["vdv_m_s1_75"],
+        "iso_vertical_crest_factor": iso_z["crest_factor"],
+        "iso_a8_m_s2": a8,
+        "iso_exceeds_action": bool(a8 > iso2631.EU_ACTION_A8_M_S2),
+        "iso_exceeds_limit": bool(a8 > iso2631.EU_LIMIT_A8_M_S2),
+    }
+
+
+def _tractor_tables(runs: pd.DataFrame) -> dict:
+    """Tables XVII, XVIII and the Table XVIII reference row (recorded) from the runs."""
     main = runs[~runs["sweep"].astype(bool)]
     keys = ["load_condition", "track", "speed_km_h"]
     ref = main[main["characteristics"] == "reference"].set_index(keys)
@@ -733,7 +869,7 @@ def _tractor_tables(runs: pd.DataFrame, hh_est: pr.Profile, hh_true: pr.Profile)
                 st = mt.ratio_error_statistics(j[col] / j[f"{col}_ref"])
                 for stat_name, key in (("mean_ratio_error", "mean"), ("sd_ratio_error", "sd"), ("p_within_10", "p_within_10"), ("p_within_30", "p_within_30")):
                     rows.append({"track": track, "quantity": q, "statistic": stat_name, "characteristics": name, "value": st[key]})
-    xvii = pd.DataFrame(rows).pivot_table(index=["track", "quantity", "statistic"], columns="characteristics", values="value", sort=False).reset_index()
+    xvii = pd.DataFrame(rows).pivot_table(index=["track", "quantity", "statistic"], columns="characteristics", values="value", sort=False, dropna=False).reset_index()
     xvii.columns.name = None
     xvii = xvii.rename(columns={"rolling": "ours_rolling", "stationary": "ours_stationary"})
     sweep = runs[runs["sweep"].astype(bool)][
@@ -741,8 +877,4 @@ def _tractor_tables(runs: pd.DataFrame, hh_est: pr.Profile, hh_true: pr.Profile)
          "pitch_rms_rad_s2", "peak_1_Hz", "peak_2_Hz", "peak_3_Hz"]
     ].reset_index(drop=True)  # fmt: skip
     ref_row = main[(main["characteristics"] == "reference") & (main["load_condition"] == 1) & (main["track"] == "SBT") & (main["speed_km_h"] == 10)]
-    spectra = pr.spectra_table(
-        {"farm_track_estimate_left": hh_est.left_m, "farm_track_reference_left": hh_true.left_m}, hh_est.dx_m
-    )
-    spectra.insert(0, "track", hh_est.label)
-    return {"runs": runs, "table_xvii": xvii, "table_xviii": sweep, "reference_xviii": ref_row, "spectra": spectra}
+    return {"runs": runs, "table_xvii": xvii, "table_xviii": sweep, "reference_xviii": ref_row}

@@ -50,6 +50,10 @@ def build_small_report(tmp: Path, skip: tuple[str, ...] = SLOW_STAGES) -> Contex
     """Generate the campaign under ``tmp/raw`` and run the pipeline into ``tmp/build``."""
     raw, build = Path(tmp) / "raw", Path(tmp) / "build"
     write_small_campaign(raw)
+    if "simulate" not in skip:  # Tables XIII, XIV, XVII compare the predictions with recordings
+        from tyrelab.generate import write_rides
+
+        write_rides(raw, seed=1991, tractors=False)
     ctx = Context(raw=raw, build=build, jobs=1, log=logging.getLogger("tyrelab.test"))
     run_pipeline(ctx, [s for s in ORDER if s not in skip])
     return ctx

@@ -50,7 +50,7 @@ def test_side_by_side_keeps_unprinted_rows(ctx):
     assert list(hh["statistic"]) == ["mean_ratio_error", "sd_ratio_error", "p_within_10", "p_within_30"]
     assert hh["thesis_rolling"].iloc[0] == 2.08 and hh["thesis_rolling"].iloc[2:].isna().all()
     x = ctx.read_table("table_xviii").set_index("row")
-    assert x.loc["measured (ours: reference virtual tractor)", "vertical_rms_m_s2_thesis"] == 1.79
+    assert x.loc["measured (ours: recording, load condition 1, SBT, 10 km/h)", "vertical_rms_m_s2_thesis"] == 1.79
 
 
 def test_table_xiii_rolling_beats_stationary(ctx):
@@ -164,6 +164,8 @@ def test_mf698t_scenario_reproduces_the_chapter_7_runs(ctx):
 def test_tractor_runs_record_their_solution_path(ctx):
     """Runs that lift a tyre were switched (exact in contact, RK4 across lift-off); the others exact."""
     runs = ctx.read_table("tractor_runs")
+    assert set(runs.loc[runs["source"] == "recording", "method_used"]) == {"recording"}
+    runs = runs[runs["source"] == "prediction"]
     lifted = (runs["lift_off_fraction_front"] > 0) | (runs["lift_off_fraction_rear"] > 0)
     assert set(runs.loc[lifted, "method_used"]) == {"exact+rk4"}
     assert set(runs.loc[~lifted, "method_used"]) <= {"exact", "exact+rk4"}
@@ -177,9 +179,10 @@ def test_studies_started_ahead_give_the_tables_of_the_stage_alone(ctx, tmp_path)
     import logging
 
     ahead = Context(raw=ctx.raw, build=tmp_path / "build", jobs=2, log=logging.getLogger("tyrelab.test"))
-    assert simulate.start_studies_ahead(ahead) == ["tractor", "carriage"]
+    # the tractor's predictions only: the carriage's cases compare with recordings the rides stage writes
+    assert simulate.start_studies_ahead(ahead) == ["tractor"]
     assert simulate.start_studies_ahead(ahead) == []  # once
-    for table in ("stiffness_pressure_by_speed", "damping_pressure_by_speed"):  # the ride scenarios' inputs
+    for table in ("stiffness_pressure_by_speed", "damping_pressure_by_speed", "recordings"):  # the stage's inputs
         if ctx.has_table(table):
             ahead.parquet.mkdir(parents=True, exist_ok=True)
             shutil.copy(ctx.table(table), ahead.table(table))
@@ -225,7 +228,7 @@ def test_edited_rows_resimulate_their_cases_only(ctx, tmp_path):
         shutil.copytree(ctx.raw / "scenarios", raw / "scenarios")
     shutil.copytree(ctx.build / "cache" / "simulate", build / "cache" / "simulate")
     edited = Context(raw=raw, build=build, jobs=1, log=logging.getLogger("tyrelab.test"))
-    for table in ("stiffness_pressure_by_speed", "damping_pressure_by_speed"):  # the ride scenarios' inputs
+    for table in ("stiffness_pressure_by_speed", "damping_pressure_by_speed", "recordings"):  # the stage's inputs
         if ctx.has_table(table):
             edited.parquet.mkdir(parents=True, exist_ok=True)
             shutil.copy(ctx.table(table), edited.table(table))
@@ -234,7 +237,7 @@ def test_edited_rows_resimulate_their_cases_only(ctx, tmp_path):
 
     # and one cached case unreadable (a torn or foreign file): it is computed again and replaced
     case_keys = simulate._study_plan(simulate._read(edited)[0], simulate.ItemCache(edited, "simulate"),
-                                     raw / "published")[2]
+                                     raw / "published", simulate.read_study_recordings(edited)[0])[2]
     torn = build / "cache" / "simulate" / f"{case_keys['carriage'][5]}.pkl"
     torn.write_bytes(torn.read_bytes()[:100])
 
@@ -259,10 +262,41 @@ def test_edited_rows_resimulate_their_cases_only(ctx, tmp_path):
     ours, theirs = edited.read_table("tractor_runs"), ctx.read_table("tractor_runs")
     case = ((ours["load_condition"] == int(xvi["load_condition"])) & (ours["track"] == xvi["track"])
             & (ours["speed_km_h"] == float(xvi["speed_km_h"])))
-    assert case.sum() == 3 + 11  # rolling, stationary, reference and the Table XVIII sweep (load 1, SBT, 10 km/h)
+    assert case.sum() == 3 + 11  # rolling, stationary, recorded and the Table XVIII sweep (load 1, SBT, 10 km/h)
     pd.testing.assert_frame_equal(ours[~case], theirs[~case], check_exact=True)  # the other cases: from the cache
     rolling = case & (ours["characteristics"] != "stationary")
     assert (ours.loc[rolling, "rear_damping_kN_s_per_m"] != theirs.loc[rolling, "rear_damping_kN_s_per_m"]).all()
+
+
+def test_tables_xiii_xiv_xvii_come_from_the_recordings(ctx, tmp_path, monkeypatch):
+    """Issue 24: the "measured" side of Tables XIII, XIV and XVII is the campaign's recordings
+    (rides.csv rows naming a study run). A campaign without them still builds: the thesis'
+    columns stay, ours are gaps (no value), nothing is quarantined, and no run is "recorded"."""
+    from tyrelab.stages import run_stage
+
+    raw, build = tmp_path / "raw", tmp_path / "build"
+    shutil.copytree(ctx.raw, raw)
+    shutil.copytree(ctx.build, build)  # its item cache: the tractor's predictions are reused
+    tables = ("table_xiii", "table_xiv", "table_xvii")
+    before = {t: ctx.read_table(t) for t in tables}
+    for t in tables:
+        assert before[t][["ours_rolling", "ours_stationary"]].notna().all().all(), t
+    assert (ctx.read_table("carriage_runs")["source"] == "recording").sum() == 12
+    assert (ctx.read_table("tractor_runs")["source"] == "recording").sum() == 28
+    (raw / "rides.csv").unlink()
+    monkeypatch.setattr(simulate, "scenario_files", lambda raw: [])  # the ride scenarios are not the point here
+    c = Context(raw=raw, build=build, jobs=1)
+    run_stage("rides", c)
+    result = run_stage("simulate", c)
+    assert "recordings of the studies: 0 carriage, 0 tractor" in result.message
+    for t in tables:
+        after = c.read_table(t)
+        assert after[["ours_rolling", "ours_stationary", "difference_rolling", "difference_stationary"]].isna().all().all(), t
+        pd.testing.assert_frame_equal(after.filter(like="thesis_"), before[t].filter(like="thesis_"))
+    measured = c.read_table("table_xviii").set_index("row").filter(like="_ours").iloc[-1]
+    assert measured.isna().all()
+    assert not (c.read_table("carriage_runs")["source"] == "recording").any()
+    assert c.read_table("stages/quarantine_simulate").empty
 
 
 def test_the_tractor_sweep_reads_table_xviii_of_the_raw_folder(tmp_path):
