@@ -531,20 +531,26 @@ class WarehouseTyres(ride.ShippedTyres):
         """The thesis' stiffness formula, or the build's fit (table ``formula_fit``) for ``"build"``."""
         from ..published import thesis_stiffness_model
         from ..tyre.models import build_stiffness_model
-        from ..warehouse import query
 
         thesis = thesis_stiffness_model()
         if formula != "build":
             return thesis
+        return self._from_build_table("formula_fit", lambda table: build_stiffness_model(table, thesis))
+
+    def _from_build_table(self, table_name: str, make):
+        """``make(table)`` of the build's table ``table_name`` (a fit of ``formula = "build"``); a
+        missing warehouse or table, or a table ``make`` refuses, is one line naming the warehouse."""
+        from ..warehouse import query
+
         db = self._db()
         if not db.is_file():
             raise ValueError(f'formula = "build": no warehouse at {db}')
         try:
-            table = query(db, "SELECT * FROM formula_fit")
+            table = query(db, f"SELECT * FROM {table_name}")
         except Exception as exc:  # noqa: BLE001 - a warehouse without the table is the user's input problem
-            raise ValueError(f'formula = "build": cannot read formula_fit from {db} ({str(exc).splitlines()[0]})') from None
+            raise ValueError(f'formula = "build": cannot read {table_name} from {db} ({str(exc).splitlines()[0]})') from None
         try:
-            return build_stiffness_model(table, thesis)
+            return make(table)
         except ValueError as exc:
             raise ValueError(f'formula = "build": {db}: {exc}') from None
 
@@ -552,24 +558,17 @@ class WarehouseTyres(ride.ShippedTyres):
         """The Table VII damping model, or the build's own fit (table ``damping_fit``, source
         ``ours``) for ``"build"``: an unmeasured tyre's damping follows the same choice as its stiffness."""
         from ..tyre.damping_fit import DampingFit
-        from ..warehouse import query
 
         if formula != "build":
             return super().damping_model(formula)
-        db = self._db()
-        if not db.is_file():
-            raise ValueError(f'formula = "build": no warehouse at {db}')
-        try:
-            table = query(db, "SELECT * FROM damping_fit")
-        except Exception as exc:  # noqa: BLE001 - a warehouse without the table is the user's input problem
-            raise ValueError(f'formula = "build": cannot read damping_fit from {db} ({str(exc).splitlines()[0]})') from None
-        rows = table.loc[table["source"].astype(str) == "ours"]
-        if rows.empty:
-            raise ValueError(f'formula = "build": {db}: damping_fit has no \'ours\' row')
-        try:
+
+        def ours(table):
+            rows = table.loc[table["source"].astype(str) == "ours"]
+            if rows.empty:
+                raise ValueError("damping_fit has no 'ours' row (fewer than 5 measured traction tyres?)")
             return DampingFit.from_row(rows.iloc[0].to_dict())
-        except ValueError as exc:
-            raise ValueError(f'formula = "build": {db}: {exc}') from None
+
+        return self._from_build_table("damping_fit", ours)
 
 
 # --------------------------------------------------------------------------- ride scenarios (issue 13)
