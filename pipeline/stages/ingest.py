@@ -296,9 +296,11 @@ def _run_files(campaign: Path):
 
 
 def _ride_files(campaign: Path) -> set[str]:
-    """The files a campaign's ``rides.csv`` lists (relative paths as written): vehicle
-    recordings, read by their own stage, never tyre runs. A ``rides.csv`` that cannot be read
-    lists nothing here; the stage that reads recordings reports it."""
+    """The files a campaign's ``rides.csv`` names (relative paths as written): the vehicle
+    recordings of ``file`` and the road-profile CSVs of ``track`` (e.g. the slatted track's
+    ``rides/slatted_track.csv`` that ``tyrelab generate`` writes), read by the rides and simulate
+    stages, never tyre runs. A ``rides.csv`` that cannot be read names nothing here; the stage
+    that reads recordings reports it."""
     path = campaign / RIDES_FILE
     if not path.is_file():
         return set()
@@ -306,9 +308,13 @@ def _ride_files(campaign: Path) -> set[str]:
         frame = read_delimited(path, load_schema("raw_rides")).frame
     except RunFileError:
         return set()
-    if "file" not in frame.columns:
-        return set()
-    return {str(Path(str(f).strip())) for f in frame["file"].dropna() if str(f).strip()}
+    named = set()
+    for column in ("file", "track"):
+        for f in frame[column].dropna() if column in frame.columns else ():
+            text = str(f).strip()
+            if text and (column == "file" or text.lower().endswith(".csv")):
+                named.add(str(Path(text)))
+    return named
 
 
 def _sweep(runs_dir: Path, keep: set[str]) -> None:

@@ -87,8 +87,11 @@ def test_vehicle_recordings_of_rides_csv_are_not_orphan_runs(tmp_path):
     t.to_parquet(raw / "rides" / "r1.parquet")
     t.to_csv(raw / "rides" / "r2.csv", index=False)
     t.to_parquet(raw / "stray.parquet")
-    pd.DataFrame({"ride_id": ["r1", "r2"], "file": ["rides/r1.parquet", "rides/r2.csv"]}).to_csv(
-        raw / "rides.csv", index=False)
+    # a road profile a row's track names (generate writes rides/slatted_track.csv): not a run either
+    pd.DataFrame({"x_m": [0.0, 1.0], "left_m": [0.0, 0.01], "right_m": [0.0, 0.01]}).to_csv(
+        raw / "rides" / "slats.csv", index=False)
+    pd.DataFrame({"ride_id": ["r1", "r2"], "file": ["rides/r1.parquet", "rides/r2.csv"],
+                  "track": ["rides/slats.csv", "ISO 8608 class B"]}).to_csv(raw / "rides.csv", index=False)
     ctx = Context(raw=raw, build=tmp_path / "build", jobs=1)
     assert run_stage("ingest", ctx).n_ok == 1
     q = ctx.read_table("quarantine")
