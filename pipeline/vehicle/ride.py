@@ -65,7 +65,7 @@ from . import profiles as pr
 from .carriage import GRAVITY_M_S2
 from .scenario import Scenario, with_overrides, with_values
 from .carriage import half_step_input
-from .model import Assembly, Axle, Ballast, Cab, Chassis, Implement, Parts, SeatPoint, assemble
+from .model import Assembly, Axle, Cab, Chassis, Implement, Parts, SeatPoint, assemble
 from .tractor import Tractor, simulate, tractor_parts
 from .scenario_limits import MIN_VERDICT_DURATION_S
 
@@ -375,17 +375,13 @@ def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Part
         imp = Implement(m.mass_kg, m.pitch_inertia_kg_m2, m.roll_inertia_kg_m2, m.behind_rear_axle_m, m.height_m,
                         m.mount, m.hitch_behind_rear_axle_m, m.hitch_height_m,
                         1e3 * (m.hitch_stiffness_kN_m_per_rad or 0.0), 1e3 * m.hitch_damping_kN_m_s_per_rad)
-    ballast = None
-    if scenario.ballast is not None:
-        b = scenario.ballast
-        ballast = Ballast(b.mass_kg, b.ahead_of_front_axle_m, b.height_m, b.pitch_inertia_kg_m2, b.roll_inertia_kg_m2)
     return Parts(
         Chassis(t.mass_kg, t.pitch_inertia_kg_m2, t.cg_height_m, t.roll_inertia_kg_m2),
         axle("front", t.front_distance_m, scenario.front_axle, t.front_track_m),
         axle("rear", -t.rear_distance_m, scenario.rear_axle, t.rear_track_m, longitudinal_model=lon,
              longitudinal_stiffness_N_per_m=kx, longitudinal_damping_N_s_per_m=cx),
         SeatPoint(seat.ahead_of_cg_m, seat.left_of_cg_m, seat.height_above_cg_m),
-        cab, imp, ballast)
+        cab, imp, scenario.ballast)
 
 
 # --------------------------------------------------------------------------- linear model

@@ -45,6 +45,7 @@ import pandas as pd
 from .. import _validate as _checks
 from ..schema import load_schema
 from ..tyre.sizes import TyreSizeError, parse_tyre_size
+from .model import Ballast
 from .scenario_limits import scenario_problems
 
 __all__ = [
@@ -165,15 +166,9 @@ class ImplementSpec:
     hitch_damping_kN_m_s_per_rad: float = 0.0
 
 
-@dataclass(frozen=True)
-class BallastSpec:
-    """``[ballast]``: a front ballast mass."""
-
-    mass_kg: float
-    ahead_of_front_axle_m: float
-    height_m: float
-    pitch_inertia_kg_m2: float = 0.0
-    roll_inertia_kg_m2: float = 0.0
+#: ``[ballast]``: a front ballast mass. Its keys are the model part's fields in the model's units
+#: (kg, m, kg m²), so the scenario holds the part itself (:class:`tyrelab.vehicle.model.Ballast`).
+BallastSpec = Ballast
 
 
 @dataclass(frozen=True)
