@@ -220,13 +220,11 @@ def _formula_stiffness(spec, tyre_data=None) -> tuple[float, str, list[str], flo
     return est.stiffness_kN_per_m, rule, list(est.warnings), est.stiffness_u_kN_per_m or 0.0
 
 
-def _model_damping(spec, speeds_km_h, tyre_data=None) -> tuple[np.ndarray, str, list[str]]:
+def _model_damping(spec, speeds_km_h, tyre_data: ShippedTyres) -> tuple[np.ndarray, str, list[str]]:
     """Damping of an unmeasured tyre per speed from the damping model of ``[tyres.*] formula``
     (:mod:`tyrelab.tyre.damping_fit`: the Table VII lines', or the build's own for ``"build"``),
     its source text and warnings (the interval at the first speed, where the model extrapolates)."""
-    formula = getattr(spec, "formula", "thesis")
-    get_model = getattr(tyre_data, "damping_model", None)  # a caller's tyre data without one: the shipped model
-    fit = get_model(formula) if get_model is not None else _damping_fit()
+    fit = tyre_data.damping_model(getattr(spec, "formula", "thesis"))
     published_model = fit.source == "published"
     which = "Table VII model" if published_model else "build's damping model (its measured tyres)"
     preds = [fit.predict(spec.pressure_bar, float(v), spec.age_years, size=parse_tyre_size(spec.size).designation)
