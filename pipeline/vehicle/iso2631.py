@@ -457,7 +457,7 @@ class ResponseFilter:
         from scipy import fft
 
         buf = np.concatenate((self._history, chunk))
-        self._history = buf[buf.size - (self._n_taps - 1):] if self._n_taps > 1 else buf[:0]
+        self._history = buf[buf.size - (self._n_taps - 1):].copy() if self._n_taps > 1 else buf[:0]
         spectra = self._spectra.get(nfft)
         if spectra is None:
             spectra = [fft.rfft(t, nfft) for t in self._taps]
@@ -481,7 +481,7 @@ class ResponseFilter:
         if final and rest.size:
             parts.append(self._convolve(rest, 1 << int(math.ceil(math.log2(rest.size + self._n_taps - 1)))))
             rest = rest[:0]
-        self._pending, self._n_pending = ([rest], rest.size) if rest.size else ([], 0)
+        self._pending, self._n_pending = ([rest.copy()], rest.size) if rest.size else ([], 0)
         if not parts:
             return [np.empty(0) for _ in self._taps]
         return [np.concatenate([p[j] for p in parts]) if len(parts) > 1 else parts[0][j]
