@@ -118,6 +118,7 @@ class Recording:
             last_t = float(chunk.time_s[-1])
             row += chunk.time_s.size
             yield chunk
+            del chunk, frame  # not alive while the next batch is decoded
 
 
 def _frames(path: Path, columns: list[str], chunk_rows: int, channel_map: dict | None) -> Iterator[pd.DataFrame]:
@@ -125,7 +126,7 @@ def _frames(path: Path, columns: list[str], chunk_rows: int, channel_map: dict |
     try:
         if suffix == ".parquet":
             pf = _parquet(path)
-            for batch in pf.iter_batches(batch_size=chunk_rows, columns=columns):
+            for batch in pf.iter_batches(batch_size=chunk_rows, columns=columns, use_threads=False):
                 # straight to numpy (no DataFrame): a null becomes NaN, which _checked refuses
                 yield {name: col.to_numpy(zero_copy_only=False) for name, col in zip(batch.schema.names, batch.columns)}
         elif suffix == ".csv":

@@ -207,7 +207,9 @@ def vibration_dose_value(weighted_m_s2, fs_Hz: float) -> float:
     """
     fs_Hz = positive("fs_Hz", fs_Hz)
     aw = np.asarray(weighted_m_s2, dtype=float)
-    return float((np.sum(aw**4) / fs_Hz) ** 0.25)
+    a2 = aw * aw  # aw**4 as (aw²)²: a multiply, not pow() (5x faster); numpy's sum, not BLAS' dot,
+    a2 *= a2  # whose rounding changes with the operands' memory alignment
+    return float((np.sum(a2) / fs_Hz) ** 0.25)
 
 
 def crest_factor(weighted_m_s2) -> float:
@@ -455,7 +457,7 @@ class ResponseFilter:
         from scipy import fft
 
         buf = np.concatenate((self._history, chunk))
-        self._history = buf[buf.size - (self._n_taps - 1):] if self._n_taps > 1 else buf[:0]
+        self._history = buf[buf.size - (self._n_taps - 1):].copy() if self._n_taps > 1 else buf[:0]
         spectra = self._spectra.get(nfft)
         if spectra is None:
             spectra = [fft.rfft(t, nfft) for t in self._taps]
@@ -479,7 +481,7 @@ class ResponseFilter:
         if final and rest.size:
             parts.append(self._convolve(rest, 1 << int(math.ceil(math.log2(rest.size + self._n_taps - 1)))))
             rest = rest[:0]
-        self._pending, self._n_pending = ([rest], rest.size) if rest.size else ([], 0)
+        self._pending, self._n_pending = ([rest.copy()], rest.size) if rest.size else ([], 0)
         if not parts:
             return [np.empty(0) for _ in self._taps]
         return [np.concatenate([p[j] for p in parts]) if len(parts) > 1 else parts[0][j]

@@ -111,7 +111,7 @@ class _Welch:
         spec -= segs.mean(axis=1)[:, None] * self._win_spectrum
         self.total += np.sum(spec.real**2 + spec.imag**2, axis=0)
         self.count += segs.shape[0]
-        self.left = buf[segs.shape[0] * self.hop:]
+        self.left = buf[segs.shape[0] * self.hop:].copy()  # not a view keeping the chunk alive
 
     def finish(self) -> tuple[np.ndarray, np.ndarray]:
         from scipy import signal
@@ -187,7 +187,7 @@ class ChannelAnalyser:
                 k = self._window
                 sums = c[k + 1:] - c[1:c.size - k]  # window sums ending at each new sample
                 self._rmax = max(self._rmax, float(np.sqrt(max(float(sums.max()), 0.0) / k)))
-                self._tail = np.concatenate((self._tail, sq))[-k:]
+                self._tail = np.concatenate((self._tail, sq))[-k:].copy()
         if self._dose is not None:
             self._dose.process(outputs[-1])
 
@@ -295,9 +295,11 @@ def analyse_recording(recording) -> RecordingAnalysis:
         raise ValueError(f"recording must be an opened recording (rawformat.rides.open_recording), got "
                          f"{type(recording).__name__}")
     analysers = {c: ChannelAnalyser(c, recording.sample_rate_Hz, recording.offsets[c]) for c in recording.channels}
-    for chunk in recording.chunks():
+    chunks = recording.chunks()
+    while (chunk := next(chunks, None)) is not None:
         for c, a in analysers.items():
             a.process(chunk.channels[c])
+        del chunk  # not alive while the next one is read
     results = {c: a.finish() for c, a in analysers.items()}
     n = max((r.n_samples for r in results.values()), default=0)
     return RecordingAnalysis(recording.sample_rate_Hz, n / recording.sample_rate_Hz, results, list(recording.warnings))
