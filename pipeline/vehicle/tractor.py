@@ -336,7 +336,7 @@ class _Kernel:
         r[:, :, width:width + nt] += r_f
         self.a, self.p, self.r = a, p, r
         self.floor = np.ascontiguousarray(take(b.floor))
-        self.rate = np.ascontiguousarray(take(b.rate))
+        self.rate = np.ascontiguousarray(rate)
         self.gated = b.gated
         if b.gated:  # gate factor of every non-tyre element: [gate weights per tyre, gate_on]
             gw = np.concatenate([np.concatenate([take(b.gate_w), take(b.gate_on)[:, :, None]], axis=2),
