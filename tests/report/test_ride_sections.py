@@ -139,4 +139,4 @@ def test_a_legend_too_long_to_fit_says_how_many_lines_it_leaves_out():
     rows = [{"speed_km_h": v, "a_wz_m_s2": 0.1 * v + i / 100, "a_wx_m_s2": 0.05 * v, "variant": f"variant {i}"}
             for i in range(20) for v in (4.0, 8.0)]
     svg = ride_figures.aw_against_speed(pd.DataFrame(rows), 8.0)
-    assert "… 9 more lines (see the table)" in svg and "variant 10" in svg and "variant 11" not in svg
+    assert "9 more lines (see the table)" in svg and "variant 10" in svg and "variant 11" not in svg
