@@ -174,7 +174,7 @@ def aw_against_speed(speeds: pd.DataFrame, hours_per_day: float = 8.0) -> str | 
     reach the EU action and limit values; the legend below the panels."""
     if not _has(speeds, "speed_km_h", "a_wz_m_s2", "a_wx_m_s2"):
         return None
-    s = speeds.sort_values("speed_km_h")
+    s = speeds.sort_values("speed_km_h", kind="stable")  # the variants in their order (legend)
     axes_cols = [("a_wz_m_s2", 1.0, "a_wz (vertical, W_k)"), ("a_wx_m_s2", 1.4, "1.4 a_wx (fore-aft, W_d)")]
     if "a_wy_m_s2" in s and (s["a_wy_m_s2"] > 0).any():
         axes_cols.append(("a_wy_m_s2", 1.4, "1.4 a_wy (lateral, W_d)"))
