@@ -1661,7 +1661,9 @@ def result_json(results: list[RideResult]) -> dict:
 def results_table(results: list[RideResult], scenario_id: str | None = None) -> pd.DataFrame:
     """One row per speed × pressure pair (the ``ride_results`` layout).
 
-    ``is_nominal`` marks the pair of the scenario's own tyre pressures.
+    ``is_nominal`` marks the pair of the scenario's own tyre pressures. The natural frequencies are
+    ``modes_Hz`` (text) and one ``<mode>_Hz`` column per mode (``bounce_Hz``, ``pitch_Hz``,
+    ``roll_Hz`` always; ``front_axle_roll_Hz``, ``cab_pitch_Hz``, ... where the model has them).
     """
     _validate.instances("results", results, RideResult)
     frames = []
@@ -1671,6 +1673,8 @@ def results_table(results: list[RideResult], scenario_id: str | None = None) -> 
         df["bounce_Hz"] = r.natural_frequencies_Hz.get("bounce", math.nan)
         df["pitch_Hz"] = r.natural_frequencies_Hz.get("pitch", math.nan)
         df["roll_Hz"] = r.natural_frequencies_Hz.get("roll", math.nan)
+        for mode, f in r.natural_frequencies_Hz.items():  # every further mode (front_axle_roll_Hz, cab_pitch_Hz, ...)
+            df[f"{mode}_Hz"] = f
         df["modes_Hz"] = "; ".join(f"{k} {v:.3f}" for k, v in r.natural_frequencies_Hz.items())
         df["front_stiffness_source"] = r.tyres["front"].stiffness_source
         df["rear_stiffness_source"] = r.tyres["rear"].stiffness_source
