@@ -444,62 +444,78 @@ class ResponseFilter:
         # power of two is 1.6× faster than the 5-smooth length next to it, and a block as long
         # as the FFT allows spends the fewest FFTs per sample
         self._nfft = 1 << max(18, int(math.ceil(math.log2(8 * self._n_taps))))
-        self._block = self._nfft - (self._n_taps - 1)
-        self._history = np.zeros(self._n_taps - 1)
-        self._pending: list[np.ndarray] = []
-        self._n_pending = 0
+        self._hist = self._n_taps - 1
+        self._block = self._nfft - self._hist
+        # the input in place: the last n_taps - 1 samples before the block (zeros before the
+        # record), then the block as it fills; no concatenation per chunk
+        self._buf = np.zeros(self._nfft)
+        self._fill = self._hist
         self._skip = self._lead  # outputs before t = 0 of the record
         self._spectra: dict[int, list[np.ndarray]] = {}
 
-    def _convolve(self, chunk: np.ndarray, nfft: int) -> list[np.ndarray]:
+    def _transform(self, n: int, nfft: int) -> list[np.ndarray]:
+        """The outputs of the buffer's first ``n`` samples (the history and ``n - hist`` new ones)
+        by an ``nfft``-point overlap-save step."""
         from scipy import fft
 
-        buf = np.concatenate((self._history, chunk))
-        self._history = buf[buf.size - (self._n_taps - 1):].copy() if self._n_taps > 1 else buf[:0]
         spectra = self._spectra.get(nfft)
         if spectra is None:
             spectra = [fft.rfft(t, nfft) for t in self._taps]
             self._spectra[nfft] = spectra
-        b = fft.rfft(buf, nfft)
-        out = [fft.irfft(b * s, nfft)[self._n_taps - 1: buf.size] for s in spectra]
+        b = fft.rfft(self._buf[:n], nfft)
+        out = []
+        for j, s in enumerate(spectra):
+            prod = np.multiply(b, s, out=b) if j == len(spectra) - 1 else b * s
+            out.append(fft.irfft(prod, nfft, overwrite_x=True)[self._hist: n])
         if self._skip:
             k = min(self._skip, out[0].size)
             out = [o[k:] for o in out]
             self._skip -= k
         return out
 
-    def _blocks(self, final: bool) -> list[np.ndarray]:
-        """Filter the pending samples in whole blocks (and, if ``final``, the rest)."""
-        if not self._pending:
-            return [np.empty(0) for _ in self._taps]
-        data = np.concatenate(self._pending) if len(self._pending) > 1 else self._pending[0]
-        n_full = data.size // self._block * self._block
-        parts = [self._convolve(data[i:i + self._block], self._nfft) for i in range(0, n_full, self._block)]
-        rest = data[n_full:]
-        if final and rest.size:
-            parts.append(self._convolve(rest, 1 << int(math.ceil(math.log2(rest.size + self._n_taps - 1)))))
-            rest = rest[:0]
-        self._pending, self._n_pending = ([rest.copy()], rest.size) if rest.size else ([], 0)
+    def _shift(self) -> None:
+        if self._hist:
+            self._buf[: self._hist] = self._buf[self._fill - self._hist: self._fill]
+        self._fill = self._hist
+
+    def blocks(self, chunk):
+        """Take the next chunk; yield, per completed block, one array per response (the new
+        outputs). The arrays are the caller's; the filter keeps no reference to them."""
+        chunk = np.asarray(chunk, dtype=float)
+        i = 0
+        while i < chunk.size:
+            k = min(chunk.size - i, self._nfft - self._fill)
+            self._buf[self._fill: self._fill + k] = chunk[i: i + k]
+            self._fill += k
+            i += k
+            if self._fill == self._nfft:
+                out = self._transform(self._nfft, self._nfft)
+                self._shift()
+                yield out
+
+    def final_blocks(self):
+        """Yield the remaining outputs (the record continued by zeros for the lead), as :meth:`blocks`."""
+        if self._lead:
+            yield from self.blocks(np.zeros(self._lead))
+            self._lead = 0
+        if self._fill > self._hist:
+            n = self._fill
+            nfft = 1 << int(math.ceil(math.log2(n)))
+            out = self._transform(n, nfft)
+            self._shift()
+            yield out
+
+    @staticmethod
+    def _joined(parts: list, n_out: int) -> list[np.ndarray]:
         if not parts:
-            return [np.empty(0) for _ in self._taps]
-        return [np.concatenate([p[j] for p in parts]) if len(parts) > 1 else parts[0][j]
-                for j in range(len(self._taps))]
+            return [np.empty(0) for _ in range(n_out)]
+        return [np.concatenate([p[j] for p in parts]) if len(parts) > 1 else parts[0][j] for j in range(n_out)]
 
     def process(self, chunk) -> list[np.ndarray]:
         """Filter the next chunk; returns one array per response, the outputs ready so far (they lag
         the input by up to a block)."""
-        chunk = np.asarray(chunk, dtype=float)
-        if chunk.size:
-            self._pending.append(chunk)
-            self._n_pending += chunk.size
-        if self._n_pending < self._block:
-            return [np.empty(0) for _ in self._taps]
-        return self._blocks(final=False)
+        return self._joined(list(self.blocks(chunk)), len(self._taps))
 
     def finish(self) -> list[np.ndarray]:
         """The remaining output samples (the record continued by zeros for the lead)."""
-        if self._lead:
-            self._pending.append(np.zeros(self._lead))
-            self._n_pending += self._lead
-            self._lead = 0
-        return self._blocks(final=True)
+        return self._joined(list(self.final_blocks()), len(self._taps))

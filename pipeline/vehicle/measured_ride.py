@@ -90,28 +90,40 @@ class _Welch:
     """Streaming Welch PSD: Hann, 50 % overlap, constant detrend, density scaling (as scipy.signal.welch)."""
 
     def __init__(self, fs_Hz: float, nperseg: int):
+        from scipy import fft
+
         self.fs, self.n, self.hop = fs_Hz, nperseg, nperseg - nperseg // 2
         self.win = np.hanning(nperseg + 1)[:-1] if nperseg > 1 else np.ones(1)  # periodic Hann (scipy's 'hann')
-        self._win_spectrum = np.fft.rfft(self.win)
+        # the constant detrend after the transform (linear: rfft(w (s - m)) = rfft(w s) - m rfft(w)); the
+        # periodic Hann's spectrum is N/2, -N/4 at bins 0 and 1 and zero (rounding) elsewhere
+        spectrum = fft.rfft(self.win)
+        self._detrend_bins = np.flatnonzero(np.abs(spectrum) > 1e-9 * np.abs(spectrum).max())
+        self._detrend_values = spectrum[self._detrend_bins]
         self.left = np.empty(0)
-        self.total = np.zeros(nperseg // 2 + 1)
+        self._power = np.zeros(2 * (nperseg // 2 + 1))  # Σ re², Σ im² of the segments' spectra, interleaved
         self.count = 0
 
     def process(self, x: np.ndarray) -> None:
-        buf = np.concatenate((self.left, x))
-        if buf.size < self.n:
-            self.left = buf
-            return
         from scipy import fft
 
-        segs = np.lib.stride_tricks.sliding_window_view(buf, self.n)[:: self.hop]
-        # the constant detrend after the transform (linear: rfft(w (s - m)) = rfft(w s) - m rfft(w)),
-        # saving a pass over the segments; scipy.fft is numpy's pocketfft, vectorised
-        spec = fft.rfft(segs * self.win, axis=1)
-        spec -= segs.mean(axis=1)[:, None] * self._win_spectrum
-        self.total += np.sum(spec.real**2 + spec.imag**2, axis=0)
-        self.count += segs.shape[0]
-        self.left = buf[segs.shape[0] * self.hop:].copy()  # not a view keeping the chunk alive
+        buf = np.concatenate((self.left, x)) if self.left.size else x
+        if buf.size < self.n:
+            self.left = buf.copy()
+            return
+        m = (buf.size - self.n) // self.hop + 1
+        segs = np.lib.stride_tricks.sliding_window_view(buf, self.n)[:: self.hop][:m]
+        spec = fft.rfft(segs * self.win, axis=1, overwrite_x=True)
+        if self.n == 2 * self.hop:  # each segment two halves: their sums, one pass over the samples
+            halves = buf[: (m + 1) * self.hop].reshape(m + 1, self.hop).sum(axis=1)
+            means = (halves[:-1] + halves[1:]) / self.n
+        else:
+            means = segs.mean(axis=1)
+        spec[:, self._detrend_bins] -= means[:, None] * self._detrend_values
+        parts = spec.view(np.float64)  # re, im interleaved: squared in place, summed over the segments
+        np.multiply(parts, parts, out=parts)
+        self._power += parts.sum(axis=0)
+        self.count += m
+        self.left = buf[m * self.hop:].copy()  # not a view keeping the chunk alive
 
     def finish(self) -> tuple[np.ndarray, np.ndarray]:
         from scipy import signal
@@ -120,11 +132,16 @@ class _Welch:
             if self.left.size < 2:
                 return np.empty(0), np.empty(0)
             return signal.welch(self.left, fs=self.fs, window="hann", nperseg=self.left.size, detrend="constant")
-        psd = self.total / self.count / (self.fs * np.sum(self.win**2))
+        total = self._power[0::2] + self._power[1::2]
+        psd = total / self.count / (self.fs * np.sum(self.win**2))
         psd[1:] *= 2.0
         if self.n % 2 == 0:
             psd[-1] /= 2.0
         return np.fft.rfftfreq(self.n, 1.0 / self.fs), psd
+
+
+#: Samples per pass of the weighted signal's sums (in cache: 256 KiB of float64).
+_SUB_BLOCK = 1 << 15
 
 
 class ChannelAnalyser:
@@ -156,44 +173,54 @@ class ChannelAnalyser:
         self._filter = iso2631.ResponseFilter(responses) if responses else None
         self._dose = iso2631_5.PeakDose() if self.spine else None
         self._welch = _Welch(self.fs, max(1, int(round(self.fs / PSD_BANDWIDTH_HZ))))
-        self._window = max(1, int(round(iso2631.RUNNING_RMS_TAU_S * self.fs)))
-        self._tail = np.zeros(self._window)  # last squares of the weighted signal (zeros before the start)
+        self._window = k = max(1, int(round(iso2631.RUNNING_RMS_TAU_S * self.fs)))
+        if self.weighting:
+            # the last k squares of the weighted signal (zeros before the start), then a sub-block's;
+            # their running sum; the window sums
+            self._squares = np.zeros(k + _SUB_BLOCK)
+            self._cumulative = np.zeros(k + _SUB_BLOCK + 1)
+            self._window_sums = np.empty(_SUB_BLOCK)
         self.n = 0
         self._sum = self._sum2 = 0.0
-        self._w2 = self._w4 = self._wmax = self._rmax = 0.0
+        self._w2 = self._w4 = self._sq_max = self._window_max = 0.0
         self._nw = 0
 
     def process(self, samples) -> None:
-        x = np.asarray(samples, dtype=float) - self.offset
+        x = np.subtract(samples, self.offset, dtype=float)
         if x.size == 0:
             return
         self.n += x.size
         self._sum += float(x.sum())
-        self._sum2 += float(np.dot(x, x))
+        self._sum2 += float(np.einsum("i,i->", x, x))  # not np.dot: BLAS threads stall on a busy machine
         self._welch.process(x)
         if self._filter is not None:
-            self._weighted(self._filter.process(x))
+            for outputs in self._filter.blocks(x):
+                self._weighted(outputs)
 
     def _weighted(self, outputs) -> None:
         if self.weighting:
             aw = outputs[0]
-            if aw.size:
-                sq = aw * aw
-                self._nw += aw.size
-                self._w2 += float(sq.sum())
-                self._w4 += float(np.dot(sq, sq))
-                self._wmax = max(self._wmax, float(np.abs(aw).max()))
-                c = np.concatenate(([0.0], np.cumsum(np.concatenate((self._tail, sq)))))
-                k = self._window
-                sums = c[k + 1:] - c[1:c.size - k]  # window sums ending at each new sample
-                self._rmax = max(self._rmax, float(np.sqrt(max(float(sums.max()), 0.0) / k)))
-                self._tail = np.concatenate((self._tail, sq))[-k:].copy()
+            k = self._window
+            sq, c, sums = self._squares, self._cumulative, self._window_sums
+            self._nw += aw.size
+            for i in range(0, aw.size, _SUB_BLOCK):  # a few passes over each sub-block while it is in cache
+                part = aw[i:i + _SUB_BLOCK]
+                m = part.size
+                new = np.multiply(part, part, out=sq[k:k + m])
+                self._w2 += float(new.sum())
+                self._w4 += float(np.einsum("i,i->", new, new))
+                self._sq_max = max(self._sq_max, float(new.max()))
+                np.cumsum(sq[:k + m], out=c[1:k + m + 1])
+                window = np.subtract(c[k + 1:k + m + 1], c[1:m + 1], out=sums[:m])  # window sums ending at each new sample
+                self._window_max = max(self._window_max, float(window.max()))
+                sq[:k] = sq[m:m + k].copy()
         if self._dose is not None:
             self._dose.process(outputs[-1])
 
     def finish(self) -> ChannelResult:
         if self._filter is not None:
-            self._weighted(self._filter.finish())
+            for outputs in self._filter.final_blocks():
+                self._weighted(outputs)
         duration = self.n / self.fs
         mean = self._sum / self.n if self.n else math.nan
         res = ChannelResult(self.channel, self.weighting, duration, self.n,
@@ -208,8 +235,8 @@ class ChannelAnalyser:
         if self.weighting and self._nw:
             res.a_w_m_s2 = math.sqrt(self._w2 / self._nw)
             res.vdv_m_s1_75 = (self._w4 / self.fs) ** 0.25
-            res.mtvv_m_s2 = self._rmax
-            res.crest_factor = self._wmax / res.a_w_m_s2 if res.a_w_m_s2 > 0 else math.nan
+            res.mtvv_m_s2 = math.sqrt(max(self._window_max, 0.0) / self._window)
+            res.crest_factor = math.sqrt(self._sq_max) / res.a_w_m_s2 if res.a_w_m_s2 > 0 else math.nan
             res.method = iso2631.method_check(res.a_w_m_s2, res.crest_factor, res.mtvv_m_s2, res.vdv_m_s1_75, duration)
         if self._dose is not None:
             res.dz_m_s2 = self._dose.finish()
