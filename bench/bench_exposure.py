@@ -57,7 +57,7 @@ def write_day(path: Path, hours: float, fs: float, seed: int = 24) -> int:
     return n
 
 
-def child(mode: str, path: str) -> dict:
+def child(mode: str, path: str, workers: int | None = None) -> dict:
     import pyarrow.parquet as pq
 
     from tyrelab.rawformat.rides import CHUNK_ROWS, open_recording
@@ -73,10 +73,12 @@ def child(mode: str, path: str) -> dict:
                 total += float(col.to_numpy()[-1])
         out["checksum"] = total
     elif mode == "exposure":
-        a = analyse_recording(open_recording(path))
+        a = analyse_recording(open_recording(path), workers=workers)
         out["a_w_z_m_s2"] = a.axes()["z"]["a_w_m_s2"]
         out["dz_m_s2"] = a.dz_m_s2
     out["seconds"] = time.perf_counter() - t0
+    use = resource.getrusage(resource.RUSAGE_SELF)
+    out["cpu_s"] = use.ru_utime + use.ru_stime  # all threads, imports included
     out["peak_rss_MB"] = _peak_rss_MB()
     return out
 
@@ -97,20 +99,31 @@ def main(argv=None) -> int:
     p.add_argument("--hours", type=float, default=8.0)
     p.add_argument("--fs", type=float, default=500.0)
     p.add_argument("--dir", default=None, help="where to write the recording (default: a temporary folder)")
+    p.add_argument("--file", default=None, help="the recording to use: written there if missing, kept (for repeated runs)")
+    p.add_argument("--workers", type=int, default=None,
+                   help="threads of the analysis (default: the library's, the CPUs available)")
     p.add_argument("--child", nargs=2, metavar=("MODE", "PATH"), help=argparse.SUPPRESS)
     args = p.parse_args(argv)
     if args.child:
-        print(json.dumps(child(*args.child)))
+        print(json.dumps(child(*args.child, workers=args.workers)))
         return 0
     with tempfile.TemporaryDirectory(dir=args.dir) as d:
-        path = Path(d) / "day.parquet"
+        path = Path(args.file) if args.file else Path(d) / "day.parquet"
         t0 = time.perf_counter()
-        rows = write_day(path, args.hours, args.fs)
+        if path.exists():  # kept from an earlier run with the same --hours/--fs (checked by the row count)
+            import pyarrow.parquet as pq
+
+            rows = pq.ParquetFile(path).metadata.num_rows
+            if rows != int(round(args.hours * 3600 * args.fs)):
+                p.error(f"{path} has {rows} rows, not those of --hours {args.hours} --fs {args.fs}")
+        else:
+            rows = write_day(path, args.hours, args.fs)
         written_s = time.perf_counter() - t0
         res = {}
         for mode in ("idle", "read", "exposure"):
-            cp = subprocess.run([sys.executable, __file__, "--child", mode, str(path)], capture_output=True, text=True,
-                                check=True)
+            extra = ["--workers", str(args.workers)] if args.workers else []
+            cp = subprocess.run([sys.executable, __file__, "--child", mode, str(path), *extra], capture_output=True,
+                                text=True, check=True)
             res[mode] = json.loads(cp.stdout)
         print(json.dumps({
             "hours": args.hours, "fs_Hz": args.fs, "rows": rows, "file_MB": round(path.stat().st_size / 1e6, 1),
@@ -119,6 +132,7 @@ def main(argv=None) -> int:
             "speed_ratio_read_over_exposure": round(res["read"]["seconds"] / res["exposure"]["seconds"], 3),
             "exposure_Msamples_per_s": round(3 * rows / res["exposure"]["seconds"] / 1e6, 2),
             "peak_rss_MB": {m: round(r["peak_rss_MB"], 1) for m, r in res.items()},
+            "cpu_s": {m: round(r["cpu_s"], 2) for m, r in res.items()},
             "a_w_z_m_s2": res["exposure"]["a_w_z_m_s2"], "dz_m_s2": res["exposure"]["dz_m_s2"],
         }, indent=2))
     return 0
