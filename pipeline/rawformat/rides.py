@@ -218,7 +218,9 @@ def _checked(frame, channels, row0: int) -> Chunk:
         else:
             v = pd.to_numeric(pd.Series(v) if isinstance(v, np.ndarray) else v, errors="coerce").to_numpy(dtype=float)
         # one pass in the usual case; a sum of finite samples can still overflow: then look for the sample
-        if not math.isfinite(float(np.add.reduce(v))):
+        with np.errstate(over="ignore"):
+            finite = math.isfinite(float(np.add.reduce(v)))
+        if not finite:
             bad = ~np.isfinite(v)
             if bad.any():
                 i = int(np.flatnonzero(bad)[0])
