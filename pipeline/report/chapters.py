@@ -326,34 +326,24 @@ CHAPTERS: tuple[Chapter, ...] = (
     Chapter("ride", "Ride — whole-body vibration",
             "What the operator gets: ISO 2631-1 weighted seat vibration and the EU Directive 2002/44/EC daily "
             "exposure of every ride scenario (tyrelab ride; raw/scenarios/*.toml), and of the ch. 6–7 studies' "
-            "simulated runs, against the action (EAV, 0.5 m/s²) and limit (ELV, 1.15 m/s²) values.",
+            "simulated runs, against the action (EAV, 0.5 m/s²) and limit (ELV, 1.15 m/s²) values. After the "
+            "overview, one section per scenario as tyrelab ride's page shows it: each variant's tyres and natural "
+            "frequencies, per-axis a_w against speed, the hours to the action value over two swept keys, and the "
+            "seat PSD and transmissibility per axis.",
             (
                 FigureSpec("", "Seat a_w (highest axis: a_wz, 1.4·a_wx or 1.4·a_wy) against speed per scenario, at the "
                                "scenario's tyre pressures; lines: the levels that reach EAV and ELV in 8 h",
                            "ride_aw_speed", ("ride_results",), "simulate", module="ride_figures"),
-                FigureSpec("", "Seat a_w per axis (a_wz; 1.4·a_wx; 1.4·a_wy in 3-D) against speed per scenario, at the "
-                               "scenario's tyre pressures (dotted, a single scenario: the frequency-domain expectation); "
-                               "lines: the levels that reach EAV and ELV in 8 h",
-                           "ride_aw_axes_speed", ("ride_results",), "simulate", module="ride_figures"),
                 TableSpec("", "Ride scenarios: seat vibration per speed", "ride_results", "simulate",
-                          ours_sql="SELECT scenario, speed_km_h, front_pressure_bar, rear_pressure_bar, a_wz_m_s2, "
+                          ours_sql="SELECT scenario, variant, speed_km_h, front_pressure_bar, rear_pressure_bar, a_wz_m_s2, "
                                    "expected_a_wz_m_s2, a_wx_m_s2, a_wy_m_s2, a_v_m_s2, vdv_m_s1_75, crest_factor, "
                                    "lift_off_fraction_front, lift_off_fraction_rear, a8_m_s2, hours_to_eav, "
                                    "hours_to_elv, verdict FROM ride_results WHERE is_nominal "
-                                   "ORDER BY scenario, speed_km_h",
+                                   "ORDER BY scenario, variant, speed_km_h",
                           note="A(8) = max(1.4·a_wx, 1.4·a_wy, a_wz)·√(T/8 h) (the Directive's highest axis, not the "
                                "vector sum a_v; a_wy = 0 in the pitch-plane model); expected_a_wz is the "
                                "frequency-domain expectation of the linear model. "
                                "Pressure sweeps: tyrelab sql \"SELECT * FROM ride_results\"."),
-                TableSpec("", "Ride variants: tyres and natural frequencies (every pressure pair and swept value)",
-                          "ride_results", "simulate",
-                          ours_sql="SELECT scenario, front_pressure_bar, rear_pressure_bar, variant, "
-                                   "MIN(front_stiffness_kN_per_m) AS front_stiffness_kN_per_m, "
-                                   "MIN(rear_stiffness_kN_per_m) AS rear_stiffness_kN_per_m, ANY_VALUE(modes_Hz) AS modes_Hz, "
-                                   "MIN(hours_to_eav) AS hours_to_eav_worst_speed FROM ride_results "
-                                   "GROUP BY scenario, front_pressure_bar, rear_pressure_bar, variant ORDER BY ALL",
-                          note="Stiffness per tyre at the slowest speed's value (the lowest); modes named by what moves "
-                               "most (bounce, pitch, roll, front_axle_roll, cab_pitch, ...)."),
                 TableSpec("", "Ride scenarios", "ride_scenarios", "simulate",
                           columns=("scenario", "source", "mass_kg", "front_size", "front_pressure_bar", "rear_size",
                                    "rear_pressure_bar", "track", "enveloping", "speeds_km_h", "bounce_Hz", "pitch_Hz",

@@ -42,7 +42,7 @@ from .chapters import CHAPTERS, Chapter, FigureSpec, TableSpec
 from .docs import DOCS, document
 from .measured_page import MEASURED_RIDE
 
-__all__ = ["Output", "Page", "ChapterPage", "IndexPage", "RunsPage", "DocsPage", "PAGES", "register", "registered",
+__all__ = ["Output", "Page", "ChapterPage", "RidePage", "IndexPage", "RunsPage", "DocsPage", "PAGES", "register", "registered",
            "run_page_name"]
 
 
@@ -151,6 +151,38 @@ class ChapterPage(Page):
         return [Output(self.href, "chapter.html.j2", self.chapter.title,
                        {"chapter": self.chapter, "items": items,
                         "has_thesis_tables": any(it["kind"] == "table" and it["spec"].published for it in items)})]
+
+
+@dataclass(frozen=True)
+class RidePage(ChapterPage):
+    """The Ride page: its chapter's items, and after the first ``lead`` of them one section per ride
+    scenario of the build (:func:`tyrelab.report.ride_sections.scenario_sections`: each variant's tyres
+    and natural frequencies, per-axis a_w against speed, the hours to the action value over two
+    swept keys or why there is none, the seat PSD and transmissibility per axis), drawn by the same
+    code as ``tyrelab ride``'s page: ``ride_page.html.j2``."""
+
+    lead: int = 1
+
+    def sections(self, site) -> list[dict]:
+        """The scenario sections of this build (once per build)."""
+        from .ride_sections import SECTION_TABLES, scenario_sections
+
+        return site.memo((self.slug, "sections"), lambda: scenario_sections(*(site.wh.table(t) for t in SECTION_TABLES)))
+
+    def figures(self, site):
+        out = list(super().figures(site))
+        for sec in self.sections(site):
+            out += [((self.slug, sec["file"], f.name), site.function_task(f"ride_figures.{f.function}", f.args, f.kwargs))
+                    for f in sec["figures"] if f.function]
+        return out
+
+    def render(self, site):
+        items = site.items(self)
+        sections = [{**sec, "figures": [{"name": f.name, "caption": f.caption, "note": f.note,
+                                         "svg": site.figs[(self.slug, sec["file"], f.name)] if f.function else None}
+                                        for f in sec["figures"]]} for sec in self.sections(site)]
+        return [Output(self.href, "ride_page.html.j2", self.chapter.title,
+                       {"chapter": self.chapter, "items": items, "lead": self.lead, "sections": sections})]
 
 
 def run_page_name(run_id: str) -> str:
@@ -276,7 +308,7 @@ def registered(registry: list[Page] | None = None) -> list[Page]:
 
 register(IndexPage())
 for _number, _chapter in enumerate(CHAPTERS):
-    register(ChapterPage(_chapter, order=10 * (_number + 1)))
+    register((RidePage if _chapter.slug == "ride" else ChapterPage)(_chapter, order=10 * (_number + 1)))
 register(RunsPage())
 register(ChapterPage(MEASURED_RIDE, order=10 * (len(CHAPTERS) + 1)))
 register(DocsPage())

@@ -48,80 +48,118 @@ def _limit_lines(ax, hours_per_day: float) -> None:
                     va="bottom", fontsize=7, color="tab:red")
 
 
+def _legend_below(fig, ax, max_entries: int = 12) -> None:
+    """The legend of ``ax``'s lines under the panels (never over the data), in as many columns as
+    fit the figure's width."""
+    handles, labels = ax.get_legend_handles_labels()
+    if not handles:
+        return
+    handles, labels = handles[:max_entries], labels[:max_entries]
+    chars_per_inch = 15.0  # 7-pt legend text and its marker
+    width = fig.get_size_inches()[0]
+    ncol = max(1, min(len(labels), int(width * chars_per_inch // (max(map(len, labels)) + 6))))
+    fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=7, frameon=False)
+
+
+def _no_motion(ax, title: str) -> None:
+    """A panel of an axis whose signal is zero throughout (e.g. fore-aft of a model without it)."""
+    ax.text(0.5, 0.5, f"{title}:\nzero throughout\n(no motion on this axis\nin this model)", ha="center",
+            va="center", transform=ax.transAxes, fontsize=8, color="0.35")
+    ax.set_xticks([])
+    ax.set_yticks([])
+
+
 _AXES = (("seat_vertical_psd_m2_s4_per_Hz", "seat vertical"), ("seat_longitudinal_psd_m2_s4_per_Hz", "seat fore-aft"),
           ("seat_lateral_psd_m2_s4_per_Hz", "seat lateral"))
 
 
 def seat_psd(spectra: pd.DataFrame) -> str | None:
-    """Seat acceleration PSD per speed (0.1 Hz bandwidth), one panel per axis (lateral in 3-D)."""
+    """Seat acceleration PSD per speed (0.1 Hz bandwidth), one panel per axis (lateral in 3-D); the
+    legend under the panels; an axis that does not move says so in its panel."""
     if not _has(spectra, "speed_km_h", "frequency_Hz", "seat_vertical_psd_m2_s4_per_Hz"):
         return None
     cols = [(c, t) for c, t in _AXES if c in spectra]
-    fig, axes = _figure(1, len(cols), size=(3.7 * len(cols), 3.0), sharey=True, squeeze=False)
+    moving = {c for c, _ in cols if (spectra[c] > 0).any()}
+    fig, axes = _figure(1, len(cols), size=(3.7 * len(cols), 3.3), squeeze=False)
     axes = axes[0]
     for k, (speed, g) in enumerate(spectra.groupby("speed_km_h", sort=True)):
         for ax, (col, _) in zip(axes, cols):
             y = g[col].to_numpy(float)
-            if np.any(y > 0):
+            if col in moving:
                 ax.loglog(g["frequency_Hz"], np.where(y > 0, y, np.nan), lw=0.9, label=f"{speed:g} km/h")
-    for ax, (_, title) in zip(axes, cols):
+    top = float(spectra[sorted(moving)].max().max()) if moving else 0.0
+    for ax, (col, title) in zip(axes, cols):
         ax.set_title(title)
+        if col not in moving:
+            _no_motion(ax, title)
+            continue
         ax.set_xlabel("frequency, Hz")
         _plain_log(ax, "x")
-    _plain_log(axes[0], "y")
-    top = float(spectra[[c for c, _ in cols]].max().max())
-    if top > 0:
-        axes[0].set_ylim(top * 1e-6, top * 3)  # six decades: below is the track's band edge
+        _plain_log(ax, "y")
+        if top > 0:
+            ax.set_ylim(top * 1e-6, top * 3)  # six decades: below is the track's band edge
     axes[0].set_ylabel("PSD, (m/s²)²/Hz")
-    axes[0].legend(fontsize=7)
+    _legend_below(fig, next(ax for ax, (c, _) in zip(axes, cols) if c in moving) if moving else axes[0])
     return to_svg(fig)
 
 
 def seat_transmissibility(trans: pd.DataFrame) -> str | None:
     """|seat / ground| per axis and speed: vertical (every wheel in phase, wheelbase delay, no
     enveloping), fore-aft per unit ground acceleration and, in 3-D, lateral per unit left/right
-    anti-phase (roll) ground acceleration."""
+    anti-phase (roll) ground acceleration; the legend under the panels."""
     if not _has(trans, "speed_km_h", "frequency_Hz", "seat_vertical"):
         return None
     cols = [(c, t) for c, t in (("seat_vertical", "vertical"), ("seat_longitudinal_per_m", "fore-aft (per m)"),
                                 ("seat_lateral_roll", "lateral (roll input)")) if c in trans]
-    fig, axes = _figure(1, len(cols), size=(3.7 * len(cols), 3.0), squeeze=False)
+    moving = {c for c, _ in cols if (trans[c] > 0).any()}
+    fig, axes = _figure(1, len(cols), size=(3.7 * len(cols), 3.3), squeeze=False)
     axes = axes[0]
     for speed, g in trans.groupby("speed_km_h", sort=True):
         for ax, (col, _) in zip(axes, cols):
             y = g[col].to_numpy(float)
-            ax.loglog(g["frequency_Hz"], np.where(y > 0, y, np.nan), lw=0.9, label=f"{speed:g} km/h")
-    for ax, (_, title) in zip(axes, cols):
+            if col in moving:
+                ax.loglog(g["frequency_Hz"], np.where(y > 0, y, np.nan), lw=0.9, label=f"{speed:g} km/h")
+    for ax, (col, title) in zip(axes, cols):
         ax.set_title(title)
+        if col not in moving:
+            _no_motion(ax, title)
+            continue
         ax.set_xlabel("frequency, Hz")
         _plain_log(ax, "x")
         _plain_log(ax, "y")
     axes[0].set_ylabel("|seat / ground|")
-    axes[0].legend(fontsize=7)
+    _legend_below(fig, axes[0])
     return to_svg(fig)
 
 
-def hours_heatmap(table: pd.DataFrame, x_key: str, y_key: str) -> str | None:
+def hours_heatmap(table: pd.DataFrame, x_key: str, y_key: str, x_label: str | None = None,
+                  y_label: str | None = None) -> str | None:
     """Hours to the EU action value (worst speed of each variant) over two swept keys: a heatmap
     with the hours written in each cell.
 
-    ``table``: one row per variant and speed with the two keys' columns and ``hours_to_eav``.
+    ``table``: one row per variant and speed with the two keys' columns and ``hours_to_eav``;
+    ``x_label``, ``y_label``: the axes' labels (default the keys).
     """
     if not _has(table, x_key, y_key, "hours_to_eav"):
         return None
     worst = table.groupby([y_key, x_key], sort=True)["hours_to_eav"].min().unstack(x_key)
     if worst.shape[0] < 2 and worst.shape[1] < 2:
         return None
-    z = np.minimum(worst.to_numpy(float), 24.0)
-    fig, ax = _figure(size=(min(1.0 + 0.9 * worst.shape[1], 8.0), min(1.2 + 0.5 * worst.shape[0], 6.0)))
-    im = ax.imshow(z, origin="lower", aspect="auto", cmap="RdYlGn", vmin=0.0, vmax=max(8.0, float(np.nanmax(z))))
+    z = np.minimum(worst.to_numpy(float), 24.0)  # "never" (NaN, inf) and beyond a day: ≥ 24 h
+    z = np.where(np.isnan(z), 24.0, z)
+    fig, ax = _figure(size=(min(2.4 + 0.9 * worst.shape[1], 9.0), min(1.6 + 0.45 * worst.shape[0], 7.0)))
+    vmax = max(8.0, float(np.nanmax(z)))
+    im = ax.imshow(z, origin="lower", aspect="auto", cmap="RdYlGn", vmin=0.0, vmax=vmax)
+    ax.grid(False)
     ax.set_xticks(range(worst.shape[1]), [f"{v:g}" for v in worst.columns])
     ax.set_yticks(range(worst.shape[0]), [f"{v:g}" for v in worst.index])
     for i in range(z.shape[0]):
         for j in range(z.shape[1]):
-            ax.text(j, i, "≥24" if z[i, j] >= 24 else f"{z[i, j]:.1f}", ha="center", va="center", fontsize=7)
-    ax.set_xlabel(x_key)
-    ax.set_ylabel(y_key)
+            dark = z[i, j] < 0.15 * vmax or z[i, j] > 0.85 * vmax  # the colour map's dark ends: white text
+            ax.text(j, i, "≥24" if z[i, j] >= 24 else f"{z[i, j]:.3g}", ha="center", va="center", fontsize=8,
+                    color="white" if dark else "black")
+    ax.set_xlabel(x_label or x_key)
+    ax.set_ylabel(y_label or y_key)
     fig.colorbar(im, ax=ax, label="hours to the action value")
     return to_svg(fig)
 
@@ -138,23 +176,24 @@ def aw_against_speed(speeds: pd.DataFrame, hours_per_day: float = 8.0) -> str | 
         axes_cols.append(("a_wy_m_s2", 1.4, "1.4 a_wy (lateral, W_d)"))
     key = "variant" if "variant" in s and s["variant"].nunique() > 1 else None
     groups = list(s.groupby(key, sort=False)) if key else [(None, s)]
-    fig, axes = _figure(1, len(axes_cols), size=(3.3 * len(axes_cols), 3.2), sharey=True, squeeze=False)
+    fig, axes = _figure(1, len(axes_cols), size=(3.5 * len(axes_cols), 3.4), sharey=True, squeeze=False)
     axes = axes[0]
+    top = max(exposure_levels(hours_per_day)["ELV"], 0.0)
     for ax, (col, k_axis, title) in zip(axes, axes_cols):
         for k, (name, g) in enumerate(groups):
             ax.plot(g["speed_km_h"], k_axis * g[col], marker=MARKERS[k % len(MARKERS)], lw=0.9,
                     label=str(name) if name is not None else "simulated")
+            top = max(top, float(np.nanmax(k_axis * g[col].to_numpy(float))))
             exp = f"expected_{col}"
             if name is None and exp in g:
                 ax.plot(g["speed_km_h"], k_axis * g[exp], ls=":", color="0.3", label="expected")
+                top = max(top, float(np.nanmax(k_axis * g[exp].to_numpy(float))))
         _limit_lines(ax, hours_per_day)
         ax.set_title(title, fontsize=8)
         ax.set_xlabel("speed, km/h")
-        ax.set_ylim(bottom=0)
+    axes[0].set_ylim(0, 1.08 * top)  # shared: every panel's data and the ELV level
     axes[0].set_ylabel("weighted r.m.s., m/s²")
-    handles, labels = axes[0].get_legend_handles_labels()
-    if handles:
-        fig.legend(handles[:12], labels[:12], loc="outside lower center", ncol=min(4, len(handles)), fontsize=6)
+    _legend_below(fig, axes[0])
     return to_svg(fig)
 
 
@@ -181,24 +220,28 @@ def aw_against_pressure(speeds: pd.DataFrame) -> str | None:
 
 
 def ride_aw_speed(ride_results: pd.DataFrame) -> str | None:
-    """Report: highest-axis a_w against speed per scenario (scenario pressures), EAV/ELV in 8 h."""
+    """Report: highest-axis a_w against speed per scenario (scenario pressures; of a sweep of other keys, its
+    first variant), EAV/ELV in 8 h."""
     if not _has(ride_results, "scenario", "speed_km_h", "a_wz_m_s2", "a_wx_m_s2"):
         return None
     r = ride_results
     if "is_nominal" in r:
         r = r[r["is_nominal"].astype(bool)]
+    if "variant" in r:  # a sweep of other keys at the scenario's pressures: its first variant
+        v = r["variant"].fillna("")
+        r = r[v == v.groupby(r["scenario"]).transform("first")]
     fig, ax = _figure()
     for k, (name, g) in enumerate(r.groupby("scenario", sort=True)):
         g = g.sort_values("speed_km_h")
         lateral = g["a_wy_m_s2"].fillna(0.0) if "a_wy_m_s2" in g else 0.0
         ax.plot(g["speed_km_h"], np.maximum(g["a_wz_m_s2"], 1.4 * np.maximum(g["a_wx_m_s2"], lateral)),
                 marker=MARKERS[k % len(MARKERS)],
-                lw=0.9, label=str(name)[:48])
+                lw=0.9, label=str(name))
     _limit_lines(ax, 8.0)
     ax.set_xlabel("speed, km/h")
     ax.set_ylabel("a_w (highest axis), m/s²")
     ax.set_ylim(bottom=0)
-    ax.legend(loc="upper left", bbox_to_anchor=(0.0, 0.93))
+    _legend_below(fig, ax)
     return to_svg(fig)
 
 
@@ -210,7 +253,7 @@ def ride_aw_axes_speed(ride_results: pd.DataFrame) -> str | None:
     r = ride_results
     if "is_nominal" in r:
         r = r[r["is_nominal"].astype(bool)]
-    return aw_against_speed(r.assign(variant=r["scenario"].astype(str).str[:48]), 8.0)
+    return aw_against_speed(r.assign(variant=r["scenario"].astype(str)), 8.0)
 
 
 def study_aw_speed(iso: pd.DataFrame) -> str | None:

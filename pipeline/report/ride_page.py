@@ -14,8 +14,8 @@ from pathlib import Path
 import pandas as pd
 
 from .. import __version__, io
-from ..vehicle.ride import RideResult, result_json
-from . import ride_figures as rf
+from ..vehicle.ride import RideResult, result_json, results_table
+from .ride_sections import PRESSURE_COLUMNS, variant_name, scenario_figures, surface_edge_note, swept_columns, variant_rows
 from .render import column_label, environment, format_number
 from .tables import significant_decimals, uncertainty_decimals
 
@@ -172,68 +172,27 @@ def format_table(doc: dict) -> str:
 
 def variant_label(r: RideResult) -> str:
     """A variant's name: its tyre pressures and swept values."""
-    parts = [f"{r.tyres['front'].pressure_bar:g}/{r.tyres['rear'].pressure_bar:g} bar"]
-    parts += [f"{k.rpartition('.')[2]}={v:g}" for k, v in r.variant.items()]
-    return ", ".join(parts)
-
-
-def _speeds(results: list[RideResult]) -> pd.DataFrame:
-    """Every variant's speed rows with its label and swept values (pressures under their scenario keys)."""
-    frames = []
-    for r in results:
-        df = r.speeds.copy()
-        df["variant"] = variant_label(r)
-        df["tyres.front.pressure_bar"] = r.tyres["front"].pressure_bar
-        df["tyres.rear.pressure_bar"] = r.tyres["rear"].pressure_bar
-        for k, v in r.variant.items():
-            df[k] = v
-        frames.append(df)
-    return pd.concat(frames, ignore_index=True)
+    return variant_name(r.tyres["front"].pressure_bar, r.tyres["rear"].pressure_bar, r.variant)
 
 
 def swept_keys(results: list[RideResult]) -> list[str]:
-    """The keys that take more than one value across the variants (pressures first)."""
-    df = _speeds(results)
-    keys = ["tyres.front.pressure_bar", "tyres.rear.pressure_bar"] + list(results[0].variant)
-    return [k for k in dict.fromkeys(keys) if k in df and df[k].nunique() > 1]
+    """The keys that take more than one value across the variants (pressures first), as scenario keys."""
+    return [PRESSURE_COLUMNS.get(c, c) for c in swept_columns(results_table(results))]
 
 
 def variants(results: list[RideResult]) -> list[dict]:
-    """Per variant: label, tyre stiffness (first speed) and natural frequencies, for the page."""
-    return [{"label": variant_label(r),
-             "front_stiffness_kN_per_m": float(r.tyres["front"].stiffness_kN_per_m[0]),
-             "rear_stiffness_kN_per_m": float(r.tyres["rear"].stiffness_kN_per_m[0]),
-             "modes": {k: float(v) for k, v in r.natural_frequencies_Hz.items()}} for r in results]
+    """Per variant: label, tyre stiffness (first speed), natural frequencies and hours to the action
+    value, for the page (:func:`variant_rows` of the results' table)."""
+    return variant_rows(results_table(results))
 
 
 def figures(results: list[RideResult]) -> list[dict]:
-    """The page's figures (caption + inline SVG)."""
+    """The page's figures (caption + inline SVG, or the sentence why a figure is not drawn), those of
+    :func:`scenario_figures` with the spectra of the first variant."""
     first = results[0]
-    hours = first.scenario.exposure.hours_per_day
-    speeds = _speeds(results)
-    keys = swept_keys(results)
-    out = [
-        {"caption": "Weighted r.m.s. at the seat against speed per axis, one line per variant (dotted: the "
-                    "frequency-domain expectation), with the levels that reach the EU action (EAV) and limit (ELV) "
-                    f"values in {hours:g} h.",
-         "svg": rf.aw_against_speed(speeds, hours)},
-    ]
-    if len(keys) >= 2:
-        out.append({"caption": f"Hours to the EU action value (the worst speed of each variant) over {keys[0]} and "
-                               f"{keys[1]}" + (f" (other swept keys: the lowest hours)" if len(keys) > 2 else "") + ".",
-                    "svg": rf.hours_heatmap(speeds, keys[0], keys[1])})
-    elif len(results) > 1 and "front_pressure_bar" in speeds:
-        out.append({"caption": "Highest-axis a_w against rear pressure, one line per front pressure.",
-                    "svg": rf.aw_against_pressure(speeds)})
-    out += [
-        {"caption": f"Seat acceleration PSD (0.1 Hz bandwidth) per speed and axis ({variant_label(first)}). "
-                    + psd_edge_note(first),
-         "svg": rf.seat_psd(first.spectra)},
-        {"caption": "Seat transmissibility per axis from ground input (every wheel in phase with the wheelbase delay; "
-                    f"lateral: left/right in anti-phase; no enveloping) ({variant_label(first)}).",
-         "svg": rf.seat_transmissibility(first.transmissibility)},
-    ]
-    return out
+    specs = scenario_figures(results_table(results), first.spectra, first.transmissibility,
+                             first.scenario.exposure.hours_per_day, psd_edge_note(first), variant_label(first))
+    return [{"name": f.name, "caption": f.caption, "svg": f.draw(), "note": f.note} for f in specs]
 
 
 def psd_edge_note(result: RideResult) -> str:
@@ -243,20 +202,7 @@ def psd_edge_note(result: RideResult) -> str:
     input ends at ``v × n_max`` (``n_max`` in cycles/m); above it only the estimate's leakage is
     left, more than six decades down, which the figure does not draw.
     """
-    import inspect
-
-    from ..vehicle import profiles
-
-    surface = result.scenario.surface
-    if surface.kind != "iso8608":
-        return ("Each curve stops where the track's unevenness stops: above v / (shortest wavelength of the "
-                "profile) the ground gives no input, and what is left is more than six decades down (not drawn).")
-    n_max = inspect.signature(profiles.iso8608_track).parameters["n_max_cycles_per_m"].default
-    v = min(result.scenario.exposure.speeds_km_h)
-    return (f"Each curve drops where the track's unevenness ends: a generated ISO 8608 track holds wavelengths "
-            f"down to {1 / n_max:.2f} m ({n_max:g} cycles/m, the standard's band), so at speed v the ground input "
-            f"stops at v × {n_max:g} cycles/m ({v / 3.6 * n_max:.1f} Hz at {v:g} km/h); above it only the "
-            f"estimate's leakage is left, more than six decades down (not drawn).")
+    return surface_edge_note(result.scenario.surface.kind, min(result.scenario.exposure.speeds_km_h))
 
 
 def render_page(results: list[RideResult], doc: dict | None = None) -> str:

@@ -449,6 +449,11 @@ class SiteBuild:
         """The task of a chapter figure (:func:`figure_task`)."""
         return figure_task(self.wh, spec)
 
+    def function_task(self, function: str, args: tuple = (), kwargs: dict | None = None) -> FigureTask:
+        """The task of a figure drawn by ``tyrelab.report.<function>`` (``"ride_figures.seat_psd"``)
+        from ``args`` (the data it draws, hashed into its key) and ``kwargs``."""
+        return FigureTask("figure", function, tuple(args), dict(kwargs or {}), tuple(args))
+
     def run_task(self, row: pd.Series) -> FigureTask:
         """The task of a run's drill-down figure (:func:`run_task`)."""
         return run_task(self.wh, row)

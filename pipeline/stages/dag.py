@@ -115,7 +115,7 @@ REGRESS_TABLES = (
 SIMULATE_TABLES = (
     "carriage_runs", "carriage_comparisons", "carriage_spectra", "table_xiii", "table_xiv", "tractor_runs",
     "table_xvii", "table_xviii", "table_xx", "table_xx_statistics", "iso2631", "profile_spectra", "simulate_inputs",
-    "ride_scenarios", "ride_results",
+    "ride_scenarios", "ride_results", "ride_spectra", "ride_transmissibility",
 )
 #: Stages whose rows make up the ``quarantine`` table, each in its own part
 #: (:func:`quarantine_part`); the warehouse stage publishes their union, in this order.

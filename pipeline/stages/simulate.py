@@ -13,7 +13,9 @@ with tyrelab, schema-checked; the file read is recorded in the ``source`` column
 predictions of every scenario (:mod:`tyrelab.vehicle.ride`; the shipped
 ``raw/scenarios/*.toml`` and any ``<raw>/scenarios/*.toml``, run through the
 executor): ``ride_scenarios`` (one row per scenario), ``ride_results`` (one row per
-scenario × speed × pressure pair). A wrong scenario is quarantined with its problems;
+scenario × speed × pressure pair), ``ride_spectra`` and ``ride_transmissibility`` (the seat PSD and
+transmissibility per axis and speed of the scenario's own pressures, for the report's Ride page).
+A wrong scenario is quarantined with its problems;
 the others still run.
 
 The "measured" side of the carriage (ch. 6) and tractor (ch. 7) studies is *recordings*: the
@@ -62,7 +64,8 @@ from .base import Context, Progress, StageResult, write_quarantine
 from .state import ItemCache
 
 __all__ = ["SEED", "STEMS", "THESIS_XX_STATISTICS", "run", "start_studies_ahead", "abandon_studies_ahead",
-           "WarehouseTyres", "scenario_files", "scenario_items", "scenario_task", "run_scenarios", "collect_scenarios"]
+           "WarehouseTyres", "scenario_files", "scenario_items", "scenario_task", "run_scenarios", "collect_scenarios",
+           "collect_scenario_spectra", "RIDE_TABLES"]
 
 SEED = 5007
 #: The per-speed fits a scenario's ``measured_tyre_id`` reads (through the warehouse). With the
@@ -81,6 +84,10 @@ THESIS_XX_STATISTICS = {
     "formula": {"mean": 0.998, "sd": 0.09, "p_within_10": 0.75},
     "stationary_free_vibration": {"mean": 1.19, "sd": 0.11, "p_within_10": 0.19},
 }
+
+#: The ride tables, per scenario file (:func:`scenario_task`): one row per scenario; per scenario ×
+#: speed × variant; the seat PSD and the transmissibility per axis of the variant the report shows.
+RIDE_TABLES = ("ride_scenarios", "ride_results", "ride_spectra", "ride_transmissibility")
 
 _STATISTIC_ORDER = ["mean_ratio_error", "sd_ratio_error", "p_within_10", "p_within_30", "mean", "sd"]
 
@@ -124,23 +131,23 @@ def _ride_plan(ctx: Context, files: list[tuple[str, str]], cache: ItemCache) -> 
 
 
 def _ride_finish(ctx: Context, files: list[tuple[str, str]], cache: ItemCache, keys: list, done: dict, todo: list,
-                 outputs: list[dict]):
-    """``ride_scenarios``, ``ride_results`` and the refused files, from the cached scenarios and the
+                 outputs: list[dict]) -> tuple[dict[str, pd.DataFrame], list[dict]]:
+    """The ride tables (:data:`RIDE_TABLES`) and the refused files, from the cached scenarios and the
     ``outputs`` of the ``todo`` ones (:func:`_ride_plan`), which are stored."""
     if todo:
         scenarios, results, bad = collect_scenarios(outputs)
+        spectra, trans = collect_scenario_spectra(outputs)
         for (path, _), k in zip([f for f, _ in todo], [k for _, k in todo]):
             failed = [b for b in bad if b["file"] == path]
-            mine = scenarios[scenarios["file"] == path] if len(scenarios) else scenarios
             # keyed by the scenario file (ride_results.file): two files may give the same name
-            rows = results[results["file"] == path] if len(results) else results.iloc[0:0]
-            done[k] = (mine, rows, failed)
+            mine = [t[t["file"] == path] if len(t) else t.iloc[0:0] for t in (scenarios, results, spectra, trans)]
+            done[k] = (*mine, failed)
             cache.put(k, done[k])
     parts = [done[k] for k in keys]
-    frames = [p for p in parts if not p[2]]
-    scenarios = pd.concat([p[0] for p in frames], ignore_index=True) if frames else pd.DataFrame()
-    results = pd.concat([p[1] for p in frames], ignore_index=True) if frames else pd.DataFrame()
-    return scenarios, results, [b for p in parts for b in p[2]]
+    frames = [p for p in parts if not p[-1]]
+    tables = {name: pd.concat([p[i] for p in frames], ignore_index=True) if frames else pd.DataFrame()
+              for i, name in enumerate(RIDE_TABLES)}
+    return tables, [b for p in parts for b in p[-1]]
 
 
 def _carriage_tables(car: dict) -> dict:
@@ -477,8 +484,8 @@ def run(ctx: Context) -> StageResult:
         "simulate_inputs": sources,
     }
     # ride scenarios (issue 13)
-    tables["ride_scenarios"], tables["ride_results"], bad = _ride_finish(ctx, files, cache, ride_keys, ride_done, ride_todo,
-                                                                         ride_outputs)
+    ride_tables, bad = _ride_finish(ctx, files, cache, ride_keys, ride_done, ride_todo, ride_outputs)
+    tables.update(ride_tables)
     write_quarantine(ctx, "simulate", [{"campaign": None, "run_id": None, "file": b["file"], "stage": "simulate",
                                         "reason": b["reason"]} for b in bad] + rec_problems)
 
@@ -601,7 +608,7 @@ def scenario_task(item: tuple) -> dict:
     tyre_data = WarehouseTyres(build) if build else None
     try:
         sc = load_scenario(path)
-        results = ride.ride_sweep(sc, tyre_data=tyre_data, with_spectra=False)
+        results = ride.ride_sweep(sc, tyre_data=tyre_data, with_spectra=True)
         # the scenario row's modes are those at the scenario's own pressures, which a [sweep] need not
         # list first, or at all: from the nominal pair's result, else from the nominal tyres
         nominal = [r for r in results if r.tyres["front"].pressure_bar == sc.front.pressure_bar
@@ -634,7 +641,14 @@ def scenario_task(item: tuple) -> dict:
         "bounce_nodal_point_m": nodal["bounce"], "pitch_nodal_point_m": nodal["pitch"],
         "pressure_pairs": len(results), "warnings": "; ".join(sorted({w for r in results for w in r.warnings})),
     }
-    return {"file": path, "scenario": row, "results": table}
+    # the report's seat PSD and transmissibility per axis: of the nominal variant (else the first)
+    shown = nominal[0] if nominal else results[0]
+    where = {"scenario": sc.name, "file": path, "front_pressure_bar": shown.tyres["front"].pressure_bar,
+             "rear_pressure_bar": shown.tyres["rear"].pressure_bar,
+             "variant": ", ".join(f"{k}={v:g}" for k, v in shown.variant.items())}
+    spectra, trans = (frame.assign(**where)[list(where) + list(frame.columns)]
+                      for frame in (shown.spectra, shown.transmissibility))
+    return {"file": path, "scenario": row, "results": table, "spectra": spectra, "transmissibility": trans}
 
 
 def run_scenarios(files: list[tuple[str, str]], ctx=None, build: Path | None = None) -> tuple[pd.DataFrame, pd.DataFrame, list[dict]]:
@@ -649,6 +663,15 @@ def run_scenarios(files: list[tuple[str, str]], ctx=None, build: Path | None = N
     """
     items = scenario_items(files, build)
     return collect_scenarios(map_batches(scenario_task, items, ctx) if ctx is not None else [scenario_task(i) for i in items])
+
+
+def collect_scenario_spectra(outputs: list[dict]) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """``ride_spectra`` and ``ride_transmissibility`` from the results of :func:`scenario_task`, in
+    order: per scenario file, the seat PSD and transmissibility per axis and speed of the variant
+    the report shows (the scenario's own pressures, else the first variant)."""
+    ok = [o for o in outputs if "error" not in o]
+    return tuple(pd.concat([o[k] for o in ok], ignore_index=True) if ok else pd.DataFrame()
+                 for k in ("spectra", "transmissibility"))
 
 
 def collect_scenarios(outputs: list[dict]) -> tuple[pd.DataFrame, pd.DataFrame, list[dict]]:

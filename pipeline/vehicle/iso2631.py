@@ -208,7 +208,9 @@ def vibration_dose_value(weighted_m_s2, fs_Hz: float) -> float:
     """
     fs_Hz = positive("fs_Hz", fs_Hz)
     aw = np.asarray(weighted_m_s2, dtype=float)
-    return float((np.sum(aw**4) / fs_Hz) ** 0.25)
+    a2 = aw * aw  # aw**4 as (aw²)²: a multiply, not pow() (5x faster); numpy's sum, not BLAS' dot,
+    a2 *= a2  # whose rounding changes with the operands' memory alignment
+    return float((np.sum(a2) / fs_Hz) ** 0.25)
 
 
 def crest_factor(weighted_m_s2) -> float:

@@ -96,48 +96,48 @@ class FohSystem:
                 raise ValueError(f"x0: expected shape ({self.n_states},), got {x0.shape}")
             q0 = self.inv @ (x0 - self.gamma2 @ w[:, 0])
         # the modal inputs g_k = (V^-1 B_d) w_k of every mode at once, real and imaginary parts in
-        # real arithmetic; a real mode (real eigenvalue and input row) runs a real filter
+        # real arithmetic; a real mode (real eigenvalue and input row) runs a real filter; a
+        # conjugate pair is run once and counted twice
         keep = [i for i in range(self.n_states) if self.mu[i].imag >= 0]
         wk = w[:, :-1]
         g_re = self.g_in[keep].real @ wk
         g_im = self.g_in[keep].imag @ wk
-        modes = []
-        for j, i in enumerate(keep):  # modal recursion q_{k+1} = mu q_k + g_k; a conjugate pair counted once, twice
+        real = [self.mu[i].imag == 0 and q0[i].imag == 0 and not self.g_in[i].imag.any() for i in keep]
+        # the trajectories as real rows (Re q of every mode, then Im q of the complex ones): an
+        # output is one real matrix-vector product over them
+        cplx = [j for j, r in enumerate(real) if not r]
+        q = np.empty((len(keep) + len(cplx), w.shape[1]))
+        for j, i in enumerate(keep):  # modal recursion q_{k+1} = mu q_k + g_k
             mu = self.mu[i]
-            factor = 2.0 if mu.imag > 0 else 1.0
-            real = mu.imag == 0 and q0[i].imag == 0 and not g_im[j].any()
-            if real:
-                g, mu_i, q_0 = g_re[j], mu.real, q0[i].real
-                q = np.empty(w.shape[1])
+            if real[j]:
+                q[j, 0] = q0[i].real
+                q[j, 1:] = signal.lfilter([1.0], [1.0, -mu.real], g_re[j], zi=[mu.real * q0[i].real])[0]
             else:
-                g, mu_i, q_0 = g_re[j] + 1j * g_im[j], mu, q0[i]
-                q = np.empty(w.shape[1], dtype=complex)
-            q[0] = q_0
-            q[1:] = signal.lfilter([1.0], [1.0, -mu_i], g, zi=[mu_i * q_0])[0]
-            modes.append((i, factor, q))
-        return modes, w, self.dd @ w
+                g = np.empty(g_re.shape[1], dtype=complex)
+                g.real, g.imag = g_re[j], g_im[j]
+                qc = signal.lfilter([1.0], [1.0, -mu], g, zi=[mu * q0[i]])[0]
+                r = len(keep) + cplx.index(j)
+                q[j, 0], q[r, 0] = q0[i].real, q0[i].imag
+                q[j, 1:], q[r, 1:] = qc.real, qc.imag
+        factor = np.array([2.0 if self.mu[i].imag > 0 else 1.0 for i in keep])
+        return _Kept(keep, cplx, factor, q, w, self.dd @ w)
 
-    def outputs(self, kept, rows, stop: int | None = None, step: int = 1) -> np.ndarray:
-        """Outputs ``rows`` at samples ``0:stop:step`` of the :meth:`modes` ``kept``, bit for bit
-        those of :meth:`run` (the same operations on fewer elements): a caller that needs some
-        outputs everywhere and others only up to a point computes no more."""
-        modes, _, direct = kept
+    def outputs(self, kept, rows, stop: int | None = None, step: int = 1, start: int = 0) -> np.ndarray:
+        """Outputs ``rows`` at samples ``start:stop:step`` of the :meth:`modes` ``kept``, those of
+        :meth:`run` (the same operations on fewer elements): a caller that needs some outputs
+        everywhere and others only on part of the record computes no more."""
         rows = list(rows)
-        at = slice(0, stop, step)
-        y = direct[rows, at]
-        if not modes:
+        at = slice(start, stop, step)
+        y = kept.direct[rows, at]
+        if not kept.keep:
             return y
-        # y += sum over modes of factor (Re c Re q - Im c Im q), as two real matrix products
-        idx = [i for i, _, _ in modes]
-        fac = np.array([f for _, f, _ in modes])
-        cv = self.cv[np.ix_(rows, idx)] * fac
-        q_re = np.array([q[at].real for _, _, q in modes])
-        cplx = [j for j, (_, _, q) in enumerate(modes) if np.iscomplexobj(q)]
-        q_im = np.array([modes[j][2][at].imag for j in cplx]) if cplx else None
+        # y += sum over modes of factor (Re c Re q - Im c Im q): per output row one real
+        # matrix-vector product over the rows of Re q and Im q
+        cv = self.cv[np.ix_(rows, kept.keep)] * kept.factor
+        coef = np.hstack([cv.real, -cv[:, kept.cplx].imag])
+        q = kept.q[:, at]
         for r in range(len(rows)):  # row by row: a row's numbers do not depend on the other rows asked for
-            y[r] += cv[r].real @ q_re
-            if cplx:
-                y[r] -= cv[r, cplx].imag @ q_im
+            y[r] += coef[r] @ q
         return y
 
     def state_at(self, kept, k: int) -> np.ndarray:
@@ -151,11 +151,27 @@ class FohSystem:
         >>> bool(abs(s.state_at(kept, 1000)[0] - y[0, 1000]) < 1e-15)
         True
         """
-        modes, w = kept[:2]
-        x = self.gamma2 @ w[:, k]
-        for i, factor, q in modes:
-            x = x + factor * (self.vecs[:, i].real * q[k].real - self.vecs[:, i].imag * q[k].imag)
+        x = self.gamma2 @ kept.w[:, k]
+        n_keep = len(kept.keep)
+        for j, i in enumerate(kept.keep):
+            im = kept.q[n_keep + kept.cplx.index(j), k] if j in kept.cplx else 0.0
+            x = x + kept.factor[j] * (self.vecs[:, i].real * kept.q[j, k] - self.vecs[:, i].imag * im)
         return x
+
+
+@dataclass(frozen=True)
+class _Kept:
+    """Modal trajectories of one :meth:`FohSystem.modes` call: the kept modes (a conjugate pair
+    once, ``factor`` 2) and which of them are complex (``cplx``, positions in ``keep``), their
+    trajectories ``q`` (rows: Re q of each kept mode, then Im q of each complex one; columns: the
+    samples), the inputs and ``D_d w``."""
+
+    keep: list
+    cplx: list
+    factor: np.ndarray
+    q: np.ndarray
+    w: np.ndarray
+    direct: np.ndarray
 
 
 def discretise(a, b, c, d, dt_s: float) -> FohSystem:

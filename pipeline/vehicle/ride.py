@@ -969,9 +969,12 @@ def ride_variants(scenarios, tyre_data=None, with_spectra: bool = True, with_sig
             start, stop = _record_window(p["track"], p["wb"], v, p["sc"].simulation.duration_s)
             groups.setdefault((p["track_key"], v, start, stop), []).append((j, i))
     for (track_key, v, start, stop), members in groups.items():
+        for j, i in members:
+            _linear_model(preps[j], i, v, start, stop)
+        _expected_batch([(preps[j], i) for j, i in members], v)
         inputs: dict = {}  # wheel input (full steps) -> (u, du), this speed only
         for j, i in members:
-            _linear_run(preps[j], i, v, start, stop, track_key, inputs, cache)
+            _linear_run(preps[j], i, track_key, inputs, cache)
         del inputs
     for p in preps:
         _redo_lifting(p)
@@ -1016,26 +1019,32 @@ def _wheel_inputs(p: dict, asm, fp, v: float, n_steps: int, track_key, inputs: d
     return w
 
 
-def _linear_run(p: dict, i: int, v: float, start: int, stop: int, track_key, inputs: dict, cache: RideCache) -> None:
-    """Speed ``i`` of variant ``p`` on the exact linear path; a run whose tyres stay on the ground
-    (or without lift-off) is reduced to its numbers now, one that would pull is left for
-    :func:`_redo_lifting`."""
+def _linear_model(p: dict, i: int, v: float, start: int, stop: int) -> None:
+    """Speed ``i`` of variant ``p``: its assembly and linear model (seat outputs, then the tyre
+    forces), in ``p["runs"][i]``."""
     sc, tyres = p["sc"], p["tyres"]
     asm = assemble(build_parts(sc, tyres, i))
     fp = (float(tyres["front"].footprint_m[i]), float(tyres["rear"].footprint_m[i]))
-    seat_outputs = tuple(p["axes"].values())
-    lm = asm.linear(seat_outputs + tuple(f"{t}_force_N" for t in asm.tyres))
-    w = _wheel_inputs(p, asm, fp, v, stop, track_key, inputs, cache)
+    lm = asm.linear(tuple(p["axes"].values()) + tuple(f"{t}_force_N" for t in asm.tyres))
+    p["runs"][i] = {"asm": asm, "v": v, "start": start, "stop": stop, "fp": fp, "lm": lm, "method": "linear"}
+
+
+def _linear_run(p: dict, i: int, track_key, inputs: dict, cache: RideCache) -> None:
+    """Speed ``i`` of variant ``p`` (:func:`_linear_model`) on the exact linear path; a run whose
+    tyres stay on the ground (or without lift-off) is reduced to its numbers now, one that would
+    pull is left for :func:`_redo_lifting`."""
+    sc, run = p["sc"], p["runs"][i]
+    asm, lm, start, stop = run["asm"], run["lm"], run["start"], run["stop"]
+    w = _wheel_inputs(p, asm, run["fp"], run["v"], stop, track_key, inputs, cache)
     system = lti.discretise(*lm.abcd, DT_S)
     kept = system.modes(w)
-    ns = len(seat_outputs)
-    forces = system.outputs(kept, range(ns, ns + len(asm.tyres)))
+    ns = len(p["axes"])
+    # the tyre forces on the record only (lift-off before it does not count)
+    forces = system.outputs(kept, range(ns, ns + len(asm.tyres)), stop, 1, start)
     static = asm.static_tyre_loads_N()
     off = _axle_flags(asm, {t: forces[j] <= -static[t] for j, t in enumerate(asm.tyres)})
-    run = {"asm": asm, "v": v, "start": start, "stop": stop, "fp": fp, "lm": lm, "method": "linear",
-           "lift": tuple(float(o[start:stop].mean()) for o in off)}
-    p["runs"][i] = run
-    if sc.simulation.lift_off and off[:, start:stop].any():
+    run["lift"] = tuple(float(o.mean()) for o in off)
+    if sc.simulation.lift_off and off.any():
         return  # the nonlinear model, batched per variant (_redo_lifting)
     _reduce(p, i, system.outputs(kept, range(ns)))
 
@@ -1083,8 +1092,7 @@ def _reduce(p: dict, i: int, y: np.ndarray) -> None:
     aw.setdefault("y", 0.0)  # the pitch-plane model has no lateral motion
     vdv = max(iso2631.AXIS_FACTOR[ax] * iso2631.vibration_dose_value(sig, FS_HZ) for ax, sig in weighted.items())
     duration = series["z"].size / FS_HZ
-    # frequency-domain path: linear model, ground spectra, enveloping and delay
-    expected = _expected(sc, p["track"], r, p["seat_ss"], axes, v)
+    expected = r["expected"]  # frequency-domain path (_expected_batch)
     row = {
         "speed_km_h": float(speed),
         "front_pressure_bar": tyres["front"].pressure_bar,
@@ -1203,18 +1211,35 @@ def input_cross_spectra(tyres: list[str], side_spectrum, f_Hz, v: float, wheelba
     return out
 
 
-def _expected(scenario: Scenario, track: Track, r: dict, seat_ss, axes: dict, v: float) -> dict:
-    """Expected weighted r.m.s. per seat axis of one run from the frequency-domain path
-    (:func:`expected_weighted_rms` of its linear model)."""
-    grid = _fd_grid(scenario, track, v)
-    env = {axle: enveloping_response(scenario.surface.enveloping, r["fp"][j], track.profile.dx_m, grid["n"])
-           for j, axle in enumerate(("front", "rear"))}
-    lm = r["lm"]
-    seat_tf = _seat_tf(seat_ss, grid["f"]) if seat_ss is not None else None
-    na = len(axes)
-    out = expected_weighted_rms(lm.a[None], lm.b[None], lm.c[None, :na], lm.d[None, :na], r["asm"].tyres, grid, env,
-                                seat_tf, list(axes))
-    return {ax: float(val[0]) for ax, val in out.items()}
+def _expected_batch(members: list, v: float) -> None:
+    """Expected weighted r.m.s. per seat axis (``run["expected"]``) of the runs ``members``
+    (``(variant, speed index)`` pairs sharing a track and speed ``v``, m/s) from the
+    frequency-domain path: one batched :func:`expected_weighted_rms` per model structure."""
+    batches: dict = {}
+    for p, i in members:
+        r, sc = p["runs"][i], p["sc"]
+        seat = sc.seat
+        key = (r["lm"].a.shape, r["asm"].tyres, tuple(p["axes"]), sc.surface.enveloping,
+               (seat.natural_frequency_Hz, seat.damping_ratio) if p["seat_ss"] is not None else None)
+        batches.setdefault(key, []).append((p, i))
+    for batch in batches.values():
+        p0, i0 = batch[0]
+        sc, track, axes = p0["sc"], p0["track"], list(p0["axes"])
+        grid = _fd_grid(sc, track, v)
+        runs = [p["runs"][i] for p, i in batch]
+        env = {}
+        for j, axle in enumerate(("front", "rear")):
+            fps = sorted({r["fp"][j] for r in runs})
+            table = np.array([enveloping_response(sc.surface.enveloping, fp, track.profile.dx_m, grid["n"]) for fp in fps])
+            env[axle] = (table, np.array([fps.index(r["fp"][j]) for r in runs]))
+        seat_tf = _seat_tf(p0["seat_ss"], grid["f"]) if p0["seat_ss"] is not None else None
+        na = len(axes)
+        lms = [r["lm"] for r in runs]
+        out = expected_weighted_rms(np.array([m.a for m in lms]), np.array([m.b for m in lms]),
+                                    np.array([m.c[:na] for m in lms]), np.array([m.d[:na] for m in lms]),
+                                    runs[0]["asm"].tyres, grid, env, seat_tf, axes)
+        for k, r in enumerate(runs):
+            r["expected"] = {ax: float(val[k]) for ax, val in out.items()}
 
 
 def _fd_grid(scenario: Scenario, track: Track, v: float) -> dict:
@@ -1233,7 +1258,7 @@ def _fd_grid(scenario: Scenario, track: Track, v: float) -> dict:
     return {"f": f_s, "n": f_s / v, "side_spectrum": track.side_spectrum, "wb": wb, "v": v}
 
 
-def expected_weighted_rms(a, b, c, d, tyres, grid: dict, env: dict, seat_tf, axes, chunk: int = 64) -> dict:
+def expected_weighted_rms(a, b, c, d, tyres, grid: dict, env: dict, seat_tf, axes, chunk: int = 8) -> dict:
     """Expected ISO 2631-1 weighted r.m.s. of outputs of many linear models on one frequency grid.
 
     For each model ``(A, B, C, D)`` (stacked, leading axis: the variants) with inputs ``u, u'`` per
@@ -1277,19 +1302,32 @@ def expected_weighted_rms(a, b, c, d, tyres, grid: dict, env: dict, seat_tf, axe
         raise ValueError(f"a, b, c, d: shapes {a.shape}, {b.shape}, {c.shape}, {d.shape} are not (V, n, n), "
                          f"(V, n, 2T), (V, p, n), (V, p, 2T) with T = {len(tyres)} tyres and p >= {len(axes)} axes")
     f = np.asarray(grid["f"], float)
-    jw = 2j * math.pi * f
-    n_t = len(tyres)
+    omega = 2 * math.pi * f
+    n_t, n_f = len(tyres), f.size
     axle = [t.split("_")[0] for t in tyres]
-    weight2 = {ax: np.abs(iso2631.weighting_response(f, {"x": "Wd", "y": "Wd", "z": "Wk"}[ax])) ** 2 for ax in axes}
+    # the integral sqrt(∫ S_y |W|² df) by the trapezoidal rule as one weighted sum over the grid:
+    # per axis the weights (trapezoid × |W|² × the seat's |T|² on z × S_u in the pitch plane)
+    trap = np.zeros(n_f)
+    if n_f > 1:
+        df = np.diff(f)
+        trap[:-1] += 0.5 * df
+        trap[1:] += 0.5 * df
     seat2 = np.abs(seat_tf) ** 2 if seat_tf is not None else None
+    quad = {}
+    for ax in axes:
+        q = trap * np.abs(iso2631.weighting_response(f, {"x": "Wd", "y": "Wd", "z": "Wk"}[ax])) ** 2
+        if seat2 is not None and ax == "z":
+            q = q * seat2
+        quad[ax] = q * grid["s_u"] if "s_u" in grid else q
     if "s_u" in grid:  # the pitch plane: rear a wheelbase later, one spectrum
-        delay = np.array([np.exp(-jw * grid["wb"] / grid["v"]) if t.startswith("rear") else np.ones_like(jw)
+        delay = np.array([np.exp(-1j * omega * grid["wb"] / grid["v"]) if t.startswith("rear") else np.ones(n_f)
                           for t in tyres])
         s_in = None
     else:
         s_in = input_cross_spectra(list(tyres), grid["side_spectrum"], f, grid["v"], grid["wb"])
     out = {ax: np.empty(a.shape[0]) for ax in axes}
     n_p, n_s = len(axes), a.shape[1]
+    n_h = n_p * n_t
     for lo in range(0, a.shape[0], chunk):
         sl = slice(lo, lo + chunk)
         lam, vecs = np.linalg.eig(a[sl])
@@ -1297,41 +1335,53 @@ def expected_weighted_rms(a, b, c, d, tyres, grid: dict, env: dict, seat_tf, axe
         vb = np.linalg.solve(vecs, b[sl].astype(complex))  # (V, n, 2T)
         vb_u, vb_du = vb[:, :, 0::2], vb[:, :, 1::2]
         nv = lam.shape[0]
-        # modal part h = beta (V, p T, n) times 1/(jw - lam) (V, n, F), in real arithmetic: one real
-        # matrix product [[Re b, -Im b], [Im b, Re b]] [Re r; Im r] per variant
+        # h_pt(jw) = sum_k beta_ptk / (jw - lam_k) + alpha0_pt + jw alpha1_pt as one real matrix
+        # product per variant: rows [Re h; Im h], columns over the basis [br_k; x_k; 1; w] with
+        # 1/(jw - lam) = br - j x, br = a / (a² + x²), x = (w - Im lam) / (a² + x²), a = -Re lam
         beta = (cv[:, :, :, None] * (vb_u + lam[:, :, None] * vb_du)[:, None, :, :]).transpose(0, 1, 3, 2)
-        beta = beta.reshape(nv, n_p * n_t, n_s)
-        big = np.empty((nv, 2 * n_p * n_t, 2 * n_s))
-        big[:, :n_p * n_t, :n_s], big[:, :n_p * n_t, n_s:] = beta.real, -beta.imag
-        big[:, n_p * n_t:, :n_s], big[:, n_p * n_t:, n_s:] = beta.imag, beta.real
-        # 1/(jw - lam) = (re - j im) / (re² + im²), re = -Re lam, im = w - Im lam: (V, 2n, F)
-        basis = np.empty((nv, 2 * n_s, f.size))
-        im = np.subtract(2 * math.pi * f[None, None, :], lam.imag[:, :, None], out=basis[:, n_s:])
-        inv = np.multiply(im, im)
+        beta = beta.reshape(nv, n_h, n_s)
+        alpha0 = (cv @ vb_du + d[sl][:, :n_p, 0::2]).reshape(nv, n_h)  # (V, p T)
+        alpha1 = d[sl][:, :n_p, 1::2].reshape(nv, n_h)
+        big = np.zeros((nv, 2 * n_h, 2 * n_s + 2))
+        big[:, :n_h, :n_s], big[:, :n_h, n_s:2 * n_s] = beta.real, beta.imag
+        big[:, n_h:, :n_s], big[:, n_h:, n_s:2 * n_s] = beta.imag, -beta.real
+        big[:, :n_h, 2 * n_s], big[:, n_h:, 2 * n_s], big[:, n_h:, 2 * n_s + 1] = alpha0.real, alpha0.imag, alpha1
+        basis = np.empty((nv, 2 * n_s + 2, n_f))
+        x = np.subtract(omega[None, None, :], lam.imag[:, :, None], out=basis[:, n_s:2 * n_s])
+        inv = x * x
         inv += (lam.real**2)[:, :, None]
         np.reciprocal(inv, out=inv)
         np.multiply(inv, -lam.real[:, :, None], out=basis[:, :n_s])
-        np.multiply(inv, im, out=im)
-        np.negative(im, out=im)
-        h2 = np.matmul(big, basis).reshape(nv, 2, n_p, n_t, f.size)
-        # direct part alpha0 + jw alpha1: alpha0 = c b_u' + D_u, alpha1 = D_u' (real)
-        alpha0 = cv @ vb_du + d[sl][:, :n_p, 0::2]  # (V, p, T)
-        h_re = h2[:, 0] + alpha0.real[..., None]
-        h_im = h2[:, 1] + alpha0.imag[..., None] + (2 * math.pi * f) * d[sl][:, :n_p, 1::2][..., None]
-        env_t = np.stack([_rows(env[x], sl, nv, f.size) for x in axle], axis=1)  # (V, T, F)
-        h_re *= env_t[:, None]
-        h_im *= env_t[:, None]
-        for k, ax in enumerate(axes):
-            if s_in is None:  # |sum_t h_t e^{-jw tau_t}|² S_u
-                r_re = (h_re[:, k] * delay.real - h_im[:, k] * delay.imag).sum(axis=1)
-                r_im = (h_re[:, k] * delay.imag + h_im[:, k] * delay.real).sum(axis=1)
-                s_y = (r_re**2 + r_im**2) * grid["s_u"]
-            else:
-                hk = h_re[:, k] + 1j * h_im[:, k]
-                s_y = np.einsum("vif,ijf,vjf->vf", hk, s_in, np.conj(hk)).real
-            if seat2 is not None and ax == "z":
-                s_y = s_y * seat2
-            out[ax][sl] = np.sqrt(np.maximum(np.trapezoid(s_y * weight2[ax], f, axis=-1), 0.0))
+        x *= inv
+        basis[:, 2 * n_s] = 1.0
+        basis[:, 2 * n_s + 1] = omega
+        h = np.matmul(big, basis).reshape(nv, 2, n_p, n_t, n_f)  # [Re h, Im h] (V, 2, p, T, F)
+        env_t = np.stack([_rows(env[x_], sl, nv, n_f) for x_ in axle], axis=1)  # (V, T, F)
+        # a variant's numbers do not depend on the others in its chunk (how a sweep is cut into
+        # executor tasks): elementwise operations, and per variant one sum over the grid
+        h_re, h_im = h[:, 0], h[:, 1]  # (V, p, T, F)
+        if s_in is None:  # |sum_t h_t env_t e^{-jw tau_t}|² S_u
+            e_re, e_im = env_t * delay.real, env_t * delay.imag  # (V, T, F)
+            r_re = np.zeros((nv, n_p, n_f))
+            r_im = np.zeros((nv, n_p, n_f))
+            for t in range(n_t):
+                r_re += h_re[:, :, t] * e_re[:, None, t] - h_im[:, :, t] * e_im[:, None, t]
+                r_im += h_re[:, :, t] * e_im[:, None, t] + h_im[:, :, t] * e_re[:, None, t]
+            power = r_re * r_re
+            power += r_im * r_im
+        else:  # h S h^H, S Hermitian: sum_i |h_i|² S_ii + 2 sum_{i<j} Re(h_i conj(h_j) S_ij)
+            h_re = h_re * env_t[:, None]
+            h_im = h_im * env_t[:, None]
+            power = np.zeros((nv, n_p, n_f))
+            for i in range(n_t):
+                power += (h_re[:, :, i] ** 2 + h_im[:, :, i] ** 2) * s_in[i, i].real
+                for j in range(i + 1, n_t):
+                    # Re(h_i conj(h_j) S_ij) with h_i conj(h_j) = (a_i a_j + b_i b_j) + j (b_i a_j - a_i b_j)
+                    x_re = h_re[:, :, i] * h_re[:, :, j] + h_im[:, :, i] * h_im[:, :, j]
+                    x_im = h_im[:, :, i] * h_re[:, :, j] - h_re[:, :, i] * h_im[:, :, j]
+                    power += 2.0 * (x_re * s_in[i, j].real - x_im * s_in[i, j].imag)
+        for k, ax in enumerate(axes):  # numpy's sum per row (BLAS' dot rounds with the memory alignment)
+            out[ax][sl] = np.sqrt(np.maximum(np.sum(power[:, k] * quad[ax], axis=-1), 0.0))
     return out
 
 
@@ -1611,7 +1661,9 @@ def result_json(results: list[RideResult]) -> dict:
 def results_table(results: list[RideResult], scenario_id: str | None = None) -> pd.DataFrame:
     """One row per speed × pressure pair (the ``ride_results`` layout).
 
-    ``is_nominal`` marks the pair of the scenario's own tyre pressures.
+    ``is_nominal`` marks the pair of the scenario's own tyre pressures. The natural frequencies are
+    ``modes_Hz`` (text) and one ``<mode>_Hz`` column per mode (``bounce_Hz``, ``pitch_Hz``,
+    ``roll_Hz`` always; ``front_axle_roll_Hz``, ``cab_pitch_Hz``, ... where the model has them).
     """
     _validate.instances("results", results, RideResult)
     frames = []
@@ -1621,6 +1673,8 @@ def results_table(results: list[RideResult], scenario_id: str | None = None) -> 
         df["bounce_Hz"] = r.natural_frequencies_Hz.get("bounce", math.nan)
         df["pitch_Hz"] = r.natural_frequencies_Hz.get("pitch", math.nan)
         df["roll_Hz"] = r.natural_frequencies_Hz.get("roll", math.nan)
+        for mode, f in r.natural_frequencies_Hz.items():  # every further mode (front_axle_roll_Hz, cab_pitch_Hz, ...)
+            df[f"{mode}_Hz"] = f
         df["modes_Hz"] = "; ".join(f"{k} {v:.3f}" for k, v in r.natural_frequencies_Hz.items())
         df["front_stiffness_source"] = r.tyres["front"].stiffness_source
         df["rear_stiffness_source"] = r.tyres["rear"].stiffness_source

@@ -193,8 +193,9 @@ class _Batch:
     """The assemblies of a batch's runs on one set of coordinates and element slots (their
     union; a run without an element has it with zero coefficients), as arrays with the runs
     last, and the RK4 state layout ``[q, q', s]`` (``s`` the Maxwell dampers' displacements).
-    The arithmetic per run does not depend on the other runs of the batch (sums over small
-    axes element by element), so a run alone gives the same bits as in any batch."""
+    :func:`simulate` batches runs of one structure only (:func:`_structure`), so the union is
+    each run's own and a run alone gives the same bits as in any batch (:class:`_Kernel`: one
+    matrix product per run, whose sums depend on the matrix only)."""
 
     def __init__(self, assemblies: list[Assembly], record: tuple[str, ...], lift_off: bool, gravity_m_s2: float):
         runs = len(assemblies)
@@ -274,9 +275,6 @@ class _Batch:
                     if not match:
                         raise ValueError(f"record: unknown output {name!r}")
                     self.r_q[o, coords.index(match[0]), r] = 1.0
-        self._plan = None
-        self.has_ke = bool(ne)
-        self.has_m = bool(nm)
         self.gated = bool(np.any(self.gate_w)) or bool(np.any(self.gate_wm))
 
     @property
@@ -284,114 +282,108 @@ class _Batch:
         """Length of the RK4 state ``[q, q', s]``."""
         return 2 * self.nq + self.nm
 
-    def rhs(self, y: np.ndarray, u: np.ndarray, du: np.ndarray):
-        """``(y', F, lifted)``: the derivative of the state ``y`` (size, runs) under the tyre
-        inputs ``u``, ``du`` (tyres, runs), the tyre forces and which tyres are off the ground."""
-        if self._plan is None:
-            self._plan = _Plan(self)
-        pl, nq = self._plan, self.nq
-        q, v, s = y[:nq], y[nq:2 * nq], y[2 * nq:]
-        add, mul = np.add, np.multiply
-        out = np.empty_like(y)
-        out[:nq] = v
-        f = pl.dot(pl.gt_cols, q, pl.ft)
-        add(u, f, out=f)
-        mul(self.kt, f, out=f)
-        e = pl.dot(pl.gt_cols, v, pl.fd)
-        add(du, e, out=e)
-        mul(self.ct, e, out=e)
-        add(f, e, out=f)
-        np.maximum(f, self.floor, out=f)
-        lifted = f <= self.floor
-        gen = pl.tdot(pl.gt_rows, f, pl.gen)
-        if self.gated:
-            contact = f > self.floor
-        if self.has_ke:
-            fe = pl.dot(pl.ge_cols, q, pl.fe)
-            mul(self.ke, fe, out=fe)
-            ed = pl.dot(pl.ge_cols, v, pl.fe2)
-            mul(self.ce, ed, out=ed)
-            add(fe, ed, out=fe)
-            if self.gated:
-                mul(fe, pl.dot(pl.gw_cols, contact, pl.fe2, self.gate_on), out=fe)
-            add(gen, pl.tdot(pl.ge_rows, fe, pl.gen2), out=gen)
-        if self.has_m:
-            ext = pl.dot(pl.gm_cols, q, pl.fm)
-            np.subtract(ext, s, out=ext)
-            fm = mul(self.km, ext)
-            if self.gated:
-                mul(fm, pl.dot(pl.gwm_cols, contact, pl.fm2, self.gate_on_m), out=fm)
-            add(gen, pl.tdot(pl.gm_rows, fm, pl.gen2), out=gen)
-            mul(self.rate, ext, out=out[2 * nq:])
-        np.negative(gen, out=gen)
-        pl.dot(pl.minv_cols, gen, out[nq:2 * nq])
-        return out, f.copy(), lifted
-
-    def record(self, y: np.ndarray, deriv: np.ndarray, f: np.ndarray) -> np.ndarray:
-        """The recorded outputs (outputs, runs) at a state, its derivative and tyre forces."""
-        nq = self.nq
-        out = (self.r_acc * deriv[None, nq:2 * nq]).sum(axis=1)
-        out += (self.r_q * y[None, :nq]).sum(axis=1)
-        out += (self.r_f * f[None]).sum(axis=1)
-        return out
+    def kernel(self, runs: np.ndarray) -> "_Kernel":
+        """The right-hand side of the runs ``runs`` (indices into the batch), precomputed."""
+        return _Kernel(self, np.asarray(runs, dtype=np.intp))
 
 
-class _Plan:
-    """The batch's sparse contractions (columns and rows not zero in every run) and buffers: a
-    row-vector product over a few coordinates is a few whole-batch multiply-adds (the cost of a
-    batch of tens of runs is the number of numpy calls), summed in coordinate order."""
+class _Kernel:
+    """The nonlinear right-hand side of some runs of a :class:`_Batch`, as a few whole-batch matrix
+    products: everything that does not change from step to step is worked out here, once.
 
-    def __init__(self, b: "_Batch"):
-        runs = b.kt.shape[1]
+    Runs first (``(runs, ...)``, one small matrix per run, :func:`numpy.matmul` over the stack).
+    A stage's buffer ``E`` (runs, W + N) holds ``[q, q', s, u, u']`` (W = state + 2 tyres) and,
+    after :meth:`rhs`, the element forces ``F = [f_tyres, f_kv, e_maxwell]`` (N):
 
-        def cols(g):  # (k, n, runs) -> [(j, g[:, j])] over the columns not all zero
-            return [(j, np.ascontiguousarray(g[:, j])) for j in range(g.shape[1]) if np.any(g[:, j])]
+    * ``F = A E[:W]`` — tyres ``k (g·q + u) + c (g·q' + u')``, Kelvin-Voigt ``k g·q + c g·q'``,
+      Maxwell extensions ``g·q - s`` (the affine part, one product);
+    * tyres clamped at their floor (lift-off); ``s' = rate · e``; gated elements (acting while
+      their tyres touch) times ``G [contact, 1]``;
+    * ``q'' = P F`` with ``P = -M⁻¹ [g_tyreᵀ, g_kvᵀ, k_maxwell g_maxwellᵀ]``;
+    * the recorded outputs ``R [E[:W], F]`` (accelerations ``r_acc P F``, positions, forces).
+    """
 
-        def rows(g):  # (k, n, runs) -> [(i, g[i])] over the rows not all zero
-            return [(i, np.ascontiguousarray(g[i])) for i in range(g.shape[0]) if np.any(g[i])]
+    def __init__(self, b: _Batch, runs: np.ndarray):
+        nq, nt, nm, ne = b.nq, b.nt, b.nm, b.ge.shape[0]
+        size = 2 * nq + nm
+        width = size + 2 * nt
+        n_el = nt + ne + nm
+        count = runs.size
 
-        self.gt_cols, self.gt_rows = cols(b.gt), rows(b.gt)
-        self.ge_cols, self.ge_rows = cols(b.ge), rows(b.ge)
-        self.gm_cols, self.gm_rows = cols(b.gm), rows(b.gm)
-        self.gw_cols, self.gwm_cols = cols(b.gate_w), cols(b.gate_wm)
-        self.minv_cols = cols(b.minv)
-        nt, ne, nm, nq = b.gt.shape[0], b.ge.shape[0], b.gm.shape[0], b.nq
-        self.ft, self.fd = np.empty((2, nt, runs))
-        self.fe, self.fe2 = np.empty((2, ne, runs))
-        self.fm, self.fm2 = np.empty((2, nm, runs))
-        self.gen, self.gen2 = np.empty((2, nq, runs))
-        self.tmp = {}
+        def take(x):  # (..., runs) -> (runs, ...)
+            return np.moveaxis(x[..., runs], -1, 0)
 
-    def _buffer(self, shape):
-        if shape not in self.tmp:
-            self.tmp[shape] = np.empty(shape)
-        return self.tmp[shape]
+        gt, kt, ct = take(b.gt), take(b.kt), take(b.ct)
+        ge, ke, ce = take(b.ge), take(b.ke), take(b.ce)
+        gm, km, rate = take(b.gm), take(b.km), take(b.rate)
+        a = np.zeros((count, n_el, width))
+        a[:, :nt, :nq] = kt[:, :, None] * gt
+        a[:, :nt, nq:2 * nq] = ct[:, :, None] * gt
+        tyre = np.arange(nt)
+        a[:, tyre, size + tyre] = kt
+        a[:, tyre, size + nt + tyre] = ct
+        a[:, nt:nt + ne, :nq] = ke[:, :, None] * ge
+        a[:, nt:nt + ne, nq:2 * nq] = ce[:, :, None] * ge
+        a[:, nt + ne:, :nq] = gm
+        a[:, nt + ne + np.arange(nm), 2 * nq + np.arange(nm)] = -1.0
+        g_all = np.concatenate([gt, ge, gm * km[:, :, None]], axis=1)  # (runs, N, nq)
+        p = -np.matmul(take(b.minv), np.swapaxes(g_all, 1, 2))  # (runs, nq, N)
+        r_acc, r_q, r_f = take(b.r_acc), take(b.r_q), take(b.r_f)
+        no = r_acc.shape[1]
+        r = np.zeros((count, no, width + n_el))
+        r[:, :, :nq] = r_q
+        r[:, :, width:] = np.matmul(r_acc, p)
+        r[:, :, width:width + nt] += r_f
+        self.a, self.p, self.r = a, p, r
+        self.floor = np.ascontiguousarray(take(b.floor))
+        self.rate = np.ascontiguousarray(rate)
+        self.gated = b.gated
+        if b.gated:  # gate factor of every non-tyre element: [gate weights per tyre, gate_on]
+            gw = np.concatenate([np.concatenate([take(b.gate_w), take(b.gate_on)[:, :, None]], axis=2),
+                                 np.concatenate([take(b.gate_wm), take(b.gate_on_m)[:, :, None]], axis=2)], axis=1)
+            self.gw = gw  # (runs, ne + nm, nt + 1)
+        self.nq, self.nt, self.ne, self.nm, self.size, self.width, self.n_el = nq, nt, ne, nm, size, width, n_el
+        self.count, self.no = count, no
 
-    def dot(self, columns, x, out, start=None):
-        """``out = start + Σ_j g[:, j] x[j]`` (``start`` None: 0), summed in column order (without a
-        start the first product is the first partial sum: ``0 + a`` is ``a``)."""
-        return self._sum(columns, x, out, start)
+    def buffers(self):
+        """A stage's work arrays: ``E`` (runs, W + N), the derivative ``K`` (runs, size) (its
+        ``s'`` rows 0 without Maxwell elements) and the lifted tyres ``L`` (runs, tyres)."""
+        return (np.zeros((self.count, self.width + self.n_el)), np.zeros((self.count, self.size)),
+                np.zeros((self.count, self.nt), dtype=bool))
 
-    def tdot(self, rows, f, out):
-        """``out = Σ_i g[i] f[i]`` (the transposed product: generalised forces)."""
-        return self._sum(rows, f, out, None)
+    def bind(self, e: np.ndarray, k: np.ndarray, lifted: np.ndarray):
+        """A function of no arguments that writes ``k`` = the state derivative and ``lifted`` =
+        the tyres off the ground from the state and inputs in ``e[:, :W]`` at the call, and the
+        element forces into ``e[:, W:]`` (every view taken once, here)."""
+        matmul, maximum, less_equal, greater, multiply, copyto = (
+            np.matmul, np.maximum, np.less_equal, np.greater, np.multiply, np.copyto)
+        nq, nt, ne, w = self.nq, self.nt, self.ne, self.width
+        a, p, floor, rate = self.a, self.p, self.floor, self.rate
+        e_in, f3 = e[:, :w, None], e[:, w:, None]
+        f_tyre, f_mw, f_gated = e[:, w:w + nt], e[:, w + nt + ne:], e[:, w + nt:]
+        k_acc, k_q, k_s, velocity = k[:, nq:2 * nq, None], k[:, :nq], k[:, 2 * nq:], e[:, nq:2 * nq]
+        has_m, gated = self.nm > 0, self.gated
+        if gated:
+            gw = self.gw
+            contact = np.ones((self.count, nt + 1))
+            contact3, tyres_contact = contact[:, :, None], contact[:, :nt]
+            factor = np.empty((self.count, ne + self.nm))
+            factor3 = factor[:, :, None]
 
-    def _sum(self, terms, x, out, start):
-        if start is None:
-            if not terms:
-                out[...] = 0.0
-                return out
-            j, col = terms[0]
-            np.multiply(col, x[j], out=out)
-            terms = terms[1:]
-        else:
-            out[...] = start
-        if terms:
-            tmp = self._buffer(out.shape)
-            for j, col in terms:
-                np.multiply(col, x[j], out=tmp)
-                np.add(out, tmp, out=out)
-        return out
+        def rhs() -> None:
+            matmul(a, e_in, out=f3)
+            maximum(f_tyre, floor, out=f_tyre)
+            less_equal(f_tyre, floor, out=lifted)
+            if has_m:
+                multiply(rate, f_mw, out=k_s)
+            if gated:
+                greater(f_tyre, floor, out=tyres_contact)
+                matmul(gw, contact3, out=factor3)
+                multiply(f_gated, factor, out=f_gated)
+            matmul(p, f3, out=k_acc)
+            copyto(k_q, velocity)
+
+        return rhs
 
 
 def _inverse(mass: np.ndarray) -> np.ndarray:
@@ -540,9 +532,40 @@ def simulate(
     if u.shape[2] % 2 == 0:
         raise ValueError("u_half: inputs must be sampled at dt/2 (odd length)")
     n = (u.shape[2] + 1) // 2
-    batch = _Batch(assemblies, tuple(record), lift_off, gravity_m_s2)
     out = {k: np.empty((runs, n)) for k in record}
-    off = np.zeros((batch.nt, runs))
+    off = np.zeros((len(assemblies[0].tyres), runs))
+    used = np.array(["exact"] * runs, dtype=object)
+    groups: dict[tuple, list[int]] = {}
+    for i, asm in enumerate(assemblies):
+        groups.setdefault(_structure(asm), []).append(i)
+    for members in groups.values():  # each run's arithmetic is that of its own structure, alone or in any batch
+        rows = np.array(members)
+        part = {k: np.empty((rows.size, n)) for k in record}
+        part_off = np.zeros_like(off[:, rows])
+        used[rows] = _simulate_group([assemblies[i] for i in members], u[rows], du[rows], dt_s, lift_off, gravity_m_s2,
+                                     method, tuple(record), part, part_off)
+        for k in record:
+            out[k][rows] = part[k]
+        off[:, rows] = part_off
+    out.update({f"lift_off_fraction_{t}": off[j] / n for j, t in enumerate(assemblies[0].tyres)})
+    out["method_used"] = used
+    return out
+
+
+def _structure(asm: Assembly) -> tuple:
+    """What sets the shape of a run's arrays in a batch: its coordinates, tyres and element slots.
+    Runs of one structure share a :class:`_Batch`, so that no run sums another's zero terms (the
+    order of a matrix product's sums depends on its length): a run gives the same bits alone as
+    in any batch."""
+    return (tuple(asm.coordinates), tuple(asm.tyres),
+            tuple((e.name, e.model == "maxwell", e.input is None) for e in asm.elements))
+
+
+def _simulate_group(assemblies, u, du, dt_s, lift_off, gravity_m_s2, method, record, out, off) -> np.ndarray:
+    """:func:`simulate` of runs of one structure (:func:`_structure`) into ``out``/``off``; the
+    method used per run."""
+    runs, n = len(assemblies), (u.shape[2] + 1) // 2
+    batch = _Batch(assemblies, record, lift_off, gravity_m_s2)
     used = np.array(["exact"] * runs, dtype=object)
     switched = []  # (run, exact path or None, sample where RK4 takes over, RK4 state there)
     if method == "rk4":
@@ -557,83 +580,111 @@ def simulate(
                 used[i] = "exact+rk4"
     if switched:
         _run_switched(batch, u, du, dt_s, lift_off, switched, out, off)
-    out.update({f"lift_off_fraction_{t}": off[j] / n for j, t in enumerate(batch.tyres)})
-    out["method_used"] = used
-    return out
+    return used
 
 
 def _run_switched(batch: _Batch, u, du, dt_s, lift_off, switched, out, off) -> None:
     """RK4 across the lift-off intervals of the ``switched`` runs, the exact path in between.
 
     All runs advance together, each at its own sample; a run that has ended (or gone back to the
-    exact path for good) is still computed, its results go nowhere."""
+    exact path for good) is still computed, its results go nowhere. Arrays are runs first; the
+    right-hand side is :class:`_Kernel`'s (four stage buffers, bound once)."""
     idx = np.array([s[0] for s in switched])
     exact = [s[1] for s in switched]
     returns = np.array([e is not None for e in exact])
+    may_return = bool(returns.any())
     count, n = idx.size, (u.shape[2] + 1) // 2
-    sub = _Batch.__new__(_Batch)
-    sub.__dict__.update({k: (v[..., idx] if isinstance(v, np.ndarray) and v.ndim >= 2 else v)
-                         for k, v in batch.__dict__.items()})
-    nt = batch.nt
-    # inputs of every run, each padded with its last sample twice (the stages past the last
-    # sample read it, as a clamped index would)
-    width = 2 * n + 1
-    inputs = np.empty((2, nt, count, width))
-    for row, v in enumerate((u, du)):
-        inputs[row, :, :, : 2 * n - 1] = v[idx].transpose(1, 0, 2)
-        inputs[row, :, :, 2 * n - 1:] = inputs[row, :, :, 2 * n - 2: 2 * n - 1]
-    rows = np.arange(count)
+    kern = batch.kernel(idx)
+    nt, size, w = batch.nt, kern.size, kern.width
+    # inputs of every run at every half step, [u, u'] per row, each padded with its last sample
+    # twice (the stages past the last sample read it, as a clamped index would)
+    span = 2 * n + 1
+    inputs = np.empty((count, span, 2 * nt))
+    inputs[:, :2 * n - 1, :nt] = u[idx].transpose(0, 2, 1)
+    inputs[:, :2 * n - 1, nt:] = du[idx].transpose(0, 2, 1)
+    inputs[:, 2 * n - 1:] = inputs[:, 2 * n - 2: 2 * n - 1]
+    flat_in = inputs.reshape(count * span, 2 * nt)
     record = batch.outputs
-    res = np.empty((len(record), count, n + 1))  # the last column a sink for the runs no longer recording
+    res = np.empty((count, n + 1, len(record)))  # the last sample a sink for the runs no longer recording
     for i, key in enumerate(record):
-        res[i, :, :n] = out[key][idx]
-    views = {key: res[i, :, :n] for i, key in enumerate(record)}
-    res_flat = [res[i].reshape(-1) for i in range(len(record))]
+        res[:, :n, i] = out[key][idx]
+    views = {key: res[:, :n, i] for i, key in enumerate(record)}
+    res_flat = res.reshape(count * (n + 1), len(record))
+    rows = np.arange(count)
     res_start, sink = rows * (n + 1), rows * (n + 1) + n
-    y = np.array([s[3] for s in switched], float).T.copy()  # (size, count)
+    stages = [kern.buffers() for _ in range(4)]
+    rhs = [kern.bind(*b) for b in stages]
+    (e1, k1, l1), (e2, k2, l2), (e3, k3, l3), (e4, k4, l4) = stages
+    y = e1[:, :size]  # the state lives in the first stage's buffer
+    y[...] = np.array([s[3] for s in switched], float)
+    state2, state3, state4 = e2[:, :size], e3[:, :size], e4[:, :size]
+    in1, in2, in3, in4 = (e[:, size:w] for e in (e1, e2, e3, e4))
+    rec3 = np.empty((count, len(record), 1))
+    rec = rec3[:, :, 0]
+    r_all, e1_all = kern.r, e1[:, :, None]
     k = np.array([s[2] for s in switched], dtype=np.intp)
     calm = np.zeros(count, dtype=int)
     active = np.ones(count, dtype=bool)
-    offs = np.zeros((nt, count))
+    offs = np.zeros((count, nt))
+    both = np.empty((count, nt), dtype=bool)
+    any_lift = np.empty((count, nt), dtype=bool)
     last = n - 1
     h = dt_s
-
-    flat_in = inputs.reshape(2 * nt, count * width)
-    base = rows * width
-
-    def at(j):
-        w = np.take(flat_in, base + 2 * k + j, axis=1, mode="clip").reshape(2, nt, count)
-        return w[0], w[1]
+    half_h, sixth_h, two = np.float64(0.5 * h), np.float64(h / 6.0), np.float64(2.0)
+    full_h = np.float64(h)
+    t1, t2 = np.empty((2, count, size))
+    base = rows * span
+    add, multiply, copyto, take = np.add, np.multiply, np.copyto, np.take
 
     while active.any():
-        k1, f1, l1 = sub.rhs(y, *at(0))
+        at = base + 2 * k
+        take(flat_in, at, axis=0, out=in1, mode="clip")
+        rhs[0]()
         pos = np.where(active, res_start + k, sink)
-        rec = sub.record(y, k1, f1)
-        for flat, vals in zip(res_flat, rec):
-            np.put(flat, pos, vals)
-        offs += l1 & active
+        np.matmul(r_all, e1_all, out=rec3)
+        res_flat[pos] = rec
+        np.logical_and(l1, active[:, None], out=both)
+        offs += both
         step = (k != last) & active
-        u_mid = at(1)
-        k2, _, l2 = sub.rhs(y + 0.5 * h * k1, *u_mid)
-        k3, _, l3 = sub.rhs(y + 0.5 * h * k2, *u_mid)
-        k4, _, l4 = sub.rhs(y + h * k3, *at(2))
-        y_new = y + h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
-        np.copyto(y, y_new, where=step)
+        multiply(k1, half_h, out=t1)
+        add(y, t1, out=state2)
+        take(flat_in, at + 1, axis=0, out=in2, mode="clip")
+        rhs[1]()
+        multiply(k2, half_h, out=t1)
+        add(y, t1, out=state3)
+        copyto(in3, in2)
+        rhs[2]()
+        multiply(k3, full_h, out=t1)
+        add(y, t1, out=state4)
+        take(flat_in, at + 2, axis=0, out=in4, mode="clip")
+        rhs[3]()
+        # y + h/6 (k1 + 2 k2 + 2 k3 + k4), summed in that order
+        multiply(k2, two, out=t1)
+        add(k1, t1, out=t1)
+        multiply(k3, two, out=t2)
+        add(t1, t2, out=t1)
+        add(t1, k4, out=t1)
+        multiply(t1, sixth_h, out=t1)
+        add(y, t1, out=t1)
+        copyto(y, t1, where=step[:, None])
         k += step
-        any_lift = (l1 | l2 | l3 | l4).any(axis=0)
-        calm += 1
-        calm[any_lift] = 0
-        active = step.copy()
-        back = (calm >= CALM_STEPS) & step & returns
-        for r in np.flatnonzero(back):  # back in contact for a while: exact again
-            kr, yr = exact[r].solve(int(k[r]), y[:, r], views, r, lift_off, chunk=EXACT_CHUNK)
-            if yr is None:
-                active[r] = False
-            else:
-                k[r], y[:, r], calm[r] = kr, yr, 0
+        active = step
+        if may_return:
+            np.logical_or(l1, l2, out=any_lift)
+            np.logical_or(any_lift, l3, out=any_lift)
+            np.logical_or(any_lift, l4, out=any_lift)
+            calm += 1
+            calm[any_lift.any(axis=1)] = 0
+            back = (calm >= CALM_STEPS) & step & returns
+            for r in np.flatnonzero(back):  # back in contact for a while: exact again
+                kr, yr = exact[r].solve(int(k[r]), y[r].copy(), views, r, lift_off, chunk=EXACT_CHUNK)
+                if yr is None:
+                    active[r] = False
+                else:
+                    k[r], y[r], calm[r] = kr, yr, 0
     for key in record:
         out[key][idx] = views[key]
-    off[:, idx] = offs
+    off[:, idx] = offs.T
 
 
 def simulate_tractor(

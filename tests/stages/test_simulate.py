@@ -142,6 +142,15 @@ def test_ride_tables_hold_every_shipped_scenario(ctx):
     res = ctx.read_table("ride_results")
     assert set(res["scenario"]) == set(scen["scenario"])
     assert {"a_wz_m_s2", "a_wx_m_s2", "a8_m_s2", "hours_to_elv", "verdict", "expected_a_wz_m_s2"} <= set(res.columns)
+    # the report's Ride page: every scenario's seat PSD and transmissibility per axis, of its own pressures
+    for name, cols in (("ride_spectra", ("seat_vertical_psd_m2_s4_per_Hz", "seat_longitudinal_psd_m2_s4_per_Hz")),
+                       ("ride_transmissibility", ("seat_vertical", "seat_longitudinal_per_m"))):
+        t = ctx.read_table(name)
+        assert set(t["file"]) == set(scen["file"]) and set(cols) <= set(t.columns), name
+        assert (t.groupby("file")[cols[0]].max() > 0).all(), name
+        own = scen.set_index("file")[["front_pressure_bar", "rear_pressure_bar"]]
+        shown = t.groupby("file")[["front_pressure_bar", "rear_pressure_bar"]].first()
+        assert shown.sort_index().equals(own.sort_index()), name
 
 
 def test_mf698t_scenario_reproduces_the_chapter_7_runs(ctx):

@@ -129,3 +129,22 @@ def test_rk4_does_the_textbook_arithmetic():
         assert np.max(np.abs(got[key] - rec[i]) / scale) < 1e-9, key
     np.testing.assert_array_equal(got["lift_off_fraction_front"], off[0])
     np.testing.assert_array_equal(got["lift_off_fraction_rear"], off[1])
+
+
+@pytest.mark.parametrize("method", ["rk4", "auto"])
+def test_a_run_gives_the_same_bits_alone_and_in_a_batch_of_other_models(method):
+    """The simulate stage reuses cached ch. 7 cases beside recomputed ones: a run's RK4 (and
+    switched) arithmetic must not depend on what else is in its batch, although the batch mixes
+    runs with and without a longitudinal element (other coordinates, other element slots)."""
+    models = np.array(["maxwell", "none", "kelvin_voigt", "maxwell"], dtype=object)
+    kx, cx = np.array([9.1e5, 0.0, 9.1e5, 9.1e5]), np.array([6e3, 0.0, 6e3, 0.0])
+    scale = np.array([1.0, 1.2, 0.8, 1.1])[:, None]
+    uf, udf, ur, udr = (scale * x for x in _inputs(0.6))
+    p = [np.full(models.size, v) for v in (5120.0, 6210.0, 1.54, 0.896, 0.838, 8.5e5, 6.6e5, 3e3, 2e3)] + [kx, cx]
+    batch = simulate_tractor(Tractor(*p, longitudinal_model=models), uf, udf, ur, udr, DT_S, method=method)
+    assert batch["lift_off_fraction_front"].min() > 0
+    for i in range(models.size):
+        alone = simulate_tractor(Tractor(*(v[i] for v in p), longitudinal_model=models[i]), uf[i], udf[i], ur[i],
+                                 udr[i], DT_S, method=method)
+        for key, value in alone.items():
+            np.testing.assert_array_equal(batch[key][i], value, err_msg=f"run {i} {key}")
