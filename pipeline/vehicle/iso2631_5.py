@@ -181,19 +181,17 @@ class PeakDose:
         if a.size == 0:
             return
         pos = a > 0
-        if not pos.any():
-            self._close()
-            return
-        if pos[0] and self._open > 0:  # the open run continues into this chunk
-            end = int(np.argmin(pos)) if not pos.all() else a.size
+        starts = np.flatnonzero(pos[1:] > pos[:-1]) + 1  # where a positive run begins, after the first sample
+        if pos[0]:  # a run at the start: the open one going on, or a new one
+            end = int(starts[0]) if starts.size else a.size
             self._open = max(self._open, float(a[:end].max()))
-            if end == a.size:
+            if starts.size == 0 and pos[-1]:  # it goes on into the next chunk
                 return
-            self._close()
-            a, pos = a[end:], pos[end:]
-        elif not pos[0]:
-            self._close()
-        peaks = positive_peaks(a)
+        self._close()
+        if starts.size == 0:
+            return
+        # each run's maximum: from its start to the next run's (the samples between are not positive)
+        peaks = np.maximum.reduceat(a, starts)
         if pos[-1]:  # the last run may go on in the next chunk
             self._open = float(peaks[-1])
             peaks = peaks[:-1]

@@ -33,7 +33,12 @@ Examples
 
 from __future__ import annotations
 
+import functools
 import math
+import os
+import queue
+import threading
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -87,44 +92,87 @@ class ChannelResult:
 
 
 class _Welch:
-    """Streaming Welch PSD: Hann, 50 % overlap, constant detrend, density scaling (as scipy.signal.welch)."""
+    """Streaming Welch PSD: Hann, 50 % overlap, constant detrend, density scaling (as scipy.signal.welch).
+
+    The samples not yet in a whole segment are kept in one array the next chunk is written
+    behind (:meth:`load`); :meth:`process` transforms the whole segments, a few at a time into
+    arrays it reuses.
+    """
+
+    #: Segments transformed together (2 × 640 KiB of arrays at 500 Hz: in cache).
+    BATCH = 16
 
     def __init__(self, fs_Hz: float, nperseg: int):
         self.fs, self.n, self.hop = fs_Hz, nperseg, nperseg - nperseg // 2
         self.win = np.hanning(nperseg + 1)[:-1] if nperseg > 1 else np.ones(1)  # periodic Hann (scipy's 'hann')
-        self._win_spectrum = np.fft.rfft(self.win)
-        self.left = np.empty(0)
-        self.total = np.zeros(nperseg // 2 + 1)
+        # the constant detrend after the transform (linear: rfft(w (s - m)) = rfft(w s) - m rfft(w)); the
+        # periodic Hann's spectrum is N/2, -N/4 at bins 0 and 1 and zero (rounding) elsewhere
+        spectrum = np.fft.rfft(self.win)
+        self._detrend_bins = np.flatnonzero(np.abs(spectrum) > 1e-9 * np.abs(spectrum).max())
+        self._detrend_values = spectrum[self._detrend_bins]
+        self._buf = np.empty(0)
+        self._start = self._end = 0  # the samples not yet transformed: _buf[_start:_end]
+        self._windowed = iso2631._aligned_empty((self.BATCH, nperseg))
+        self._spectra = iso2631._aligned_empty((self.BATCH, nperseg // 2 + 1), complex)
+        self._power = np.zeros(2 * (nperseg // 2 + 1))  # Σ re², Σ im² of the segments' spectra, interleaved
         self.count = 0
 
-    def process(self, x: np.ndarray) -> None:
-        buf = np.concatenate((self.left, x))
-        if buf.size < self.n:
-            self.left = buf
-            return
-        from scipy import fft
+    def load(self, samples, offset: float) -> np.ndarray:
+        """Write ``samples - offset`` behind the samples kept; returns them (a view, valid until
+        the next ``load``)."""
+        kept = self._end - self._start
+        need = kept + len(samples)
+        if self._buf.size < need:
+            buf = iso2631._aligned_empty(need)
+            buf[:kept] = self._buf[self._start:self._end]
+            self._buf = buf
+        elif self._start:
+            self._buf[:kept] = self._buf[self._start:self._end].copy()
+        self._start, self._end = 0, need
+        x = self._buf[kept:need]
+        np.subtract(samples, offset, out=x)
+        return x
 
-        segs = np.lib.stride_tricks.sliding_window_view(buf, self.n)[:: self.hop]
-        # the constant detrend after the transform (linear: rfft(w (s - m)) = rfft(w s) - m rfft(w)),
-        # saving a pass over the segments; scipy.fft is numpy's pocketfft, vectorised
-        spec = fft.rfft(segs * self.win, axis=1)
-        spec -= segs.mean(axis=1)[:, None] * self._win_spectrum
-        self.total += np.sum(spec.real**2 + spec.imag**2, axis=0)
-        self.count += segs.shape[0]
-        self.left = buf[segs.shape[0] * self.hop:].copy()  # not a view keeping the chunk alive
+    def process(self) -> None:
+        """Transform the whole segments among the samples loaded."""
+        buf = self._buf[self._start:self._end]
+        if buf.size < self.n:
+            return
+        m = (buf.size - self.n) // self.hop + 1
+        segs = np.lib.stride_tricks.sliding_window_view(buf, self.n)[:: self.hop][:m]
+        if self.n == 2 * self.hop:  # each segment two halves: their sums, one pass over the samples
+            halves = buf[: (m + 1) * self.hop].reshape(m + 1, self.hop).sum(axis=1)
+            means = (halves[:-1] + halves[1:]) / self.n
+        else:
+            means = segs.mean(axis=1)
+        for i in range(0, m, self.BATCH):
+            k = min(self.BATCH, m - i)
+            windowed = np.multiply(segs[i:i + k], self.win, out=self._windowed[:k])
+            spec = iso2631._rfft_into(windowed, self.n, self._spectra[:k])
+            spec[:, self._detrend_bins] -= means[i:i + k, None] * self._detrend_values
+            parts = spec.view(np.float64)  # re, im interleaved
+            self._power += np.einsum("ij,ij->j", parts, parts)
+        self.count += m
+        self._start += m * self.hop
 
     def finish(self) -> tuple[np.ndarray, np.ndarray]:
         from scipy import signal
 
         if self.count == 0:  # shorter than a segment: one periodogram of it all (as acceleration_psd)
-            if self.left.size < 2:
+            left = self._buf[self._start:self._end]
+            if left.size < 2:
                 return np.empty(0), np.empty(0)
-            return signal.welch(self.left, fs=self.fs, window="hann", nperseg=self.left.size, detrend="constant")
-        psd = self.total / self.count / (self.fs * np.sum(self.win**2))
+            return signal.welch(left, fs=self.fs, window="hann", nperseg=left.size, detrend="constant")
+        total = self._power[0::2] + self._power[1::2]
+        psd = total / self.count / (self.fs * np.sum(self.win**2))
         psd[1:] *= 2.0
         if self.n % 2 == 0:
             psd[-1] /= 2.0
         return np.fft.rfftfreq(self.n, 1.0 / self.fs), psd
+
+
+#: Samples per pass of the weighted signal's sums (in cache: 256 KiB of float64).
+_SUB_BLOCK = 1 << 15
 
 
 class ChannelAnalyser:
@@ -156,44 +204,68 @@ class ChannelAnalyser:
         self._filter = iso2631.ResponseFilter(responses) if responses else None
         self._dose = iso2631_5.PeakDose() if self.spine else None
         self._welch = _Welch(self.fs, max(1, int(round(self.fs / PSD_BANDWIDTH_HZ))))
-        self._window = max(1, int(round(iso2631.RUNNING_RMS_TAU_S * self.fs)))
-        self._tail = np.zeros(self._window)  # last squares of the weighted signal (zeros before the start)
+        self._window = k = max(1, int(round(iso2631.RUNNING_RMS_TAU_S * self.fs)))
+        if self.weighting:
+            # the last k squares of the weighted signal (zeros before the start), then a sub-block's;
+            # their running sum; the window sums
+            self._squares = np.zeros(k + _SUB_BLOCK)
+            self._cumulative = np.zeros(k + _SUB_BLOCK + 1)
+            self._window_sums = np.empty(_SUB_BLOCK)
         self.n = 0
         self._sum = self._sum2 = 0.0
-        self._w2 = self._w4 = self._wmax = self._rmax = 0.0
+        self._w2 = self._w4 = self._sq_max = self._window_max = 0.0
         self._nw = 0
 
     def process(self, samples) -> None:
-        x = np.asarray(samples, dtype=float) - self.offset
-        if x.size == 0:
-            return
+        for task in self.tasks(samples):
+            task()
+
+    def tasks(self, samples) -> list:
+        """The work of one chunk as independent calls (they share no state, so they may run in
+        parallel threads; each must run once, and all before the next chunk's ``tasks``)."""
+        samples = np.asarray(samples, dtype=float)
+        if samples.size == 0:
+            return []
+        x = self._welch.load(samples, self.offset)
         self.n += x.size
-        self._sum += float(x.sum())
-        self._sum2 += float(np.dot(x, x))
-        self._welch.process(x)
+        work = [functools.partial(self._unweighted, x)]
         if self._filter is not None:
-            self._weighted(self._filter.process(x))
+            work.append(functools.partial(self._filtered, x))
+        return work
+
+    def _unweighted(self, x: np.ndarray) -> None:
+        self._sum += float(x.sum())
+        self._sum2 += float(np.einsum("i,i->", x, x))  # not np.dot: BLAS threads stall on a busy machine
+        self._welch.process()
+
+    def _filtered(self, x: np.ndarray) -> None:
+        for outputs in self._filter.blocks(x):
+            self._weighted(outputs)
 
     def _weighted(self, outputs) -> None:
+        k = self._window
         if self.weighting:
-            aw = outputs[0]
-            if aw.size:
-                sq = aw * aw
-                self._nw += aw.size
-                self._w2 += float(sq.sum())
-                self._w4 += float(np.dot(sq, sq))
-                self._wmax = max(self._wmax, float(np.abs(aw).max()))
-                c = np.concatenate(([0.0], np.cumsum(np.concatenate((self._tail, sq)))))
-                k = self._window
-                sums = c[k + 1:] - c[1:c.size - k]  # window sums ending at each new sample
-                self._rmax = max(self._rmax, float(np.sqrt(max(float(sums.max()), 0.0) / k)))
-                self._tail = np.concatenate((self._tail, sq))[-k:].copy()
-        if self._dose is not None:
-            self._dose.process(outputs[-1])
+            self._nw += outputs[0].size
+        for i in range(0, outputs[0].size, _SUB_BLOCK):  # a few passes over each sub-block while it is in cache
+            if self.weighting:
+                part = outputs[0][i:i + _SUB_BLOCK]
+                m = part.size
+                sq, c, sums = self._squares, self._cumulative, self._window_sums
+                new = np.multiply(part, part, out=sq[k:k + m])
+                self._w2 += float(new.sum())
+                self._w4 += float(np.einsum("i,i->", new, new))
+                self._sq_max = max(self._sq_max, float(new.max()))
+                np.cumsum(sq[:k + m], out=c[1:k + m + 1])
+                window = np.subtract(c[k + 1:k + m + 1], c[1:m + 1], out=sums[:m])  # window sums ending at each new sample
+                self._window_max = max(self._window_max, float(window.max()))
+                sq[:k] = sq[m:m + k].copy()
+            if self._dose is not None:
+                self._dose.process(outputs[-1][i:i + _SUB_BLOCK])
 
     def finish(self) -> ChannelResult:
         if self._filter is not None:
-            self._weighted(self._filter.finish())
+            for outputs in self._filter.final_blocks():
+                self._weighted(outputs)
         duration = self.n / self.fs
         mean = self._sum / self.n if self.n else math.nan
         res = ChannelResult(self.channel, self.weighting, duration, self.n,
@@ -208,8 +280,8 @@ class ChannelAnalyser:
         if self.weighting and self._nw:
             res.a_w_m_s2 = math.sqrt(self._w2 / self._nw)
             res.vdv_m_s1_75 = (self._w4 / self.fs) ** 0.25
-            res.mtvv_m_s2 = self._rmax
-            res.crest_factor = self._wmax / res.a_w_m_s2 if res.a_w_m_s2 > 0 else math.nan
+            res.mtvv_m_s2 = math.sqrt(max(self._window_max, 0.0) / self._window)
+            res.crest_factor = math.sqrt(self._sq_max) / res.a_w_m_s2 if res.a_w_m_s2 > 0 else math.nan
             res.method = iso2631.method_check(res.a_w_m_s2, res.crest_factor, res.mtvv_m_s2, res.vdv_m_s1_75, duration)
         if self._dose is not None:
             res.dz_m_s2 = self._dose.finish()
@@ -283,8 +355,62 @@ class RecordingAnalysis:
         return out
 
 
-def analyse_recording(recording) -> RecordingAnalysis:
+def _read_ahead(chunks):
+    """The chunks of ``chunks``, the next one read in a thread while the caller works on this one
+    (Parquet decoding releases the GIL). At most two are held: the one handed over and the next."""
+    hand_over: queue.Queue = queue.Queue(maxsize=1)
+    stop = threading.Event()
+    end = object()
+
+    def put(item) -> bool:
+        while not stop.is_set():
+            try:
+                hand_over.put(item, timeout=0.05)
+                return True
+            except queue.Full:
+                continue
+        return False
+
+    def read() -> None:
+        try:
+            for chunk in chunks:
+                if not put(chunk):
+                    return
+                del chunk
+            put(end)
+        except BaseException as exc:  # noqa: BLE001 - handed to the caller's thread, raised there
+            put(exc)
+
+    reader = threading.Thread(target=read, name="tyrelab-read-ahead", daemon=True)
+    reader.start()
+    try:
+        while (item := hand_over.get()) is not end:
+            if isinstance(item, BaseException):
+                raise item
+            yield item
+            del item
+    finally:
+        stop.set()
+        reader.join()
+
+
+def _workers(workers: int | None, n_tasks: int) -> int:
+    if workers is None:
+        try:
+            cpus = len(os.sched_getaffinity(0))
+        except (AttributeError, OSError):
+            cpus = os.cpu_count() or 1
+        return max(1, min(cpus, n_tasks))
+    return _validate.positive_int("workers", workers)
+
+
+def analyse_recording(recording, workers: int | None = None) -> RecordingAnalysis:
     """Analyse an opened recording (:func:`tyrelab.rawformat.rides.open_recording`) chunk by chunk.
+
+    The next chunk is read in a thread while this one is analysed, and the channels' work on a
+    chunk (per channel: the sums and the PSD; the weighting, its sums and the spine model) runs
+    in ``workers`` threads (default: the CPUs this process may use, at most the tasks); the
+    numbers do not depend on ``workers`` (each channel's work is done in the same order).
 
     Raises
     ------
@@ -295,12 +421,26 @@ def analyse_recording(recording) -> RecordingAnalysis:
         raise ValueError(f"recording must be an opened recording (rawformat.rides.open_recording), got "
                          f"{type(recording).__name__}")
     analysers = {c: ChannelAnalyser(c, recording.sample_rate_Hz, recording.offsets[c]) for c in recording.channels}
-    chunks = recording.chunks()
-    while (chunk := next(chunks, None)) is not None:
-        for c, a in analysers.items():
-            a.process(chunk.channels[c])
-        del chunk  # not alive while the next one is read
-    results = {c: a.finish() for c, a in analysers.items()}
+    n_workers = _workers(workers, 2 * len(analysers))
+    if n_workers == 1:
+        chunks = recording.chunks()
+        while (chunk := next(chunks, None)) is not None:
+            for c, a in analysers.items():
+                a.process(chunk.channels[c])
+            del chunk  # not alive while the next one is read
+        results = {c: a.finish() for c, a in analysers.items()}
+    else:
+        with ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="tyrelab-exposure") as pool:
+            chunks = _read_ahead(recording.chunks())
+            while (chunk := next(chunks, None)) is not None:
+                # the weighting first (the longer tasks), so the pool's threads end a chunk together
+                tasks = [t for c, a in analysers.items() for t in a.tasks(chunk.channels[c])]
+                del chunk
+                tasks.sort(key=lambda t: t.func.__name__ != "_filtered")
+                for f in [pool.submit(t) for t in tasks]:
+                    f.result()
+            futures = {c: pool.submit(a.finish) for c, a in analysers.items()}
+            results = {c: f.result() for c, f in futures.items()}
     n = max((r.n_samples for r in results.values()), default=0)
     return RecordingAnalysis(recording.sample_rate_Hz, n / recording.sample_rate_Hz, results, list(recording.warnings))
 
