@@ -19,6 +19,7 @@ import math
 
 import numpy as np
 import pandas as pd
+from matplotlib.lines import Line2D
 
 from ..vehicle import iso2631
 from .figures import MARKERS, _figure, _has, _plain_log, to_svg
@@ -54,7 +55,10 @@ def _legend_below(fig, ax, max_entries: int = 12) -> None:
     handles, labels = ax.get_legend_handles_labels()
     if not handles:
         return
-    handles, labels = handles[:max_entries], labels[:max_entries]
+    if len(handles) > max_entries:  # say what is not listed rather than drop it silently
+        rest = len(handles) - (max_entries - 1)
+        handles = handles[:max_entries - 1] + [Line2D([], [], lw=0)]
+        labels = labels[:max_entries - 1] + [f"… {rest} more lines (see the table)"]
     chars_per_inch = 15.0  # 7-pt legend text and its marker
     width = fig.get_size_inches()[0]
     ncol = max(1, min(len(labels), int(width * chars_per_inch // (max(map(len, labels)) + 6))))
@@ -170,7 +174,7 @@ def aw_against_speed(speeds: pd.DataFrame, hours_per_day: float = 8.0) -> str | 
     reach the EU action and limit values; the legend below the panels."""
     if not _has(speeds, "speed_km_h", "a_wz_m_s2", "a_wx_m_s2"):
         return None
-    s = speeds.sort_values("speed_km_h")
+    s = speeds.sort_values("speed_km_h", kind="stable")  # the variants in their order (legend)
     axes_cols = [("a_wz_m_s2", 1.0, "a_wz (vertical, W_k)"), ("a_wx_m_s2", 1.4, "1.4 a_wx (fore-aft, W_d)")]
     if "a_wy_m_s2" in s and (s["a_wy_m_s2"] > 0).any():
         axes_cols.append(("a_wy_m_s2", 1.4, "1.4 a_wy (lateral, W_d)"))

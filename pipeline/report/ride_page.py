@@ -23,7 +23,7 @@ __all__ = ["SPEED_COLUMNS", "QUANTITIES", "number_formats", "format_table", "fig
            "variant_label", "swept_keys"]
 
 #: Columns of the per-speed table (text and HTML), in order.
-SPEED_COLUMNS = ["speed_km_h", "front_pressure_bar", "rear_pressure_bar", "a_wz_m_s2", "expected_a_wz_m_s2",
+SPEED_COLUMNS = ["speed_km_h", "front_pressure_bar", "rear_pressure_bar", "variant", "a_wz_m_s2", "expected_a_wz_m_s2",
                  "a_wx_m_s2", "expected_a_wx_m_s2", "a_wy_m_s2", "expected_a_wy_m_s2", "a_v_m_s2", "vdv_m_s1_75", "crest_factor",
                  "lift_off_fraction_front", "lift_off_fraction_rear", "a8_m_s2", "hours_to_eav", "hours_to_elv",
                  "verdict", "simulation"]
@@ -50,9 +50,16 @@ def dumps(doc: dict) -> str:
     return json.dumps(doc, indent=2, ensure_ascii=False, allow_nan=False) + "\n"
 
 
+#: Per-speed columns shown as text.
+TEXT_COLUMNS = ("variant", "verdict", "simulation")
+
+
 def _rows(doc: dict) -> list[dict]:
+    """Every speed row of every variant; a sweep of scenario keys names each row's swept values
+    (``variant``, as the variant table: ``mass_kg=500, cg_height_m=0.9``)."""
     blocks = doc.get("sweep") or [doc]
-    return [row for b in blocks for row in b["speeds"]]
+    return [{**row, **({"variant": ", ".join(f"{k.rpartition('.')[2]}={v:g}" for k, v in b["variant"].items())}
+                       if b.get("variant") else {})} for b in blocks for row in b["speeds"]]
 
 
 def _columns(doc: dict, rows: list[dict]) -> list[str]:
@@ -144,7 +151,9 @@ def format_table(doc: dict) -> str:
                      f"kN s/m ({t['damping_source']})")
     nf, nodal, ci = doc["natural_frequencies_Hz"], doc["nodal_points_m"], doc.get("natural_frequencies_Hz_ci95", {})
     parts = []
-    for mode in ("bounce", "pitch"):
+    for mode in nf:  # bounce, pitch and, in 3-D, roll and the parts' modes
+        if nf[mode] is None:
+            continue
         text = f"{mode} {format_number(nf[mode], decimals=fmt['frequency'])} Hz"
         lo, hi = ci.get(mode, (None, None))
         if lo is not None and hi is not None and hi > lo:
@@ -162,7 +171,7 @@ def format_table(doc: dict) -> str:
     rows = _rows(doc)
     cols = _columns(doc, rows)
     cells = [[_cell(r[c], fmt["columns"].get(c)) for c in cols] for r in rows]
-    numeric = [c not in ("verdict", "simulation") for c in cols]
+    numeric = [c not in TEXT_COLUMNS for c in cols]
     lines += _text_table([column_label(c) for c in cols], cells, numeric)
     lines.append("  a_wz: W_k-weighted, a_wx and a_wy: W_d-weighted r.m.s. (ISO 2631-1); expected: the "
                  "frequency-domain expectation; a_v: vector sum; a8 = A(8) = max(1.4 a_wx, 1.4 a_wy, a_wz) "

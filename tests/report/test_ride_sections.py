@@ -117,3 +117,26 @@ def test_sections_of_an_empty_build_are_none():
     import pandas as pd
 
     assert scenario_sections(*(pd.DataFrame() for _ in range(4))) == []
+
+
+def test_a_sweep_of_scenario_keys_names_the_variant_of_every_speed_row(tmp_path):
+    """Without it the rows of ``--set tractor.cg_height_m=0.9,1.1`` read the same pressures twice."""
+    path = _write(tmp_path, "keys", scenario_text(ISO_A, "[8]", name="keys"))
+    results = ride.ride_sweep(load_scenario(path), sets={"tractor.cg_height_m": [0.9, 1.1]}, with_spectra=False)
+    text = ride_page.format_table(ride.result_json(results))
+    rows = [line for line in text.splitlines() if "cg_height_m=" in line]
+    assert len(rows) == 2 and "cg_height_m=0.9" in rows[0] and "cg_height_m=1.1" in rows[1]
+    html = ride_page.render_page(results)
+    table = re.search(r"<h2>Seat vibration per speed</h2>.*?</table>", html, re.S).group(0)
+    assert "<th>variant</th>" in table and '<td class="text">cg_height_m=1.1</td>' in table
+
+
+def test_a_legend_too_long_to_fit_says_how_many_lines_it_leaves_out():
+    import pandas as pd
+
+    from tyrelab.report import ride_figures
+
+    rows = [{"speed_km_h": v, "a_wz_m_s2": 0.1 * v + i / 100, "a_wx_m_s2": 0.05 * v, "variant": f"variant {i}"}
+            for i in range(20) for v in (4.0, 8.0)]
+    svg = ride_figures.aw_against_speed(pd.DataFrame(rows), 8.0)
+    assert "9 more lines (see the table)" in svg and "variant 10" in svg and "variant 11" not in svg
