@@ -456,8 +456,10 @@ class ResponseFilter:
     Chunks of any length go in; each :meth:`process` returns, per response, the filtered
     samples ready so far, and :meth:`finish` the rest, so the outputs have exactly the
     input's length and equal those of filtering the whole record (zero before and after,
-    as :func:`weighted_signal`'s zero padding). Memory: the taps and one block (2^18 samples or 8× the
-    taps) per response.
+    as :func:`weighted_signal`'s zero padding). :meth:`blocks` and :meth:`final_blocks` hand each
+    block's outputs over without copying them (for a caller that consumes them at once). Memory:
+    the input block, its spectrum, a product and one output block per response, reused (2^18
+    samples or 8× the taps each).
 
     Parameters
     ----------

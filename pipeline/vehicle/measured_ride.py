@@ -432,13 +432,16 @@ def analyse_recording(recording, workers: int | None = None) -> RecordingAnalysi
     else:
         with ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="tyrelab-exposure") as pool:
             chunks = _read_ahead(recording.chunks())
-            while (chunk := next(chunks, None)) is not None:
-                # the weighting first (the longer tasks), so the pool's threads end a chunk together
-                tasks = [t for c, a in analysers.items() for t in a.tasks(chunk.channels[c])]
-                del chunk
-                tasks.sort(key=lambda t: t.func.__name__ != "_filtered")
-                for f in [pool.submit(t) for t in tasks]:
-                    f.result()
+            try:
+                while (chunk := next(chunks, None)) is not None:
+                    # the weighting first (the longer tasks), so the pool's threads end a chunk together
+                    tasks = [t for c, a in analysers.items() for t in a.tasks(chunk.channels[c])]
+                    del chunk
+                    tasks.sort(key=lambda t: t.func.__name__ != "_filtered")
+                    for f in [pool.submit(t) for t in tasks]:
+                        f.result()
+            finally:
+                chunks.close()  # stops the reading thread now, not when the generator is collected
             futures = {c: pool.submit(a.finish) for c, a in analysers.items()}
             results = {c: f.result() for c, f in futures.items()}
     n = max((r.n_samples for r in results.values()), default=0)

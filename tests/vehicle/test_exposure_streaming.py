@@ -156,3 +156,24 @@ def test_a_csv_recording_reads_in_batches_too(tmp_path):
     rec = open_recording(path, chunk_rows=7_000)
     sizes = [c.time_s.size for c in rec.chunks()]
     assert sizes[0] == 7_000 and sum(sizes) == 30_000
+
+
+def test_a_failing_task_stops_the_read_ahead_thread(tmp_path, monkeypatch):
+    """An error in the analysis (here a task raising) reaches the caller, and the reading thread
+    does not outlive the call."""
+    import threading
+
+    path = _parquet(tmp_path / "r.parquet", _columns())
+    calls = {"n": 0}
+    original = measured_ride.ChannelAnalyser._filtered
+
+    def failing(self, x):
+        calls["n"] += 1
+        if calls["n"] == 4:
+            raise RuntimeError("task failed")
+        return original(self, x)
+
+    monkeypatch.setattr(measured_ride.ChannelAnalyser, "_filtered", failing)
+    with pytest.raises(RuntimeError, match="task failed"):
+        measured_ride.analyse_recording(open_recording(path, chunk_rows=10_000), workers=2)
+    assert not [t for t in threading.enumerate() if t.name.startswith(("tyrelab-read-ahead", "tyrelab-exposure"))]
