@@ -42,11 +42,14 @@ def exposure_levels(hours_per_day: float) -> dict[str, float]:
     return {"EAV": iso2631.EU_ACTION_A8_M_S2 * s, "ELV": iso2631.EU_LIMIT_A8_M_S2 * s}
 
 
-def _limit_lines(ax, hours_per_day: float) -> None:
+def _limit_lines(ax, hours_per_day: float, label: bool = True) -> None:
+    """The levels that reach EAV and ELV in ``hours_per_day``, named (``label``) in the right margin,
+    where they cover no data."""
     for (name, level), style in zip(exposure_levels(hours_per_day).items(), ("--", "-")):
         ax.axhline(level, color="tab:red", ls=style, lw=0.9)
-        ax.annotate(f"{name} in {hours_per_day:g} h", (0.01, level), xycoords=("axes fraction", "data"),
-                    va="bottom", fontsize=7, color="tab:red")
+        if label:
+            ax.annotate(f"{name} ({hours_per_day:g} h)", (1.015, level), xycoords=("axes fraction", "data"),
+                        va="center", ha="left", fontsize=7, color="tab:red", annotation_clip=False)
 
 
 def _legend_below(fig, ax, max_entries: int = 12) -> None:
@@ -192,7 +195,7 @@ def aw_against_speed(speeds: pd.DataFrame, hours_per_day: float = 8.0) -> str | 
             if name is None and exp in g:
                 ax.plot(g["speed_km_h"], k_axis * g[exp], ls=":", color="0.3", label="expected")
                 top = max(top, float(np.nanmax(k_axis * g[exp].to_numpy(float))))
-        _limit_lines(ax, hours_per_day)
+        _limit_lines(ax, hours_per_day, label=ax is axes[-1])  # shared y: named once, right of the last panel
         ax.set_title(title, fontsize=8)
         ax.set_xlabel("speed, km/h")
     axes[0].set_ylim(0, 1.08 * top)  # shared: every panel's data and the ELV level
@@ -283,7 +286,7 @@ def study_aw_speed(iso: pd.DataFrame) -> str | None:
         for k, (series, g) in enumerate(d.groupby("series", sort=True)):
             m = g.groupby("speed_km_h")["a_wz"].mean()
             ax.plot(m.index, m.to_numpy(), marker=MARKERS[k % len(MARKERS)], lw=0.9, label=series)
-        _limit_lines(ax, 8.0)
+        _limit_lines(ax, 8.0, label=ax is axes[0][-1])
         ax.set_title(f"{study} (vertical, W_k)")
         ax.set_xlabel("speed, km/h")
         ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(0.0, 0.9))
