@@ -362,7 +362,10 @@ class _Kernel:
         e_in, f3 = e[:, :w, None], e[:, w:, None]
         f_tyre, f_mw, f_gated = e[:, w:w + nt], e[:, w + nt + ne:], e[:, w + nt:]
         k_acc, k_q, k_s, velocity = k[:, nq:2 * nq, None], k[:, :nq], k[:, 2 * nq:], e[:, nq:2 * nq]
-        has_m, gated = self.nm > 0, self.gated
+        has_m, gated, count_nonzero = self.nm > 0, self.gated, np.count_nonzero
+        # with every tyre on the ground the clamp is max(f, floor) = f and every gate factor is
+        # exactly 1 (weights 1/len(gate) that sum to 1 in floating point): both may be skipped, to the bit
+        contact_is_identity = not gated or bool(np.all(np.matmul(self.gw, np.ones((self.count, nt + 1, 1))) == 1.0))
         if gated:
             gw = self.gw
             contact = np.ones((self.count, nt + 1))
@@ -372,14 +375,15 @@ class _Kernel:
 
         def rhs() -> None:
             matmul(a, e_in, out=f3)
-            maximum(f_tyre, floor, out=f_tyre)
             less_equal(f_tyre, floor, out=lifted)
             if has_m:
                 multiply(rate, f_mw, out=k_s)
-            if gated:
-                greater(f_tyre, floor, out=tyres_contact)
-                matmul(gw, contact3, out=factor3)
-                multiply(f_gated, factor, out=f_gated)
+            if not contact_is_identity or count_nonzero(lifted):  # else clamp and gates change nothing
+                maximum(f_tyre, floor, out=f_tyre)
+                if gated:
+                    greater(f_tyre, floor, out=tyres_contact)
+                    matmul(gw, contact3, out=factor3)
+                    multiply(f_gated, factor, out=f_gated)
             matmul(p, f3, out=k_acc)
             copyto(k_q, velocity)
 
