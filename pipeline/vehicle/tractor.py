@@ -202,10 +202,8 @@ class _Batch:
         coords: list[str] = []
         kv_slots: list[str] = []
         mw_slots: list[str] = []
-        tyres = list(assemblies[0].tyres)
+        tyres = list(assemblies[0].tyres)  # every run's (checked by simulate)
         for asm in assemblies:
-            if list(asm.tyres) != tyres:
-                raise ValueError("the runs of a batch must have the same tyres")
             coords += [c for c in asm.coordinates if c not in coords]
             for e in asm.elements:
                 slots = mw_slots if e.model == "maxwell" else kv_slots
@@ -535,9 +533,12 @@ def simulate(
         raise ValueError(f"u_half, du_half: expected shape ({runs}, tyres, 2N-1), got {u.shape} and {du.shape}")
     if u.shape[2] % 2 == 0:
         raise ValueError("u_half: inputs must be sampled at dt/2 (odd length)")
+    tyres = tuple(assemblies[0].tyres) if runs else ()
+    if any(tuple(asm.tyres) != tyres for asm in assemblies):
+        raise ValueError(f"assemblies: every run must have the same tyres (the first has {', '.join(tyres)})")
     n = (u.shape[2] + 1) // 2
     out = {k: np.empty((runs, n)) for k in record}
-    off = np.zeros((len(assemblies[0].tyres), runs))
+    off = np.zeros((len(tyres), runs))
     used = np.array(["exact"] * runs, dtype=object)
     groups: dict[tuple, list[int]] = {}
     for i, asm in enumerate(assemblies):
@@ -551,7 +552,7 @@ def simulate(
         for k in record:
             out[k][rows] = part[k]
         off[:, rows] = part_off
-    out.update({f"lift_off_fraction_{t}": off[j] / n for j, t in enumerate(assemblies[0].tyres)})
+    out.update({f"lift_off_fraction_{t}": off[j] / n for j, t in enumerate(tyres)})
     out["method_used"] = used
     return out
 

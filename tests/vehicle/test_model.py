@@ -97,3 +97,17 @@ def test_bad_parts_are_refused_naming_the_parameter():
                        Axle("rear", -B, KR, CR)))
     with pytest.raises(ValueError, match="chassis.mass_kg"):
         assemble(Parts(Chassis(0.0, I_PITCH, H), Axle("front", A, KF, CF), Axle("rear", -B, KR, CR)))
+
+
+def test_simulate_refuses_runs_with_different_tyres_naming_assemblies():
+    """A batch of a pitch-plane run (tyres front, rear) and a 3-D one (four wheels) cannot share the
+    inputs array (runs, tyres, samples): refused before any work, naming the argument (the batches
+    by structure would otherwise fail on the lift-off array's shape)."""
+    from tyrelab.vehicle.tractor import simulate
+
+    pitch = assemble(tractor_parts(Tractor(M, I_PITCH, A, B, H, 2 * KF, 2 * KR, 2 * CF, 2 * CR)))
+    three = assemble(_three_d())
+    assert tuple(pitch.tyres) != tuple(three.tyres)
+    u = np.zeros((2, len(pitch.tyres), 5))
+    with pytest.raises(ValueError, match=r"^assemblies: every run must have the same tyres"):
+        simulate([pitch, three], u, u, 1e-3)
