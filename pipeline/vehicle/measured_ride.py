@@ -401,7 +401,7 @@ def _workers(workers: int | None, n_tasks: int) -> int:
         except (AttributeError, OSError):
             cpus = os.cpu_count() or 1
         return max(1, min(cpus, n_tasks))
-    return _validate.positive_int("workers", workers)
+    return min(_validate.positive_int("workers", workers), n_tasks)  # a thread per task at most
 
 
 def analyse_recording(recording, workers: int | None = None) -> RecordingAnalysis:

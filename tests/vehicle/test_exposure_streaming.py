@@ -177,3 +177,12 @@ def test_a_failing_task_stops_the_read_ahead_thread(tmp_path, monkeypatch):
     with pytest.raises(RuntimeError, match="task failed"):
         measured_ride.analyse_recording(open_recording(path, chunk_rows=10_000), workers=2)
     assert not [t for t in threading.enumerate() if t.name.startswith(("tyrelab-read-ahead", "tyrelab-exposure"))]
+
+
+def test_threads_asked_for_are_bounded_by_the_chunk_tasks():
+    """``workers`` is a user's number: at most one thread per task of a chunk (two per channel),
+    however many are asked for; a bad value is refused naming it."""
+    assert measured_ride._workers(10**6, 6) == 6
+    assert measured_ride._workers(1, 6) == 1
+    with pytest.raises(ValueError, match="workers"):
+        measured_ride._workers(0, 6)
