@@ -16,10 +16,10 @@ ISO_C = 'kind = "iso8608"\nclass = "C"\nlength_m = 60'
 
 def scenario_text(surface: str = ISO_C, speeds: str = "[8]", tractor_extra: str = "", seat: str = "", front: str = "",
                   extra: str = "", *, tractor: dict | None = None, name: str = "test tractor",
-                  hours_per_day: float | None = 6) -> str:
+                  hours_per_day: float | None = 6, rear: str = "", rear_size: str = "18.4R38") -> str:
     """TOML of a scenario: ``[tractor]`` (:data:`TRACTOR` updated by ``tractor``, then the lines
     ``tractor_extra`` and ``seat``), ``[tyres.front]`` 14.9R28 at 1.6 bar (plus ``front``),
-    ``[tyres.rear]`` 18.4R38 at 1.2 bar, ``[surface]`` and ``[exposure]`` (``speeds``, ``hours_per_day``
+    ``[tyres.rear]`` ``rear_size`` (18.4R38) at 1.2 bar (plus ``rear``), ``[surface]`` and ``[exposure]`` (``speeds``, ``hours_per_day``
     unless None), then ``extra``."""
     body = "\n".join(f"{k} = {v}" for k, v in {**TRACTOR, **(tractor or {})}.items())
     hours = "" if hours_per_day is None else f"hours_per_day = {hours_per_day:g}"
@@ -34,8 +34,9 @@ size = "14.9R28"
 pressure_bar = 1.6
 {front}
 [tyres.rear]
-size = "18.4R38"
+size = "{rear_size}"
 pressure_bar = 1.2
+{rear}
 [surface]
 {surface}
 [exposure]

@@ -10,6 +10,7 @@ from tyrelab.cli import main
 from tyrelab.rig import population as pop
 from tyrelab.tyre.formula_fit import PRINTED_COEFFICIENTS, design_matrix
 from tyrelab.warehouse import query
+from tests.scenarios import scenario_text
 
 pytestmark = pytest.mark.long  # collected first: see tests/conftest.py (a generated campaign through five stages)
 
@@ -92,30 +93,8 @@ def test_scenario_formula_build_uses_the_lab_fit(population_build, tmp_path):
     from tyrelab.scenario_io import ScenarioError, load_scenario
 
     _, build = population_build
-    text = """
-name = "population tractor"
-[tractor]
-mass_kg = 4700.0
-pitch_inertia_kg_m2 = 5500.0
-front_distance_m = 1.56
-rear_distance_m = 0.95
-cg_height_m = 0.95
-[tyres.front]
-size = "14.9R28"
-pressure_bar = 1.6
-[tyres.rear]
-size = "16.9R34"
-pressure_bar = 1.2
-age_years = 2
-formula = "FORMULA"
-[surface]
-kind = "iso8608"
-class = "B"
-length_m = 30
-[exposure]
-speeds_km_h = [10]
-hours_per_day = 6
-"""
+    text = scenario_text('kind = "iso8608"\nclass = "B"\nlength_m = 30', "[10]", name="population tractor",
+                         rear='age_years = 2\nformula = "FORMULA"', rear_size="16.9R34")
     path = tmp_path / "s.toml"
     path.write_text(text.replace("FORMULA", "build"))
     lab = ride.resolve_tyres(load_scenario(path), WarehouseTyres(build))["rear"]
