@@ -25,7 +25,7 @@ __all__ = ["SPEED_COLUMNS", "QUANTITIES", "number_formats", "format_table", "fig
 #: Columns of the per-speed table (text and HTML), in order.
 SPEED_COLUMNS = ["speed_km_h", "front_pressure_bar", "rear_pressure_bar", "variant", "a_wz_m_s2", "expected_a_wz_m_s2",
                  "a_wx_m_s2", "expected_a_wx_m_s2", "a_wy_m_s2", "expected_a_wy_m_s2", "a_v_m_s2", "vdv_m_s1_75", "crest_factor",
-                 "lift_off_fraction_front", "lift_off_fraction_rear", "a8_m_s2", "hours_to_eav", "hours_to_elv",
+                 "lift_off_fraction_front", "lift_off_fraction_rear", "a8_m_s2", "a8_axis", "hours_to_eav", "hours_to_elv",
                  "verdict", "simulation"]
 
 #: Per-speed columns that hold one quantity and so share one number format (:func:`number_formats`).
@@ -51,7 +51,7 @@ def dumps(doc: dict) -> str:
 
 
 #: Per-speed columns shown as text.
-TEXT_COLUMNS = ("variant", "verdict", "simulation")
+TEXT_COLUMNS = ("variant", "a8_axis", "verdict", "simulation")
 
 
 def _rows(doc: dict) -> list[dict]:

@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from .. import _validate
 from . import iso2631, iso2631_5
 
-__all__ = ["TaskExposure", "daily_exposure", "verdict", "EXPOSURE_VERDICTS", "MAX_HOURS_PER_DAY"]
+__all__ = ["TaskExposure", "daily_exposure", "governing_axis", "verdict", "EXPOSURE_VERDICTS", "MAX_HOURS_PER_DAY"]
 
 #: Verdicts against the Directive's daily values (the strings of :data:`tyrelab.vehicle.ride.VERDICTS`).
 EXPOSURE_VERDICTS = ("below action value", "above action value", "above limit value")
@@ -85,6 +85,43 @@ def verdict(a8_m_s2: float) -> str:
     return EXPOSURE_VERDICTS[1] if a8_m_s2 > iso2631.EU_ACTION_A8_M_S2 else EXPOSURE_VERDICTS[0]
 
 
+def governing_axis(k_a_w_m_s2) -> str | None:
+    """The axis that governs the Directive's A(8): the one with the largest ``k·a_w``.
+
+    EU Directive 2002/44/EC takes the daily exposure A(8) as the highest of the three axes'
+    ``k·a_w`` (k = 1.4 on x and y, 1.0 on z; ISO 2631-1 §8.2.3), not their vector sum. This is
+    the one rule by which ``tyrelab exposure`` (``a8_axis`` of the day), ``tyrelab ride``
+    (``a8_axis`` of each speed row) and the pages name that axis.
+
+    Parameters
+    ----------
+    k_a_w_m_s2 : mapping
+        Axis (``x``, ``y``, ``z``) -> ``k·a_w``, m/s² (with the factor k; an axis's A(8) of a
+        day does as well: it is ``k·a_w`` scaled by the same ``√(T/8 h)`` for every axis).
+
+    Returns
+    -------
+    str or None
+        The axis with the largest value; on a tie the first of ``x``, ``y``, ``z``; None if no
+        axis has a finite value.
+
+    See Also
+    --------
+    daily_exposure : the day's A(8) and its ``a8_axis``.
+    tyrelab.vehicle.ride.exposure : a speed row's A(8) and its ``a8_axis``.
+
+    Examples
+    --------
+    >>> governing_axis({"x": 1.4 * 0.3, "y": 1.4 * 0.2, "z": 0.4})
+    'x'
+    >>> governing_axis({"z": 0.6, "x": 0.6}), governing_axis({})
+    ('x', None)
+    """
+    finite = {ax: float(v) for ax, v in k_a_w_m_s2.items() if v is not None and math.isfinite(v)}
+    ordered = [ax for ax in ("x", "y", "z") if ax in finite] + [ax for ax in finite if ax not in ("x", "y", "z")]
+    return max(ordered, key=lambda ax: finite[ax]) if ordered else None
+
+
 def _hours_to(value: float, a8: float, day_hours: float) -> float:
     return day_hours * (value / a8) ** 2 if a8 > 0 else math.inf
 
@@ -123,7 +160,7 @@ def daily_exposure(tasks) -> dict:
                      "hours_to_eav": _hours_to(iso2631.EU_ACTION_A8_M_S2, top, 8.0),
                      "hours_to_elv": _hours_to(iso2631.EU_LIMIT_A8_M_S2, top, 8.0), **t.extra})
     a8_axes = {ax: math.sqrt(sum(r["partial_a8_m_s2"].get(ax, 0.0) ** 2 for r in rows)) for ax in axes}
-    a8_axis = max(a8_axes, key=lambda ax: a8_axes[ax]) if a8_axes else None
+    a8_axis = governing_axis(a8_axes)
     a8 = a8_axes[a8_axis] if a8_axis else math.nan
     vdv_axes = {ax: k[ax] * sum(t.vdv_m_s1_75[ax] ** 4 * t.hours * 3600.0 / t.measured_s
                                 for t in tasks if ax in t.vdv_m_s1_75) ** 0.25 for ax in axes}

@@ -68,6 +68,7 @@ from .carriage import half_step_input
 from .model import Assembly, Axle, Cab, Chassis, Implement, Parts, SeatPoint, assemble
 from .tractor import Tractor, simulate, tractor_parts
 from .scenario_limits import MIN_VERDICT_DURATION_S
+from .daily_exposure import governing_axis
 
 __all__ = [
     "OUTPUTS",
@@ -707,23 +708,33 @@ def exposure(a_wz_m_s2: float, a_wx_m_s2: float, hours_per_day: float, a_wy_m_s2
 
     ``A(8) = max(1.4 a_wx, 1.4 a_wy, a_wz) sqrt(T / 8 h)``; hours to reach the action
     (0.5 m/s²) and limit (1.15 m/s²) values ``8 h (value / a_w)²`` with
-    ``a_w = max(1.4 a_wx, 1.4 a_wy, a_wz)``; ``a_v`` the ISO 2631-1 vector sum.
+    ``a_w = max(1.4 a_wx, 1.4 a_wy, a_wz)``; ``a_v`` the ISO 2631-1 vector sum; ``a8_axis`` the
+    axis of that maximum (:func:`tyrelab.vehicle.daily_exposure.governing_axis`).
+
+    See Also
+    --------
+    tyrelab.vehicle.daily_exposure.daily_exposure : the same from recorded tasks of a day.
 
     Examples
     --------
     >>> e = exposure(0.8, 0.2, 4.0)
-    >>> round(e["a8_m_s2"], 6), round(e["hours_to_elv"], 4), e["verdict"]
-    (0.565685, 16.5312, 'above action value')
+    >>> round(e["a8_m_s2"], 6), round(e["hours_to_elv"], 4), e["verdict"], e["a8_axis"]
+    (0.565685, 16.5312, 'above action value', 'z')
+    >>> exposure(0.5, 0.4, 8.0)["a8_axis"]  # 1.4 x 0.4 = 0.56 > 0.5
+    'x'
     """
     positive("hours_per_day", hours_per_day)
     k = iso2631.AXIS_FACTOR
-    aw = max(k["x"] * a_wx_m_s2, k["y"] * a_wy_m_s2, k["z"] * a_wz_m_s2)
+    weighted = {"x": k["x"] * a_wx_m_s2, "y": k["y"] * a_wy_m_s2, "z": k["z"] * a_wz_m_s2}
+    axis = governing_axis(weighted)
+    aw = max(weighted.values())
     a8 = iso2631.daily_exposure_a8(aw, hours_per_day)
     hours = (lambda v: 8.0 * (v / aw) ** 2) if aw > 0 else (lambda v: math.inf)
     verdict = VERDICTS[2] if a8 > iso2631.EU_LIMIT_A8_M_S2 else VERDICTS[1] if a8 > iso2631.EU_ACTION_A8_M_S2 else VERDICTS[0]
     return {
         "a_v_m_s2": math.sqrt((k["x"] * a_wx_m_s2) ** 2 + (k["y"] * a_wy_m_s2) ** 2 + (k["z"] * a_wz_m_s2) ** 2),
         "a8_m_s2": a8,
+        "a8_axis": axis,
         "hours_to_eav": hours(iso2631.EU_ACTION_A8_M_S2),
         "hours_to_elv": hours(iso2631.EU_LIMIT_A8_M_S2),
         "verdict": verdict,
@@ -1591,7 +1602,7 @@ def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, 
     hours = base.exposure.hours_per_day
     ex = [exposure(z, x, hours, y) for z, x, y in
           zip(out["expected_a_wz_m_s2"], out["expected_a_wx_m_s2"], out["expected_a_wy_m_s2"])]
-    for key in ("a8_m_s2", "hours_to_eav", "hours_to_elv", "verdict"):
+    for key in ("a8_m_s2", "a8_axis", "hours_to_eav", "hours_to_elv", "verdict"):
         out[key] = [e[key] for e in ex]
     return out
 
@@ -1628,8 +1639,8 @@ def result_json(results: list[RideResult]) -> dict:
     ``speed_km_h``, pressures and tyre values used, ``a_wz_m_s2`` (W_k),
     ``a_wx_m_s2`` (W_d), ``expected_a_wz_m_s2``/``expected_a_wx_m_s2`` (frequency
     domain), ``a_v_m_s2`` (k = 1.4 on x), ``vdv_m_s1_75``, ``vdv_daily_m_s1_75``,
-    ``crest_factor``, ``lift_off_fraction_front``/``_rear``, ``a8_m_s2``,
-    ``hours_to_eav``, ``hours_to_elv``, ``verdict``, ``duration_s``,
+    ``crest_factor``, ``lift_off_fraction_front``/``_rear``, ``a8_m_s2``, ``a8_axis`` (the
+    axis that governs A(8): largest k·a_w), ``hours_to_eav``, ``hours_to_elv``, ``verdict``, ``duration_s``,
     ``simulation``), ``warnings`` and, for more than one pressure pair, ``sweep``
     (one object per pair with ``front_pressure_bar``, ``rear_pressure_bar``,
     ``tyres``, ``natural_frequencies_Hz``, ``nodal_points_m``, ``speeds``).
