@@ -31,9 +31,9 @@ __version__ = "0.1.0"
 __getattr__, __dir__ = attach(
     __name__,
     submodules=["api", "measurement", "tyre", "vehicle", "rig", "rawformat", "report", "stages", "resources", "watch",
-                "warehouse", "export"],
+                "warehouse", "export", "exposure"],
     attrs={
-        "api": ["analyze_recording"],
+        "api": ["analyse_recording", "analyze_recording", "ride"],
         "measurement.recording": ["RecordingResult", "WelchEstimate", "analyse_frame"],
         "measurement.apparent_mass": ["tyre_force", "stiffness_damping"],
         "rawformat": ["CHANNELS", "RunFileError", "read_run_file", "check_run"],

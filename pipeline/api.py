@@ -1,9 +1,14 @@
-"""The library's entry point for one recording: ``tyrelab.analyze_recording``.
+"""The library's entry points: one call per question, each returning a result object.
 
-What a scientist imports: K, C and QC of one recording, from a run file or a
-DataFrame, without the stage machinery. Reading the file is the only I/O here;
-the analysis is :func:`tyrelab.measurement.recording.analyse_frame` (pure), the
-same code the analyse stage runs on batches.
+- :func:`analyse_recording` -- K, C and QC of one tyre-rig recording (``tyrelab analyse-run``);
+  ``analyze_recording`` is the same function.
+- :func:`ride` -- seat vibration and daily exposure of a tractor scenario (``tyrelab ride``).
+- :func:`exposure` -- a driver's daily exposure from seat recordings (``tyrelab exposure``).
+
+Each answers without the stage machinery: reading the input is the only I/O here; the work is
+the pure packages' (:func:`tyrelab.measurement.recording.analyse_frame`,
+:func:`tyrelab.vehicle.ride.ride`, :func:`tyrelab.vehicle.daily_exposure.daily_exposure`), the
+same code the pipeline's stages run. Every result has ``to_dict()`` (the command's JSON).
 
 Examples
 --------
@@ -24,13 +29,14 @@ from pathlib import Path
 import pandas as pd
 
 from ._validate import positive
+from .exposure import exposure
 from .measurement.recording import RecordingResult, analyse_frame
 from .rawformat import read_run_file
 
-__all__ = ["analyze_recording"]
+__all__ = ["analyse_recording", "analyze_recording", "ride", "exposure"]
 
 
-def analyze_recording(
+def analyse_recording(
     recording: str | os.PathLike | pd.DataFrame,
     axle_mass_kg: float,
     *,
@@ -74,9 +80,14 @@ def analyze_recording(
     tyrelab.rawformat.RunFileError
         If the recording is unreadable or fails the raw-format checks.
 
+    See Also
+    --------
+    tyrelab.measurement.recording.analyse_frame : the same on a DataFrame, without reading.
+    exposure : a seat recording's daily vibration exposure.
+
     Examples
     --------
-    >>> analyze_recording("run.parquet", axle_mass_kg=0.0)
+    >>> analyse_recording("run.parquet", axle_mass_kg=0.0)
     Traceback (most recent call last):
     ...
     ValueError: axle_mass_kg must be finite and positive, got 0.0
@@ -89,3 +100,101 @@ def analyze_recording(
     frame = read_run_file(Path(recording), channel_map=channel_map)
     return analyse_frame(frame, axle_mass_kg, sample_rate_Hz=sample_rate_Hz, interference_Hz=interference_Hz,
                          file=str(recording))
+
+
+#: The same function as :func:`analyse_recording` (the American spelling, kept: ``tyrelab analyze-run``).
+analyze_recording = analyse_recording
+
+
+# --------------------------------------------------------------------------- vehicle
+def _scenario(scenario):
+    """A :class:`~tyrelab.vehicle.scenario.Scenario` from a path, TOML text, a dict or a Scenario."""
+    from collections.abc import Mapping
+
+    from .scenario_io import load_scenario, parse_scenario, scenario_from_dict
+    from .vehicle.scenario import Scenario
+
+    if isinstance(scenario, Scenario):
+        return scenario
+    if isinstance(scenario, Mapping):
+        return scenario_from_dict(scenario, Path.cwd(), confine=False)
+    if isinstance(scenario, str) and ("\n" in scenario or "=" in scenario):
+        return parse_scenario(scenario, Path.cwd(), confine=False)
+    if isinstance(scenario, (str, os.PathLike)):
+        return load_scenario(scenario, confine=False)
+    raise ValueError(f"scenario must be a path, TOML text, a dict or a Scenario, got {type(scenario).__name__}")
+
+
+def ride(
+    scenario,
+    *,
+    speeds_km_h: list[float] | None = None,
+    front_pressure_bar: float | None = None,
+    rear_pressure_bar: float | None = None,
+    build: str | os.PathLike | None = None,
+    with_spectra: bool = False,
+):
+    """Seat vibration and EU daily exposure of a tractor scenario: what ``tyrelab ride`` computes.
+
+    Parameters
+    ----------
+    scenario : path, str, dict or Scenario
+        A scenario file (``.toml``); its TOML text (a string holding a newline or ``=``); the
+        same as a dict (``{"name": ..., "tractor": {...}, "tyres": {"front": {...}, "rear":
+        {...}}, "surface": {...}, "exposure": {...}}``; every key with its unit, default and
+        bounds: ``schemas/scenario.json``); or a parsed
+        :class:`~tyrelab.vehicle.scenario.Scenario`. A ``surface.profile`` of text or a dict is
+        relative to the current folder, of a file to the file's folder.
+    speeds_km_h : list of float, optional
+        Speeds to run instead of ``[exposure] speeds_km_h``, km/h.
+    front_pressure_bar, rear_pressure_bar : float, optional
+        Tyre pressures instead of the scenario's, bar.
+    build : path, optional
+        A build folder whose warehouse holds the tyres named by ``measured_tyre_id`` and the
+        lab's fitted formula (``formula = "build"``).
+    with_spectra : bool
+        Also compute the seat PSD and transmissibility per speed (the page's figures).
+
+    Returns
+    -------
+    tyrelab.vehicle.ride.RideResult
+        ``speeds`` (a DataFrame, one row per speed: ``a_wz_m_s2``, ``a_wx_m_s2``, ``a8_m_s2``,
+        ``a8_axis``, ``hours_to_eav``, ``hours_to_elv``, ``verdict``, …), ``modes`` (a
+        DataFrame: natural frequencies, their 95 % intervals, nodal points), ``tyres``
+        (stiffness and damping per tyre and speed with their sources), ``warnings``;
+        ``to_dict()`` is the JSON of ``tyrelab ride``, ``to_json()`` its text.
+
+    Raises
+    ------
+    tyrelab.vehicle.scenario.ScenarioError
+        Every problem of the scenario at once (a ``ValueError``; ``.problems``, one per key).
+    ValueError
+        A bad argument, naming it.
+
+    See Also
+    --------
+    exposure : the daily exposure from a seat recording instead of a prediction.
+    tyrelab.vehicle.ride.ride_sweep : every pressure pair and swept key of a scenario.
+
+    Examples
+    --------
+    >>> import tyrelab
+    >>> r = tyrelab.ride(tyrelab.resources.scenarios_dir() / "modern_tractor.toml", speeds_km_h=[8])
+    >>> row = r.speeds.iloc[0]
+    >>> row["a8_axis"], row["verdict"], round(float(row["hours_to_eav"]), 1)
+    ('z', 'above action value', 6.2)
+    >>> list(r.modes["mode"])
+    ['bounce', 'pitch']
+    >>> r.to_dict()["speeds"][0]["a8_axis"]
+    'z'
+    """
+    from .vehicle import ride as ride_module
+    from .vehicle.scenario import with_overrides
+
+    sc = with_overrides(_scenario(scenario), speeds_km_h, front_pressure_bar, rear_pressure_bar)
+    tyres = None
+    if build is not None:
+        from .stages.simulate import WarehouseTyres
+
+        tyres = WarehouseTyres(build)
+    return ride_module.ride(sc, tyres, with_spectra=bool(with_spectra))

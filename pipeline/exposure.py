@@ -12,17 +12,24 @@ task carries its own. The day: ``tasks`` (each with ``partial_a8_m_s2`` per axis
 (the Directive's, highest axis), ``a8_axis``, ``vdv_daily_m_s1_75``, ``hours_to_eav``,
 ``hours_to_elv``, ``exposure_points``, ``verdict``, ``dzd_m_s2``. The command prints infinite
 hours (no vibration) and NaN as ``null``.
+
+The module is also the library's call: ``tyrelab.exposure(recording, hours=…)`` is
+:func:`tyrelab.api.exposure` (:func:`exposure`; a module object that can be called, so the name means one thing
+whether or not this module was imported first).
 """
 
 from __future__ import annotations
 
 import math
+import os
+import sys
+import types
 from dataclasses import dataclass
 from pathlib import Path
 
 from .rawformat import RunFileError
 
-__all__ = ["Task", "RecordingProblem", "assess", "format_table"]
+__all__ = ["Task", "RecordingProblem", "ExposureResult", "exposure", "assess", "format_table"]
 
 
 @dataclass(frozen=True)
@@ -40,6 +47,83 @@ class RecordingProblem(Exception):
     def __init__(self, lines: list[str], usage: bool):
         super().__init__("; ".join(lines))
         self.lines, self.usage = lines, usage
+
+
+@dataclass(frozen=True)
+class ExposureResult:
+    """A driver's daily exposure from recordings (:func:`tyrelab.exposure`): the JSON of
+    ``tyrelab exposure`` with its main numbers as attributes and its tables as DataFrames.
+
+    Attributes
+    ----------
+    doc : dict
+        The document of :func:`assess` (NaN where a value does not exist, ``inf`` hours where the
+        vibration never reaches a value).
+    """
+
+    doc: dict
+
+    @property
+    def a8_m_s2(self) -> float:
+        """The Directive's daily exposure A(8), m/s²: the highest axis's."""
+        return self.doc["a8_m_s2"]
+
+    @property
+    def a8_axis(self) -> str | None:
+        """The axis that governs A(8): largest k·a_w (:func:`tyrelab.vehicle.daily_exposure.governing_axis`)."""
+        return self.doc["a8_axis"]
+
+    @property
+    def verdict(self) -> str:
+        """``below action value``, ``above action value`` or ``above limit value``."""
+        return self.doc["verdict"]
+
+    @property
+    def hours_to_eav(self) -> float:
+        """Hours a day at this mix of tasks to reach the action value (0.5 m/s²), h."""
+        return self.doc["hours_to_eav"]
+
+    @property
+    def hours_to_elv(self) -> float:
+        """Hours a day at this mix of tasks to reach the limit value (1.15 m/s²), h."""
+        return self.doc["hours_to_elv"]
+
+    @property
+    def axes(self):
+        """One row per task and seat axis: ``task``, ``axis``, ``a_w_m_s2`` (without k),
+        ``axis_factor`` (k), ``vdv_m_s1_75``, ``mtvv_m_s2``, ``crest_factor``,
+        ``partial_a8_m_s2``, ``rms_method_sufficient``."""
+        import pandas as pd
+
+        rows = []
+        for task in self.doc["tasks"]:
+            axes = self.doc["axes"] if "axes" in self.doc else task["axes"]
+            for ax, v in axes.items():
+                rows.append({"task": task["name"], "axis": ax, "a_w_m_s2": v["a_w_m_s2"], "axis_factor": v["axis_factor"],
+                             "vdv_m_s1_75": v["vdv_m_s1_75"], "mtvv_m_s2": v["mtvv_m_s2"],
+                             "crest_factor": v["crest_factor"], "partial_a8_m_s2": task["partial_a8_m_s2"].get(ax),
+                             "rms_method_sufficient": v["rms_method_sufficient"]})
+        return pd.DataFrame(rows)
+
+    @property
+    def warnings(self) -> list[str]:
+        """What the analysis noticed about the recordings (one line each, naming the file)."""
+        return list(self.doc.get("warnings", []))
+
+    def to_dict(self) -> dict:
+        """The JSON of ``tyrelab exposure`` (NaN and infinite hours as None)."""
+        from .io import json_safe
+
+        return json_safe(self.doc)
+
+    def to_json(self) -> str:
+        """:meth:`to_dict` as JSON text (indented)."""
+        import json
+
+        return json.dumps(self.to_dict(), indent=2, ensure_ascii=False) + "\n"
+
+    def __str__(self) -> str:
+        return format_table(self.doc)
 
 
 def _usage_problem(path: Path) -> str | None:
@@ -139,3 +223,79 @@ def format_table(doc: dict) -> str:
                  f"(at this mix of tasks); daily VDV {_f(doc['vdv_daily_m_s1_75'], '.2f')} m/s^1.75 "
                  f"({doc['vdv_daily_axis']}), D_zd {_f(doc['dzd_m_s2'], '.2f')} m/s²")
     return "\n".join(lines) + "\n"
+
+
+def exposure(recording, hours: float = 8.0, *, channel_map: dict | None = None) -> ExposureResult:
+    """A driver's daily whole-body vibration exposure from seat recordings: what ``tyrelab exposure`` computes.
+
+    Parameters
+    ----------
+    recording : path or list of (name, path, hours)
+        One seat recording (raw format v1 for vehicles: ``time_s`` and any of ``seat_x_m_s2``,
+        ``seat_y_m_s2``, ``seat_z_m_s2``, ``floor_*``; ``.parquet``, ``.csv``, or ``.mf4``/``.tdms``
+        with ``channel_map``), or the tasks of a day, each ``(name, path, hours)``.
+    hours : float
+        Daily hours of a single recording's task, h (0 < hours ≤ 24; ignored for a list of tasks).
+    channel_map : dict, optional
+        For ``.mf4``/``.tdms`` recordings (:func:`tyrelab.rawformat.load_channel_map`).
+
+    Returns
+    -------
+    tyrelab.exposure.ExposureResult
+        ``a8_m_s2``, ``a8_axis`` (the axis that governs A(8)), ``verdict``, ``hours_to_eav``,
+        ``hours_to_elv``, ``axes`` (a DataFrame: a_w, VDV, MTVV, crest factor per task and axis),
+        ``warnings``; ``to_dict()`` is the JSON of ``tyrelab exposure``.
+
+    Raises
+    ------
+    ValueError
+        Bad hours (naming the task), or tasks adding up to more than a day.
+    tyrelab.exposure.RecordingProblem
+        Every recording that cannot be used, one line each naming the file.
+
+    See Also
+    --------
+    tyrelab.api.ride : the same exposure predicted for a tractor scenario.
+    tyrelab.vehicle.daily_exposure.daily_exposure : the day from per-task a_w values.
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd, tempfile, tyrelab
+    >>> from pathlib import Path
+    >>> path = Path(tempfile.mkdtemp()) / "seat.csv"
+    >>> t = np.arange(0, 60, 1 / 200)
+    >>> pd.DataFrame({"time_s": t, "seat_z_m_s2": 0.8 * np.sin(2 * np.pi * 4 * t)}).to_csv(path, index=False)
+    >>> day = tyrelab.exposure(path, hours=8)
+
+    A 4 Hz sine of 0.8 m/s² peak: a_w = 0.8/√2 × |W_k(4 Hz)| = 0.566 × 0.967 (ISO 2631-1,
+    Table 3) = 0.547 m/s², above the action value of 0.5 m/s² over 8 h:
+
+    >>> day.a8_axis, day.verdict, round(day.a8_m_s2, 3), round(day.hours_to_eav, 1)
+    ('z', 'above action value', 0.547, 6.7)
+    """
+    from ._validate import positive
+    from .vehicle.daily_exposure import MAX_HOURS_PER_DAY
+
+    if isinstance(recording, (str, os.PathLike)):
+        tasks = [(Path(recording).stem, recording, hours)]
+    elif isinstance(recording, (list, tuple)) and recording and all(isinstance(t, (list, tuple)) and len(t) == 3
+                                                                   for t in recording):
+        tasks = list(recording)
+    else:
+        raise ValueError("recording must be a path or a list of (name, path, hours) tasks, "
+                         f"got {type(recording).__name__}")
+    for name, _, h in tasks:  # before any file is read
+        h = positive(f"hours of task {name!r}", h)
+        if h > MAX_HOURS_PER_DAY:
+            raise ValueError(f"hours of task {name!r} must be at most {MAX_HOURS_PER_DAY:g}, got {h:g}")
+    return ExposureResult(assess([Task(str(n), Path(p), float(h)) for n, p, h in tasks], channel_map))
+
+
+class _CallableModule(types.ModuleType):
+    """``tyrelab.exposure``: this module, and called, :func:`exposure`."""
+
+    def __call__(self, recording, hours: float = 8.0, *, channel_map: dict | None = None) -> ExposureResult:
+        return exposure(recording, hours, channel_map=channel_map)
+
+
+sys.modules[__name__].__class__ = _CallableModule

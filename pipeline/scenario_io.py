@@ -17,8 +17,10 @@ import pandas as pd
 from . import _validate
 from .vehicle.scenario import Scenario, ScenarioError
 from .vehicle.scenario import parse_scenario as _parse_text
+from .vehicle.scenario import scenario_from_dict as _from_dict
 
-__all__ = ["MAX_SCENARIO_BYTES", "ScenarioError", "load_scenario", "parse_scenario", "read_profile_csv"]
+__all__ = ["MAX_SCENARIO_BYTES", "ScenarioError", "load_scenario", "parse_scenario", "scenario_from_dict",
+           "read_profile_csv"]
 
 
 def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -83,6 +85,18 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
     ('iso8608', True)
     """
     return _parse_text(text, base_dir, path, confine=confine, read_profile=read_profile_csv)
+
+
+def scenario_from_dict(doc, base_dir: str | Path = ".", path: str | Path | None = None, *,
+                       confine: bool = True) -> Scenario:
+    """:func:`tyrelab.vehicle.scenario.scenario_from_dict` with profiles read by :func:`read_profile_csv`.
+
+    See Also
+    --------
+    parse_scenario : the same from TOML text.
+    load_scenario : the same from a file.
+    """
+    return _from_dict(doc, base_dir, path, confine=confine, read_profile=read_profile_csv)
 
 
 #: Largest scenario file read, bytes (the shipped ones are ~2 kB).

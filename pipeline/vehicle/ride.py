@@ -803,6 +803,28 @@ class RideResult:
     #: The swept keys' values of this variant (:func:`ride_sweep`), ``{"section.key": value}``.
     variant: dict = field(default_factory=dict)
 
+    @property
+    def modes(self) -> pd.DataFrame:
+        """One row per natural mode: ``mode``, ``frequency_Hz``, ``low_Hz``/``high_Hz`` (its 95 %
+        interval from the tyre stiffness uncertainty; NaN without one) and ``nodal_point_m``
+        (ahead of the CG; NaN for a mode that does not pitch)."""
+        rows = []
+        for mode, f in self.natural_frequencies_Hz.items():
+            lo, hi = self.natural_frequency_intervals_Hz.get(mode, (math.nan, math.nan))
+            rows.append({"mode": mode, "frequency_Hz": float(f), "low_Hz": float(lo), "high_Hz": float(hi),
+                         "nodal_point_m": float(self.nodal_points_m.get(mode, math.nan))})
+        return pd.DataFrame(rows, columns=["mode", "frequency_Hz", "low_Hz", "high_Hz", "nodal_point_m"])
+
+    def to_dict(self) -> dict:
+        """The JSON document of ``tyrelab ride`` for this result (:func:`result_json`)."""
+        return result_json([self])
+
+    def to_json(self) -> str:
+        """:meth:`to_dict` as JSON text (indented, no NaN: a missing value is ``null``)."""
+        import json
+
+        return json.dumps(self.to_dict(), indent=2, ensure_ascii=False, allow_nan=False) + "\n"
+
 
 def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float | None) -> tuple[int, int]:
     """First and one-past-last sample of the record: the front axle on the track."""

@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import math
 import tomllib
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from functools import cache
 from pathlib import Path
@@ -63,6 +64,7 @@ __all__ = [
     "BallastSpec",
     "ScenarioError",
     "parse_scenario",
+    "scenario_from_dict",
     "key_table",
     "with_overrides",
     "with_values",
@@ -769,6 +771,72 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
         raise ScenarioError(where, [f"not valid TOML: {exc}"]) from None
     except RecursionError:  # arrays nested thousands deep
         raise ScenarioError(where, ["not valid TOML: nested too deeply"]) from None
+    return _from_document(doc, where, base_dir, path, confine, read_profile)
+
+
+def _plain(value, depth: int = 0):
+    """A mapping or sequence as the types :mod:`tomllib` gives (dict, list, str, bool, int, float)."""
+    if depth > 32:
+        raise RecursionError
+    if isinstance(value, Mapping):
+        return {str(k): _plain(v, depth + 1) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_plain(v, depth + 1) for v in value]
+    if hasattr(value, "item") and not isinstance(value, (str, bytes)):  # a numpy scalar
+        return value.item()
+    return value
+
+
+def scenario_from_dict(doc, base_dir: str | Path = ".", path: str | Path | None = None, *,
+                       confine: bool = True, read_profile=None) -> Scenario:
+    """A scenario from its document as a dict: the tables of the TOML file as nested dicts.
+
+    The same checks as :func:`parse_scenario` (every problem at once, each naming its key); tuples
+    are taken as arrays and numpy scalars as numbers.
+
+    Parameters
+    ----------
+    doc : mapping
+        ``{"name": ..., "tractor": {...}, "tyres": {"front": {...}, "rear": {...}}, "surface":
+        {...}, "exposure": {...}}`` (every key, unit, default and bound: ``schemas/scenario.json``).
+    base_dir, path, confine, read_profile
+        As :func:`parse_scenario`.
+
+    Raises
+    ------
+    ScenarioError
+        With every problem found.
+
+    See Also
+    --------
+    parse_scenario : the same from TOML text.
+
+    Examples
+    --------
+    >>> s = scenario_from_dict({"name": "demo", "tractor": {"mass_kg": 4700, "pitch_inertia_kg_m2": 5500, "front_distance_m": 1.56,
+    ...                                                     "rear_distance_m": 0.95, "cg_height_m": 0.95},
+    ...                         "tyres": {"front": {"size": "14.9R28", "pressure_bar": 1.6},
+    ...                                   "rear": {"size": "18.4R38", "pressure_bar": 1.2}},
+    ...                         "surface": {"kind": "iso8608", "class": "C"}, "exposure": {"speeds_km_h": (4, 8)}})
+    >>> s.exposure.speeds_km_h
+    (4.0, 8.0)
+    >>> try:
+    ...     scenario_from_dict({"tractor": {"mass_kg": -1}})
+    ... except ScenarioError as exc:
+    ...     print(exc.problems[:3])
+    ['missing name', 'tractor.mass_kg: -1 kg must be greater than 0', 'missing tractor.pitch_inertia_kg_m2 (kg m^2)']
+    """
+    where = str(path) if path is not None else "<scenario>"
+    if not isinstance(doc, Mapping):
+        raise ScenarioError(where, [f"a scenario must be a table of sections (a dict), got {type(doc).__name__}"])
+    try:
+        doc = _plain(doc)
+    except RecursionError:
+        raise ScenarioError(where, ["nested too deeply"]) from None
+    return _from_document(doc, where, base_dir, path, confine, read_profile)
+
+
+def _from_document(doc: dict, where: str, base_dir, path, confine: bool, read_profile) -> Scenario:
     base = Path(base_dir)
     profiles: dict = {}
     problems = _validate(doc, base, confine, read_profile, profiles)
