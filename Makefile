@@ -1,6 +1,7 @@
 # tyrelab — two commands from a fresh clone:
 #   make all    create .venv, install, generate the demo campaign, run every stage, render the report
 #   make test   create .venv, install, run the test suite
+#   make docs   the documentation site (Sphinx) -> build/docs/index.html, every example run
 #   make mutation  mutation testing of the physics and statistics (slow: hours; not in make test)
 PYTHON ?= python3
 VENV   ?= .venv
@@ -16,7 +17,7 @@ EXTRAS ?= dev,dask,formats,browser
 # Extra arguments of tools/mutation.py, e.g. MUTATION_ARGS="--sample 40 vehicle/iso2631.py".
 MUTATION_ARGS ?=
 
-.PHONY: all install compile data run test test-package test-all mutation bench clean distclean
+.PHONY: all install compile data run test test-package test-all mutation bench docs clean distclean
 
 all: run
 
@@ -60,6 +61,27 @@ test-all: install
 mutation: install
 	$(BIN)/python -m pip install --quiet -e '.[$(EXTRAS),mutation]'
 	$(BIN)/python tools/mutation.py $(MUTATION_ARGS)
+
+# The documentation site: tutorials, how-tos, the reference generated from the code (parser,
+# schemas, declared tables, docstrings) and the explanation documents of docs/. Sphinx runs with
+# -W (a warning fails the build); the tutorials' commands run while the pages are read (their
+# output is shown) and their Python examples under `-b doctest`. The tutorials read a build of
+# the small demo campaign in build/docs-work/ (the tyre engineer's tutorial's two commands).
+DOCS_WORK := build/docs-work
+DOCS_ENV = PATH="$(abspath $(BIN)):$$PATH" TYRELAB_DOCS_WORK="$(abspath $(DOCS_WORK))" \
+	TYRELAB_DOCS_BUILD="$(abspath $(DOCS_WORK))/build" PYTHONHASHSEED=0
+
+$(VENV)/.docs-extra: pyproject.toml | $(BIN)/tyrelab
+	$(BIN)/python -m pip install --quiet -e '.[$(EXTRAS),docs]'
+	@touch $@
+
+docs: $(VENV)/.docs-extra compile
+	@test -f $(DOCS_WORK)/raw/demo/manifest.csv || $(BIN)/tyrelab generate --out $(DOCS_WORK)/raw/demo --scale small --seed 1991
+	$(BIN)/tyrelab run -q --raw $(DOCS_WORK)/raw --build $(DOCS_WORK)/build
+	rm -rf $(BUILD)/docs $(BUILD)/docs-doctrees $(BUILD)/docs-doctest
+	$(DOCS_ENV) $(BIN)/sphinx-build -W --keep-going -q -b html -d $(BUILD)/docs-doctrees docs/site $(BUILD)/docs
+	$(DOCS_ENV) $(BIN)/sphinx-build -W --keep-going -q -b doctest -d $(BUILD)/docs-doctrees docs/site $(BUILD)/docs-doctest
+	@echo "docs: $(BUILD)/docs/index.html"
 
 bench: install
 	$(BIN)/python bench/run_all.py

@@ -267,7 +267,7 @@ def exposure(recording, hours: float = 8.0, *, channel_map: dict | None = None) 
     >>> pd.DataFrame({"time_s": t, "seat_z_m_s2": 0.8 * np.sin(2 * np.pi * 4 * t)}).to_csv(path, index=False)
     >>> day = tyrelab.exposure(path, hours=8)
 
-    A 4 Hz sine of 0.8 m/s² peak: a_w = 0.8/√2 × |W_k(4 Hz)| = 0.566 × 0.967 (ISO 2631-1,
+    A 4 Hz sine of 0.8 m/s² peak: a_w = 0.8/√2 × ``|W_k(4 Hz)|`` = 0.566 × 0.967 (ISO 2631-1,
     Table 3) = 0.547 m/s², above the action value of 0.5 m/s² over 8 h:
 
     >>> day.a8_axis, day.verdict, round(day.a8_m_s2, 3), round(day.hours_to_eav, 1)

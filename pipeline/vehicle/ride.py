@@ -775,8 +775,8 @@ class RideResult:
     spectra : DataFrame
         ``speed_km_h, frequency_Hz, seat_vertical_psd_m2_s4_per_Hz, seat_longitudinal_psd_m2_s4_per_Hz``.
     transmissibility : DataFrame
-        ``speed_km_h, frequency_Hz, seat_vertical, seat_longitudinal_per_m`` (|seat
-        acceleration / ground acceleration|, and fore-aft per unit ground acceleration).
+        ``speed_km_h, frequency_Hz, seat_vertical, seat_longitudinal_per_m`` (``|seat
+        acceleration / ground acceleration|``, and fore-aft per unit ground acceleration).
     track_label, spectrum_source : str
     track_length_m : float
         Length of the track without lead-in, m.

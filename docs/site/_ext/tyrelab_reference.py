@@ -1,0 +1,222 @@
+"""Sphinx directives that write tyrelab's reference pages from the code's own declarations.
+
+- ``tyrelab-scenario-keys``: every scenario key, section by section, with its type, unit,
+  default, bounds and meaning, from ``schemas/scenario.json`` and the model's bounds
+  (:data:`tyrelab.vehicle.scenario_limits.LIMITS`).
+- ``tyrelab-tables``: every warehouse table the stages declare (:data:`tyrelab.stages.dag.STAGES`)
+  and the digitised thesis tables, each column with its type (from a built warehouse: the
+  environment variable ``TYRELAB_DOCS_BUILD``, which ``make docs`` builds from the demo
+  campaign), unit (from its name: :func:`tyrelab.report.render.column_label`) and meaning (the
+  schemas' descriptions, else the naming rules of ``docs/architecture.md``).
+
+A table the stages declare but the build lacks, or a build that cannot be read, is a warning:
+``make docs`` runs Sphinx with ``-W``, so the reference cannot silently fall behind the code.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+from pathlib import Path
+
+from docutils import nodes
+from sphinx.util import logging
+from sphinx.util.docutils import SphinxDirective
+
+logger = logging.getLogger(__name__)
+
+
+def _table(headers: list[str], rows: list[list[str]], widths: list[int]) -> nodes.table:
+    table = nodes.table(classes=["tyrelab-reference"])
+    group = nodes.tgroup(cols=len(headers))
+    table += group
+    for w in widths:
+        group += nodes.colspec(colwidth=w)
+    head = nodes.thead()
+    group += head
+    row = nodes.row()
+    for h in headers:
+        row += nodes.entry("", nodes.paragraph(text=h))
+    head += row
+    body = nodes.tbody()
+    group += body
+    for cells in rows:
+        row = nodes.row()
+        for i, text in enumerate(cells):
+            para = nodes.paragraph()
+            para += nodes.literal(text=text) if i == 0 and text else nodes.Text(text)
+            row += nodes.entry("", para)
+        body += row
+    return table
+
+
+def _section(parent_id: str, title: str, *content) -> nodes.section:
+    sec = nodes.section(ids=[nodes.make_id(f"{parent_id}-{title}")])
+    sec += nodes.title(text=title)
+    for c in content:
+        sec += c
+    return sec
+
+
+def _number(v) -> str:
+    return f"{v:g}" if isinstance(v, (int, float)) and not isinstance(v, bool) else json.dumps(v, ensure_ascii=False)
+
+
+# ----------------------------------------------------------------------------- scenario keys
+def scenario_rows() -> dict[str, tuple[str, list[list[str]]]]:
+    """Section -> (its description, rows of key, type, unit, default, bounds, meaning)."""
+    from tyrelab.schema import load_schema
+    from tyrelab.vehicle.scenario_limits import LIMITS
+
+    schema = load_schema("scenario")["sections"]
+    out = {}
+    for name, sec in schema.items():
+        src = schema[sec["same_as"]] if "same_as" in sec else sec
+        rows = []
+        for f in src["fields"]:
+            c = f.get("constraints", {})
+            bounds = []
+            if "enum" in c:
+                bounds.append("one of " + ", ".join(_number(v) for v in c["enum"]))
+            for k, sym in (("minimum", "≥"), ("exclusiveMinimum", ">"), ("maximum", "≤"), ("exclusiveMaximum", "<")):
+                if k in c:
+                    bounds.append(f"{sym} {_number(c[k])}")
+            model = LIMITS.get(f"{name}.{f['name']}") or LIMITS.get(f["name"])
+            if model:
+                bounds.append(f"model: {model[0]:g} to {model[1]:g}")
+            default = "required" if c.get("required") else ("–" if f.get("default") is None else _number(f["default"]))
+            rows.append([f["name"], f["type"], f.get("unit", "") or "–", default, "; ".join(bounds) or "–",
+                         f.get("description", "")])
+        title = f"[{name}]" if name else "top level"
+        desc = sec.get("description", "") + (f" Same keys as [{sec['same_as']}]." if "same_as" in sec else "")
+        out[title] = (desc, rows)
+    return out
+
+
+class ScenarioKeys(SphinxDirective):
+    """Every scenario key (``schemas/scenario.json``), one table per section."""
+
+    def run(self):
+        out = []
+        for title, (desc, rows) in scenario_rows().items():
+            out.append(_section("scenario", title, nodes.paragraph(text=desc),
+                                _table(["key", "type", "unit", "default", "bounds", "meaning"], rows,
+                                       [14, 6, 6, 6, 12, 40])))
+        return out
+
+
+# ----------------------------------------------------------------------------- warehouse tables
+def declared_tables() -> dict[str, str]:
+    """Every table of the warehouse the stages declare -> the stage that writes it."""
+    from tyrelab.stages import dag
+
+    out = {}
+    for stage in dag.STAGES.values():
+        for path in stage.writes:
+            m = re.fullmatch(r"parquet/([a-z0-9_]+)\.parquet", path)
+            if m:
+                out[m.group(1)] = stage.name
+            elif path == "parquet/runs/":
+                out["runs"] = stage.name
+    return out
+
+
+def _schema_descriptions() -> tuple[dict[str, dict[str, str]], dict[str, str]]:
+    """(published table -> column -> description and its title), (column -> description of the raw schemas)."""
+    from tyrelab.resources import schemas_dir
+
+    published, raw = {}, {}
+    for p in sorted((Path(schemas_dir()) / "published").glob("*.json")):
+        doc = json.loads(p.read_text(encoding="utf-8"))
+        published[p.stem] = {f["name"]: f.get("description", "") for f in doc.get("fields", [])}
+        published[p.stem]["__title__"] = doc.get("title", "")
+    for name in ("raw_manifest", "tyres", "raw_rides", "raw_ride", "raw_run"):
+        p = Path(schemas_dir()) / f"{name}.json"
+        if p.exists():
+            for f in json.loads(p.read_text(encoding="utf-8")).get("fields", []):
+                raw.setdefault(f["name"], f.get("description", ""))
+    return published, raw
+
+
+def column_meaning(table: str, column: str, published: dict, raw: dict) -> str:
+    """What a column means, from the schemas and the warehouse's naming rules."""
+    own = published.get(table, {})
+    if column in own:
+        return own[column]
+    if column.startswith("thesis_") and column[7:] in own:
+        return "The thesis' printed value: " + own[column[7:]]
+    if column.endswith("_difference"):
+        base = column[: -len("_difference")]
+        return f"Ours − thesis of {base}" + (f" ({own[base]})" if base in own else "") + "."
+    if column.startswith("thesis_"):
+        return f"The thesis' printed value of {column[7:]}."
+    for cols in published.values():  # the same column of the thesis table it reproduces
+        if column in cols and column != "__title__":
+            return cols[column]
+    if column in raw:
+        return raw[column]
+    return ""
+
+
+class WarehouseTables(SphinxDirective):
+    """Every declared table and its columns (type, unit, meaning) from a built warehouse."""
+
+    def run(self):
+        import duckdb
+
+        from tyrelab.report.render import UNITS
+
+        build = os.environ.get("TYRELAB_DOCS_BUILD")
+        db = Path(build or "") / "warehouse.duckdb"
+        if not build or not db.is_file():
+            logger.warning(f"tyrelab-tables: no built warehouse at TYRELAB_DOCS_BUILD={build!r} (make docs builds one)",
+                           location=(self.env.docname, self.lineno))
+            return []
+        published, raw = _schema_descriptions()
+        con = duckdb.connect(str(db), read_only=True)
+        try:
+            con.execute(f"SET file_search_path = '{Path(build).resolve()}'")
+            present = {r[0] for r in con.execute("SELECT table_name FROM information_schema.tables").fetchall()}
+            tables = declared_tables()
+            tables.update({f"published_{t}": "warehouse (the digitised thesis tables)" for t in published})
+            out = []
+            for name, stage in sorted(tables.items()):
+                if name not in present:
+                    logger.warning(f"tyrelab-tables: declared table {name!r} (written by {stage}) is not in the warehouse",
+                                   location=(self.env.docname, self.lineno))
+                    continue
+                cols = con.execute(f'DESCRIBE "{name}"').fetchall()
+                key = name.removeprefix("published_")
+                rows = []
+                for col, typ, *_ in cols:
+                    unit = next((u.strip(" ()") for s, u in UNITS.items() if col.endswith(s)), "")
+                    rows.append([col, typ.lower(), unit or "–", column_meaning(key, col, published, raw) or "–"])
+                intro = f"Written by {stage}." + (f" {published[key]['__title__']}." if key in published else "")
+                out.append(_section("table", name, nodes.paragraph(text=intro),
+                                    _table(["column", "type", "unit", "meaning"], rows, [18, 8, 8, 50])))
+            return out
+        finally:
+            con.close()
+
+
+# ----------------------------------------------------------------------------- command line
+def cli_parser():
+    """:func:`tyrelab.cli.build_parser` for sphinx-argparse: every verb's epilog (the exit codes, a
+    preformatted text block the page states once above) left out."""
+    import argparse
+
+    from tyrelab.cli import build_parser
+
+    parser = build_parser()
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for sub in action.choices.values():
+                sub.epilog = None
+    return parser
+
+
+def setup(app):
+    app.add_directive("tyrelab-scenario-keys", ScenarioKeys)
+    app.add_directive("tyrelab-tables", WarehouseTables)
+    return {"parallel_read_safe": True, "parallel_write_safe": True}
