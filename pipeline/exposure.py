@@ -13,6 +13,12 @@ task carries its own. The day: ``tasks`` (each with ``partial_a8_m_s2`` per axis
 ``hours_to_elv``, ``exposure_points``, ``verdict``, ``dzd_m_s2``. The command prints infinite
 hours (no vibration) and NaN as ``null``.
 
+A recording shorter than :data:`tyrelab.vehicle.daily_exposure.MIN_RECORD_S` (10 s) gives its
+values with a warning and no verdict (``verdict`` "no verdict: …", the hours to the action and
+limit values ``null``); the command then exits 3. Each task names its recording's duration
+(``measured_s``) and sample rate (``sample_rate_Hz``). Names and file names are printed with
+their control characters escaped (:func:`tyrelab.io.printable`).
+
 The module is also the library's call: ``tyrelab.exposure(recording, hours=…)`` is
 :func:`tyrelab.api.exposure` (:func:`exposure`; a module object that can be called, so the name means one thing
 whether or not this module was imported first).
@@ -27,6 +33,7 @@ import types
 from dataclasses import dataclass
 from pathlib import Path
 
+from .io import printable
 from .rawformat import RunFileError
 
 __all__ = ["Task", "RecordingProblem", "ExposureResult", "exposure", "assess", "format_table"]
@@ -136,6 +143,11 @@ def _usage_problem(path: Path) -> str | None:
         return str(exc)
     if path.suffix.lower() not in RECORDING_SUFFIXES:
         return f"unknown file type {path.suffix!r} (expected {', '.join(RECORDING_SUFFIXES)})"
+    try:  # a file we may not open is the user's to fix (exit 2), not a corrupt recording (exit 3)
+        with open(path, "rb"):
+            pass
+    except OSError as exc:
+        return f"cannot read ({exc.strerror or exc})"
     return None
 
 
@@ -156,7 +168,7 @@ def assess(tasks, channel_map: dict | None = None) -> dict:
     tasks = list(tasks)
     usage = {t.file: p for t in tasks if (p := _usage_problem(Path(t.file)))}
     if usage:
-        raise RecordingProblem([f"{f}: {p}" for f, p in usage.items()], usage=True)
+        raise RecordingProblem([f"{printable(f)}: {p}" for f, p in usage.items()], usage=True)
     analyses, problems = {}, []
     for t in tasks:
         key = Path(t.file).resolve()
@@ -165,7 +177,7 @@ def assess(tasks, channel_map: dict | None = None) -> dict:
         try:
             analyses[key] = analyse_recording(open_recording(t.file, channel_map))
         except RunFileError as exc:
-            problems.append(f"{t.file}: {exc}")
+            problems.append(f"{printable(t.file)}: {exc}")
     if problems:
         raise RecordingProblem(problems, usage=False)
     exposures, per_task = [], []
@@ -173,13 +185,13 @@ def assess(tasks, channel_map: dict | None = None) -> dict:
         a = analyses[Path(t.file).resolve()]
         axes = a.axes()
         if not axes:
-            problems.append(f"{t.file}: no seat channel (seat_x_m_s2, seat_y_m_s2 or seat_z_m_s2): "
+            problems.append(f"{printable(t.file)}: no seat channel (seat_x_m_s2, seat_y_m_s2 or seat_z_m_s2): "
                             "the daily exposure is taken at the seat")
             continue
         doc = a.to_json()
         exposures.append(TaskExposure(t.name, t.hours, {ax: v["a_w_m_s2"] for ax, v in axes.items()},
                                       {ax: v["vdv_m_s1_75"] for ax, v in axes.items()}, a.duration_s,
-                                      a.dz_m_s2, extra={"file": str(t.file)}))
+                                      a.dz_m_s2, extra={"file": str(t.file), "sample_rate_Hz": a.sample_rate_Hz}))
         per_task.append(doc)
     if problems:
         raise RecordingProblem(problems, usage=False)
@@ -191,7 +203,10 @@ def assess(tasks, channel_map: dict | None = None) -> dict:
         for row, doc in zip(day["tasks"], per_task):
             row.update(doc)
     out.update(day)
-    warnings = [f"{t.file}: {w}" for t in tasks for w in analyses[Path(t.file).resolve()].warnings]
+    warnings = [f"{printable(t.file)}: {w}" for t in tasks for w in analyses[Path(t.file).resolve()].warnings]
+    if day["verdict"].startswith("no verdict"):
+        warnings.append(f"{printable(day['verdict'])}: the values are printed, the verdict against the EU action "
+                        "and limit values is withheld")
     out["warnings"] = list(dict.fromkeys(warnings))
     return out
 
@@ -206,18 +221,20 @@ def format_table(doc: dict) -> str:
     single = "axes" in doc
     for task in doc["tasks"]:
         axes = doc["axes"] if single else task["axes"]
-        lines.append(f"task {task['name']}: {task['hours']:g} h/day, {task['file']} ({task['measured_s']:.0f} s recorded)")
+        rate = task.get("sample_rate_Hz")
+        lines.append(f"task {printable(task['name'])}: {task['hours']:g} h/day, {printable(task['file'])} "
+                     f"({task['measured_s']:.3g} s recorded at {_f(rate, 'g')} Hz)")
         lines.append("  axis  a_w m/s²  k·a_w  VDV m/s^1.75  MTVV m/s²  crest  partial A(8)  method")
         for ax, v in axes.items():
             method = "r.m.s." if v["rms_method_sufficient"] else "VDV/MTVV: " + "; ".join(v["method_reasons"])
-            lines.append(f"  {ax:>4}  {_f(v['a_w_m_s2']):>8}  {_f(v['axis_factor'] * v['a_w_m_s2']):>5}  "
+            lines.append(f"  {ax:>4}  {_f(v['a_w_m_s2']):>8}  {_f(None if v['a_w_m_s2'] is None else v['axis_factor'] * v['a_w_m_s2']):>5}  "
                          f"{_f(v['vdv_m_s1_75'], '.2f'):>12}  {_f(v['mtvv_m_s2']):>9}  {_f(v['crest_factor'], '.1f'):>5}  "
                          f"{_f(task['partial_a8_m_s2'].get(ax)):>12}  {method}")
         extra = doc if single else task
         seat = extra.get("seat_factor")
         lines.append(f"  a_v {_f(extra['a_v_m_s2'])} m/s², D_z {_f(extra['dz_m_s2'], '.2f')} m/s²"
                      + (", SEAT " + ", ".join(f"{a} {_f(s, '.2f')}" for a, s in seat.items()) if seat else ""))
-    lines.append(f"day: A(8) {_f(doc['a8_m_s2'])} m/s² ({doc['a8_axis']} axis), {doc['verdict']}; "
+    lines.append(f"day: A(8) {_f(doc['a8_m_s2'])} m/s² ({doc['a8_axis']} axis), {printable(doc['verdict'])}; "
                  f"{_f(doc['exposure_points'], '.0f')} HSE points")
     lines.append(f"     hours to EAV {_f(doc['hours_to_eav'], '.1f')}, to ELV {_f(doc['hours_to_elv'], '.1f')} "
                  f"(at this mix of tasks); daily VDV {_f(doc['vdv_daily_m_s1_75'], '.2f')} m/s^1.75 "
@@ -235,7 +252,8 @@ def exposure(recording, hours: float = 8.0, *, channel_map: dict | None = None) 
         ``seat_y_m_s2``, ``seat_z_m_s2``, ``floor_*``; ``.parquet``, ``.csv``, or ``.mf4``/``.tdms``
         with ``channel_map``), or the tasks of a day, each ``(name, path, hours)``.
     hours : float
-        Daily hours of a single recording's task, h (0 < hours ≤ 24; ignored for a list of tasks).
+        Daily hours of a single recording's task, h (0.01 to 24: :func:`tyrelab.vehicle.daily_exposure.hours_problem`;
+        not used with a list of tasks).
     channel_map : dict, optional
         For ``.mf4``/``.tdms`` recordings (:func:`tyrelab.rawformat.load_channel_map`).
 
@@ -273,8 +291,7 @@ def exposure(recording, hours: float = 8.0, *, channel_map: dict | None = None) 
     >>> day.a8_axis, day.verdict, round(day.a8_m_s2, 3), round(day.hours_to_eav, 1)
     ('z', 'above action value', 0.547, 6.7)
     """
-    from ._validate import positive
-    from .vehicle.daily_exposure import MAX_HOURS_PER_DAY
+    from .vehicle.daily_exposure import hours_problem
 
     if isinstance(recording, (str, os.PathLike)):
         tasks = [(Path(recording).stem, recording, hours)]
@@ -284,10 +301,9 @@ def exposure(recording, hours: float = 8.0, *, channel_map: dict | None = None) 
     else:
         raise ValueError("recording must be a path or a list of (name, path, hours) tasks, "
                          f"got {type(recording).__name__}")
-    for name, _, h in tasks:  # before any file is read
-        h = positive(f"hours of task {name!r}", h)
-        if h > MAX_HOURS_PER_DAY:
-            raise ValueError(f"hours of task {name!r} must be at most {MAX_HOURS_PER_DAY:g}, got {h:g}")
+    problems = [f"hours of task {name!r}: {p}" for name, _, h in tasks if (p := hours_problem(h))]
+    if problems:  # before any file is read
+        raise ValueError("; ".join(problems))
     return ExposureResult(assess([Task(str(n), Path(p), float(h)) for n, p, h in tasks], channel_map))
 
 

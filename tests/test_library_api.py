@@ -69,7 +69,7 @@ def test_exposure_of_one_recording_and_of_a_day_of_tasks(tmp_path):
 def test_exposure_refuses_bad_hours_before_reading_anything(tmp_path):
     with pytest.raises(ValueError, match="hours of task 'x'"):
         tyrelab.exposure(tmp_path / "x.csv", hours=0)
-    with pytest.raises(ValueError, match="at most 24"):
+    with pytest.raises(ValueError, match="hours of task 'x': 25 h is not in"):
         tyrelab.exposure(tmp_path / "x.csv", hours=25)
     with pytest.raises(ValueError, match="recording must be a path"):
         tyrelab.exposure(3.0)

@@ -20,14 +20,10 @@ import os
 import re
 from pathlib import Path
 
-from docutils import nodes
-from sphinx.util import logging
-from sphinx.util.docutils import SphinxDirective
 
-logger = logging.getLogger(__name__)
+def _table(headers: list[str], rows: list[list[str]], widths: list[int]):
+    from docutils import nodes
 
-
-def _table(headers: list[str], rows: list[list[str]], widths: list[int]) -> nodes.table:
     table = nodes.table(classes=["tyrelab-reference"])
     group = nodes.tgroup(cols=len(headers))
     table += group
@@ -51,7 +47,9 @@ def _table(headers: list[str], rows: list[list[str]], widths: list[int]) -> node
     return table
 
 
-def _section(parent_id: str, title: str, *content) -> nodes.section:
+def _section(parent_id: str, title: str, *content):
+    from docutils import nodes
+
     sec = nodes.section(ids=[nodes.make_id(f"{parent_id}-{title}")])
     sec += nodes.title(text=title)
     for c in content:
@@ -94,16 +92,15 @@ def scenario_rows() -> dict[str, tuple[str, list[list[str]]]]:
     return out
 
 
-class ScenarioKeys(SphinxDirective):
-    """Every scenario key (``schemas/scenario.json``), one table per section."""
+def scenario_nodes() -> list:
+    """Every scenario key (``schemas/scenario.json``), one section and table per scenario section."""
+    from docutils import nodes
 
-    def run(self):
-        out = []
-        for title, (desc, rows) in scenario_rows().items():
-            out.append(_section("scenario", title, nodes.paragraph(text=desc),
-                                _table(["key", "type", "unit", "default", "bounds", "meaning"], rows,
-                                       [14, 6, 6, 6, 12, 40])))
-        return out
+    out = []
+    for title, (desc, rows) in scenario_rows().items():
+        out.append(_section("scenario", title, nodes.paragraph(text=desc),
+                            _table(["key", "type", "unit", "default", "bounds", "meaning"], rows, [14, 6, 6, 6, 12, 40])))
+    return out
 
 
 # ----------------------------------------------------------------------------- warehouse tables
@@ -159,45 +156,42 @@ def column_meaning(table: str, column: str, published: dict, raw: dict) -> str:
     return ""
 
 
-class WarehouseTables(SphinxDirective):
-    """Every declared table and its columns (type, unit, meaning) from a built warehouse."""
+def table_nodes(build: str | None, warn) -> list:
+    """Every declared table and its columns (type, unit, meaning) from the warehouse of ``build``;
+    ``warn(message)`` for a missing build or a declared table the build lacks."""
+    import duckdb
+    from docutils import nodes
 
-    def run(self):
-        import duckdb
+    from tyrelab.report.render import UNITS
 
-        from tyrelab.report.render import UNITS
-
-        build = os.environ.get("TYRELAB_DOCS_BUILD")
-        db = Path(build or "") / "warehouse.duckdb"
-        if not build or not db.is_file():
-            logger.warning(f"tyrelab-tables: no built warehouse at TYRELAB_DOCS_BUILD={build!r} (make docs builds one)",
-                           location=(self.env.docname, self.lineno))
-            return []
-        published, raw = _schema_descriptions()
-        con = duckdb.connect(str(db), read_only=True)
-        try:
-            con.execute(f"SET file_search_path = '{Path(build).resolve()}'")
-            present = {r[0] for r in con.execute("SELECT table_name FROM information_schema.tables").fetchall()}
-            tables = declared_tables()
-            tables.update({f"published_{t}": "warehouse (the digitised thesis tables)" for t in published})
-            out = []
-            for name, stage in sorted(tables.items()):
-                if name not in present:
-                    logger.warning(f"tyrelab-tables: declared table {name!r} (written by {stage}) is not in the warehouse",
-                                   location=(self.env.docname, self.lineno))
-                    continue
-                cols = con.execute(f'DESCRIBE "{name}"').fetchall()
-                key = name.removeprefix("published_")
-                rows = []
-                for col, typ, *_ in cols:
-                    unit = next((u.strip(" ()") for s, u in UNITS.items() if col.endswith(s)), "")
-                    rows.append([col, typ.lower(), unit or "–", column_meaning(key, col, published, raw) or "–"])
-                intro = f"Written by {stage}." + (f" {published[key]['__title__']}." if key in published else "")
-                out.append(_section("table", name, nodes.paragraph(text=intro),
-                                    _table(["column", "type", "unit", "meaning"], rows, [18, 8, 8, 50])))
-            return out
-        finally:
-            con.close()
+    db = Path(build or "") / "warehouse.duckdb"
+    if not build or not db.is_file():
+        warn(f"tyrelab-tables: no built warehouse at TYRELAB_DOCS_BUILD={build!r} (make docs builds one)")
+        return []
+    published, raw = _schema_descriptions()
+    con = duckdb.connect(str(db), read_only=True)
+    try:
+        con.execute(f"SET file_search_path = '{Path(build).resolve()}'")
+        present = {r[0] for r in con.execute("SELECT table_name FROM information_schema.tables").fetchall()}
+        tables = declared_tables()
+        tables.update({f"published_{t}": "warehouse (the digitised thesis tables)" for t in published})
+        out = []
+        for name, stage in sorted(tables.items()):
+            if name not in present:
+                warn(f"tyrelab-tables: declared table {name!r} (written by {stage}) is not in the warehouse")
+                continue
+            cols = con.execute(f'DESCRIBE "{name}"').fetchall()
+            key = name.removeprefix("published_")
+            rows = []
+            for col, typ, *_ in cols:
+                unit = next((u.strip(" ()") for s, u in UNITS.items() if col.endswith(s)), "")
+                rows.append([col, typ.lower(), unit or "–", column_meaning(key, col, published, raw) or "–"])
+            intro = f"Written by {stage}." + (f" {published[key]['__title__']}." if key in published else "")
+            out.append(_section("table", name, nodes.paragraph(text=intro),
+                                _table(["column", "type", "unit", "meaning"], rows, [18, 8, 8, 50])))
+        return out
+    finally:
+        con.close()
 
 
 # ----------------------------------------------------------------------------- command line
@@ -217,6 +211,20 @@ def cli_parser():
 
 
 def setup(app):
+    from sphinx.util import logging
+    from sphinx.util.docutils import SphinxDirective
+
+    logger = logging.getLogger(__name__)
+
+    class ScenarioKeys(SphinxDirective):
+        def run(self):
+            return scenario_nodes()
+
+    class WarehouseTables(SphinxDirective):
+        def run(self):
+            return table_nodes(os.environ.get("TYRELAB_DOCS_BUILD"),
+                               lambda msg: logger.warning(msg, location=(self.env.docname, self.lineno)))
+
     app.add_directive("tyrelab-scenario-keys", ScenarioKeys)
     app.add_directive("tyrelab-tables", WarehouseTables)
     return {"parallel_read_safe": True, "parallel_write_safe": True}
