@@ -181,8 +181,11 @@ class RidePage(ChapterPage):
         sections = [{**sec, "figures": [{"name": f.name, "caption": f.caption, "note": f.note,
                                          "svg": site.figs[(self.slug, sec["file"], f.name)] if f.function else None}
                                         for f in sec["figures"]]} for sec in self.sections(site)]
+        from .ride_sections import AXIS_WORDS
+
         return [Output(self.href, "ride_page.html.j2", self.chapter.title,
-                       {"chapter": self.chapter, "items": items, "lead": self.lead, "sections": sections})]
+                       {"chapter": self.chapter, "items": items, "lead": self.lead, "sections": sections,
+                        "axis_words": AXIS_WORDS})]
 
 
 def run_page_name(run_id: str) -> str:

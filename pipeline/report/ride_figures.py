@@ -139,35 +139,83 @@ def seat_transmissibility(trans: pd.DataFrame) -> str | None:
     return to_svg(fig)
 
 
-def hours_heatmap(table: pd.DataFrame, x_key: str, y_key: str, x_label: str | None = None,
-                  y_label: str | None = None) -> str | None:
-    """Hours to the EU action value (worst speed of each variant) over two swept keys: a heatmap
-    with the hours written in each cell.
+#: Top of the hours colour scale, h: a working day; more is the same green (the number says how much).
+HOURS_SCALE_MAX = 8.0
 
-    ``table``: one row per variant and speed with the two keys' columns and ``hours_to_eav``;
-    ``x_label``, ``y_label``: the axes' labels (default the keys).
-    """
-    if not _has(table, x_key, y_key, "hours_to_eav"):
-        return None
-    worst = table.groupby([y_key, x_key], sort=True)["hours_to_eav"].min().unstack(x_key)
-    if worst.shape[0] < 2 and worst.shape[1] < 2:
-        return None
-    z = np.minimum(worst.to_numpy(float), 24.0)  # "never" (NaN, inf) and beyond a day: ≥ 24 h
+
+def _hours_grid(table: pd.DataFrame, x_key: str, y_key: str) -> pd.DataFrame:
+    """Hours to the action value over the two keys (the lowest where other swept keys vary)."""
+    return table.groupby([y_key, x_key], sort=True)["hours_to_eav"].min().unstack(x_key)
+
+
+def _draw_hours(ax, grid: pd.DataFrame, vmax: float, fontsize: float = 8):
+    z = np.minimum(grid.to_numpy(float), 24.0)  # "never" (NaN, inf) and beyond a day: ≥ 24 h
     z = np.where(np.isnan(z), 24.0, z)
-    fig, ax = _figure(size=(min(2.4 + 0.9 * worst.shape[1], 9.0), min(1.6 + 0.45 * worst.shape[0], 7.0)))
-    vmax = max(8.0, float(np.nanmax(z)))
     im = ax.imshow(z, origin="lower", aspect="auto", cmap="RdYlGn", vmin=0.0, vmax=vmax)
     ax.grid(False)
-    ax.set_xticks(range(worst.shape[1]), [f"{v:g}" for v in worst.columns])
-    ax.set_yticks(range(worst.shape[0]), [f"{v:g}" for v in worst.index])
+    ax.set_xticks(range(grid.shape[1]), [f"{v:g}" for v in grid.columns])
+    ax.set_yticks(range(grid.shape[0]), [f"{v:g}" for v in grid.index])
     for i in range(z.shape[0]):
         for j in range(z.shape[1]):
             dark = z[i, j] < 0.15 * vmax or z[i, j] > 0.85 * vmax  # the colour map's dark ends: white text
-            ax.text(j, i, "≥24" if z[i, j] >= 24 else f"{z[i, j]:.3g}", ha="center", va="center", fontsize=8,
+            ax.text(j, i, "≥24" if z[i, j] >= 24 else f"{z[i, j]:.3g}", ha="center", va="center", fontsize=fontsize,
                     color="white" if dark else "black")
+    return im
+
+
+def hours_heatmap(table: pd.DataFrame, x_key: str, y_key: str, x_label: str | None = None,
+                  y_label: str | None = None, speed_km_h: float | None = None) -> str | None:
+    """Hours to the EU action value over two swept keys at one speed: a heatmap with the hours
+    written in each cell.
+
+    ``table``: one row per variant and speed with the two keys' columns, ``speed_km_h`` and
+    ``hours_to_eav``; ``speed_km_h``: the speed drawn (the scenario's working speed; None: the
+    worst speed of each variant); ``x_label``, ``y_label``: the axes' labels (default the keys).
+    """
+    if not _has(table, x_key, y_key, "hours_to_eav"):
+        return None
+    if speed_km_h is not None and "speed_km_h" in table:
+        table = table[table["speed_km_h"] == speed_km_h]
+    grid = _hours_grid(table, x_key, y_key)
+    if grid.empty or (grid.shape[0] < 2 and grid.shape[1] < 2):
+        return None
+    # drawn at the page's width (the pages scale figures to it): wide and low, so the text stays small
+    fig, ax = _figure(size=(9.0, min(1.6 + 0.42 * grid.shape[0], 6.0)))
+    im = _draw_hours(ax, grid, HOURS_SCALE_MAX)
     ax.set_xlabel(x_label or x_key)
     ax.set_ylabel(y_label or y_key)
+    if speed_km_h is not None:
+        ax.set_title(f"at {speed_km_h:g} km/h", fontsize=9)
     fig.colorbar(im, ax=ax, label="hours to the action value")
+    return to_svg(fig)
+
+
+def hours_heatmaps(table: pd.DataFrame, x_key: str, y_key: str, speeds_km_h, x_label: str | None = None,
+                   y_label: str | None = None) -> str | None:
+    """Small multiples of :func:`hours_heatmap`: one panel per speed of ``speeds_km_h``, the same
+    colour scale (0 to :data:`HOURS_SCALE_MAX` h) as the heatmap, so the panels compare at a glance."""
+    if not _has(table, x_key, y_key, "hours_to_eav", "speed_km_h"):
+        return None
+    speeds = [float(v) for v in speeds_km_h if (table["speed_km_h"] == v).any()]
+    if not speeds:
+        return None
+    grids = [_hours_grid(table[table["speed_km_h"] == v], x_key, y_key) for v in speeds]
+    cols = min(len(speeds), 4)
+    rows = -(-len(speeds) // cols)
+    fig, axes = _figure(rows, cols, size=(9.0, 1.4 + 1.5 * rows), squeeze=False, sharex=True, sharey=True)
+    vmax = HOURS_SCALE_MAX
+    im = None
+    for k, ax in enumerate(axes.flat):
+        if k >= len(speeds):
+            ax.set_visible(False)
+            continue
+        im = _draw_hours(ax, grids[k], vmax, fontsize=6.5)
+        ax.set_title(f"{speeds[k]:g} km/h", fontsize=8)
+        if k % cols == 0:
+            ax.set_ylabel(y_label or y_key, fontsize=7)
+        if k // cols == rows - 1:
+            ax.set_xlabel(x_label or x_key, fontsize=7)
+    fig.colorbar(im, ax=list(axes.flat), label="hours to the action value", shrink=0.9)
     return to_svg(fig)
 
 

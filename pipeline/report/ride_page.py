@@ -14,8 +14,9 @@ from pathlib import Path
 import pandas as pd
 
 from .. import __version__, io
-from ..vehicle.ride import RideResult, result_json, results_table
-from .ride_sections import PRESSURE_COLUMNS, variant_name, scenario_figures, surface_edge_note, swept_columns, variant_rows
+from ..vehicle.ride import RideResult, nominal_result, result_json, results_table
+from .ride_sections import (AXIS_WORDS, PRESSURE_COLUMNS, answer, scenario_figures, surface_edge_note, swept_columns,
+                            variant_name, variant_rows, warning_groups)
 from .render import column_label, environment, format_number
 from .tables import significant_decimals, uncertainty_decimals
 
@@ -197,10 +198,15 @@ def variants(results: list[RideResult]) -> list[dict]:
 
 def figures(results: list[RideResult]) -> list[dict]:
     """The page's figures (caption + inline SVG, or the sentence why a figure is not drawn), those of
-    :func:`scenario_figures` with the spectra of the first variant."""
-    first = results[0]
-    specs = scenario_figures(results_table(results), first.spectra, first.transmissibility,
-                             first.scenario.exposure.hours_per_day, psd_edge_note(first), variant_label(first))
+    :func:`scenario_figures` with the spectra of the variant at the scenario's own values
+    (:func:`~tyrelab.vehicle.ride.nominal_result`), named."""
+    shown = nominal_result(results)
+    name = variant_label(shown)
+    if len(results) > 1:
+        name = (f"the scenario's own values, {name}" if shown.nominal
+                else f"{name}: the sweep does not hold the scenario's own values, so its first variant")
+    specs = scenario_figures(results_table(results), shown.spectra, shown.transmissibility,
+                             shown.scenario.exposure.hours_per_day, psd_edge_note(shown), name)
     return [{"name": f.name, "caption": f.caption, "svg": f.draw(), "note": f.note} for f in specs]
 
 
@@ -222,7 +228,9 @@ def render_page(results: list[RideResult], doc: dict | None = None) -> str:
     return environment().get_template("ride.html.j2").render(
         r=doc, description=results[0].scenario.description, columns=_columns(doc, rows), rows=rows,
         figures=figures(results), variants=variants(results), three_d=results[0].scenario.tractor.three_d,
-        version=__version__, decimals=fmt["columns"], fmt=fmt)
+        version=__version__, decimals=fmt["columns"], fmt=fmt, answer=answer(results_table(results)),
+        axis_words=AXIS_WORDS, warning_groups=warning_groups(doc.get("warnings", [])),
+        working_source=results[0].scenario.exposure.working_speed_source)
 
 
 def write_outputs(results: list[RideResult], out: str | Path) -> dict[str, Path]:

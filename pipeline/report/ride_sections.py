@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 import pandas as pd
 
-__all__ = ["PRESSURE_COLUMNS", "variant_name", "variant_decimals", "scenario_sections", "SECTION_TABLES", "variant_labels", "swept_columns", "variant_rows", "RideFigure", "scenario_figures",
+__all__ = ["PRESSURE_COLUMNS", "VERDICT_ORDER", "AXIS_WORDS", "answer", "warning_groups", "variant_name", "variant_decimals", "scenario_sections", "SECTION_TABLES", "variant_labels", "swept_columns", "variant_rows", "RideFigure", "scenario_figures",
            "surface_edge_note"]
 
 
@@ -28,6 +28,82 @@ def variant_name(front_bar: float, rear_bar: float, swept: dict) -> str:
     parts = [f"{front_bar:g}/{rear_bar:g} bar"]
     parts += [f"{k.rpartition('.')[2]}={v:g}" for k, v in swept.items()]
     return ", ".join(parts)
+
+
+#: The Directive's verdicts, best to worst (a withheld verdict, "no verdict: …", sorts before them).
+VERDICT_ORDER = ("below action value", "above action value", "above limit value")
+#: What each seat axis is, for a reader.
+AXIS_WORDS = {"x": "fore-aft", "y": "lateral", "z": "vertical"}
+
+
+def answer(table: pd.DataFrame) -> dict:
+    """What a ride page states first, from one scenario's ``ride_results`` rows: per speed of the
+    variant at the scenario's own values (``is_nominal``, else the first variant) A(8), the axis
+    that governs it (``a8_axis``), the hours to the action and limit values and the verdict.
+
+    Returns
+    -------
+    dict
+        ``rows`` (per speed, in speed order: ``speed_km_h``, ``a8_m_s2``, ``a8_axis``,
+        ``hours_to_eav``, ``hours_to_elv``, ``verdict``; a missing value None), ``verdict`` (the
+        worst), ``worst_speeds_km_h`` (the speeds with that verdict), ``axes`` (governing axis ->
+        its speeds), ``variant`` (the variant's name) and ``working_speed_km_h``.
+
+    Examples
+    --------
+    >>> t = pd.DataFrame({"speed_km_h": [8.0, 4.0], "front_pressure_bar": 1.6, "rear_pressure_bar": 1.2,
+    ...                   "a8_m_s2": [0.6, 0.1], "a8_axis": ["x", "z"], "hours_to_eav": [5.6, 200.0],
+    ...                   "hours_to_elv": [29.4, 1000.0], "verdict": ["above action value", "below action value"]})
+    >>> a = answer(t)
+    >>> a["verdict"], a["worst_speeds_km_h"], a["axes"], [r["speed_km_h"] for r in a["rows"]]
+    ('above action value', [8.0], {'z': [4.0], 'x': [8.0]}, [4.0, 8.0])
+    """
+    t = table
+    if "is_nominal" in t and t["is_nominal"].astype(bool).any():
+        t = t[t["is_nominal"].astype(bool)]
+    labels = variant_labels(t)
+    t = t[labels == labels.iloc[0]].sort_values("speed_km_h", kind="stable")
+
+    def value(row, col):
+        v = row.get(col)
+        return None if v is None or (isinstance(v, float) and pd.isna(v)) else v
+
+    rows = [{c: value(r, c) for c in ("speed_km_h", "a8_m_s2", "a8_axis", "hours_to_eav", "hours_to_elv", "verdict")}
+            for r in t.to_dict(orient="records")]
+    rank = {v: k for k, v in enumerate(VERDICT_ORDER)}
+    worst = max((r["verdict"] for r in rows if r["verdict"] in rank), key=rank.get, default=None)
+    axes: dict = {}
+    for r in rows:
+        if r["a8_axis"]:
+            axes.setdefault(r["a8_axis"], []).append(r["speed_km_h"])
+    working = t["working_speed_km_h"].iloc[0] if "working_speed_km_h" in t and len(t) else None
+    from .tables import significant_decimals
+
+    finite = lambda col: [r[col] for r in rows if isinstance(r[col], (int, float)) and abs(r[col]) != float("inf")]
+    return {"rows": rows, "decimals": {"a8": significant_decimals(finite("a8_m_s2")),
+                                       "hours": significant_decimals(finite("hours_to_eav") + finite("hours_to_elv"))}, "verdict": worst, "worst_speeds_km_h": [r["speed_km_h"] for r in rows if r["verdict"] == worst],
+            "axes": axes, "variant": labels.iloc[0] if len(labels) else "",
+            "working_speed_km_h": None if working is None or pd.isna(working) else float(working)}
+
+
+def warning_groups(warnings) -> list[tuple[str, list[str]]]:
+    """Warnings grouped by what they are about: the front tyre, the rear tyre, the rest (in that
+    order, empty groups left out), each without its ``tyres.front:`` prefix.
+
+    Examples
+    --------
+    >>> warning_groups(["tyres.rear: a", "track: b", "tyres.front: c", "tyres.rear: d"])
+    [('front tyre', ['c']), ('rear tyre', ['a', 'd']), ('scenario', ['track: b'])]
+    """
+    groups = {"front tyre": [], "rear tyre": [], "scenario": []}
+    for w in warnings:
+        for axle in ("front", "rear"):
+            if w.startswith(f"tyres.{axle}:"):
+                groups[f"{axle} tyre"].append(w.partition(":")[2].strip())
+                break
+        else:
+            groups["scenario"].append(w)
+    return [(k, v) for k, v in groups.items() if v]
 
 
 #: The ``ride_results`` columns of the tyre pressures, and the scenario keys they are.
@@ -170,10 +246,20 @@ def scenario_figures(table: pd.DataFrame, spectra: pd.DataFrame, transmissibilit
                       f"(ELV) values in {hours_per_day:g} h.", "aw_against_speed",
                       (table.assign(variant=variant_labels(table)), hours_per_day))]
     if len(keys) >= 2:
+        speeds = sorted(float(v) for v in table["speed_km_h"].unique())
+        working = (float(table["working_speed_km_h"].iloc[0]) if "working_speed_km_h" in table
+                   and float(table["working_speed_km_h"].iloc[0]) in speeds else speeds[(len(speeds) - 1) // 2])
+        labels = {"x_label": _axis_label(keys[0]), "y_label": _axis_label(keys[1])}
+        other = " (other swept keys: the lowest hours)" if len(keys) > 2 else ""
         out.append(RideFigure(
-            "hours_heatmap", f"Hours to the EU action value (the worst speed of each variant) over {keys[0]} and "
-                             f"{keys[1]}" + (" (other swept keys: the lowest hours)" if len(keys) > 2 else "") + ".",
-            "hours_heatmap", (table, keys[0], keys[1]), {"x_label": _axis_label(keys[0]), "y_label": _axis_label(keys[1])}))
+            "hours_heatmap", f"Hours to the EU action value over {keys[0]} and {keys[1]} at the working speed, "
+                             f"{working:g} km/h ([exposure] working_speed_km_h; default: the middle speed){other}.",
+            "hours_heatmap", (table, keys[0], keys[1]), {**labels, "speed_km_h": working}))
+        rest = [v for v in speeds if v != working]
+        if rest:
+            out.append(RideFigure(
+                "hours_heatmaps", "The same at the other speeds (one colour scale).",
+                "hours_heatmaps", (table, keys[0], keys[1], rest), labels))
     else:
         out.append(RideFigure("hours_heatmap", "Hours to the action value over two swept keys",
                               note=_heatmap_note(keys, n_variants)))
@@ -211,6 +297,7 @@ def scenario_sections(scenarios: pd.DataFrame, results: pd.DataFrame, spectra: p
     -------
     list of dict
         In the order of ``scenarios``: ``scenario`` (its name), ``file``, ``anchor`` (an HTML id),
+        ``answer`` (:func:`answer`: verdict, governing axis and hours per speed),
         ``variants`` (:func:`variant_rows`), their ``decimals`` (:func:`variant_decimals`) and ``figures`` (:func:`scenario_figures` of its
         ``ride_results`` rows and the PSD and transmissibility of the variant shown there).
     """
@@ -227,7 +314,7 @@ def scenario_sections(scenarios: pd.DataFrame, results: pd.DataFrame, spectra: p
         note = surface_edge_note(getattr(row, "surface", "iso8608"), float(rows["speed_km_h"].min()))
         variants = variant_rows(rows)
         out.append({"scenario": row.scenario, "file": row.file, "anchor": f"scenario-{k + 1}",
-                    "variants": variants, "decimals": variant_decimals(variants),
+                    "answer": answer(rows), "hours_per_day": hours, "variants": variants, "decimals": variant_decimals(variants),
                     "figures": scenario_figures(rows, psd, trans, hours, note, shown)})
     return out
 

@@ -611,8 +611,7 @@ def scenario_task(item: tuple) -> dict:
         results = ride.ride_sweep(sc, tyre_data=tyre_data, with_spectra=True)
         # the scenario row's modes are those at the scenario's own pressures, which a [sweep] need not
         # list first, or at all: from the nominal pair's result, else from the nominal tyres
-        nominal = [r for r in results if r.tyres["front"].pressure_bar == sc.front.pressure_bar
-                   and r.tyres["rear"].pressure_bar == sc.rear.pressure_bar]
+        nominal = [r for r in results if r.nominal]  # its pressures and the file's value of each swept key
         nat, nodal = ((nominal[0].natural_frequencies_Hz, nominal[0].nodal_points_m) if nominal else
                       ride.modes(assemble(ride.build_parts(sc, ride.resolve_tyres(sc, tyre_data), 0))))
     except (ScenarioError, ValueError) as exc:
@@ -621,8 +620,6 @@ def scenario_task(item: tuple) -> dict:
         return {"file": path, "error": f"the ride model failed: {type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"}
     table = ride.results_table(results, sc.name)
     table["file"] = path  # rows are keyed by the scenario file: two files may share a name
-    table["is_nominal"] = (table["front_pressure_bar"] == sc.front.pressure_bar) & \
-        (table["rear_pressure_bar"] == sc.rear.pressure_bar)
     s = sc.surface
     row = {
         "scenario": sc.name, "file": path, "source": source, "description": sc.description,

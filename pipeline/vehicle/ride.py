@@ -802,6 +802,9 @@ class RideResult:
     signals: dict = field(default_factory=dict)
     #: The swept keys' values of this variant (:func:`ride_sweep`), ``{"section.key": value}``.
     variant: dict = field(default_factory=dict)
+    #: The variant at the scenario's own values (its tyre pressures and the file's value of every swept
+    #: key; :func:`ride_sweep`): the one whose spectra the pages show.
+    nominal: bool = True
 
     @property
     def modes(self) -> pd.DataFrame:
@@ -1542,9 +1545,31 @@ def ride_sweep(
         size = max(1, min(SWEEP_CHUNK, -(-len(scenarios) // 8)))
         chunks = [(scenarios[k:k + size], tyre_data, with_spectra) for k in range(0, len(scenarios), size)]
         results = [r for chunk in map_fn(_ride_batch, chunks) for r in chunk]
+    own = {key: _own_value(scenario, key) for key in (combos[0] if combos else {})}
     for r, (_, combo) in zip(results, variants):
         r.variant = dict(combo)
+        r.nominal = (r.tyres["front"].pressure_bar == scenario.front.pressure_bar
+                     and r.tyres["rear"].pressure_bar == scenario.rear.pressure_bar
+                     and all(own[k] is not None and float(v) == own[k] for k, v in combo.items()))
     return results
+
+
+def _own_value(scenario: Scenario, key: str) -> float | None:
+    """The scenario file's own value of a numeric key ``"section.key"`` (its schema default when the
+    file does not give it; None without either, or for one value per speed)."""
+    from .scenario import numeric_key
+
+    node = scenario.doc
+    for part in key.split("."):
+        node = node.get(part) if isinstance(node, dict) else None
+    if node is None:
+        node = (numeric_key(key) or {}).get("default")
+    return float(node) if isinstance(node, (int, float)) and not isinstance(node, bool) else None
+
+
+def nominal_result(results: list[RideResult]) -> RideResult:
+    """The variant at the scenario's own values (:attr:`RideResult.nominal`), else the first."""
+    return next((r for r in results if r.nominal), results[0])
 
 
 def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, speeds_km_h=None,
@@ -1653,7 +1678,7 @@ def result_json(results: list[RideResult]) -> dict:
     """The ``tyrelab ride`` JSON: the first pressure pair at the top, every pair under ``sweep``.
 
     Top-level keys: ``name``, ``scenario``, ``track``, ``spectrum_source``,
-    ``hours_per_day``, ``tyres`` (``front``/``rear``: size, pressure, stiffness and
+    ``hours_per_day``, ``working_speed_km_h`` (``[exposure]``'s, else the middle speed), ``tyres`` (``front``/``rear``: size, pressure, stiffness and
     damping per tyre at the first speed, their sources, radius, footprint,
     warnings, ``stiffness_u_kN_per_m``), ``natural_frequencies_Hz`` (``bounce``, ``pitch``)
     and ``natural_frequencies_Hz_ci95`` (their 95 % intervals from the tyre stiffness uncertainty),
@@ -1681,7 +1706,8 @@ def result_json(results: list[RideResult]) -> dict:
     first = results[0]
     sc = first.scenario
     out = {"name": sc.name, "scenario": str(sc.path) if sc.path else None, "track": first.track_label,
-           "spectrum_source": first.spectrum_source, "hours_per_day": sc.exposure.hours_per_day, **block(first),
+           "spectrum_source": first.spectrum_source, "hours_per_day": sc.exposure.hours_per_day,
+           "working_speed_km_h": sc.exposure.working_speed, **block(first),
            "warnings": sorted({w for r in results for w in r.warnings})}
     if len(results) > 1:
         out["sweep"] = [{"front_pressure_bar": r.tyres["front"].pressure_bar,
@@ -1711,6 +1737,8 @@ def results_table(results: list[RideResult], scenario_id: str | None = None) -> 
         df["modes_Hz"] = "; ".join(f"{k} {v:.3f}" for k, v in r.natural_frequencies_Hz.items())
         df["front_stiffness_source"] = r.tyres["front"].stiffness_source
         df["rear_stiffness_source"] = r.tyres["rear"].stiffness_source
+        df["working_speed_km_h"] = r.scenario.exposure.working_speed  # the heatmap's speed ([exposure])
+        df["is_nominal"] = r.nominal
         df["variant"] = ", ".join(f"{k}={v:g}" for k, v in r.variant.items())
         for k, v in r.variant.items():  # one column per swept key
             df[k] = v

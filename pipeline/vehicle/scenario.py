@@ -225,10 +225,31 @@ class ExposureSpec:
     speeds_km_h: tuple[float, ...]
     hours_per_day: float = 8.0
     list_speeds_km_h: tuple[float, ...] = ()
+    #: ``working_speed_km_h`` as given (None: the middle speed; :attr:`working_speed`).
+    working_speed_km_h: float | None = None
 
     def __post_init__(self):
         if not self.list_speeds_km_h:
             object.__setattr__(self, "list_speeds_km_h", tuple(self.speeds_km_h))
+
+    @property
+    def working_speed(self) -> float:
+        """The speed the tractor works at, km/h: ``working_speed_km_h`` when it is one of the speeds
+        run, else the middle one of the sorted speeds (the lower middle for an even count)."""
+        speeds = sorted(self.speeds_km_h)
+        if self.working_speed_km_h is not None and self.working_speed_km_h in speeds:
+            return float(self.working_speed_km_h)
+        return float(speeds[(len(speeds) - 1) // 2])
+
+    @property
+    def working_speed_source(self) -> str:
+        """Why :attr:`working_speed` is what it is (said on the pages)."""
+        if self.working_speed_km_h is not None and self.working_speed_km_h in self.speeds_km_h:
+            return "[exposure] working_speed_km_h"
+        if self.working_speed_km_h is not None:
+            return (f"the middle speed ([exposure] working_speed_km_h = {self.working_speed_km_h:g} km/h is not "
+                    "among the speeds run)")
+        return "the middle speed (no [exposure] working_speed_km_h)"
 
 
 @dataclass(frozen=True)
@@ -432,6 +453,11 @@ def _validate(doc: dict, base_dir: Path, confine: bool = True, read_profile=None
             if k not in seat:
                 problems.append(f"seat.{k} is required with suspension = \"linear\"")
     problems += _parts_problems(doc)
+    ex, _ = _section_values(doc, "exposure")
+    if ex and _is_number(ex.get("working_speed_km_h")) and isinstance(ex.get("speeds_km_h"), list) \
+            and ex["working_speed_km_h"] not in ex["speeds_km_h"]:
+        problems.append(f"exposure.working_speed_km_h: {ex['working_speed_km_h']:g} km/h is not one of "
+                        f"exposure.speeds_km_h ({', '.join(f'{v:g}' for v in ex['speeds_km_h'] if _is_number(v))})")
     surf, _ = _section_values(doc, "surface")
     if surf:
         kind = surf.get("kind")
@@ -699,7 +725,9 @@ def _build(doc: dict, path: Path | None, base_dir: Path, confine: bool = True, p
             lead_in_m=float(surf.get("lead_in_m", 5.0)), tracks=surf.get("tracks", "independent"),
             profile_data=(profiles or {}).get(profile),
         ),
-        exposure=ExposureSpec(tuple(float(v) for v in ex["speeds_km_h"]), float(ex.get("hours_per_day", 8.0))),
+        exposure=ExposureSpec(tuple(float(v) for v in ex["speeds_km_h"]), float(ex.get("hours_per_day", 8.0)),
+                              working_speed_km_h=(float(ex["working_speed_km_h"]) if "working_speed_km_h" in ex
+                                                  else None)),
         simulation=SimulationSpec(sim.get("duration_s"), bool(sim.get("lift_off", True))),
         sweep=SweepSpec(tuple(float(v) for v in sweep.get("front_pressures_bar", ())),
                         tuple(float(v) for v in sweep.get("rear_pressures_bar", ())),

@@ -128,7 +128,7 @@ def test_a_sweep_of_scenario_keys_names_the_variant_of_every_speed_row(tmp_path)
     assert len(rows) == 2 and "cg_height_m=0.9" in rows[0] and "cg_height_m=1.1" in rows[1]
     html = ride_page.render_page(results)
     table = re.search(r"<h2>Seat vibration per speed</h2>.*?</table>", html, re.S).group(0)
-    assert "<th>variant</th>" in table and '<td class="text">cg_height_m=1.1</td>' in table
+    assert "<th class=\"text\">variant</th>" in table and '<td class="text">cg_height_m=1.1</td>' in table
 
 
 def test_a_legend_too_long_to_fit_says_how_many_lines_it_leaves_out():
