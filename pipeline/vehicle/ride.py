@@ -620,7 +620,9 @@ def build_profile(scenario: Scenario) -> Track:
         nper = max(8, int(round(seg / prof.dx_m)))
         n_w, g_ll = signal.welch(prof.left_m, 1.0 / prof.dx_m, nperseg=nper)
         _, g_rr = signal.welch(prof.right_m, 1.0 / prof.dx_m, nperseg=nper)
-        _, g_lr = signal.csd(prof.left_m, prof.right_m, 1.0 / prof.dx_m, nperseg=nper)
+        # the model's S_LR is E[L R*] (the output spectrum is h S h^H); scipy.signal.csd(x, y)
+        # averages conj(X) Y, i.e. E[L* R]: hence csd(right, left) (field notes)
+        _, g_lr = signal.csd(prof.right_m, prof.left_m, 1.0 / prof.dx_m, nperseg=nper)
         keep = n_w > 0
         side = (n_w[keep], g_ll[keep], g_rr[keep], g_lr[keep])
         source = "the tracks' own Welch spectra and cross-spectrum"
