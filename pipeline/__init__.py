@@ -2,24 +2,35 @@
 agricultural tractor tyres (Lines 1991, "The Suspension Characteristics of
 Agricultural Tractor Tyres", PhD thesis, Cranfield/Silsoe).
 
-The package is organised by thesis chapter:
+.. rubric:: Entry points (one question each, a result object with ``to_dict()``)
 
-- :mod:`tyrelab.measurement` -- chapter 3, the apparent-mass method.
-- :mod:`tyrelab.tyre`        -- chapters 4-5, stiffness and damping regressions.
-- :mod:`tyrelab.vehicle`     -- chapters 6-8, simulators and ride metrics.
-- :mod:`tyrelab.rig`         -- the virtual dynamic tyre test vehicle.
-- :mod:`tyrelab.rawformat`   -- raw recording format v1 (channels, readers, validator).
-- :mod:`tyrelab.stages`      -- thin I/O stages that call the pure functions.
+.. autosummary::
 
-The library's entry points are importable from here; they and the
-subpackages are imported on first use (PEP 562), so ``import tyrelab`` stays
-cheap.
+   analyse_recording -- K, C and QC of one tyre-rig recording (``analyze_recording``: the same).
+   ride              -- seat vibration and daily exposure of a tractor scenario.
+   exposure          -- a driver's daily exposure from seat recordings.
+
+.. rubric:: Packages, by thesis chapter
+
+.. autosummary::
+
+   measurement       -- chapter 3: the apparent-mass method, QC, calibration, uncertainty.
+   tyre              -- chapters 4-5: sizes, the stiffness formula, regressions, export.
+   vehicle           -- chapters 6-8: ride prediction, exposure, the thesis' studies.
+   rig               -- the virtual dynamic tyre test vehicle.
+   rawformat         -- raw recording format v1 (channels, readers, validator).
+   warehouse         -- the DuckDB warehouse (``query``).
+   stages            -- thin I/O stages that call the pure functions.
+
+They and the subpackages are imported on first use (PEP 562), so ``import tyrelab`` stays cheap.
 
 Examples
 --------
 >>> import tyrelab
 >>> tyrelab.analyze_recording.__module__
 'tyrelab.api'
+>>> tyrelab.analyse_recording is tyrelab.analyze_recording
+True
 >>> tyrelab.CHANNELS[:2]
 ['accel_left_m_s2', 'accel_right_m_s2']
 """

@@ -1,9 +1,35 @@
-"""Tyre stiffness and damping, thesis chapters 4-5: size parsing, the stiffness
-formula, run conditions, regressions on pressure/speed/load/size, the spoke
-damping model and the formula's accuracy.
+"""Tyre stiffness and damping, thesis chapters 4-5: sizes, the formula, regressions, export.
 
-Every public name of its submodules (their ``__all__``) is importable from
-here; a submodule is imported on first use (:mod:`tyrelab._lazy`).
+Every public name of the submodules below (their ``__all__``) is importable from here; a submodule
+is imported on first use (:mod:`tyrelab._lazy`). One tyre run's K and C is
+:func:`tyrelab.analyse_recording`.
+
+.. rubric:: Sizes and the empirical formula
+
+.. autosummary::
+
+   sizes             -- tyre size designations, inch and metric (``parse_tyre_size``, rolling circumference).
+   stiffness         -- rolling stiffness from size, age and pressure, with its interval (``estimate_stiffness``).
+   formula_fit       -- the formula K = a + b R + c A + d W R P as a fitted model (the thesis' or your lab's).
+   formula_accuracy  -- how well the formula predicts rolling stiffness (§4.5.3).
+   models            -- the stiffness models from tables: the thesis' and a build's.
+
+.. rubric:: Regressions of chapters 4 and 5
+
+.. autosummary::
+
+   conditions        -- which runs count for which thesis regression: the one place for the convention.
+   regressions       -- stiffness and damping on pressure, speed, load, amplitude, frequency (Tables III-X).
+   size_regressions  -- across-tyre regressions the formula's coefficients rest on (§4.4.4, §4.5.3).
+   speed_dependence  -- a measured tyre's K or C at any speed from its per-speed fits.
+   damping_fit       -- damping of an unmeasured tyre from the Table VII lines.
+   spoke             -- the rotating-spoke damping model (§5.5.2).
+
+.. rubric:: Export
+
+.. autosummary::
+
+   mf_tyre           -- a measured tyre as MF-Tyre ``.tir`` files and K(P), C(P) tables.
 """
 
 from .._lazy import attach
