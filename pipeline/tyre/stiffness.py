@@ -91,6 +91,17 @@ def undriven_front_tyre_stiffness(size: str | TyreSize, pressure_bar: float) -> 
     -------
     float
         Stiffness K in kN/m.
+
+    See Also
+    --------
+    estimate_tyre_stiffness : either rule by the tyre's kind, with water ballast.
+
+    Examples
+    --------
+    The thesis' F1 itself (7.5-18) at 2 bar: its measured 134 kN/m per bar, times 2:
+
+    >>> round(undriven_front_tyre_stiffness("7.5-18", 2.0), 6)
+    268.0
     """
     s = _size(size)
     pressure_bar = _validate.non_negative("pressure_bar", pressure_bar)
@@ -109,6 +120,34 @@ def estimate_tyre_stiffness(
 
     Uses :func:`traction_tyre_stiffness`, or :func:`undriven_front_tyre_stiffness`
     for an undriven ribbed front tyre, times 1.25 for water ballast.
+
+    Parameters
+    ----------
+    size : str or TyreSize
+        ``13.6-38``, ``480/70R38``, … (:func:`tyrelab.tyre.sizes.parse_tyre_size`).
+    pressure_bar, age_years : float
+        Inflation pressure, bar; tyre age, years.
+    undriven_front, water_ballast : bool
+        The ribbed front tyre rule; ×1.25 for water ballast.
+
+    Returns
+    -------
+    float
+        Stiffness K in kN/m (the printed formulas; no interval).
+
+    See Also
+    --------
+    estimate_stiffness : the same with its prediction interval and range warnings.
+
+    Examples
+    --------
+    K = 172 − 1.77 R + 5.6 A + 0.34 W R P with W = 13.6 in, R = 38 in, A = 1, P = 1.1 bar:
+    172 − 67.26 + 5.6 + 193.28 = 303.62 kN/m (the README's ``estimate-stiffness`` example):
+
+    >>> round(estimate_tyre_stiffness("13.6-38", 1.1, 1.0), 2)
+    303.62
+    >>> round(estimate_tyre_stiffness("13.6-38", 1.1, 1.0, water_ballast=True) / 303.62, 2)
+    1.25
     """
     k = (
         undriven_front_tyre_stiffness(size, pressure_bar)
