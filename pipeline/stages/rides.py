@@ -226,13 +226,17 @@ def run(ctx: Context) -> StageResult:
             except RunFileError as exc:
                 refuse(campaign, ride_id, file, str(exc))
                 continue
-            scenario_path = track = fits = None
+            scenario_path = track = fits = profiles = None
             try:
                 track = rv.track_of(row.get("track"), campaign)
                 if isinstance(row.get("scenario"), str) and row["scenario"].strip():
                     scenario_path = confined_run_path(campaign, row["scenario"].strip())
-                    fits = scenario_fits(load_scenario(scenario_path), fit_tables)
-            except (ValueError, RunFileError) as exc:
+                    scenario = load_scenario(scenario_path)
+                    fits = scenario_fits(scenario, fit_tables)
+                    # the profiles the prediction reads: the scenario's (as read) or the row's track file
+                    profiles = (scenario.surface.profile_data,
+                                cache.file_digest(track.profile) if track.kind == "profile" else None)
+            except (ValueError, RunFileError, OSError) as exc:  # OSError: the track's profile went unreadable
                 problems = exc.problems if isinstance(exc, ScenarioError) else [str(exc)]
                 refuse(campaign, ride_id, file, f"scenario {row.get('scenario')}: {'; '.join(problems)}"
                        if isinstance(exc, (ScenarioError, RunFileError)) else str(exc))
@@ -264,7 +268,7 @@ def run(ctx: Context) -> StageResult:
                 # its recording, its scenario and the fits of ITS tyres (scenario_fits): a new run of
                 # another tyre leaves the key alone
                 vkey = cache.key("validation", digest, cache.file_digest(scenario_path), speed, repr(track), fits,
-                                 channel_map)
+                                 channel_map, profiles)
                 val = cache.get_or_compute(vkey, lambda: _validate(path, channel_map, scenario_path, speed, track,
                                                                    FitTyres(fits, str(ctx.parquet)),
                                                                    result.get("analysis")))

@@ -112,8 +112,8 @@ def _side_by_side(ours: pd.DataFrame, thesis: pd.DataFrame, keys: list[str]) -> 
 
 
 def _ride_plan(ctx: Context, files: list[tuple[str, str]], cache: ItemCache) -> tuple[list, list]:
-    """The ride scenarios, each kept under the digest of what it reads: its file, and the rows of this
-    run's fit tables its tyres read (:func:`tyrelab.stages.tyredata.scenario_fits`: a measured tyre's
+    """The ride scenarios, each kept under the digest of what it reads: its file (and the data of the
+    profile CSV its surface names), and the rows of this run's fit tables its tyres read (:func:`tyrelab.stages.tyredata.scenario_fits`: a measured tyre's
     per-speed fits, the build's formula), which its task is handed (:class:`~tyrelab.stages.tyredata.FitTyres`)
     and nothing else. Returns the keys and the tyre data, one per file (:func:`_ride_todo`)."""
     tables = read_fit_tables(ctx)
@@ -121,10 +121,11 @@ def _ride_plan(ctx: Context, files: list[tuple[str, str]], cache: ItemCache) -> 
     for path, source in files:
         text = Path(path).read_bytes()
         try:
-            fits = scenario_fits(load_scenario(path), tables)
+            sc = load_scenario(path)
+            fits, profile = scenario_fits(sc, tables), sc.surface.profile_data  # a profile CSV's data, as read
         except (ScenarioError, ValueError, OSError):
-            fits = {}  # its task refuses the file, reading the same bytes
-        keys.append(cache.key("ride", path, source, text, fits))
+            fits, profile = {}, None  # its task refuses the file, reading the same bytes
+        keys.append(cache.key("ride", path, source, text, fits, profile))
         tyres.append(FitTyres(fits, str(ctx.parquet)))
     return keys, tyres
 

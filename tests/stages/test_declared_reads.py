@@ -177,3 +177,23 @@ def test_explain_lists_the_items_of_a_stage_that_runs(tmp_path):
     assert "item validation <- its recording's analysis, its scenario, the fit rows of its tyres" in rides
     simulate_part = text.split("\nsimulate ", 1)[1].split("\nwarehouse ", 1)[0]
     assert "now: ride scenarios: 0 kept, 2 to run; Table XX: to run" in simulate_part  # nothing built yet
+
+
+def test_a_scenarios_profile_csv_is_in_its_key(tmp_path):
+    """A raw scenario's surface profile is read with it: an edited profile CSV (the scenario's
+    text unchanged) gives the scenario another key, so it is run again."""
+    import numpy as np
+
+    from tyrelab.stages.state import ItemCache
+
+    folder = tmp_path / "raw" / "scenarios"
+    folder.mkdir(parents=True)
+    x = np.arange(0, 200.0, 0.05)
+    profile = pd.DataFrame({"distance_m": x, "height_m": 0.004 * np.sin(2 * np.pi * x / 2.5)})
+    profile.to_csv(folder / "sine.csv", index=False)
+    path = write(folder, scenario_text('kind = "profile"\nprofile = "sine.csv"'), "p.toml")
+    ctx = Context(raw=tmp_path / "raw", build=tmp_path / "build", jobs=1)
+    keys = simulate._ride_plan(ctx, [(str(path), "raw")], ItemCache(ctx, "simulate"))[0]
+    profile.assign(height_m=2 * profile["height_m"]).to_csv(folder / "sine.csv", index=False)
+    again = simulate._ride_plan(ctx, [(str(path), "raw")], ItemCache(ctx, "simulate"))[0]
+    assert keys != again

@@ -175,3 +175,24 @@ def test_a_new_run_of_a_tyre_revalidates_its_recordings_only_reading_no_recordin
     pd.testing.assert_frame_equal(after.drop(index="r2", level=0), before.drop(index="r2", level=0))
     assert (after.loc["r2", "predicted_a_w_m_s2"] != before.loc["r2", "predicted_a_w_m_s2"]).all()
     assert (after.loc["r2", "measured_a_w_m_s2"] == before.loc["r2", "measured_a_w_m_s2"]).all()
+
+
+def test_an_edited_track_profile_revalidates_the_recordings_on_it(campaign, tmp_path):
+    """A rides.csv row on a profile CSV of the campaign: the prediction reads that file, so an edited
+    profile validates the row again (the recording's analysis is reused)."""
+    raw, build = tmp_path / "raw", tmp_path / "build"
+    c = raw / "farm"
+    (c / "rec").mkdir(parents=True)
+    shutil.copy(campaign / "farm" / "rec" / "same.parquet", c / "rec" / "a.parquet")
+    shutil.copy(campaign / "farm" / "mf698t.toml", c / "mf698t.toml")
+    x = np.arange(0, 200.0, 0.05)
+    track = pd.DataFrame({"distance_m": x, "height_m": 0.004 * np.sin(2 * np.pi * x / 2.5)})
+    track.to_csv(c / "track.csv", index=False)
+    (c / "rides.csv").write_text(ROWS + "r1,rec/a.parquet,X,15,track.csv,1991-06-12,mf698t.toml,,,\n", encoding="utf-8")
+    ctx = Context(raw=raw, build=build, jobs=1, log=logging.getLogger("test"))
+    assert run_stage("rides", ctx).message == "recordings 0 reused, 1 computed, validations 0 reused, 1 computed"
+    before = ctx.read_table("ride_validation")
+    track.assign(height_m=2 * track["height_m"]).to_csv(c / "track.csv", index=False)
+    assert run_stage("rides", ctx).message == "recordings 1 reused, 0 computed, validations 0 reused, 1 computed"
+    after = ctx.read_table("ride_validation")
+    assert (after["predicted_a_w_m_s2"] != before["predicted_a_w_m_s2"]).all()
