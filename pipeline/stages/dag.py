@@ -180,7 +180,7 @@ STAGES: dict[str, Stage] = {s.name: s for s in (
           items=("per-tyre fits <- that tyre's results and catalogue row",
                  "published-only parts <- the published tables they read"),
           doc="Tables III-X, size regressions, formula accuracy, spoke model"),
-    Stage("simulate", reads=("published", "scenarios", *_tables(*FIT_TABLES, "recordings")),
+    Stage("simulate", reads=("raw", "published", "scenarios", *_tables(*FIT_TABLES, "recordings")),
           writes=(*_tables(*SIMULATE_TABLES), quarantine_part("simulate")), ahead=True,
           items=("study, case <- its published rows (a carriage case: its recording, by content)",
                  "ride scenario <- its file, the fit rows of its tyres (measured_tyre_id; formula = \"build\")",
