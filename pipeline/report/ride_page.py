@@ -38,6 +38,8 @@ QUANTITIES = {
     "lift-off fraction": ("lift_off_fraction_front", "lift_off_fraction_rear"),
     "hours": ("hours_to_eav", "hours_to_elv"),
 }
+#: Decimals of a fraction of the record (lift-off): one sample in a thousand.
+FRACTION_DECIMALS = 3
 #: Columns shown as given (the scenario's speeds and pressures).
 KEY_COLUMNS = ("speed_km_h", "front_pressure_bar", "rear_pressure_bar")
 #: Narrowest column of ``--format table`` (a header wraps at word boundaries within it).
@@ -63,9 +65,16 @@ def _rows(doc: dict) -> list[dict]:
                        if b.get("variant") else {})} for b in blocks for row in b["speeds"]]
 
 
+#: Columns of a quantity the pitch-plane model does not have (its a_wy is 0 by construction): left
+#: out of the table when every row has 0, rather than shown as a measured 0.
+LATERAL_COLUMNS = ("a_wy_m_s2", "expected_a_wy_m_s2")
+
+
 def _columns(doc: dict, rows: list[dict]) -> list[str]:
+    no_lateral = all(not r.get(c) for r in rows for c in LATERAL_COLUMNS)
     return [c for c in SPEED_COLUMNS if c in rows[0] and (c not in ("front_pressure_bar", "rear_pressure_bar")
-                                                          or "sweep" in doc)]
+                                                          or "sweep" in doc)
+            and not (no_lateral and c in LATERAL_COLUMNS)]
 
 
 def number_formats(doc: dict) -> dict:
@@ -88,10 +97,10 @@ def number_formats(doc: dict) -> dict:
     rows = _rows(doc)
     blocks = doc.get("sweep") or [doc]
     columns = {}
-    for cols in QUANTITIES.values():
+    for quantity, cols in QUANTITIES.items():
         values = [r[c] for r in rows for c in cols if c in r and isinstance(r[c], (int, float))]
-        for c in cols:
-            columns[c] = significant_decimals(values)
+        for c in cols:  # a fraction of the record: to 0.001 always (a 0 is a measured none, "0.000")
+            columns[c] = FRACTION_DECIMALS if quantity == "lift-off fraction" else significant_decimals(values)
     tyres = [b["tyres"][axle] for b in blocks for axle in ("front", "rear")]
     u = [COVERAGE_95 * t.get("stiffness_u_kN_per_m", 0.0) for t in tyres if t.get("stiffness_u_kN_per_m")]
     stiffness = uncertainty_decimals(u) if u else significant_decimals([t["stiffness_kN_per_m"] for t in tyres])

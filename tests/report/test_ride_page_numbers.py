@@ -1,0 +1,32 @@
+"""One number rule on the ride page (issue 38): a quantity the model does not have is not shown as a
+measured 0; a fraction always to 0.001; hours never reached say so; a missing value is "–"."""
+
+import re
+
+from tests.scenarios import scenario_text, write
+from tyrelab.report import ride_page
+from tyrelab.report.ride_sections import answer
+from tyrelab.scenario_io import load_scenario
+from tyrelab.vehicle import ride
+
+
+def test_pitch_plane_page_has_no_lateral_columns_and_fractions_have_three_decimals(tmp_path):
+    res = ride.ride(load_scenario(write(tmp_path, scenario_text(speeds="[6, 12]"))), with_spectra=False)
+    doc = ride.result_json([res])
+    text = ride_page.format_table(doc)
+    assert "a_wy" not in text.split("a_wz: W_k")[0]  # the table; the footnote still explains a_wy
+    html = ride_page.render_page([res], doc)
+    table = re.search(r'<table class="speeds">.*?</table>', html, re.S).group(0)
+    assert "a_wy" not in table and "lift off fraction" in table
+    lift = [c for c in re.findall(r"<td>([^<]*)</td>", table) if c in ("0", "0.000")]
+    assert lift and set(lift) == {"0.000"}
+
+
+def test_answer_says_never_and_dash():
+    import pandas as pd
+
+    t = pd.DataFrame({"speed_km_h": [4.0], "front_pressure_bar": 1.6, "rear_pressure_bar": 1.2, "a8_m_s2": [0.0],
+                      "a8_axis": [None], "hours_to_eav": [float("inf")], "hours_to_elv": [float("nan")],
+                      "verdict": ["below action value"]})
+    row = answer(t)["rows"][0]
+    assert row["hours_to_eav"] == float("inf") and row["hours_to_elv"] is None and row["a8_axis"] is None
