@@ -427,7 +427,7 @@ def cmd_road(args) -> int:
         lines = [f"{path}: ISO 8608 class from G_d(n0) fitted with waviness 2"]
         for name, c in doc["tracks"].items():
             where = f" (v = {doc['lateral_position_m'][name]:g} m)" if "lateral_position_m" in doc else ""
-            g0 = f"G_d(n0) = {c['g0_m3'] * 1e6:.4g}e-6 m³" if c["g0_m3"] else "G_d(n0) not resolved (too short or coarse)"
+            g0 = f"G_d(n0) = {c['g0_m3']:.3g} m³" if c["g0_m3"] else "G_d(n0) not resolved (too short or coarse)"
             lines.append(f"  {name}{where}: class {c['class'] or '-'}, {g0}, r.m.s. {c['rms_m'] * 1000:.2f} mm, "
                          f"length {c['length_m']:g} m")
         sys.stdout.write("\n".join(lines) + "\n")

@@ -144,7 +144,7 @@ def format_table(doc: dict) -> str:
     if doc.get("road_class"):
         lines.append("  ISO 8608 class (G_d(n0), waviness 2): " + "; ".join(
             f"{name.replace('_', ' ')} {c['class'] or 'not resolved'}"
-            + (f" ({c['g0_m3'] * 1e6:.3g}e-6 m³)" if c.get("g0_m3") else "") for name, c in doc["road_class"].items()))
+            + (f" ({c['g0_m3']:.3g} m³)" if c.get("g0_m3") else "") for name, c in doc["road_class"].items()))
     for axle in ("front", "rear"):
         t = doc["tyres"][axle]
         u = COVERAGE_95 * (t.get("stiffness_u_kN_per_m") or 0.0)
