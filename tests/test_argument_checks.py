@@ -339,6 +339,7 @@ ROWS = [
     # vehicle/model.py
     (f"{VE}.model.assemble", dict(parts="tractor"), "parts"),
     (f"{VE}.model.coordinate_output", dict(name=None), "name"),
+    (f"{VE}.elements.element", dict(name="e", g=[1.0], stiffness=1.0, damping=1.0, model="coulomb"), "model"),
     # vehicle/profiles.py
     (f"{VE}.profiles.spectral_synthesis", dict(n_samples=100, dx_m=0.05, g0_m3=-1e-4, rng=lambda: np.random.default_rng(1)), "g0_m3"),
     (f"{VE}.profiles.slatted_track", dict(length_m=0.0), "length_m"),
