@@ -350,6 +350,7 @@ ROWS = [
     (f"{VE}.ride.crg_profile", dict(scenario=None), "scenario"),
     (f"{VE}.ride.road_classes", dict(profile=None), "profile"),
     (f"{VE}.profiles.uniform_grid", dict(x_m=[0.0, NAN, 1.0]), "x_m"),
+    (f"{VE}.elements.element", dict(name="e", g=[1.0], stiffness=1.0, damping=1.0, model="coulomb"), "model"),
     # vehicle/profiles.py
     (f"{VE}.profiles.spectral_synthesis", dict(n_samples=100, dx_m=0.05, g0_m3=-1e-4, rng=lambda: np.random.default_rng(1)), "g0_m3"),
     (f"{VE}.profiles.slatted_track", dict(length_m=0.0), "length_m"),

@@ -67,7 +67,7 @@ from . import profiles as pr
 from .carriage import GRAVITY_M_S2
 from .scenario import Scenario, with_overrides, with_values
 from .carriage import half_step_input
-from .model import Assembly, Axle, Cab, Chassis, Implement, Parts, SeatPoint, assemble
+from .model import Assembly, Axle, Cab, Chassis, Implement, Parts, SeatPoint, SeatSuspension, assemble
 from .tractor import Tractor, simulate, tractor_parts
 from .scenario_limits import MIN_VERDICT_DURATION_S
 
@@ -382,8 +382,7 @@ def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Part
         axle("front", t.front_distance_m, scenario.front_axle, t.front_track_m),
         axle("rear", -t.rear_distance_m, scenario.rear_axle, t.rear_track_m, longitudinal_model=lon,
              longitudinal_stiffness_N_per_m=kx, longitudinal_damping_N_s_per_m=cx),
-        SeatPoint(seat.ahead_of_cg_m, seat.left_of_cg_m, seat.height_above_cg_m),
-        cab, imp, scenario.ballast)
+        _seat_part(seat), cab, imp, scenario.ballast)
 
 
 # --------------------------------------------------------------------------- linear model
@@ -479,7 +478,15 @@ def seat_filter(natural_frequency_Hz: float, damping_ratio: float):
     z = float(damping_ratio)
     if not (math.isfinite(z) and z >= 0):
         raise ValueError(f"damping_ratio must be finite and non-negative, got {damping_ratio!r}")
-    return signal.tf2ss([2 * z * wn, wn**2], [1.0, 2 * z * wn, wn**2])
+    return SeatSuspension(natural_frequency_Hz, damping_ratio).linear().abcd
+
+
+def _seat_part(seat) -> SeatPoint:
+    """The seat of a scenario's ``[seat]`` as a part: its point and its suspension
+    (:class:`~tyrelab.vehicle.model.SeatSuspension`, None for a rigid seat)."""
+    suspension = (SeatSuspension(seat.natural_frequency_Hz, seat.damping_ratio) if seat.suspension == "linear"
+                  else None)
+    return SeatPoint(seat.ahead_of_cg_m, seat.left_of_cg_m, seat.height_above_cg_m, suspension)
 
 
 def frequency_response(a, b, c, d, frequency_Hz) -> np.ndarray:
@@ -960,13 +967,14 @@ class RideCache:
         return self.enveloped[k]
 
     def seat_system(self, seat) -> lti.FohSystem | None:
-        """The linear seat suspension discretised at :data:`DT_S` (None for a rigid seat)."""
-        if seat.suspension != "linear":
+        """The seat's suspension (a scenario's ``[seat]`` or a :class:`~tyrelab.vehicle.model.SeatSuspension`
+        part) discretised at :data:`DT_S` (None for a rigid seat)."""
+        part = seat if isinstance(seat, SeatSuspension) else _seat_part(seat).suspension
+        if part is None:
             return None
-        k = (seat.natural_frequency_Hz, seat.damping_ratio)
-        if k not in self.seat:
-            self.seat[k] = lti.discretise(*seat_filter(*k), DT_S)
-        return self.seat[k]
+        if part not in self.seat:
+            self.seat[part] = lti.discretise(*part.linear().abcd, DT_S)
+        return self.seat[part]
 
 
 def ride(scenario: Scenario, tyre_data=None, with_spectra: bool = True,
@@ -1031,11 +1039,11 @@ def _prepare(scenario: Scenario, tyre_data, cache: RideCache) -> dict:
     tyres = resolve_tyres(scenario, tyre_data)
     track_key, track = cache.track(scenario)
     axes = seat_axes(scenario)  # axis -> output name
+    seat = _seat_part(scenario.seat).suspension  # the seat part's filter (no feedback on the tractor)
     return {"sc": scenario, "tyres": tyres, "track": track, "track_key": track_key,
             "wb": scenario.tractor.wheelbase_m, "speeds": scenario.exposure.speeds_km_h, "axes": axes,
-            "seat_sys": cache.seat_system(scenario.seat),
-            "seat_ss": seat_filter(scenario.seat.natural_frequency_Hz, scenario.seat.damping_ratio)
-            if scenario.seat.suspension == "linear" else None,
+            "seat_sys": cache.seat_system(seat) if seat is not None else None,
+            "seat_ss": seat.linear().abcd if seat is not None else None,
             "radii": (tyres["front"].radius_m, tyres["rear"].radius_m), "runs": {}}
 
 
@@ -1606,7 +1614,7 @@ def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, 
     axes = seat_axes(base)
     tyres0 = {"front": front[fronts[0]], "rear": rear[rears[0]]}
     seat = base.seat
-    seat_ss = seat_filter(seat.natural_frequency_Hz, seat.damping_ratio) if seat.suspension == "linear" else None
+    seat_ss = _seat_part(seat).suspension.linear().abcd if seat.suspension == "linear" else None
     pf_all = np.repeat(fronts, len(rears))
     pr_all = np.tile(rears, len(fronts))
     frames = []
