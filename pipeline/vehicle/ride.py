@@ -55,6 +55,7 @@ from .. import published
 from .._validate import positive
 from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
 from ..tyre.speed_dependence import at_speeds
+from ..tyre.lateral import estimate_lateral_stiffness
 from ..tyre.stiffness import estimate_stiffness
 from . import bounce_pitch
 from . import crg
@@ -156,6 +157,12 @@ class AxleTyres:
     footprint_m: np.ndarray
     warnings: tuple[str, ...] = ()
     stiffness_u_kN_per_m: float = 0.0
+    #: Lateral element of one tyre per speed (3-D with lateral_model; issue 33), kN/m and kN s/m,
+    #: where they came from, and the stiffness' 95 % interval per speed when it is the stand-in.
+    lateral_stiffness_kN_per_m: np.ndarray | None = None
+    lateral_damping_kN_s_per_m: np.ndarray | None = None
+    lateral_source: str = ""
+    lateral_ci95_kN_per_m: tuple | None = None
 
 
 def per_speed(values, list_speeds_km_h, speeds_km_h) -> np.ndarray:
@@ -314,9 +321,32 @@ def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
             fp = np.full(speeds.shape, float(spec.footprint_m))
         else:
             fp = np.array([ev.contact_length(radius, load_n[axle] / (1e3 * kk)) for kk in k])
+        lateral = {}
+        if scenario.tractor.three_d and scenario.tractor.lateral_model != "none":
+            lateral = _lateral_tyre(spec, k, np.maximum(c, 0.0))
         out[axle] = AxleTyres(spec.size, spec.pressure_bar, k, np.maximum(c, 0.0), k_src, c_src, float(radius), fp,
-                              tuple(warnings), float(k_u))
+                              tuple(warnings), float(k_u), **lateral)
     return out
+
+
+def _lateral_tyre(spec, k: np.ndarray, c: np.ndarray) -> dict:
+    """One tyre's lateral element per speed: the scenario's, else the stand-in from its vertical
+    stiffness (:mod:`tyrelab.tyre.lateral`) and its vertical damping."""
+    if spec.lateral_stiffness_kN_per_m is not None:
+        ky, src, ci = np.full(k.shape, float(spec.lateral_stiffness_kN_per_m)), "override (scenario)", None
+    else:
+        est = [estimate_lateral_stiffness(float(x)) for x in k]
+        ky = np.array([e["lateral_stiffness_kN_per_m"] for e in est])
+        src, ci = est[0]["source"], (np.array([e["ci95_kN_per_m"][0] for e in est]),
+                                     np.array([e["ci95_kN_per_m"][1] for e in est]))
+    if spec.lateral_damping_kN_s_per_m is not None:
+        cy = np.full(k.shape, float(spec.lateral_damping_kN_s_per_m))
+        src += "; damping: override (scenario)"
+    else:
+        cy = np.where(c > 0, c, 1e-3)  # a Maxwell element needs a damper: 1 N s/m at least
+        src += "; damping: the tyre's vertical damping (stand-in)"
+    return {"lateral_stiffness_kN_per_m": ky, "lateral_damping_kN_s_per_m": cy, "lateral_source": src,
+            "lateral_ci95_kN_per_m": ci}
 
 
 def build_tractor(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Tractor:
@@ -358,6 +388,12 @@ def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Part
         kw = {}
         if spec.mount != "rigid":
             kw["roll_inertia_kg_m2"] = spec.roll_inertia_kg_m2 or 0.0
+        if ty.lateral_stiffness_kN_per_m is not None:  # issue 33: the tyres' lateral elements
+            kw.update(lateral_model=t.lateral_model,
+                      lateral_stiffness_N_per_m=1e3 * float(ty.lateral_stiffness_kN_per_m[i]),
+                      lateral_damping_N_s_per_m=1e3 * float(ty.lateral_damping_kN_s_per_m[i]))
+            if spec.mount == "pivot":  # the pivot at the axle centre, a rolling radius above the ground
+                kw["height_m"] = spec.height_m if spec.height_m is not None else ty.radius_m
         if spec.mount == "suspended":
             kw.update(mass_kg=spec.mass_kg, height_m=spec.height_m if spec.height_m is not None else ty.radius_m,
                       suspension_stiffness_N_per_m=1e3 * spec.suspension_stiffness_kN_per_m,
@@ -378,11 +414,11 @@ def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Part
                         m.mount, m.hitch_behind_rear_axle_m, m.hitch_height_m,
                         1e3 * (m.hitch_stiffness_kN_m_per_rad or 0.0), 1e3 * m.hitch_damping_kN_m_s_per_rad)
     return Parts(
-        Chassis(t.mass_kg, t.pitch_inertia_kg_m2, t.cg_height_m, t.roll_inertia_kg_m2),
+        Chassis(t.mass_kg, t.pitch_inertia_kg_m2, t.cg_height_m, t.roll_inertia_kg_m2, t.yaw_inertia_kg_m2),
         axle("front", t.front_distance_m, scenario.front_axle, t.front_track_m),
         axle("rear", -t.rear_distance_m, scenario.rear_axle, t.rear_track_m, longitudinal_model=lon,
              longitudinal_stiffness_N_per_m=kx, longitudinal_damping_N_s_per_m=cx),
-        _seat_part(seat), cab, imp, scenario.ballast)
+        _seat_part(seat), cab, imp, scenario.ballast, static_load_moment=True)
 
 
 # --------------------------------------------------------------------------- linear model
@@ -853,7 +889,12 @@ def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float
 
 
 #: Mode names by the coordinate that moves most (:func:`modes`).
-MODE_NAMES = {"z": "bounce", "th": "pitch", "phi": "roll", "front_axle_roll": "front_axle_roll",
+#: The lowest mode led by the body's lateral or roll motion is named ``lateral_roll`` when the lesser of
+#: the two holds at least this share of its kinetic energy (issue 33; a documented choice), else by
+#: what moves most (``lateral``, ``roll``); the other modes as :data:`MODE_NAMES`.
+LATERAL_ROLL_SHARE = 0.05
+MODE_NAMES = {"lateral_roll": "lateral_roll", "z": "bounce", "th": "pitch", "phi": "roll", "y": "lateral", "psi": "yaw",
+              "front_axle_roll": "front_axle_roll",
               "rear_axle_roll": "rear_axle_roll", "front_axle_z": "front_axle_bounce", "rear_axle_z": "rear_axle_bounce",
               "cab_z": "cab_bounce", "cab_th": "cab_pitch", "cab_phi": "cab_roll", "implement_th": "implement_pitch"}
 
@@ -880,9 +921,22 @@ def modes(asm) -> tuple[dict, dict]:
         return ({k: ms[k]["frequency_Hz"] for k in ("bounce", "pitch")},
                 {k: ms[k]["nodal_point_ahead_of_cg_m"] for k in ("bounce", "pitch")})
     k, m, names = asm.undamped()
-    w2, vecs = linalg.eigh(k, m)
+    if np.array_equal(k, k.T):
+        w2, vecs = linalg.eigh(k, m)
+    else:  # the static loads' moment (issue 33) makes K unsymmetric: real modes of the undamped system
+        w2, vecs = linalg.eig(k, m)
+        order = np.argsort(w2.real)
+        w2, vecs = w2.real[order], vecs[:, order].real
     shares = [vecs[:, i] * (m @ vecs[:, i]) for i in range(len(w2))]
     dominant = [names[int(np.argmax(np.abs(sh)))] for sh in shares]
+    if "y" in names:  # issue 33: the lowest mode led by the body's lateral or roll motion, with both in it,
+        iy, iphi = names.index("y"), names.index("phi")  # is the coupled lateral-roll mode
+        for i, sh in enumerate(shares):
+            ey, ephi, total = abs(sh[iy]), abs(sh[iphi]), float(np.sum(np.abs(sh)))
+            if dominant[i] in ("y", "phi"):
+                if min(ey, ephi) >= LATERAL_ROLL_SHARE * total:
+                    dominant[i] = "lateral_roll"
+                break
     # the body's bounce and pitch (modes led by z or θ): by thesis §8.2's rule, the larger
     # |z|/(r |θ|) is bounce (a tie to the lower frequency), the other pitch
     body = [i for i in range(len(w2)) if dominant[i] in ("z", "th")]
@@ -1676,6 +1730,12 @@ def _tyre_json(t: AxleTyres) -> dict:
         "stiffness_source": t.stiffness_source, "damping_source": t.damping_source,
         "rolling_radius_m": _clean(t.radius_m), "footprint_m": _clean(t.footprint_m[0]), "warnings": list(t.warnings),
         "stiffness_u_kN_per_m": _clean(t.stiffness_u_kN_per_m),
+        **({"lateral_stiffness_kN_per_m": _clean(t.lateral_stiffness_kN_per_m[0]),
+            "lateral_damping_kN_s_per_m": _clean(t.lateral_damping_kN_s_per_m[0]),
+            "lateral_source": t.lateral_source,
+            "lateral_stiffness_ci95_kN_per_m": None if t.lateral_ci95_kN_per_m is None
+            else [_clean(t.lateral_ci95_kN_per_m[0][0]), _clean(t.lateral_ci95_kN_per_m[1][0])]}
+           if t.lateral_stiffness_kN_per_m is not None else {}),
     }
 
 

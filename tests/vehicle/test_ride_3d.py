@@ -19,8 +19,12 @@ K_TYRE, C_TYRE = {"front": 500.0, "rear": 600.0}, {"front": 1.5, "rear": 2.0}  #
 G = 9.81
 
 
-def text(surface: str, speeds="[9]", front_axle="", extra="", tilt=False, roll=True) -> str:
+def text(surface: str, speeds="[9]", front_axle="", extra="", tilt=False, roll=True, lateral="none") -> str:
+    """The tractor of these tests; ``lateral``: its ``lateral_model`` (``none``: the body rolls about its
+    CG, the hand-derived answers below; None: the key left out, the 3-D default)."""
     roll_keys = f"roll_inertia_kg_m2 = {I_ROLL}\nfront_track_m = {TF}\nrear_track_m = {TR}" if roll else ""
+    if roll and lateral is not None:
+        roll_keys += f'\nlateral_model = "{lateral}"'
     return f"""
 name = "3-D tractor"
 [tractor]
