@@ -339,7 +339,8 @@ ROWS = [
     # vehicle/model.py
     (f"{VE}.model.assemble", dict(parts="tractor"), "parts"),
     (f"{VE}.model.coordinate_output", dict(name=None), "name"),
-    # vehicle/crg.py, road_class.py (issue 33)
+    # vehicle/crg.py, road_class.py, tyre/lateral.py (issue 33)
+    ("tyrelab.tyre.lateral.estimate_lateral_stiffness", dict(vertical_stiffness_kN_per_m=-1.0), "vertical_stiffness_kN_per_m"),
     (f"{VE}.crg.wheel_positions", dict(lateral_offset_m=NAN, front_track_m=1.8, rear_track_m=1.9), "lateral_offset_m"),
     (f"{VE}.crg.wheel_positions", dict(lateral_offset_m=0.0, front_track_m=-1.8, rear_track_m=1.9), "front_track_m"),
     (f"{VE}.crg.crg_problems", dict(data=None, positions={}, start_m=0.0, length_m=None), "data"),

@@ -1679,7 +1679,14 @@ def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, 
              "rear": np.array([1e3 * rear[p].stiffness_kN_per_m[i] for p in pr_all])}
         c = {"front": np.array([1e3 * front[p].damping_kN_s_per_m[i] for p in pf_all]),
              "rear": np.array([1e3 * rear[p].damping_kN_s_per_m[i] for p in pr_all])}
-        a, b, cc, d = asm.linear_tyres(tuple(axes.values()), k, c)
+        if base.tractor.three_d and base.tractor.lateral_model != "none":
+            # the lateral elements follow each pair's tyres (the stand-in scales with k_z; a Maxwell
+            # element is not affine in its damping): one assembly per pair
+            lms = [assemble(build_parts(base, {"front": front[pf], "rear": rear[pr_]}, i)).linear(tuple(axes.values()))
+                   for pf, pr_ in zip(pf_all, pr_all)]
+            a, b, cc, d = (np.array([getattr(m, x) for m in lms]) for x in "abcd")
+        else:
+            a, b, cc, d = asm.linear_tyres(tuple(axes.values()), k, c)
         grid = _fd_grid(base, track, v)
         env_f = {p: enveloping_response(base.surface.enveloping, float(front[p].footprint_m[i]), track.profile.dx_m,
                                         grid["n"]) for p in fronts}
@@ -1701,6 +1708,19 @@ def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, 
     for key in ("a8_m_s2", "hours_to_eav", "hours_to_elv", "verdict"):
         out[key] = [e[key] for e in ex]
     return out
+
+
+def _lateral_note(sc: Scenario) -> str | None:
+    """What a_wy rests on (issue 33): None in the pitch plane (no a_wy)."""
+    t = sc.tractor
+    if not t.three_d:
+        return None
+    if t.lateral_model == "none":
+        return ("lateral_model = \"none\": no lateral tyre force, the body rolls about its CG; a_wy is indicative "
+                "only (give the tyres' lateral elements: tractor.lateral_model)")
+    given = all(x.lateral_stiffness_kN_per_m is not None for x in (sc.front, sc.rear))
+    return (f"lateral tyre elements ({t.lateral_model}); lateral stiffness "
+            + ("as given" if given else "partly or wholly the stand-in k_y = 0.57 k_z (95 % interval x/÷ 2)"))
 
 
 def _clean_class(c: dict) -> dict:
@@ -1742,7 +1762,8 @@ def _tyre_json(t: AxleTyres) -> dict:
 def result_json(results: list[RideResult]) -> dict:
     """The ``tyrelab ride`` JSON: the first pressure pair at the top, every pair under ``sweep``.
 
-    Top-level keys: ``name``, ``scenario``, ``track``, ``road_class`` (a profile or CRG road: per
+    Top-level keys: ``name``, ``scenario``, ``track``, ``lateral_model`` and ``lateral_note`` (3-D:
+    the tyres' lateral elements and what a_wy rests on; null in the pitch plane), ``road_class`` (a profile or CRG road: per
     wheel track its ISO 8608 ``class``, fitted ``g0_m3``, ``rms_m``, ``length_m``, ``band_cycles_per_m``;
     null for a generated track), ``spectrum_source``,
     ``hours_per_day``, ``tyres`` (``front``/``rear``: size, pressure, stiffness and
@@ -1774,6 +1795,8 @@ def result_json(results: list[RideResult]) -> dict:
     sc = first.scenario
     out = {"name": sc.name, "scenario": str(sc.path) if sc.path else None, "track": first.track_label,
            "road_class": {k: _clean_class(v) for k, v in first.road_classes.items()} or None,
+           "lateral_model": sc.tractor.lateral_model if sc.tractor.three_d else None,
+           "lateral_note": _lateral_note(sc),
            "spectrum_source": first.spectrum_source, "hours_per_day": sc.exposure.hours_per_day, **block(first),
            "warnings": sorted({w for r in results for w in r.warnings})}
     if len(results) > 1:

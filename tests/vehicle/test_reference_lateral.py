@@ -94,3 +94,48 @@ def test_reference_agrees_with_the_project_without_lateral_elements(tmp_path, pi
     for ax, wname in (("z", "Wk"), ("x", "Wd"), ("y", "Wd")):
         expected = weighted(seat[ax], f, wname)
         assert row[f"a_w{ax}_m_s2"] == pytest.approx(expected, rel=0.03, abs=1e-6), (ax, row[f"a_w{ax}_m_s2"], expected)
+
+
+KY, CY = {"front": 200.0, "rear": 300.0}, {"front": 2.0, "rear": 3.0}  # kN/m, kN s/m per tyre
+I_YAW = 6000.0
+
+
+def _project_lateral(tmp_path, left, right, pivot, lateral):
+    front_axle = (f'[front_axle]\nmount = "pivot"\nroll_inertia_kg_m2 = {I_AXLE}\nheight_m = 0.6' if pivot else "")
+    body = text(sine_tracks(tmp_path, left, right), "[9]", front_axle, lateral=lateral)
+    body = body.replace(f'lateral_model = "{lateral}"', f'lateral_model = "{lateral}"\nyaw_inertia_kg_m2 = {I_YAW}')
+    for axle in ("front", "rear"):
+        body = body.replace(f"[tyres.{axle}]\n", f"[tyres.{axle}]\nlateral_stiffness_kN_per_m = {KY[axle]}\n"
+                                                 f"lateral_damping_kN_s_per_m = {CY[axle]}\n")
+    (tmp_path / "s.toml").write_text(body)
+    return ride.ride(load_scenario(tmp_path / "s.toml"), with_spectra=False)
+
+
+@pytest.mark.parametrize("lateral", ["kelvin_voigt", "maxwell"])
+@pytest.mark.parametrize("pivot", [False, True])
+@pytest.mark.parametrize("inputs", ["pure_roll", "one_sided"])
+def test_reference_agrees_with_the_projects_second_system(tmp_path, lateral, pivot, inputs):
+    """Issue 33's check: the project's 3-D tractor on lateral tyre elements (y, yaw, the static loads'
+    moment) against the independent reference: natural frequencies within 1 %, seat a_wx, a_wy, a_wz
+    within 3 %, rigid and pivoting front axles, Kelvin-Voigt and Maxwell lateral tyres, pure-roll and
+    one-sided sinusoids."""
+    amp = 0.01
+    left, right = (amp, -amp) if inputs == "pure_roll" else (amp, 0.0)
+    res = _project_lateral(tmp_path, left, right, pivot, lateral)
+    t = tractor(pivot_front=pivot, lateral=lateral, yaw_inertia_kg_m2=I_YAW, pivot_height_m=0.6,
+                ky_front=1e3 * KY["front"], ky_rear=1e3 * KY["rear"], cy_front=1e3 * CY["front"],
+                cy_rear=1e3 * CY["rear"])
+    freqs = ref.natural_frequencies_Hz(t)
+    assert len(res.natural_frequencies_Hz) == len(freqs)
+    for name, f in res.natural_frequencies_Hz.items():
+        assert np.min(np.abs(freqs - f)) / f < 0.01, (name, f, freqs)
+    assert {"lateral_roll", "yaw", "roll"} <= set(res.natural_frequencies_Hz) or \
+        {"lateral", "yaw", "roll"} <= set(res.natural_frequencies_Hz)
+    v = 9 / 3.6
+    f = v / 2.0
+    amps = {"front_left": left, "rear_left": left, "front_right": right, "rear_right": right}
+    seat = ref.seat_response(t, f, amps, v)
+    row = res.speeds.iloc[0]
+    for ax, wname in (("z", "Wk"), ("x", "Wd"), ("y", "Wd")):
+        expected = weighted(seat[ax], f, wname)
+        assert row[f"a_w{ax}_m_s2"] == pytest.approx(expected, rel=0.03, abs=1e-6), (ax, row[f"a_w{ax}_m_s2"], expected)
