@@ -162,6 +162,10 @@ def format_table(doc: dict) -> str:
                          f"({t['lateral_source']})")
     if doc.get("lateral_note"):
         lines.append(f"  a_wy: {doc['lateral_note']}")
+    if doc.get("a8_lateral_ci95_m_s2"):
+        lines.append("  A(8) across the stand-in lateral stiffness' 95 % interval: " + "; ".join(
+            f"{e['speed_km_h']:g} km/h {format_number(e['a8_m_s2'][0], decimals=2)}-"
+            f"{format_number(e['a8_m_s2'][1], decimals=2)} m/s²" for e in doc["a8_lateral_ci95_m_s2"]))
     nf, nodal, ci = doc["natural_frequencies_Hz"], doc["nodal_points_m"], doc.get("natural_frequencies_Hz_ci95", {})
     parts = []
     for mode in nf:  # bounce, pitch and, in 3-D, roll and the parts' modes

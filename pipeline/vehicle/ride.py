@@ -113,6 +113,8 @@ __all__ = [
 #: Simulation step of the ride, s (the ch. 7 study's).
 DT_S = 1e-3
 FS_HZ = 1.0 / DT_S
+#: Steps across a stand-in lateral stiffness' interval for :func:`_lateral_interval` (odd: the middle is the stand-in).
+LATERAL_INTERVAL_STEPS = 9
 #: Outputs of :func:`state_space`, in row order.
 OUTPUTS = ("seat_vertical_m_s2", "seat_longitudinal_m_s2", "vertical_m_s2", "pitch_rad_s2", "longitudinal_m_s2",
            "front_force_N", "rear_force_N")
@@ -879,6 +881,9 @@ class RideResult:
     variant: dict = field(default_factory=dict)
     #: A profile or CRG road's ISO 8608 class per wheel track (:func:`road_classes`); empty otherwise.
     road_classes: dict = field(default_factory=dict)
+    #: 3-D with a stand-in lateral stiffness (issue 33): speed (km/h) -> A(8) (m/s²) with every stand-in
+    #: lateral stiffness at the low and at the high end of its 95 % interval (:func:`_lateral_interval`).
+    a8_lateral_ci95_m_s2: dict = field(default_factory=dict)
 
 
 def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float | None) -> tuple[int, int]:
@@ -1269,7 +1274,45 @@ def _finish(p: dict) -> RideResult:
         transmissibility=pd.concat(trans, ignore_index=True) if trans else pd.DataFrame(columns=cols),
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
         warnings=warnings, natural_frequency_intervals_Hz=nat_ci, signals=signals, road_classes=track.road_classes,
+        a8_lateral_ci95_m_s2=_lateral_interval(p, rows),
     )
+
+
+def _lateral_interval(p: dict, rows: list) -> dict:
+    """How far A(8) moves across the stand-in lateral stiffness' 95 % interval (issue 33), per speed:
+    the frequency-domain expectation of each seat axis with every stand-in lateral stiffness scaled
+    across its interval (:data:`LATERAL_INTERVAL_STEPS` log-spaced factors from ÷ 2 to × 2, the
+    stand-in among them: a_wy need not be monotonic in it, a resonance may sit inside), over the
+    expectation at the stand-in, scales the simulated a_w of that axis; the lowest and highest A(8)
+    of those. Empty unless a tyre's lateral stiffness is the stand-in."""
+    sc, tyres, track, axes = p["sc"], p["tyres"], p["track"], p["axes"]
+    stand_in = [ax for ax in ("front", "rear") if tyres[ax].lateral_ci95_kN_per_m is not None]
+    if not stand_in or track.side_spectrum is None:
+        return {}
+    factors = np.geomspace(0.5, 2.0, LATERAL_INTERVAL_STEPS)
+    out = {}
+    for i, speed in enumerate(p["speeds"]):
+        v = speed / 3.6
+        base = build_parts(sc, tyres, i)
+        variants = [dataclasses.replace(base, **{ax: dataclasses.replace(getattr(base, ax), lateral_stiffness_N_per_m=f * getattr(
+            base, ax).lateral_stiffness_N_per_m) for ax in stand_in}) for f in factors]
+        lms = [assemble(v_).linear(tuple(axes.values())) for v_ in variants]
+        grid = _fd_grid(sc, track, v)
+        fp = (float(tyres["front"].footprint_m[i]), float(tyres["rear"].footprint_m[i]))
+        env = {axle: enveloping_response(sc.surface.enveloping, fp[j], track.profile.dx_m, grid["n"])
+               for j, axle in enumerate(("front", "rear"))}
+        seat_tf = _seat_tf(p["seat_ss"], grid["f"]) if p["seat_ss"] is not None else None
+        exp = expected_weighted_rms(np.array([m.a for m in lms]), np.array([m.b for m in lms]),
+                                    np.array([m.c for m in lms]), np.array([m.d for m in lms]),
+                                    assemble(base).tyres, grid, env, seat_tf, list(axes))
+        mid = LATERAL_INTERVAL_STEPS // 2  # the stand-in itself (factor 1)
+        row = rows[i]
+        a8 = []
+        for k in range(len(factors)):
+            scaled = {ax: row[f"a_w{ax}_m_s2"] * (exp[ax][k] / exp[ax][mid] if exp[ax][mid] > 0 else 1.0) for ax in axes}
+            a8.append(exposure(scaled["z"], scaled["x"], sc.exposure.hours_per_day, scaled.get("y", 0.0))["a8_m_s2"])
+        out[float(speed)] = [min(a8), max(a8)]
+    return out
 
 
 #: Seat axes and their words in column names.
@@ -1763,7 +1806,9 @@ def result_json(results: list[RideResult]) -> dict:
     """The ``tyrelab ride`` JSON: the first pressure pair at the top, every pair under ``sweep``.
 
     Top-level keys: ``name``, ``scenario``, ``track``, ``lateral_model`` and ``lateral_note`` (3-D:
-    the tyres' lateral elements and what a_wy rests on; null in the pitch plane), ``road_class`` (a profile or CRG road: per
+    the tyres' lateral elements and what a_wy rests on; null in the pitch plane),
+    ``a8_lateral_ci95_m_s2`` (a stand-in lateral stiffness: per speed A(8) with it at the ends of its
+    95 % interval; else null), ``road_class`` (a profile or CRG road: per
     wheel track its ISO 8608 ``class``, fitted ``g0_m3``, ``rms_m``, ``length_m``, ``band_cycles_per_m``;
     null for a generated track), ``spectrum_source``,
     ``hours_per_day``, ``tyres`` (``front``/``rear``: size, pressure, stiffness and
@@ -1797,6 +1842,8 @@ def result_json(results: list[RideResult]) -> dict:
            "road_class": {k: _clean_class(v) for k, v in first.road_classes.items()} or None,
            "lateral_model": sc.tractor.lateral_model if sc.tractor.three_d else None,
            "lateral_note": _lateral_note(sc),
+           "a8_lateral_ci95_m_s2": [{"speed_km_h": k, "a8_m_s2": [_clean(x) for x in v]}
+                                    for k, v in first.a8_lateral_ci95_m_s2.items()] or None,
            "spectrum_source": first.spectrum_source, "hours_per_day": sc.exposure.hours_per_day, **block(first),
            "warnings": sorted({w for r in results for w in r.warnings})}
     if len(results) > 1:
