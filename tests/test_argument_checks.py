@@ -339,6 +339,7 @@ ROWS = [
     # vehicle/model.py
     (f"{VE}.model.assemble", dict(parts="tractor"), "parts"),
     (f"{VE}.model.coordinate_output", dict(name=None), "name"),
+    (f"{VE}.published_layouts.tractor_axles_si", dict(row={}), "row"),
     (f"{VE}.elements.element", dict(name="e", g=[1.0], stiffness=1.0, damping=1.0, model="coulomb"), "model"),
     # vehicle/profiles.py
     (f"{VE}.profiles.spectral_synthesis", dict(n_samples=100, dx_m=0.05, g0_m3=-1e-4, rng=lambda: np.random.default_rng(1)), "g0_m3"),
@@ -451,6 +452,8 @@ CHECKED_PACKAGES = ("tyrelab.tyre", "tyrelab.vehicle")
 #: Public functions of those packages with no argument a caller can get wrong, each with the reason.
 EXEMPT: dict[str, str] = {
     "tyrelab.vehicle.scenario.key_table": "takes no argument",
+    "tyrelab.vehicle.units.from_kilo": "a unit conversion of any number or array (numpy's arithmetic): nothing to refuse",
+    "tyrelab.vehicle.units.to_kilo": "a unit conversion of any number or array (numpy's arithmetic): nothing to refuse",
     # these check arguments for a living: every problem is a returned line, so that a caller prints them all
     # at once (tyrelab ride); each line names the key and the bound (doctests of vehicle/scenario_limits.py)
     "tyrelab.vehicle.scenario_limits.scenario_problems": "returns its argument's problems as lines, by design",
