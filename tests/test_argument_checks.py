@@ -187,6 +187,7 @@ ROWS = [
     # tyre/formula_fit.py
     (f"{TY}.formula_fit.design_matrix", dict(sizes=["13.6R38"], age_years=[-1.0], pressure_bar=[1.2]), "age_years"),
     (f"{TY}.formula_fit.design_matrix", dict(sizes=["13.6R38"], age_years=[1.0], pressure_bar=[INF]), "pressure_bar"),
+    (f"{TY}.formula_fit.extended_design_matrix", dict(sizes=["13.6R38"], age_years=[1.0], pressure_bar=[-1.2]), "pressure_bar"),
     (f"{TY}.formula_fit.fit_formula", dict(points=lambda: pd.DataFrame({"tyre_id": ["T1"]})), "points"),
     (f"{TY}.formula_fit.leave_one_tyre_out", dict(points="points.csv"), "points"),
     (f"{TY}.formula_fit.front_rule", dict(table_iii=lambda: _pub("table_iii"), table_ii=lambda: _pub("table_ii"), front_id="F9"), "table_iii"),
@@ -459,6 +460,7 @@ EXEMPT: dict[str, str] = {
     "tyrelab.vehicle.scenario_limits.scenario_problems": "returns its argument's problems as lines, by design",
     "tyrelab.vehicle.scenario_limits.override_problems": "returns its arguments' problems as lines, by design",
     "tyrelab.vehicle.scenario_limits.work_problems": "returns its arguments' problems as lines, by design",
+    "tyrelab.vehicle.daily_exposure.hours_problem": "returns its argument's problem as a line, by design (doctest)",
 }
 
 
