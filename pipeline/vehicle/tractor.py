@@ -362,6 +362,8 @@ class _Kernel:
         k_acc, k_q, k_s = k[:, n_pos:n_pos + nq, None], k[:, :n_pos], k[:, n_pos + nq:]
         velocity = e[:, n_pos:n_pos + nq]
         seen = self.seen
+        if seen is not None and np.array_equal(seen, np.arange(seen[0], seen[0] + seen.size)):
+            velocity, seen = velocity[:, seen[0]:seen[0] + seen.size], None  # contiguous: a view, no gather
         has_s, gated, count_nonzero = self.ns > 0, self.gated, np.count_nonzero
         # with every tyre on the ground the clamp is max(f, floor) = f and every gate factor is
         # exactly 1 (weights 1/len(gate) that sum to 1 in floating point): both may be skipped, to the bit
