@@ -187,6 +187,7 @@ ROWS = [
     # tyre/formula_fit.py
     (f"{TY}.formula_fit.design_matrix", dict(sizes=["13.6R38"], age_years=[-1.0], pressure_bar=[1.2]), "age_years"),
     (f"{TY}.formula_fit.design_matrix", dict(sizes=["13.6R38"], age_years=[1.0], pressure_bar=[INF]), "pressure_bar"),
+    (f"{TY}.formula_fit.extended_design_matrix", dict(sizes=["13.6R38"], age_years=[1.0], pressure_bar=[-1.2]), "pressure_bar"),
     (f"{TY}.formula_fit.fit_formula", dict(points=lambda: pd.DataFrame({"tyre_id": ["T1"]})), "points"),
     (f"{TY}.formula_fit.leave_one_tyre_out", dict(points="points.csv"), "points"),
     (f"{TY}.formula_fit.front_rule", dict(table_iii=lambda: _pub("table_iii"), table_ii=lambda: _pub("table_ii"), front_id="F9"), "table_iii"),
@@ -351,6 +352,7 @@ ROWS = [
     (f"{VE}.ride.crg_profile", dict(scenario=None), "scenario"),
     (f"{VE}.ride.road_classes", dict(profile=None), "profile"),
     (f"{VE}.profiles.uniform_grid", dict(x_m=[0.0, NAN, 1.0]), "x_m"),
+    (f"{VE}.published_layouts.tractor_axles_si", dict(row={}), "row"),
     (f"{VE}.elements.element", dict(name="e", g=[1.0], stiffness=1.0, damping=1.0, model="coulomb"), "model"),
     # vehicle/profiles.py
     (f"{VE}.profiles.spectral_synthesis", dict(n_samples=100, dx_m=0.05, g0_m3=-1e-4, rng=lambda: np.random.default_rng(1)), "g0_m3"),
@@ -463,11 +465,14 @@ CHECKED_PACKAGES = ("tyrelab.tyre", "tyrelab.vehicle")
 #: Public functions of those packages with no argument a caller can get wrong, each with the reason.
 EXEMPT: dict[str, str] = {
     "tyrelab.vehicle.scenario.key_table": "takes no argument",
+    "tyrelab.vehicle.units.from_kilo": "a unit conversion of any number or array (numpy's arithmetic): nothing to refuse",
+    "tyrelab.vehicle.units.to_kilo": "a unit conversion of any number or array (numpy's arithmetic): nothing to refuse",
     # these check arguments for a living: every problem is a returned line, so that a caller prints them all
     # at once (tyrelab ride); each line names the key and the bound (doctests of vehicle/scenario_limits.py)
     "tyrelab.vehicle.scenario_limits.scenario_problems": "returns its argument's problems as lines, by design",
     "tyrelab.vehicle.scenario_limits.override_problems": "returns its arguments' problems as lines, by design",
     "tyrelab.vehicle.scenario_limits.work_problems": "returns its arguments' problems as lines, by design",
+    "tyrelab.vehicle.daily_exposure.hours_problem": "returns its argument's problem as a line, by design (doctest)",
 }
 
 

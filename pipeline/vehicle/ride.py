@@ -70,6 +70,7 @@ from .scenario import Scenario, with_overrides, with_values
 from .carriage import half_step_input
 from .model import Assembly, Axle, Cab, Chassis, Implement, Parts, SeatPoint, SeatSuspension, assemble
 from .tractor import Tractor, simulate, tractor_parts
+from .units import KILO, from_kilo, to_kilo
 from .scenario_limits import MIN_VERDICT_DURATION_S
 
 __all__ = [
@@ -322,7 +323,7 @@ def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
         if spec.footprint_m is not None:
             fp = np.full(speeds.shape, float(spec.footprint_m))
         else:
-            fp = np.array([ev.contact_length(radius, load_n[axle] / (1e3 * kk)) for kk in k])
+            fp = np.array([ev.contact_length(radius, load_n[axle] / from_kilo(kk)) for kk in k])
         lateral = {}
         if scenario.tractor.three_d and scenario.tractor.lateral_model != "none":
             lateral = _lateral_tyre(spec, k, np.maximum(c, 0.0))
@@ -355,18 +356,7 @@ def build_tractor(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Tr
     """The :class:`~tyrelab.vehicle.tractor.Tractor` at speed index ``i`` (axle = two tyres, SI)."""
     _validate.instance("scenario", scenario, Scenario)
     _validate.positive_int("i", i, minimum=0)
-    t = scenario.tractor
-    return Tractor(
-        mass_kg=t.mass_kg, pitch_inertia_kg_m2=t.pitch_inertia_kg_m2, front_distance_m=t.front_distance_m,
-        rear_distance_m=t.rear_distance_m, cg_height_m=t.cg_height_m,
-        front_stiffness_N_per_m=2e3 * float(tyres["front"].stiffness_kN_per_m[i]),
-        rear_stiffness_N_per_m=2e3 * float(tyres["rear"].stiffness_kN_per_m[i]),
-        front_damping_N_s_per_m=2e3 * float(tyres["front"].damping_kN_s_per_m[i]),
-        rear_damping_N_s_per_m=2e3 * float(tyres["rear"].damping_kN_s_per_m[i]),
-        longitudinal_stiffness_N_per_m=2e3 * t.longitudinal_stiffness_kN_per_m if t.longitudinal_model != "none" else 0.0,
-        longitudinal_damping_N_s_per_m=2e3 * t.longitudinal_damping_kN_s_per_m if t.longitudinal_model != "none" else 0.0,
-        longitudinal_model=t.longitudinal_model,
-    )
+    return Tractor.of_parts(build_parts(scenario, tyres, i))
 
 
 def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Parts:
@@ -380,8 +370,8 @@ def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Part
     _validate.positive_int("i", i, minimum=0)
     t, seat = scenario.tractor, scenario.seat
     lon = t.longitudinal_model
-    kx = 1e3 * t.longitudinal_stiffness_kN_per_m if lon != "none" else 0.0
-    cx = 1e3 * t.longitudinal_damping_kN_s_per_m if lon != "none" else 0.0
+    kx = from_kilo(t.longitudinal_stiffness_kN_per_m) if lon != "none" else 0.0
+    cx = from_kilo(t.longitudinal_damping_kN_s_per_m) if lon != "none" else 0.0
     if lon == "maxwell" and not (kx > 0 and cx > 0):
         lon = "none"  # a Maxwell element without spring or damper carries no force
 
@@ -392,15 +382,15 @@ def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Part
             kw["roll_inertia_kg_m2"] = spec.roll_inertia_kg_m2 or 0.0
         if ty.lateral_stiffness_kN_per_m is not None:  # issue 33: the tyres' lateral elements
             kw.update(lateral_model=t.lateral_model,
-                      lateral_stiffness_N_per_m=1e3 * float(ty.lateral_stiffness_kN_per_m[i]),
-                      lateral_damping_N_s_per_m=1e3 * float(ty.lateral_damping_kN_s_per_m[i]))
+                      lateral_stiffness_N_per_m=from_kilo(float(ty.lateral_stiffness_kN_per_m[i])),
+                      lateral_damping_N_s_per_m=from_kilo(float(ty.lateral_damping_kN_s_per_m[i])))
             if spec.mount == "pivot":  # the pivot at the axle centre, a rolling radius above the ground
                 kw["height_m"] = spec.height_m if spec.height_m is not None else ty.radius_m
         if spec.mount == "suspended":
             kw.update(mass_kg=spec.mass_kg, height_m=spec.height_m if spec.height_m is not None else ty.radius_m,
-                      suspension_stiffness_N_per_m=1e3 * spec.suspension_stiffness_kN_per_m,
-                      suspension_damping_N_s_per_m=1e3 * spec.suspension_damping_kN_s_per_m)
-        return Axle(name, ahead, 1e3 * float(ty.stiffness_kN_per_m[i]), 1e3 * float(ty.damping_kN_s_per_m[i]),
+                      suspension_stiffness_N_per_m=from_kilo(spec.suspension_stiffness_kN_per_m),
+                      suspension_damping_N_s_per_m=from_kilo(spec.suspension_damping_kN_s_per_m))
+        return Axle(name, ahead, from_kilo(float(ty.stiffness_kN_per_m[i])), from_kilo(float(ty.damping_kN_s_per_m[i])),
                     track_m=track_m or 0.0, mount=spec.mount, **kw, **extra)
 
     cab = None
@@ -408,13 +398,13 @@ def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Part
         c = scenario.cab
         cab = Cab(c.mass_kg, c.pitch_inertia_kg_m2, c.roll_inertia_kg_m2 or 0.0, c.ahead_of_cg_m, c.height_above_cg_m,
                   c.front_mount_ahead_of_cg_m, c.rear_mount_ahead_of_cg_m, c.mount_track_m,
-                  1e3 * c.mount_stiffness_kN_per_m, 1e3 * c.mount_damping_kN_s_per_m)
+                  from_kilo(c.mount_stiffness_kN_per_m), from_kilo(c.mount_damping_kN_s_per_m))
     imp = None
     if scenario.implement is not None:
         m = scenario.implement
         imp = Implement(m.mass_kg, m.pitch_inertia_kg_m2, m.roll_inertia_kg_m2, m.behind_rear_axle_m, m.height_m,
                         m.mount, m.hitch_behind_rear_axle_m, m.hitch_height_m,
-                        1e3 * (m.hitch_stiffness_kN_m_per_rad or 0.0), 1e3 * m.hitch_damping_kN_m_s_per_rad)
+                        from_kilo(m.hitch_stiffness_kN_m_per_rad or 0.0), from_kilo(m.hitch_damping_kN_m_s_per_rad))
     return Parts(
         Chassis(t.mass_kg, t.pitch_inertia_kg_m2, t.cg_height_m, t.roll_inertia_kg_m2, t.yaw_inertia_kg_m2),
         axle("front", t.front_distance_m, scenario.front_axle, t.front_track_m),
@@ -976,7 +966,7 @@ def _mode_intervals(asm, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: flo
     if _is_beam(asm):
         _, intervals = bounce_pitch.frequency_uncertainty(
             p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m, -p.rear.ahead_of_cg_m,
-            p.front.tyre_stiffness_N_per_m / 1e3, p.rear.tyre_stiffness_N_per_m / 1e3,
+            to_kilo(p.front.tyre_stiffness_N_per_m), to_kilo(p.rear.tyre_stiffness_N_per_m),
             u_front_tyre_kN_per_m, u_rear_tyre_kN_per_m)
         centres = [0.5 * (lo + hi) for lo, hi in intervals]
         return {m: list(intervals[int(np.argmin([abs(c - f) for c in centres]))]) for m, f in base.items()}
@@ -990,7 +980,7 @@ def _mode_intervals(asm, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: flo
         down, _ = modes(assemble(dataclasses.replace(p, **{axle: dataclasses.replace(part, tyre_stiffness_N_per_m=0.99 * k)})))
         for m in var:
             if m in up and m in down:
-                var[m] += ((up[m] - down[m]) / (0.02 * k) * 1e3 * u) ** 2
+                var[m] += ((up[m] - down[m]) / (0.02 * k) * KILO * u) ** 2  # u in kN/m
     return {m: [base[m] - 1.96 * math.sqrt(var[m]), base[m] + 1.96 * math.sqrt(var[m])] for m in base}
 
 
@@ -1718,10 +1708,10 @@ def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, 
     for i, speed in enumerate(speeds):
         v = speed / 3.6
         asm = assemble(build_parts(base, tyres0, i))
-        k = {"front": np.array([1e3 * front[p].stiffness_kN_per_m[i] for p in pf_all]),
-             "rear": np.array([1e3 * rear[p].stiffness_kN_per_m[i] for p in pr_all])}
-        c = {"front": np.array([1e3 * front[p].damping_kN_s_per_m[i] for p in pf_all]),
-             "rear": np.array([1e3 * rear[p].damping_kN_s_per_m[i] for p in pr_all])}
+        k = {"front": np.array([from_kilo(front[p].stiffness_kN_per_m[i]) for p in pf_all]),
+             "rear": np.array([from_kilo(rear[p].stiffness_kN_per_m[i]) for p in pr_all])}
+        c = {"front": np.array([from_kilo(front[p].damping_kN_s_per_m[i]) for p in pf_all]),
+             "rear": np.array([from_kilo(rear[p].damping_kN_s_per_m[i]) for p in pr_all])}
         if base.tractor.three_d and base.tractor.lateral_model != "none":
             # the lateral elements follow each pair's tyres (the stand-in scales with k_z; a Maxwell
             # element is not affine in its damping): one assembly per pair

@@ -61,7 +61,9 @@ LONGITUDINAL_MODELS = ("none", "kelvin_voigt", "maxwell")
 
 @dataclass(frozen=True)
 class Tractor:
-    """Pitch-plane tractor parameters; any field may be an array (one per run).
+    """Pitch-plane tractor parameters; any field may be an array (one per run). A constructor of
+    pitch-plane parts (:meth:`parts`, :func:`tractor_parts`; :meth:`of_parts` the other way): the
+    form the ch. 7 study sweeps, one array per parameter over a batch of runs.
 
     Attributes
     ----------
@@ -98,6 +100,28 @@ class Tractor:
     def wheelbase_m(self):
         """Wheelbase a + b, m."""
         return np.asarray(self.front_distance_m) + np.asarray(self.rear_distance_m)
+
+    def parts(self, seat: SeatPoint | None = None) -> Parts:
+        """The pitch-plane parts of a scalar tractor (:func:`tractor_parts`): a constructor of parts."""
+        return tractor_parts(self, seat)
+
+    @classmethod
+    def of_parts(cls, parts: Parts) -> "Tractor":
+        """The twelve numbers of pitch-plane ``parts`` (an axle's values are its two tyres'; the rear
+        axle's longitudinal element).
+
+        Examples
+        --------
+        >>> t = Tractor(1000, 250, 1.0, 1.2, 0.5, 1e5, 2e5, 1e3, 2e3, 1e5, 1e3, "maxwell")
+        >>> Tractor.of_parts(t.parts()) == t
+        True
+        """
+        _validate.instance("parts", parts, Parts)
+        ch, f, r = parts.chassis, parts.front, parts.rear
+        return cls(ch.mass_kg, ch.pitch_inertia_kg_m2, f.ahead_of_cg_m, -r.ahead_of_cg_m, ch.cg_height_m,
+                   2 * f.tyre_stiffness_N_per_m, 2 * r.tyre_stiffness_N_per_m, 2 * f.tyre_damping_N_s_per_m,
+                   2 * r.tyre_damping_N_s_per_m, 2 * r.longitudinal_stiffness_N_per_m,
+                   2 * r.longitudinal_damping_N_s_per_m, r.longitudinal_model)
 
 
 #: The numeric parameters of :class:`Tractor` (all but ``longitudinal_model``).
@@ -338,6 +362,8 @@ class _Kernel:
         k_acc, k_q, k_s = k[:, n_pos:n_pos + nq, None], k[:, :n_pos], k[:, n_pos + nq:]
         velocity = e[:, n_pos:n_pos + nq]
         seen = self.seen
+        if seen is not None and np.array_equal(seen, np.arange(seen[0], seen[0] + seen.size)):
+            velocity, seen = velocity[:, seen[0]:seen[0] + seen.size], None  # contiguous: a view, no gather
         has_s, gated, count_nonzero = self.ns > 0, self.gated, np.count_nonzero
         # with every tyre on the ground the clamp is max(f, floor) = f and every gate factor is
         # exactly 1 (weights 1/len(gate) that sum to 1 in floating point): both may be skipped, to the bit
