@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 
 import pandas as pd
 
-__all__ = ["PRESSURE_COLUMNS", "VERDICT_ORDER", "AXIS_WORDS", "answer", "warning_groups", "variant_name", "variant_decimals", "scenario_sections", "SECTION_TABLES", "variant_labels", "swept_columns", "variant_rows", "RideFigure", "scenario_figures",
+__all__ = ["PRESSURE_COLUMNS", "VERDICT_ORDER", "AXIS_WORDS", "answer", "split_warnings", "warning_groups", "variant_name", "variant_decimals", "scenario_sections", "SECTION_TABLES", "variant_labels", "swept_columns", "variant_rows", "RideFigure", "scenario_figures",
            "surface_edge_note"]
 
 
@@ -84,6 +84,23 @@ def answer(table: pd.DataFrame) -> dict:
                                        "hours": significant_decimals(finite("hours_to_eav") + finite("hours_to_elv"))}, "verdict": worst, "worst_speeds_km_h": [r["speed_km_h"] for r in rows if r["verdict"] == worst],
             "axes": axes, "variant": labels.iloc[0] if len(labels) else "",
             "working_speed_km_h": None if working is None or pd.isna(working) else float(working)}
+
+
+def split_warnings(text) -> list[str]:
+    """The warnings of a ``ride_scenarios.warnings`` cell (joined by ``"; "``, which a warning may hold
+    too): split where the next one starts with its subject (``tyres.rear:``, ``8 km/h:``).
+
+    Examples
+    --------
+    >>> split_warnings("tyres.front: a (x; y); tyres.rear: b; 8 km/h: c")
+    ['tyres.front: a (x; y)', 'tyres.rear: b', '8 km/h: c']
+    >>> split_warnings(None)
+    []
+    """
+    import re
+
+    text = "" if text is None or (isinstance(text, float) and pd.isna(text)) else str(text)
+    return [w for w in re.split(r"; (?=(?:[A-Za-z_][\w.]*|[\d.]+ km/h): )", text) if w.strip()]
 
 
 def warning_groups(warnings) -> list[tuple[str, list[str]]]:
@@ -297,7 +314,8 @@ def scenario_sections(scenarios: pd.DataFrame, results: pd.DataFrame, spectra: p
     -------
     list of dict
         In the order of ``scenarios``: ``scenario`` (its name), ``file``, ``anchor`` (an HTML id),
-        ``answer`` (:func:`answer`: verdict, governing axis and hours per speed),
+        ``answer`` (:func:`answer`: verdict, governing axis and hours per speed), ``warning_groups``
+        (:func:`warning_groups` of the scenario's warnings),
         ``variants`` (:func:`variant_rows`), their ``decimals`` (:func:`variant_decimals`) and ``figures`` (:func:`scenario_figures` of its
         ``ride_results`` rows and the PSD and transmissibility of the variant shown there).
     """
@@ -314,7 +332,9 @@ def scenario_sections(scenarios: pd.DataFrame, results: pd.DataFrame, spectra: p
         note = surface_edge_note(getattr(row, "surface", "iso8608"), float(rows["speed_km_h"].min()))
         variants = variant_rows(rows)
         out.append({"scenario": row.scenario, "file": row.file, "anchor": f"scenario-{k + 1}",
-                    "answer": answer(rows), "hours_per_day": hours, "variants": variants, "decimals": variant_decimals(variants),
+                    "answer": answer(rows), "hours_per_day": hours,
+                    "warning_groups": warning_groups(split_warnings(getattr(row, "warnings", ""))),
+                    "variants": variants, "decimals": variant_decimals(variants),
                     "figures": scenario_figures(rows, psd, trans, hours, note, shown)})
     return out
 
