@@ -402,6 +402,9 @@ ROWS = [
     (f"{VE}.scenario.parse_sets", dict(items=[("tractor.mass_kg", 1.0)]), "items"),
     # vehicle/scenario_limits.py
     (f"{VE}.scenario_limits.work_estimate", dict(scenario=_scenario, n_variants=0), "n_variants"),
+    # vehicle/sweeps.py
+    (f"{VE}.sweeps.pressure_axes", dict(scenario="modern.toml", front_pressures_bar=None, rear_pressures_bar=None, keys={}), "scenario"),
+    (f"{VE}.sweeps.unused_key_problems", dict(scenario=None, keys=[]), "scenario"),
     # vehicle/studies.py
     (f"{VE}.studies.carriage_case_inputs", dict(table_xii=None, stationary=pd.DataFrame()), "table_xii"),
     (f"{VE}.studies.carriage_study", dict(table_xii=pd.DataFrame(), stationary=pd.DataFrame(), seed=-1), "seed"),

@@ -63,7 +63,7 @@ from . import lti
 from . import metrics as mt
 from . import profiles as pr
 from .carriage import GRAVITY_M_S2
-from .scenario import Scenario, with_overrides, with_values
+from .scenario import Scenario, ScenarioError, with_overrides, with_values
 from .carriage import half_step_input
 from .model import Assembly, Axle, Cab, Chassis, Implement, Parts, SeatPoint, assemble
 from .tractor import Tractor, simulate, tractor_parts
@@ -1482,15 +1482,19 @@ def ride_sweep(
         _validate.positive_int("max_variants", max_variants)
     if max_samples is not None:
         _validate.positive_int("max_samples", max_samples)
-    fronts = list(front_pressures_bar or scenario.sweep.front_pressures_bar or [scenario.front.pressure_bar])
-    rears = list(rear_pressures_bar or scenario.sweep.rear_pressures_bar or [scenario.rear.pressure_bar])
-    swept = {**scenario.sweep.keys, **(sets or {})}
-    combos = [dict(zip(swept, values)) for values in itertools.product(*swept.values())] if swept else [{}]
     from . import scenario_limits as limits
+    from . import sweeps
 
-    bad = limits.override_problems(speeds_km_h, front_pressures_bar, rear_pressures_bar)
+    # the pressures are the sweep's pressure axes however given (an option, --set or [sweep])
+    fronts, rears, swept, pressures = sweeps.pressure_axes(scenario, front_pressures_bar, rear_pressures_bar,
+                                                           {**scenario.sweep.keys, **(sets or {})})
+    combos = [dict(zip(swept, values)) for values in itertools.product(*swept.values())] if swept else [{}]
+    bad = limits.override_problems(speeds_km_h, fronts, rears)
     if bad:
         raise ValueError("; ".join(bad))
+    bad = sweeps.unused_key_problems(scenario, pressures) + sweeps.unused_key_problems(scenario, swept)
+    if bad:  # a key that changes nothing would run identical variants under different labels
+        raise ScenarioError(scenario.path or "<scenario>", bad)
     too_much = limits.work_problems(scenario, len(fronts) * len(rears) * len(combos), speeds_km_h,
                                     max_variants=max_variants or limits.MAX_VARIANTS,
                                     max_samples=max_samples or limits.MAX_SAMPLES)
