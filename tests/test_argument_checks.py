@@ -403,6 +403,11 @@ ROWS = [
     (f"{VE}.scenario.parse_sets", dict(items=[("tractor.mass_kg", 1.0)]), "items"),
     # vehicle/scenario_limits.py
     (f"{VE}.scenario_limits.work_estimate", dict(scenario=_scenario, n_variants=0), "n_variants"),
+    # vehicle/modes.py
+    (f"{VE}.modes.mode_set", dict(asm="tractor"), "asm"),
+    (f"{VE}.modes.mac_matrix", dict(reference=None, other=None), "reference"),
+    (f"{VE}.modes.frequency_intervals", dict(asm="tractor", u_front_tyre_kN_per_m=1.0, u_rear_tyre_kN_per_m=1.0), "asm"),
+    (f"{VE}.modes.follow_names", dict(reference=None, other=None), "reference"),
     # vehicle/sweeps.py
     (f"{VE}.sweeps.pressure_axes", dict(scenario="modern.toml", front_pressures_bar=None, rear_pressures_bar=None, keys={}), "scenario"),
     (f"{VE}.sweeps.unused_key_problems", dict(scenario=None, keys=[]), "scenario"),
@@ -459,6 +464,7 @@ EXEMPT: dict[str, str] = {
     "tyrelab.vehicle.scenario_limits.scenario_problems": "returns its argument's problems as lines, by design",
     "tyrelab.vehicle.scenario_limits.override_problems": "returns its arguments' problems as lines, by design",
     "tyrelab.vehicle.scenario_limits.work_problems": "returns its arguments' problems as lines, by design",
+    "tyrelab.vehicle.scenario_limits.mass_problems": "returns its arguments' problems as lines, by design",
 }
 
 

@@ -39,7 +39,6 @@ SI inside; km/h, kN/m and bar at the edges, as in the key names.
 
 from __future__ import annotations
 
-import dataclasses
 import functools
 import itertools
 import math
@@ -48,7 +47,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from scipy import linalg, signal
+from scipy import signal
 
 from .. import _validate
 from .. import published
@@ -56,7 +55,6 @@ from .._validate import positive
 from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
 from ..tyre.speed_dependence import at_speeds
 from ..tyre.stiffness import estimate_stiffness
-from . import bounce_pitch
 from . import enveloping as ev
 from . import iso2631
 from . import lti
@@ -68,6 +66,7 @@ from .carriage import half_step_input
 from .model import Assembly, Axle, Cab, Chassis, Implement, Parts, SeatPoint, assemble
 from .tractor import Tractor, simulate, tractor_parts
 from .scenario_limits import MIN_VERDICT_DURATION_S
+from .modes import MODE_NAMES, ModeSet, follow_names, frequency_intervals, mode_set  # noqa: F401 (MODE_NAMES: its old home)
 
 __all__ = [
     "OUTPUTS",
@@ -783,7 +782,8 @@ class RideResult:
     spectrum_source: str
     track_length_m: float = math.nan
     warnings: list = field(default_factory=list)
-    #: ``bounce``/``pitch`` -> [low, high], 95 %, from the tyres' stiffness uncertainty (:func:`_mode_intervals`)
+    #: mode -> [low, high], 95 %, from the tyres' stiffness uncertainty (:func:`~tyrelab.vehicle.modes.frequency_intervals`;
+    #: None where the mode cannot be followed: :attr:`warnings` says why)
     natural_frequency_intervals_Hz: dict = field(default_factory=dict)
     #: With ``ride(..., with_signals=True)``: speed (km/h) -> the seat's predicted record, raw-format channel
     #: name (``seat_z_m_s2``, ``seat_x_m_s2``, ``floor_z_m_s2``, ``floor_x_m_s2``; in 3-D also
@@ -791,6 +791,8 @@ class RideResult:
     signals: dict = field(default_factory=dict)
     #: The swept keys' values of this variant (:func:`ride_sweep`), ``{"section.key": value}``.
     variant: dict = field(default_factory=dict)
+    #: The undamped modes (:class:`~tyrelab.vehicle.modes.ModeSet`) the natural frequencies name.
+    modes: ModeSet | None = field(default=None, repr=False)
 
 
 def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float | None) -> tuple[int, int]:
@@ -800,87 +802,18 @@ def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float
     return start, start + int(round(length / DT_S))
 
 
-#: Mode names by the coordinate that moves most (:func:`modes`).
-MODE_NAMES = {"z": "bounce", "th": "pitch", "phi": "roll", "front_axle_roll": "front_axle_roll",
-              "rear_axle_roll": "rear_axle_roll", "front_axle_z": "front_axle_bounce", "rear_axle_z": "rear_axle_bounce",
-              "cab_z": "cab_bounce", "cab_th": "cab_pitch", "cab_phi": "cab_roll", "implement_th": "implement_pitch"}
-
-
-def _is_beam(asm) -> bool:
-    """The thesis' §8.2 beam on two springs (the undamped model has z and θ only)."""
-    return asm.undamped()[2] == ("z", "th")
-
-
 def modes(asm) -> tuple[dict, dict]:
     """Undamped natural frequencies (Hz) of an assembled tractor, each named by the coordinate
-    that moves most (kinetic-energy share; :data:`MODE_NAMES`, a second mode of the same name
-    ``_2``), and the bounce and pitch modes' nodal points ahead of the CG (m).
+    that moves most (:func:`tyrelab.vehicle.modes.mode_set`: kinetic-energy share,
+    :data:`~tyrelab.vehicle.modes.MODE_NAMES`, a second mode of the same name ``_2``), and the
+    bounce and pitch modes' nodal points ahead of the CG (m).
 
     The pitch-plane tractor on rigid axles is thesis §8.2's beam on two springs
     (:func:`tyrelab.vehicle.bounce_pitch.mode_shapes`, the same eigenproblem).
     """
     _validate.instance("asm", asm, Assembly)
-    p = asm.parts
-    if _is_beam(asm):
-        ms = bounce_pitch.mode_shapes(p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m,
-                                      -p.rear.ahead_of_cg_m, 2 * p.front.tyre_stiffness_N_per_m,
-                                      2 * p.rear.tyre_stiffness_N_per_m)
-        return ({k: ms[k]["frequency_Hz"] for k in ("bounce", "pitch")},
-                {k: ms[k]["nodal_point_ahead_of_cg_m"] for k in ("bounce", "pitch")})
-    k, m, names = asm.undamped()
-    w2, vecs = linalg.eigh(k, m)
-    shares = [vecs[:, i] * (m @ vecs[:, i]) for i in range(len(w2))]
-    dominant = [names[int(np.argmax(np.abs(sh)))] for sh in shares]
-    # the body's bounce and pitch (modes led by z or θ): by thesis §8.2's rule, the larger
-    # |z|/(r |θ|) is bounce (a tie to the lower frequency), the other pitch
-    body = [i for i in range(len(w2)) if dominant[i] in ("z", "th")]
-    iz, ith = names.index("z"), names.index("th")
-    ranked = sorted(body, key=lambda i: -abs(shares[i][iz]) / max(abs(shares[i][ith]), 1e-300))
-    label = {i: MODE_NAMES.get(dominant[i], dominant[i]) for i in range(len(w2))}
-    for j, i in enumerate(ranked[:2]):
-        label[i] = ("bounce", "pitch")[j] if len(ranked) > 1 else MODE_NAMES[dominant[i]]
-    freqs, nodal = {}, {}
-    for i in range(len(w2)):
-        name = label[i]
-        while name in freqs:
-            name = f"{name}_2" if not name[-1].isdigit() else f"{name[:-1]}{int(name[-1]) + 1}"
-        freqs[name] = math.sqrt(max(w2[i], 0.0)) / (2 * math.pi)
-        if name in ("bounce", "pitch"):
-            z, th = vecs[iz, i], vecs[ith, i]
-            nodal[name] = float(-z / th) + 0.0 if abs(th) > 1e-12 * abs(z) else math.inf
-    return freqs, nodal
-
-
-def _modes(asm) -> tuple[dict, dict]:
-    return modes(asm)
-
-
-def _mode_intervals(asm, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: float) -> dict:
-    """95 % intervals of the natural frequencies from the tyre stiffness uncertainties: first order,
-    central differences (±1 % of each axle's tyre stiffness), independent axles, ``f ± 1.96 u``
-    (:func:`tyrelab.vehicle.bounce_pitch.frequency_uncertainty` for thesis §8.2's beam; the same
-    method on the assembled model otherwise)."""
-    p = asm.parts
-    base, _ = modes(asm)
-    if _is_beam(asm):
-        _, intervals = bounce_pitch.frequency_uncertainty(
-            p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m, -p.rear.ahead_of_cg_m,
-            p.front.tyre_stiffness_N_per_m / 1e3, p.rear.tyre_stiffness_N_per_m / 1e3,
-            u_front_tyre_kN_per_m, u_rear_tyre_kN_per_m)
-        centres = [0.5 * (lo + hi) for lo, hi in intervals]
-        return {m: list(intervals[int(np.argmin([abs(c - f) for c in centres]))]) for m, f in base.items()}
-    var = dict.fromkeys(base, 0.0)
-    for axle, u in (("front", u_front_tyre_kN_per_m), ("rear", u_rear_tyre_kN_per_m)):
-        if not u > 0:
-            continue
-        part = getattr(p, axle)
-        k = part.tyre_stiffness_N_per_m
-        up, _ = modes(assemble(dataclasses.replace(p, **{axle: dataclasses.replace(part, tyre_stiffness_N_per_m=1.01 * k)})))
-        down, _ = modes(assemble(dataclasses.replace(p, **{axle: dataclasses.replace(part, tyre_stiffness_N_per_m=0.99 * k)})))
-        for m in var:
-            if m in up and m in down:
-                var[m] += ((up[m] - down[m]) / (0.02 * k) * 1e3 * u) ** 2
-    return {m: [base[m] - 1.96 * math.sqrt(var[m]), base[m] + 1.96 * math.sqrt(var[m])] for m in base}
+    m = mode_set(asm)
+    return m.frequencies(), m.nodal()
 
 
 class RideCache:
@@ -958,6 +891,7 @@ def ride_variants(scenarios, tyre_data=None, with_spectra: bool = True, with_sig
     Each result is what :func:`ride` gives for that scenario alone."""
     for k, sc in enumerate(scenarios):
         _validate.instance(f"scenarios[{k}]", sc, Scenario)
+    _check_bodies(scenarios)
     cache = cache or RideCache()
     preps = [_prepare(sc, tyre_data, cache) for sc in scenarios]
     for p in preps:
@@ -979,6 +913,25 @@ def ride_variants(scenarios, tyre_data=None, with_spectra: bool = True, with_sig
     for p in preps:
         _redo_lifting(p)
     return [_finish(p) for p in preps]
+
+
+def _check_bodies(scenarios) -> None:
+    """Refuse (ScenarioError naming the keys) a scenario whose parts leave a mass matrix that is not
+    positive definite (:func:`tyrelab.vehicle.scenario_limits.mass_problems`), before any work."""
+    from types import SimpleNamespace
+
+    from .scenario_limits import mass_problems
+
+    tyre = SimpleNamespace(stiffness_kN_per_m=[1.0], damping_kN_s_per_m=[0.0], radius_m=0.5)  # no part of the mass
+    seen = set()
+    for sc in scenarios:
+        key = (sc.tractor, sc.cab, sc.front_axle, sc.rear_axle, sc.implement, sc.ballast, sc.seat)
+        if key in seen:
+            continue
+        seen.add(key)
+        problems = mass_problems(sc, assemble(build_parts(sc, {"front": tyre, "rear": tyre}, 0)).mass)
+        if problems:
+            raise ScenarioError(sc.path or "<scenario>", problems)
 
 
 def _prepare(scenario: Scenario, tyre_data, cache: RideCache) -> dict:
@@ -1152,8 +1105,10 @@ def _finish(p: dict) -> RideResult:
             spectra.append(r.pop("spectra"))
             trans.append(r.pop("trans"))
     first = p["runs"][0]["asm"]
-    nat, nodal = _modes(first)
-    nat_ci = _mode_intervals(first, tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
+    shapes = mode_set(first)
+    nat, nodal = shapes.frequencies(), shapes.nodal()
+    nat_ci, notes = frequency_intervals(first, tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
+    warnings += [f"natural frequencies: {n}" for n in notes]
     cols = ["speed_km_h", "frequency_Hz"]
     return RideResult(
         scenario=sc, tyres=tyres, natural_frequencies_Hz=nat, nodal_points_m=nodal,
@@ -1161,7 +1116,7 @@ def _finish(p: dict) -> RideResult:
         spectra=pd.concat(spectra, ignore_index=True) if spectra else pd.DataFrame(columns=cols),
         transmissibility=pd.concat(trans, ignore_index=True) if trans else pd.DataFrame(columns=cols),
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
-        warnings=warnings, natural_frequency_intervals_Hz=nat_ci, signals=signals,
+        warnings=warnings, natural_frequency_intervals_Hz=nat_ci, signals=signals, modes=shapes,
     )
 
 
@@ -1476,7 +1431,16 @@ def ride_sweep(
     -------
     list of RideResult
         Pressure pairs front-major, then the swept keys in order (the last varying fastest);
-        :attr:`RideResult.variant` names each variant's swept values.
+        :attr:`RideResult.variant` names each variant's swept values. Every variant's modes carry
+        the first variant's names, followed by shape (:func:`tyrelab.vehicle.modes.follow_names`).
+
+    Raises
+    ------
+    ScenarioError
+        A swept key (or a swept pressure) that the scenario's model does not use, each with the
+        reason (:func:`tyrelab.vehicle.sweeps.unused_key_problems`), before any work.
+    ValueError
+        A pressure given by option and swept key both, values out of range, too much work.
     """
     if max_variants is not None:
         _validate.positive_int("max_variants", max_variants)
@@ -1507,6 +1471,7 @@ def ride_sweep(
                 base = with_values(scenario, combo) if combo else scenario
                 variants.append((with_overrides(base, speeds_km_h, pf, pr_), combo))
     scenarios = [v for v, _ in variants]
+    _check_bodies(scenarios)  # here too: before the variants go to the executor
     if map_fn is None or len(scenarios) == 1:
         results = ride_variants(scenarios, tyre_data, with_spectra)
     else:  # chunks of variants to the caller's executor, each batched in its task
@@ -1515,7 +1480,27 @@ def ride_sweep(
         results = [r for chunk in map_fn(_ride_batch, chunks) for r in chunk]
     for r, (_, combo) in zip(results, variants):
         r.variant = dict(combo)
+    _follow_modes(results)
     return results
+
+
+def _follow_modes(results: list[RideResult]) -> None:
+    """Every variant's modes under the first variant's names, followed by shape
+    (:func:`tyrelab.vehicle.modes.follow_names`): a sweep's ``bounce_Hz`` is one mode in every
+    variant. A mode of the first variant that a variant does not have (by shape) is NaN there,
+    with a warning."""
+    ref = results[0].modes
+    for r in results[1:]:
+        if ref is None or r.modes is None:
+            continue
+        mapping, notes = follow_names(ref, r.modes)
+        back = {new: own for own, new in mapping.items()}
+        r.natural_frequencies_Hz = {n: r.natural_frequencies_Hz[back[n]] if n in back else math.nan for n in ref.names}
+        r.natural_frequency_intervals_Hz = {n: r.natural_frequency_intervals_Hz.get(back[n]) if n in back else None
+                                            for n in ref.names}
+        r.nodal_points_m = {n: r.modes.nodal_points_m[r.modes.names.index(back[n])] if n in back else math.nan
+                            for n in ref.nodal()}
+        r.warnings += [f"natural frequencies: {n}" for n in notes]
 
 
 def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, speeds_km_h=None,
@@ -1644,7 +1629,8 @@ def result_json(results: list[RideResult]) -> dict:
         return {
             "tyres": {ax: _tyre_json(r.tyres[ax]) for ax in ("front", "rear")},
             "natural_frequencies_Hz": {k: _clean(v) for k, v in r.natural_frequencies_Hz.items()},
-            "natural_frequencies_Hz_ci95": {k: [_clean(x) for x in v] for k, v in r.natural_frequency_intervals_Hz.items()},
+            "natural_frequencies_Hz_ci95": {k: None if v is None else [_clean(x) for x in v]
+                                            for k, v in r.natural_frequency_intervals_Hz.items()},
             "nodal_points_m": {k: _clean(v) for k, v in r.nodal_points_m.items()},
             "speeds": [{k: _clean(v) for k, v in row.items()} for row in r.speeds.to_dict(orient="records")],
         }
@@ -1679,7 +1665,8 @@ def results_table(results: list[RideResult], scenario_id: str | None = None) -> 
         df["roll_Hz"] = r.natural_frequencies_Hz.get("roll", math.nan)
         for mode, f in r.natural_frequencies_Hz.items():  # every further mode (front_axle_roll_Hz, cab_pitch_Hz, ...)
             df[f"{mode}_Hz"] = f
-        df["modes_Hz"] = "; ".join(f"{k} {v:.3f}" for k, v in r.natural_frequencies_Hz.items())
+        df["modes_Hz"] = "; ".join(f"{k} {v:.3f}" if math.isfinite(v) else f"{k} not followed"
+                                   for k, v in r.natural_frequencies_Hz.items())
         df["front_stiffness_source"] = r.tyres["front"].stiffness_source
         df["rear_stiffness_source"] = r.tyres["rear"].stiffness_source
         df["variant"] = ", ".join(f"{k}={v:g}" for k, v in r.variant.items())

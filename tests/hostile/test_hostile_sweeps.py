@@ -101,7 +101,7 @@ def _ignored_and_unnamed(scenario, keys) -> tuple[list, list]:
     for key in sorted(keys):
         def keep(task, chunks, key=key):  # ride_sweep's executor: keep the variants, run them all at once below
             variants[key] = [sc for chunk in chunks for sc in chunk[0]]
-            return [[SimpleNamespace() for _ in chunk[0]] for chunk in chunks]
+            return [[SimpleNamespace(modes=None) for _ in chunk[0]] for chunk in chunks]
 
         try:
             ride.ride_sweep(scenario, sets={key: PROBE[key]}, map_fn=keep, with_spectra=False)
