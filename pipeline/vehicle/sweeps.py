@@ -101,8 +101,12 @@ def _reason(scenario: Scenario, key: str, values) -> str | None:
     if section in ("implement", "ballast") and getattr(scenario, section) is None:
         return f"the scenario has no [{section}] (add the table with its required keys to sweep it)"
     if section.startswith("tyres."):
+        if name.startswith("lateral_") and not (three_d and lateral):
+            return f"the tyres have no lateral element here (tractor.lateral_model, the 3-D model: {_THREE_D})"
         return _tyre_reason(scenario, section.split(".")[1], name)
     if section == "tractor":
+        if name == "yaw_inertia_kg_m2" and not (three_d and lateral):
+            return "the body yaws only with lateral tyre elements (tractor.lateral_model, the 3-D model)"
         if name.startswith("longitudinal_") and t.longitudinal_model == "none":
             return "tractor.longitudinal_model is \"none\" (no fore-aft tyre element)"
         if name == "cg_height_m" and t.longitudinal_model == "none" and not lateral and \
@@ -154,6 +158,10 @@ def _reason(scenario: Scenario, key: str, values) -> str | None:
             return "the waviness applies to a declared spectrum (surface.spectrum_g0_m3)"
         if name in ("seed", "length_m", "dx_m") and kind == "profile":
             return "surface.kind is \"profile\": the track is the profile file's (its length and points)"
+        if name in ("lateral_offset_m", "start_m", "file") and kind != "crg":
+            return f"surface.kind is \"{kind}\": the key applies to kind = \"crg\""
+        if name == "seed" and kind not in ("iso8608", "slatted"):
+            return f"surface.kind is \"{kind}\": a seed draws a generated track (\"iso8608\", \"slatted\")"
         if name == "dx_m" and kind == "slatted":
             return "surface.kind is \"slatted\": the slats set the track's points"
         return None

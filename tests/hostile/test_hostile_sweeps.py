@@ -15,6 +15,7 @@ from tyrelab.cli import main
 from tyrelab.scenario_io import ScenarioError, parse_scenario
 from tyrelab.vehicle import ride
 from tyrelab.vehicle.scenario import _sections, numeric_key
+from tyrelab.vehicle.scenario_limits import LIMITS
 
 #: A short track at one speed: every variant simulates ~2 s.
 TINY = 'kind = "iso8608"\nclass = "C"\nlength_m = 10\nseed = 3'
@@ -75,10 +76,30 @@ for _axle in ("front", "rear"):
                   f"{_axle}_axle.suspension_damping_kN_s_per_m": (5, 10)})
 
 
-def test_the_probe_names_every_numeric_key():
-    keys = {f"{s}.{n}" for s, spec in _sections().items() for n in spec["fields"] if numeric_key(f"{s}.{n}")}
-    keys.add("surface.seed")  # an integer key: swept as well
-    assert keys == set(PROBE)
+def _probe(key: str):
+    """Two values of ``key`` to sweep: :data:`PROBE`'s, else 30 % and 60 % into its
+    :data:`~tyrelab.vehicle.scenario_limits.LIMITS` range, else 0.8 and 1.25 times its default."""
+    if key in PROBE:
+        return PROBE[key]
+    section, _, name = key.rpartition(".")
+    for k in (key, f"axle.{name}" if section.endswith("_axle") else None, name if section.startswith("tyres.") else None):
+        if k in LIMITS:
+            low, high, _ = LIMITS[k]
+            return (low + 0.3 * (high - low), low + 0.6 * (high - low))
+    default = numeric_key(key).get("default")
+    if isinstance(default, (int, float)) and default:
+        return (0.8 * default, 1.25 * default)
+    return None
+
+
+def _numeric_keys() -> set:
+    return {f"{s}.{n}" for s, spec in _sections().items() for n in spec["fields"] if numeric_key(f"{s}.{n}")}
+
+
+def test_every_numeric_key_is_probed():
+    """A key added to the schema is swept below too: PROBE's values, or ones from its bound or default."""
+    missing = [k for k in sorted(_numeric_keys()) if _probe(k) is None]
+    assert not missing, f"no values to sweep {missing}: give a bound in scenario_limits.LIMITS (or PROBE values here)"
 
 
 #: What a run gives (not what it was given: pressures, tyre values and hours are echoed inputs).
@@ -95,7 +116,7 @@ def _numbers(result) -> dict:
 
 
 def _ignored_and_unnamed(scenario, keys) -> tuple[list, list]:
-    """Sweep each key of ``keys`` (its :data:`PROBE` values) through ``ride_sweep``: the keys whose two
+    """Sweep each key of ``keys`` (its :func:`_probe` values) through ``ride_sweep``: the keys whose two
     variants give the same results, and the refusals that do not name their key."""
     variants, unnamed = {}, []
     for key in sorted(keys):
@@ -104,7 +125,7 @@ def _ignored_and_unnamed(scenario, keys) -> tuple[list, list]:
             return [[SimpleNamespace(modes=None) for _ in chunk[0]] for chunk in chunks]
 
         try:
-            ride.ride_sweep(scenario, sets={key: PROBE[key]}, map_fn=keep, with_spectra=False)
+            ride.ride_sweep(scenario, sets={key: _probe(key)}, map_fn=keep, with_spectra=False)
         except ValueError as exc:  # ScenarioError included
             if key not in str(exc):
                 unnamed.append((key, str(exc)))
@@ -114,7 +135,8 @@ def _ignored_and_unnamed(scenario, keys) -> tuple[list, list]:
 
 @pytest.mark.parametrize("base", ["plain", "rich"])
 def test_every_swept_key_reaches_the_model_or_is_refused_by_name(base):
-    ignored, unnamed = _ignored_and_unnamed(parse_scenario({"plain": PLAIN, "rich": RICH}[base]), PROBE)
+    ignored, unnamed = _ignored_and_unnamed(parse_scenario({"plain": PLAIN, "rich": RICH}[base]),
+                                            (_numeric_keys() | set(PROBE)) - {k for k in _numeric_keys() if _probe(k) is None})
     assert not ignored and not unnamed, f"{base}: swept and ignored: {ignored}; refused without the key: {unnamed}"
 
 
@@ -128,7 +150,7 @@ def test_every_swept_surface_key_of_a_profile_or_slatted_track_reaches_the_model
         tmp_path / "p.csv", index=False)
     surface = {"profile": 'kind = "profile"\nprofile = "p.csv"\nspectrum_g0_m3 = 2e-5',
                "slatted": 'kind = "slatted"\nlength_m = 10'}[kind]
-    keys = [k for k in PROBE if k.startswith(("surface.", "simulation."))]
+    keys = [k for k in _numeric_keys() | set(PROBE) if k.startswith(("surface.", "simulation.")) and _probe(k)]
     ignored, unnamed = _ignored_and_unnamed(parse_scenario(text(surface=surface), tmp_path), keys)
     assert not ignored and not unnamed, f"{kind}: swept and ignored: {ignored}; refused without the key: {unnamed}"
 
