@@ -44,12 +44,18 @@ from .. import _validate
 from . import bounce_pitch
 from .model import Assembly, assemble
 
-__all__ = ["MODE_NAMES", "FOLLOW_MAC", "ModeSet", "mode_set", "mac_matrix", "frequency_intervals", "follow_names"]
+__all__ = ["MODE_NAMES", "LATERAL_ROLL_SHARE", "FOLLOW_MAC", "ModeSet", "mode_set", "mac_matrix", "frequency_intervals", "follow_names"]
 
-#: Mode names by the coordinate that moves most (the body's ``z`` and ``th`` by thesis §8.2's rule).
-MODE_NAMES = {"z": "bounce", "th": "pitch", "phi": "roll", "front_axle_roll": "front_axle_roll",
+#: Mode names by the coordinate that moves most (the body's ``z`` and ``th`` by thesis §8.2's rule;
+#: ``y`` and ``psi``: the body's lateral and yaw freedoms of issue 33's lateral tyre elements).
+MODE_NAMES = {"lateral_roll": "lateral_roll", "z": "bounce", "th": "pitch", "phi": "roll", "y": "lateral", "psi": "yaw",
+              "front_axle_roll": "front_axle_roll",
               "rear_axle_roll": "rear_axle_roll", "front_axle_z": "front_axle_bounce", "rear_axle_z": "rear_axle_bounce",
               "cab_z": "cab_bounce", "cab_th": "cab_pitch", "cab_phi": "cab_roll", "implement_th": "implement_pitch"}
+#: The lowest mode led by the body's lateral or roll motion is named ``lateral_roll`` when the lesser of
+#: the two holds at least this share of its kinetic energy (issue 33; a documented choice), else by
+#: what moves most (``lateral``, ``roll``).
+LATERAL_ROLL_SHARE = 0.05
 #: Least MAC at which a mode is the same mode as the reference's: more than half of the reference
 #: shape's mass-weighted motion lies in it, so no other mode (they are M-orthogonal) can claim it.
 FOLLOW_MAC = 0.5
@@ -144,11 +150,24 @@ def mode_set(asm: Assembly) -> ModeSet:
     """
     _validate.instance("asm", asm, Assembly)
     k, m, coords = asm.undamped()
-    w2, vecs = linalg.eigh(k, m)
+    if np.array_equal(k, k.T):
+        w2, vecs = linalg.eigh(k, m)
+    else:  # the static loads' moment (issue 33) makes K unsymmetric: real modes of the undamped system
+        w2, vecs = linalg.eig(k, m)
+        order = np.argsort(w2.real)
+        w2, vecs = w2.real[order], vecs[:, order].real
     freqs = [math.sqrt(max(float(x), 0.0)) / (2 * math.pi) for x in w2]
     iz, ith = coords.index("z"), coords.index("th")
     shares = [vecs[:, i] * (m @ vecs[:, i]) for i in range(len(w2))]
     dominant = [coords[int(np.argmax(np.abs(sh)))] for sh in shares]
+    if "y" in coords:  # issue 33: the lowest mode led by the body's lateral or roll motion, with both in it,
+        iy, iphi = coords.index("y"), coords.index("phi")  # is the coupled lateral-roll mode
+        for i, sh in enumerate(shares):
+            ey, ephi, total = abs(sh[iy]), abs(sh[iphi]), float(np.sum(np.abs(sh)))
+            if dominant[i] in ("y", "phi"):
+                if min(ey, ephi) >= LATERAL_ROLL_SHARE * total:
+                    dominant[i] = "lateral_roll"
+                break
     label = {i: MODE_NAMES.get(dominant[i], dominant[i]) for i in range(len(w2))}
     if _is_beam(asm):
         p = asm.parts

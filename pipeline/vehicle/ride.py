@@ -66,7 +66,7 @@ from .carriage import half_step_input
 from .model import Assembly, Axle, Cab, Chassis, Implement, Parts, SeatPoint, assemble
 from .tractor import Tractor, simulate, tractor_parts
 from .scenario_limits import MIN_VERDICT_DURATION_S
-from .modes import MODE_NAMES, ModeSet, follow_names, frequency_intervals, mode_set  # noqa: F401 (MODE_NAMES: its old home)
+from .modes import LATERAL_ROLL_SHARE, MODE_NAMES, ModeSet, follow_names, frequency_intervals, mode_set  # noqa: F401 (names: their old home)
 
 __all__ = [
     "OUTPUTS",

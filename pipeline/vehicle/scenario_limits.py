@@ -151,12 +151,12 @@ def scenario_problems(scenario) -> list[str]:
     for name in ("mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_m", "cg_height_m",
                  "longitudinal_stiffness_kN_per_m", "longitudinal_damping_kN_s_per_m"):
         checks.append((f"tractor.{name}", getattr(s.tractor, name)))
-    for name in ("roll_inertia_kg_m2", "front_track_m", "rear_track_m"):
-        if getattr(s.tractor, name) is not None:
-            checks.append((f"tractor.{name}", getattr(s.tractor, name)))
-    for name in ("ahead_of_cg_m", "height_above_cg_m", "natural_frequency_Hz", "damping_ratio", "left_of_cg_m"):
+    for name in ("ahead_of_cg_m", "height_above_cg_m", "natural_frequency_Hz", "damping_ratio"):
         if getattr(s.seat, name) is not None:
             checks.append((f"seat.{name}", getattr(s.seat, name)))
+    checks += [(f"tractor.{name}", getattr(s.tractor, name)) for name in ("roll_inertia_kg_m2", "front_track_m",
+                                                                         "rear_track_m")
+               if getattr(s.tractor, name) is not None] + [("seat.left_of_cg_m", s.seat.left_of_cg_m)]
     for section in ("front_axle", "rear_axle", "cab", "implement", "ballast"):  # the tractor's parts
         part = getattr(s, section, None)
         if part is not None:
