@@ -194,7 +194,62 @@ def scenario_problems(scenario) -> list[str]:
         problems += _profile_problems(*surf.profile_data, surf.profile)
     if isinstance(surf.seed, int) and surf.seed < 0:
         problems.append(f"surface.seed: {surf.seed} is negative (a seed is a whole number from 0)")
+    if not problems:
+        problems += _held_parts_problems(s)
     return problems
+
+
+def _held_parts_problems(scenario) -> list[str]:
+    """A suspended cab and suspended axles are part of ``tractor.mass_kg`` and its inertias and are
+    taken out of the body (:func:`tyrelab.vehicle.model.assemble`): what is left of the body (mass,
+    pitch and roll inertia about the tractor's CG, with the parts' offsets) must be positive
+    definite. An implement on a hitch spring must have an inertia about its hitch."""
+    t = scenario.tractor
+    three_d = t.roll_inertia_kg_m2 is not None
+    n = 3 if three_d else 2
+    left = np.diag([t.mass_kg, t.pitch_inertia_kg_m2, t.roll_inertia_kg_m2 or 0.0][:n])
+    held = []
+
+    def take(mass, pitch_inertia, roll_inertia, ahead_m, above_m):
+        z = np.array([1.0, ahead_m, 0.0][:n])
+        x = np.array([0.0, -above_m, 0.0][:n])
+        y = np.array([0.0, 0.0, -above_m][:n])
+        left[...] -= mass * (np.outer(z, z) + np.outer(x, x) + np.outer(y, y))
+        left[1, 1] -= pitch_inertia
+        if three_d:
+            left[2, 2] -= roll_inertia
+
+    cab = scenario.cab
+    if cab.mount == "suspended" and cab.mass_kg is not None:
+        take(cab.mass_kg, cab.pitch_inertia_kg_m2 or 0.0, cab.roll_inertia_kg_m2 or 0.0, cab.ahead_of_cg_m,
+             cab.height_above_cg_m)
+        held.append("cab.mass_kg, its inertias and place")
+    for axle, ahead in (("front", t.front_distance_m), ("rear", -t.rear_distance_m)):
+        spec = getattr(scenario, f"{axle}_axle")
+        if spec.mount == "suspended" and spec.mass_kg is not None:
+            height = spec.height_m if spec.height_m is not None else _tyre_radius_m(getattr(scenario, axle))
+            take(spec.mass_kg, 0.0, 0.0, ahead, height - t.cg_height_m)
+            held.append(f"{axle}_axle.mass_kg")
+    problems = []
+    if held and np.linalg.eigvalsh(left).min() <= 0:
+        keys = "tractor.mass_kg, tractor.pitch_inertia_kg_m2" + (", tractor.roll_inertia_kg_m2" if three_d else "")
+        problems.append(f"{keys}: the whole tractor's mass and inertias hold {' and '.join(held)}, and are smaller "
+                        f"than those parts' own about the tractor's CG (nothing, or less than nothing, is left of the "
+                        f"body: mass {left[0, 0]:.4g} kg)")
+    imp = scenario.implement
+    if imp is not None and imp.mount == "hitch_spring" and imp.pitch_inertia_kg_m2 + imp.mass_kg * (
+            (imp.behind_rear_axle_m - imp.hitch_behind_rear_axle_m) ** 2 + (imp.height_m - imp.hitch_height_m) ** 2) <= 0:
+        problems.append("implement.pitch_inertia_kg_m2, behind_rear_axle_m, height_m, hitch_behind_rear_axle_m, "
+                        "hitch_height_m: the implement has no inertia about its hitch (its CG at the hitch and no "
+                        "pitch inertia)")
+    return problems
+
+
+def _tyre_radius_m(tyre) -> float:
+    """A tyre's rolling radius, m: given, or from its size (as :func:`tyrelab.vehicle.ride.resolve_tyres`)."""
+    from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
+
+    return tyre.radius_m or rolling_circumference_m(parse_tyre_size(tyre.size)) / (2 * math.pi)
 
 
 def mass_problems(scenario, mass) -> list[str]:
