@@ -164,6 +164,8 @@ def _reason(scenario: Scenario, key: str, values) -> str | None:
             return f"surface.kind is \"{kind}\": a seed draws a generated track (\"iso8608\", \"slatted\")"
         if name == "dx_m" and kind == "slatted":
             return "surface.kind is \"slatted\": the slats set the track's points"
+        if name == "dx_m" and kind == "crg":
+            return "surface.kind is \"crg\": the road file's grid sets the track's points"
         return None
     if key == "simulation.duration_s":
         longest = max(scenario.surface.length_m / (v / 3.6) for v in scenario.exposure.speeds_km_h)

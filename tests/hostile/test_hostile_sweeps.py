@@ -55,6 +55,7 @@ PROBE = {
     "surface.length_m": (10, 12), "surface.seed": (1, 2), "surface.dx_m": (0.04, 0.05),
     "surface.spectrum_g0_m3": (1e-5, 4e-5), "surface.spectrum_waviness": (1.8, 2.5), "surface.lead_in_m": (5, 8),
     "exposure.hours_per_day": (4, 8), "simulation.duration_s": (1.2, 1.6),
+    "surface.lateral_offset_m": (0.0, 0.4), "surface.start_m": (0.0, 3.0),
     "cab.mass_kg": (700, 900), "cab.pitch_inertia_kg_m2": (500, 700), "cab.roll_inertia_kg_m2": (400, 600),
     "cab.ahead_of_cg_m": (-0.4, -0.2), "cab.height_above_cg_m": (0.8, 1.0), "cab.front_mount_ahead_of_cg_m": (0.4, 0.6),
     "cab.rear_mount_ahead_of_cg_m": (-1.0, -0.8), "cab.mount_track_m": (1.0, 1.3),
@@ -140,16 +141,21 @@ def test_every_swept_key_reaches_the_model_or_is_refused_by_name(base):
     assert not ignored and not unnamed, f"{base}: swept and ignored: {ignored}; refused without the key: {unnamed}"
 
 
-@pytest.mark.parametrize("kind", ["profile", "slatted"])
-def test_every_swept_surface_key_of_a_profile_or_slatted_track_reaches_the_model_or_is_refused(tmp_path, kind):
+@pytest.mark.parametrize("kind", ["profile", "slatted", "crg"])
+def test_every_swept_surface_key_of_a_profile_slatted_or_crg_road_reaches_the_model_or_is_refused(tmp_path, kind):
     import numpy as np
     import pandas as pd
 
+    rng = np.random.default_rng(5)
     x = np.arange(400) * 0.05
-    pd.DataFrame({"distance_m": x, "height_m": 0.01 * np.random.default_rng(5).standard_normal(400)}).to_csv(
-        tmp_path / "p.csv", index=False)
+    pd.DataFrame({"distance_m": x, "height_m": 0.01 * rng.standard_normal(400)}).to_csv(tmp_path / "p.csv", index=False)
+    if kind == "crg":
+        pyopencrg = pytest.importorskip("pyopencrg")
+        v = np.round(np.arange(-1.5, 1.5001, 0.1), 10)
+        pyopencrg.CrgRoad(0.01 * rng.standard_normal((400, v.size)), u_inc=0.05, v=v).save(tmp_path / "road.crg")
     surface = {"profile": 'kind = "profile"\nprofile = "p.csv"\nspectrum_g0_m3 = 2e-5',
-               "slatted": 'kind = "slatted"\nlength_m = 10'}[kind]
+               "slatted": 'kind = "slatted"\nlength_m = 10',
+               "crg": 'kind = "crg"\nfile = "road.crg"\nlength_m = 12'}[kind]
     keys = [k for k in _numeric_keys() | set(PROBE) if k.startswith(("surface.", "simulation.")) and _probe(k)]
     ignored, unnamed = _ignored_and_unnamed(parse_scenario(text(surface=surface), tmp_path), keys)
     assert not ignored and not unnamed, f"{kind}: swept and ignored: {ignored}; refused without the key: {unnamed}"
