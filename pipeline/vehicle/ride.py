@@ -976,7 +976,6 @@ def ride_variants(scenarios, tyre_data=None, with_spectra: bool = True, with_sig
     Each result is what :func:`ride` gives for that scenario alone."""
     for k, sc in enumerate(scenarios):
         _validate.instance(f"scenarios[{k}]", sc, Scenario)
-    _check_bodies(scenarios)
     cache = cache or RideCache()
     preps = [_prepare(sc, tyre_data, cache) for sc in scenarios]
     for p in preps:
@@ -998,25 +997,6 @@ def ride_variants(scenarios, tyre_data=None, with_spectra: bool = True, with_sig
     for p in preps:
         _redo_lifting(p)
     return [_finish(p) for p in preps]
-
-
-def _check_bodies(scenarios) -> None:
-    """Refuse (ScenarioError naming the keys) a scenario whose parts leave a mass matrix that is not
-    positive definite (:func:`tyrelab.vehicle.scenario_limits.mass_problems`), before any work."""
-    from types import SimpleNamespace
-
-    from .scenario_limits import mass_problems
-
-    tyre = SimpleNamespace(stiffness_kN_per_m=[1.0], damping_kN_s_per_m=[0.0], radius_m=0.5)  # no part of the mass
-    seen = set()
-    for sc in scenarios:
-        key = (sc.tractor, sc.cab, sc.front_axle, sc.rear_axle, sc.implement, sc.ballast, sc.seat)
-        if key in seen:
-            continue
-        seen.add(key)
-        problems = mass_problems(sc, assemble(build_parts(sc, {"front": tyre, "rear": tyre}, 0)).mass)
-        if problems:
-            raise ScenarioError(sc.path or "<scenario>", problems)
 
 
 def _prepare(scenario: Scenario, tyre_data, cache: RideCache) -> dict:
@@ -1595,7 +1575,6 @@ def ride_sweep(
                 base = with_values(scenario, combo) if combo else scenario
                 variants.append((with_overrides(base, speeds_km_h, pf, pr_), combo))
     scenarios = [v for v, _ in variants]
-    _check_bodies(scenarios)  # here too: before the variants go to the executor
     if map_fn is None or len(scenarios) == 1:
         results = ride_variants(scenarios, tyre_data, with_spectra)
     else:  # chunks of variants to the caller's executor, each batched in its task

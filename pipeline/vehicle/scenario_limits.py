@@ -31,8 +31,7 @@ import numpy as np
 from .. import _validate
 
 __all__ = ["LIMITS", "MAX_VARIANTS", "MAX_SAMPLES", "MIN_VERDICT_DURATION_S", "BYTES_PER_SAMPLE",
-           "SECONDS_PER_SAMPLE", "scenario_problems", "override_problems", "work_estimate", "work_problems",
-           "mass_problems"]
+           "SECONDS_PER_SAMPLE", "scenario_problems", "override_problems", "work_estimate", "work_problems"]
 
 #: key -> (lowest, highest, unit) of every number of a scenario the model is built for.
 LIMITS: dict[str, tuple[float, float, str]] = {
@@ -260,37 +259,6 @@ def _tyre_radius_m(tyre) -> float:
     from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
 
     return tyre.radius_m or rolling_circumference_m(parse_tyre_size(tyre.size)) / (2 * math.pi)
-
-
-def mass_problems(scenario, mass) -> list[str]:
-    """The problem of a scenario whose assembled mass matrix ``mass`` is not positive definite, in
-    one line naming its keys (empty when it is).
-
-    The suspended cab and axles are part of the tractor's mass and inertias and are taken out of
-    the body (:func:`tyrelab.vehicle.model.assemble`); an implement on a hitch spring pitches about
-    the hitch: a cab heavier than the tractor, or an implement with its CG at the hitch and no
-    inertia, leave a mass matrix that is not positive definite (:func:`tyrelab.vehicle.ride.ride`
-    checks every scenario's before any work).
-    """
-    eig = np.linalg.eigvalsh(np.asarray(mass, float))
-    if eig.size and eig.min() > 1e-9 * eig.max():
-        return []
-    keys = ["tractor.mass_kg", "tractor.pitch_inertia_kg_m2"] + (["tractor.roll_inertia_kg_m2"] if scenario.tractor.three_d else [])
-    held = []
-    if scenario.cab.mount == "suspended":
-        held.append("the cab (cab.mass_kg, its inertias, cab.ahead_of_cg_m, cab.height_above_cg_m)")
-    held += [f"the {a} axle ({a}_axle.mass_kg)" for a in ("front", "rear") if getattr(scenario, f"{a}_axle").mount == "suspended"]
-    imp = scenario.implement
-    hitch = imp is not None and imp.mount == "hitch_spring" and imp.pitch_inertia_kg_m2 + imp.mass_kg * (
-        (imp.behind_rear_axle_m - imp.hitch_behind_rear_axle_m) ** 2 + (imp.height_m - imp.hitch_height_m) ** 2) <= 1e-9
-    text = (f"{', '.join(keys)}: the tractor's mass and inertias, which hold " + " and ".join(held) +
-            ", are smaller than those parts' own about the tractor's CG") if held else ""
-    if hitch:
-        text += ("; " if text else "") + ("implement.pitch_inertia_kg_m2, implement.behind_rear_axle_m, height_m, "
-                                          "hitch_behind_rear_axle_m, hitch_height_m: the implement has no inertia about "
-                                          "its hitch (its CG at the hitch and no pitch inertia)")
-    return [text + " (the model's mass matrix is not positive definite)"] if text else \
-        [f"{', '.join(keys)}: the model's mass matrix is not positive definite"]
 
 
 def _profile_problems(x, left, right, path=None) -> list[str]:
