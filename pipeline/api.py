@@ -159,8 +159,9 @@ def ride(
     -------
     tyrelab.vehicle.ride.RideResult
         ``speeds`` (a DataFrame, one row per speed: ``a_wz_m_s2``, ``a_wx_m_s2``, ``a8_m_s2``,
-        ``a8_axis``, ``hours_to_eav``, ``hours_to_elv``, ``verdict``, …), ``modes`` (a
-        DataFrame: natural frequencies, their 95 % intervals, nodal points), ``tyres``
+        ``a8_axis``, ``hours_to_eav``, ``hours_to_elv``, ``verdict``, …), ``mode_table`` (a
+        DataFrame: natural frequencies, their 95 % intervals, nodal points; ``modes`` holds the
+        mode shapes), ``tyres``
         (stiffness and damping per tyre and speed with their sources), ``warnings``;
         ``to_dict()`` is the JSON of ``tyrelab ride``, ``to_json()`` its text.
 
@@ -183,7 +184,7 @@ def ride(
     >>> row = r.speeds.iloc[0]
     >>> row["a8_axis"], row["verdict"], round(float(row["hours_to_eav"]), 1)
     ('z', 'above action value', 6.2)
-    >>> list(r.modes["mode"])
+    >>> list(r.mode_table["mode"])
     ['bounce', 'pitch']
     >>> r.to_dict()["speeds"][0]["a8_axis"]
     'z'

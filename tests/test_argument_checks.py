@@ -417,6 +417,14 @@ ROWS = [
     (f"{VE}.scenario.parse_sets", dict(items=[("tractor.mass_kg", 1.0)]), "items"),
     # vehicle/scenario_limits.py
     (f"{VE}.scenario_limits.work_estimate", dict(scenario=_scenario, n_variants=0), "n_variants"),
+    # vehicle/modes.py
+    (f"{VE}.modes.mode_set", dict(asm="tractor"), "asm"),
+    (f"{VE}.modes.mac_matrix", dict(reference=None, other=None), "reference"),
+    (f"{VE}.modes.frequency_intervals", dict(asm="tractor", u_front_tyre_kN_per_m=1.0, u_rear_tyre_kN_per_m=1.0), "asm"),
+    (f"{VE}.modes.follow_names", dict(reference=None, other=None), "reference"),
+    # vehicle/sweeps.py
+    (f"{VE}.sweeps.pressure_axes", dict(scenario="modern.toml", front_pressures_bar=None, rear_pressures_bar=None, keys={}), "scenario"),
+    (f"{VE}.sweeps.unused_key_problems", dict(scenario=None, keys=[]), "scenario"),
     # vehicle/studies.py
     (f"{VE}.studies.carriage_case_inputs", dict(table_xii=None, stationary=pd.DataFrame()), "table_xii"),
     (f"{VE}.studies.carriage_study", dict(table_xii=pd.DataFrame(), stationary=pd.DataFrame(), seed=-1), "seed"),

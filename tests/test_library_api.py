@@ -26,8 +26,8 @@ def test_ride_takes_a_path_toml_text_or_a_dict_and_gives_the_same_rows(tmp_path)
     pd.testing.assert_frame_equal(by_path.speeds, by_text.speeds)
     pd.testing.assert_frame_equal(by_path.speeds, by_dict.speeds)
     assert by_path.speeds["a8_axis"].isin(["x", "y", "z"]).all()
-    assert list(by_path.modes.columns) == ["mode", "frequency_Hz", "low_Hz", "high_Hz", "nodal_point_m"]
-    assert list(by_path.modes["mode"][:2]) == ["bounce", "pitch"]
+    assert list(by_path.mode_table.columns) == ["mode", "frequency_Hz", "low_Hz", "high_Hz", "nodal_point_m"]
+    assert list(by_path.mode_table["mode"][:2]) == ["bounce", "pitch"]
     assert set(by_path.tyres) == {"front", "rear"}
     doc = json.loads(by_path.to_json())
     assert doc == by_path.to_dict() and doc["speeds"][1]["a8_axis"] == by_path.speeds["a8_axis"].iloc[1]
