@@ -344,7 +344,8 @@ ROWS = [
     (f"{VE}.model.needs", dict(part="wheel"), "part"),
     (f"{VE}.model.scenario_key", dict(field_name=None), "field_name"),
     (f"{VE}.elements.element", dict(name="e", g=[1.0], stiffness=1.0, damping=1.0, model="coulomb"), "model"),
-    # vehicle/crg.py, road_class.py (issue 33)
+    # vehicle/crg.py, road_class.py, tyre/lateral.py (issue 33)
+    ("tyrelab.tyre.lateral.estimate_lateral_stiffness", dict(vertical_stiffness_kN_per_m=-1.0), "vertical_stiffness_kN_per_m"),
     (f"{VE}.crg.wheel_positions", dict(lateral_offset_m=NAN, front_track_m=1.8, rear_track_m=1.9), "lateral_offset_m"),
     (f"{VE}.crg.wheel_positions", dict(lateral_offset_m=0.0, front_track_m=-1.8, rear_track_m=1.9), "front_track_m"),
     (f"{VE}.crg.crg_problems", dict(data=None, positions={}, start_m=0.0, length_m=None), "data"),

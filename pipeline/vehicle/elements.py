@@ -35,7 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Element", "SpringDamper", "Tyre", "Maxwell", "StateLayout", "element"]
+__all__ = ["Element", "SpringDamper", "Tyre", "Maxwell", "StaticLoadMoment", "StateLayout", "element"]
 
 
 class StateLayout:
@@ -186,6 +186,28 @@ class Maxwell(Element):
         r = layout.row(np.zeros(layout.nq), self.g)
         r[layout.index[q]] = -self.stiffness / self.damping
         return {q: r}
+
+
+@dataclass(frozen=True)
+class StaticLoadMoment(Element):
+    """The moment of a tyre's static load about the part that carries the tyre (issue 33).
+
+    The static load ``F`` (N, :attr:`stiffness`) acts at the tyre's contact patch, which a
+    horizontal tyre element (lateral, longitudinal) holds on the ground; when the part moves by
+    ``d·q`` (m) relative to the patch the load turns it by ``-F d·q`` about its freedom ``g``
+    (roll or pitch): ``f = F d·q``, generalised force ``-g f``. With laterally stiff tyres
+    (``y ≈ -h φ``) this is the familiar destabilising ``m g h φ``. Not a spring (no static
+    stiffness, no damping); gated by its tyre (a tyre off the ground carries no load)."""
+
+    d: np.ndarray | None = None
+    model = "static_load"
+
+    @property
+    def static_stiffness(self) -> float:
+        return 0.0
+
+    def force_row(self, layout: StateLayout) -> np.ndarray:
+        return layout.row(self.stiffness * np.asarray(self.d, float), np.zeros(layout.nq))
 
 
 _KINDS = {"kelvin_voigt": SpringDamper, "maxwell": Maxwell}

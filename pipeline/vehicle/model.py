@@ -78,19 +78,22 @@ from scipy import signal
 
 from .. import _validate
 from .carriage import GRAVITY_M_S2
-from .elements import Element, Maxwell, SpringDamper, StateLayout, Tyre, element
+from .elements import Element, Maxwell, SpringDamper, StateLayout, StaticLoadMoment, Tyre, element
 
 __all__ = ["Chassis", "Axle", "Cab", "Implement", "Ballast", "SeatPoint", "SeatSuspension", "Parts", "Part",
            "Builder", "Element", "Assembly", "LinearModel", "assemble", "coordinate_output", "AXLE_MOUNTS",
-           "LONGITUDINAL_MODELS", "CHASSIS_FREEDOMS", "needs", "scenario_key", "pivot_problem",
+           "LONGITUDINAL_MODELS", "LATERAL_MODELS", "CHASSIS_FREEDOMS", "needs", "scenario_key", "pivot_problem",
            "cab_mount_problems"]
 
 #: How an axle is carried (:class:`Axle`).
 AXLE_MOUNTS = ("rigid", "pivot", "suspended")
 #: Longitudinal element of an axle's tyres: none, Kelvin-Voigt (parallel), Maxwell (series).
 LONGITUDINAL_MODELS = ("none", "kelvin_voigt", "maxwell")
-#: The chassis' freedoms, in the order they are coordinates (those some part asks for).
-CHASSIS_FREEDOMS = ("z", "th", "x", "phi")
+#: Lateral element of a tyre at its contact patch (issue 33): none, Kelvin-Voigt, Maxwell.
+LATERAL_MODELS = ("none", "kelvin_voigt", "maxwell")
+#: The chassis' freedoms, in the order they are coordinates (those some part asks for): lateral
+#: ``y`` and yaw ``psi`` (nose left) with lateral tyre elements (issue 33).
+CHASSIS_FREEDOMS = ("z", "th", "x", "phi", "y", "psi")
 
 
 def needs(part: str, mount: str = "rigid", three_d: bool = False) -> tuple[str, ...]:
@@ -193,10 +196,16 @@ class Chassis(Part):
     pitch_inertia_kg_m2: float
     cg_height_m: float
     roll_inertia_kg_m2: float | None = None
+    #: Yaw inertia about the CG, kg m² (with lateral tyre elements; None: the pitch inertia, a
+    #: documented stand-in: for a box ``I_yaw - I_pitch = m (W² - H²)/12``, small for a tractor
+    #: about as wide as it is high).
+    yaw_inertia_kg_m2: float | None = None
 
     def check(self, three_d: bool) -> list[str]:
         out = _positive("chassis.mass_kg", self.mass_kg) + _positive("chassis.pitch_inertia_kg_m2",
                                                                         self.pitch_inertia_kg_m2)
+        if self.yaw_inertia_kg_m2 is not None:
+            out += _positive("chassis.yaw_inertia_kg_m2", self.yaw_inertia_kg_m2)
         return out + (_positive("chassis.roll_inertia_kg_m2", self.roll_inertia_kg_m2) if three_d else [])
 
     def declare(self, b: "Builder") -> None:
@@ -213,12 +222,19 @@ class Chassis(Part):
             b.set_diagonal("x", self.mass_kg)
         if b.three_d:
             b.set_diagonal("phi", self.roll_inertia_kg_m2)
+        if "y" in b.coordinates:
+            b.set_diagonal("y", self.mass_kg)
+            b.set_diagonal("psi", self.yaw_inertia_kg_m2 if self.yaw_inertia_kg_m2 is not None
+                           else self.pitch_inertia_kg_m2)
         b.weight[b.coordinates.index("z")] = self.mass_kg
         b.output("vertical_m_s2", b.row({"z": 1.0}))
         b.output("pitch_rad_s2", b.row({"th": 1.0}))
         b.output("longitudinal_m_s2", b.row({"x": 1.0}) if "x" in b.coordinates else np.zeros(b.n))
         if b.three_d:
             b.output("roll_rad_s2", b.row({"phi": 1.0}))
+        if "y" in b.coordinates:
+            b.output("lateral_m_s2", b.row({"y": 1.0}))
+            b.output("yaw_rad_s2", b.row({"psi": 1.0}))
         b.seat_frame = (b.chassis_point, b.pitch_row, b.roll_row)
 
 
@@ -251,6 +267,12 @@ class Axle(Part):
         Fore-aft element of the axle's tyres at the ground contact, :data:`LONGITUDINAL_MODELS`.
     longitudinal_stiffness_N_per_m, longitudinal_damping_N_s_per_m : float
         Per tyre.
+    lateral_model : str
+        Lateral element of each tyre at its contact patch (3-D), :data:`LATERAL_MODELS`: acts while
+        its tyre is on the ground; on a pivot or suspended axle it acts on the axle, whose centre
+        (``height_m`` above the ground) passes it to the chassis.
+    lateral_stiffness_N_per_m, lateral_damping_N_s_per_m : float
+        Per tyre.
     """
 
     name: str
@@ -267,6 +289,9 @@ class Axle(Part):
     longitudinal_model: str = "none"
     longitudinal_stiffness_N_per_m: float = 0.0
     longitudinal_damping_N_s_per_m: float = 0.0
+    lateral_model: str = "none"
+    lateral_stiffness_N_per_m: float = 0.0
+    lateral_damping_N_s_per_m: float = 0.0
 
     def check(self, three_d: bool) -> list[str]:
         ax, out = self, []
@@ -274,6 +299,15 @@ class Axle(Part):
             return [f"{ax.name}_axle.mount {ax.mount!r}: expected one of {AXLE_MOUNTS}"]
         if ax.longitudinal_model not in LONGITUDINAL_MODELS:
             return [f"longitudinal_model {ax.longitudinal_model!r}: expected one of {LONGITUDINAL_MODELS}"]
+        if ax.lateral_model not in LATERAL_MODELS:
+            return [f"lateral_model {ax.lateral_model!r}: expected one of {LATERAL_MODELS}"]
+        if ax.lateral_model != "none":
+            if not three_d:
+                out.append(f"{ax.name}_axle.lateral_model = {ax.lateral_model!r} needs the roll model "
+                           "(chassis roll_inertia_kg_m2)")
+            out += _positive(f"{ax.name}_axle.lateral_stiffness_N_per_m", ax.lateral_stiffness_N_per_m)
+            if ax.lateral_model == "maxwell":
+                out += _positive(f"{ax.name}_axle.lateral_damping_N_s_per_m", ax.lateral_damping_N_s_per_m)
         out += _needed_problems(f"{ax.name}_axle", ax, "axle", ax.mount, three_d)
         if ax.mount == "pivot" and not three_d:
             out.append(pivot_problem(f"{ax.name}_axle"))
@@ -284,6 +318,9 @@ class Axle(Part):
     def declare(self, b: "Builder") -> None:
         if self.longitudinal_model != "none":
             b.freedom("x")
+        if self.lateral_model != "none" and b.three_d:
+            b.freedom("y")
+            b.freedom("psi")
         if self.mount == "suspended":
             b.coordinate(f"{self.name}_axle_z")
         if self.mount != "rigid" and b.three_d:
@@ -318,12 +355,39 @@ class Axle(Part):
             per = 1.0 if three_d else 2.0  # pitch-plane: the axle's two tyres in one element
             b.element(Tyre(name, -jz, per * float(ax.tyre_stiffness_N_per_m), per * float(ax.tyre_damping_N_s_per_m)))
             names.append(name)
+            if ax.lateral_model != "none" and three_d:
+                self._lateral(b, name, a, py, ax_h)
         if ax.longitudinal_model != "none":
             # fore-aft of the axle's ground contact, h below the CG: d = x + h θ
             per = 2.0
             b.element(element(f"{ax.name}_longitudinal", b.chassis_point(a, 0.0, -h)["x"],
                               per * float(ax.longitudinal_stiffness_N_per_m),
                               per * float(ax.longitudinal_damping_N_s_per_m), ax.longitudinal_model, tuple(names)))
+            for name in names:  # the static loads' pitch moment, -F x (issue 33)
+                b.static_load_moment(name, b.pitch_row, b.row({"x": 1.0}))
+
+    def _lateral(self, b: "Builder", name: str, a: float, py: float, ax_h: float) -> None:
+        """The lateral element of tyre ``name`` at its contact patch and its static load's roll moment.
+
+        Rigid axle: the patch is the chassis point ``(a, py, -h)``, lateral ``y + h φ + a ψ``; the
+        static load ``F`` turns the chassis by ``-F y`` (the patch stays on the ground, the CG moves
+        by ``y``). Pivot or suspended axle: the patch is ``r = height_m`` below the axle centre,
+        lateral ``y_c + r α`` (``y_c`` the centre's, ``α`` the axle's roll); the load turns the axle
+        by ``-F y_c`` about its centre and reaches the chassis at the centre: ``F (y_c - y)``.
+        """
+        ax, row = self, b.row
+        if ax.mount == "rigid":
+            jy = b.chassis_point(a, py, -b.cg_height_m)["y"]
+        else:
+            centre = b.chassis_point(a, 0.0, ax_h)["y"]
+            jy = centre + float(ax.height_m) * row({f"{ax.name}_axle_roll": 1.0})
+        b.element(element(f"{name}_lateral", jy, float(ax.lateral_stiffness_N_per_m),
+                          float(ax.lateral_damping_N_s_per_m), ax.lateral_model, (name,)))
+        if ax.mount == "rigid":
+            b.static_load_moment(name, b.roll_row, row({"y": 1.0}))
+        else:
+            b.static_load_moment(name, row({f"{ax.name}_axle_roll": 1.0}), centre)
+            b.static_load_moment(name, b.roll_row, row({"y": 1.0}) - centre)
 
 
 @dataclass(frozen=True)
@@ -520,6 +584,10 @@ class Parts:
     implement: Implement | None = None
     ballast: Ballast | None = None
     extra: tuple = ()
+    #: The static tyre loads' moment where tyres have a horizontal element (issue 33): roll with
+    #: lateral elements, pitch with longitudinal ones. False for the thesis' studies (ch. 7-8 keep
+    #: the thesis' equations); the ride scenarios set it.
+    static_load_moment: bool = False
 
     @property
     def three_d(self) -> bool:
@@ -610,6 +678,7 @@ class Builder:
         self.pitch_row = self.row({"th": 1.0})
         self.roll_row = self.row({"phi": 1.0}) if self.three_d else None
         self.seat_frame = None
+        self.static_moments: list = []  # (tyre, freedom row, displacement row): issue 33
 
     # ------------------------------------------------------------------ contributing
     def row(self, coef: dict) -> np.ndarray:
@@ -623,7 +692,8 @@ class Builder:
     def chassis_point(self, px, py, pz) -> dict:
         """Rows (``z`` vertical, ``x`` fore-aft, ``y`` lateral) of a chassis point relative to the CG, m."""
         row = self.row
-        return {"z": row({"z": 1.0, "th": px, "phi": py}), "x": row({"x": 1.0, "th": -pz}), "y": row({"phi": -pz})}
+        return {"z": row({"z": 1.0, "th": px, "phi": py}), "x": row({"x": 1.0, "th": -pz, "psi": -py}),
+                "y": row({"y": 1.0, "phi": -pz, "psi": px})}
 
     def set_diagonal(self, coordinate: str, value: float) -> None:
         """The mass matrix' diagonal entry of ``coordinate`` (the chassis: exactly its m, I)."""
@@ -647,6 +717,13 @@ class Builder:
         if any(x.name == e.name for x in self.elements):
             raise ValueError(f"element {e.name!r} added twice")
         self.elements.append(e)
+
+    def static_load_moment(self, tyre: str, freedom_row: np.ndarray, displacement_row: np.ndarray) -> None:
+        """The static load of ``tyre`` turns the part of ``freedom_row`` by minus the load times
+        ``displacement_row · q`` (:class:`~tyrelab.vehicle.elements.StaticLoadMoment`; added by
+        :func:`assemble` once the static loads are known, when ``Parts.static_load_moment``)."""
+        if self.parts.static_load_moment:
+            self.static_moments.append((tyre, np.asarray(freedom_row, float), np.asarray(displacement_row, float)))
 
     def output(self, name: str, acceleration_row: np.ndarray, tilt_row: np.ndarray | None = None) -> None:
         """A kinematic output: ``acceleration_row · q''`` plus ``g · tilt_row · q`` (what a
@@ -686,6 +763,9 @@ class Assembly:
         key = tuple((id(e), e.stiffness) for e in self.elements)
         if getattr(self, "_layout_key", None) != key:
             seen = np.any(self.stiffness_matrix() != 0, axis=0)
+            for e in self.elements:  # positions a static load's moment reads (issue 33)
+                if isinstance(e, StaticLoadMoment):
+                    seen |= np.asarray(e.d) != 0
             own = [s for e in self.elements for s in e.states()]
             self._layout, self._layout_key = StateLayout(self.coordinates, seen, own, self.inputs), key
         return self._layout
@@ -835,6 +915,11 @@ class Assembly:
         sees (or ``coordinates``): the tyres' and suspensions' vertical stiffness only
         (the longitudinal elements left out, as thesis §8.2)."""
         k = self.stiffness_matrix(tyres_only=True)
+        for e in self.elements:  # issue 33: the lateral tyre springs (a Maxwell one's damper locked) and
+            if e.name.endswith("_lateral"):  # the static loads' moment (not symmetric)
+                k = k + e.stiffness * np.outer(e.g, e.g)
+            elif isinstance(e, StaticLoadMoment) and not np.any(e.g * self.row({"th": 1.0})):  # roll, not pitch
+                k = k + e.stiffness * np.outer(e.g, e.d)
         names = [c for i, c in enumerate(self.coordinates) if k[i, i] != 0] if coordinates is None else list(coordinates)
         idx = [self.coordinates.index(c) for c in names]
         return k[np.ix_(idx, idx)], self.mass[np.ix_(idx, idx)], tuple(names)
@@ -898,4 +983,8 @@ def assemble(parts: Parts) -> Assembly:
     asm = Assembly(b.coordinates, b.mass, b.elements, b.outputs, parts, b.weight, b.output_filters)
     loads = asm.static_tyre_loads_N()
     asm.elements = [dataclasses.replace(e, floor_N=-loads[e.name]) if e.name in loads else e for e in asm.elements]
+    count: dict = {}
+    for tyre, g, d in b.static_moments:
+        count[tyre] = count.get(tyre, 0) + 1
+        asm.elements.append(StaticLoadMoment(f"{tyre}_static_moment_{count[tyre]}", g, loads[tyre], 0.0, (tyre,), d=d))
     return asm
