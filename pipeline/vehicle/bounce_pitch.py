@@ -235,6 +235,22 @@ def tractor_natural_frequencies(
         ``natural_frequencies_Hz`` and ``nodal_points_m`` (``bounce``, ``pitch``: the same two
         frequencies by mode, and each mode's nodal point ahead of the CG in m, inf for a mode that
         does not pitch; :func:`mode_shapes`), as ``tyrelab ride`` reports them.
+
+    See Also
+    --------
+    natural_frequencies : the same from axle stiffnesses.
+    tyrelab.ride : the whole ride of a tractor scenario, these modes included.
+
+    Examples
+    --------
+    Given stiffnesses, CG midway (a = b = 1 m): bounce and pitch decouple, ``ω² = 4k/m`` and
+    ``ω² = 4k a²/I`` with k = 250 kN/m per tyre, m = 4000 kg, I = 2000 kg m² — √250/2π and
+    √500/2π Hz:
+
+    >>> r = tractor_natural_frequencies(4000, 2000, 1.0, 1.0, "13.6-38", 1.0, "13.6-38", 1.0, front_traction=True,
+    ...                                 front_stiffness_kN_per_m=250, rear_stiffness_kN_per_m=250)
+    >>> round(r["natural_frequencies_Hz"]["bounce"], 4), round(r["natural_frequencies_Hz"]["pitch"], 4)
+    (2.5165, 3.5588)
     """
     _validate.non_negative("front_pressure_bar", front_pressure_bar)
     _validate.non_negative("rear_pressure_bar", rear_pressure_bar)

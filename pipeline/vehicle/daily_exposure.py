@@ -183,6 +183,20 @@ def daily_exposure(tasks) -> dict:
         ``a8_m_s2`` (the Directive's: highest axis), ``a8_axis``, ``vdv_daily_axes_m_s1_75``,
         ``vdv_daily_m_s1_75``, ``vdv_daily_axis``, ``hours_to_eav``, ``hours_to_elv``,
         ``exposure_points``, ``verdict``, ``vdv_verdict``, ``dzd_m_s2``, ``hours_per_day``.
+
+    See Also
+    --------
+    governing_axis : the rule that names ``a8_axis``.
+    tyrelab.exposure : the same from recordings.
+
+    Examples
+    --------
+    Two tasks: 0.6 m/s² on z for 4 h and 0.3 m/s² for 4 h give A(8) = √(0.6²·4/8 + 0.3²·4/8) = 0.474 m/s²:
+
+    >>> day = daily_exposure([TaskExposure("a", 4.0, {"z": 0.6}, {"z": 8.0}, 600.0),
+    ...                       TaskExposure("b", 4.0, {"z": 0.3}, {"z": 4.0}, 600.0)])
+    >>> round(day["a8_m_s2"], 3), day["a8_axis"], day["verdict"]
+    (0.474, 'z', 'below action value')
     """
     tasks = list(tasks)
     if not tasks:
