@@ -356,7 +356,7 @@ def cmd_ride(args) -> int:
         results = ride_sweep(scenario, args.front_pressure, args.rear_pressure, args.speeds,
                              WarehouseTyres(args.build) if args.build else None,
                              lambda task, items: map_batches(task, items, ctx), with_spectra=bool(args.out), sets=sets,
-                             max_variants=args.max_variants, max_samples=args.max_samples)
+                             max_variants=args.max_variants, max_samples=args.max_samples, method=args.method)
     except ScenarioError as exc:  # a swept value the scenario refuses: every problem, one line each
         for problem in exc.problems:
             print(f"tyrelab ride: {exc.path}: {problem}", file=sys.stderr)
@@ -721,8 +721,14 @@ def build_parser() -> argparse.ArgumentParser:
     rd.add_argument("--set", action="append", default=None, metavar="KEY=V1,V2,...",
                     help="sweep a numeric scenario key, e.g. implement.mass_kg=0,500,1000 (repeatable: every combination)")
     rd.add_argument("--jobs", type=_jobs, default=1, help="worker processes for a sweep (default 1)")
+    rd.add_argument("--method", choices=["auto", "time", "spectral"], default=None,
+                    help="how the rows are computed (default the scenario's [simulation] method, else auto): time "
+                         "simulates every variant; spectral gives each its exact expectation in the frequency domain "
+                         "(no MTVV or crest factor); auto simulates one variant, and a sweep on an ISO 8608 surface "
+                         "spectrally with the nominal variant and any that may lift a tyre simulated beside")
     rd.add_argument("--max-variants", type=_whole(10**6), default=None, metavar="N",
-                    help="most pressure pairs a sweep may run (default 400; more is refused with an estimate)")
+                    help="most variants a sweep may run (default 400 in the time domain, 20000 spectral; more is "
+                         "refused with an estimate)")
     rd.add_argument("--max-samples", type=_whole(10**12), default=None, metavar="N",
                     help="most 1 kHz samples the command may simulate over all pairs and speeds (default 10 million)")
     rd.add_argument("--executor", choices=["local", "dask"], default="local",

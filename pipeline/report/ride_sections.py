@@ -19,6 +19,8 @@ from dataclasses import dataclass, field
 
 import pandas as pd
 
+from ..vehicle.spectral_ride import primary_rows
+
 __all__ = ["PRESSURE_COLUMNS", "variant_name", "variant_decimals", "scenario_sections", "SECTION_TABLES", "variant_labels", "swept_columns", "variant_rows", "RideFigure", "scenario_figures",
            "surface_edge_note"]
 
@@ -75,6 +77,7 @@ def variant_rows(table: pd.DataFrame) -> list[dict]:
     stiffness and damping per tyre at the slowest speed (``front_stiffness_kN_per_m``, ``rear_…``,
     ``front_damping_kN_s_per_m``, ``rear_…``), ``modes``
     (name -> natural frequency, Hz) and ``hours_to_eav`` (at the worst speed; None: never reached)."""
+    table = primary_rows(table)
     t = table.assign(_label=variant_labels(table))
     modes = _mode_names(t)
     out = []
@@ -162,7 +165,7 @@ def scenario_figures(table: pd.DataFrame, spectra: pd.DataFrame, transmissibilit
         swept keys (else a sentence why not; a pressure sweep of one key: a_w against pressure),
         and the seat PSD and transmissibility per axis.
     """
-    table = table.dropna(axis=1, how="all")
+    table = primary_rows(table).dropna(axis=1, how="all")
     keys = swept_columns(table)
     n_variants = variant_labels(table).nunique()
     out = [RideFigure("aw_speed", "Weighted r.m.s. at the seat against speed per axis, one line per variant (dotted: "
