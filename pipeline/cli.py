@@ -355,7 +355,8 @@ def cmd_ride(args) -> int:
         sets = parse_sets(args.set or [])
         results = ride_sweep(scenario, args.front_pressure, args.rear_pressure, args.speeds,
                              WarehouseTyres(args.build) if args.build else None,
-                             lambda task, items: map_batches(task, items, ctx), with_spectra=bool(args.out), sets=sets,
+                             lambda task, items: map_batches(task, items, ctx),
+                             with_spectra="nominal" if args.out else False, sets=sets,
                              max_variants=args.max_variants, max_samples=args.max_samples, method=args.method)
     except ScenarioError as exc:  # a swept value the scenario refuses: every problem, one line each
         for problem in exc.problems:

@@ -141,8 +141,12 @@ def method_words(rows: list[dict]) -> str:
     return text
 
 
+#: Columns shown even where every row leaves them empty: what a spectral row has not got ("–").
+SHOWN_EMPTY = ("crest_factor", "mtvv_m_s2", *INFINITE_WHEN_EMPTY)
+
+
 def _columns(doc: dict, rows: list[dict]) -> list[str]:
-    present = {c for r in rows for c in r}
+    present = {c for r in rows for c, v in r.items() if v is not None or c in SHOWN_EMPTY}
     return [c for c in SPEED_COLUMNS if c in present and (c not in ("front_pressure_bar", "rear_pressure_bar")
                                                           or "sweep" in doc)]
 
@@ -278,10 +282,11 @@ def variants(results: list[RideResult]) -> list[dict]:
 
 def figures(results: list[RideResult]) -> list[dict]:
     """The page's figures (caption + inline SVG, or the sentence why a figure is not drawn), those of
-    :func:`scenario_figures` with the spectra of the first variant."""
-    first = results[0]
-    specs = scenario_figures(results_table(results), first.spectra, first.transmissibility,
-                             first.scenario.exposure.hours_per_day, psd_edge_note(first), variant_label(first))
+    :func:`scenario_figures` with the spectra of the first variant that has them (a sweep computes
+    them for its nominal variant alone: ``ride_sweep(with_spectra="nominal")``)."""
+    shown = next((r for r in results if len(r.spectra)), results[0])
+    specs = scenario_figures(results_table(results), shown.spectra, shown.transmissibility,
+                             shown.scenario.exposure.hours_per_day, psd_edge_note(shown), variant_label(shown))
     return [{"name": f.name, "caption": f.caption, "svg": f.draw(), "note": f.note} for f in specs]
 
 

@@ -1257,7 +1257,7 @@ def _expected_batch(members: list, v: float, forces: bool = False) -> None:
         lms = [r["lm"] for r in runs]
         out = expected_weighted_rms(np.array([m.a for m in lms]), np.array([m.b for m in lms]),
                                     np.array([m.c[:na] for m in lms]), np.array([m.d[:na] for m in lms]),
-                                    tyres, grid, env, seat_tf, rows, chunk=16 if forces else 8)
+                                    tyres, grid, env, seat_tf, rows, chunk=4 if forces else 8)
         for k, r in enumerate(runs):
             r["expected"] = {ax: float(out[ax][k]) for ax in axes}
             if forces:
@@ -1506,8 +1506,12 @@ def _spectral_reduce(p: dict, i: int) -> None:
     hours = sc.exposure.hours_per_day
     aw = {ax: r["expected"].get(ax, 0.0) for ax in ("z", "x", "y")}
     asm = r["asm"]
+    k = (float(tyres["front"].stiffness_kN_per_m[i]), float(tyres["rear"].stiffness_kN_per_m[i]))
+    static = p.setdefault("static_loads", {})  # they change with the tyres' stiffness only (statically indeterminate)
+    if k not in static:
+        static[k] = asm.static_tyre_loads_N()
     r["row"] = sr.spectral_row(p["speeds"][i], tyres, i, aw, axes, hours, (r["stop"] - r["start"]) * DT_S,
-                               r["force_sd"], asm.static_tyre_loads_N(), 1 if asm.parts.three_d else 2,
+                               r["force_sd"], static[k], 1 if asm.parts.three_d else 2,
                                exposure(aw["z"], aw["x"], hours, aw["y"]))
     if p["with_spectra"]:
         speed = float(p["speeds"][i])
@@ -1558,27 +1562,35 @@ def _in_chunks(task, scenarios: list, size: int, tyre_data, with_spectra: bool, 
     return [r for chunk in map_fn(task, chunks) for r in chunk]
 
 
-def _sweep_results(scenarios: list, method: str, nominal: int, tyre_data, with_spectra: bool, map_fn,
+def _sweep_results(scenarios: list, method: str, nominal: int, tyre_data, with_spectra: bool | str, map_fn,
                    max_samples: int | None) -> list[RideResult]:
     """The results of a sweep's variants under ``method`` (:mod:`tyrelab.vehicle.spectral_ride`), in
-    order. ``auto``'s time-domain checks stay within ``max_samples`` (the nominal variant first, then
-    the lifting speeds in order; those beyond are left spectral, with a warning)."""
+    order, with figure data as :func:`ride_sweep`'s ``with_spectra`` says. ``auto``'s time-domain
+    checks stay within ``max_samples`` (the nominal variant first, then the lifting speeds in order;
+    those beyond are left spectral, with a warning)."""
     from . import scenario_limits as limits
     from . import spectral_ride as sr
 
+    cache = RideCache()  # shared by the runs in this process (tracks, enveloped wheel tracks, tyres)
+
     def timed(chosen: list, spectra: bool) -> list[RideResult]:  # chunks of variants, each batched in its task
         if map_fn is None or len(chosen) <= 1:
-            return ride_variants(chosen, tyre_data, spectra) if chosen else []
+            return ride_variants(chosen, tyre_data, spectra, cache=cache) if chosen else []
         return _in_chunks(_ride_batch, chosen, max(1, min(SWEEP_CHUNK, -(-len(chosen) // 8))), tyre_data, spectra,
                           map_fn)
 
-    if not limits.uses_spectral(scenarios[0], method, len(scenarios)):
-        return timed(scenarios, with_spectra)
-    if map_fn is None or len(scenarios) <= sr.SPECTRAL_CHUNK:
-        results = spectral_variants(scenarios, tyre_data, with_spectra)
+    def spectral(chosen: list, spectra: bool) -> list[RideResult]:
+        if map_fn is None or len(chosen) <= sr.SPECTRAL_CHUNK:
+            return spectral_variants(chosen, tyre_data, spectra, cache) if chosen else []
+        return _in_chunks(_spectral_batch, chosen, sr.SPECTRAL_CHUNK, tyre_data, spectra, map_fn)
+
+    run = spectral if limits.uses_spectral(scenarios[0], method, len(scenarios)) else timed
+    if with_spectra == "nominal":  # the figure data of the nominal variant alone (what a sweep's page draws)
+        results = run(scenarios[:nominal] + scenarios[nominal + 1:], False)
+        results.insert(nominal, run([scenarios[nominal]], True)[0])
     else:
-        results = _in_chunks(_spectral_batch, scenarios, sr.SPECTRAL_CHUNK, tyre_data, with_spectra, map_fn)
-    if method == "spectral":
+        results = run(scenarios, bool(with_spectra))
+    if run is timed or method == "spectral":
         return results
     checks = [(nominal, scenarios[nominal])]  # auto: the nominal variant and the speeds that may lift a tyre
     budget = (max_samples or limits.MAX_SAMPLES) - limits.work_estimate(scenarios[nominal], 1)["samples"]
@@ -1616,7 +1628,7 @@ def ride_sweep(
     speeds_km_h=None,
     tyre_data=None,
     map_fn=None,
-    with_spectra: bool = True,
+    with_spectra: bool | str = True,
     sets: dict | None = None,
     max_variants: int | None = None,
     max_samples: int | None = None,
@@ -1637,6 +1649,10 @@ def ride_sweep(
     map_fn : callable, optional
         ``map_fn(task, items) -> results`` in order (the caller's executor, e.g.
         :func:`tyrelab.executor.map_batches` bound to a context); default in-process.
+    with_spectra : bool or "nominal"
+        Seat PSD and transmissibility (figure data) of every variant, of none, or (``"nominal"``)
+        of the nominal variant alone (:func:`tyrelab.vehicle.spectral_ride.nominal_index`: what a
+        sweep's page draws).
     sets : dict, optional
         Numeric scenario keys (``"section.key"``, :func:`tyrelab.vehicle.scenario.numeric_key`)
         -> values to run, on top of (and replacing the same keys of) the scenario's ``[sweep]``.
@@ -1661,6 +1677,8 @@ def ride_sweep(
 
     method = method or scenario.simulation.method
     _validate.choice("method", method, METHODS)
+    if with_spectra not in (True, False, "nominal"):
+        raise ValueError(f"with_spectra must be True, False or 'nominal', got {with_spectra!r}")
     if max_variants is not None:
         _validate.positive_int("max_variants", max_variants)
     if max_samples is not None:

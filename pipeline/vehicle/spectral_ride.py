@@ -73,7 +73,7 @@ LIFT_OFF_PROBABILITY_LIMIT = 1e-3
 #: ISO 2631-1 §6.3.2: eVDV = 1.4 a_w T^¼ (crest factors below about 6).
 EVDV_FACTOR = 1.4
 #: The ``simulation`` text of a spectral row.
-SPECTRAL_SIMULATION = "linear, frequency domain (expectation)"
+SPECTRAL_SIMULATION = "frequency domain (expectation)"
 #: Variants per executor task of a spectral sweep (one task is about 10 ms a variant).
 SPECTRAL_CHUNK = 200
 #: Frequencies of a spectral variant's seat PSD figure data, Hz (the time rows' Welch grid: 0.1 Hz).

@@ -170,3 +170,29 @@ def test_the_method_key_is_checked(tmp_path, capsys):
     assert "Every row was simulated in the time domain" in " ".join(capsys.readouterr().out.split())
     with pytest.raises(ValueError, match="method"):
         ride.ride_sweep(parse_scenario(scenario_text()), method="fast")
+
+
+def test_a_3d_sweep_gives_each_tyre_its_force_and_lateral_a_w():
+    sc = parse_scenario(scenario_text(
+        surface='kind = "iso8608"\nclass = "C"\nlength_m = 80\ntracks = "isotropic"', speeds="[10]",
+        tractor_extra="roll_inertia_kg_m2 = 2400\nfront_track_m = 1.9\nrear_track_m = 1.8",
+        seat="[seat]\nheight_above_cg_m = 1.0\nleft_of_cg_m = 0.35", extra='[front_axle]\nmount = "pivot"\nroll_inertia_kg_m2 = 160'))
+    spec = ride.spectral_variants([sc], with_spectra=True)[0]
+    row = spec.speeds.iloc[0]
+    timed = ride.ride(sc, with_spectra=False).speeds.iloc[0]
+    for ax in ("z", "x", "y"):
+        assert row[f"a_w{ax}_m_s2"] == pytest.approx(timed[f"expected_a_w{ax}_m_s2"], rel=1e-12)
+    assert row["a_wy_m_s2"] > 0 and row["front_tyre_force_sd_N"] > 0 and row["rear_tyre_force_sd_N"] > 0
+    assert {"seat_vertical_psd_m2_s4_per_Hz", "seat_lateral_psd_m2_s4_per_Hz"} <= set(spec.spectra.columns)
+
+
+def test_a_sweep_page_gets_the_figure_data_of_its_nominal_variant_alone():
+    sc = parse_scenario(scenario_text(speeds="[8]"))
+    results = ride.ride_sweep(sc, [1.2, 1.6], [1.2], with_spectra="nominal")
+    assert [len(r.spectra) > 0 for r in results] == [False, True]  # 1.6/1.2 bar: the scenario's own
+    # the expected PSD integrates to the unweighted seat acceleration's variance (below 20 Hz, most of it)
+    psd = results[1].spectra
+    df = float(np.diff(psd["frequency_Hz"]).mean())
+    assert float(psd["seat_vertical_psd_m2_s4_per_Hz"].sum()) * df > results[1].speeds["a_wz_m_s2"].iloc[0] ** 2 / 4
+    assert "(1.6/1.2 bar)" in " ".join(f["caption"] for f in __import__(
+        "tyrelab.report.ride_page", fromlist=["figures"]).figures(results))
