@@ -187,6 +187,7 @@ ROWS = [
     # tyre/formula_fit.py
     (f"{TY}.formula_fit.design_matrix", dict(sizes=["13.6R38"], age_years=[-1.0], pressure_bar=[1.2]), "age_years"),
     (f"{TY}.formula_fit.design_matrix", dict(sizes=["13.6R38"], age_years=[1.0], pressure_bar=[INF]), "pressure_bar"),
+    (f"{TY}.formula_fit.extended_design_matrix", dict(sizes=["13.6R38"], age_years=[1.0], pressure_bar=[-1.2]), "pressure_bar"),
     (f"{TY}.formula_fit.fit_formula", dict(points=lambda: pd.DataFrame({"tyre_id": ["T1"]})), "points"),
     (f"{TY}.formula_fit.leave_one_tyre_out", dict(points="points.csv"), "points"),
     (f"{TY}.formula_fit.front_rule", dict(table_iii=lambda: _pub("table_iii"), table_ii=lambda: _pub("table_ii"), front_id="F9"), "table_iii"),

@@ -21,10 +21,22 @@ and can be refitted on any lab's measured tyres:
   clusters, and the formula is a population-average model in any case, which is what
   OLS/WLS with a cluster-robust covariance estimates without assuming the within-tyre
   correlation structure;
-* **prediction interval** of a new tyre's measured stiffness at ``x0``:
-  ``x0'β̂ ± t · sqrt(x0' V x0 + (s K̂0)²)``, with ``V`` the cluster-robust covariance
-  (the leverage term, which grows as the size moves away from the data) and ``s`` the
-  relative residual sd.
+* **prediction interval** of *that* tyre's measured stiffness at ``x0`` (issue 34):
+  ``x0'β̂ ± t · sqrt(lev(x0) + (s K̂0)²)``. ``s K̂0`` is the tyre-to-tyre scatter (``s``
+  the relative residual sd). ``lev(x0)`` is the variance of the fitted mean at the tyre's
+  W, R, A and P, the larger of two leave-one-tyre-out jackknife (CR3) variances: that of
+  the formula itself, ``x0' V_J x0``, and that of the formula extended by W and P as
+  separate terms, ``xe' V_E xe`` with ``xe = [1, R, A, W R P, W, P]``. CR1 with 16
+  clusters is optimistic where a tyre has leverage (its own residual is shrunk towards
+  the fit; leave-one-tyre-out coverage 89 % for a nominal 95 %); the jackknife leaves the
+  tyre out (MacKinnon & White 1985; Bell & McCaffrey 2002). The extension is there
+  because the formula's terms are well determined along W·R·P — so its own leverage
+  grows about as fast as K and the relative width barely moved far outside the data
+  (0.32 → 0.35 for an IF 710/70R42) — while a tyre far from the data in W or P
+  separately is an extrapolation of the formula's *form* the 16 tyres cannot check; how
+  much the extended fit's mean can move there says how far the data pin the form.
+  Where the extended design (or a replicate of it) cannot separate its terms, the
+  formula's jackknife is used alone; where that cannot be formed either, the CR1 ``V``.
 
 All stiffnesses in kN/m per tyre; W and R in inches, A in years, P in bar.
 """
@@ -42,12 +54,16 @@ from scipy.stats import t as student_t
 from .. import _validate
 from .sizes import TyreSize, TyreSizeError, parse_tyre_size
 
-__all__ = ["TERMS", "TERM_UNITS", "POINT_COLUMNS", "PRINTED_COEFFICIENTS", "FormulaPrediction", "FormulaFit", "design_matrix", "fit_formula",
+__all__ = ["TERMS", "EXTENDED_TERMS", "TERM_UNITS", "POINT_COLUMNS", "PRINTED_COEFFICIENTS", "FormulaPrediction", "FormulaFit",
+           "design_matrix", "extended_design_matrix", "fit_formula",
            "leave_one_tyre_out", "FrontRule", "front_rule", "fit_table"]
 
 #: The formula's terms, in coefficient order, with units of their coefficients.
 TERMS = ("intercept", "rim_diameter", "age", "wrp")
 TERM_UNITS = ("kN/m", "kN/m/in", "kN/m/year", "kN/m/in²/bar")
+#: The formula's terms and the two size terms it leaves out (section width W, in; pressure P,
+#: bar), whose fit's jackknife covariance enters the leverage of a prediction (module docstring).
+EXTENDED_TERMS = TERMS + ("width", "pressure")
 #: The thesis' printed coefficients (§4.5.3, §4.6): K = 172 − 1.77 R + 5.6 A + 0.34 W R P.
 PRINTED_COEFFICIENTS = (172.0, -1.77, 5.6, 0.34)
 
@@ -78,6 +94,49 @@ def design_matrix(sizes, age_years, pressure_bar) -> np.ndarray:
                             np.array([z.width_times_rim_in2 for z in s]) * p]) if s else np.empty((0, 4))
 
 
+def extended_design_matrix(sizes, age_years, pressure_bar) -> np.ndarray:
+    """Rows ``[1, R, A, W R P, W, P]`` (:data:`EXTENDED_TERMS`) for sizes, ages (years) and pressures (bar).
+
+    Examples
+    --------
+    >>> extended_design_matrix(["13.6R38"], [1.0], [1.2]).round(2).tolist()
+    [[1.0, 38.0, 1.0, 620.16, 13.6, 1.2]]
+    """
+    x = design_matrix(sizes, age_years, pressure_bar)
+    w = np.array([_size(z).section_width_in for z in sizes], float).reshape(-1)
+    return np.column_stack([x, w, np.asarray(pressure_bar, float).reshape(-1)]) if len(x) else np.empty((0, 6))
+
+
+def _wls_beta(x: np.ndarray, y: np.ndarray) -> np.ndarray | None:
+    """The fit's estimator in numpy: OLS, then WLS with weights 1/K̂² (None if rank-deficient)."""
+    if np.linalg.matrix_rank(x) < x.shape[1]:
+        return None
+    b0 = np.linalg.lstsq(x, y, rcond=None)[0]
+    sw = 1.0 / np.maximum(x @ b0, 0.05 * np.abs(y).max())
+    return np.linalg.lstsq(x * sw[:, None], y * sw, rcond=None)[0]
+
+
+def _jackknife_covariance(x: np.ndarray, y: np.ndarray, groups: np.ndarray) -> np.ndarray | None:
+    """Leave-one-tyre-out jackknife covariance (CR3) of :func:`_wls_beta`:
+    ``(G − 1)/G Σ_g (β̂_(g) − β̄)(β̂_(g) − β̄)'``; None if any replicate cannot be fitted."""
+    labels = np.unique(groups)
+    if len(labels) < 3 or _wls_beta(x, y) is None:
+        return None
+    reps = []
+    for g in labels:
+        keep = groups != g
+        b = _wls_beta(x[keep], y[keep])
+        if b is None:
+            return None
+        reps.append(b)
+    d = np.asarray(reps) - np.mean(reps, axis=0)
+    return (len(labels) - 1) / len(labels) * d.T @ d
+
+
+def _as_tuple(matrix) -> tuple | None:
+    return None if matrix is None else tuple(tuple(float(v) for v in row) for row in np.asarray(matrix))
+
+
 @dataclass(frozen=True)
 class FormulaPrediction:
     """One prediction of a fitted formula.
@@ -89,9 +148,9 @@ class FormulaPrediction:
     interval_kN_per_m : (float, float)
         95 % (or ``level``) prediction interval of the tyre's measured rolling stiffness, kN/m.
     standard_uncertainty_kN_per_m : float
-        ``sqrt(x0'Vx0 + (s K̂0)²)``, kN/m.
+        ``sqrt(lev(x0) + (s K̂0)²)``, kN/m (module docstring).
     mean_se_kN_per_m : float
-        Standard error of the fitted mean alone, ``sqrt(x0'Vx0)`` (the leverage part), kN/m.
+        Standard error of the fitted mean alone, ``sqrt(lev(x0))`` (the leverage part), kN/m.
     coverage_factor : float
         Student t factor used.
     """
@@ -126,6 +185,12 @@ class FormulaFit:
     ranges : dict
         (min, max) of ``wr_in2``, ``rim_diameter_in``, ``age_years``, ``pressure_bar`` of the points.
     method : str
+    leverage_covariance : tuple of tuple of float or None
+        Leave-one-tyre-out jackknife (CR3) covariance of :attr:`coefficients` (None: not
+        formed, :attr:`covariance` is used).
+    extended_covariance : tuple of tuple of float or None
+        Jackknife covariance of the fit extended by W and P (:data:`EXTENDED_TERMS`; None:
+        the extension cannot be fitted).
     """
 
     source: str
@@ -140,6 +205,8 @@ class FormulaFit:
     ranges: dict = field(default_factory=dict)
     method: str = ("WLS (weights 1/K̂² from an OLS pass), cluster-robust covariance by tyre (CR1), "
                    "t with n_tyres − 1 degrees of freedom")
+    leverage_covariance: tuple[tuple[float, ...], ...] | None = None
+    extended_covariance: tuple[tuple[float, ...], ...] | None = None
 
     @property
     def dof(self) -> int:
@@ -186,10 +253,22 @@ class FormulaFit:
         age_years = _validate.non_negative("age_years", age_years)
         x0 = np.array([1.0, rim, age_years, wr * pressure_bar])
         k = float(x0 @ np.asarray(self.coefficients))
-        var_mean = float(x0 @ np.asarray(self.covariance) @ x0)
-        u = math.sqrt(max(var_mean, 0.0) + (self.relative_residual_sd * k) ** 2)
+        var_mean = self.mean_variance(rim, wr, pressure_bar, age_years)
+        u = math.sqrt(var_mean + (self.relative_residual_sd * k) ** 2)
         t = self.coverage_factor(level)
         return FormulaPrediction(k, (k - t * u, k + t * u), u, math.sqrt(max(var_mean, 0.0)), t)
+
+    def mean_variance(self, rim_diameter_in: float, wr_in2: float, pressure_bar: float, age_years: float) -> float:
+        """``lev(x0)``: variance of the fitted mean, (kN/m)², for a tyre of rim diameter R (in), W·R
+        (in²) at P (bar) and age A (years): the larger of the formula's and the extended fit's
+        jackknife variances (module docstring); the CR1 variance when neither was formed."""
+        x0 = np.array([1.0, rim_diameter_in, age_years, wr_in2 * pressure_bar])
+        v = np.asarray(self.leverage_covariance if self.leverage_covariance is not None else self.covariance)
+        var = float(x0 @ v @ x0)
+        if self.extended_covariance is not None:
+            xe = np.concatenate([x0, [wr_in2 / rim_diameter_in, pressure_bar]])
+            var = max(var, float(xe @ np.asarray(self.extended_covariance) @ xe))
+        return max(var, 0.0)
 
     def row(self) -> dict:
         """One ``formula_fit`` row: coefficients, standard errors, counts, r², residual sd."""
@@ -270,6 +349,7 @@ def fit_formula(points: pd.DataFrame, source: str = "published") -> FormulaFit:
     s = float(np.sqrt(np.sum((resid / fitted0) ** 2) / dof_resid))
     cov = np.asarray(res.cov_params(), float)
     wr = x[:, 3] / p["pressure_bar"].replace(0, np.nan).to_numpy(float)
+    xe = extended_design_matrix(p["size"], p["age_years"], p["pressure_bar"])
     return FormulaFit(
         source=source,
         coefficients=tuple(float(b) for b in beta),
@@ -284,6 +364,11 @@ def fit_formula(points: pd.DataFrame, source: str = "published") -> FormulaFit:
                 "rim_diameter_in": (float(x[:, 1].min()), float(x[:, 1].max())),
                 "age_years": (float(x[:, 2].min()), float(x[:, 2].max())),
                 "pressure_bar": (float(p["pressure_bar"].min()), float(p["pressure_bar"].max()))},
+        method=("WLS (weights 1/K̂² from an OLS pass), cluster-robust covariance by tyre (CR1), t with "
+                "n_tyres − 1 degrees of freedom; prediction leverage: leave-one-tyre-out jackknife of the "
+                "formula and of the formula extended by W and P, the larger"),
+        leverage_covariance=_as_tuple(_jackknife_covariance(x, y, groups)),
+        extended_covariance=_as_tuple(_jackknife_covariance(xe, y, groups)),
     )
 
 

@@ -15,7 +15,7 @@ import pandas as pd
 
 from .. import _validate
 from . import formula_accuracy as fa
-from .formula_fit import TERMS, FormulaFit, fit_formula, front_rule
+from .formula_fit import EXTENDED_TERMS, TERMS, FormulaFit, fit_formula, front_rule
 from .stiffness import FormulaDataRange, StiffnessModel
 
 __all__ = ["THESIS_TABLES", "thesis_points", "thesis_formula_fit", "thesis_stiffness_model", "fit_row",
@@ -58,14 +58,18 @@ def thesis_stiffness_model(table_ii: pd.DataFrame, table_iii: pd.DataFrame, tabl
 
 def fit_row(fit: FormulaFit) -> dict:
     """:meth:`FormulaFit.row` plus what :func:`fit_from_row` needs: the covariance
-    (``cov_<term>_<term>``, upper triangle) and the data ranges (``<range>_min``/``_max``)."""
+    (``cov_<term>_<term>``, upper triangle), the prediction's jackknife covariances
+    (``jk_cov_<term>_<term>`` over :data:`TERMS`, ``ext_cov_<term>_<term>`` over
+    :data:`EXTENDED_TERMS`; null where not formed) and the data ranges (``<range>_min``/``_max``)."""
     _validate.instance("fit", fit, FormulaFit)
     row = fit.row()
-    cov = np.asarray(fit.covariance)
-    for i, a in enumerate(TERMS):
-        for j, b in enumerate(TERMS):
-            if j >= i:
-                row[f"cov_{a}_{b}"] = float(cov[i, j])
+    for prefix, terms, cov in (("cov", TERMS, fit.covariance), ("jk_cov", TERMS, fit.leverage_covariance),
+                               ("ext_cov", EXTENDED_TERMS, fit.extended_covariance)):
+        c = np.full((len(terms), len(terms)), np.nan) if cov is None else np.asarray(cov)
+        for i, a in enumerate(terms):
+            for j, b in enumerate(terms):
+                if j >= i:
+                    row[f"{prefix}_{a}_{b}"] = float(c[i, j])
     for name, (lo, hi) in fit.ranges.items():
         row[f"{name}_min"], row[f"{name}_max"] = lo, hi
     return row
@@ -100,7 +104,25 @@ def fit_from_row(row) -> FormulaFit:
     ids = get("tyre_ids") or ""
     return FormulaFit(str(get("source")), beta, tuple(tuple(float(v) for v in r) for r in cov), s,
                       float(get("residual_sd_kN_per_m")), float(get("r_squared")), int(get("n_tyres")),
-                      int(get("n_points")), tuple(str(ids).split()), ranges, str(get("method")))
+                      int(get("n_points")), tuple(str(ids).split()), ranges, str(get("method")),
+                      _optional_cov(get, "jk_cov", TERMS), _optional_cov(get, "ext_cov", EXTENDED_TERMS))
+
+
+def _optional_cov(get, prefix: str, terms) -> tuple | None:
+    """A covariance written by :func:`fit_row` under ``prefix``; None if absent (a build from
+    before issue 34) or not formed (null)."""
+    c = np.zeros((len(terms), len(terms)))
+    for i, a in enumerate(terms):
+        for j, b in enumerate(terms):
+            if j >= i:
+                try:
+                    v = float(get(f"{prefix}_{a}_{b}"))
+                except (TypeError, ValueError):
+                    return None
+                if not np.isfinite(v):
+                    return None
+                c[i, j] = c[j, i] = v
+    return tuple(tuple(float(v) for v in r) for r in c)
 
 
 def build_stiffness_model(formula_fit_table: pd.DataFrame, thesis: StiffnessModel, source: str = "ours") -> StiffnessModel:
