@@ -19,9 +19,9 @@ from dataclasses import dataclass, field
 
 import pandas as pd
 
-from ..vehicle.spectral_ride import primary_rows
+from ..vehicle.spectral_ride import LIFT_OFF_PROBABILITY_LIMIT, primary_rows
 
-__all__ = ["PRESSURE_COLUMNS", "variant_name", "variant_decimals", "scenario_sections", "SECTION_TABLES", "variant_labels", "swept_columns", "variant_rows", "RideFigure", "scenario_figures",
+__all__ = ["PRESSURE_COLUMNS", "method_note", "variant_name", "variant_decimals", "scenario_sections", "SECTION_TABLES", "variant_labels", "swept_columns", "variant_rows", "RideFigure", "scenario_figures",
            "surface_edge_note"]
 
 
@@ -214,7 +214,7 @@ def scenario_sections(scenarios: pd.DataFrame, results: pd.DataFrame, spectra: p
     -------
     list of dict
         In the order of ``scenarios``: ``scenario`` (its name), ``file``, ``anchor`` (an HTML id),
-        ``variants`` (:func:`variant_rows`), their ``decimals`` (:func:`variant_decimals`) and ``figures`` (:func:`scenario_figures` of its
+        ``method`` (:func:`method_note`), ``variants`` (:func:`variant_rows`), their ``decimals`` (:func:`variant_decimals`) and ``figures`` (:func:`scenario_figures` of its
         ``ride_results`` rows and the PSD and transmissibility of the variant shown there).
     """
     if not {"scenario", "file"} <= set(scenarios.columns) or not {"file", "speed_km_h"} <= set(results.columns):
@@ -230,9 +230,28 @@ def scenario_sections(scenarios: pd.DataFrame, results: pd.DataFrame, spectra: p
         note = surface_edge_note(getattr(row, "surface", "iso8608"), float(rows["speed_km_h"].min()))
         variants = variant_rows(rows)
         out.append({"scenario": row.scenario, "file": row.file, "anchor": f"scenario-{k + 1}",
-                    "variants": variants, "decimals": variant_decimals(variants),
+                    "method": method_note(rows), "variants": variants, "decimals": variant_decimals(variants),
                     "figures": scenario_figures(rows, psd, trans, hours, note, shown)})
     return out
+
+
+def method_note(table: pd.DataFrame) -> str:
+    """How a scenario's ``ride_results`` rows were computed, in a sentence (``method``:
+    :mod:`tyrelab.vehicle.spectral_ride`).
+
+    Examples
+    --------
+    >>> method_note(pd.DataFrame({"method": ["spectral"] * 4 + ["time"]}))[:44]
+    '4 rows in the frequency domain (the linear m'
+    """
+    methods = table["method"].value_counts() if "method" in table else pd.Series(dtype=int)
+    spectral, timed = int(methods.get("spectral", 0)), int(methods.get("time", 0))
+    if not spectral:
+        return "Every row simulated in the time domain (one realisation of the track; expected_*: the expectation)."
+    return (f"{spectral} rows in the frequency domain (the linear model's exact expectation for the track's "
+            "spectrum; no MTVV or crest factor), "
+            + (f"{timed} simulated beside them (the nominal variant, and speeds whose lift-off probability exceeds "
+               f"{LIFT_OFF_PROBABILITY_LIMIT:g})" if timed else "none simulated") + "; the figures and the variant table read the spectral rows.")
 
 
 def surface_edge_note(surface_kind: str, speed_km_h: float) -> str:
