@@ -25,7 +25,12 @@ if TYPE_CHECKING:  # pandas/pyarrow are imported where used: a no-op run never n
 
 __all__ = ["atomic_path", "write_parquet_atomic", "write_text_atomic", "write_texts_atomic", "file_sha256",
            "discover_campaigns", "os_error_line", "make_folder", "safe_name", "walk", "json_safe",
-           "raw_problem", "printable", "MissingExtra"]
+           "raw_problem", "printable", "MissingExtra", "MAX_HEADER_BYTES"]
+
+#: Longest header line of a CSV the pipeline reads in pieces (a vehicle recording, a track profile),
+#: bytes: it is read first, bounded, so that a file without line ends is refused instead of being read
+#: whole as its header (a 2 GB one took 15 GB and a minute).
+MAX_HEADER_BYTES = 64 * 1024
 
 
 class MissingExtra(RuntimeError):

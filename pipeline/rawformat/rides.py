@@ -49,6 +49,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
+from ..io import MAX_HEADER_BYTES as _io_MAX_HEADER_BYTES
 from . import mapped
 from .mapped import RunFileError
 
@@ -93,10 +94,9 @@ GRAVITY_M_S2 = 9.80665
 #: vibration: the recording is refused naming the channel and row (the sums of the analysis
 #: would otherwise overflow, or give an A(8) of 1e27 m/s²).
 MAX_ABS_SAMPLE = 1000.0
-#: Longest header line of a ``.csv`` recording, bytes (the longest real one, every channel of
-#: :data:`RIDE_CHANNELS` with long names, is under 1 kB): it is read before anything else, so a
-#: file without a line end is refused instead of being read whole as its header.
-MAX_HEADER_BYTES = 64 * 1024
+#: Longest header line of a ``.csv`` recording, bytes (:data:`tyrelab.io.MAX_HEADER_BYTES`; every
+#: channel of :data:`RIDE_CHANNELS` makes under 1 kB).
+MAX_HEADER_BYTES = _io_MAX_HEADER_BYTES
 _DELIMITER_NAMES = {",": "','", ";": "';'", "\t": "tab"}
 
 
