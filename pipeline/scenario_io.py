@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 
 from . import _validate
-from .io import MAX_HEADER_BYTES, printable
+from .io import head_lines, printable
 from .vehicle.scenario import Scenario, ScenarioError
 from .vehicle.scenario import parse_scenario as _parse_text
 
@@ -42,13 +42,9 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarr
     if not path.is_file():
         raise ValueError(f"{shown}: no such file")
     try:  # the header line first, bounded: a file without line ends is not read whole as its header
-        with open(path, "rb") as fh:
-            head = fh.readline(MAX_HEADER_BYTES + 1)
-    except OSError as exc:
-        raise ValueError(f"{shown}: cannot read ({exc.strerror or exc})") from None
-    if len(head) > MAX_HEADER_BYTES:
-        raise ValueError(f"{shown}: the header line is longer than {MAX_HEADER_BYTES // 1024} KiB (a file without "
-                         "line ends?); a profile's first line names its columns (distance_m, height_m)")
+        head_lines(path, 1, "distance_m, height_m")
+    except ValueError as exc:
+        raise ValueError(f"{shown}: {exc}") from None
     try:
         df = pd.read_csv(path)
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:

@@ -198,17 +198,12 @@ def _read_error(exc: Exception, suffix: str) -> RunFileError:
 def _csv_dialect(path: Path) -> tuple[list[str], str, str]:
     """The header names, separator and decimal mark of a ``.csv`` recording, from its first two
     lines read bounded (:data:`MAX_HEADER_BYTES` each)."""
-    from ..io import printable
+    from ..io import head_lines, printable
 
     try:
-        with open(path, "rb") as fh:
-            head = fh.readline(MAX_HEADER_BYTES + 1)
-            second = fh.readline(MAX_HEADER_BYTES + 1)
-    except OSError as exc:
-        raise RunFileError(f"cannot read ({exc.strerror or exc})") from None
-    if len(head) > MAX_HEADER_BYTES:
-        raise RunFileError(f"the header line is longer than {MAX_HEADER_BYTES // 1024} KiB (a file without line ends?): "
-                           "a recording's first line names its columns (time_s, seat_z_m_s2, …)")
+        head, second = head_lines(path, 2, "time_s, seat_z_m_s2, …")
+    except ValueError as exc:
+        raise RunFileError(str(exc)) from None
     try:
         header = head.decode("utf-8-sig").strip("\r\n")
         first_row = second.decode("utf-8", errors="replace").strip("\r\n")

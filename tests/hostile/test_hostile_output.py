@@ -130,3 +130,43 @@ def test_executor_dask_without_dask_is_one_line(monkeypatch, capsys):
                "--executor", "dask"])
     err = capsys.readouterr().err
     assert rc == 2 and err.count("\n") == 1 and "pip install 'tyrelab[dask]'" in err
+
+
+# -- ride profiles: the header bounded, an unreadable file named ---------------------------------------
+
+def _profile_scenario(folder):
+    from tyrelab.resources import scenarios_dir
+
+    text = (scenarios_dir() / "modern_tractor.toml").read_text(encoding="utf-8")
+    old = 'kind = "iso8608"\nclass = "C"\nlength_m = 400\nseed = 1\n'
+    assert old in text
+    (folder / "s.toml").write_text(text.replace(old, 'kind = "profile"\nprofile = "p.csv"\n'), encoding="utf-8")
+    x = np.arange(0, 200, 0.05)
+    pd.DataFrame({"distance_m": x, "height_m": 0.01 * np.sin(x)}).to_csv(folder / "p.csv", index=False)
+    return folder / "s.toml"
+
+
+def test_a_profile_without_line_ends_is_refused_before_it_is_read(tmp_path, capsys, monkeypatch):
+    import tyrelab.scenario_io as sio
+
+    scenario = _profile_scenario(tmp_path)
+    (tmp_path / "p.csv").write_bytes(b"distance_m," + b"x" * (70 * 1024))
+
+    def no_read(*a, **k):  # bounded by design: nothing parses the file before its header is checked
+        raise AssertionError("read_csv called on a file without a header line")
+
+    monkeypatch.setattr(sio.pd, "read_csv", no_read)
+    assert main(["ride", str(scenario), "--speeds", "8"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and len(err) < 400 and "header line is longer than 64 KiB" in err
+
+
+def test_an_unreadable_profile_cannot_be_read_exit_2(tmp_path):
+    from tests.hostile.test_hostile_cli import unprivileged
+
+    scenario = _profile_scenario(tmp_path)
+    (tmp_path / "p.csv").chmod(0)
+    out = subprocess.run(unprivileged([*TYRELAB, "ride", str(scenario), "--speeds", "8"]), capture_output=True,
+                         text=True, timeout=300)
+    assert out.returncode == 2 and "Traceback" not in out.stderr, out.stderr[-800:]
+    assert out.stderr.count("\n") == 1 and "p.csv: cannot read (Permission denied)" in out.stderr
