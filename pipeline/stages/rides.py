@@ -224,7 +224,7 @@ def run(ctx: Context) -> StageResult:
             if ride_id in seen:
                 refuse(campaign, ride_id, file, f"duplicate ride_id (also in {seen[ride_id]})")
                 continue
-            seen[ride_id] = str(campaign)
+            seen[ride_id] = where(campaign)
             try:
                 path = confined_run_path(campaign, file)
             except RunFileError as exc:

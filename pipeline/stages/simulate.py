@@ -65,7 +65,7 @@ from .state import ItemCache
 
 __all__ = ["SEED", "STEMS", "THESIS_XX_STATISTICS", "run", "start_studies_ahead", "abandon_studies_ahead",
            "WarehouseTyres", "scenario_files", "scenario_items", "scenario_task", "run_scenarios", "collect_scenarios",
-           "collect_scenario_spectra", "RIDE_TABLES", "portable_scenario_path"]
+           "collect_scenario_spectra", "RIDE_TABLES", "portable_path"]
 
 SEED = 5007
 #: The per-speed fits a scenario's ``measured_tyre_id`` reads (through the warehouse). With the
@@ -98,7 +98,12 @@ def _read(ctx: Context) -> tuple[dict[str, pd.DataFrame], pd.DataFrame]:
     for stem in STEMS:
         tables[stem] = published.read_published(stem, ctx.raw)
         path = published.published_dir(ctx.raw) / f"{stem}.csv"
-        sources.append({"table": stem, "source": str(path), "rows": len(tables[stem])})
+        # relative to the raw folder (published/table_x.csv), a shipped table as shipped/table_x.csv: no
+        # path of this machine in the warehouse
+        shipped = published.published_dir(None)
+        source = (f"shipped/{path.name}" if path.parent.resolve() == shipped.resolve() else
+                  portable_path(str(path), ctx.raw))
+        sources.append({"table": stem, "source": source, "rows": len(tables[stem])})
     return tables, pd.DataFrame(sources)
 
 
@@ -486,7 +491,7 @@ def run(ctx: Context) -> StageResult:
     }
     # ride scenarios (issue 13)
     ride_tables, bad = _ride_finish(ctx, files, cache, ride_keys, ride_done, ride_todo, ride_outputs)
-    portable = {path: portable_scenario_path(path, ctx.raw) for path, _ in files}
+    portable = {path: portable_path(path, ctx.raw) for path, _ in files}
     for name, df in ride_tables.items():  # the warehouse holds no path of this machine (a build is portable)
         if "file" in df:
             ride_tables[name] = df.assign(file=df["file"].map(lambda f: portable.get(f, f)))
@@ -601,15 +606,15 @@ def scenario_files(raw: Path | None) -> list[tuple[str, str]]:
     return out
 
 
-def portable_scenario_path(path: str, raw: Path | None) -> str:
-    """A scenario file as the warehouse holds it (``ride_results.file`` and the other ride tables):
-    relative to the raw folder (``scenarios/field.toml``), a shipped scenario relative to the shipped
-    folder (``mf698t.toml``), never this machine's absolute path.
+def portable_path(path: str, raw: Path | None) -> str:
+    """A file read as the warehouse holds it (``ride_results.file`` and the other ride tables,
+    ``simulate_inputs.source``): relative to the raw folder (``scenarios/field.toml``), a shipped
+    scenario relative to the shipped folder (``mf698t.toml``), never this machine's absolute path.
 
     Examples
     --------
     >>> from tyrelab.resources import scenarios_dir
-    >>> portable_scenario_path(str(scenarios_dir() / "mf698t.toml"), None)
+    >>> portable_path(str(scenarios_dir() / "mf698t.toml"), None)
     'mf698t.toml'
     """
     p = Path(path).resolve()
