@@ -36,7 +36,7 @@ import sys
 from pathlib import Path
 
 from . import __version__
-from .io import MissingExtra, os_error_line  # noqa: F401 - also this module's, for the commands' error lines
+from .io import MissingExtra, os_error_line, printable  # noqa: F401 - also this module's, for the commands' error lines
 
 __all__ = ["EXIT_CODES_HELP", "STAGE_HELP", "ALIASES", "cmd_completion", "cmd_generate", "cmd_run", "cmd_watch", "cmd_stage", "cmd_sql", "cmd_analyze_run", "cmd_estimate_stiffness",
     "cmd_natural_frequencies", "build_parser", "main"]
@@ -300,11 +300,11 @@ def cmd_analyze_run(args) -> int:
     except (RunFileError, ValueError) as exc:  # ValueError: e.g. no time_s column and no --sample-rate
         text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         text = text.replace("sample_rate_Hz is needed", "--sample-rate HZ is needed")
-        print(f"tyrelab analyze-run: {args.file}: {text}", file=sys.stderr)
+        print(f"tyrelab analyze-run: {printable(args.file)}: {printable(text)}", file=sys.stderr)
         return EXIT_USAGE
     _out(json.dumps(out, indent=2) + "\n")
     if out["stiffness_N_per_m"] is None and not out["qc_ok"]:  # e.g. excitation outside the band: refused
-        print(f"tyrelab analyze-run: {args.file}: {'; '.join(out['qc_reasons'])}", file=sys.stderr)
+        print(f"tyrelab analyze-run: {printable(args.file)}: {'; '.join(out['qc_reasons'])}", file=sys.stderr)
         return EXIT_QUARANTINE
     return EXIT_OK
 
@@ -427,7 +427,7 @@ def cmd_ride(args) -> int:
         scenario = load_scenario(args.scenario, confine=False)  # the user's own file: any profile path
     except ScenarioError as exc:
         for problem in exc.problems:
-            print(f"tyrelab ride: {exc.path}: {problem}", file=sys.stderr)
+            print(f"tyrelab ride: {printable(exc.path)}: {printable(problem)}", file=sys.stderr)
         return EXIT_USAGE
     from .executor import map_batches
     from .stages.simulate import WarehouseTyres
@@ -443,10 +443,10 @@ def cmd_ride(args) -> int:
                              max_variants=args.max_variants, max_samples=args.max_samples)
     except ScenarioError as exc:  # a swept value the scenario refuses: every problem, one line each
         for problem in exc.problems:
-            print(f"tyrelab ride: {exc.path}: {problem}", file=sys.stderr)
+            print(f"tyrelab ride: {printable(exc.path)}: {printable(problem)}", file=sys.stderr)
         return EXIT_USAGE
     except ValueError as exc:
-        print(f"tyrelab ride: {args.scenario}: {exc}", file=sys.stderr)
+        print(f"tyrelab ride: {printable(args.scenario)}: {printable(exc)}", file=sys.stderr)
         return EXIT_USAGE
     except OSError as exc:  # e.g. --scheduler unreachable
         print(f"tyrelab ride: {os_error_line(exc)}", file=sys.stderr)

@@ -170,3 +170,11 @@ def test_an_unreadable_profile_cannot_be_read_exit_2(tmp_path):
                          text=True, timeout=300)
     assert out.returncode == 2 and "Traceback" not in out.stderr, out.stderr[-800:]
     assert out.stderr.count("\n") == 1 and "p.csv: cannot read (Permission denied)" in out.stderr
+
+
+@pytest.mark.parametrize("argv", [["analyze-run", "{f}", "--axle-mass", "600"], ["ride", "{f}"]])
+def test_a_file_name_with_control_characters_stays_one_line(tmp_path, capsys, argv):
+    name = str(tmp_path / "a\nday: fake\x1b[2J.csv")
+    rc = main([a.replace("{f}", name) for a in argv])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.count("\n") == 1 and "\x1b" not in err and "a\\nday: fake\\x1b[2J" in err
