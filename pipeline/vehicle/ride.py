@@ -2052,6 +2052,7 @@ def result_json(results: list[RideResult]) -> dict:
 def results_table(results: list[RideResult], scenario_id: str | None = None) -> pd.DataFrame:
     """One row per speed × pressure pair (the ``ride_results`` layout).
 
+    ``scenario`` is ``scenario_id`` (default: the scenario's name), ``name`` the scenario's name.
     ``is_nominal`` marks the pair of the scenario's own tyre pressures. The natural frequencies are
     ``modes_Hz`` (text) and one ``<mode>_Hz`` column per mode (``bounce_Hz``, ``pitch_Hz``,
     ``roll_Hz`` always; ``front_axle_roll_Hz``, ``cab_pitch_Hz``, ... where the model has them).
@@ -2063,6 +2064,7 @@ def results_table(results: list[RideResult], scenario_id: str | None = None) -> 
     for r in results:
         df = pd.concat([r.speeds, r.time_rows], ignore_index=True) if len(r.time_rows) else r.speeds.copy()
         df.insert(0, "scenario", scenario_id or r.scenario.name)
+        df.insert(1, "name", r.scenario.name)  # the scenario's own name (``scenario`` may be an id given)
         df["bounce_Hz"] = r.natural_frequencies_Hz.get("bounce", math.nan)
         df["pitch_Hz"] = r.natural_frequencies_Hz.get("pitch", math.nan)
         df["roll_Hz"] = r.natural_frequencies_Hz.get("roll", math.nan)
