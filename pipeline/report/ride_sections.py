@@ -19,7 +19,9 @@ from dataclasses import dataclass, field
 
 import pandas as pd
 
-__all__ = ["PRESSURE_COLUMNS", "VERDICT_ORDER", "AXIS_WORDS", "answer", "split_warnings", "warning_groups", "variant_name", "variant_decimals", "scenario_sections", "SECTION_TABLES", "variant_labels", "swept_columns", "variant_rows", "RideFigure", "scenario_figures",
+from ..vehicle.spectral_ride import LIFT_OFF_PROBABILITY_LIMIT, primary_rows
+
+__all__ = ["PRESSURE_COLUMNS", "VERDICT_ORDER", "AXIS_WORDS", "answer", "split_warnings", "warning_groups", "method_note", "variant_name", "variant_decimals", "scenario_sections", "SECTION_TABLES", "variant_labels", "swept_columns", "variant_rows", "RideFigure", "scenario_figures",
            "surface_edge_note"]
 
 
@@ -58,7 +60,7 @@ def answer(table: pd.DataFrame) -> dict:
     >>> a["verdict"], a["worst_speeds_km_h"], a["axes"], [r["speed_km_h"] for r in a["rows"]]
     ('above action value', [8.0], {'z': [4.0], 'x': [8.0]}, [4.0, 8.0])
     """
-    t = table
+    t = primary_rows(table)  # a spectral row where there is one, not the time row simulated beside it
     if "is_nominal" in t and t["is_nominal"].astype(bool).any():
         t = t[t["is_nominal"].astype(bool)]
     labels = variant_labels(t)
@@ -168,6 +170,7 @@ def variant_rows(table: pd.DataFrame) -> list[dict]:
     stiffness and damping per tyre at the slowest speed (``front_stiffness_kN_per_m``, ``rear_…``,
     ``front_damping_kN_s_per_m``, ``rear_…``), ``modes``
     (name -> natural frequency, Hz) and ``hours_to_eav`` (at the worst speed; None: never reached)."""
+    table = primary_rows(table)
     t = table.assign(_label=variant_labels(table))
     modes = _mode_names(t)
     out = []
@@ -256,7 +259,7 @@ def scenario_figures(table: pd.DataFrame, spectra: pd.DataFrame, transmissibilit
         swept keys (else a sentence why not; a pressure sweep of one key: a_w against pressure),
         and the seat PSD and transmissibility per axis.
     """
-    table = table.dropna(axis=1, how="all")
+    table = primary_rows(table).dropna(axis=1, how="all")
     keys = swept_columns(table)
     n_variants = variant_labels(table).nunique()
     out = [RideFigure("aw_speed", "Weighted r.m.s. at the seat against speed per axis, one line per variant (dotted: "
@@ -317,7 +320,7 @@ def scenario_sections(scenarios: pd.DataFrame, results: pd.DataFrame, spectra: p
         In the order of ``scenarios``: ``scenario`` (its name), ``file``, ``anchor`` (an HTML id),
         ``answer`` (:func:`answer`: verdict, governing axis and hours per speed), ``warning_groups``
         (:func:`warning_groups` of the scenario's warnings),
-        ``variants`` (:func:`variant_rows`), their ``decimals`` (:func:`variant_decimals`) and ``figures`` (:func:`scenario_figures` of its
+        ``method`` (:func:`method_note`), ``variants`` (:func:`variant_rows`), their ``decimals`` (:func:`variant_decimals`) and ``figures`` (:func:`scenario_figures` of its
         ``ride_results`` rows and the PSD and transmissibility of the variant shown there).
     """
     if not {"scenario", "file"} <= set(scenarios.columns) or not {"file", "speed_km_h"} <= set(results.columns):
@@ -335,9 +338,28 @@ def scenario_sections(scenarios: pd.DataFrame, results: pd.DataFrame, spectra: p
         out.append({"scenario": row.scenario, "file": row.file, "anchor": f"scenario-{k + 1}",
                     "answer": answer(rows), "hours_per_day": hours,
                     "warning_groups": warning_groups(split_warnings(getattr(row, "warnings", ""))),
-                    "variants": variants, "decimals": variant_decimals(variants),
+                    "method": method_note(rows), "variants": variants, "decimals": variant_decimals(variants),
                     "figures": scenario_figures(rows, psd, trans, hours, note, shown)})
     return out
+
+
+def method_note(table: pd.DataFrame) -> str:
+    """How a scenario's ``ride_results`` rows were computed, in a sentence (``method``:
+    :mod:`tyrelab.vehicle.spectral_ride`).
+
+    Examples
+    --------
+    >>> method_note(pd.DataFrame({"method": ["spectral"] * 4 + ["time"]}))[:44]
+    '4 rows in the frequency domain (the linear m'
+    """
+    methods = table["method"].value_counts() if "method" in table else pd.Series(dtype=int)
+    spectral, timed = int(methods.get("spectral", 0)), int(methods.get("time", 0))
+    if not spectral:
+        return "Every row simulated in the time domain (one realisation of the track; expected_*: the expectation)."
+    return (f"{spectral} rows in the frequency domain (the linear model's exact expectation for the track's "
+            "spectrum; no MTVV or crest factor), "
+            + (f"{timed} simulated beside them (the nominal variant, and speeds whose lift-off probability exceeds "
+               f"{LIFT_OFF_PROBABILITY_LIMIT:g})" if timed else "none simulated") + "; the figures and the variant table read the spectral rows.")
 
 
 def surface_edge_note(surface_kind: str, speed_km_h: float) -> str:

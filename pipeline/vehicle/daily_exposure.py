@@ -154,6 +154,8 @@ def governing_axis(k_a_w_m_s2) -> str | None:
     >>> governing_axis({"z": 0.6, "x": 0.6}), governing_axis({})
     ('x', None)
     """
+    if not hasattr(k_a_w_m_s2, "items"):
+        raise ValueError(f"k_a_w_m_s2 must be a mapping of axis to k·a_w, got {type(k_a_w_m_s2).__name__}")
     finite = {ax: float(v) for ax, v in k_a_w_m_s2.items() if v is not None and math.isfinite(v)}
     ordered = [ax for ax in ("x", "y", "z") if ax in finite] + [ax for ax in finite if ax not in ("x", "y", "z")]
     return max(ordered, key=lambda ax: finite[ax]) if ordered else None

@@ -276,10 +276,12 @@ class ExposureSpec:
 
 @dataclass(frozen=True)
 class SimulationSpec:
-    """``[simulation]``: record-length cap (s) and tyre lift-off."""
+    """``[simulation]``: record-length cap (s), tyre lift-off and how the rows are computed
+    (``method``: ``"auto"``, ``"time"`` or ``"spectral"``; :mod:`tyrelab.vehicle.spectral_ride`)."""
 
     duration_s: float | None = None
     lift_off: bool = True
+    method: str = "auto"
 
 
 @dataclass(frozen=True)
@@ -829,7 +831,7 @@ def _build(doc: dict, path: Path | None, base_dir: Path, confine: bool = True, p
         exposure=ExposureSpec(tuple(float(v) for v in ex["speeds_km_h"]), float(ex.get("hours_per_day", 8.0)),
                               working_speed_km_h=(float(ex["working_speed_km_h"]) if "working_speed_km_h" in ex
                                                   else None)),
-        simulation=SimulationSpec(sim.get("duration_s"), bool(sim.get("lift_off", True))),
+        simulation=SimulationSpec(sim.get("duration_s"), bool(sim.get("lift_off", True)), str(sim.get("method", "auto"))),
         sweep=SweepSpec(tuple(float(v) for v in sweep.get("front_pressures_bar", ())),
                         tuple(float(v) for v in sweep.get("rear_pressures_bar", ())),
                         {k: tuple(float(x) for x in v) for k, v in sweep.items() if "." in k}),
@@ -960,7 +962,7 @@ def scenario_from_dict(doc, base_dir: str | Path = ".", path: str | Path | None 
     """
     where = str(path) if path is not None else "<scenario>"
     if not isinstance(doc, Mapping):
-        raise ScenarioError(where, [f"a scenario must be a table of sections (a dict), got {type(doc).__name__}"])
+        raise ScenarioError(where, [f"doc must be a table of sections (a dict), got {type(doc).__name__}"])
     try:
         doc = _plain(doc)
     except RecursionError:
