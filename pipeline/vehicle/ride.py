@@ -67,7 +67,7 @@ from . import profiles as pr
 from .carriage import GRAVITY_M_S2
 from .scenario import Scenario, ScenarioError, with_overrides, with_values
 from .carriage import half_step_input
-from .model import Assembly, Axle, Cab, Chassis, Implement, Parts, SeatPoint, SeatSuspension, assemble
+from .model import Assembly, Parts, SeatPoint, SeatSuspension, assemble
 from .tractor import Tractor, simulate, tractor_parts
 from .units import KILO, from_kilo, to_kilo
 from .scenario_limits import MIN_VERDICT_DURATION_S
@@ -373,56 +373,21 @@ def build_tractor(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Tr
 def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Parts:
     """The tractor's :class:`~tyrelab.vehicle.model.Parts` at speed index ``i`` (per tyre, SI).
 
-    The scenario's kN, kN s and kN m values become N, N s, N m here, once; the rear tyres carry
-    the longitudinal element. Without ``tractor.roll_inertia_kg_m2`` the parts are those of the
-    pitch-plane :class:`~tyrelab.vehicle.tractor.Tractor` of :func:`build_tractor`.
+    The looked-up tyre numbers at that speed in SI, then the scenario's own parts
+    (:meth:`tyrelab.vehicle.scenario.Scenario.parts`, where its kN values become SI). Without
+    ``tractor.roll_inertia_kg_m2`` the parts are those of the pitch-plane
+    :class:`~tyrelab.vehicle.tractor.Tractor` of :func:`build_tractor`.
     """
     _validate.instance("scenario", scenario, Scenario)
     _validate.positive_int("i", i, minimum=0)
-    t, seat = scenario.tractor, scenario.seat
-    lon = t.longitudinal_model
-    kx = from_kilo(t.longitudinal_stiffness_kN_per_m) if lon != "none" else 0.0
-    cx = from_kilo(t.longitudinal_damping_kN_s_per_m) if lon != "none" else 0.0
-    if lon == "maxwell" and not (kx > 0 and cx > 0):
-        lon = "none"  # a Maxwell element without spring or damper carries no force
-
-    def axle(name: str, ahead: float, spec, track_m, **extra) -> Axle:
-        ty = tyres[name]
-        kw = {}
-        if spec.mount != "rigid":
-            kw["roll_inertia_kg_m2"] = spec.roll_inertia_kg_m2 or 0.0
-        if ty.lateral_stiffness_kN_per_m is not None:  # issue 33: the tyres' lateral elements
-            kw.update(lateral_model=t.lateral_model,
-                      lateral_stiffness_N_per_m=from_kilo(float(ty.lateral_stiffness_kN_per_m[i])),
-                      lateral_damping_N_s_per_m=from_kilo(float(ty.lateral_damping_kN_s_per_m[i])))
-            if spec.mount == "pivot":  # the pivot at the axle centre, a rolling radius above the ground
-                kw["height_m"] = spec.height_m if spec.height_m is not None else ty.radius_m
-        if spec.mount == "suspended":
-            kw.update(mass_kg=spec.mass_kg, height_m=spec.height_m if spec.height_m is not None else ty.radius_m,
-                      suspension_stiffness_N_per_m=from_kilo(spec.suspension_stiffness_kN_per_m),
-                      suspension_damping_N_s_per_m=from_kilo(spec.suspension_damping_kN_s_per_m))
-        return Axle(name, ahead, from_kilo(float(ty.stiffness_kN_per_m[i])), from_kilo(float(ty.damping_kN_s_per_m[i])),
-                    track_m=track_m or 0.0, mount=spec.mount, **kw, **extra)
-
-    cab = None
-    if scenario.cab.mount == "suspended":
-        c = scenario.cab
-        cab = Cab(c.mass_kg, c.pitch_inertia_kg_m2, c.roll_inertia_kg_m2 or 0.0, c.ahead_of_cg_m, c.height_above_cg_m,
-                  c.front_mount_ahead_of_cg_m, c.rear_mount_ahead_of_cg_m, c.mount_track_m,
-                  from_kilo(c.mount_stiffness_kN_per_m), from_kilo(c.mount_damping_kN_s_per_m))
-    imp = None
-    if scenario.implement is not None:
-        m = scenario.implement
-        imp = Implement(m.mass_kg, m.pitch_inertia_kg_m2, m.roll_inertia_kg_m2, m.behind_rear_axle_m, m.height_m,
-                        m.mount, m.hitch_behind_rear_axle_m, m.hitch_height_m,
-                        from_kilo(m.hitch_stiffness_kN_m_per_rad or 0.0), from_kilo(m.hitch_damping_kN_m_s_per_rad))
-    return Parts(
-        Chassis(t.mass_kg, t.pitch_inertia_kg_m2, t.cg_height_m, t.roll_inertia_kg_m2, t.yaw_inertia_kg_m2),
-        axle("front", t.front_distance_m, scenario.front_axle, t.front_track_m),
-        axle("rear", -t.rear_distance_m, scenario.rear_axle, t.rear_track_m, longitudinal_model=lon,
-             longitudinal_stiffness_N_per_m=kx, longitudinal_damping_N_s_per_m=cx),
-        _seat_part(seat), cab, imp, scenario.ballast, static_load_moment=True)
-
+    si = {}
+    for axle, ty in tyres.items():  # the looked-up tyre numbers (kN) at this speed, in SI
+        si[axle] = {"stiffness_N_per_m": from_kilo(float(ty.stiffness_kN_per_m[i])),
+                    "damping_N_s_per_m": from_kilo(float(ty.damping_kN_s_per_m[i])), "radius_m": ty.radius_m}
+        if ty.lateral_stiffness_kN_per_m is not None:
+            si[axle].update(lateral_stiffness_N_per_m=from_kilo(float(ty.lateral_stiffness_kN_per_m[i])),
+                            lateral_damping_N_s_per_m=from_kilo(float(ty.lateral_damping_kN_s_per_m[i])))
+    return scenario.parts(si)
 
 # --------------------------------------------------------------------------- linear model
 def state_names(tractor: Tractor) -> list[str]:
@@ -518,14 +483,6 @@ def seat_filter(natural_frequency_Hz: float, damping_ratio: float):
     if not (math.isfinite(z) and z >= 0):
         raise ValueError(f"damping_ratio must be finite and non-negative, got {damping_ratio!r}")
     return SeatSuspension(natural_frequency_Hz, damping_ratio).linear().abcd
-
-
-def _seat_part(seat) -> SeatPoint:
-    """The seat of a scenario's ``[seat]`` as a part: its point and its suspension
-    (:class:`~tyrelab.vehicle.model.SeatSuspension`, None for a rigid seat)."""
-    suspension = (SeatSuspension(seat.natural_frequency_Hz, seat.damping_ratio) if seat.suspension == "linear"
-                  else None)
-    return SeatPoint(seat.ahead_of_cg_m, seat.left_of_cg_m, seat.height_above_cg_m, suspension)
 
 
 def frequency_response(a, b, c, d, frequency_Hz) -> np.ndarray:
@@ -987,7 +944,7 @@ class RideCache:
     def seat_system(self, seat) -> lti.FohSystem | None:
         """The seat's suspension (a scenario's ``[seat]`` or a :class:`~tyrelab.vehicle.model.SeatSuspension`
         part) discretised at :data:`DT_S` (None for a rigid seat)."""
-        part = seat if isinstance(seat, SeatSuspension) else _seat_part(seat).suspension
+        part = seat if isinstance(seat, SeatSuspension) else seat.part().suspension
         if part is None:
             return None
         if part not in self.seat:
@@ -1057,7 +1014,7 @@ def _prepare(scenario: Scenario, tyre_data, cache: RideCache) -> dict:
     tyres = resolve_tyres(scenario, tyre_data, cache.tyres)
     track_key, track = cache.track(scenario)
     axes = seat_axes(scenario)  # axis -> output name
-    seat = _seat_part(scenario.seat).suspension  # the seat part's filter (no feedback on the tractor)
+    seat = scenario.seat.part().suspension  # the seat part's filter (no feedback on the tractor)
     return {"sc": scenario, "tyres": tyres, "track": track, "track_key": track_key,
             "wb": scenario.tractor.wheelbase_m, "speeds": scenario.exposure.speeds_km_h, "axes": axes,
             "seat_sys": cache.seat_system(seat) if seat is not None else None,
@@ -1894,7 +1851,7 @@ def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, 
     axes = seat_axes(base)
     tyres0 = {"front": front[fronts[0]], "rear": rear[rears[0]]}
     seat = base.seat
-    seat_ss = _seat_part(seat).suspension.linear().abcd if seat.suspension == "linear" else None
+    seat_ss = seat.part().suspension.linear().abcd if seat.suspension == "linear" else None
     pf_all = np.repeat(fronts, len(rears))
     pr_all = np.tile(rears, len(fronts))
     frames = []
