@@ -126,7 +126,7 @@ def _ignored_and_unnamed(scenario, keys) -> tuple[list, list]:
             return [[SimpleNamespace(modes=None) for _ in chunk[0]] for chunk in chunks]
 
         try:
-            ride.ride_sweep(scenario, sets={key: _probe(key)}, map_fn=keep, with_spectra=False)
+            ride.ride_sweep(scenario, sets={key: _probe(key)}, map_fn=keep, with_spectra=False, method="time")
         except ValueError as exc:  # ScenarioError included
             if key not in str(exc):
                 unnamed.append((key, str(exc)))
@@ -185,7 +185,8 @@ def test_two_swept_keys_both_apply(tmp_path, capsys):
     """Was: beside a swept implement mass every variant ran at the scenario's own pressure."""
     path = tmp_path / "s.toml"
     path.write_text(text(extra="[implement]\nmass_kg = 800\nbehind_rear_axle_m = 1.2\nheight_m = 0.8"))
-    doc = _ride_json(capsys, path, "--set", "tyres.rear.pressure_bar=0.8,1.4", "--set", "implement.mass_kg=300,1200")
+    doc = _ride_json(capsys, path, "--set", "tyres.rear.pressure_bar=0.8,1.4", "--set", "implement.mass_kg=300,1200",
+                     "--method", "time")
     got = {(v["rear_pressure_bar"], v["variant"]["implement.mass_kg"]): v["speeds"][0]["a_wz_m_s2"] for v in doc["sweep"]}
     assert sorted(got) == [(0.8, 300), (0.8, 1200), (1.4, 300), (1.4, 1200)]
     assert len(set(got.values())) == 4  # every variant its own numbers
