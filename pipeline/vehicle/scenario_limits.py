@@ -104,9 +104,6 @@ LIMITS: dict[str, tuple[float, float, str]] = {
     "ballast.height_m": (0.0, 5.0, "m"),
     "ballast.pitch_inertia_kg_m2": (0.0, 100_000.0, "kg m²"),
     "ballast.roll_inertia_kg_m2": (0.0, 100_000.0, "kg m²"),
-    # an OpenCRG road (issue 33): the driven line's offset within a road's width, its start within a track's length
-    "surface.lateral_offset_m": (-100.0, 100.0, "m"),
-    "surface.start_m": (0.0, 100_000.0, "m"),
 }
 #: Most variants one scenario may sweep in the time domain (``tyrelab ride --max-variants`` lifts it).
 MAX_VARIANTS = 400
@@ -188,9 +185,8 @@ def scenario_problems(scenario) -> list[str]:
             for x in (v if isinstance(v, tuple) else () if v is None else (v,)):
                 checks.append((f"tyres.{axle}.{name}", x))
     surf = s.surface
-    for name in ("length_m", "dx_m", "lead_in_m", "spectrum_waviness", "lateral_offset_m", "start_m"):
-        if getattr(surf, name, None) is not None:
-            checks.append((f"surface.{name}", getattr(surf, name)))
+    for name in ("length_m", "dx_m", "lead_in_m", "spectrum_waviness"):
+        checks.append((f"surface.{name}", getattr(surf, name)))
     if surf.spectrum_g0_m3 is not None:
         checks.append(("surface.spectrum_g0_m3", surf.spectrum_g0_m3))
     if surf.kind == "crg":  # issue 33: where on the road the tractor drives
