@@ -388,26 +388,28 @@ def cmd_completion(args) -> int:
 
 def cmd_exposure(args) -> int:
     from .exposure import RecordingProblem, Task, assess, format_table
-    from .io import json_safe
-    from .vehicle.daily_exposure import MAX_HOURS_PER_DAY
+    from .io import json_safe, printable
+    from .vehicle.daily_exposure import HOURS_TOLERANCE_H, MAX_HOURS_PER_DAY, hours_problem
 
     prog = "tyrelab exposure"
     if bool(args.file) == bool(args.task):
         print(f"{prog}: give either FILE [--hours H] or one or more --task NAME FILE HOURS", file=sys.stderr)
         return EXIT_USAGE
     tasks, problems = [], []
-    for name, file, hours in args.task or [(Path(args.file).stem, args.file, str(args.hours))]:
-        try:
-            h = float(hours)
-        except ValueError:
+    for name, file, hours in args.task or [(Path(args.file).stem, args.file, args.hours)]:
+        problem = hours_problem(hours)
+        if problem:
+            problems.append(f"--hours {hours!r}: {problem}" if not args.task else
+                            f"task {printable(name)}: HOURS {printable(hours)!r}: {problem}")
             h = math.nan
-        if not (math.isfinite(h) and 0 < h <= MAX_HOURS_PER_DAY):
-            problems.append(f"task {name}: HOURS {hours!r} must be a number of hours in (0, {MAX_HOURS_PER_DAY:g}]")
+        else:
+            h = float(hours)
         tasks.append(Task(name, Path(file), h))
     if len({t.name for t in tasks}) < len(tasks):
         problems.append("task names must differ")
-    if not problems and sum(t.hours for t in tasks) > MAX_HOURS_PER_DAY:
-        problems.append(f"the tasks add up to {sum(t.hours for t in tasks):g} h, more than a day")
+    total = sum(t.hours for t in tasks)
+    if not problems and total > MAX_HOURS_PER_DAY + HOURS_TOLERANCE_H:
+        problems.append(f"the tasks add up to {total:g} h, more than a day ({MAX_HOURS_PER_DAY:g} h)")
     if problems:
         for line in problems:
             print(f"{prog}: {line}", file=sys.stderr)
@@ -418,9 +420,12 @@ def cmd_exposure(args) -> int:
         for line in exc.lines:
             print(f"{prog}: {line}", file=sys.stderr)
         return EXIT_USAGE if exc.usage else EXIT_QUARANTINE
+    except ValueError as exc:  # a value the analysis refuses: one line, never a traceback
+        print(f"{prog}: {printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)}", file=sys.stderr)
+        return EXIT_QUARANTINE
     _warn(prog, doc["warnings"])
     sys.stdout.write(json.dumps(doc, indent=2, ensure_ascii=False) + "\n" if args.format == "json" else format_table(doc))
-    return EXIT_OK
+    return EXIT_QUARANTINE if str(doc.get("verdict", "")).startswith("no verdict") else EXIT_OK
 
 
 def _finite(text: str) -> float:
@@ -732,9 +737,13 @@ def build_parser() -> argparse.ArgumentParser:
 
     ex = sub.add_parser("exposure", help="a driver's daily whole-body vibration exposure from seat recordings "
                         "(ISO 2631-1/-5, EU Directive 2002/44/EC)",
-                        description="Exit 2: usage, a missing or unknown file; 3: a recording that cannot be used.")
+                        description="Exit 2: usage, a missing, unreadable or unknown file; 3: a recording that cannot "
+                                    "be used, or one shorter than 10 s (its values are printed with a warning and no "
+                                    "verdict). Hours per task: 0.01 to 24; the tasks' sum at most 24 h (+1e-9 h of "
+                                    "rounding).")
     ex.add_argument("file", nargs="?", default=None, help="one recording (raw format v1: time_s, seat_x/y/z_m_s2, …)")
-    ex.add_argument("--hours", type=_positive, default=8.0, help="daily hours of the recorded task (default 8)")
+    ex.add_argument("--hours", type=_positive, default=8.0,
+                    help="daily hours of the recorded task, 0.01 to 24 (default 8)")
     ex.add_argument("--task", nargs=3, action="append", metavar=("NAME", "FILE", "HOURS"),
                     help="a task of the day: its name, recording and daily hours (repeat for each task)")
     ex.add_argument("--format", choices=["json", "table"], default="json",

@@ -25,7 +25,34 @@ if TYPE_CHECKING:  # pandas/pyarrow are imported where used: a no-op run never n
 
 __all__ = ["atomic_path", "write_parquet_atomic", "write_text_atomic", "write_texts_atomic", "file_sha256",
            "discover_campaigns", "os_error_line", "make_folder", "safe_name", "walk", "json_safe",
-           "raw_problem"]
+           "raw_problem", "printable", "MissingExtra"]
+
+
+class MissingExtra(RuntimeError):
+    """An optional dependency (an extra of the package) that is not installed; the message says
+    what to install. The command line prints it as one line, exit 2."""
+
+
+#: Control characters (C0, DEL, C1) and the Unicode line and paragraph separators.
+_CONTROL = re.compile("[\x00-\x1f\x7f-\x9f\u2028\u2029]")
+
+
+def printable(text) -> str:
+    r"""``text`` with its control characters escaped (``\n``, ``\x1b``, ``\u2028``): what a
+    table row or a one-line error prints of a user's name or file name, so that an ESC cannot
+    drive the terminal and a newline cannot split the line or forge another.
+
+    Examples
+    --------
+    >>> print(printable("baling" + chr(27) + "[2J" + chr(10) + "day: fake"))
+    baling\x1b[2J\nday: fake
+    >>> printable("plain, ünïcode")
+    'plain, ünïcode'
+    """
+    text = str(text)
+    if not _CONTROL.search(text):
+        return text
+    return _CONTROL.sub(lambda m: m.group().encode("unicode_escape").decode("ascii"), text)
 
 
 def os_error_line(exc: OSError) -> str:
@@ -38,7 +65,7 @@ def os_error_line(exc: OSError) -> str:
     '/data/r1.parquet: Permission denied'
     """
     what = exc.strerror or (str(exc).splitlines()[0] if str(exc) else type(exc).__name__)
-    return f"{exc.filename}: {what}" if getattr(exc, "filename", None) else what
+    return f"{printable(exc.filename)}: {what}" if getattr(exc, "filename", None) else what
 
 
 _UMASK = os.umask(0)

@@ -456,6 +456,7 @@ EXEMPT: dict[str, str] = {
     "tyrelab.vehicle.scenario_limits.scenario_problems": "returns its argument's problems as lines, by design",
     "tyrelab.vehicle.scenario_limits.override_problems": "returns its arguments' problems as lines, by design",
     "tyrelab.vehicle.scenario_limits.work_problems": "returns its arguments' problems as lines, by design",
+    "tyrelab.vehicle.daily_exposure.hours_problem": "returns its argument's problem as a line, by design (doctest)",
 }
 
 

@@ -158,6 +158,8 @@ def read_mapped(path: Path, channels: list[str], optional: list[str], channel_ma
     missing = [f"{c} (source {m['source']!r})" for c, m in mapping.items() if m["source"] not in source]
     if missing:
         raise FormatError(f"{where} lacks channel(s) {', '.join(missing)}")
+    if not mapping:  # only optional channels asked for (a vehicle recording), and none is there
+        raise FormatError(f"{where} has none of the channels {', '.join(optional)} (map them in {CHANNEL_MAP})")
     cols = {c: source[m["source"]][1].astype(float) * m["scale"] + m["offset"] for c, m in mapping.items()}
     lengths = {len(v) for v in cols.values()}
     if len(lengths) != 1:
@@ -168,7 +170,7 @@ def read_mapped(path: Path, channels: list[str], optional: list[str], channel_ma
             raise FormatError(f"{where} lacks the time channel {time_map['source']!r}")
         t = source[time_map["source"]][1].astype(float) * time_map["scale"] + time_map["offset"]
     else:
-        t = source[mapping[channels[0]]["source"]][0]
+        t = source[next(iter(mapping.values()))["source"]][0]  # the first channel's own time base
         if t is None:
             raise FormatError(f"{where}: no time base (map time_s or set wf_increment)")
     if len(t) != lengths.pop():

@@ -6,9 +6,18 @@ read as they are, in chunks (an 8 h day is never held whole); ``.mf4``/``.tdms``
 a channel map (:mod:`tyrelab.rawformat.mapped`) and are read whole. A campaign lists its
 recordings in ``rides.csv`` (:data:`RIDES_SCHEMA`, ``schemas/raw_rides.json``).
 
+A ``.csv`` is read as a spreadsheet saves it (as manifests are,
+:func:`tyrelab.rawformat.files.read_delimited`): the separator (``,`` ``;`` or tab) is the one
+whose header holds ``time_s``, a UTF-8 byte-order mark is accepted, and in a ``;``- or
+tab-separated file decimal commas (``0,25``) are read as numbers; its header line is read
+bounded (:data:`MAX_HEADER_BYTES`) before anything else, so a file without a line end is
+refused unread.
+
 Every problem raises :class:`RunFileError` with a one-line reason: no time base, no known
-channel, a NaN, a time base that goes back or is irregular, a vertical channel that
-averages about ±1 (a channel in g, not m/s²). A channel averaging about ±9.81 m/s² (a
+channel, a NaN, a sample beyond :data:`MAX_ABS_SAMPLE` (implausible for a vehicle's
+vibration: a corrupt or mis-scaled file), a time base that goes back or is irregular, a
+vertical channel that averages about ±1 (a channel in g, not m/s²); a file that cannot be
+opened (no permission) is ``cannot read (…)``. A channel averaging about ±9.81 m/s² (a
 DC-coupled accelerometer reading gravity) is accepted with a warning: the analysis removes
 each channel's offset (the mean of its first chunk).
 
@@ -30,6 +39,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Iterator
@@ -44,7 +54,8 @@ from .mapped import RunFileError
 
 __all__ = [
     "RIDE_CHANNELS", "SEAT_CHANNELS", "FLOOR_CHANNELS", "RECORDING_SUFFIXES", "MAX_RECORDING_BYTES",
-    "CHUNK_ROWS", "READ_ROWS", "GRAVITY_M_S2", "Chunk", "Recording", "open_recording",
+    "CHUNK_ROWS", "READ_ROWS", "GRAVITY_M_S2", "MAX_ABS_SAMPLE", "MAX_HEADER_BYTES", "Chunk", "Recording",
+    "open_recording",
 ]
 
 #: Seat accelerations, m/s² (x forward, y left, z up).
@@ -75,6 +86,18 @@ RELEASE_EVERY = 8
 #: Allowed relative jitter of the sampling interval.
 MAX_DT_JITTER = 0.01
 GRAVITY_M_S2 = 9.80665
+#: Largest magnitude of a channel's sample accepted, m/s² (or rad/s² for ``pitch``/``roll``): 1000
+#: m/s² is about 100 g, ten times the ±10 g range of the seat-pad accelerometers ISO 10326-1
+#: describes and beyond the shocks ISO 2631-5 assesses (a documented choice). A sample beyond it
+#: is a corrupt or mis-scaled file (mm/s² for m/s², a logger's overflow code such as 1e30), not
+#: vibration: the recording is refused naming the channel and row (the sums of the analysis
+#: would otherwise overflow, or give an A(8) of 1e27 m/s²).
+MAX_ABS_SAMPLE = 1000.0
+#: Longest header line of a ``.csv`` recording, bytes (the longest real one, every channel of
+#: :data:`RIDE_CHANNELS` with long names, is under 1 kB): it is read before anything else, so a
+#: file without a line end is refused instead of being read whole as its header.
+MAX_HEADER_BYTES = 64 * 1024
+_DELIMITER_NAMES = {",": "','", ";": "';'", "\t": "tab"}
 
 
 @dataclass
@@ -136,7 +159,8 @@ class Recording:
                 pa.default_memory_pool().release_unused()
 
 
-def _frames(path: Path, columns: list[str], chunk_rows: int, channel_map: dict | None) -> Iterator[pd.DataFrame]:
+def _frames(path: Path, columns: list[str], chunk_rows: int, channel_map: dict | None,
+            dialect: tuple[str, str] = (",", ".")) -> Iterator[pd.DataFrame]:
     suffix = path.suffix.lower()
     try:
         if suffix == ".parquet":
@@ -145,8 +169,12 @@ def _frames(path: Path, columns: list[str], chunk_rows: int, channel_map: dict |
                 # straight to numpy (no DataFrame): a null becomes NaN, which _checked refuses
                 yield {name: col.to_numpy(zero_copy_only=False) for name, col in zip(batch.schema.names, batch.columns)}
         elif suffix == ".csv":
-            with pd.read_csv(path, usecols=lambda c: c in columns, chunksize=chunk_rows) as reader:
-                yield from reader
+            sep, decimal = dialect
+            with pd.read_csv(path, sep=sep, decimal=decimal, encoding="utf-8-sig",
+                             usecols=lambda c: str(c).strip() in columns, chunksize=chunk_rows) as reader:
+                for frame in reader:
+                    frame.columns = [str(c).strip() for c in frame.columns]
+                    yield frame
         else:
             frame = mapped.read_mapped(path, [], RIDE_CHANNELS, channel_map)
             for i in range(0, len(frame), chunk_rows):
@@ -154,8 +182,60 @@ def _frames(path: Path, columns: list[str], chunk_rows: int, channel_map: dict |
     except RunFileError:
         raise
     except (pa.ArrowException, OSError, ValueError, UnicodeDecodeError, pd.errors.ParserError) as exc:
-        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise RunFileError(f"corrupt or truncated {suffix[1:]} file ({first})") from None
+        raise _read_error(exc, suffix) from None
+
+
+def _read_error(exc: Exception, suffix: str) -> RunFileError:
+    """``cannot read (…)`` for a file the system will not let us read, else ``corrupt or truncated``."""
+    from ..io import printable
+
+    if isinstance(exc, OSError) and not isinstance(exc, (pa.ArrowException, UnicodeDecodeError)) and exc.errno:
+        return RunFileError(f"cannot read ({exc.strerror or exc})")
+    first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
+    return RunFileError(f"corrupt or truncated {suffix[1:]} file ({printable(first[:200])})")
+
+
+def _csv_dialect(path: Path) -> tuple[list[str], str, str]:
+    """The header names, separator and decimal mark of a ``.csv`` recording, from its first two
+    lines read bounded (:data:`MAX_HEADER_BYTES` each)."""
+    from ..io import printable
+
+    try:
+        with open(path, "rb") as fh:
+            head = fh.readline(MAX_HEADER_BYTES + 1)
+            second = fh.readline(MAX_HEADER_BYTES + 1)
+    except OSError as exc:
+        raise RunFileError(f"cannot read ({exc.strerror or exc})") from None
+    if len(head) > MAX_HEADER_BYTES:
+        raise RunFileError(f"the header line is longer than {MAX_HEADER_BYTES // 1024} KiB (a file without line ends?): "
+                           "a recording's first line names its columns (time_s, seat_z_m_s2, …)")
+    try:
+        header = head.decode("utf-8-sig").strip("\r\n")
+        first_row = second.decode("utf-8", errors="replace").strip("\r\n")
+    except UnicodeDecodeError:
+        raise RunFileError("the header line is not UTF-8 text; save the recording as 'CSV UTF-8'") from None
+    known = {"time_s", *RIDE_CHANNELS}
+    best, names = None, []
+    for sep in (",", ";", "\t"):
+        cols = [c.strip().strip('"') for c in header.split(sep)]
+        score = (("time_s" in cols), len(known.intersection(cols)), len(cols))
+        if best is None or score > best[0]:
+            best, names = (score, sep), cols
+    (has_time, n_known, _), sep = best
+    if not n_known:
+        raise RunFileError(f"no known column in the header {printable(header[:80])!r} with ',', ';' or tab as "
+                           f"separator (expected time_s and any of {', '.join(RIDE_CHANNELS)})")
+    decimal = "."
+    if sep != ",":
+        values = [v.strip().strip('"') for v in first_row.split(sep)]
+        if any(_DECIMAL_COMMA.match(v) for v in values) and not any(_DECIMAL_POINT.match(v) for v in values):
+            decimal = ","
+    return names, sep, decimal
+
+
+#: A number written with a decimal comma (``0,25``, ``-1,5e-3``), and one with a decimal point.
+_DECIMAL_COMMA = re.compile(r"^[+-]?\d*,\d+([eE][+-]?\d+)?$")
+_DECIMAL_POINT = re.compile(r"^[+-]?\d*\.\d+([eE][+-]?\d+)?$")
 
 
 def _parquet(path: Path) -> pq.ParquetFile:
@@ -196,11 +276,8 @@ def _header(path: Path, channel_map: dict | None) -> list[str]:
     try:
         if suffix == ".parquet":
             return list(_parquet(path).schema_arrow.names)
-        if suffix == ".csv":
-            return [str(c).strip() for c in pd.read_csv(path, nrows=0).columns]
     except (pa.ArrowException, OSError, ValueError, UnicodeDecodeError, pd.errors.ParserError) as exc:
-        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise RunFileError(f"corrupt or truncated {suffix[1:]} file ({first})") from None
+        raise _read_error(exc, suffix) from None
     return ["time_s", *RIDE_CHANNELS]  # mapped: the map decides; missing channels are dropped later
 
 
@@ -217,14 +294,22 @@ def _checked(frame, channels, row0: int) -> Chunk:
             v = v.astype(float, copy=False)
         else:
             v = pd.to_numeric(pd.Series(v) if isinstance(v, np.ndarray) else v, errors="coerce").to_numpy(dtype=float)
-        # one pass in the usual case; a sum of finite samples can still overflow: then look for the sample
-        with np.errstate(over="ignore"):
-            finite = math.isfinite(float(np.add.reduce(v)))
+        if c == "time_s":  # one pass in the usual case; a sum of finite samples can still overflow
+            with np.errstate(over="ignore"):
+                finite = math.isfinite(float(np.add.reduce(v)))
+        else:  # max and min: a NaN propagates, and the bound is checked in the same two passes
+            finite = bool(v.size == 0 or (v.max() <= MAX_ABS_SAMPLE and v.min() >= -MAX_ABS_SAMPLE))
         if not finite:
             bad = ~np.isfinite(v)
             if bad.any():
                 i = int(np.flatnonzero(bad)[0])
                 raise RunFileError(f"channel {c} has a NaN, infinite or non-numeric sample at row {row0 + i}")
+            if c != "time_s":
+                i = int(np.flatnonzero(np.abs(v) > MAX_ABS_SAMPLE)[0])
+                unit = "rad/s²" if c.endswith("rad_s2") else "m/s²"
+                raise RunFileError(f"channel {c} has a sample of {v[i]:.3g} {unit} at row {row0 + i}, beyond the "
+                                   f"±{MAX_ABS_SAMPLE:g} {unit} a vehicle's vibration can reach (a corrupt or "
+                                   "mis-scaled file?)")
         out[c] = v
     t = out.pop("time_s")
     return Chunk(t, out)
@@ -273,13 +358,17 @@ def open_recording(path, channel_map: dict | None = None, chunk_rows: int = CHUN
         raise RunFileError(f"file is {size / 1e9:.1f} GB, larger than the {limit / 1e9:.1f} GB limit")
     if size == 0:
         raise RunFileError("file is empty")
-    names = _header(path, channel_map)
+    dialect = (",", ".")
+    if suffix == ".csv":
+        names, *dialect = _csv_dialect(path)
+    else:
+        names = _header(path, channel_map)
     if "time_s" not in names:
         raise RunFileError("no time base: column time_s is missing")
     present = [c for c in RIDE_CHANNELS if c in names]
     if not present and suffix not in mapped.SUFFIXES:
         raise RunFileError(f"no known channel (expected any of {', '.join(RIDE_CHANNELS)})")
-    frames = _frames(path, ["time_s", *present], min(chunk_rows, READ_ROWS), channel_map)
+    frames = _frames(path, ["time_s", *present], min(chunk_rows, READ_ROWS), channel_map, tuple(dialect))
     frame, rest = _first_rows(frames, chunk_rows)
     if frame is None:
         raise RunFileError("no samples")

@@ -12,6 +12,14 @@ EU Directive 2002/44/EC (Annex, part B) and the HSE calculator's layout:
 - HSE exposure points ``400 A(8)²`` (EAV 100, ELV 529);
 - ISO 2631-5:2018 daily dose ``D_zd`` (:func:`tyrelab.vehicle.iso2631_5.daily_dose`).
 
+A day whose tasks' recordings include one shorter than :data:`MIN_RECORD_S` gets its values but
+no verdict: ``verdict`` and ``vdv_verdict`` say ``"no verdict: …"`` and the hours to the action
+and limit values are NaN. ISO 2631-1:1997 §5.5 asks for a measurement long enough for reasonable
+statistical precision and typical of the exposure assessed, and names no figure; the floor is
+the ride command's (:data:`tyrelab.vehicle.scenario_limits.MIN_VERDICT_DURATION_S`, four periods
+of 0.4 Hz, the lower band limit of the weightings) — a documented choice, far below what a
+survey should record.
+
 Examples
 --------
 >>> day = daily_exposure([TaskExposure("baling", 4.0, {"x": 0.3, "y": 0.2, "z": 0.6},
@@ -27,13 +35,42 @@ from dataclasses import dataclass, field
 
 from .. import _validate
 from . import iso2631, iso2631_5
+from .scenario_limits import LIMITS, MIN_VERDICT_DURATION_S
 
-__all__ = ["TaskExposure", "daily_exposure", "verdict", "EXPOSURE_VERDICTS", "MAX_HOURS_PER_DAY"]
+__all__ = ["TaskExposure", "daily_exposure", "verdict", "EXPOSURE_VERDICTS", "MAX_HOURS_PER_DAY", "MIN_HOURS_PER_DAY",
+           "HOURS_TOLERANCE_H", "MIN_RECORD_S", "hours_problem"]
 
 #: Verdicts against the Directive's daily values (the strings of :data:`tyrelab.vehicle.ride.VERDICTS`).
 EXPOSURE_VERDICTS = ("below action value", "above action value", "above limit value")
 #: A day has 24 hours: longer task hours are refused.
 MAX_HOURS_PER_DAY = 24.0
+#: Shortest daily exposure to a task, h (36 s; a scenario's ``exposure.hours_per_day`` has the
+#: same bound): shorter is a typo, and 1e-320 h would overflow the hours to the action value.
+MIN_HOURS_PER_DAY = LIMITS["exposure.hours_per_day"][0]
+#: How far the tasks' hours may add up beyond :data:`MAX_HOURS_PER_DAY`, h: the rounding of a sum
+#: of decimal hours (80 tasks of 0.3 h add up to 24.000000000000036 in floating point).
+HOURS_TOLERANCE_H = 1e-9
+#: Shortest recording a day's verdict is given on, s (see the module docstring).
+MIN_RECORD_S = MIN_VERDICT_DURATION_S
+
+
+def hours_problem(hours) -> str | None:
+    """Why ``hours`` cannot be a task's daily hours (``None`` if it can).
+
+    Examples
+    --------
+    >>> hours_problem(8.0) is None, hours_problem(30.0)
+    (True, '30 h is not in 0.01 to 24 h (a day)')
+    """
+    try:
+        h = float(hours)
+    except (TypeError, ValueError):
+        return f"{hours!r} is not a number of hours"
+    if not math.isfinite(h):
+        return f"{hours!r} is not a finite number of hours"
+    if not MIN_HOURS_PER_DAY <= h <= MAX_HOURS_PER_DAY:
+        return f"{h:g} h is not in {MIN_HOURS_PER_DAY:g} to {MAX_HOURS_PER_DAY:g} h (a day)"
+    return None
 
 
 @dataclass(frozen=True)
@@ -64,9 +101,9 @@ class TaskExposure:
     extra: dict = field(default_factory=dict)
 
     def __post_init__(self):
-        h = float(self.hours)
-        if not (math.isfinite(h) and 0 < h <= MAX_HOURS_PER_DAY):
-            raise ValueError(f"hours must be in (0, {MAX_HOURS_PER_DAY:g}] for task {self.name!r}, got {self.hours!r}")
+        problem = hours_problem(self.hours)
+        if problem:
+            raise ValueError(f"hours of task {self.name!r}: {problem}")
         if not (math.isfinite(self.measured_s) and self.measured_s > 0):
             raise ValueError(f"measured_s must be positive for task {self.name!r}")
 
@@ -86,7 +123,12 @@ def verdict(a8_m_s2: float) -> str:
 
 
 def _hours_to(value: float, a8: float, day_hours: float) -> float:
-    return day_hours * (value / a8) ** 2 if a8 > 0 else math.inf
+    if not a8 > 0:
+        return math.inf if a8 == 0 else math.nan
+    try:
+        return day_hours * (value / a8) ** 2
+    except OverflowError:  # an A(8) of ~1e-160 m/s²: no vibration to speak of
+        return math.inf
 
 
 def daily_exposure(tasks) -> dict:
@@ -109,8 +151,9 @@ def daily_exposure(tasks) -> dict:
     if not tasks:
         raise ValueError("tasks must hold at least one task")
     day_hours = sum(float(t.hours) for t in tasks)
-    if day_hours > MAX_HOURS_PER_DAY:
+    if day_hours > MAX_HOURS_PER_DAY + HOURS_TOLERANCE_H:
         raise ValueError(f"tasks add up to {day_hours:g} h, more than a day ({MAX_HOURS_PER_DAY:g} h)")
+    day_hours = min(day_hours, MAX_HOURS_PER_DAY)
     axes = [ax for ax in ("x", "y", "z") if any(ax in t.a_w_m_s2 for t in tasks)]
     k = iso2631.AXIS_FACTOR
     rows = []
@@ -132,6 +175,16 @@ def daily_exposure(tasks) -> dict:
     with_dz = [t for t in tasks if math.isfinite(t.dz_m_s2)]
     dzd = iso2631_5.daily_dose([t.dz_m_s2 for t in with_dz], [t.hours * 3600.0 for t in with_dz],
                                [t.measured_s for t in with_dz]) if with_dz else math.nan
+    short = [t for t in tasks if t.measured_s < MIN_RECORD_S]
+    withheld = None
+    if short:
+        withheld = "no verdict: " + "; ".join(
+            f"task {t.name}: record {t.measured_s:.3g} s" for t in short) + f", shorter than {MIN_RECORD_S:g} s"
+    elif not math.isfinite(a8) or not math.isfinite(vdv):
+        withheld = "no verdict: the day's A(8) or VDV is not a finite number"
+    if withheld:
+        for r in rows:
+            r["hours_to_eav"] = r["hours_to_elv"] = math.nan
     return {
         "tasks": rows,
         "hours_per_day": day_hours,
@@ -141,11 +194,11 @@ def daily_exposure(tasks) -> dict:
         "vdv_daily_axes_m_s1_75": vdv_axes,
         "vdv_daily_m_s1_75": vdv,
         "vdv_daily_axis": vdv_axis,
-        "hours_to_eav": _hours_to(iso2631.EU_ACTION_A8_M_S2, a8, day_hours),
-        "hours_to_elv": _hours_to(iso2631.EU_LIMIT_A8_M_S2, a8, day_hours),
+        "hours_to_eav": math.nan if withheld else _hours_to(iso2631.EU_ACTION_A8_M_S2, a8, day_hours),
+        "hours_to_elv": math.nan if withheld else _hours_to(iso2631.EU_LIMIT_A8_M_S2, a8, day_hours),
         "exposure_points": 400.0 * a8**2,
-        "verdict": verdict(a8),
-        "vdv_verdict": (EXPOSURE_VERDICTS[2] if vdv > iso2631.EU_LIMIT_VDV else
-                        EXPOSURE_VERDICTS[1] if vdv > iso2631.EU_ACTION_VDV else EXPOSURE_VERDICTS[0]),
+        "verdict": withheld or verdict(a8),
+        "vdv_verdict": withheld or (EXPOSURE_VERDICTS[2] if vdv > iso2631.EU_LIMIT_VDV else
+                                    EXPOSURE_VERDICTS[1] if vdv > iso2631.EU_ACTION_VDV else EXPOSURE_VERDICTS[0]),
         "dzd_m_s2": dzd,
     }

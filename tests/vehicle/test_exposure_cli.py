@@ -94,8 +94,8 @@ def test_usage_problems_exit_2(tmp_path, capsys):
     good = _recording(tmp_path / "good.csv")
     for argv, text in ((["exposure"], "give either FILE"),
                        (["exposure", str(tmp_path / "nope.parquet")], "nope.parquet: file not found"),
-                       (["exposure", "--task", "a", str(good), "25"], "HOURS '25' must be"),
-                       (["exposure", "--task", "a", str(good), "x"], "HOURS 'x' must be"),
+                       (["exposure", "--task", "a", str(good), "25"], "HOURS '25': 25 h is not in 0.01 to 24 h"),
+                       (["exposure", "--task", "a", str(good), "x"], "HOURS 'x': 'x' is not a number"),
                        (["exposure", "--task", "a", str(good), "20", "--task", "b", str(good), "6"], "more than a day"),
                        (["exposure", str(good), "--task", "a", str(good), "2"], "give either")):
         code, out, err = _run(capsys, *argv)
