@@ -193,8 +193,9 @@ def _method_task(row: pd.Series) -> dict:
 def analyse_method_path(task: dict) -> tuple[dict, pd.DataFrame]:
     """Read and analyse one run of another method (runs in a worker process): its ``results``
     fields and its ``frf`` rows (:func:`tyrelab.measurement.rig_methods.analyse_method_run`)."""
-    names = set(pq.read_schema(task["path"]).names)
-    table = pq.read_table(task["path"], columns=["time_s", *CHANNELS, *([rm.DEFLECTION] if rm.DEFLECTION in names else [])])
+    pf = pq.ParquetFile(task["path"])
+    names = set(pf.schema_arrow.names)
+    table = pf.read(columns=["time_s", *CHANNELS, *([rm.DEFLECTION] if rm.DEFLECTION in names else [])])
     col = lambda c: table.column(c).to_numpy().astype(np.float64)  # noqa: E731
     accel = np.stack([col(c) for c in CHANNELS[:2]])
     beams = np.stack([col(c) for c in CHANNELS[2:]])
