@@ -295,6 +295,10 @@ def run(ctx: Context) -> StageResult:
         ]
         for q in quarantine:
             ctx.log.error("%s: %s", q["file"], q["reason"])
+        caveat = results.loc[(results["method"] == "free_vibration") & results["speed_km_h"].gt(0)
+                             & results["method_note"].fillna("").str.contains(rm.ROLLING_CAVEAT, regex=False)]
+        for _, r in caveat.iterrows():  # thesis §3.4's caveat, printed for every rolling free-vibration run
+            ctx.log.warning("run %s (free vibration, %g km/h): %s", r["run_id"], r["speed_km_h"], rm.ROLLING_CAVEAT)
     ctx.write_table(OUTPUT, results)
     ctx.write_table("frf", _frf_table(ctx, reuse, other, method_outs))
     write_quarantine(ctx, "analyse", quarantine)

@@ -351,6 +351,13 @@ DIRECTIONAL_TABLES = tuple(f"{d}_{q}" for d in DIRECTIONS for q in (
     "stiffness_pressure_by_speed", "damping_pressure_by_speed", "factor_regressions")) + ("series_damping_speed",)
 
 
+#: ``results`` columns the direction tables read (an empty frame of them stands for no runs).
+DIRECTIONAL_INPUT_COLUMNS = ("tyre_id", "kind", "direction", "method", "band_low_Hz", "band_high_Hz", "speed_km_h",
+                             "pressure_bar", "load_kN", "excitation_frequency_Hz", "amplitude_mm_pp", "torque_kNm",
+                             "surface", "stiffness_kN_per_m", "damping_kN_s_per_m", "stiffness_u_N_per_m",
+                             "damping_u_N_s_per_m", "qc_ok", "qc_reasons", "model", "series_damping_N_s_per_m")
+
+
 def direction_pool(results: pd.DataFrame, direction: str) -> pd.DataFrame:
     """The runs of ``direction`` whose K and C passed QC, as the regressions read them: a broadband
     run's K and C hold over its band, so it counts as excited at the nominal frequency (4 Hz inside
@@ -373,6 +380,9 @@ def directional_fits(results: pd.DataFrame) -> dict[str, pd.DataFrame]:
     (``series_damping_speed``: ``c₂ = a / v``, thesis §2.5, per tyre and direction)."""
     out = {}
     rows = []
+    if results.empty or "direction" not in results:  # no runs, or a build from before issue 34: the tables' columns
+        results = pd.DataFrame({c: pd.Series(dtype=float) for c in DIRECTIONAL_INPUT_COLUMNS}).astype(
+            {c: object for c in ("tyre_id", "direction", "method", "surface", "kind", "model", "qc_reasons")})
     for d in DIRECTIONS:
         pool = direction_pool(results, d)
         ids = reg.measured_tyres(pool) if len(pool) else []
@@ -411,13 +421,13 @@ def run(ctx: Context) -> StageResult:
     results = ctx.read_table("results") if ctx.has_table("results") else pd.DataFrame()
     if not results.empty and "tyre_id" in results:
         results["tyre_id"] = results["tyre_id"].astype(str)
-    directional = directional_fits(results) if not results.empty else {}
+    directional = directional_fits(results)
     results = thesis_pool(results)
     cache = ItemCache(ctx, "regress")
     progress = Progress("regress", len(reg.measured_tyres(results)) + ACROSS_TYRE_STEPS + 1, logger=ctx.log, unit="steps")
     tables = compute(results, read_tyres(ctx), read_published(ctx), cache, on_done=progress.step)
     cache.prune()
-    tables.update(directional or {name: pd.DataFrame() for name in DIRECTIONAL_TABLES})
+    tables.update(directional)
     for name, df in tables.items():
         ctx.write_table(name, df.reset_index(drop=True))
     progress.step()

@@ -27,6 +27,8 @@ def _new_campaign(raw):
          broadband_recording(250e3, 1.8e3, method="swept_sine", seed=3)),
         (manifest_row("fv", "fv.parquet", method="free_vibration", speed_km_h=0.0, **base),
          free_decay_recording(400e3, 4.5e3, seed=4)),
+        (manifest_row("fv_roll", "fv_roll.parquet", method="free_vibration", speed_km_h=5.0, **base),
+         free_decay_recording(400e3, 4.5e3, seed=11)),
         (manifest_row("ld", "ld.parquet", method="load_deflection", speed_km_h=0.0, **base),
          load_deflection_recording(330e3, 4e4, seed=5)),
         (manifest_row("step", "step.parquet", direction="vertical", method="stepped_sine"),
@@ -47,7 +49,7 @@ def _stages(raw, build):
     return [main([s, "--raw", str(raw), "--build", str(build), "--jobs", "1"]) for s in ("ingest", "analyse", "calibrate")]
 
 
-def test_old_manifests_give_the_old_numbers_to_the_bit_beside_new_methods(tmp_path):
+def test_old_manifests_give_the_old_numbers_to_the_bit_beside_new_methods(tmp_path, caplog):
     _old_campaign(tmp_path / "alone")
     assert _stages(tmp_path / "alone", tmp_path / "b_alone") == [0, 0, 0]
     _old_campaign(tmp_path / "mixed")
@@ -81,5 +83,7 @@ def test_old_manifests_give_the_old_numbers_to_the_bit_beside_new_methods(tmp_pa
     assert r.loc["fv", "stiffness_ci95_low_N_per_m"] < 400e3 < r.loc["fv", "stiffness_ci95_high_N_per_m"]
     assert r.loc["ld", "secant_stiffness_N_per_m"] == np.float64(r.loc["ld", "stiffness_N_per_m"])
     assert r.loc[["rnd", "lat", "swp", "fv", "ld", "step"], "qc_ok"].all()
+    assert "rolling tyre" in r.loc["fv_roll", "method_note"] and r.loc["fv_roll", "qc_ok"]
+    assert any("run fv_roll (free vibration, 5 km/h)" in m and "thesis §3.4" in m for m in caplog.messages)
     frf = pd.read_parquet(tmp_path / "b_mixed/parquet/frf.parquet")
     assert set(frf["run_id"]) == {"rnd", "lat", "swp"} and frf["coherence"].between(0, 1).all()
