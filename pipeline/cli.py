@@ -14,6 +14,7 @@ Verbs (a stable contract; see docs/architecture.md):
 - ``export-tyre``          a measured tyre as MF-Tyre ``.tir`` files and K(P), C(P) tables
 - ``ride``                 seat vibration and daily exposure of a tractor scenario (TOML)
 - ``exposure``             a driver's daily vibration exposure from seat recordings
+- ``road``                 ISO 8608 class, r.m.s. and length of a road profile's tracks (CSV or OpenCRG)
 
 Exit codes: 0 success; 3 some runs (or a manifest/catalogue) were quarantined; 2 usage or input
 error (also: the build is locked by another writer, an OS error); 130 interrupted; 141 the reader of
@@ -39,7 +40,7 @@ from . import __version__
 from .io import os_error_line  # noqa: F401 - also this module's, for the commands' error lines
 
 __all__ = ["EXIT_CODES_HELP", "STAGE_HELP", "ALIASES", "cmd_completion", "cmd_generate", "cmd_run", "cmd_watch", "cmd_stage", "cmd_sql", "cmd_analyze_run", "cmd_estimate_stiffness",
-    "cmd_natural_frequencies", "build_parser", "main"]
+    "cmd_natural_frequencies", "cmd_road", "build_parser", "main"]
 
 EXIT_OK, EXIT_USAGE, EXIT_QUARANTINE = 0, 2, 3
 #: Exit code after Ctrl-C or SIGTERM (128 + SIGINT, as shells report it).
@@ -376,6 +377,60 @@ def cmd_ride(args) -> int:
             return EXIT_USAGE
         log.info("ride: wrote %s and %s", paths["json"], paths["html"])
     sys.stdout.write(dumps(doc) if args.format == "json" else format_table(doc))
+    return EXIT_OK
+
+
+def cmd_road(args) -> int:
+    """``tyrelab road FILE``: the ISO 8608 class, r.m.s. and length of each track of a profile CSV
+    or an OpenCRG road."""
+    from .scenario_io import read_crg, read_profile_csv
+    from .vehicle import road_class as rc
+
+    path = Path(args.file)
+    try:
+        if path.suffix.lower() == ".crg":
+            from .vehicle.crg import wheel_tracks
+
+            data = read_crg(path)
+            half = 0.5 * args.track_width_m
+            pos = {"left": args.lateral_offset_m + half, "right": args.lateral_offset_m - half}
+            x, tracks = wheel_tracks(data, pos, args.start_m, args.length_m, args.fill_missing)
+            dx = data.u_inc_m
+        else:
+            from .vehicle.scenario_limits import _profile_problems
+
+            x, left, right = read_profile_csv(path)
+            problems = _profile_problems(x, left, right)
+            if problems:
+                raise ValueError("; ".join(p.replace("surface.profile: ", "") for p in problems))
+            from .vehicle.profiles import uniform_grid
+
+            grid, (left_u, right_u) = uniform_grid(x, left, right)
+            dx = float(grid[1] - grid[0])
+            tracks = {"track": left_u} if (left == right).all() else {"left": left_u, "right": right_u}
+    except ValueError as exc:
+        text = str(exc)
+        print(f"tyrelab road: {text if text.startswith(str(path)) else f'{path}: {text}'}", file=sys.stderr)
+        return EXIT_USAGE
+    doc = {"file": str(path), "tracks": {}}
+    for name, h in tracks.items():
+        c = rc.road_class(h, dx)
+        doc["tracks"][name] = {"class": c["class"], "g0_m3": None if c["g0_m3"] is None else float(f"{c['g0_m3']:.6g}"),
+                               "rms_m": round(c["rms_m"], 6), "length_m": round(c["length_m"], 6),
+                               "band_cycles_per_m": None if c["band_cycles_per_m"] is None
+                               else [round(b, 6) for b in c["band_cycles_per_m"]]}
+    if path.suffix.lower() == ".crg":
+        doc["lateral_position_m"] = {k: round(v, 6) for k, v in pos.items()}
+    if args.format == "json":
+        sys.stdout.write(json.dumps(doc, indent=2) + "\n")
+    else:
+        lines = [f"{path}: ISO 8608 class from G_d(n0) fitted with waviness 2"]
+        for name, c in doc["tracks"].items():
+            where = f" (v = {doc['lateral_position_m'][name]:g} m)" if "lateral_position_m" in doc else ""
+            g0 = f"G_d(n0) = {c['g0_m3']:.3g} m³" if c["g0_m3"] else "G_d(n0) not resolved (too short or coarse)"
+            lines.append(f"  {name}{where}: class {c['class'] or '-'}, {g0}, r.m.s. {c['rms_m'] * 1000:.2f} mm, "
+                         f"length {c['length_m']:g} m")
+        sys.stdout.write("\n".join(lines) + "\n")
     return EXIT_OK
 
 
@@ -734,6 +789,25 @@ def build_parser() -> argparse.ArgumentParser:
                     help="local: worker processes on this machine (default); dask: a dask.distributed cluster")
     rd.add_argument("--scheduler", default=None, help="dask scheduler address (with --executor dask)")
     rd.set_defaults(func=cmd_ride)
+
+    ro = sub.add_parser("road", help="ISO 8608 class, r.m.s. and length of each track of a road profile (CSV or OpenCRG)",
+                        description="Per track: G_d(n0) fitted with waviness 2 over ISO 8608's band (0.011-2.83 "
+                        "cycles/m, as far as the track resolves it), its class A-H, the r.m.s. about the mean and "
+                        "the length. A CSV profile (distance_m, height_m or height_left_m/height_right_m) gives its "
+                        "tracks; an OpenCRG file (.crg, read with pyopencrg) the lines of a pair of wheels. "
+                        "Exit 2: a missing, damaged or unusable file.")
+    ro.add_argument("file", help="profile CSV or OpenCRG .crg file")
+    ro.add_argument("--track-width-m", type=_positive, default=1.8,
+                    help=".crg: distance between the left and right wheel lines, m (default 1.8)")
+    ro.add_argument("--lateral-offset-m", type=float, default=0.0,
+                    help=".crg: the wheels' centre line, m left of the road's reference line (default 0)")
+    ro.add_argument("--start-m", type=float, default=0.0, help=".crg: start past the first cross section, m (default 0)")
+    ro.add_argument("--length-m", type=_positive, default=None, help=".crg: length, m (default: the rest of the file)")
+    ro.add_argument("--fill-missing", action="store_true",
+                    help=".crg: fill missing heights (NaN) as OpenCRG does (default: refuse them)")
+    ro.add_argument("--format", choices=["json", "table"], default="table",
+                    help="table: one line per track (default); json: the numbers")
+    ro.set_defaults(func=cmd_road)
 
     ex = sub.add_parser("exposure", help="a driver's daily whole-body vibration exposure from seat recordings "
                         "(ISO 2631-1/-5, EU Directive 2002/44/EC)",

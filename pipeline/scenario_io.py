@@ -18,7 +18,55 @@ from . import _validate
 from .vehicle.scenario import Scenario, ScenarioError
 from .vehicle.scenario import parse_scenario as _parse_text
 
-__all__ = ["MAX_SCENARIO_BYTES", "ScenarioError", "load_scenario", "parse_scenario", "read_profile_csv"]
+__all__ = ["MAX_CRG_BYTES", "MAX_SCENARIO_BYTES", "ScenarioError", "load_scenario", "parse_scenario", "read_crg",
+           "read_profile_csv"]
+
+#: Largest OpenCRG file read, bytes (a text CRG holds about 20 bytes per height: 10 million heights).
+MAX_CRG_BYTES = 200_000_000
+
+
+def read_crg(path: str | Path):
+    """Read an OpenCRG road with ``pyopencrg`` (checked as it reads: a short binary section or a bad
+    header is refused), bounded before the grid is loaded (:data:`MAX_CRG_BYTES`,
+    :data:`tyrelab.vehicle.crg.MAX_GRID_VALUES`).
+
+    Returns
+    -------
+    tyrelab.vehicle.crg.CrgData
+
+    Raises
+    ------
+    ValueError
+        One line naming the file and its problem (missing, too large, not a readable OpenCRG file).
+    """
+    import warnings
+
+    import pyopencrg
+
+    from .vehicle.crg import MAX_GRID_VALUES, CrgData
+
+    _validate.instance("path", path, (str, Path))
+    path = Path(path)
+    if not path.is_file():
+        raise ValueError(f"{path}: no such file" if not path.exists() else f"{path}: not a regular file")
+    size = path.stat().st_size
+    if size > MAX_CRG_BYTES:
+        raise ValueError(f"{path}: {size} bytes, above the {MAX_CRG_BYTES} bytes a CRG road may have")
+    try:
+        with warnings.catch_warnings():  # minor remarks of pyopencrg's checks are not the user's problem
+            warnings.simplefilter("ignore")
+            with pyopencrg.open(path) as f:
+                if f.nu * f.nv > MAX_GRID_VALUES:
+                    raise ValueError(f"{f.nu} x {f.nv} heights, above the {MAX_GRID_VALUES} a CRG road may have")
+                road = f.read()
+    except Exception as exc:  # noqa: BLE001 - a damaged file makes the parser fail in any way: one line
+        lines = [ln.strip(" -").replace(f"{path}: ", "").replace(f"{path.name}: ", "") for ln in str(exc).splitlines()]
+        lines = [ln for ln in lines if ln and not ln.startswith("To open it anyway")]
+        if len(lines) > 1 and lines[0].endswith(":"):
+            lines = [lines[0] + " " + "; ".join(lines[1:])]
+        text = "; ".join(lines) or type(exc).__name__
+        raise ValueError(f"{path}: not a readable OpenCRG file ({text})") from None
+    return CrgData.of(road, path.name)
 
 
 def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -82,7 +130,7 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
     >>> s.surface.kind, s.surface.profile_data is None
     ('iso8608', True)
     """
-    return _parse_text(text, base_dir, path, confine=confine, read_profile=read_profile_csv)
+    return _parse_text(text, base_dir, path, confine=confine, read_profile=read_profile_csv, read_crg=read_crg)
 
 
 #: Largest scenario file read, bytes (the shipped ones are ~2 kB).

@@ -342,6 +342,17 @@ ROWS = [
     # vehicle/model.py
     (f"{VE}.model.assemble", dict(parts="tractor"), "parts"),
     (f"{VE}.model.coordinate_output", dict(name=None), "name"),
+    # vehicle/crg.py, road_class.py (issue 33)
+    (f"{VE}.crg.wheel_positions", dict(lateral_offset_m=NAN, front_track_m=1.8, rear_track_m=1.9), "lateral_offset_m"),
+    (f"{VE}.crg.wheel_positions", dict(lateral_offset_m=0.0, front_track_m=-1.8, rear_track_m=1.9), "front_track_m"),
+    (f"{VE}.crg.crg_problems", dict(data=None, positions={}, start_m=0.0, length_m=None), "data"),
+    (f"{VE}.crg.wheel_tracks", dict(data=None, positions={}), "data"),
+    (f"{VE}.road_class.class_of", dict(g0_m3=-1e-6), "g0_m3"),
+    (f"{VE}.road_class.road_class", dict(elevation_m=SINE, dx_m=0.0), "dx_m"),
+    (f"{VE}.road_class.road_class", dict(elevation_m=[0.0] * 4, dx_m=0.05), "elevation_m"),
+    (f"{VE}.ride.crg_profile", dict(scenario=None), "scenario"),
+    (f"{VE}.ride.road_classes", dict(profile=None), "profile"),
+    (f"{VE}.profiles.uniform_grid", dict(x_m=[0.0, NAN, 1.0]), "x_m"),
     # vehicle/profiles.py
     (f"{VE}.profiles.spectral_synthesis", dict(n_samples=100, dx_m=0.05, g0_m3=-1e-4, rng=lambda: np.random.default_rng(1)), "g0_m3"),
     (f"{VE}.profiles.slatted_track", dict(length_m=0.0), "length_m"),

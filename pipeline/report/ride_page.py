@@ -141,6 +141,10 @@ def format_table(doc: dict) -> str:
     (:func:`number_formats`)."""
     fmt = number_formats(doc)
     lines = [f"{doc['name']}", f"  track: {doc['track']}; daily exposure {doc['hours_per_day']:g} h"]
+    if doc.get("road_class"):
+        lines.append("  ISO 8608 class (G_d(n0), waviness 2): " + "; ".join(
+            f"{name.replace('_', ' ')} {c['class'] or 'not resolved'}"
+            + (f" ({c['g0_m3']:.3g} m³)" if c.get("g0_m3") else "") for name, c in doc["road_class"].items()))
     for axle in ("front", "rear"):
         t = doc["tyres"][axle]
         u = COVERAGE_95 * (t.get("stiffness_u_kN_per_m") or 0.0)

@@ -15,8 +15,6 @@ from .. import progress
 from . import state
 from .base import Context, StageResult
 from .dag import ORDER, STAGES, upstream
-#: Stages that spread per-run work over worker pools.
-PER_RUN = ("ingest", "analyse")
 
 
 def run_stage(name: str, ctx: Context) -> StageResult:
@@ -64,26 +62,28 @@ def run_pipeline(ctx: Context, stages: list[str] | None = None) -> list[StageRes
     """Run ``stages`` (default: every stage of :data:`ORDER`, in order).
 
     With ``--jobs`` above 1 (the worker server was started when the first stage ran, see
-    :func:`run_stage`), the chapter 6-7 studies not in the cache (all of them on a first
-    build), which read only published tables, are started ahead on workers once the per-run stages (:data:`PER_RUN`) are done and the server is ready
-    (:func:`tyrelab.stages.simulate.start_studies_ahead`), so that they run while calibrate and
-    regress keep one core busy; the simulate stage takes their results, and studies no stage
-    took are ended at the end.
+    :func:`run_stage`), a later stage that declares work it can start ahead (``Stage.ahead``: work
+    whose inputs are raw-side, there before the stages it runs after) is started on workers (its module's ``start_ahead(ctx)``) once the stages that spread work over
+    worker pools (``Stage.pools``) are done and the server is ready, so that it runs while the stages
+    between keep one core busy; the stage takes the results, and work no stage took is ended at the
+    end (``abandon_ahead()``).
     """
     t0 = time.perf_counter()
     names = list(stages or ORDER)
-    results, ahead = [], None
+    results, ahead = [], {}
     try:
         for i, name in enumerate(names):
-            # after the per-run stages, whose pools would share the cores with the studies (measured:
-            # started before analyse, the full campaign's first run took 2 s longer)
-            if ahead is None and name not in PER_RUN and "simulate" in names[i:] and _worker_server_ready():
-                ahead = importlib.import_module(f"{__name__}.simulate")
-                ahead.start_studies_ahead(ctx)
+            # after the stages with worker pools, whose pools would share the cores with the work started
+            # ahead (measured: the studies started before analyse, the full campaign's first run took 2 s longer)
+            if not STAGES[name].pools and _worker_server_ready():
+                for later in names[i:]:
+                    if STAGES[later].ahead and later not in ahead:
+                        ahead[later] = importlib.import_module(STAGES[later].module)
+                        ahead[later].start_ahead(ctx)
             results.append(run_stage(name, ctx))
     finally:
-        if ahead is not None:
-            ahead.abandon_studies_ahead()
+        for module in ahead.values():
+            module.abandon_ahead()
     ran = [r.name for r in results if not r.skipped]
     ctx.log.info("recomputed: %s", ", ".join(ran) if ran else "nothing (every stage up to date)")
     ingest = next((r for r in results if r.name == "ingest"), None)

@@ -51,7 +51,7 @@ class Context:
     scheduler: str | None = None
     calibration_correct: bool = False
     log: logging.Logger = field(default=log, repr=False)
-    #: The stage running (set by :func:`tyrelab.stages.run_stage`): a table it writes must be one it
+    #: The stage running (set by :func:`tyrelab.stages.run_stage`): a table or build path it reads or writes must be one it
     #: declares (:data:`tyrelab.stages.dag.STAGES`), so the declarations cannot drift from the code.
     stage: str | None = field(default=None, repr=False)
 
@@ -71,8 +71,34 @@ class Context:
 
     def table(self, name: str) -> Path:
         """Path of table ``name``: ``build/parquet/<name>.parquet`` (``stages/analysed``: a table one
-        stage passes to another, below ``parquet/stages/``, not published in the warehouse)."""
-        return self.parquet / f"{name}.parquet"
+        stage passes to another, below ``parquet/stages/``, not published in the warehouse).
+
+        Raises
+        ------
+        RuntimeError
+            If the running stage (:attr:`stage`) declares the table neither among its reads nor its
+            writes (:func:`tyrelab.stages.dag.may_read`)."""
+        from .dag import table
+
+        return self.path(table(name), f"table {name!r}")
+
+    def path(self, rel: str, what: str | None = None) -> Path:
+        """Build path ``rel`` (``warehouse.duckdb``, ``parquet/runs/``), which the running stage
+        (:attr:`stage`) must declare among its reads or writes.
+
+        Raises
+        ------
+        RuntimeError
+            If it does not (:func:`tyrelab.stages.dag.may_read`): a read the graph does not know would
+            be a dependency no cache key and no stage order holds.
+        """
+        if self.stage is not None:
+            from .dag import may_read
+
+            if not may_read(self.stage, rel):
+                raise RuntimeError(f"stage {self.stage} reads {what or rel}, which it does not declare: add "
+                                   f"{rel!r} to its reads in tyrelab.stages.dag.STAGES")
+        return self.build / rel
 
     def has_table(self, name: str) -> bool:
         """Whether table ``name`` exists (``quarantine``: whether any stage wrote its part)."""
@@ -81,7 +107,7 @@ class Context:
         return self.table(name).exists()
 
     def read_table(self, name: str) -> pd.DataFrame:
-        """Read table ``name`` into a DataFrame.
+        """Read table ``name`` into a DataFrame (one the running stage declares: :meth:`table`).
 
         ``quarantine`` is the union of the stages' parts (:func:`quarantine_table`), as the
         warehouse stage publishes it: right after any stage, not only after a whole run."""
@@ -105,7 +131,7 @@ class Context:
             if writer(table(name)) != self.stage:
                 raise RuntimeError(f"stage {self.stage} writes table {name!r}, which it does not declare: add "
                                    f"{table(name)!r} to its writes in tyrelab.stages.dag.STAGES")
-        return io.write_parquet_atomic(df, self.table(name))
+        return io.write_parquet_atomic(df, self.parquet / f"{name}.parquet")
 
 
 @dataclass

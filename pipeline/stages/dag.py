@@ -45,7 +45,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import PurePosixPath
 
-__all__ = ["Stage", "STAGES", "ORDER", "RAW_SOURCES", "table", "ANALYSED", "QUARANTINE_PARTS", "quarantine_part", "expand", "writer", "upstream", "check", "topological_order",
+__all__ = ["Stage", "STAGES", "ORDER", "RAW_SOURCES", "table", "ANALYSED", "RIDE_TABLES", "RIDES_TABLES", "FIT_TABLES",
+           "SIMULATE_TABLES", "REGRESS_TABLES", "may_read", "QUARANTINE_PARTS", "quarantine_part", "expand", "writer", "upstream", "check", "topological_order",
            "graph_text"]
 
 #: The raw-side sources a stage may read (see the module docstring); prefixes ``param:``, ``code:``.
@@ -66,12 +67,21 @@ class Stage:
         Outputs: paths below the build folder, folders ending in ``/``.
     doc : str
         One line for ``--explain`` and the architecture document.
+    pools : bool
+        It spreads per-run work over worker pools, which would share the cores with work started
+        ahead: :func:`tyrelab.stages.run_pipeline` starts that work after such stages.
+    ahead : bool
+        Its module has ``start_ahead(ctx)`` (start, on workers, the part of its work whose inputs
+        are there before the stages it runs after: the raw-side ones) and ``abandon_ahead()``
+        (end what no run took); :func:`tyrelab.stages.run_pipeline` calls them.
     """
 
     name: str
     reads: tuple[str, ...]
     writes: tuple[str, ...]
     doc: str = ""
+    pools: bool = False
+    ahead: bool = False
 
     @property
     def module(self) -> str:
@@ -115,12 +125,22 @@ REGRESS_TABLES = (
       for q in ("stiffness_pressure_by_speed", "damping_pressure_by_speed", "factor_regressions")),
     "series_damping_speed",
 )
+#: The ride tables simulate writes, per scenario file (:func:`tyrelab.stages.simulate.scenario_task`): one
+#: row per scenario; per scenario × speed × variant; the seat PSD and the transmissibility per axis of the
+#: variant the report shows.
+RIDE_TABLES = ("ride_scenarios", "ride_results", "ride_spectra", "ride_transmissibility")
 #: Tables simulate writes (thesis chapters 6-8 and the ride scenarios; :mod:`tyrelab.stages.simulate`).
 SIMULATE_TABLES = (
     "carriage_runs", "carriage_comparisons", "carriage_spectra", "table_xiii", "table_xiv", "tractor_runs",
     "table_xvii", "table_xviii", "table_xx", "table_xx_statistics", "iso2631", "profile_spectra", "simulate_inputs",
-    "ride_scenarios", "ride_results", "ride_spectra", "ride_transmissibility",
+    *RIDE_TABLES,
 )
+#: Tables the rides stage writes (vehicle recordings; :mod:`tyrelab.stages.rides`).
+RIDES_TABLES = ("recordings", "recording_axes", "recording_spectra", "exposure_days", "ride_validation",
+                "ride_validation_statistics")
+#: The fits a ride scenario's tyres may read (:mod:`tyrelab.stages.tyredata`): a measured tyre's
+#: per-speed pressure fits (``measured_tyre_id``) and the build's formula (``formula = "build"``).
+FIT_TABLES = ("stiffness_pressure_by_speed", "damping_pressure_by_speed", "formula_fit", "damping_fit")
 #: Stages whose rows make up the ``quarantine`` table, each in its own part
 #: (:func:`quarantine_part`); the warehouse stage publishes their union, in this order.
 QUARANTINE_PARTS = ("ingest", "analyse", "simulate", "rides")
@@ -141,10 +161,10 @@ def quarantine_part(stage: str) -> str:
 #: The pipeline. Add a stage here and in its module ``tyrelab.stages.<name>``; nothing else.
 STAGES: dict[str, Stage] = {s.name: s for s in (
     Stage("ingest", reads=("raw",),
-          writes=("parquet/runs/", *_tables("manifest", "tyres"), quarantine_part("ingest")),
+          writes=("parquet/runs/", *_tables("manifest", "tyres"), quarantine_part("ingest")), pools=True,
           doc="validate raw campaigns against schemas/, convert each run to Parquet"),
     Stage("analyse", reads=(*_tables("manifest", "tyres"), "parquet/runs/"),
-          writes=(table(ANALYSED), table("frf"), quarantine_part("analyse")),
+          writes=(table(ANALYSED), table("frf"), quarantine_part("analyse")), pools=True,
           doc="per run and method: apparent mass (H(f) of broadband runs: frf), K, C, amplitude, coherence, QC"),
     Stage("calibrate", reads=(*_tables("manifest", ANALYSED), "parquet/runs/", "param:calibration_correct"),
           writes=_tables("calibration", "calibration_tf", "results"),
@@ -154,13 +174,11 @@ STAGES: dict[str, Stage] = {s.name: s for s in (
     Stage("regress", reads=(*_tables("results", "tyres"), "published"),
           writes=_tables(*REGRESS_TABLES),
           doc="Tables III-X, size regressions, formula accuracy, spoke model"),
-    Stage("simulate", reads=("published", "scenarios", *_tables("stiffness_pressure_by_speed",
-                                                                 "damping_pressure_by_speed", "recordings")),
-          writes=(*_tables(*SIMULATE_TABLES), quarantine_part("simulate")),
+    Stage("simulate", reads=("published", "scenarios", *_tables(*FIT_TABLES, "recordings")),
+          writes=(*_tables(*SIMULATE_TABLES), quarantine_part("simulate")), ahead=True,
           doc="profiles, carriage and tractor studies (against the recordings), Table XX, ISO 2631, ride scenarios"),
-    Stage("rides", reads=("raw", *_tables("stiffness_pressure_by_speed", "damping_pressure_by_speed")),
-          writes=(*_tables("recordings", "recording_axes", "recording_spectra", "exposure_days", "ride_validation",
-                           "ride_validation_statistics"), quarantine_part("rides")),
+    Stage("rides", reads=("raw", *_tables(*FIT_TABLES)),
+          writes=(*_tables(*RIDES_TABLES), quarantine_part("rides")),
           doc="vehicle recordings (rides.csv): whole-body vibration, daily exposure, predictions checked"),
     Stage("warehouse", reads=("parquet/*.parquet", *(quarantine_part(s) for s in QUARANTINE_PARTS), "parquet/runs/",
                               "published"),
@@ -193,6 +211,19 @@ def expand(stage: Stage, stages: dict[str, Stage] | None = None) -> tuple[str, .
         else:
             out.append(r)
     return tuple(dict.fromkeys(out))
+
+
+def may_read(stage: str, path: str, stages: dict[str, Stage] | None = None) -> bool:
+    """Whether ``stage`` may read build path ``path``: one of its reads or writes (a folder holding it
+    included; its own outputs, to reuse what it wrote last time).
+
+    Examples
+    --------
+    >>> may_read("rides", "parquet/formula_fit.parquet"), may_read("rides", "parquet/results.parquet")
+    (True, False)
+    """
+    s = (stages or STAGES)[stage]
+    return any(_covers(p, path) for p in (*expand(s, stages), *s.writes))
 
 
 def writer(path: str, stages: dict[str, Stage] | None = None) -> str | None:

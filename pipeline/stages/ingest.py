@@ -389,7 +389,7 @@ def run(ctx: Context) -> StageResult:
     # a run converted by other code is converted again: its file must be what this code writes
     code = code_fingerprint(__name__)
     state = {} if ctx.force else {k: v for k, v in _load_run_state(ctx).items() if v.get("code") == code}
-    runs_dir = ctx.parquet / "runs"
+    runs_dir = ctx.path("parquet/runs/")
     tasks, rows = [], {}
     for campaign, row in plan.todo:
         run_id = row["run_id"]

@@ -21,9 +21,9 @@ __all__ = ["run"]
 def run(ctx: Context) -> StageResult:
     """Render every report page into ``build/reports``."""
     t0 = time.perf_counter()
-    out = ctx.build / "reports"
+    out = ctx.path("reports/")
     cache = ItemCache(ctx, "report")
-    info = build_site(ctx.build / "warehouse.duckdb", out, ctx.raw, cache=cache, jobs=ctx.jobs)
+    info = build_site(ctx.path("warehouse.duckdb"), out, ctx.raw, cache=cache, jobs=ctx.jobs)
     cache.prune()
     for note in info["missing"]:
         ctx.log.info("report: %s", note)

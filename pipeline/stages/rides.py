@@ -36,13 +36,14 @@ from ..rawformat import RunFileError
 from ..rawformat.files import confined_run_path, read_delimited
 from ..schema import load_schema, row_problems
 from .base import Context, Progress, StageResult, write_quarantine
+from .dag import FIT_TABLES, RIDES_TABLES
 from .state import ItemCache
 
 __all__ = ["INPUTS", "OUTPUTS", "discover_ride_campaigns", "run"]
 
-INPUTS = ["raw", "stiffness_pressure_by_speed", "damping_pressure_by_speed"]
-OUTPUTS = ["recordings", "recording_axes", "recording_spectra", "exposure_days", "ride_validation",
-           "ride_validation_statistics"]
+#: What the stage reads and writes (declared in :data:`tyrelab.stages.dag.STAGES`; these are its names).
+INPUTS = ["raw", *FIT_TABLES]
+OUTPUTS = list(RIDES_TABLES)
 #: Columns of ``rides.csv`` naming a thesis study's run (the simulate stage reads these recordings
 #: by ``file_sha256``, Tables XIII, XIV, XVII).
 STUDY_COLUMNS = ("study", "load_condition", "study_track")
@@ -114,8 +115,10 @@ def _analyse(path: Path, channel_map) -> dict:
             "exposure": {k: (ax[k]["a_w_m_s2"], ax[k]["vdv_m_s1_75"]) for k in ax}}
 
 
-def _validate(path: Path, channel_map, scenario_path: Path, speed_km_h: float, track, build: Path) -> dict:
-    """Validation rows of one recording against its scenario's prediction, or ``{"error": reason}``."""
+def _validate(path: Path, channel_map, scenario_path: Path, speed_km_h: float, track, tyre_data) -> dict:
+    """Validation rows of one recording against its scenario's prediction, or ``{"error": reason}``.
+
+    ``tyre_data``: the fits of this run the scenario's tyres read (:class:`tyrelab.stages.tyredata.FitTyres`)."""
     from ..rawformat.rides import open_recording
     from ..vehicle import ride_validation as rv
     from ..vehicle.measured_ride import analyse_recording
@@ -142,7 +145,7 @@ def _validate(path: Path, channel_map, scenario_path: Path, speed_km_h: float, t
                 signals = {c: np.concatenate(v) for c, v in parts.items()}
             rec = open_recording(path, channel_map)
         measured = analyse_recording(rec)
-        predicted, fs = rv.predicted_seat(scenario, speed_km_h, track)  # shipped tyre data (no measured_tyre_id yet)
+        predicted, fs = rv.predicted_seat(scenario, speed_km_h, track, tyre_data)
     except (RunFileError, ValueError) as exc:
         return {"error": str(exc).splitlines()[0]}
     rows = rv.validation_rows(measured, predicted, fs, track.known_profile, signals)
@@ -167,6 +170,7 @@ def run(ctx: Context) -> StageResult:
     from ..vehicle import ride_validation as rv
     from ..vehicle.daily_exposure import TaskExposure, daily_exposure
     from ..scenario_io import ScenarioError, load_scenario
+    from .tyredata import FitTyres, read_fit_tables, scenario_fits
 
     t0 = time.perf_counter()
     schema = load_schema("raw_rides")
@@ -175,7 +179,7 @@ def run(ctx: Context) -> StageResult:
     recordings, axes, spectra, validation, tasks = [], [], [], [], []
     seen: dict[str, str] = {}
     n_in = n_rejected = 0
-    tyre_tables = [io.file_sha256(ctx.table(t)) if ctx.has_table(t) else "" for t in INPUTS[1:]]
+    fit_tables = read_fit_tables(ctx)
 
     def refuse(campaign: Path, ride_id, file, reason: str) -> None:
         quarantine.append({"campaign": str(campaign), "run_id": None if ride_id is None else str(ride_id),
@@ -218,12 +222,12 @@ def run(ctx: Context) -> StageResult:
             except RunFileError as exc:
                 refuse(campaign, ride_id, file, str(exc))
                 continue
-            scenario_path = track = None
+            scenario_path = track = fits = None
             try:
                 track = rv.track_of(row.get("track"), campaign)
                 if isinstance(row.get("scenario"), str) and row["scenario"].strip():
                     scenario_path = confined_run_path(campaign, row["scenario"].strip())
-                    load_scenario(scenario_path)
+                    fits = scenario_fits(load_scenario(scenario_path), fit_tables)
             except (ValueError, RunFileError) as exc:
                 problems = exc.problems if isinstance(exc, ScenarioError) else [str(exc)]
                 refuse(campaign, ride_id, file, f"scenario {row.get('scenario')}: {'; '.join(problems)}"
@@ -253,10 +257,12 @@ def run(ctx: Context) -> StageResult:
             if hours and row.get("task") and result["exposure"]:
                 tasks.append((ident, hours, result))
             if scenario_path is not None:
-                vkey = cache.key("validation", digest, io.file_sha256(scenario_path), speed, repr(track), tyre_tables,
+                # its recording, its scenario and the fits of ITS tyres (scenario_fits): a new run of
+                # another tyre leaves the key alone
+                vkey = cache.key("validation", digest, io.file_sha256(scenario_path), speed, repr(track), fits,
                                  channel_map)
                 val = cache.get_or_compute(vkey, lambda: _validate(path, channel_map, scenario_path, speed, track,
-                                                                   ctx.build))
+                                                                   FitTyres(fits, str(ctx.parquet))))
                 if "error" in val:
                     refuse(campaign, ride_id, file, f"prediction: {val['error']}")
                     continue

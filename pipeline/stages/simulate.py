@@ -61,17 +61,16 @@ from ..vehicle import published_layouts as layouts
 from ..vehicle.model import assemble
 from ..scenario_io import ScenarioError, load_scenario
 from .base import Context, Progress, StageResult, write_quarantine
+from .dag import RIDE_TABLES
 from .state import ItemCache
+from .tyredata import FitTyres, WarehouseTyres, read_fit_tables, scenario_fits
 
 __all__ = ["SEED", "STEMS", "THESIS_XX_STATISTICS", "run", "start_studies_ahead", "abandon_studies_ahead",
+           "start_ahead", "abandon_ahead",
            "WarehouseTyres", "scenario_files", "scenario_items", "scenario_task", "run_scenarios", "collect_scenarios",
            "collect_scenario_spectra", "RIDE_TABLES"]
 
 SEED = 5007
-#: The per-speed fits a scenario's ``measured_tyre_id`` reads (through the warehouse). With the
-#: published tables and the ride scenarios they are all the stage reads
-#: (:data:`tyrelab.stages.dag.STAGES`): a new recording that leaves these fits alone does not re-run it.
-FIT_TABLES = ("stiffness_pressure_by_speed", "damping_pressure_by_speed")
 
 #: Published tables the stage reads (stems under ``published/``).
 STEMS = ("table_xii", "table_xiii", "table_xiv", "table_xv", "table_xvi", "table_xvii", "table_xviii", "table_xix", "table_xx",
@@ -85,9 +84,6 @@ THESIS_XX_STATISTICS = {
     "stationary_free_vibration": {"mean": 1.19, "sd": 0.11, "p_within_10": 0.19},
 }
 
-#: The ride tables, per scenario file (:func:`scenario_task`): one row per scenario; per scenario ×
-#: speed × variant; the seat PSD and the transmissibility per axis of the variant the report shows.
-RIDE_TABLES = ("ride_scenarios", "ride_results", "ride_spectra", "ride_transmissibility")
 
 _STATISTIC_ORDER = ["mean_ratio_error", "sd_ratio_error", "p_within_10", "p_within_30", "mean", "sd"]
 
@@ -116,17 +112,23 @@ def _side_by_side(ours: pd.DataFrame, thesis: pd.DataFrame, keys: list[str]) -> 
 
 
 def _ride_plan(ctx: Context, files: list[tuple[str, str]], cache: ItemCache) -> tuple[list, dict, list]:
-    """The ride scenarios, each kept under the digest of what it reads: its file, and the per-speed
-    fits of the warehouse only if it names a measured tyre (``measured_tyre_id``, the one way a
-    scenario reads them). Returns the keys (one per file), the cached results by key, and the
-    ``(file, key)`` pairs to run (:func:`scenario_task`)."""
-    fits = [ctx.read_table(t) if ctx.has_table(t) else None for t in FIT_TABLES]
-    keys = []
+    """The ride scenarios, each kept under the digest of what it reads: its file, and the rows of this
+    run's fit tables its tyres read (:func:`tyrelab.stages.tyredata.scenario_fits`: a measured tyre's
+    per-speed fits, the build's formula), which its task is handed (:class:`~tyrelab.stages.tyredata.FitTyres`)
+    and nothing else. Returns the keys (one per file), the cached results by key, and the
+    ``(file, key, tyre data)`` triples to run (:func:`scenario_task`)."""
+    tables = read_fit_tables(ctx)
+    keys, tyres = [], []
     for path, source in files:
         text = Path(path).read_bytes()
-        keys.append(cache.key("ride", path, source, str(ctx.build), text, *(fits if b"measured_tyre_id" in text else [])))
+        try:
+            fits = scenario_fits(load_scenario(path), tables)
+        except (ScenarioError, ValueError, OSError):
+            fits = {}  # its task refuses the file, reading the same bytes
+        keys.append(cache.key("ride", path, source, text, fits))
+        tyres.append(FitTyres(fits, str(ctx.parquet)))
     done = {k: v for k in keys for hit, v in [cache.get(k)] if hit}
-    todo = [(f, k) for f, k in zip(files, keys) if k not in done]
+    todo = [(f, k, t) for f, k, t in zip(files, keys, tyres) if k not in done]
     return keys, done, todo
 
 
@@ -137,7 +139,7 @@ def _ride_finish(ctx: Context, files: list[tuple[str, str]], cache: ItemCache, k
     if todo:
         scenarios, results, bad = collect_scenarios(outputs)
         spectra, trans = collect_scenario_spectra(outputs)
-        for (path, _), k in zip([f for f, _ in todo], [k for _, k in todo]):
+        for (path, _), k, _ in todo:
             failed = [b for b in bad if b["file"] == path]
             # keyed by the scenario file (ride_results.file): two files may give the same name
             mine = [t[t["file"] == path] if len(t) else t.iloc[0:0] for t in (scenarios, results, spectra, trans)]
@@ -352,6 +354,12 @@ def start_studies_ahead(ctx: Context) -> list[str]:
     return todo
 
 
+def start_ahead(ctx: Context) -> list[str]:
+    """The stage's work started ahead by :func:`tyrelab.stages.run_pipeline` (``Stage.ahead``):
+    :func:`start_studies_ahead`."""
+    return start_studies_ahead(ctx)
+
+
 def abandon_studies_ahead() -> None:
     """End the studies started ahead that no stage took (an interrupt, an error, a stage skipped)."""
     from ..executor import abandon_pool
@@ -360,6 +368,10 @@ def abandon_studies_ahead() -> None:
     _AHEAD.clear()
     for pool in pools.values():
         abandon_pool(pool)
+
+
+#: What :func:`tyrelab.stages.run_pipeline` calls to end the work started ahead that no stage took.
+abandon_ahead = abandon_studies_ahead
 
 
 def _take_ahead(key: str):
@@ -396,7 +408,8 @@ def run(ctx: Context) -> StageResult:
     todo = [(name, _payload(name, inputs[name], case_keys, cache)) for name in ("tractor", "carriage") if name not in done]
     files = scenario_files(ctx.raw)
     ride_keys, ride_done, ride_todo = _ride_plan(ctx, files, cache)
-    ride_items = [("ride", item) for item in scenario_items([f for f, _ in ride_todo], ctx.build)]
+    ride_items = [("ride", item) for item in scenario_items([f for f, _, _ in ride_todo],
+                                                              tyre_data=[t for _, _, t in ride_todo])]
     model = thesis_stiffness_model(*(pub[t] for t in THESIS_TABLES))
     items = todo + ride_items + [("table_xx", (layouts.tractors(pub["table_xix"]), pub["table_xx"], model))]
     progress = Progress("simulate", len(items), logger=ctx.log, unit="studies/scenarios")
@@ -500,82 +513,11 @@ def run(ctx: Context) -> StageResult:
         n_quarantined=len(bad),
         seconds=time.perf_counter() - t0,
         message=f"{len(tables)} tables; {len(files) - len(bad)} ride scenarios; recordings of the studies: "
-                f"{len(car_recs)} carriage, {len(tr_recs)} tractor; studies {cache.summary(exclude=CASE_KINDS)}; "
+                f"{len(car_recs)} carriage, {len(tr_recs)} tractor; studies {cache.summary(exclude=(*CASE_KINDS, 'ride'))}; "
+                f"ride scenarios {cache.summary('ride')}; "
                 f"carriage cases {cache.summary('carriage-case')}; tractor cases {cache.summary('tractor-case')}; "
                 "slatted track is a seeded stand-in",
     )
-
-
-class WarehouseTyres(ride.ShippedTyres):
-    """Tyre data of a build's warehouse for :func:`tyrelab.vehicle.ride.resolve_tyres` (picklable:
-    it travels with the executor's tasks): a measured tyre's per-speed pressure fits and the
-    build's fitted stiffness formula (``formula = "build"``)."""
-
-    def __init__(self, build):
-        self.build = str(build)
-
-    def _db(self) -> Path:
-        return Path(self.build) / "warehouse.duckdb"
-
-    def measured(self, table: str, tyre_id: str, pressure_bar: float) -> tuple[np.ndarray, np.ndarray]:
-        """(speeds, value at pressure) of a measured tyre's per-speed pressure fits (``table``)."""
-        from ..warehouse import query
-
-        db = self._db()
-        if not db.is_file():
-            raise ValueError(f"measured_tyre_id {tyre_id!r}: no warehouse at {db}")
-        try:  # the fitted rows, then this tyre's (no SQL built from the user's text)
-            rows = query(db, f"SELECT CAST(tyre_id AS VARCHAR) AS tyre_id, speed_km_h, intercept, slope FROM {table} "
-                             "WHERE intercept IS NOT NULL AND slope IS NOT NULL AND speed_km_h IS NOT NULL")
-        except Exception as exc:  # noqa: BLE001 - a warehouse without the table is the user's input problem
-            raise ValueError(f"measured_tyre_id {tyre_id!r}: cannot read {table} from {db} ({str(exc).splitlines()[0]})") from None
-        rows = rows[rows["tyre_id"] == str(tyre_id)].sort_values("speed_km_h")
-        if rows.empty:
-            raise ValueError(f"measured_tyre_id {tyre_id!r}: no fitted rows in {table} of {db}")
-        return rows["speed_km_h"].to_numpy(float), (rows["intercept"] + rows["slope"] * pressure_bar).to_numpy(float)
-
-    def stiffness_model(self, formula: str):
-        """The thesis' stiffness formula, or the build's fit (table ``formula_fit``) for ``"build"``."""
-        from ..published import thesis_stiffness_model
-        from ..tyre.models import build_stiffness_model
-
-        thesis = thesis_stiffness_model()
-        if formula != "build":
-            return thesis
-        return self._from_build_table("formula_fit", lambda table: build_stiffness_model(table, thesis))
-
-    def _from_build_table(self, table_name: str, make):
-        """``make(table)`` of the build's table ``table_name`` (a fit of ``formula = "build"``); a
-        missing warehouse or table, or a table ``make`` refuses, is one line naming the warehouse."""
-        from ..warehouse import query
-
-        db = self._db()
-        if not db.is_file():
-            raise ValueError(f'formula = "build": no warehouse at {db}')
-        try:
-            table = query(db, f"SELECT * FROM {table_name}")
-        except Exception as exc:  # noqa: BLE001 - a warehouse without the table is the user's input problem
-            raise ValueError(f'formula = "build": cannot read {table_name} from {db} ({str(exc).splitlines()[0]})') from None
-        try:
-            return make(table)
-        except ValueError as exc:
-            raise ValueError(f'formula = "build": {db}: {exc}') from None
-
-    def damping_model(self, formula: str):
-        """The Table VII damping model, or the build's own fit (table ``damping_fit``, source
-        ``ours``) for ``"build"``: an unmeasured tyre's damping follows the same choice as its stiffness."""
-        from ..tyre.damping_fit import DampingFit
-
-        if formula != "build":
-            return super().damping_model(formula)
-
-        def ours(table):
-            rows = table.loc[table["source"].astype(str) == "ours"]
-            if rows.empty:
-                raise ValueError("damping_fit has no 'ours' row (fewer than 5 measured traction tyres?)")
-            return DampingFit.from_row(rows.iloc[0].to_dict())
-
-        return self._from_build_table("damping_fit", ours)
 
 
 # --------------------------------------------------------------------------- ride scenarios (issue 13)
@@ -595,17 +537,21 @@ def scenario_files(raw: Path | None) -> list[tuple[str, str]]:
     return out
 
 
-def scenario_items(files: list[tuple[str, str]], build: Path | None = None) -> list[tuple]:
+def scenario_items(files: list[tuple[str, str]], build: Path | None = None, tyre_data: list | None = None) -> list[tuple]:
     """The executor items of :func:`run_scenarios`, one per ``(path, source)`` of ``files``: run each
     with :func:`scenario_task` (in any process) and hand the results, in order, to
-    :func:`collect_scenarios` (the simulate stage runs them beside its studies this way)."""
-    return [(p, src, str(build) if build else None) for p, src in files]
+    :func:`collect_scenarios` (the simulate stage runs them beside its studies this way).
+
+    The tyre data of each (:func:`tyrelab.vehicle.ride.resolve_tyres`): ``tyre_data[i]``, else a finished
+    build's warehouse (``build``, :class:`~tyrelab.stages.tyredata.WarehouseTyres`), else the shipped."""
+    if tyre_data is None:
+        tyre_data = [WarehouseTyres(build) if build else None] * len(files)
+    return [(p, src, t) for (p, src), t in zip(files, tyre_data)]
 
 
 def scenario_task(item: tuple) -> dict:
     """Executor task of the simulate stage: one scenario file, every pressure pair of its sweep."""
-    path, source, build = item
-    tyre_data = WarehouseTyres(build) if build else None
+    path, source, tyre_data = item
     try:
         sc = load_scenario(path)
         results = ride.ride_sweep(sc, tyre_data=tyre_data, with_spectra=True)

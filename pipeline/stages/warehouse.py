@@ -29,7 +29,7 @@ def published_tables(ctx: Context) -> dict[str, Path]:
     out: dict[str, Path] = {}
     for stem in published.stems(ctx.raw):
         df = published.read_published(stem, ctx.raw, strict=False)
-        target = ctx.parquet / "published" / f"{stem}.parquet"
+        target = ctx.path(f"parquet/published/{stem}.parquet")
         io.write_parquet_atomic(df, target)
         out[f"published_{view_name(stem)}"] = target
     return out
@@ -46,7 +46,7 @@ def run(ctx: Context) -> StageResult:
             bar.append(Progress("warehouse", total, logger=ctx.log, unit="tables"))
         bar[0].step()
 
-    views = build_warehouse(ctx.build / "warehouse.duckdb", ctx.parquet, published_tables(ctx), on_table=on_table)
+    views = build_warehouse(ctx.path("warehouse.duckdb"), ctx.parquet, published_tables(ctx), on_table=on_table)
     for b in bar:
         b.close()
     return StageResult("warehouse", n_in=len(views), n_ok=len(views), seconds=time.perf_counter() - t0,

@@ -38,6 +38,7 @@ __all__ = [
     "TRACK_MODELS",
     "profile_spectrum",
     "add_lead_in",
+    "uniform_grid",
 ]
 
 #: ISO 8608 reference spatial frequency n0, cycles/m.
@@ -68,6 +69,10 @@ class Profile:
         What the profile is (e.g. ``"slatted track (seeded stand-in, seed 1)"``).
     meta : dict
         Generation parameters (seed, class, G0, ...).
+    rear_left_m, rear_right_m : ndarray or None
+        The rear wheels' own tracks where they differ from the front wheels' (a road surface whose
+        heights the front and rear wheels of different track widths sample apart: a CRG road);
+        None: the rear wheels follow the front ones' tracks.
     """
 
     x_m: np.ndarray
@@ -75,20 +80,27 @@ class Profile:
     right_m: np.ndarray
     label: str
     meta: dict = field(default_factory=dict)
+    rear_left_m: np.ndarray | None = None
+    rear_right_m: np.ndarray | None = None
 
     @property
     def dx_m(self) -> float:
         """Sample spacing, m."""
         return float(self.x_m[1] - self.x_m[0])
 
-    def track(self, side: str) -> np.ndarray:
-        """Elevation of ``"left"``, ``"right"`` or ``"mean"`` (axle centre), m."""
+    def track(self, side: str, axle: str = "front") -> np.ndarray:
+        """Elevation of ``"left"``, ``"right"`` or ``"mean"`` (axle centre) under ``axle``'s wheels
+        (``"front"``, ``"rear"``: the rear tracks when the profile has its own), m."""
+        if axle not in ("front", "rear"):
+            raise ValueError(f"axle {axle!r}: expected front or rear")
+        rear = axle == "rear" and self.rear_left_m is not None
+        left, right = (self.rear_left_m, self.rear_right_m) if rear else (self.left_m, self.right_m)
         if side == "left":
-            return self.left_m
+            return left
         if side == "right":
-            return self.right_m
+            return right
         if side == "mean":
-            return 0.5 * (self.left_m + self.right_m)
+            return 0.5 * (left + right)
         raise ValueError(f"side {side!r}: expected left, right or mean")
 
     def replace(self, left_m=None, right_m=None, label=None, **meta) -> "Profile":
@@ -99,6 +111,8 @@ class Profile:
             self.right_m if right_m is None else np.asarray(right_m, float),
             self.label if label is None else label,
             {**self.meta, **meta},
+            self.rear_left_m,
+            self.rear_right_m,
         )
 
 
@@ -337,6 +351,23 @@ def iso8608_track(
     )
 
 
+def uniform_grid(x_m, *heights_m) -> tuple[np.ndarray, list[np.ndarray]]:
+    """A profile file's heights on its own uniform grid: spacing the median step of ``x_m``, from its
+    first distance to its last (``(end - start)/dx`` is a whole number up to the rounding of the
+    distances written in the file, which must not drop the last sample); heights interpolated.
+
+    Examples
+    --------
+    >>> g, (h,) = uniform_grid([0.0, 0.1, 0.2, 0.35, 0.4], [0.0, 1.0, 2.0, 3.5, 4.0])
+    >>> [round(float(v), 3) for v in g], [round(float(v), 3) for v in h]
+    ([0.0, 0.1, 0.2, 0.3, 0.4], [0.0, 1.0, 2.0, 3.0, 4.0])
+    """
+    x = _validate.finite_array("x_m", x_m, min_samples=2)
+    dx = float(np.median(np.diff(x)))
+    grid = x[0] + np.arange(int(np.floor((x[-1] - x[0]) / dx + 1e-6)) + 1) * dx
+    return grid, [np.interp(grid, x, np.asarray(h, float)) for h in heights_m]
+
+
 def add_lead_in(profile: Profile, lead_in_m: float = 5.0) -> Profile:
     """Prepend a level approach at the first elevation and append a level run-out.
 
@@ -348,8 +379,9 @@ def add_lead_in(profile: Profile, lead_in_m: float = 5.0) -> Profile:
     dx = profile.dx_m
     k = int(round(lead_in_m / dx))
     x = np.arange(profile.x_m.size + 2 * k) * dx
-    pad = lambda h: np.concatenate([np.full(k, h[0]), h, np.full(k, h[-1])])  # noqa: E731
-    return Profile(x, pad(profile.left_m), pad(profile.right_m), profile.label, {**profile.meta, "lead_in_m": k * dx})
+    pad = lambda h: None if h is None else np.concatenate([np.full(k, h[0]), h, np.full(k, h[-1])])  # noqa: E731
+    return Profile(x, pad(profile.left_m), pad(profile.right_m), profile.label, {**profile.meta, "lead_in_m": k * dx},
+                   pad(profile.rear_left_m), pad(profile.rear_right_m))
 
 
 def profile_spectrum(elevation_m, dx_m: float, segment_m: float = 12.8) -> tuple[np.ndarray, np.ndarray]:

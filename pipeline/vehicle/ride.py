@@ -57,6 +57,8 @@ from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
 from ..tyre.speed_dependence import at_speeds
 from ..tyre.stiffness import estimate_stiffness
 from . import bounce_pitch
+from . import crg
+from . import road_class as rc
 from . import enveloping as ev
 from . import iso2631
 from . import lti
@@ -88,6 +90,8 @@ __all__ = [
     "ground_response",
     "enveloping_response",
     "build_profile",
+    "crg_profile",
+    "road_classes",
     "axle_inputs",
     "exposure",
     "expected_rms",
@@ -555,6 +559,8 @@ class Track:
     spectrum_source: str
     #: (n cycles/m, G_LL, G_RR, G_LR m³): the two tracks' spectra and cross-spectrum (3-D model).
     side_spectrum: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
+    #: A profile or CRG road's ISO 8608 class per wheel track (:func:`road_classes`), else empty.
+    road_classes: dict = field(default_factory=dict)
 
 
 def build_profile(scenario: Scenario) -> Track:
@@ -583,17 +589,16 @@ def build_profile(scenario: Scenario) -> Track:
     elif s.kind == "slatted":
         prof = pr.slatted_track(seed=s.seed, length_m=s.length_m)
         spectrum, source = None, ""
+    elif s.kind == "crg":
+        prof = crg_profile(scenario)
+        spectrum, source = None, ""
     else:
         if s.profile_data is None:
             raise ValueError(f"surface.profile {s.profile}: its data were not read (read scenarios with "
                              "tyrelab.scenario_io.load_scenario or parse_scenario)")
         x, left, right = s.profile_data
-        dx = float(np.median(np.diff(x)))
-        # the CSV's own grid: (end - start)/dx is a whole number up to the rounding of the
-        # distances written in the file, which must not drop the last sample
-        grid = x[0] + np.arange(int(math.floor((x[-1] - x[0]) / dx + 1e-6)) + 1) * dx
-        prof = pr.Profile(grid - grid[0], np.interp(grid, x, left), np.interp(grid, x, right),
-                          f"profile {Path(s.profile).name}", {"kind": "profile"})
+        grid, (left_u, right_u) = pr.uniform_grid(x, left, right)
+        prof = pr.Profile(grid - grid[0], left_u, right_u, f"profile {Path(s.profile).name}", {"kind": "profile"})
         spectrum, source = None, ""
         if s.spectrum_g0_m3 is not None:
             correlated = s.spectrum_correlated if s.spectrum_correlated is not None else bool(np.array_equal(left, right))
@@ -620,12 +625,49 @@ def build_profile(scenario: Scenario) -> Track:
         nper = max(8, int(round(seg / prof.dx_m)))
         n_w, g_ll = signal.welch(prof.left_m, 1.0 / prof.dx_m, nperseg=nper)
         _, g_rr = signal.welch(prof.right_m, 1.0 / prof.dx_m, nperseg=nper)
-        _, g_lr = signal.csd(prof.left_m, prof.right_m, 1.0 / prof.dx_m, nperseg=nper)
+        # the model's S_LR is E[L R*] (the output spectrum is h S h^H); scipy.signal.csd(x, y)
+        # averages conj(X) Y, i.e. E[L* R]: hence csd(right, left) (field notes)
+        _, g_lr = signal.csd(prof.right_m, prof.left_m, 1.0 / prof.dx_m, nperseg=nper)
         keep = n_w > 0
         side = (n_w[keep], g_ll[keep], g_rr[keep], g_lr[keep])
         source = "the tracks' own Welch spectra and cross-spectrum"
     length = float(prof.x_m[-1])
-    return Track(pr.add_lead_in(prof, lead), float(round(lead / prof.dx_m) * prof.dx_m), length, spectrum, source, side)
+    classes = road_classes(prof) if s.kind in ("profile", "crg") else {}
+    return Track(pr.add_lead_in(prof, lead), float(round(lead / prof.dx_m) * prof.dx_m), length, spectrum, source, side,
+                 classes)
+
+
+def road_classes(profile: pr.Profile) -> dict:
+    """ISO 8608 class of each wheel track of ``profile`` (:func:`tyrelab.vehicle.road_class.road_class`):
+    ``left``, ``right`` (one ``track`` when they are the same) and, where the rear wheels have their
+    own tracks, ``rear_left``, ``rear_right``."""
+    _validate.instance("profile", profile, pr.Profile)
+    tracks = {"left": profile.left_m, "right": profile.right_m}
+    if np.array_equal(profile.left_m, profile.right_m):
+        tracks = {"track": profile.left_m}
+    if profile.rear_left_m is not None:
+        tracks.update({"rear_left": profile.rear_left_m, "rear_right": profile.rear_right_m})
+    return {name: rc.road_class(h, profile.dx_m) for name, h in tracks.items()}
+
+
+def crg_profile(scenario: Scenario) -> pr.Profile:
+    """The wheels' tracks on the scenario's CRG road (:mod:`tyrelab.vehicle.crg`): the front wheels'
+    lines as the profile's left and right, the rear wheels' as its rear tracks (3-D, when their
+    track width differs from the front's)."""
+    _validate.instance("scenario", scenario, Scenario)
+    s = scenario.surface
+    if s.crg_data is None:
+        raise ValueError(f"surface.file {s.file}: its road was not read (read scenarios with "
+                         "tyrelab.scenario_io.load_scenario or parse_scenario)")
+    pos = s.wheel_positions(scenario.tractor)
+    x, h = crg.wheel_tracks(s.crg_data, pos, s.start_m, s.length_m, s.fill_missing)
+    same = pos["rear_left"] == pos["front_left"] and pos["rear_right"] == pos["front_right"]
+    where = (f"v = {pos['front_left']:+g}/{pos['front_right']:+g} m front, {pos['rear_left']:+g}/{pos['rear_right']:+g} m rear"
+             if not same else f"v = {pos['front_left']:+g}/{pos['front_right']:+g} m")
+    return pr.Profile(x, h["front_left"], h["front_right"],
+                      f"CRG road {s.crg_data.name}, {s.start_m:g}-{s.start_m + x[-1]:g} m, wheels at {where}",
+                      {"kind": "crg", "file": s.crg_data.name, "wheel_v_m": pos},
+                      None if same else h["rear_left"], None if same else h["rear_right"])
 
 
 def _track_width_m(scenario: Scenario) -> float | None:
@@ -634,10 +676,11 @@ def _track_width_m(scenario: Scenario) -> float | None:
     return 0.5 * (t.front_track_m + t.rear_track_m) if t.three_d else None
 
 
-def _envelope_side(track: pr.Profile, side: str, kind: str, footprint_m: float, radius_m: float) -> np.ndarray:
-    """One wheel track's enveloped elevation."""
+def _envelope_side(track: pr.Profile, side: str, kind: str, footprint_m: float, radius_m: float,
+                   axle: str = "front") -> np.ndarray:
+    """One wheel track's enveloped elevation (under ``axle``'s wheels: :meth:`Profile.track`)."""
     dx = track.dx_m
-    h = track.track(side)
+    h = track.track(side, axle)
     if kind == "tapered":
         h = ev.tapered_moving_average(h, dx, footprint_m)
     elif kind == "fixed":
@@ -689,7 +732,7 @@ def tyre_inputs(asm, track: pr.Profile, kind: str, footprints: tuple[float, floa
         u, du = {}, {}
         for side in ("left", "right"):
             hf = _envelope_side(track, side, kind, footprints[0], radii[0])
-            hr = _envelope_side(track, side, kind, footprints[1], radii[1])
+            hr = _envelope_side(track, side, kind, footprints[1], radii[1], "rear")
             u[f"front_{side}"], du[f"front_{side}"] = half_step_input(track.x_m, hf, speed_m_s, n_steps, wheelbase_m, DT_S)
             u[f"rear_{side}"], du[f"rear_{side}"] = half_step_input(track.x_m, hr, speed_m_s, n_steps, 0.0, DT_S)
             u0 = 0.5 * (u[f"front_{side}"][0] + u[f"rear_{side}"][0])
@@ -791,6 +834,8 @@ class RideResult:
     signals: dict = field(default_factory=dict)
     #: The swept keys' values of this variant (:func:`ride_sweep`), ``{"section.key": value}``.
     variant: dict = field(default_factory=dict)
+    #: A profile or CRG road's ISO 8608 class per wheel track (:func:`road_classes`); empty otherwise.
+    road_classes: dict = field(default_factory=dict)
 
 
 def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float | None) -> tuple[int, int]:
@@ -1161,7 +1206,7 @@ def _finish(p: dict) -> RideResult:
         spectra=pd.concat(spectra, ignore_index=True) if spectra else pd.DataFrame(columns=cols),
         transmissibility=pd.concat(trans, ignore_index=True) if trans else pd.DataFrame(columns=cols),
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
-        warnings=warnings, natural_frequency_intervals_Hz=nat_ci, signals=signals,
+        warnings=warnings, natural_frequency_intervals_Hz=nat_ci, signals=signals, road_classes=track.road_classes,
     )
 
 
@@ -1596,6 +1641,16 @@ def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, 
     return out
 
 
+def _clean_class(c: dict) -> dict:
+    """A road class (:func:`tyrelab.vehicle.road_class.road_class`) for JSON (``g0_m3`` to 6 significant
+    digits: it is of the order of 1e-5 m³)."""
+    out = {k: ([_clean(x) for x in v] if isinstance(v, list) else v if isinstance(v, str) or v is None else _clean(v))
+           for k, v in c.items()}
+    if c.get("g0_m3") is not None:
+        out["g0_m3"] = float(f"{c['g0_m3']:.6g}")
+    return out
+
+
 def _clean(v):
     if isinstance(v, (np.floating, float)):
         return None if not math.isfinite(float(v)) else round(float(v), 6)
@@ -1619,7 +1674,9 @@ def _tyre_json(t: AxleTyres) -> dict:
 def result_json(results: list[RideResult]) -> dict:
     """The ``tyrelab ride`` JSON: the first pressure pair at the top, every pair under ``sweep``.
 
-    Top-level keys: ``name``, ``scenario``, ``track``, ``spectrum_source``,
+    Top-level keys: ``name``, ``scenario``, ``track``, ``road_class`` (a profile or CRG road: per
+    wheel track its ISO 8608 ``class``, fitted ``g0_m3``, ``rms_m``, ``length_m``, ``band_cycles_per_m``;
+    null for a generated track), ``spectrum_source``,
     ``hours_per_day``, ``tyres`` (``front``/``rear``: size, pressure, stiffness and
     damping per tyre at the first speed, their sources, radius, footprint,
     warnings, ``stiffness_u_kN_per_m``), ``natural_frequencies_Hz`` (``bounce``, ``pitch``)
@@ -1648,6 +1705,7 @@ def result_json(results: list[RideResult]) -> dict:
     first = results[0]
     sc = first.scenario
     out = {"name": sc.name, "scenario": str(sc.path) if sc.path else None, "track": first.track_label,
+           "road_class": {k: _clean_class(v) for k, v in first.road_classes.items()} or None,
            "spectrum_source": first.spectrum_source, "hours_per_day": sc.exposure.hours_per_day, **block(first),
            "warnings": sorted({w for r in results for w in r.warnings})}
     if len(results) > 1:

@@ -210,6 +210,22 @@ class SurfaceSpec:
     tracks: str = "independent"
     #: ``(distance_m, left_m, right_m)`` of ``profile`` as read (:func:`parse_scenario`'s reader).
     profile_data: tuple | None = field(default=None, compare=False, repr=False)
+    #: ``kind = "crg"``: the OpenCRG file (absolute once loaded), the tractor's centre line left of
+    #: the road's reference line (m), where the driven part starts (m), NaN filled as OpenCRG does.
+    file: Path | None = None
+    lateral_offset_m: float = 0.0
+    start_m: float = 0.0
+    fill_missing: bool = False
+    #: The road of ``file`` as read (:class:`tyrelab.vehicle.crg.CrgData`, :func:`parse_scenario`'s reader).
+    crg_data: object | None = field(default=None, compare=False, repr=False)
+
+    def wheel_positions(self, tractor: "TractorSpec") -> dict:
+        """``kind = "crg"``: ``v`` (m) of each wheel's line on the road (:func:`tyrelab.vehicle.crg.wheel_positions`)."""
+        from .crg import wheel_positions
+
+        three_d = tractor.three_d
+        return wheel_positions(self.lateral_offset_m, tractor.front_track_m if three_d else None,
+                               tractor.rear_track_m if three_d else None)
 
 
 @dataclass(frozen=True)
@@ -379,9 +395,9 @@ def _section_values(doc: dict, name: str) -> tuple[dict | None, list[str]]:
 
 
 def _validate(doc: dict, base_dir: Path, confine: bool = True, read_profile=None,
-              profiles: dict | None = None) -> list[str]:
+              profiles: dict | None = None, read_crg=None) -> list[str]:
     """Every problem of a parsed TOML document (empty list when it is valid); a profile read with
-    ``read_profile`` goes to ``profiles``."""
+    ``read_profile`` (a CRG road with ``read_crg``) goes to ``profiles``."""
     problems: list[str] = []
     profiles = {} if profiles is None else profiles
     sections = _sections()
@@ -440,7 +456,43 @@ def _validate(doc: dict, base_dir: Path, confine: bool = True, read_profile=None
                 problems.append("surface.profile (a CSV path) is required with kind = \"profile\"")
             elif isinstance(surf["profile"], str):
                 problems += _profile_problems(base_dir, surf["profile"], confine, read_profile, profiles)
+        if kind == "crg":
+            problems += _crg_problems(doc, surf, base_dir, confine, read_crg, profiles)
     return problems
+
+
+def _crg_problems(doc: dict, surf: dict, base_dir: Path, confine: bool, read_crg, profiles: dict) -> list[str]:
+    """``kind = "crg"``: the file is there and readable (``read_crg``: path -> :class:`tyrelab.vehicle.crg.CrgData`),
+    and every wheel's line lies on the road with heights from ``start_m`` for ``length_m``."""
+    if "file" not in surf:
+        return ["surface.file (an OpenCRG .crg path) is required with kind = \"crg\""]
+    if not isinstance(surf["file"], str):
+        return []  # the type problem is listed already
+    full, problem = _resolve_inside(base_dir, surf["file"], confine, "surface.file")
+    if problem:
+        return [problem]
+    if read_crg is None:
+        return [f"surface.file {surf['file']!r}: no CRG reader given (tyrelab.scenario_io.parse_scenario and "
+                "load_scenario read CRG files)"]
+    try:
+        data = read_crg(full)
+    except ValueError as exc:
+        return [f"surface.file: {exc}"]
+    profiles[full] = data
+    tractor, _ = _section_values(doc, "tractor")
+    tractor = tractor or {}
+    numbers = {k: surf.get(k, d) for k, d in (("lateral_offset_m", 0.0), ("start_m", 0.0))}
+    length = surf.get("length_m")
+    if not all(_is_number(v) for v in numbers.values()) or (length is not None and not _is_number(length)):
+        return []  # listed as type problems
+    three_d = "roll_inertia_kg_m2" in tractor
+    tracks = [tractor.get(k) if three_d else None for k in ("front_track_m", "rear_track_m")]
+    if any(t is not None and not _is_number(t) for t in tracks):
+        return []
+    from .crg import crg_problems, wheel_positions
+
+    return crg_problems(data, wheel_positions(numbers["lateral_offset_m"], *tracks), float(numbers["start_m"]),
+                        None if length is None else float(length), bool(surf.get("fill_missing", False)))
 
 
 def numeric_key(key: str) -> dict | None:
@@ -528,9 +580,11 @@ def with_values(scenario: Scenario, values: dict) -> Scenario:
     where = str(scenario.path) if scenario.path is not None else "<scenario>"
     base = scenario.base_dir or Path(".")
     data = scenario.surface.profile_data  # the profile cannot be swept: its data as read
+    road = scenario.surface.crg_data  # nor the CRG road (its window and the wheels' lines can)
     profiles: dict = {}
     # the profile path was checked when the scenario was read
-    problems = _validate(doc, base, False, (lambda _path: data) if data is not None else None, profiles)
+    problems = _validate(doc, base, False, (lambda _path: data) if data is not None else None, profiles,
+                         (lambda _path: road) if road is not None else None)
     if problems:
         raise ScenarioError(where, problems)
     out = _build(doc, scenario.path, base, False, profiles)
@@ -619,19 +673,20 @@ def _parts_problems(doc: dict) -> list[str]:
     return problems
 
 
-def _resolve_inside(base_dir: Path, relative: str, confine: bool = True) -> tuple[Path | None, str | None]:
-    """``base_dir / relative`` if it stays inside ``base_dir``, else a problem; without ``confine``
-    (a scenario file the user names) any path, absolute or relative to ``base_dir``."""
+def _resolve_inside(base_dir: Path, relative: str, confine: bool = True,
+                    key: str = "surface.profile") -> tuple[Path | None, str | None]:
+    """``base_dir / relative`` if it stays inside ``base_dir``, else a problem naming ``key``; without
+    ``confine`` (a scenario file the user names) any path, absolute or relative to ``base_dir``."""
     if "\0" in relative:
-        return None, f"surface.profile {relative!r}: a path cannot hold a NUL character"
+        return None, f"{key} {relative!r}: a path cannot hold a NUL character"
     rel = Path(relative)
     if not confine:
         return (base_dir / rel).resolve(), None
     if rel.is_absolute():
-        return None, f"surface.profile {relative!r}: give a path relative to the scenario file"
+        return None, f"{key} {relative!r}: give a path relative to the scenario file"
     full = (base_dir / rel).resolve()
     if not full.is_relative_to(base_dir.resolve()):
-        return None, f"surface.profile {relative!r} escapes the scenario's folder"
+        return None, f"{key} {relative!r} escapes the scenario's folder"
     return full, None
 
 
@@ -677,6 +732,12 @@ def _build(doc: dict, path: Path | None, base_dir: Path, confine: bool = True, p
         )
 
     profile = _resolve_inside(base_dir, surf["profile"], confine)[0] if "profile" in surf else None
+    crg_file = _resolve_inside(base_dir, surf["file"], confine, "surface.file")[0] \
+        if surf.get("kind") == "crg" and "file" in surf else None
+    crg_data = (profiles or {}).get(crg_file) if crg_file is not None else None
+    length_m = float(surf.get("length_m", 400.0))
+    if crg_data is not None and "length_m" not in surf:  # the rest of the file
+        length_m = crg_data.length_m - float(surf.get("start_m", 0.0))
     return Scenario(
         name=doc["name"],
         description=doc.get("description", ""),
@@ -690,12 +751,15 @@ def _build(doc: dict, path: Path | None, base_dir: Path, confine: bool = True, p
         front=tyre("front"),
         rear=tyre("rear"),
         surface=SurfaceSpec(
-            kind=surf["kind"], road_class=surf.get("class"), length_m=float(surf.get("length_m", 400.0)),
+            kind=surf["kind"], road_class=surf.get("class"), length_m=length_m,
             seed=int(surf.get("seed", 1)), dx_m=float(surf.get("dx_m", 0.05)), profile=profile,
             spectrum_g0_m3=surf.get("spectrum_g0_m3"), spectrum_waviness=float(surf.get("spectrum_waviness", 2.0)),
             spectrum_correlated=surf.get("spectrum_correlated"), enveloping=surf.get("enveloping", "tapered"),
             lead_in_m=float(surf.get("lead_in_m", 5.0)), tracks=surf.get("tracks", "independent"),
             profile_data=(profiles or {}).get(profile),
+            file=crg_file, lateral_offset_m=float(surf.get("lateral_offset_m", 0.0)),
+            start_m=float(surf.get("start_m", 0.0)), fill_missing=bool(surf.get("fill_missing", False)),
+            crg_data=crg_data,
         ),
         exposure=ExposureSpec(tuple(float(v) for v in ex["speeds_km_h"]), float(ex.get("hours_per_day", 8.0))),
         simulation=SimulationSpec(sim.get("duration_s"), bool(sim.get("lift_off", True))),
@@ -709,7 +773,7 @@ def _build(doc: dict, path: Path | None, base_dir: Path, confine: bool = True, p
 
 
 def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | None = None, *,
-                   confine: bool = True, read_profile=None) -> Scenario:
+                   confine: bool = True, read_profile=None, read_crg=None) -> Scenario:
     """Parse and check scenario TOML text.
 
     Parameters
@@ -730,6 +794,9 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
         file: :func:`tyrelab.scenario_io.parse_scenario` and ``load_scenario`` pass
         :func:`tyrelab.scenario_io.read_profile_csv`); the data are kept in
         ``surface.profile_data``.
+    read_crg : callable, optional
+        ``path -> CrgData`` for ``kind = "crg"`` (:func:`tyrelab.scenario_io.read_crg`); the road is
+        kept in ``surface.crg_data``.
 
     Raises
     ------
@@ -771,7 +838,7 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
         raise ScenarioError(where, ["not valid TOML: nested too deeply"]) from None
     base = Path(base_dir)
     profiles: dict = {}
-    problems = _validate(doc, base, confine, read_profile, profiles)
+    problems = _validate(doc, base, confine, read_profile, profiles, read_crg)
     if problems:
         raise ScenarioError(where, problems)
     scenario = _build(doc, Path(path) if path is not None else None, base, confine, profiles)

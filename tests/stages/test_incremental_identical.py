@@ -123,6 +123,7 @@ def test_edit_published_simulation_input_matches_clean_rebuild(tmp_path, caplog,
               lambda rows: rows[3].update(rear_damping_kN_s_per_m=f"{float(rows[3]['rear_damping_kN_s_per_m']) * 1.1:.3f}"))
     log = _assert_same_as_clean(raw, build, stages, caplog)
     assert "simulate: recomputing" in log
-    assert "studies 2 reused, 2 computed" in log  # both studies re-ran; the ride scenarios did not
+    assert "studies 0 reused, 2 computed" in log  # both studies re-ran; the ride scenarios did not
+    assert "ride scenarios 2 reused, 0 computed" in log
     # of them, only the edited rows' cases were simulated
     assert "carriage cases 11 reused, 1 computed" in log and "tractor cases 27 reused, 1 computed" in log
