@@ -98,6 +98,44 @@ class ItemCache:
         self.hits = 0
         self.misses = 0
         self.counts: dict[str, list[int]] = {}  # kind -> [reused, computed]
+        self._files: dict | None = None  # path -> [size, mtime_ns, inode, sha256] (file_digest), loaded when asked
+        self._files_used: dict = {}
+
+    #: File of :meth:`file_digest`'s record in the cache folder.
+    FILES = "file-digests.json"
+
+    def file_digest(self, path) -> str:
+        """SHA-256 of a file's content, read again only when its size, mtime or inode changed since
+        the stage last hashed it (a record kept beside the entries, as the stage state keeps its
+        inputs' hashes; ``--force`` reads every file): a stage that looks up many input files by
+        content (the rides stage's recordings) does not re-read the unchanged ones.
+
+        Raises
+        ------
+        OSError
+            If the file cannot be read.
+        """
+        import json
+        import os
+
+        key = str(path)
+        st = os.stat(key)
+        if self._files is None:
+            self._files = {}
+            if not self.force:
+                try:
+                    found = json.loads((self.folder / self.FILES).read_text())
+                    self._files = found if isinstance(found, dict) else {}
+                except (OSError, ValueError):
+                    pass
+        now = [st.st_size, st.st_mtime_ns, st.st_ino]
+        hit = self._files.get(key)
+        if isinstance(hit, list) and len(hit) == 4 and hit[:3] == now and isinstance(hit[3], str):
+            sha = hit[3]
+        else:
+            sha = io.file_sha256(key)
+        self._files_used[key] = [*now, sha]
+        return sha
 
     def key(self, kind: str, *inputs) -> str:
         """Key of one item: its kind, the code fingerprint and the digest of its inputs."""
@@ -157,7 +195,12 @@ class ItemCache:
         self.used.update(keys)
 
     def prune(self) -> int:
-        """Delete the entries this run did not use; return how many."""
+        """Delete the entries this run did not use (and the file digests it did not ask for); return how many."""
+        import json
+
+        if self._files_used or (self.folder / self.FILES).is_file():
+            self.folder.mkdir(parents=True, exist_ok=True)
+            io.write_text_atomic(json.dumps(self._files_used, sort_keys=True), self.folder / self.FILES)
         n = 0
         for p in self.folder.glob("*.pkl") if self.folder.is_dir() else []:
             if p.stem not in self.used:

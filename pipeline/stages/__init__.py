@@ -127,10 +127,23 @@ def plan(ctx: Context, stages: list[str] | None = None) -> list[tuple[str, str |
 
 
 def explain(ctx: Context, stages: list[str] | None = None) -> str:
-    """:func:`plan` as text, one stage a line, then the stage graph (:func:`tyrelab.stages.dag.graph_text`)."""
+    """:func:`plan` as text, one stage a line, then the stage graph (:func:`tyrelab.stages.dag.graph_text`).
+
+    Under a stage that will run, its items (``Stage.items``: what each is computed again from); for one
+    whose inputs are there now (not waiting for an earlier stage), what its module's ``item_plan(ctx)``
+    says of them, if it has one (the ride scenarios and tables of ``simulate``: kept or to compute)."""
     from .dag import graph_text
 
-    lines = [f"{name:<10} {'runs: ' + reason if reason else 'up to date: skipped'}" for name, reason in plan(ctx, stages)]
+    lines = []
+    for name, reason in plan(ctx, stages):
+        lines.append(f"{name:<10} {'runs: ' + reason if reason else 'up to date: skipped'}")
+        if reason is None:
+            continue
+        lines.extend(f"{'':<10}   item {item}" for item in STAGES[name].items)
+        if not reason.startswith("after "):
+            module = importlib.import_module(STAGES[name].module)
+            if hasattr(module, "item_plan"):
+                lines.extend(f"{'':<10}   now: {line}" for line in module.item_plan(ctx))
     return "\n".join(["plan:", *lines, "", "stage graph (tyrelab.stages.dag.STAGES):", graph_text()])
 
 

@@ -213,25 +213,36 @@ def _size_fits(table: pd.DataFrame, tyres: pd.DataFrame | None, source: str) -> 
     return sr.size_regressions(table, tyres, source, searches=full), searches
 
 
-def formula_fits(predictions: list[pd.DataFrame]) -> tuple[pd.DataFrame, pd.DataFrame]:
+def formula_fits(predictions: list[pd.DataFrame], memo=None) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Tables ``formula_fit`` and ``formula_fit_loto`` from the formula-prediction points of each source.
 
     A source with fewer than 5 usable traction tyres gets a row with a ``reason`` and null
     statistics; each fitted source carries its leave-one-tyre-out summary (mean absolute
     error of the refit and of the printed formula on the same points, and the share of
-    points inside the refit's 95 % interval).
+    points inside the refit's 95 % interval). ``memo(kind, inputs, compute)`` (:func:`compute`'s)
+    keeps each source's fit and leave-one-tyre-out refits under the digest of its points: the
+    published source's are not refitted when our runs change.
     """
+    memo = memo or (lambda kind, inputs, fn: fn())
     fits, loto, reasons = [], [], {}
     for points in predictions:
         if points.empty:
             continue
         source = str(points["source"].iloc[0])
-        try:
-            fits.append(ff.fit_formula(points, source))
-        except ValueError as exc:
-            reasons[source] = str(exc)
+
+        def one(points=points, source=source) -> tuple:
+            try:
+                fit = ff.fit_formula(points, source)
+            except ValueError as exc:
+                return None, None, str(exc)
+            return fit, ff.leave_one_tyre_out(points, source), None
+
+        fit, refits, reason = memo("formula", (points, source), one)
+        if reason is not None:
+            reasons[source] = reason
             continue
-        loto.append(ff.leave_one_tyre_out(points, source))
+        fits.append(fit)
+        loto.append(refits)
     table = ff.fit_table(fits)
     extra = [{**models.fit_row(f)} for f in fits]
     wide = pd.DataFrame(extra, columns=[c for c in (extra[0] if extra else {}) if c not in table.columns] + ["source"])
@@ -336,7 +347,7 @@ def compute(results: pd.DataFrame, tyres: pd.DataFrame | None,
                  "distance", "source"])
     out["formula_predictions"] = pd.concat(preds, ignore_index=True)
     out["formula_accuracy"] = pd.concat(acc, ignore_index=True)
-    out["formula_fit"], out["formula_fit_loto"] = formula_fits(preds)
+    out["formula_fit"], out["formula_fit_loto"] = formula_fits(preds, memo)
     out["damping_fit"] = damping_fits(published.get("table_vii"), c_speed, tyres)
 
     out.update(memo("spoke_curves", (), _spoke_curves))

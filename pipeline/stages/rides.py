@@ -31,7 +31,6 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .. import io
 from ..rawformat import RunFileError
 from ..rawformat.files import confined_run_path, read_delimited
 from ..schema import load_schema, row_problems
@@ -112,13 +111,16 @@ def _analyse(path: Path, channel_map) -> dict:
                **{f"vdv_{k}_m_s1_75": ax[k]["vdv_m_s1_75"] for k in ax},
                "warnings": "; ".join(a.warnings)}
     return {"summary": summary, "axes": axes, "spectra": spectra,
-            "exposure": {k: (ax[k]["a_w_m_s2"], ax[k]["vdv_m_s1_75"]) for k in ax}}
+            "exposure": {k: (ax[k]["a_w_m_s2"], ax[k]["vdv_m_s1_75"]) for k in ax}, "analysis": a}
 
 
-def _validate(path: Path, channel_map, scenario_path: Path, speed_km_h: float, track, tyre_data) -> dict:
+def _validate(path: Path, channel_map, scenario_path: Path, speed_km_h: float, track, tyre_data,
+              measured=None) -> dict:
     """Validation rows of one recording against its scenario's prediction, or ``{"error": reason}``.
 
-    ``tyre_data``: the fits of this run the scenario's tyres read (:class:`tyrelab.stages.tyredata.FitTyres`)."""
+    ``tyre_data``: the fits of this run the scenario's tyres read (:class:`tyrelab.stages.tyredata.FitTyres`);
+    ``measured``: the recording's analysis (its item, :func:`_analyse`): the recording is then read
+    again only on a track of known profile (the envelope similarity compares the signals)."""
     from ..rawformat.rides import open_recording
     from ..vehicle import ride_validation as rv
     from ..vehicle.measured_ride import analyse_recording
@@ -129,8 +131,9 @@ def _validate(path: Path, channel_map, scenario_path: Path, speed_km_h: float, t
     except ScenarioError as exc:
         return {"error": f"scenario {scenario_path.name}: {'; '.join(exc.problems)}"}
     try:
-        rec = open_recording(path, channel_map)
         signals = None
+        if track.known_profile or measured is None:
+            rec = open_recording(path, channel_map)
         if track.known_profile:
             n = 0
             parts: dict = {c: [] for c in rec.channels}
@@ -144,7 +147,8 @@ def _validate(path: Path, channel_map, scenario_path: Path, speed_km_h: float, t
             if parts is not None:
                 signals = {c: np.concatenate(v) for c, v in parts.items()}
             rec = open_recording(path, channel_map)
-        measured = analyse_recording(rec)
+        if measured is None:
+            measured = analyse_recording(rec)
         predicted, fs = rv.predicted_seat(scenario, speed_km_h, track, tyre_data)
     except (RunFileError, ValueError) as exc:
         return {"error": str(exc).splitlines()[0]}
@@ -222,18 +226,22 @@ def run(ctx: Context) -> StageResult:
             except RunFileError as exc:
                 refuse(campaign, ride_id, file, str(exc))
                 continue
-            scenario_path = track = fits = None
+            scenario_path = track = fits = profiles = None
             try:
                 track = rv.track_of(row.get("track"), campaign)
                 if isinstance(row.get("scenario"), str) and row["scenario"].strip():
                     scenario_path = confined_run_path(campaign, row["scenario"].strip())
-                    fits = scenario_fits(load_scenario(scenario_path), fit_tables)
-            except (ValueError, RunFileError) as exc:
+                    scenario = load_scenario(scenario_path)
+                    fits = scenario_fits(scenario, fit_tables)
+                    # the profiles the prediction reads: the scenario's (as read) or the row's track file
+                    profiles = (scenario.surface.profile_data,
+                                cache.file_digest(track.profile) if track.kind == "profile" else None)
+            except (ValueError, RunFileError, OSError) as exc:  # OSError: the track's profile went unreadable
                 problems = exc.problems if isinstance(exc, ScenarioError) else [str(exc)]
                 refuse(campaign, ride_id, file, f"scenario {row.get('scenario')}: {'; '.join(problems)}"
                        if isinstance(exc, (ScenarioError, RunFileError)) else str(exc))
                 continue
-            digest = io.file_sha256(path)
+            digest = cache.file_digest(path)  # by content; an unchanged file (size, mtime) is not read again
             key = cache.key("recording", digest, str(path.suffix), channel_map)
             result = cache.get_or_compute(key, lambda: _analyse(path, channel_map))
             if "error" in result:
@@ -259,10 +267,11 @@ def run(ctx: Context) -> StageResult:
             if scenario_path is not None:
                 # its recording, its scenario and the fits of ITS tyres (scenario_fits): a new run of
                 # another tyre leaves the key alone
-                vkey = cache.key("validation", digest, io.file_sha256(scenario_path), speed, repr(track), fits,
-                                 channel_map)
+                vkey = cache.key("validation", digest, cache.file_digest(scenario_path), speed, repr(track), fits,
+                                 channel_map, profiles)
                 val = cache.get_or_compute(vkey, lambda: _validate(path, channel_map, scenario_path, speed, track,
-                                                                   FitTyres(fits, str(ctx.parquet))))
+                                                                   FitTyres(fits, str(ctx.parquet)),
+                                                                   result.get("analysis")))
                 if "error" in val:
                     refuse(campaign, ride_id, file, f"prediction: {val['error']}")
                     continue

@@ -66,7 +66,7 @@ from .state import ItemCache
 from .tyredata import FitTyres, WarehouseTyres, read_fit_tables, scenario_fits
 
 __all__ = ["SEED", "STEMS", "THESIS_XX_STATISTICS", "run", "start_studies_ahead", "abandon_studies_ahead",
-           "start_ahead", "abandon_ahead",
+           "start_ahead", "abandon_ahead", "item_plan",
            "WarehouseTyres", "scenario_files", "scenario_items", "scenario_task", "run_scenarios", "collect_scenarios",
            "collect_scenario_spectra", "RIDE_TABLES"]
 
@@ -111,25 +111,31 @@ def _side_by_side(ours: pd.DataFrame, thesis: pd.DataFrame, keys: list[str]) -> 
     return out[cols].reset_index(drop=True)
 
 
-def _ride_plan(ctx: Context, files: list[tuple[str, str]], cache: ItemCache) -> tuple[list, dict, list]:
-    """The ride scenarios, each kept under the digest of what it reads: its file, and the rows of this
-    run's fit tables its tyres read (:func:`tyrelab.stages.tyredata.scenario_fits`: a measured tyre's
+def _ride_plan(ctx: Context, files: list[tuple[str, str]], cache: ItemCache) -> tuple[list, list]:
+    """The ride scenarios, each kept under the digest of what it reads: its file (and the data of the
+    profile CSV its surface names), and the rows of this run's fit tables its tyres read (:func:`tyrelab.stages.tyredata.scenario_fits`: a measured tyre's
     per-speed fits, the build's formula), which its task is handed (:class:`~tyrelab.stages.tyredata.FitTyres`)
-    and nothing else. Returns the keys (one per file), the cached results by key, and the
-    ``(file, key, tyre data)`` triples to run (:func:`scenario_task`)."""
+    and nothing else. Returns the keys and the tyre data, one per file (:func:`_ride_todo`)."""
     tables = read_fit_tables(ctx)
     keys, tyres = [], []
     for path, source in files:
         text = Path(path).read_bytes()
         try:
-            fits = scenario_fits(load_scenario(path), tables)
+            sc = load_scenario(path)
+            fits, profile = scenario_fits(sc, tables), sc.surface.profile_data  # a profile CSV's data, as read
         except (ScenarioError, ValueError, OSError):
-            fits = {}  # its task refuses the file, reading the same bytes
-        keys.append(cache.key("ride", path, source, text, fits))
+            fits, profile = {}, None  # its task refuses the file, reading the same bytes
+        keys.append(cache.key("ride", path, source, text, fits, profile))
         tyres.append(FitTyres(fits, str(ctx.parquet)))
+    return keys, tyres
+
+
+def _ride_todo(files: list[tuple[str, str]], cache: ItemCache, keys: list, tyres: list) -> tuple[dict, list]:
+    """The cached results by key (:func:`_ride_plan`) and the ``(file, key, tyre data)`` triples to run
+    (:func:`scenario_task`)."""
     done = {k: v for k in keys for hit, v in [cache.get(k)] if hit}
     todo = [(f, k, t) for f, k, t in zip(files, keys, tyres) if k not in done]
-    return keys, done, todo
+    return done, todo
 
 
 def _ride_finish(ctx: Context, files: list[tuple[str, str]], cache: ItemCache, keys: list, done: dict, todo: list,
@@ -181,12 +187,13 @@ def _task(item: tuple):
     return _study((kind, payload))
 
 
-def read_study_recordings(ctx: Context) -> tuple[dict, dict, list[dict]]:
+def read_study_recordings(ctx: Context, cache: ItemCache | None = None) -> tuple[dict, dict, list[dict]]:
     """The recordings of the chapter 6-7 runs: the ``rides`` stage's ``recordings`` rows with a
     ``study`` (``rides.csv``), each read from its file through the raw ride reader
     (:func:`tyrelab.rawformat.rides.open_recording`) if its content is the one the rides stage
     ingested (``file_sha256``). The offset (mean) of each channel is removed: a recording's DC
-    part is no vibration (a DC-coupled accelerometer reads 1 g).
+    part is no vibration (a DC-coupled accelerometer reads 1 g). With ``cache``, a file's content is
+    compared through :meth:`~tyrelab.itemcache.ItemCache.file_digest` (hashed again only if it changed).
 
     Returns
     -------
@@ -219,7 +226,7 @@ def read_study_recordings(ctx: Context) -> tuple[dict, dict, list[dict]]:
 
         path = campaign / file
         try:
-            if not path.is_file() or io.file_sha256(path) != row["file_sha256"]:
+            if not path.is_file() or (cache.file_digest(path) if cache else io.file_sha256(path)) != row["file_sha256"]:
                 refuse("the recording changed or went since the rides stage read it (run the rides stage)")
                 continue
             cmap = load_channel_map(campaign / "channel_map.json") if (campaign / "channel_map.json").is_file() else None
@@ -387,17 +394,15 @@ def _take_ahead(key: str):
     return True, future.result()
 
 
-def run(ctx: Context) -> StageResult:
-    """Run the chapter 6-8 simulations and write their tables (see module docstring)."""
-    t0 = time.perf_counter()
-    pub, sources = _read(ctx)
-    cache = ItemCache(ctx, "simulate")
-
+def _compute(ctx: Context, pub: dict, sources: pd.DataFrame, cache: ItemCache, files: list, ride_keys: list,
+             ride_tyres: list) -> tuple[dict, list[dict], dict]:
+    """The stage's tables and quarantine rows from its items (each computed or from the cache), and
+    the counts of its result."""
     # the studies not in the cache (nor started ahead), the ride scenarios not in the cache and
     # Table XX run side by side, one executor call (tyrelab.executor.map_batches), longest first:
     # with two workers the tractor study runs on one while the carriage study, the scenarios and
     # Table XX share the other
-    car_recs, tr_recs, rec_problems = read_study_recordings(ctx)
+    car_recs, tr_recs, rec_problems = read_study_recordings(ctx, cache)
     keys, inputs, case_keys = _study_plan(pub, cache, published.published_dir(ctx.raw), car_recs)
     cache.keep([k for ks in case_keys.values() for k in ks])  # a cached study's cases stay for the next edit
     done = {name: v for name, k in keys.items() for hit, v in [cache.get(k)] if hit}
@@ -406,17 +411,23 @@ def run(ctx: Context) -> StageResult:
         if took:
             done[name] = _keep_study(cache, name, keys[name], value, case_keys)
     todo = [(name, _payload(name, inputs[name], case_keys, cache)) for name in ("tractor", "carriage") if name not in done]
-    files = scenario_files(ctx.raw)
-    ride_keys, ride_done, ride_todo = _ride_plan(ctx, files, cache)
+    ride_done, ride_todo = _ride_todo(files, cache, ride_keys, ride_tyres)
     ride_items = [("ride", item) for item in scenario_items([f for f, _, _ in ride_todo],
                                                               tyre_data=[t for _, _, t in ride_todo])]
-    model = thesis_stiffness_model(*(pub[t] for t in THESIS_TABLES))
-    items = todo + ride_items + [("table_xx", (layouts.tractors(pub["table_xix"]), pub["table_xx"], model))]
+    # Table XX reads Tables XIX, XX and the thesis' stiffness formula (its tables)
+    xx_key = cache.key("table_xx", pub["table_xix"], pub["table_xx"], *(pub[t] for t in THESIS_TABLES))
+    xx_hit, xx = cache.get(xx_key)
+    xx_items = [] if xx_hit else [("table_xx", (layouts.tractors(pub["table_xix"]), pub["table_xx"],
+                                                thesis_stiffness_model(*(pub[t] for t in THESIS_TABLES))))]
+    items = todo + ride_items + xx_items
     progress = Progress("simulate", len(items), logger=ctx.log, unit="studies/scenarios")
-    outputs = map_batches(_task, items, ctx, on_done=lambda i: progress.step())
+    outputs = map_batches(_task, items, ctx, on_done=lambda i: progress.step()) if items else []
     for (name, _), value in zip(todo, outputs):
         done[name] = _keep_study(cache, name, keys[name], value, case_keys)
-    ride_outputs, xx = outputs[len(todo):len(todo) + len(ride_items)], outputs[-1]
+    ride_outputs = outputs[len(todo):len(todo) + len(ride_items)]
+    if not xx_hit:
+        xx = outputs[-1]
+        cache.put(xx_key, xx)
     car = done["carriage"]
     # the "measured" side: the recordings (no measured number is made here; none: the tables' gaps)
     tr = studies.with_tractor_recordings(done["tractor"], {k: v for k, (_, v) in tr_recs.items()})
@@ -499,24 +510,85 @@ def run(ctx: Context) -> StageResult:
     # ride scenarios (issue 13)
     ride_tables, bad = _ride_finish(ctx, files, cache, ride_keys, ride_done, ride_todo, ride_outputs)
     tables.update(ride_tables)
-    write_quarantine(ctx, "simulate", [{"campaign": None, "run_id": None, "file": b["file"], "stage": "simulate",
-                                        "reason": b["reason"]} for b in bad] + rec_problems)
+    quarantine = [{"campaign": None, "run_id": None, "file": b["file"], "stage": "simulate", "reason": b["reason"]}
+                  for b in bad] + rec_problems
+    n_runs = len(cr) + len(trr)
+    counts = {"n_in": n_runs + len(files), "n_ok": n_runs + len(files) - len(bad), "n_quarantined": len(bad),
+              "message": f"{len(tables)} tables; {len(files) - len(bad)} ride scenarios; recordings of the studies: "
+                         f"{len(car_recs)} carriage, {len(tr_recs)} tractor"}
+    return tables, quarantine, counts
 
+
+def _study_recording_inputs(ctx: Context, cache: ItemCache):
+    """What :func:`read_study_recordings` reads, by content: the ``recordings`` rows naming a study,
+    the digest of each one's file now and of its campaign's channel map (files looked up by
+    :meth:`~tyrelab.itemcache.ItemCache.file_digest`: an unchanged recording is not read)."""
+    if not ctx.has_table("recordings"):
+        return None
+    table = ctx.read_table("recordings")
+    if "study" not in table.columns:
+        return list(table.columns)
+    rows = table[table["study"].notna()].reset_index(drop=True)
+
+    def content(path: Path) -> str:
+        try:
+            return cache.file_digest(path) if path.is_file() else "missing"
+        except OSError as exc:
+            return f"unreadable: {exc}"
+
+    files = [content(Path(str(c)) / str(f)) for c, f in zip(rows["campaign"], rows["file"])]
+    maps = {str(c): content(Path(str(c)) / "channel_map.json") for c in sorted(set(map(str, rows["campaign"])))}
+    return [rows, files, maps]
+
+
+def item_plan(ctx: Context) -> list[str]:
+    """What a run of the stage now would compute, item by item, computing nothing (``run --explain``)."""
+    pub, sources = _read(ctx)
+    cache = ItemCache(ctx, "simulate")
+    files = scenario_files(ctx.raw)
+    ride_keys, _ = _ride_plan(ctx, files, cache)
+    if cache.has(cache.key("outputs", pub, sources, files, ride_keys, _study_recording_inputs(ctx, cache), SEED)):
+        return ["the tables: kept (no item's inputs changed)"]
+    kept = sum(cache.has(k) for k in ride_keys)
+    xx = cache.has(cache.key("table_xx", pub["table_xix"], pub["table_xx"], *(pub[t] for t in THESIS_TABLES)))
+    return [f"ride scenarios: {kept} kept, {len(ride_keys) - kept} to run; Table XX: {'kept' if xx else 'to run'}; "
+            "the tables: assembled again"]
+
+
+def run(ctx: Context) -> StageResult:
+    """Run the chapter 6-8 simulations and write their tables (see module docstring).
+
+    The whole set of tables is an item too, kept under the digest of everything the stage's items
+    read (the published tables, the ride scenarios' keys, the study recordings by content): when
+    the stage runs because an input changed that none of its items reads (the fits of a tyre no
+    scenario names, a recording of no study), it writes the tables it kept, reading no recording
+    and running nothing."""
+    t0 = time.perf_counter()
+    pub, sources = _read(ctx)
+    cache = ItemCache(ctx, "simulate")
+    files = scenario_files(ctx.raw)
+    ride_keys, ride_tyres = _ride_plan(ctx, files, cache)
+    whole = cache.key("outputs", pub, sources, files, ride_keys, _study_recording_inputs(ctx, cache), SEED)
+    hit, kept = cache.get(whole)
+    if hit:
+        cache.keep(kept["items"])  # the items stay for the next change
+        tables, quarantine, counts = kept["tables"], kept["quarantine"], kept["counts"]
+        items = "no item's inputs changed: the tables of the last run"
+    else:
+        tables, quarantine, counts = _compute(ctx, pub, sources, cache, files, ride_keys, ride_tyres)
+        cache.put(whole, {"tables": tables, "quarantine": quarantine, "counts": counts,
+                          "items": sorted(cache.used - {whole})})
+        items = (f"studies {cache.summary(exclude=(*CASE_KINDS, 'ride', 'table_xx', 'outputs'))}; "
+                 f"ride scenarios {cache.summary('ride')}; carriage cases {cache.summary('carriage-case')}; "
+                 f"tractor cases {cache.summary('tractor-case')}; Table XX {cache.summary('table_xx')}")
+    write_quarantine(ctx, "simulate", quarantine)
     for name, df in tables.items():
         ctx.write_table(name, df.reset_index(drop=True))
     cache.prune()
-    n_runs = len(cr) + len(trr)
     return StageResult(
-        name="simulate",
-        n_in=n_runs + len(files),
-        n_ok=n_runs + len(files) - len(bad),
-        n_quarantined=len(bad),
+        name="simulate", n_in=counts["n_in"], n_ok=counts["n_ok"], n_quarantined=counts["n_quarantined"],
         seconds=time.perf_counter() - t0,
-        message=f"{len(tables)} tables; {len(files) - len(bad)} ride scenarios; recordings of the studies: "
-                f"{len(car_recs)} carriage, {len(tr_recs)} tractor; studies {cache.summary(exclude=(*CASE_KINDS, 'ride'))}; "
-                f"ride scenarios {cache.summary('ride')}; "
-                f"carriage cases {cache.summary('carriage-case')}; tractor cases {cache.summary('tractor-case')}; "
-                "slatted track is a seeded stand-in",
+        message=f"{counts['message']}; {items}; slatted track is a seeded stand-in",
     )
 
 

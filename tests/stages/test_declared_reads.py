@@ -135,3 +135,65 @@ def test_an_edited_build_formula_re_runs_exactly_the_scenarios_that_use_it(fresh
     assert mine.any()
     pd.testing.assert_frame_equal(after[~mine].reset_index(drop=True),
                                   before[before["file"] != str(paths["build"])].reset_index(drop=True))
+
+
+def test_new_fits_of_a_tyre_re_run_only_the_scenarios_naming_it(fresh):
+    """Issue 35, Deliver 5: new per-speed fits of a tyre no scenario names (a run of it added) leave
+    every item alone: simulate writes the tables it kept, reading no recording; new fits of T1
+    re-run the one scenario that names it."""
+    ctx, paths, _ = fresh
+    run_stage("simulate", ctx)  # settle (the tests above may have left the stage to run)
+    before = {name: ctx.read_table(name) for name in ("ride_results", "table_xx", "carriage_runs")}
+    path = ctx.table("stiffness_pressure_by_speed")
+    table = pd.read_parquet(path)
+    other = table["tyre_id"].astype(str) != "T1"
+    assert other.any()
+    table.loc[other, "intercept"] += 5.0
+    table.to_parquet(path)
+    result = run_stage("simulate", ctx)
+    assert not result.skipped and "no item's inputs changed: the tables of the last run" in result.message, \
+        result.message
+    for name, frame in before.items():
+        pd.testing.assert_frame_equal(ctx.read_table(name), frame, check_exact=True)
+
+    table.loc[~other, "intercept"] += 5.0
+    table.to_parquet(path)
+    result = run_stage("simulate", ctx)
+    assert "ride scenarios 4 reused, 1 computed" in result.message and "Table XX 1 reused, 0 computed" in \
+        result.message, result.message
+    after = ctx.read_table("ride_results")
+    mine = after["file"] == str(paths["measured"])
+    pd.testing.assert_frame_equal(after[~mine].reset_index(drop=True),
+                                  before["ride_results"][~mine].reset_index(drop=True))
+    assert (after.loc[mine, "rear_stiffness_kN_per_m"].to_numpy()
+            != before["ride_results"].loc[mine, "rear_stiffness_kN_per_m"].to_numpy()).all()
+
+
+def test_explain_lists_the_items_of_a_stage_that_runs(tmp_path):
+    from tyrelab.stages import explain
+
+    text = explain(Context(raw=tmp_path / "raw", build=tmp_path / "build", jobs=1))
+    rides = text.split("\nrides ", 1)[1].split("\nsimulate ", 1)[0]
+    assert "item validation <- its recording's analysis, its scenario, the fit rows of its tyres" in rides
+    simulate_part = text.split("\nsimulate ", 1)[1].split("\nwarehouse ", 1)[0]
+    assert "now: ride scenarios: 0 kept, 2 to run; Table XX: to run" in simulate_part  # nothing built yet
+
+
+def test_a_scenarios_profile_csv_is_in_its_key(tmp_path):
+    """A raw scenario's surface profile is read with it: an edited profile CSV (the scenario's
+    text unchanged) gives the scenario another key, so it is run again."""
+    import numpy as np
+
+    from tyrelab.stages.state import ItemCache
+
+    folder = tmp_path / "raw" / "scenarios"
+    folder.mkdir(parents=True)
+    x = np.arange(0, 200.0, 0.05)
+    profile = pd.DataFrame({"distance_m": x, "height_m": 0.004 * np.sin(2 * np.pi * x / 2.5)})
+    profile.to_csv(folder / "sine.csv", index=False)
+    path = write(folder, scenario_text('kind = "profile"\nprofile = "sine.csv"'), "p.toml")
+    ctx = Context(raw=tmp_path / "raw", build=tmp_path / "build", jobs=1)
+    keys = simulate._ride_plan(ctx, [(str(path), "raw")], ItemCache(ctx, "simulate"))[0]
+    profile.assign(height_m=2 * profile["height_m"]).to_csv(folder / "sine.csv", index=False)
+    again = simulate._ride_plan(ctx, [(str(path), "raw")], ItemCache(ctx, "simulate"))[0]
+    assert keys != again

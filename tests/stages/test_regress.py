@@ -220,3 +220,27 @@ def test_progress_counts_every_tyre_then_each_step_and_passes_change_nothing(mon
     monkeypatch.setattr(regress, "FIT_PASSES", 1)
     one = regress.compute(results, tyres, published)
     assert {k: digest(v) for k, v in two.items()} == {k: digest(v) for k, v in one.items()}
+
+
+def test_a_changed_run_refits_our_formula_not_the_published_one(tmp_path):
+    """Issue 35: each source's formula fit (and its leave-one-tyre-out refits) is an item keyed by
+    its points: a changed run of ours refits our formula; the published Table III's is reused; the
+    tables are those of a computation without the cache."""
+    from tyrelab import published as pub
+    from tyrelab.itemcache import digest
+    from tyrelab.stages.state import ItemCache
+
+    results, tyres = _mixed_results(), pd.read_csv(REPO_RAW / "tyres.csv")
+    published = {name: pub.read_published(name) for name in regress.PUBLISHED}
+    ctx = Context(raw=tmp_path / "raw", build=tmp_path / "build")
+    first = ItemCache(ctx, "regress")
+    regress.compute(results, tyres, published, first)
+    assert first.summary("formula") == "0 reused, 2 computed"
+    changed = results.copy()
+    t3 = (changed["tyre_id"] == "T3") & (changed["speed_km_h"] == 0.0)
+    changed.loc[t3, "stiffness_kN_per_m"] *= 1.05
+    again = ItemCache(ctx, "regress")
+    tables = regress.compute(changed, tyres, published, again)
+    assert again.summary("formula") == "1 reused, 1 computed"
+    plain = regress.compute(changed, tyres, published)
+    assert {k: digest(v) for k, v in tables.items()} == {k: digest(v) for k, v in plain.items()}

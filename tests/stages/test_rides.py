@@ -123,3 +123,76 @@ def test_incremental_and_recordings_removed(campaign, built, tmp_path):
     assert res.n_in == 0
     for table in ("recordings", "ride_validation", "exposure_days", "recording_axes"):
         assert ctx.read_table(table).empty, table
+
+
+def _fits(build, t2_shift_kN_per_m: float = 0.0) -> None:
+    """Per-speed pressure fits of tyres T1 and T2 (as regress writes them) in ``build``."""
+    (build / "parquet").mkdir(parents=True, exist_ok=True)
+    rows = [{"tyre_id": t, "speed_km_h": v, "intercept": k + (t2_shift_kN_per_m if t == "T2" else 0.0), "slope": 140.0}
+            for t, k in (("T1", 150.0), ("T2", 170.0)) for v in (0.0, 10.0)]
+    pd.DataFrame(rows).to_parquet(build / "parquet" / "stiffness_pressure_by_speed.parquet")
+    damping = [{**r, "intercept": 0.6, "slope": 0.4} for r in rows]
+    pd.DataFrame(damping).to_parquet(build / "parquet" / "damping_pressure_by_speed.parquet")
+
+
+def test_a_new_run_of_a_tyre_revalidates_its_recordings_only_reading_no_recording(campaign, tmp_path, monkeypatch):
+    """Issue 35: a validation depends on its recording and on the fits of ITS tyres: new fits of
+    tyre T2 (a run of it added) re-validate the recording whose scenario names T2, reuse the others,
+    and read no recording (the analysis is the recording's item; unchanged files are not hashed again)."""
+    from tests.scenarios import scenario_text
+
+    from tyrelab import io
+    from tyrelab.rawformat import rides as raw_rides
+
+    raw, build = tmp_path / "raw", tmp_path / "build"
+    c = raw / "farm"
+    (c / "rec").mkdir(parents=True)
+    shutil.copy(campaign / "farm" / "rec" / "high.parquet", c / "rec" / "a.parquet")
+    shutil.copy(campaign / "farm" / "rec" / "same.parquet", c / "rec" / "b.parquet")
+    shutil.copy(campaign / "farm" / "mf698t.toml", c / "mf698t.toml")
+    for tyre in ("T1", "T2"):
+        (c / f"{tyre}.toml").write_text(scenario_text(rear=f'measured_tyre_id = "{tyre}"', speeds="[15]",
+                                                      name=f"rear {tyre}"), encoding="utf-8")
+    # on a track of ISO class C (not a known profile: no envelope similarity, which compares signals)
+    (c / "rides.csv").write_text(ROWS + "r1,rec/a.parquet,X,15,ISO 8608 class C,1991-06-12,T1.toml,,,\n"
+                                 + "r2,rec/b.parquet,X,15,ISO 8608 class C,1991-06-12,T2.toml,,,\n"
+                                 + "r3,rec/a.parquet,X,15,ISO 8608 class C,1991-06-12,mf698t.toml,,,\n", encoding="utf-8")
+    _fits(build)
+    ctx = Context(raw=raw, build=build, jobs=1, log=logging.getLogger("test"))
+    # r1 and r3 are one file: one item
+    assert run_stage("rides", ctx).message == "recordings 1 reused, 2 computed, validations 0 reused, 3 computed"
+    before = ctx.read_table("ride_validation").set_index(["ride_id", "axis"])
+
+    _fits(build, t2_shift_kN_per_m=25.0)  # a run of T2 added: its fits change, T1's rows stay
+    read: list[str] = []
+    sha, opened = io.file_sha256, raw_rides.open_recording
+    monkeypatch.setattr(io, "file_sha256", lambda path, *a, **k: read.append(str(path)) or sha(path, *a, **k))
+    monkeypatch.setattr(raw_rides, "open_recording", lambda path, *a, **k: read.append(str(path)) or opened(path, *a, **k))
+    res = run_stage("rides", ctx)
+    assert res.message == "recordings 3 reused, 0 computed, validations 2 reused, 1 computed"
+    assert not [p for p in read if p.endswith(".parquet") and "/rec/" in p], read  # no recording read
+    after = ctx.read_table("ride_validation").set_index(["ride_id", "axis"])
+    pd.testing.assert_frame_equal(after.drop(index="r2", level=0), before.drop(index="r2", level=0))
+    assert (after.loc["r2", "predicted_a_w_m_s2"] != before.loc["r2", "predicted_a_w_m_s2"]).all()
+    assert (after.loc["r2", "measured_a_w_m_s2"] == before.loc["r2", "measured_a_w_m_s2"]).all()
+
+
+def test_an_edited_track_profile_revalidates_the_recordings_on_it(campaign, tmp_path):
+    """A rides.csv row on a profile CSV of the campaign: the prediction reads that file, so an edited
+    profile validates the row again (the recording's analysis is reused)."""
+    raw, build = tmp_path / "raw", tmp_path / "build"
+    c = raw / "farm"
+    (c / "rec").mkdir(parents=True)
+    shutil.copy(campaign / "farm" / "rec" / "same.parquet", c / "rec" / "a.parquet")
+    shutil.copy(campaign / "farm" / "mf698t.toml", c / "mf698t.toml")
+    x = np.arange(0, 200.0, 0.05)
+    track = pd.DataFrame({"distance_m": x, "height_m": 0.004 * np.sin(2 * np.pi * x / 2.5)})
+    track.to_csv(c / "track.csv", index=False)
+    (c / "rides.csv").write_text(ROWS + "r1,rec/a.parquet,X,15,track.csv,1991-06-12,mf698t.toml,,,\n", encoding="utf-8")
+    ctx = Context(raw=raw, build=build, jobs=1, log=logging.getLogger("test"))
+    assert run_stage("rides", ctx).message == "recordings 0 reused, 1 computed, validations 0 reused, 1 computed"
+    before = ctx.read_table("ride_validation")
+    track.assign(height_m=2 * track["height_m"]).to_csv(c / "track.csv", index=False)
+    assert run_stage("rides", ctx).message == "recordings 1 reused, 0 computed, validations 0 reused, 1 computed"
+    after = ctx.read_table("ride_validation")
+    assert (after["predicted_a_w_m_s2"] != before["predicted_a_w_m_s2"]).all()
