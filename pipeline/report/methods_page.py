@@ -16,7 +16,7 @@ import numpy as np
 import pandas as pd
 
 from . import tables
-from .figures import _figure, to_svg
+from .chapters import CHAPTERS
 from .pages import Output, Page, register
 
 __all__ = ["BROADBAND", "RUN_COLUMNS", "frf_figure", "MethodsPage"]
@@ -45,6 +45,8 @@ def _model_curve(f_Hz: np.ndarray, fit: dict):
 def frf_figure(frf: pd.DataFrame, fit: dict) -> str | None:
     """One broadband run: H(f) (thesis convention, real and imaginary), K(f) and C(f) with ±2u bars and
     the fitted model, coherence with the 0.9 limit; bins used in the fit filled, others open."""
+    from .figures import _figure, to_svg  # matplotlib in the figure workers only
+
     if frf is None or frf.empty:
         return None
     f = frf["frequency_Hz"].to_numpy(float)
@@ -84,7 +86,7 @@ class MethodsPage(Page):
 
     slug: str = "rig-methods"
     title: str = "Rig methods and directions — H(f), K(f), C(f) by tyre"
-    order: float = 15
+    order: float = 10 * (len(CHAPTERS) + 1) + 5  # after the chapters and the measured ride
 
     @property
     def nav_title(self) -> str:

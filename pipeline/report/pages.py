@@ -312,4 +312,3 @@ for _number, _chapter in enumerate(CHAPTERS):
 register(RunsPage())
 register(ChapterPage(MEASURED_RIDE, order=10 * (len(CHAPTERS) + 1)))
 register(DocsPage())
-from . import methods_page  # noqa: E402,F401  (registers the rig-methods page, issue 34)

@@ -39,6 +39,7 @@ import pandas as pd
 
 from . import truth
 from .instrument import RigConfig
+from .method_runs import METHOD_DURATION_S, simulate_method_run
 
 __all__ = ["MANIFEST_COLUMNS", "TRACK_LENGTH_M", "RUN_DURATION_S", "CALIBRATION_DURATION_S",
     "CALIBRATION_BAND_HZ", "MISCALIBRATED_BEAM_GAIN_ERROR", "FIRST_DAY", "SILSOE_SPEEDS", "BERLIN_SPEEDS",
@@ -128,8 +129,6 @@ class _Planner:
 
     def method_run(self, method: str, direction: str, tyre_id: str, v: float, p: float,
                    load: float = truth.NOMINAL_LOAD_KN) -> None:
-        from .method_runs import METHOD_DURATION_S
-
         set_name = f"{direction[:3]}_{method}"
         key = f"{tyre_id}_{set_name}"
         i = self.counter.get(key, 0) + 1
@@ -342,9 +341,9 @@ def simulate_run(row, seed: int, cfg: RigConfig = RigConfig(), keep_signals: boo
 
     get = row.get if hasattr(row, "get") else (lambda k, d=None: getattr(row, k, d))
     if get("method", "stepped_sine") not in ("stepped_sine", None) and get("kind", "measurement") == "measurement":
-        from .method_runs import simulate_method_run
-
-        run, info = simulate_method_run(row, seed, cfg)
+        rng = np.random.default_rng(run_seed(seed, get("run_id")))
+        day = day_state(seed, get("recorded_on"), float(get("plan_beam_gain_error", 0.0) or 0.0), cfg)
+        run, info = simulate_method_run(row, rng, day, cfg)
         info["amplitude_mm_pp"] = rms_to_pp_mm(float(info.pop("displacement_rms_m")))
         return run, info
     tyre = get("plan_tyre", None) or truth.tyre_params(get("tyre_id"))

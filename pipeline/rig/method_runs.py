@@ -165,17 +165,15 @@ def method_signals(method: str, direction: str, stiffness_N_per_m: float, dampin
                       sfft.irfft(D * scale, n)[sl]), None
 
 
-def simulate_method_run(row, seed: int, cfg: RigConfig = RigConfig()):
+def simulate_method_run(row, rng: np.random.Generator, day, cfg: RigConfig = RigConfig()):
     """Simulate and record one planned run of another method (a :func:`tyrelab.rig.campaigns.campaign_plan`
-    row with ``method`` and ``direction``); return (run table, info with the truth used)."""
+    row with ``method`` and ``direction``) with the run's generator ``rng`` and its day's instrument
+    state ``day`` (:func:`tyrelab.rig.campaigns.simulate_run` passes both); return (run table, info with
+    the truth used)."""
     import pandas as pd
-
-    from .campaigns import day_state, run_seed
 
     get = row.get if hasattr(row, "get") else (lambda k, d=None: getattr(row, k, d))
     tyre = get("plan_tyre", None) or truth.tyre_params(get("tyre_id"))
-    rng = np.random.default_rng(run_seed(seed, get("run_id")))
-    day = day_state(seed, get("recorded_on"), float(get("plan_beam_gain_error", 0.0) or 0.0), cfg)
     method, direction = get("method"), get("direction")
     v, p, load = float(get("speed_km_h")), float(get("pressure_bar")), float(get("load_kN"))
     extra = {"amplitude_mm_pp": method_amplitude_mm_pp(method)} if direction == "vertical" else {}
