@@ -152,3 +152,14 @@ def test_the_ride_page_and_json_state_a_profile_roads_class(tmp_path, capsys):
     assert cli.main(["ride", str(iso)]) == 0
     assert json.loads(capsys.readouterr().out)["road_class"] is None
 
+
+
+def test_a_coarse_road_is_not_resolved_not_a_traceback(tmp_path, capsys):
+    """Cross sections 300 m apart: no Welch segment of the classification fits (scipy raised
+    'nperseg=0' through ``tyrelab road``, a traceback) (review of issue 33)."""
+    rng = np.random.default_rng(0)
+    assert road_class(rng.normal(0, 0.01, 20), 300.0)["class"] is None
+    pyopencrg.CrgRoad(rng.normal(0, 0.01, (20, V.size)), u_inc=300.0, v=V).save(tmp_path / "c300.crg")
+    assert cli.main(["road", str(tmp_path / "c300.crg"), "--format", "json"]) == 0
+    assert json.loads(capsys.readouterr().out)["tracks"]["left"]["class"] is None
+
