@@ -163,3 +163,14 @@ def test_a_coarse_road_is_not_resolved_not_a_traceback(tmp_path, capsys):
     assert cli.main(["road", str(tmp_path / "c300.crg"), "--format", "json"]) == 0
     assert json.loads(capsys.readouterr().out)["tracks"]["left"]["class"] is None
 
+
+def test_a_ride_refuses_a_crg_spaced_above_a_profiles_gap(tmp_path, capsys):
+    """A CRG road's cross sections 20 m apart are refused as a profile CSV's 20 m gap is, with the
+    scenario's other problems (review of issue 33)."""
+    rng = np.random.default_rng(0)
+    pyopencrg.CrgRoad(rng.normal(0, 0.01, (100, V.size)), u_inc=20.0, v=V).save(tmp_path / "c20.crg")
+    path = write(tmp_path, 'kind = "crg"\nfile = "c20.crg"\nlateral_offset_m = 1.0')
+    assert cli.main(["ride", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "surface.file: c20.crg's cross sections are 20 m apart, above 10 m" in err
+    assert "surface.lateral_offset_m: the front left wheel" in err
