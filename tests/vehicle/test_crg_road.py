@@ -174,3 +174,17 @@ def test_a_ride_refuses_a_crg_spaced_above_a_profiles_gap(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "surface.file: c20.crg's cross sections are 20 m apart, above 10 m" in err
     assert "surface.lateral_offset_m: the front left wheel" in err
+
+
+def test_tyrelab_road_names_its_own_options(tmp_path, capsys):
+    """``tyrelab road`` on a CRG names its options, not the scenario's surface keys it has no scenario
+    for, and refuses a NaN start as argparse does (it was 'cannot convert float NaN to integer')."""
+    two_track_road(tmp_path, length_m=40.0)
+    crg = str(tmp_path / "road.crg")
+    assert cli.main(["road", crg, "--lateral-offset-m", "1.0"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--lateral-offset-m: the left wheel's line v = 1.9 m" in err
+    assert "surface." not in err
+    with pytest.raises(SystemExit) as e:
+        cli.main(["road", crg, "--start-m", "nan"])
+    assert e.value.code == 2 and "--start-m: nan is not a finite number" in capsys.readouterr().err
