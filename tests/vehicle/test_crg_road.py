@@ -188,3 +188,18 @@ def test_tyrelab_road_names_its_own_options(tmp_path, capsys):
     with pytest.raises(SystemExit) as e:
         cli.main(["road", crg, "--start-m", "nan"])
     assert e.value.code == 2 and "--start-m: nan is not a finite number" in capsys.readouterr().err
+
+
+def test_a_profile_csv_is_bounded_before_it_is_read(tmp_path, capsys, monkeypatch):
+    """A profile CSV above MAX_PROFILE_BYTES is one line, exit 2, before pandas reads it (a CRG has
+    its bound; a CSV had none), and a directory is 'not a regular file' (review of issue 33)."""
+    from tyrelab import scenario_io
+
+    two_track_road(tmp_path, length_m=40.0)
+    monkeypatch.setattr(scenario_io, "MAX_PROFILE_BYTES", 1000, raising=False)
+    monkeypatch.setattr(scenario_io.pd, "read_csv", lambda *a, **k: pytest.fail("read before the bound"))
+    assert cli.main(["road", str(tmp_path / "tracks.csv")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "bytes, above the 1000 bytes a profile CSV may have" in err
+    assert cli.main(["road", str(tmp_path)]) == 2
+    assert "not a regular file" in capsys.readouterr().err
