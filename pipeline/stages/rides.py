@@ -31,6 +31,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ..io import printable
 from ..rawformat import RunFileError
 from ..rawformat.files import confined_run_path, read_delimited
 from ..schema import load_schema, row_problems
@@ -88,8 +89,8 @@ def _analyse(path: Path, channel_map) -> dict:
 
     try:
         a = analyse_recording(open_recording(path, channel_map))
-    except RunFileError as exc:
-        return {"error": str(exc)}
+    except (ValueError, ArithmeticError) as exc:  # RunFileError, or a value the analysis refuses: this row only
+        return {"error": printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)}
     axes = []
     spectra = []
     for c, r in a.channels.items():
@@ -150,8 +151,8 @@ def _validate(path: Path, channel_map, scenario_path: Path, speed_km_h: float, t
         if measured is None:
             measured = analyse_recording(rec)
         predicted, fs = rv.predicted_seat(scenario, speed_km_h, track, tyre_data)
-    except (RunFileError, ValueError) as exc:
-        return {"error": str(exc).splitlines()[0]}
+    except (ValueError, ArithmeticError) as exc:  # RunFileError included: this row only
+        return {"error": printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)}
     rows = rv.validation_rows(measured, predicted, fs, track.known_profile, signals)
     from ..vehicle.measured_ride import analyse_signals
 
@@ -172,7 +173,8 @@ def run(ctx: Context) -> StageResult:
     """Analyse every recording of every ``rides.csv``; write the tables and quarantine rows."""
     from ..rawformat import load_channel_map
     from ..vehicle import ride_validation as rv
-    from ..vehicle.daily_exposure import TaskExposure, daily_exposure
+    from ..vehicle.daily_exposure import (HOURS_TOLERANCE_H, MAX_HOURS_PER_DAY, TaskExposure, daily_exposure,
+                                          hours_problem)
     from ..scenario_io import ScenarioError, load_scenario
     from .tyredata import FitTyres, read_fit_tables, scenario_fits
 
@@ -185,10 +187,20 @@ def run(ctx: Context) -> StageResult:
     n_in = n_rejected = 0
     fit_tables = read_fit_tables(ctx)
 
+    def where(campaign) -> str:
+        """A campaign folder as the warehouse holds it: relative to the raw folder (``.`` for the raw
+        folder itself), never this machine's path."""
+        try:
+            return Path(campaign).resolve().relative_to(Path(ctx.raw).resolve()).as_posix()
+        except ValueError:
+            return Path(campaign).name
+
     def refuse(campaign: Path, ride_id, file, reason: str) -> None:
-        quarantine.append({"campaign": str(campaign), "run_id": None if ride_id is None else str(ride_id),
+        reason = printable(reason)
+        quarantine.append({"campaign": where(campaign), "run_id": None if ride_id is None else str(ride_id),
                            "file": None if file is None else str(file), "stage": "rides", "reason": reason})
-        ctx.log.warning("rides: %s: %s: %s", campaign.name, ride_id if ride_id is not None else "rides.csv", reason)
+        ctx.log.warning("rides: %s: %s: %s", printable(campaign.name),
+                        printable(ride_id) if ride_id is not None else "rides.csv", reason)
 
     for campaign in discover_ride_campaigns(ctx.raw):
         try:
@@ -220,7 +232,7 @@ def run(ctx: Context) -> StageResult:
             if ride_id in seen:
                 refuse(campaign, ride_id, file, f"duplicate ride_id (also in {seen[ride_id]})")
                 continue
-            seen[ride_id] = str(campaign)
+            seen[ride_id] = where(campaign)
             try:
                 path = confined_run_path(campaign, file)
             except RunFileError as exc:
@@ -241,30 +253,29 @@ def run(ctx: Context) -> StageResult:
                 refuse(campaign, ride_id, file, f"scenario {row.get('scenario')}: {'; '.join(problems)}"
                        if isinstance(exc, (ScenarioError, RunFileError)) else str(exc))
                 continue
+            hours = row.get("hours_per_day")
+            hours = float(hours) if hours not in (None, "") and not (isinstance(hours, float) and math.isnan(hours)) \
+                else None
+            if hours is not None and hours_problem(hours):  # e.g. 1e-320 h: refused before anything is read
+                refuse(campaign, ride_id, file, f"hours_per_day: {hours_problem(hours)}")
+                continue
+            speed = float(row["speed_km_h"])
+            if scenario_path is not None and not speed > 0:
+                refuse(campaign, ride_id, file, f"speed_km_h {speed:g}: a row with a scenario is checked against its "
+                                                "prediction at this speed, which needs a speed above 0")
+                continue
             digest = cache.file_digest(path)  # by content; an unchanged file (size, mtime) is not read again
             key = cache.key("recording", digest, str(path.suffix), channel_map)
             result = cache.get_or_compute(key, lambda: _analyse(path, channel_map))
             if "error" in result:
                 refuse(campaign, ride_id, file, result["error"])
                 continue
-            speed = float(row["speed_km_h"])
-            ident = {"ride_id": ride_id, "campaign": str(campaign), "file": str(file), "vehicle": row["vehicle"],
+            ident = {"ride_id": ride_id, "campaign": where(campaign), "file": str(file), "vehicle": row["vehicle"],
                      "speed_km_h": speed, "track": str(row.get("track") or "scenario"),
                      "recorded_on": str(row["recorded_on"]), "scenario": row.get("scenario") or None,
                      "task": row.get("task") or None}
-            hours = row.get("hours_per_day")
-            hours = float(hours) if hours not in (None, "") and not (isinstance(hours, float) and math.isnan(hours)) \
-                else None
-            study = {k: (str(row[k]).strip() if isinstance(row.get(k), str) and row[k].strip() else None)
-                     for k in STUDY_COLUMNS}
-            recordings.append({**ident, "hours_per_day": hours, **result["summary"], **study, "file_sha256": digest})
-            axes.extend({"ride_id": ride_id, **a} for a in result["axes"])
-            for s in result["spectra"]:
-                spectra.append(pd.DataFrame({"ride_id": ride_id, "source": "measured", "channel": s["channel"],
-                                             "frequency_Hz": s["frequency_Hz"], "psd_m2_s4_per_Hz": s["psd"]}))
-            if hours and row.get("task") and result["exposure"]:
-                tasks.append((ident, hours, result))
-            if scenario_path is not None:
+            val = None
+            if scenario_path is not None:  # checked before the row is kept: a row is kept or quarantined, not both
                 # its recording, its scenario and the fits of ITS tyres (scenario_fits): a new run of
                 # another tyre leaves the key alone
                 vkey = cache.key("validation", digest, cache.file_digest(scenario_path), speed, repr(track), fits,
@@ -275,6 +286,16 @@ def run(ctx: Context) -> StageResult:
                 if "error" in val:
                     refuse(campaign, ride_id, file, f"prediction: {val['error']}")
                     continue
+            study = {k: (str(row[k]).strip() if isinstance(row.get(k), str) and row[k].strip() else None)
+                     for k in STUDY_COLUMNS}
+            recordings.append({**ident, "hours_per_day": hours, **result["summary"], **study, "file_sha256": digest})
+            axes.extend({"ride_id": ride_id, **a} for a in result["axes"])
+            for s in result["spectra"]:
+                spectra.append(pd.DataFrame({"ride_id": ride_id, "source": "measured", "channel": s["channel"],
+                                             "frequency_Hz": s["frequency_Hz"], "psd_m2_s4_per_Hz": s["psd"]}))
+            if hours and row.get("task"):  # a task without a seat channel stays in its day (no verdict), named
+                tasks.append((ident, hours, result))
+            if val is not None:
                 validation.extend({**ident, **r} for r in val["rows"])
                 for s in val["spectra"]:
                     spectra.append(pd.DataFrame({"ride_id": ride_id, "source": "predicted", "channel": s["channel"],
@@ -285,13 +306,29 @@ def run(ctx: Context) -> StageResult:
     for ident, hours, result in tasks:
         by_day.setdefault((ident["campaign"], ident["vehicle"], ident["recorded_on"]), []).append((ident, hours, result))
     for (campaign, vehicle, day), items in sorted(by_day.items()):
+        # a task whose recording has no seat channel cannot be in the day's A(8): the day keeps it,
+        # named, and gets no verdict (its A(8) would leave those hours out)
+        seatless = [(i, h) for i, h, r in items if not r["exposure"]]
+        seated = [(i, h, r) for i, h, r in items if r["exposure"]]
         try:
+            if not seated:
+                raise ValueError("no task has a seat channel (seat_x_m_s2, seat_y_m_s2 or seat_z_m_s2)")
+            total = sum(h for _, h, _ in items)
+            if total > MAX_HOURS_PER_DAY + HOURS_TOLERANCE_H:
+                raise ValueError(f"tasks add up to {total:g} h, more than a day ({MAX_HOURS_PER_DAY:g} h)")
             d = daily_exposure([TaskExposure(i["task"], h, {k: v[0] for k, v in r["exposure"].items()},
                                              {k: v[1] for k, v in r["exposure"].items()}, r["summary"]["duration_s"],
-                                             r["summary"]["dz_m_s2"]) for i, h, r in items])
+                                             r["summary"]["dz_m_s2"]) for i, h, r in seated])
         except ValueError as exc:
-            refuse(Path(campaign), None, "rides.csv", f"{vehicle} on {day}: {exc}")
+            refuse(Path(ctx.raw) / campaign, None, "rides.csv", f"{vehicle} on {day}: {exc}")
             continue
+        if seatless:
+            names = ", ".join(f"{i['task']} ({h:g} h, {i['ride_id']})" for i, h in seatless)
+            withheld = (f"no verdict: task(s) {names} without a seat channel: the daily exposure is taken at the "
+                        "seat, and the A(8) leaves those hours out")
+            ctx.log.warning("rides: %s on %s: %s", printable(vehicle), day, printable(withheld))
+            d = {**d, "verdict": withheld, "vdv_verdict": withheld, "hours_to_eav": math.nan, "hours_to_elv": math.nan,
+                 "hours_per_day": d["hours_per_day"] + sum(h for _, h in seatless)}
         days.append({"campaign": campaign, "vehicle": vehicle, "recorded_on": day, "tasks": len(items),
                      "hours_per_day": d["hours_per_day"], "a8_m_s2": d["a8_m_s2"], "a8_axis": d["a8_axis"],
                      **{f"a8_{k}_m_s2": v for k, v in d["a8_axes_m_s2"].items()},
