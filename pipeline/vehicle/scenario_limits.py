@@ -159,13 +159,6 @@ def _profile_problems(x, left, right) -> list[str]:
             problems.append(f"surface.profile: a gap of {gap:g} m between points is above {high:g} m")
         if x[-1] - x[0] > LIMITS["surface.length_m"][1]:
             problems.append(f"surface.profile: {x[-1] - x[0]:g} m long, above {LIMITS['surface.length_m'][1]:g} m")
-        elif len(x) > 1:  # the heights are resampled at the median step (profiles.uniform_grid): bounded first
-            step = float(np.median(np.diff(x)))
-            points = (x[-1] - x[0]) / step + 1 if step > 0 else math.inf
-            if step < LIMITS["surface.dx_m"][0] or points > MAX_SAMPLES:
-                problems.append(f"surface.profile: its median step of {step:g} m over {x[-1] - x[0]:g} m makes "
-                                f"{points:,.0f} points (at least {LIMITS['surface.dx_m'][0]:g} m and at most "
-                                f"{MAX_SAMPLES:,} points)")
     low, high, _ = LIMITS["profile.height_m"]
     h = np.concatenate([left, right])
     if not (np.isfinite(h).all() and h.min() >= low and h.max() <= high):

@@ -203,17 +203,3 @@ def test_a_profile_csv_is_bounded_before_it_is_read(tmp_path, capsys, monkeypatc
     assert err.count("\n") == 1 and "bytes, above the 1000 bytes a profile CSV may have" in err
     assert cli.main(["road", str(tmp_path)]) == 2
     assert "not a regular file" in capsys.readouterr().err
-
-
-def test_a_profiles_resampled_grid_is_bounded_before_it_is_built(tmp_path, capsys):
-    """Twenty points 0.1 mm apart and two 10 m gaps: the median step (the grid profiles.uniform_grid
-    resamples on) is 0.1 mm, 200 001 points for 20 m (1 µm: 20 million, 1.5 GB, before any check);
-    refused below surface.dx_m's 1 mm, by tyrelab road and a ride alike (review of issue 33)."""
-    x = np.concatenate([np.arange(20) * 1e-4, [10.0, 20.0]])
-    pd.DataFrame({"distance_m": x, "height_m": 0.01 * np.sin(x)}).to_csv(tmp_path / "gap.csv", index=False)
-    assert cli.main(["road", str(tmp_path / "gap.csv")]) == 2
-    err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "its median step of 0.0001 m over 20 m makes 200,001 points" in err
-    path = write(tmp_path, 'kind = "profile"\nprofile = "gap.csv"')
-    assert cli.main(["ride", str(path)]) == 2
-    assert "surface.profile: its median step of 0.0001 m" in capsys.readouterr().err
