@@ -319,7 +319,7 @@ def figures(results: list[RideResult]) -> list[dict]:
         shown = next((r for r in results if len(r.spectra)), shown)
     name = variant_label(shown)
     if len(results) > 1:
-        name = (f"the scenario's own values, {name}" if shown.nominal
+        name = (f"the scenario's own values ({name})" if shown.nominal
                 else f"{name}: the sweep does not hold the scenario's own values, so its first variant")
     specs = scenario_figures(results_table(results), shown.spectra, shown.transmissibility,
                              shown.scenario.exposure.hours_per_day, psd_edge_note(shown), name)

@@ -69,7 +69,7 @@ def test_a_3d_ride_page_leads_with_the_answer(browser, page_path, width):  # noq
     # the heatmap at the working speed (the middle speed, said), small multiples for the others
     assert any("at the working speed, 8 km/h" in c for c in r["captions"])
     assert any(c.startswith("The same at the other speeds") for c in r["captions"])
-    assert any("the scenario's own values, 1.6/1.2 bar" in c for c in r["captions"])  # the spectra's variant
+    assert any("the scenario's own values (1.6/1.2 bar)" in c for c in r["captions"])  # the spectra's variant
     # headers wrap between words only (a word never overflows its cell) and figures use the width
     assert r["overflowingHeaders"] == []
     assert min(r["figureWidths"]) > 0.9

@@ -128,7 +128,7 @@ def test_a_sweep_of_scenario_keys_names_the_variant_of_every_speed_row(tmp_path)
     assert len(rows) == 2 and "mass_kg=4500" in rows[0] and "mass_kg=5000" in rows[1]
     html = ride_page.render_page(results)
     table = re.search(r"<h2>Seat vibration per speed</h2>.*?</table>", html, re.S).group(0)
-    assert "<th class=\"text\">variant</th>" in table and '<td class="text">mass_kg=5000</td>' in table
+    assert "<th>variant</th>" in table and '<td class="text">mass_kg=5000</td>' in table
 
 
 def test_a_legend_too_long_to_fit_says_how_many_lines_it_leaves_out():

@@ -159,15 +159,15 @@ def column_meaning(table: str, column: str, published: dict, raw: dict) -> str:
 def table_nodes(build: str | None, warn) -> list:
     """Every declared table and its columns (type, unit, meaning) from the warehouse of ``build``;
     ``warn(message)`` for a missing build or a declared table the build lacks."""
+    db = Path(build or "") / "warehouse.duckdb"
+    if not build or not db.is_file():
+        warn(f"tyrelab-tables: no built warehouse at TYRELAB_DOCS_BUILD={build!r} (make docs builds one)")
+        return []
     import duckdb
     from docutils import nodes
 
     from tyrelab.report.render import UNITS
 
-    db = Path(build or "") / "warehouse.duckdb"
-    if not build or not db.is_file():
-        warn(f"tyrelab-tables: no built warehouse at TYRELAB_DOCS_BUILD={build!r} (make docs builds one)")
-        return []
     published, raw = _schema_descriptions()
     con = duckdb.connect(str(db), read_only=True)
     try:
