@@ -27,6 +27,7 @@ from __future__ import annotations
 import math
 import time
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
@@ -38,7 +39,7 @@ from .base import Context, Progress, StageResult, write_quarantine
 from .dag import FIT_TABLES, RIDES_TABLES
 from .state import ItemCache
 
-__all__ = ["INPUTS", "OUTPUTS", "discover_ride_campaigns", "run"]
+__all__ = ["INPUTS", "OUTPUTS", "discover_ride_campaigns", "run", "item_plan"]
 
 #: What the stage reads and writes (declared in :data:`tyrelab.stages.dag.STAGES`; these are its names).
 INPUTS = ["raw", *FIT_TABLES]
@@ -168,39 +169,45 @@ def _plain(row: dict) -> dict:
     return {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in row.items()}
 
 
-def run(ctx: Context) -> StageResult:
-    """Analyse every recording of every ``rides.csv``; write the tables and quarantine rows."""
+class _Row(NamedTuple):
+    """A usable ``rides.csv`` row, planned: its recording's item key and its validation's (or None)."""
+
+    campaign: Path
+    row: dict
+    path: Path
+    channel_map: object
+    digest: str
+    key: str
+    scenario_path: Path | None
+    track: object
+    fits: dict | None
+    vkey: str | None
+
+
+def _rows(ctx: Context, cache: ItemCache, fit_tables: dict, refuse, counts: dict, progress: bool = True):
+    """The usable rows of every ``rides.csv``, each with its items' keys (:class:`_Row`), computing
+    nothing; a row or file that cannot be used is ``refuse(campaign, ride_id, file, reason)``'d.
+    ``counts`` gets ``n_in`` (rows) and ``n_rejected`` (files refused as a whole)."""
     from ..rawformat import load_channel_map
-    from ..vehicle import ride_validation as rv
-    from ..vehicle.daily_exposure import TaskExposure, daily_exposure
     from ..scenario_io import ScenarioError, load_scenario
-    from .tyredata import FitTyres, read_fit_tables, scenario_fits
+    from ..vehicle import ride_validation as rv
+    from .tyredata import scenario_fits
 
-    t0 = time.perf_counter()
     schema = load_schema("raw_rides")
-    cache = ItemCache(ctx, "rides")
-    quarantine: list[dict] = []
-    recordings, axes, spectra, validation, tasks = [], [], [], [], []
     seen: dict[str, str] = {}
-    n_in = n_rejected = 0
-    fit_tables = read_fit_tables(ctx)
-
-    def refuse(campaign: Path, ride_id, file, reason: str) -> None:
-        quarantine.append({"campaign": str(campaign), "run_id": None if ride_id is None else str(ride_id),
-                           "file": None if file is None else str(file), "stage": "rides", "reason": reason})
-        ctx.log.warning("rides: %s: %s: %s", campaign.name, ride_id if ride_id is not None else "rides.csv", reason)
-
+    counts.setdefault("n_in", 0)
+    counts.setdefault("n_rejected", 0)
     for campaign in discover_ride_campaigns(ctx.raw):
         try:
             table = read_delimited(campaign / "rides.csv", schema)
         except RunFileError as exc:
-            n_rejected += 1
+            counts["n_rejected"] += 1
             refuse(campaign, None, "rides.csv", f"rides.csv: {exc}")
             continue
         frame = table.frame
         whole, by_row = row_problems(frame, schema)
         if whole:
-            n_rejected += 1
+            counts["n_rejected"] += 1
             refuse(campaign, None, "rides.csv", "rides.csv: " + "; ".join(whole))
             continue
         channel_map = None
@@ -210,9 +217,11 @@ def run(ctx: Context) -> StageResult:
             except RunFileError as exc:
                 channel_map = None
                 ctx.log.warning("rides: %s: channel_map.json: %s", campaign.name, exc)
-        progress = Progress(f"rides: {campaign.name}", len(frame), logger=ctx.log, unit="recordings")
-        for i, row in enumerate(progress.iterate(frame.to_dict("records"))):
-            n_in += 1
+        rows = frame.to_dict("records")
+        if progress:
+            rows = Progress(f"rides: {campaign.name}", len(frame), logger=ctx.log, unit="recordings").iterate(rows)
+        for i, row in enumerate(rows):
+            counts["n_in"] += 1
             ride_id, file = row.get("ride_id"), row.get("file")
             if by_row.get(i):
                 refuse(campaign, ride_id, file, "; ".join(by_row[i]))
@@ -243,43 +252,85 @@ def run(ctx: Context) -> StageResult:
                 continue
             digest = cache.file_digest(path)  # by content; an unchanged file (size, mtime) is not read again
             key = cache.key("recording", digest, str(path.suffix), channel_map)
-            result = cache.get_or_compute(key, lambda: _analyse(path, channel_map))
-            if "error" in result:
-                refuse(campaign, ride_id, file, result["error"])
-                continue
-            speed = float(row["speed_km_h"])
-            ident = {"ride_id": ride_id, "campaign": str(campaign), "file": str(file), "vehicle": row["vehicle"],
-                     "speed_km_h": speed, "track": str(row.get("track") or "scenario"),
-                     "recorded_on": str(row["recorded_on"]), "scenario": row.get("scenario") or None,
-                     "task": row.get("task") or None}
-            hours = row.get("hours_per_day")
-            hours = float(hours) if hours not in (None, "") and not (isinstance(hours, float) and math.isnan(hours)) \
-                else None
-            study = {k: (str(row[k]).strip() if isinstance(row.get(k), str) and row[k].strip() else None)
-                     for k in STUDY_COLUMNS}
-            recordings.append({**ident, "hours_per_day": hours, **result["summary"], **study, "file_sha256": digest})
-            axes.extend({"ride_id": ride_id, **a} for a in result["axes"])
-            for s in result["spectra"]:
-                spectra.append(pd.DataFrame({"ride_id": ride_id, "source": "measured", "channel": s["channel"],
-                                             "frequency_Hz": s["frequency_Hz"], "psd_m2_s4_per_Hz": s["psd"]}))
-            if hours and row.get("task") and result["exposure"]:
-                tasks.append((ident, hours, result))
+            vkey = None
             if scenario_path is not None:
                 # its recording, its scenario and the fits of ITS tyres (scenario_fits): a new run of
                 # another tyre leaves the key alone
-                vkey = cache.key("validation", digest, cache.file_digest(scenario_path), speed, repr(track), fits,
-                                 channel_map, profiles)
-                val = cache.get_or_compute(vkey, lambda: _validate(path, channel_map, scenario_path, speed, track,
-                                                                   FitTyres(fits, str(ctx.parquet)),
-                                                                   result.get("analysis")))
-                if "error" in val:
-                    refuse(campaign, ride_id, file, f"prediction: {val['error']}")
-                    continue
-                validation.extend({**ident, **r} for r in val["rows"])
-                for s in val["spectra"]:
-                    spectra.append(pd.DataFrame({"ride_id": ride_id, "source": "predicted", "channel": s["channel"],
-                                                 "frequency_Hz": s["frequency_Hz"],
-                                                 "psd_m2_s4_per_Hz": s["psd"]}))
+                vkey = cache.key("validation", digest, cache.file_digest(scenario_path), float(row["speed_km_h"]),
+                                 repr(track), fits, channel_map, profiles)
+            yield _Row(campaign, row, path, channel_map, digest, key, scenario_path, track, fits, vkey)
+
+
+def item_plan(ctx: Context) -> list[str]:
+    """What a run of the stage now would compute, item by item, computing nothing (``run --explain``):
+    the recordings to analyse and the validations to compute (a recording's new file; a validation's
+    recording, scenario or the fit rows of its tyres changed)."""
+    from .tyredata import read_fit_tables
+
+    cache = ItemCache(ctx, "rides")
+    keys, vkeys = set(), set()
+    for r in _rows(ctx, cache, read_fit_tables(ctx), lambda *a: None, {}, progress=False):
+        keys.add(r.key)
+        if r.vkey is not None:
+            vkeys.add(r.vkey)
+    kept, vkept = sum(map(cache.has, keys)), sum(map(cache.has, vkeys))
+    return [f"recordings: {kept} kept, {len(keys) - kept} to analyse; validations: {vkept} kept, "
+            f"{len(vkeys) - vkept} to compute"]
+
+
+def run(ctx: Context) -> StageResult:
+    """Analyse every recording of every ``rides.csv``; write the tables and quarantine rows."""
+    from ..vehicle import ride_validation as rv
+    from ..vehicle.daily_exposure import TaskExposure, daily_exposure
+    from .tyredata import FitTyres, read_fit_tables
+
+    t0 = time.perf_counter()
+    cache = ItemCache(ctx, "rides")
+    quarantine: list[dict] = []
+    recordings, axes, spectra, validation, tasks = [], [], [], [], []
+    counts: dict = {}
+
+    def refuse(campaign: Path, ride_id, file, reason: str) -> None:
+        quarantine.append({"campaign": str(campaign), "run_id": None if ride_id is None else str(ride_id),
+                           "file": None if file is None else str(file), "stage": "rides", "reason": reason})
+        ctx.log.warning("rides: %s: %s: %s", campaign.name, ride_id if ride_id is not None else "rides.csv", reason)
+
+    for campaign, row, path, channel_map, digest, key, scenario_path, track, fits, vkey in \
+            _rows(ctx, cache, read_fit_tables(ctx), refuse, counts):
+        ride_id, file = row.get("ride_id"), row.get("file")
+        result = cache.get_or_compute(key, lambda: _analyse(path, channel_map))
+        if "error" in result:
+            refuse(campaign, ride_id, file, result["error"])
+            continue
+        speed = float(row["speed_km_h"])
+        ident = {"ride_id": ride_id, "campaign": str(campaign), "file": str(file), "vehicle": row["vehicle"],
+                 "speed_km_h": speed, "track": str(row.get("track") or "scenario"),
+                 "recorded_on": str(row["recorded_on"]), "scenario": row.get("scenario") or None,
+                 "task": row.get("task") or None}
+        hours = row.get("hours_per_day")
+        hours = float(hours) if hours not in (None, "") and not (isinstance(hours, float) and math.isnan(hours)) \
+            else None
+        study = {k: (str(row[k]).strip() if isinstance(row.get(k), str) and row[k].strip() else None)
+                 for k in STUDY_COLUMNS}
+        recordings.append({**ident, "hours_per_day": hours, **result["summary"], **study, "file_sha256": digest})
+        axes.extend({"ride_id": ride_id, **a} for a in result["axes"])
+        for s in result["spectra"]:
+            spectra.append(pd.DataFrame({"ride_id": ride_id, "source": "measured", "channel": s["channel"],
+                                         "frequency_Hz": s["frequency_Hz"], "psd_m2_s4_per_Hz": s["psd"]}))
+        if hours and row.get("task") and result["exposure"]:
+            tasks.append((ident, hours, result))
+        if vkey is not None:
+            val = cache.get_or_compute(vkey, lambda: _validate(path, channel_map, scenario_path, speed, track,
+                                                               FitTyres(fits, str(ctx.parquet)),
+                                                               result.get("analysis")))
+            if "error" in val:
+                refuse(campaign, ride_id, file, f"prediction: {val['error']}")
+                continue
+            validation.extend({**ident, **r} for r in val["rows"])
+            for s in val["spectra"]:
+                spectra.append(pd.DataFrame({"ride_id": ride_id, "source": "predicted", "channel": s["channel"],
+                                             "frequency_Hz": s["frequency_Hz"],
+                                             "psd_m2_s4_per_Hz": s["psd"]}))
     days = []
     by_day: dict = {}
     for ident, hours, result in tasks:
@@ -309,6 +360,7 @@ def run(ctx: Context) -> StageResult:
     write_quarantine(ctx, "rides", quarantine)
     cache.prune()
     n_bad = sum(1 for q in quarantine if q["run_id"] is not None)
-    return StageResult("rides", n_in=n_in, n_ok=len(recordings), n_quarantined=n_bad, n_rejected=n_rejected,
+    return StageResult("rides", n_in=counts.get("n_in", 0), n_ok=len(recordings), n_quarantined=n_bad,
+                       n_rejected=counts.get("n_rejected", 0),
                        seconds=time.perf_counter() - t0,
                        message=f"recordings {cache.summary('recording')}, validations {cache.summary('validation')}")
