@@ -44,15 +44,16 @@ def test_a_stage_reading_an_undeclared_table_is_refused(tmp_path):
 
 
 def test_run_stage_refuses_a_stage_that_reads_an_undeclared_table(tmp_path, monkeypatch):
-    from tyrelab.stages import methods
+    from tyrelab.stages import ingest
 
     def sneaky(ctx):
-        ctx.read_table("results")  # the methods stage reads the published tables only
+        ctx.read_table("ride_results")  # ingest reads the raw folder only (simulate writes this table later)
 
-    monkeypatch.setattr(methods, "run", sneaky)
+    monkeypatch.setattr(ingest, "run", sneaky)
     ctx = Context(raw=tmp_path / "raw", build=tmp_path / "build", jobs=1, log=log)
-    with pytest.raises(RuntimeError, match="stage methods reads table 'results', which it does not declare"):
-        run_stage("methods", ctx)
+    assert not may_read("ingest", "parquet/ride_results.parquet")
+    with pytest.raises(RuntimeError, match="stage ingest reads table 'ride_results', which it does not declare"):
+        run_stage("ingest", ctx)
     assert ctx.stage is None
 
 
