@@ -10,7 +10,7 @@ the shortest one, against the linear path of ``ride`` on the same run (inputs
 built once for both). Prints wall times, ratios and the largest relative
 difference of the seat vertical acceleration between the two paths.
 
-    .venv/bin/python bench/bench_ride.py [--skip-sweep] [--targets]
+    .venv/bin/python bench/bench_ride.py [--skip-sweep] [--targets] [--lateral]
 
 ``--targets`` also measures issue 23's sweep targets as ratios to u = one 4-speed scenario
 (``one_scenario_cpu_s``) in this process, all in CPU seconds: the whole 10 x 10 pressure grid x 8
@@ -21,6 +21,9 @@ frequency-domain expectation alone for 50 x 50 pressure pairs x 4 speeds = 10,00
 the floor of the grid's exact computation, the ISO 2631-1 weighting alone of its 1,600 seat records
 (``grid_weighting_alone_over_u``: one variant's records at the grid's lengths, x 100). u is the
 median of three runs.
+
+``--lateral`` (issue 33): a 3-D scenario with the tyres' lateral elements against the same with
+``lateral_model = "none"`` in this process (``lateral_over_none``, target <= 1.5).
 """
 
 from __future__ import annotations
@@ -58,6 +61,8 @@ def main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--skip-sweep", action="store_true", help="only the single scenario and the baseline")
     p.add_argument("--targets", action="store_true", help="also the issue-23 sweep targets (minutes of CPU)")
+    p.add_argument("--lateral", action="store_true",
+                   help="also issue 33's cost: a 3-D scenario with lateral tyre elements against lateral_model = none")
     args = p.parse_args(argv)
     sc = load_scenario(scenarios_dir() / "modern_tractor.toml")
     ride.ride(with_overrides(sc, [16.0]), with_spectra=False)  # warm-up: imports, caches
@@ -106,8 +111,33 @@ def main(argv=None) -> int:
                    sweep_nonlinear_runs=int((table["simulation"] != "linear").sum()))
     if args.targets:
         out.update(_targets(sc, cpu_one))
+    if args.lateral:
+        out.update(_lateral())
     print(json.dumps(out, indent=2))
     return 0
+
+
+def _lateral() -> dict:
+    """Issue 33: the shipped modern tractor made 3-D (roll, isotropic tracks, a pivoting front axle) with
+    the tyres' lateral elements (kelvin_voigt, the default: lateral and yaw freedoms, the static loads'
+    moment) against the same scenario with ``lateral_model = "none"``, in this process, CPU seconds, the
+    median of three runs each (target <= 1.5x)."""
+    text = (scenarios_dir() / "modern_tractor.toml").read_text()
+    text = text.replace("[tractor]\n", "[tractor]\nroll_inertia_kg_m2 = 2400\nfront_track_m = 1.9\nrear_track_m = 1.8\n")
+    text = text.replace("[surface]\n", "[surface]\ntracks = \"isotropic\"\n")
+    text += "\n[front_axle]\nmount = \"pivot\"\nroll_inertia_kg_m2 = 160\n"
+    lateral = parse_scenario(text, scenarios_dir())
+    none = parse_scenario(text.replace("[tractor]\n", "[tractor]\nlateral_model = \"none\"\n"), scenarios_dir())
+    ride.ride(with_overrides(lateral, [16.0]), with_spectra=False)  # warm-up
+    cpu = {}
+    for name, s in (("lateral", lateral), ("none", none), ("lateral", lateral), ("none", none), ("lateral", lateral),
+                    ("none", none)):
+        CPU.pop("ride", None)
+        _timed(ride.ride, s, with_spectra=False)
+        cpu.setdefault(name, []).append(CPU.pop("ride"))
+    lat, non = sorted(cpu["lateral"])[1], sorted(cpu["none"])[1]
+    return {"lateral_cpu_s": round(lat, 3), "lateral_none_cpu_s": round(non, 3),
+            "lateral_over_none": round(lat / non, 2)}
 
 
 def _targets(sc, u_s: float) -> dict:

@@ -153,6 +153,19 @@ def format_table(doc: dict) -> str:
         lines.append(f"  {axle:5s} {t['size']} at {t['pressure_bar']:g} bar: K = {k} kN/m "
                      f"({t['stiffness_source']}), C = {format_number(t['damping_kN_s_per_m'], decimals=fmt['damping'])} "
                      f"kN s/m ({t['damping_source']})")
+        if t.get("lateral_stiffness_kN_per_m") is not None:  # issue 33: the lateral element
+            ci = t.get("lateral_stiffness_ci95_kN_per_m")
+            lines.append(f"        lateral: K_y = {format_number(t['lateral_stiffness_kN_per_m'], decimals=fmt['stiffness'])}"
+                         + (f" [{format_number(ci[0], decimals=fmt['stiffness'])}, "
+                            f"{format_number(ci[1], decimals=fmt['stiffness'])}]" if ci else "")
+                         + f" kN/m, C_y = {format_number(t['lateral_damping_kN_s_per_m'], decimals=fmt['damping'])} kN s/m "
+                         f"({t['lateral_source']})")
+    if doc.get("lateral_note"):
+        lines.append(f"  a_wy: {doc['lateral_note']}")
+    if doc.get("a8_lateral_ci95_m_s2"):
+        lines.append("  A(8) across the stand-in lateral stiffness' 95 % interval: " + "; ".join(
+            f"{e['speed_km_h']:g} km/h {format_number(e['a8_m_s2'][0], decimals=2)}-"
+            f"{format_number(e['a8_m_s2'][1], decimals=2)} m/s²" for e in doc["a8_lateral_ci95_m_s2"]))
     nf, nodal, ci = doc["natural_frequencies_Hz"], doc["nodal_points_m"], doc.get("natural_frequencies_Hz_ci95", {})
     parts = []
     for mode in nf:  # bounce, pitch and, in 3-D, roll and the parts' modes

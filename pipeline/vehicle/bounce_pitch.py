@@ -27,6 +27,7 @@ from .. import _validate
 from ..tyre.stiffness import estimate_stiffness
 from .metrics import ratio_error_statistics
 from .model import Axle, Chassis, Parts, assemble
+from .units import from_kilo
 
 __all__ = [
     "natural_frequencies",
@@ -101,6 +102,11 @@ def _check(positive: dict, non_negative: dict) -> None:
         _validate.positive(name, value)
     for name, value in non_negative.items():
         _validate.non_negative(name, value)
+
+
+def _axle_N_per_m(tyre_kN_per_m):
+    """An axle's stiffness (its two tyres), N/m, from one tyre's in kN/m (the thesis' tables)."""
+    return 2 * from_kilo(tyre_kN_per_m)
 
 
 def _matrices(m, inertia, l1, l2, kf, kr) -> tuple[np.ndarray, np.ndarray]:
@@ -258,9 +264,9 @@ def tractor_natural_frequencies(
     uf = uf if front_stiffness_u_kN_per_m is None else float(front_stiffness_u_kN_per_m)
     ur = ur if rear_stiffness_u_kN_per_m is None else float(rear_stiffness_u_kN_per_m)
     f1, f2 = natural_frequencies(
-        mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m, 2e3 * kf, 2e3 * kr
+        mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m, _axle_N_per_m(kf), _axle_N_per_m(kr)
     )
-    modes = mode_shapes(mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m, 2e3 * kf, 2e3 * kr)
+    modes = mode_shapes(mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m, _axle_N_per_m(kf), _axle_N_per_m(kr))
     (u1, u2), (ci1, ci2) = frequency_uncertainty(mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m,
                                                  kf, kr, uf, ur)
     return {
@@ -318,7 +324,7 @@ def frequency_uncertainty(mass_kg: float, pitch_inertia_kg_m2: float, front_dist
 
     def freqs(kk):
         return np.array(natural_frequencies(mass_kg, pitch_inertia_kg_m2, front_distance_m, rear_distance_m,
-                                            2e3 * kk[0], 2e3 * kk[1]))
+                                            _axle_N_per_m(kk[0]), _axle_N_per_m(kk[1])))
 
     f0 = freqs(k)
     var = np.zeros(2)
@@ -386,7 +392,7 @@ def frequency_rounding_range(
     for signs in itertools.product((-1.0, 1.0), repeat=len(names)):
         v = {n: values[n] + sg * rounding.get(n, 0.0) for n, sg in zip(names, signs)}
         corners.append(natural_frequencies(v["mass"], v["pitch_inertia"], v["front_distance"], v["rear_distance"],
-                                           2e3 * v["front_stiffness_kN_per_m"], 2e3 * v["rear_stiffness_kN_per_m"]))
+                                           _axle_N_per_m(v["front_stiffness_kN_per_m"]), _axle_N_per_m(v["rear_stiffness_kN_per_m"])))
     f = np.asarray(corners)
     return np.array([[f[:, 0].min(), f[:, 0].max()], [f[:, 1].min(), f[:, 1].max()]])
 
@@ -469,8 +475,8 @@ def table_xx(tractors: pd.DataFrame, published: pd.DataFrame | None = None, stif
                     t.pitch_inertia_kg_m2,
                     t.front_distance_m,
                     t.rear_distance_m,
-                    2e3 * row["thesis_front_stiffness_kN_per_m"],
-                    2e3 * row["thesis_rear_stiffness_kN_per_m"],
+                    _axle_N_per_m(row["thesis_front_stiffness_kN_per_m"]),
+                    _axle_N_per_m(row["thesis_rear_stiffness_kN_per_m"]),
                 )
                 row.update(frequency_1_from_thesis_stiffness_Hz=g1, frequency_2_from_thesis_stiffness_Hz=g2)
                 rng = frequency_rounding_range(t.mass_kg, t.pitch_inertia_kg_m2, t.front_distance_m, t.rear_distance_m,

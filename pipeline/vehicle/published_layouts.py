@@ -13,8 +13,10 @@ from __future__ import annotations
 import pandas as pd
 
 from .. import _validate
+from .units import from_kilo
 
 __all__ = [
+    "tractor_axles_si",
     "carriage_rolling",
     "carriage_stationary",
     "carriage_accuracy",
@@ -140,6 +142,26 @@ def tractor_tyres(xvi: pd.DataFrame) -> pd.DataFrame:
     """Table XVI as :func:`studies.tractor_study` reads it (the digitised layout already is)."""
     _validate.frame("xvi", xvi)
     return xvi.reset_index(drop=True)
+
+
+def tractor_axles_si(row) -> dict[str, float]:
+    """A Table XVI row's tyres (per tyre, kN/m and kN s/m) as the pitch-plane tractor's axles in SI:
+    ``front_stiffness_N_per_m``, ``rear_stiffness_N_per_m``, ``front_damping_N_s_per_m``,
+    ``rear_damping_N_s_per_m`` (an axle is its two tyres).
+
+    Examples
+    --------
+    >>> tractor_axles_si({"front_stiffness_kN_per_m": 425.0, "rear_stiffness_kN_per_m": 330.0,
+    ...                   "front_damping_kN_s_per_m": 1.5, "rear_damping_kN_s_per_m": 1.0})["front_stiffness_N_per_m"]
+    850000.0
+    """
+    keys = [f"{axle}_{q}_{kn}" for axle in ("front", "rear") for q, kn in (("stiffness", "kN_per_m"), ("damping", "kN_s_per_m"))]
+    missing = [k for k in keys if k not in row]
+    if missing:
+        raise ValueError(f"row: missing {', '.join(missing)}")
+    return {f"{axle}_{q}_{si}": 2 * from_kilo(row[f"{axle}_{q}_{kn}"])
+            for axle in ("front", "rear") for q, kn, si in (("stiffness", "kN_per_m", "N_per_m"),
+                                                             ("damping", "kN_s_per_m", "N_s_per_m"))}
 
 
 def tractor_accuracy(xvii: pd.DataFrame) -> pd.DataFrame:

@@ -55,6 +55,7 @@ from .. import published
 from .._validate import positive
 from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
 from ..tyre.speed_dependence import at_speeds
+from ..tyre.lateral import estimate_lateral_stiffness
 from ..tyre.stiffness import estimate_stiffness
 from . import bounce_pitch
 from . import crg
@@ -67,8 +68,9 @@ from . import profiles as pr
 from .carriage import GRAVITY_M_S2
 from .scenario import Scenario, with_overrides, with_values
 from .carriage import half_step_input
-from .model import Assembly, Axle, Cab, Chassis, Implement, Parts, SeatPoint, assemble
+from .model import Assembly, Axle, Cab, Chassis, Implement, Parts, SeatPoint, SeatSuspension, assemble
 from .tractor import Tractor, simulate, tractor_parts
+from .units import KILO, from_kilo, to_kilo
 from .scenario_limits import MIN_VERDICT_DURATION_S
 
 __all__ = [
@@ -112,6 +114,8 @@ __all__ = [
 #: Simulation step of the ride, s (the ch. 7 study's).
 DT_S = 1e-3
 FS_HZ = 1.0 / DT_S
+#: Steps across a stand-in lateral stiffness' interval for :func:`_lateral_interval` (odd: the middle is the stand-in).
+LATERAL_INTERVAL_STEPS = 9
 #: Outputs of :func:`state_space`, in row order.
 OUTPUTS = ("seat_vertical_m_s2", "seat_longitudinal_m_s2", "vertical_m_s2", "pitch_rad_s2", "longitudinal_m_s2",
            "front_force_N", "rear_force_N")
@@ -156,6 +160,12 @@ class AxleTyres:
     footprint_m: np.ndarray
     warnings: tuple[str, ...] = ()
     stiffness_u_kN_per_m: float = 0.0
+    #: Lateral element of one tyre per speed (3-D with lateral_model; issue 33), kN/m and kN s/m,
+    #: where they came from, and the stiffness' 95 % interval per speed when it is the stand-in.
+    lateral_stiffness_kN_per_m: np.ndarray | None = None
+    lateral_damping_kN_s_per_m: np.ndarray | None = None
+    lateral_source: str = ""
+    lateral_ci95_kN_per_m: tuple | None = None
 
 
 def per_speed(values, list_speeds_km_h, speeds_km_h) -> np.ndarray:
@@ -313,28 +323,40 @@ def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
         if spec.footprint_m is not None:
             fp = np.full(speeds.shape, float(spec.footprint_m))
         else:
-            fp = np.array([ev.contact_length(radius, load_n[axle] / (1e3 * kk)) for kk in k])
+            fp = np.array([ev.contact_length(radius, load_n[axle] / from_kilo(kk)) for kk in k])
+        lateral = {}
+        if scenario.tractor.three_d and scenario.tractor.lateral_model != "none":
+            lateral = _lateral_tyre(spec, k, np.maximum(c, 0.0))
         out[axle] = AxleTyres(spec.size, spec.pressure_bar, k, np.maximum(c, 0.0), k_src, c_src, float(radius), fp,
-                              tuple(warnings), float(k_u))
+                              tuple(warnings), float(k_u), **lateral)
     return out
+
+
+def _lateral_tyre(spec, k: np.ndarray, c: np.ndarray) -> dict:
+    """One tyre's lateral element per speed: the scenario's, else the stand-in from its vertical
+    stiffness (:mod:`tyrelab.tyre.lateral`) and its vertical damping."""
+    if spec.lateral_stiffness_kN_per_m is not None:
+        ky, src, ci = np.full(k.shape, float(spec.lateral_stiffness_kN_per_m)), "override (scenario)", None
+    else:
+        est = [estimate_lateral_stiffness(float(x)) for x in k]
+        ky = np.array([e["lateral_stiffness_kN_per_m"] for e in est])
+        src, ci = est[0]["source"], (np.array([e["ci95_kN_per_m"][0] for e in est]),
+                                     np.array([e["ci95_kN_per_m"][1] for e in est]))
+    if spec.lateral_damping_kN_s_per_m is not None:
+        cy = np.full(k.shape, float(spec.lateral_damping_kN_s_per_m))
+        src += "; damping: override (scenario)"
+    else:
+        cy = np.where(c > 0, c, 1e-3)  # a Maxwell element needs a damper: 1 N s/m at least
+        src += "; damping: the tyre's vertical damping (stand-in)"
+    return {"lateral_stiffness_kN_per_m": ky, "lateral_damping_kN_s_per_m": cy, "lateral_source": src,
+            "lateral_ci95_kN_per_m": ci}
 
 
 def build_tractor(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Tractor:
     """The :class:`~tyrelab.vehicle.tractor.Tractor` at speed index ``i`` (axle = two tyres, SI)."""
     _validate.instance("scenario", scenario, Scenario)
     _validate.positive_int("i", i, minimum=0)
-    t = scenario.tractor
-    return Tractor(
-        mass_kg=t.mass_kg, pitch_inertia_kg_m2=t.pitch_inertia_kg_m2, front_distance_m=t.front_distance_m,
-        rear_distance_m=t.rear_distance_m, cg_height_m=t.cg_height_m,
-        front_stiffness_N_per_m=2e3 * float(tyres["front"].stiffness_kN_per_m[i]),
-        rear_stiffness_N_per_m=2e3 * float(tyres["rear"].stiffness_kN_per_m[i]),
-        front_damping_N_s_per_m=2e3 * float(tyres["front"].damping_kN_s_per_m[i]),
-        rear_damping_N_s_per_m=2e3 * float(tyres["rear"].damping_kN_s_per_m[i]),
-        longitudinal_stiffness_N_per_m=2e3 * t.longitudinal_stiffness_kN_per_m if t.longitudinal_model != "none" else 0.0,
-        longitudinal_damping_N_s_per_m=2e3 * t.longitudinal_damping_kN_s_per_m if t.longitudinal_model != "none" else 0.0,
-        longitudinal_model=t.longitudinal_model,
-    )
+    return Tractor.of_parts(build_parts(scenario, tyres, i))
 
 
 def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Parts:
@@ -348,8 +370,8 @@ def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Part
     _validate.positive_int("i", i, minimum=0)
     t, seat = scenario.tractor, scenario.seat
     lon = t.longitudinal_model
-    kx = 1e3 * t.longitudinal_stiffness_kN_per_m if lon != "none" else 0.0
-    cx = 1e3 * t.longitudinal_damping_kN_s_per_m if lon != "none" else 0.0
+    kx = from_kilo(t.longitudinal_stiffness_kN_per_m) if lon != "none" else 0.0
+    cx = from_kilo(t.longitudinal_damping_kN_s_per_m) if lon != "none" else 0.0
     if lon == "maxwell" and not (kx > 0 and cx > 0):
         lon = "none"  # a Maxwell element without spring or damper carries no force
 
@@ -358,11 +380,17 @@ def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Part
         kw = {}
         if spec.mount != "rigid":
             kw["roll_inertia_kg_m2"] = spec.roll_inertia_kg_m2 or 0.0
+        if ty.lateral_stiffness_kN_per_m is not None:  # issue 33: the tyres' lateral elements
+            kw.update(lateral_model=t.lateral_model,
+                      lateral_stiffness_N_per_m=from_kilo(float(ty.lateral_stiffness_kN_per_m[i])),
+                      lateral_damping_N_s_per_m=from_kilo(float(ty.lateral_damping_kN_s_per_m[i])))
+            if spec.mount == "pivot":  # the pivot at the axle centre, a rolling radius above the ground
+                kw["height_m"] = spec.height_m if spec.height_m is not None else ty.radius_m
         if spec.mount == "suspended":
             kw.update(mass_kg=spec.mass_kg, height_m=spec.height_m if spec.height_m is not None else ty.radius_m,
-                      suspension_stiffness_N_per_m=1e3 * spec.suspension_stiffness_kN_per_m,
-                      suspension_damping_N_s_per_m=1e3 * spec.suspension_damping_kN_s_per_m)
-        return Axle(name, ahead, 1e3 * float(ty.stiffness_kN_per_m[i]), 1e3 * float(ty.damping_kN_s_per_m[i]),
+                      suspension_stiffness_N_per_m=from_kilo(spec.suspension_stiffness_kN_per_m),
+                      suspension_damping_N_s_per_m=from_kilo(spec.suspension_damping_kN_s_per_m))
+        return Axle(name, ahead, from_kilo(float(ty.stiffness_kN_per_m[i])), from_kilo(float(ty.damping_kN_s_per_m[i])),
                     track_m=track_m or 0.0, mount=spec.mount, **kw, **extra)
 
     cab = None
@@ -370,20 +398,19 @@ def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Part
         c = scenario.cab
         cab = Cab(c.mass_kg, c.pitch_inertia_kg_m2, c.roll_inertia_kg_m2 or 0.0, c.ahead_of_cg_m, c.height_above_cg_m,
                   c.front_mount_ahead_of_cg_m, c.rear_mount_ahead_of_cg_m, c.mount_track_m,
-                  1e3 * c.mount_stiffness_kN_per_m, 1e3 * c.mount_damping_kN_s_per_m)
+                  from_kilo(c.mount_stiffness_kN_per_m), from_kilo(c.mount_damping_kN_s_per_m))
     imp = None
     if scenario.implement is not None:
         m = scenario.implement
         imp = Implement(m.mass_kg, m.pitch_inertia_kg_m2, m.roll_inertia_kg_m2, m.behind_rear_axle_m, m.height_m,
                         m.mount, m.hitch_behind_rear_axle_m, m.hitch_height_m,
-                        1e3 * (m.hitch_stiffness_kN_m_per_rad or 0.0), 1e3 * m.hitch_damping_kN_m_s_per_rad)
+                        from_kilo(m.hitch_stiffness_kN_m_per_rad or 0.0), from_kilo(m.hitch_damping_kN_m_s_per_rad))
     return Parts(
-        Chassis(t.mass_kg, t.pitch_inertia_kg_m2, t.cg_height_m, t.roll_inertia_kg_m2),
+        Chassis(t.mass_kg, t.pitch_inertia_kg_m2, t.cg_height_m, t.roll_inertia_kg_m2, t.yaw_inertia_kg_m2),
         axle("front", t.front_distance_m, scenario.front_axle, t.front_track_m),
         axle("rear", -t.rear_distance_m, scenario.rear_axle, t.rear_track_m, longitudinal_model=lon,
              longitudinal_stiffness_N_per_m=kx, longitudinal_damping_N_s_per_m=cx),
-        SeatPoint(seat.ahead_of_cg_m, seat.left_of_cg_m, seat.height_above_cg_m),
-        cab, imp, scenario.ballast)
+        _seat_part(seat), cab, imp, scenario.ballast, static_load_moment=True)
 
 
 # --------------------------------------------------------------------------- linear model
@@ -479,7 +506,15 @@ def seat_filter(natural_frequency_Hz: float, damping_ratio: float):
     z = float(damping_ratio)
     if not (math.isfinite(z) and z >= 0):
         raise ValueError(f"damping_ratio must be finite and non-negative, got {damping_ratio!r}")
-    return signal.tf2ss([2 * z * wn, wn**2], [1.0, 2 * z * wn, wn**2])
+    return SeatSuspension(natural_frequency_Hz, damping_ratio).linear().abcd
+
+
+def _seat_part(seat) -> SeatPoint:
+    """The seat of a scenario's ``[seat]`` as a part: its point and its suspension
+    (:class:`~tyrelab.vehicle.model.SeatSuspension`, None for a rigid seat)."""
+    suspension = (SeatSuspension(seat.natural_frequency_Hz, seat.damping_ratio) if seat.suspension == "linear"
+                  else None)
+    return SeatPoint(seat.ahead_of_cg_m, seat.left_of_cg_m, seat.height_above_cg_m, suspension)
 
 
 def frequency_response(a, b, c, d, frequency_Hz) -> np.ndarray:
@@ -836,6 +871,9 @@ class RideResult:
     variant: dict = field(default_factory=dict)
     #: A profile or CRG road's ISO 8608 class per wheel track (:func:`road_classes`); empty otherwise.
     road_classes: dict = field(default_factory=dict)
+    #: 3-D with a stand-in lateral stiffness (issue 33): speed (km/h) -> A(8) (m/s²) with every stand-in
+    #: lateral stiffness at the low and at the high end of its 95 % interval (:func:`_lateral_interval`).
+    a8_lateral_ci95_m_s2: dict = field(default_factory=dict)
 
 
 def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float | None) -> tuple[int, int]:
@@ -846,7 +884,12 @@ def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float
 
 
 #: Mode names by the coordinate that moves most (:func:`modes`).
-MODE_NAMES = {"z": "bounce", "th": "pitch", "phi": "roll", "front_axle_roll": "front_axle_roll",
+#: The lowest mode led by the body's lateral or roll motion is named ``lateral_roll`` when the lesser of
+#: the two holds at least this share of its kinetic energy (issue 33; a documented choice), else by
+#: what moves most (``lateral``, ``roll``); the other modes as :data:`MODE_NAMES`.
+LATERAL_ROLL_SHARE = 0.05
+MODE_NAMES = {"lateral_roll": "lateral_roll", "z": "bounce", "th": "pitch", "phi": "roll", "y": "lateral", "psi": "yaw",
+              "front_axle_roll": "front_axle_roll",
               "rear_axle_roll": "rear_axle_roll", "front_axle_z": "front_axle_bounce", "rear_axle_z": "rear_axle_bounce",
               "cab_z": "cab_bounce", "cab_th": "cab_pitch", "cab_phi": "cab_roll", "implement_th": "implement_pitch"}
 
@@ -873,9 +916,22 @@ def modes(asm) -> tuple[dict, dict]:
         return ({k: ms[k]["frequency_Hz"] for k in ("bounce", "pitch")},
                 {k: ms[k]["nodal_point_ahead_of_cg_m"] for k in ("bounce", "pitch")})
     k, m, names = asm.undamped()
-    w2, vecs = linalg.eigh(k, m)
+    if np.array_equal(k, k.T):
+        w2, vecs = linalg.eigh(k, m)
+    else:  # the static loads' moment (issue 33) makes K unsymmetric: real modes of the undamped system
+        w2, vecs = linalg.eig(k, m)
+        order = np.argsort(w2.real)
+        w2, vecs = w2.real[order], vecs[:, order].real
     shares = [vecs[:, i] * (m @ vecs[:, i]) for i in range(len(w2))]
     dominant = [names[int(np.argmax(np.abs(sh)))] for sh in shares]
+    if "y" in names:  # issue 33: the lowest mode led by the body's lateral or roll motion, with both in it,
+        iy, iphi = names.index("y"), names.index("phi")  # is the coupled lateral-roll mode
+        for i, sh in enumerate(shares):
+            ey, ephi, total = abs(sh[iy]), abs(sh[iphi]), float(np.sum(np.abs(sh)))
+            if dominant[i] in ("y", "phi"):
+                if min(ey, ephi) >= LATERAL_ROLL_SHARE * total:
+                    dominant[i] = "lateral_roll"
+                break
     # the body's bounce and pitch (modes led by z or θ): by thesis §8.2's rule, the larger
     # |z|/(r |θ|) is bounce (a tie to the lower frequency), the other pitch
     body = [i for i in range(len(w2)) if dominant[i] in ("z", "th")]
@@ -910,7 +966,7 @@ def _mode_intervals(asm, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: flo
     if _is_beam(asm):
         _, intervals = bounce_pitch.frequency_uncertainty(
             p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m, -p.rear.ahead_of_cg_m,
-            p.front.tyre_stiffness_N_per_m / 1e3, p.rear.tyre_stiffness_N_per_m / 1e3,
+            to_kilo(p.front.tyre_stiffness_N_per_m), to_kilo(p.rear.tyre_stiffness_N_per_m),
             u_front_tyre_kN_per_m, u_rear_tyre_kN_per_m)
         centres = [0.5 * (lo + hi) for lo, hi in intervals]
         return {m: list(intervals[int(np.argmin([abs(c - f) for c in centres]))]) for m, f in base.items()}
@@ -924,7 +980,7 @@ def _mode_intervals(asm, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: flo
         down, _ = modes(assemble(dataclasses.replace(p, **{axle: dataclasses.replace(part, tyre_stiffness_N_per_m=0.99 * k)})))
         for m in var:
             if m in up and m in down:
-                var[m] += ((up[m] - down[m]) / (0.02 * k) * 1e3 * u) ** 2
+                var[m] += ((up[m] - down[m]) / (0.02 * k) * KILO * u) ** 2  # u in kN/m
     return {m: [base[m] - 1.96 * math.sqrt(var[m]), base[m] + 1.96 * math.sqrt(var[m])] for m in base}
 
 
@@ -960,13 +1016,14 @@ class RideCache:
         return self.enveloped[k]
 
     def seat_system(self, seat) -> lti.FohSystem | None:
-        """The linear seat suspension discretised at :data:`DT_S` (None for a rigid seat)."""
-        if seat.suspension != "linear":
+        """The seat's suspension (a scenario's ``[seat]`` or a :class:`~tyrelab.vehicle.model.SeatSuspension`
+        part) discretised at :data:`DT_S` (None for a rigid seat)."""
+        part = seat if isinstance(seat, SeatSuspension) else _seat_part(seat).suspension
+        if part is None:
             return None
-        k = (seat.natural_frequency_Hz, seat.damping_ratio)
-        if k not in self.seat:
-            self.seat[k] = lti.discretise(*seat_filter(*k), DT_S)
-        return self.seat[k]
+        if part not in self.seat:
+            self.seat[part] = lti.discretise(*part.linear().abcd, DT_S)
+        return self.seat[part]
 
 
 def ride(scenario: Scenario, tyre_data=None, with_spectra: bool = True,
@@ -1031,11 +1088,11 @@ def _prepare(scenario: Scenario, tyre_data, cache: RideCache) -> dict:
     tyres = resolve_tyres(scenario, tyre_data)
     track_key, track = cache.track(scenario)
     axes = seat_axes(scenario)  # axis -> output name
+    seat = _seat_part(scenario.seat).suspension  # the seat part's filter (no feedback on the tractor)
     return {"sc": scenario, "tyres": tyres, "track": track, "track_key": track_key,
             "wb": scenario.tractor.wheelbase_m, "speeds": scenario.exposure.speeds_km_h, "axes": axes,
-            "seat_sys": cache.seat_system(scenario.seat),
-            "seat_ss": seat_filter(scenario.seat.natural_frequency_Hz, scenario.seat.damping_ratio)
-            if scenario.seat.suspension == "linear" else None,
+            "seat_sys": cache.seat_system(seat) if seat is not None else None,
+            "seat_ss": seat.linear().abcd if seat is not None else None,
             "radii": (tyres["front"].radius_m, tyres["rear"].radius_m), "runs": {}}
 
 
@@ -1207,7 +1264,45 @@ def _finish(p: dict) -> RideResult:
         transmissibility=pd.concat(trans, ignore_index=True) if trans else pd.DataFrame(columns=cols),
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
         warnings=warnings, natural_frequency_intervals_Hz=nat_ci, signals=signals, road_classes=track.road_classes,
+        a8_lateral_ci95_m_s2=_lateral_interval(p, rows),
     )
+
+
+def _lateral_interval(p: dict, rows: list) -> dict:
+    """How far A(8) moves across the stand-in lateral stiffness' 95 % interval (issue 33), per speed:
+    the frequency-domain expectation of each seat axis with every stand-in lateral stiffness scaled
+    across its interval (:data:`LATERAL_INTERVAL_STEPS` log-spaced factors from ÷ 2 to × 2, the
+    stand-in among them: a_wy need not be monotonic in it, a resonance may sit inside), over the
+    expectation at the stand-in, scales the simulated a_w of that axis; the lowest and highest A(8)
+    of those. Empty unless a tyre's lateral stiffness is the stand-in."""
+    sc, tyres, track, axes = p["sc"], p["tyres"], p["track"], p["axes"]
+    stand_in = [ax for ax in ("front", "rear") if tyres[ax].lateral_ci95_kN_per_m is not None]
+    if not stand_in or track.side_spectrum is None:
+        return {}
+    factors = np.geomspace(0.5, 2.0, LATERAL_INTERVAL_STEPS)
+    out = {}
+    for i, speed in enumerate(p["speeds"]):
+        v = speed / 3.6
+        base = build_parts(sc, tyres, i)
+        variants = [dataclasses.replace(base, **{ax: dataclasses.replace(getattr(base, ax), lateral_stiffness_N_per_m=f * getattr(
+            base, ax).lateral_stiffness_N_per_m) for ax in stand_in}) for f in factors]
+        lms = [assemble(v_).linear(tuple(axes.values())) for v_ in variants]
+        grid = _fd_grid(sc, track, v)
+        fp = (float(tyres["front"].footprint_m[i]), float(tyres["rear"].footprint_m[i]))
+        env = {axle: enveloping_response(sc.surface.enveloping, fp[j], track.profile.dx_m, grid["n"])
+               for j, axle in enumerate(("front", "rear"))}
+        seat_tf = _seat_tf(p["seat_ss"], grid["f"]) if p["seat_ss"] is not None else None
+        exp = expected_weighted_rms(np.array([m.a for m in lms]), np.array([m.b for m in lms]),
+                                    np.array([m.c for m in lms]), np.array([m.d for m in lms]),
+                                    assemble(base).tyres, grid, env, seat_tf, list(axes))
+        mid = LATERAL_INTERVAL_STEPS // 2  # the stand-in itself (factor 1)
+        row = rows[i]
+        a8 = []
+        for k in range(len(factors)):
+            scaled = {ax: row[f"a_w{ax}_m_s2"] * (exp[ax][k] / exp[ax][mid] if exp[ax][mid] > 0 else 1.0) for ax in axes}
+            a8.append(exposure(scaled["z"], scaled["x"], sc.exposure.hours_per_day, scaled.get("y", 0.0))["a8_m_s2"])
+        out[float(speed)] = [min(a8), max(a8)]
+    return out
 
 
 #: Seat axes and their words in column names.
@@ -1606,18 +1701,25 @@ def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, 
     axes = seat_axes(base)
     tyres0 = {"front": front[fronts[0]], "rear": rear[rears[0]]}
     seat = base.seat
-    seat_ss = seat_filter(seat.natural_frequency_Hz, seat.damping_ratio) if seat.suspension == "linear" else None
+    seat_ss = _seat_part(seat).suspension.linear().abcd if seat.suspension == "linear" else None
     pf_all = np.repeat(fronts, len(rears))
     pr_all = np.tile(rears, len(fronts))
     frames = []
     for i, speed in enumerate(speeds):
         v = speed / 3.6
         asm = assemble(build_parts(base, tyres0, i))
-        k = {"front": np.array([1e3 * front[p].stiffness_kN_per_m[i] for p in pf_all]),
-             "rear": np.array([1e3 * rear[p].stiffness_kN_per_m[i] for p in pr_all])}
-        c = {"front": np.array([1e3 * front[p].damping_kN_s_per_m[i] for p in pf_all]),
-             "rear": np.array([1e3 * rear[p].damping_kN_s_per_m[i] for p in pr_all])}
-        a, b, cc, d = asm.linear_tyres(tuple(axes.values()), k, c)
+        k = {"front": np.array([from_kilo(front[p].stiffness_kN_per_m[i]) for p in pf_all]),
+             "rear": np.array([from_kilo(rear[p].stiffness_kN_per_m[i]) for p in pr_all])}
+        c = {"front": np.array([from_kilo(front[p].damping_kN_s_per_m[i]) for p in pf_all]),
+             "rear": np.array([from_kilo(rear[p].damping_kN_s_per_m[i]) for p in pr_all])}
+        if base.tractor.three_d and base.tractor.lateral_model != "none":
+            # the lateral elements follow each pair's tyres (the stand-in scales with k_z; a Maxwell
+            # element is not affine in its damping): one assembly per pair
+            lms = [assemble(build_parts(base, {"front": front[pf], "rear": rear[pr_]}, i)).linear(tuple(axes.values()))
+                   for pf, pr_ in zip(pf_all, pr_all)]
+            a, b, cc, d = (np.array([getattr(m, x) for m in lms]) for x in "abcd")
+        else:
+            a, b, cc, d = asm.linear_tyres(tuple(axes.values()), k, c)
         grid = _fd_grid(base, track, v)
         env_f = {p: enveloping_response(base.surface.enveloping, float(front[p].footprint_m[i]), track.profile.dx_m,
                                         grid["n"]) for p in fronts}
@@ -1639,6 +1741,19 @@ def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, 
     for key in ("a8_m_s2", "hours_to_eav", "hours_to_elv", "verdict"):
         out[key] = [e[key] for e in ex]
     return out
+
+
+def _lateral_note(sc: Scenario) -> str | None:
+    """What a_wy rests on (issue 33): None in the pitch plane (no a_wy)."""
+    t = sc.tractor
+    if not t.three_d:
+        return None
+    if t.lateral_model == "none":
+        return ("lateral_model = \"none\": no lateral tyre force, the body rolls about its CG; a_wy is indicative "
+                "only (give the tyres' lateral elements: tractor.lateral_model)")
+    given = all(x.lateral_stiffness_kN_per_m is not None for x in (sc.front, sc.rear))
+    return (f"lateral tyre elements ({t.lateral_model}); lateral stiffness "
+            + ("as given" if given else "partly or wholly the stand-in k_y = 0.57 k_z (95 % interval x/÷ 2)"))
 
 
 def _clean_class(c: dict) -> dict:
@@ -1668,13 +1783,22 @@ def _tyre_json(t: AxleTyres) -> dict:
         "stiffness_source": t.stiffness_source, "damping_source": t.damping_source,
         "rolling_radius_m": _clean(t.radius_m), "footprint_m": _clean(t.footprint_m[0]), "warnings": list(t.warnings),
         "stiffness_u_kN_per_m": _clean(t.stiffness_u_kN_per_m),
+        **({"lateral_stiffness_kN_per_m": _clean(t.lateral_stiffness_kN_per_m[0]),
+            "lateral_damping_kN_s_per_m": _clean(t.lateral_damping_kN_s_per_m[0]),
+            "lateral_source": t.lateral_source,
+            "lateral_stiffness_ci95_kN_per_m": None if t.lateral_ci95_kN_per_m is None
+            else [_clean(t.lateral_ci95_kN_per_m[0][0]), _clean(t.lateral_ci95_kN_per_m[1][0])]}
+           if t.lateral_stiffness_kN_per_m is not None else {}),
     }
 
 
 def result_json(results: list[RideResult]) -> dict:
     """The ``tyrelab ride`` JSON: the first pressure pair at the top, every pair under ``sweep``.
 
-    Top-level keys: ``name``, ``scenario``, ``track``, ``road_class`` (a profile or CRG road: per
+    Top-level keys: ``name``, ``scenario``, ``track``, ``lateral_model`` and ``lateral_note`` (3-D:
+    the tyres' lateral elements and what a_wy rests on; null in the pitch plane),
+    ``a8_lateral_ci95_m_s2`` (a stand-in lateral stiffness: per speed A(8) with it at the ends of its
+    95 % interval; else null), ``road_class`` (a profile or CRG road: per
     wheel track its ISO 8608 ``class``, fitted ``g0_m3``, ``rms_m``, ``length_m``, ``band_cycles_per_m``;
     null for a generated track), ``spectrum_source``,
     ``hours_per_day``, ``tyres`` (``front``/``rear``: size, pressure, stiffness and
@@ -1706,6 +1830,10 @@ def result_json(results: list[RideResult]) -> dict:
     sc = first.scenario
     out = {"name": sc.name, "scenario": str(sc.path) if sc.path else None, "track": first.track_label,
            "road_class": {k: _clean_class(v) for k, v in first.road_classes.items()} or None,
+           "lateral_model": sc.tractor.lateral_model if sc.tractor.three_d else None,
+           "lateral_note": _lateral_note(sc),
+           "a8_lateral_ci95_m_s2": [{"speed_km_h": k, "a8_m_s2": [_clean(x) for x in v]}
+                                    for k, v in first.a8_lateral_ci95_m_s2.items()] or None,
            "spectrum_source": first.spectrum_source, "hours_per_day": sc.exposure.hours_per_day, **block(first),
            "warnings": sorted({w for r in results for w in r.warnings})}
     if len(results) > 1:

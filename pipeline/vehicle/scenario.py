@@ -95,7 +95,10 @@ class TractorSpec:
     roll_inertia_kg_m2: float | None = None
     front_track_m: float | None = None
     rear_track_m: float | None = None
+    #: Each tyre's lateral element (issue 33): ``kelvin_voigt`` by default with roll, ``maxwell``,
+    #: or ``none`` (the body rolls about its CG); see :func:`parse_scenario`.
     lateral_model: str = "none"
+    yaw_inertia_kg_m2: float | None = None
 
     @property
     def three_d(self) -> bool:
@@ -190,6 +193,8 @@ class TyreSpec:
     radius_m: float | None = None
     footprint_m: float | None = None
     formula: str = "thesis"
+    lateral_stiffness_kN_per_m: float | None = None
+    lateral_damping_kN_s_per_m: float | None = None
 
 
 @dataclass(frozen=True)
@@ -615,6 +620,16 @@ def _parts_problems(doc: dict) -> list[str]:
             if k in tractor:
                 problems.append(f"tractor.{k} needs tractor.roll_inertia_kg_m2 (the 3-D model); without it the "
                                 "tracks are averaged")
+        if tractor.get("lateral_model", "none") != "none" or "yaw_inertia_kg_m2" in tractor:
+            key = "lateral_model" if tractor.get("lateral_model", "none") != "none" else "yaw_inertia_kg_m2"
+            problems.append(f"tractor.{key} needs tractor.roll_inertia_kg_m2 (the 3-D model: lateral tyre "
+                            "elements move the body sideways, in roll and in yaw)")
+        for axle in ("front", "rear"):
+            ty, _ = _section_values(doc, f"tyres.{axle}")
+            for k in ("lateral_stiffness_kN_per_m", "lateral_damping_kN_s_per_m"):
+                if ty and k in ty:
+                    problems.append(f"tyres.{axle}.{k} needs the 3-D model (tractor.roll_inertia_kg_m2 and the "
+                                    "track widths)")
     for axle in ("front_axle", "rear_axle"):
         t, _ = _section_values(doc, axle)
         if not t:
@@ -706,6 +721,10 @@ def _profile_problems(base_dir: Path, relative: str, confine: bool, read_profile
     return []
 
 
+def _float_or_none(v):
+    return None if v is None else float(v)
+
+
 def _speed_values(v):
     return tuple(float(x) for x in v) if isinstance(v, list) else (None if v is None else float(v))
 
@@ -729,7 +748,13 @@ def _build(doc: dict, path: Path | None, base_dir: Path, confine: bool = True, p
             measured_tyre_id=d.get("measured_tyre_id"), water_ballast=bool(d.get("water_ballast", False)),
             age_years=float(d.get("age_years", 1.0)), radius_m=d.get("radius_m"), footprint_m=d.get("footprint_m"),
             formula=str(d.get("formula", "thesis")),
+            lateral_stiffness_kN_per_m=_float_or_none(d.get("lateral_stiffness_kN_per_m")),
+            lateral_damping_kN_s_per_m=_float_or_none(d.get("lateral_damping_kN_s_per_m")),
         )
+
+    t = dict(t)
+    if "roll_inertia_kg_m2" in t and "lateral_model" not in t:
+        t["lateral_model"] = "kelvin_voigt"  # issue 33: a 3-D scenario's tyres have lateral elements
 
     profile = _resolve_inside(base_dir, surf["profile"], confine)[0] if "profile" in surf else None
     crg_file = _resolve_inside(base_dir, surf["file"], confine, "surface.file")[0] \

@@ -36,7 +36,9 @@ from . import enveloping as ev
 from . import iso2631
 from . import metrics as mt
 from . import profiles as pr
+from . import published_layouts as layouts
 from .tractor import PARAMETERS, Tractor, simulate_tractor
+from .units import KILO, from_kilo, to_kilo
 
 __all__ = [
     "T4_ROLLING_RADIUS_M",
@@ -148,7 +150,7 @@ def _footprints(table_xii: pd.DataFrame, surface_stiffness_factor: float) -> dic
     """
     out = {}
     for load, g in table_xii.groupby("load_condition", sort=False):
-        k_mean = surface_stiffness_factor * 1e3 * g["stiffness_kN_per_m"].mean()
+        k_mean = surface_stiffness_factor * KILO * g["stiffness_kN_per_m"].mean()
         deflection = float(g["load_kg"].iloc[0]) * cm.GRAVITY_M_S2 / k_mean
         out[load] = ev.contact_length(T4_ROLLING_RADIUS_M, deflection)
     return out
@@ -399,7 +401,7 @@ def _carriage_cases(conds: pd.DataFrame, stat: pd.DataFrame, x: np.ndarray, est_
             "stationary": (float(st["stiffness_kN_per_m"]), float(st["damping_kN_s_per_m"])),
         }
         for name, (k_kn, c_kn) in chars.items():
-            car = cm.Carriage(float(c["load_kg"]), surface_stiffness_factor * 1e3 * k_kn, 1e3 * c_kn)
+            car = cm.Carriage(float(c["load_kg"]), surface_stiffness_factor * KILO * k_kn, from_kilo(c_kn))
             for estimate in ("surveyed", "recorded"):
                 h = est_by_load[c["load_condition"]][estimate]
                 _, u, ud = cm.ground_input(x, h, v, DT_S, 0.0, (stop - 1) * v * DT_S + 1e-9)
@@ -415,7 +417,7 @@ def _carriage_cases(conds: pd.DataFrame, stat: pd.DataFrame, x: np.ndarray, est_
                         "quoted_stiffness_kN_per_m": k_kn,
                         "stiffness_kN_per_m": surface_stiffness_factor * k_kn,
                         "damping_kN_s_per_m": c_kn,
-                        "parasitic_damping_kN_s_per_m": cm.PARASITIC_DAMPING_N_S_PER_M / 1e3,
+                        "parasitic_damping_kN_s_per_m": to_kilo(cm.PARASITIC_DAMPING_N_S_PER_M),
                         "coulomb_friction_N": 0.0,
                         "lift_off_fraction": 0.0,
                         **mt.record_metrics(pred, FS_HZ),
@@ -631,19 +633,8 @@ def tractor_study(
             cg_height_m=g["cg_height_m"],
         )
         label = {"load_condition": lc, "track": r["track"], "speed_km_h": float(r["speed_km_h"])}
-        roll_k = dict(
-            front_stiffness_N_per_m=2e3 * r["front_stiffness_kN_per_m"],
-            rear_stiffness_N_per_m=2e3 * r["rear_stiffness_kN_per_m"],
-            front_damping_N_s_per_m=2e3 * r["front_damping_kN_s_per_m"],
-            rear_damping_N_s_per_m=2e3 * r["rear_damping_kN_s_per_m"],
-        )
-        s = stat.loc[lc]
-        stat_k = dict(
-            front_stiffness_N_per_m=2e3 * s["front_stiffness_kN_per_m"],
-            rear_stiffness_N_per_m=2e3 * s["rear_stiffness_kN_per_m"],
-            front_damping_N_s_per_m=2e3 * s["front_damping_kN_s_per_m"],
-            rear_damping_N_s_per_m=2e3 * s["rear_damping_kN_s_per_m"],
-        )
+        roll_k = layouts.tractor_axles_si(r)
+        stat_k = layouts.tractor_axles_si(stat.loc[lc])
         est = sbt_est if r["track"] == "SBT" else hh_est
         case.append(({**label, "characteristics": "rolling", "longitudinal": "none"}, {**base, **roll_k}, est, r["track"] != "SBT"))
         case.append(({**label, "characteristics": "stationary", "longitudinal": "none"}, {**base, **stat_k}, est, r["track"] != "SBT"))
@@ -654,8 +645,8 @@ def tractor_study(
                         (
                             {**label, "characteristics": "rolling", "longitudinal": model, "sweep": True,
                              "longitudinal_stiffness_kN_per_m": float(k_kn), "longitudinal_damping_kN_s_per_m": float(c_kn)},
-                            {**base, **roll_k, "longitudinal_stiffness_N_per_m": 2e3 * k_kn,
-                             "longitudinal_damping_N_s_per_m": 2e3 * c_kn, "longitudinal_model": model},
+                            {**base, **roll_k, "longitudinal_stiffness_N_per_m": 2 * from_kilo(k_kn),
+                             "longitudinal_damping_N_s_per_m": 2 * from_kilo(c_kn), "longitudinal_model": model},
                             est,
                             False,
                         )
@@ -784,12 +775,10 @@ def _tractor_runs(group: list, duration_s: float) -> list[dict]:
         row = run_metrics(label, prof.label, sim["vertical_m_s2"][i, start:stop], sim["pitch_rad_s2"][i, start:stop],
                           sim["longitudinal_m_s2"][i, start:stop])
         row.update({
-            "front_stiffness_kN_per_m": kw["front_stiffness_N_per_m"] / 2e3,
-            "rear_stiffness_kN_per_m": kw["rear_stiffness_N_per_m"] / 2e3,
-            "front_damping_kN_s_per_m": kw["front_damping_N_s_per_m"] / 2e3,
-            "rear_damping_kN_s_per_m": kw["rear_damping_N_s_per_m"] / 2e3,
-            "longitudinal_stiffness_kN_per_m": kw.get("longitudinal_stiffness_N_per_m", 0.0) / 2e3,
-            "longitudinal_damping_kN_s_per_m": kw.get("longitudinal_damping_N_s_per_m", 0.0) / 2e3,
+            **{f"{k}_kN{unit}": to_kilo(kw.get(f"{k}_N{unit}", 0.0)) / 2  # per tyre (an axle is two)
+               for k, unit in (("front_stiffness", "_per_m"), ("rear_stiffness", "_per_m"), ("front_damping", "_s_per_m"),
+                               ("rear_damping", "_s_per_m"), ("longitudinal_stiffness", "_per_m"),
+                               ("longitudinal_damping", "_s_per_m"))},
             "lift_off_fraction_front": float(sim["lift_off_fraction_front"][i]),
             "lift_off_fraction_rear": float(sim["lift_off_fraction_rear"][i]),
             "method_used": str(sim["method_used"][i]),

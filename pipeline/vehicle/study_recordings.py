@@ -39,8 +39,10 @@ import pandas as pd
 
 from .. import _validate
 from . import carriage as cm
+from . import published_layouts as layouts
 from . import studies
 from .tractor import PARAMETERS, Tractor, simulate_tractor
+from .units import KILO, from_kilo
 
 __all__ = ["TRACK_SEED", "CARRIAGE_COULOMB_FRICTION_N", "TRACTOR_LONGITUDINAL", "NOISE_M_S2",
            "PITCH_NOISE_RAD_S2", "carriage_recordings", "tractor_recordings", "study_recordings"]
@@ -96,8 +98,8 @@ def carriage_recordings(table_xii: pd.DataFrame, stationary: pd.DataFrame, seed:
         uh[i], udh[i] = u - u[0], ud
     car = cm.Carriage(
         mass_kg=conds["load_kg"].to_numpy(float),
-        stiffness_N_per_m=surface_stiffness_factor * 1e3 * conds["stiffness_kN_per_m"].to_numpy(float),
-        damping_N_s_per_m=1e3 * conds["damping_kN_s_per_m"].to_numpy(float),
+        stiffness_N_per_m=surface_stiffness_factor * KILO * conds["stiffness_kN_per_m"].to_numpy(float),
+        damping_N_s_per_m=from_kilo(conds["damping_kN_s_per_m"].to_numpy(float)),
         parasitic_damping_N_s_per_m=0.0,
         coulomb_friction_N=CARRIAGE_COULOMB_FRICTION_N,
     )
@@ -133,10 +135,7 @@ def tractor_recordings(table_xv: pd.DataFrame, table_xvi: pd.DataFrame, seed: in
         kw = {"mass_kg": g["mass_kg"], "pitch_inertia_kg_m2": g["pitch_inertia_kg_m2"],
               "front_distance_m": g["wheelbase_m"] - g["cg_to_rear_axle_m"], "rear_distance_m": g["cg_to_rear_axle_m"],
               "cg_height_m": g["cg_height_m"],
-              "front_stiffness_N_per_m": 2e3 * r["front_stiffness_kN_per_m"],
-              "rear_stiffness_N_per_m": 2e3 * r["rear_stiffness_kN_per_m"],
-              "front_damping_N_s_per_m": 2e3 * r["front_damping_kN_s_per_m"],
-              "rear_damping_N_s_per_m": 2e3 * r["rear_damping_kN_s_per_m"],
+              **layouts.tractor_axles_si(r),
               "longitudinal_stiffness_N_per_m": 2 * kx, "longitudinal_damping_N_s_per_m": 2 * cx}
         farm = r["track"] != "SBT"
         prof = tracks["HH" if farm else "SBT"]

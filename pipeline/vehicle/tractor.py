@@ -61,7 +61,9 @@ LONGITUDINAL_MODELS = ("none", "kelvin_voigt", "maxwell")
 
 @dataclass(frozen=True)
 class Tractor:
-    """Pitch-plane tractor parameters; any field may be an array (one per run).
+    """Pitch-plane tractor parameters; any field may be an array (one per run). A constructor of
+    pitch-plane parts (:meth:`parts`, :func:`tractor_parts`; :meth:`of_parts` the other way): the
+    form the ch. 7 study sweeps, one array per parameter over a batch of runs.
 
     Attributes
     ----------
@@ -98,6 +100,28 @@ class Tractor:
     def wheelbase_m(self):
         """Wheelbase a + b, m."""
         return np.asarray(self.front_distance_m) + np.asarray(self.rear_distance_m)
+
+    def parts(self, seat: SeatPoint | None = None) -> Parts:
+        """The pitch-plane parts of a scalar tractor (:func:`tractor_parts`): a constructor of parts."""
+        return tractor_parts(self, seat)
+
+    @classmethod
+    def of_parts(cls, parts: Parts) -> "Tractor":
+        """The twelve numbers of pitch-plane ``parts`` (an axle's values are its two tyres'; the rear
+        axle's longitudinal element).
+
+        Examples
+        --------
+        >>> t = Tractor(1000, 250, 1.0, 1.2, 0.5, 1e5, 2e5, 1e3, 2e3, 1e5, 1e3, "maxwell")
+        >>> Tractor.of_parts(t.parts()) == t
+        True
+        """
+        _validate.instance("parts", parts, Parts)
+        ch, f, r = parts.chassis, parts.front, parts.rear
+        return cls(ch.mass_kg, ch.pitch_inertia_kg_m2, f.ahead_of_cg_m, -r.ahead_of_cg_m, ch.cg_height_m,
+                   2 * f.tyre_stiffness_N_per_m, 2 * r.tyre_stiffness_N_per_m, 2 * f.tyre_damping_N_s_per_m,
+                   2 * r.tyre_damping_N_s_per_m, 2 * r.longitudinal_stiffness_N_per_m,
+                   2 * r.longitudinal_damping_N_s_per_m, r.longitudinal_model)
 
 
 #: The numeric parameters of :class:`Tractor` (all but ``longitudinal_model``).
@@ -190,99 +214,90 @@ def linear_response(tractor: Tractor, inputs: np.ndarray, dt_s: float) -> dict[s
 
 # --------------------------------------------------------------------------- the batch RHS
 class _Batch:
-    """The assemblies of a batch's runs on one set of coordinates and element slots (their
-    union; a run without an element has it with zero coefficients), as arrays with the runs
-    last, and the RK4 state layout ``[q, q', s]`` (``s`` the Maxwell dampers' displacements).
-    :func:`simulate` batches runs of one structure only (:func:`_structure`), so the union is
-    each run's own and a run alone gives the same bits as in any batch (:class:`_Kernel`: one
-    matrix product per run, whose sums depend on the matrix only)."""
+    """The assemblies of a batch's runs, as arrays with the runs last, on their one state layout
+    (:attr:`tyrelab.vehicle.model.Assembly.layout`, shared: :func:`simulate` batches runs of one
+    structure only, :func:`_structure`), so a run alone gives the same bits as in any batch
+    (:class:`_Kernel`: one matrix product per run, whose sums depend on the matrix only).
+
+    Element slots: the tyres (ground input, floor), then the elements without states of their
+    own, then those with (a Maxwell element's extension); each element's rows are its kind's
+    (:mod:`tyrelab.vehicle.elements`), the same the linear model is built from."""
 
     def __init__(self, assemblies: list[Assembly], record: tuple[str, ...], lift_off: bool, gravity_m_s2: float):
         runs = len(assemblies)
-        coords: list[str] = []
-        kv_slots: list[str] = []
-        mw_slots: list[str] = []
-        tyres = list(assemblies[0].tyres)  # every run's (checked by simulate)
-        for asm in assemblies:
-            coords += [c for c in asm.coordinates if c not in coords]
-            for e in asm.elements:
-                slots = mw_slots if e.model == "maxwell" else kv_slots
-                if e.input is None and e.name not in slots:
-                    slots.append(e.name)
-        self.mw_names = mw_slots
-        self.coordinates, self.tyres = coords, tyres
-        nq, nt, ne, nm = len(coords), len(tyres), len(kv_slots), len(mw_slots)
-        self.nq, self.nt, self.nm = nq, nt, nm
-        self.gt = np.zeros((nt, nq, runs))
-        self.kt, self.ct, self.floor = np.zeros((3, nt, runs))
-        self.ge = np.zeros((ne, nq, runs))
-        self.ke, self.ce, self.gate_on = np.zeros((3, ne, runs))
-        self.gate_w = np.zeros((ne, nt, runs))
-        self.gm = np.zeros((nm, nq, runs))
-        self.km, self.rate, self.gate_on_m = np.zeros((3, nm, runs))
-        self.gate_wm = np.zeros((nm, nt, runs))
+        first = assemblies[0]
+        lay = first.layout
+        self.coordinates, self.tyres, self.states = first.coordinates, first.tyres, lay.states
+        order = _slots(first)
+        own = [s for e in order for s in e.states()]
+        nq, nt, n, ns, n_el = len(self.coordinates), len(self.tyres), lay.n, len(own), len(order)
+        self.nq, self.nt, self.n, self.ns, self.n_el = nq, nt, n, ns, n_el
+        self.n_pos = n - nq - ns
+        self.seen = [j for j in range(nq) if lay.pos_cols[j] is not None]
+        width = n + 2 * nt
+        # kernel columns [states, u (per tyre), u' (per tyre)] from the layout's [states, u, u' per tyre]
+        cols = np.empty(lay.width, dtype=np.intp)
+        cols[:n] = np.arange(n)
+        cols[n::2], cols[n + 1::2] = n + np.arange(nt), n + nt + np.arange(nt)
+        self.a = np.zeros((n_el + ns, width, runs))
+        self.g = np.zeros((n_el, nq, runs))
+        self.floor, self.static = np.zeros((2, nt, runs))
+        self.gate_w = np.zeros((n_el - nt, nt, runs))
+        self.gate_on = np.zeros((n_el - nt, runs))
         self.minv = np.zeros((nq, nq, runs))
-        self.static = np.zeros((nt, runs))
         self.outputs = tuple(record)
         no = len(record)
-        self.r_acc, self.r_q = np.zeros((2, no, nq, runs))
+        self.r_acc = np.zeros((no, nq, runs))
+        self.r_q = np.zeros((no, n, runs))
         self.r_f = np.zeros((no, nt, runs))
+        state_rows = {lay.index[s]: i for i, s in enumerate(own)}
         for r, asm in enumerate(assemblies):
-            idx = [coords.index(c) for c in asm.coordinates]
-
-            def pad(g):
-                out = np.zeros(nq)
-                out[idx] = g
-                return out
-
-            mass = np.eye(nq)
-            mass[np.ix_(idx, idx)] = asm.mass
-            self.minv[:, :, r] = _inverse(mass)
-            for e in asm.elements:
-                gate = np.array([1.0 / len(e.gate) if t in e.gate else 0.0 for t in tyres])
-                if e.input is not None:
-                    j = tyres.index(e.name)
-                    self.gt[j, :, r] = pad(e.g)
-                    self.kt[j, r], self.ct[j, r] = e.stiffness, e.damping
+            alay = asm.layout
+            self.minv[:, :, r] = _inverse(asm.mass)
+            for j, e in enumerate(_slots(asm)):
+                self.a[j, cols, r] = e.force_row(alay)
+                self.g[j, :, r] = e.weight * e.g
+                if j < nt:
                     self.static[j, r] = e.floor_N
-                    self.floor[j, r] = -e.floor_N if lift_off else -np.inf
-                elif e.model == "maxwell":
-                    j = mw_slots.index(e.name)
-                    active = e.stiffness > 0 and e.damping > 0
-                    self.gm[j, :, r] = pad(e.g)
-                    self.km[j, r] = e.stiffness if active else 0.0
-                    self.rate[j, r] = e.stiffness / e.damping if e.damping > 0 else 0.0
-                    self.gate_wm[j, :, r], self.gate_on_m[j, r] = gate, 0.0 if e.gate else 1.0
+                    self.floor[j, r] = e.floor_N if lift_off else -np.inf
                 else:
-                    j = kv_slots.index(e.name)
-                    self.ge[j, :, r] = pad(e.g)
-                    self.ke[j, r], self.ce[j, r] = e.stiffness, e.damping
-                    self.gate_w[j, :, r], self.gate_on[j, r] = gate, 0.0 if e.gate else 1.0
+                    self.gate_w[j - nt, :, r] = [1.0 / len(e.gate) if t in e.gate else 0.0 for t in self.tyres]
+                    self.gate_on[j - nt, r] = 0.0 if e.gate else 1.0
+                for s, row in e.derivative_rows(alay).items():
+                    self.a[n_el + state_rows[alay.index[s]], cols, r] = row
             for o, name in enumerate(record):
                 if name in asm.kinematic_outputs:
                     r_acc, r_tilt = asm.kinematic_outputs[name]
-                    self.r_acc[o, :, r] = pad(r_acc)
+                    self.r_acc[o, :, r] = r_acc
                     if r_tilt is not None:
-                        self.r_q[o, :, r] = pad(gravity_m_s2 * r_tilt)
+                        self.r_q[o, :, r] = alay.row(gravity_m_s2 * r_tilt, np.zeros(nq))[:n]
                 elif name.endswith("_force_N"):
                     tyre = name[:-len("_force_N")]
                     self.r_f[o, :, r] = [1.0 if (t == tyre or (t.startswith(tyre) and tyre in ("front", "rear")))
-                                         else 0.0 for t in tyres]
+                                         else 0.0 for t in self.tyres]
                 else:
                     match = [c for c in asm.coordinates if coordinate_output(c) == name]
-                    if not match:
+                    if not match or alay.pos_cols[asm.coordinates.index(match[0])] is None:
                         raise ValueError(f"record: unknown output {name!r}")
-                    self.r_q[o, coords.index(match[0]), r] = 1.0
-        self.gated = bool(np.any(self.gate_w)) or bool(np.any(self.gate_wm))
+                    self.r_q[o, alay.pos_cols[asm.coordinates.index(match[0])], r] = 1.0
+        self.gated = bool(np.any(self.gate_w))
 
     @property
     def size(self) -> int:
-        """Length of the RK4 state ``[q, q', s]``."""
-        return 2 * self.nq + self.nm
+        """Length of the state (the assemblies' layout)."""
+        return self.n
 
     def kernel(self, runs: np.ndarray) -> "_Kernel":
         """The right-hand side of the runs ``runs`` (indices into the batch), precomputed."""
         return _Kernel(self, np.asarray(runs, dtype=np.intp))
+
+
+def _slots(asm: Assembly) -> list:
+    """The elements in their kernel order: tyres (the assembly's order), then the elements without
+    states of their own, then those with."""
+    rest = [e for e in asm.elements if e.input is None]
+    return ([e for e in asm.elements if e.input is not None] + [e for e in rest if not e.states()]
+            + [e for e in rest if e.states()])
 
 
 class _Kernel:
@@ -290,77 +305,66 @@ class _Kernel:
     products: everything that does not change from step to step is worked out here, once.
 
     Runs first (``(runs, ...)``, one small matrix per run, :func:`numpy.matmul` over the stack).
-    A stage's buffer ``E`` (runs, W + N) holds ``[q, q', s, u, u']`` (W = state + 2 tyres) and,
-    after :meth:`rhs`, the element forces ``F = [f_tyres, f_kv, e_maxwell]`` (N):
+    A stage's buffer ``E`` (runs, W + N + S) holds ``[x, u, u']`` (W = states + 2 tyres) and,
+    after :meth:`rhs`, the elements' quantities ``F`` (N: tyre and spring-damper forces, Maxwell
+    extensions) and their own states' derivatives (S):
 
-    * ``F = A E[:W]`` — tyres ``k (g·q + u) + c (g·q' + u')``, Kelvin-Voigt ``k g·q + c g·q'``,
-      Maxwell extensions ``g·q - s`` (the affine part, one product);
-    * tyres clamped at their floor (lift-off); ``s' = rate · e``; gated elements (acting while
-      their tyres touch) times ``G [contact, 1]``;
-    * ``q'' = P F`` with ``P = -M⁻¹ [g_tyreᵀ, g_kvᵀ, k_maxwell g_maxwellᵀ]``;
+    * ``[F, x_own'] = A E[:W]`` — each element's :meth:`~tyrelab.vehicle.elements.Element.force_row`
+      and :meth:`~tyrelab.vehicle.elements.Element.derivative_rows` (one product);
+    * tyres clamped at their floor (lift-off); gated elements (acting while their tyres touch)
+      times ``G [contact, 1]``;
+    * ``q'' = P F`` with ``P = -M⁻¹ [weight g]ᵀ``;
     * the recorded outputs ``R [E[:W], F]`` (accelerations ``r_acc P F``, positions, forces).
     """
 
     def __init__(self, b: _Batch, runs: np.ndarray):
-        nq, nt, nm, ne = b.nq, b.nt, b.nm, b.ge.shape[0]
-        size = 2 * nq + nm
-        width = size + 2 * nt
-        n_el = nt + ne + nm
+        nq, nt, n_el, ns, n = b.nq, b.nt, b.n_el, b.ns, b.n
+        width = n + 2 * nt
         count = runs.size
 
         def take(x):  # (..., runs) -> (runs, ...)
             return np.moveaxis(x[..., runs], -1, 0)
 
-        gt, kt, ct = take(b.gt), take(b.kt), take(b.ct)
-        ge, ke, ce = take(b.ge), take(b.ke), take(b.ce)
-        gm, km, rate = take(b.gm), take(b.km), take(b.rate)
-        a = np.zeros((count, n_el, width))
-        a[:, :nt, :nq] = kt[:, :, None] * gt
-        a[:, :nt, nq:2 * nq] = ct[:, :, None] * gt
-        tyre = np.arange(nt)
-        a[:, tyre, size + tyre] = kt
-        a[:, tyre, size + nt + tyre] = ct
-        a[:, nt:nt + ne, :nq] = ke[:, :, None] * ge
-        a[:, nt:nt + ne, nq:2 * nq] = ce[:, :, None] * ge
-        a[:, nt + ne:, :nq] = gm
-        a[:, nt + ne + np.arange(nm), 2 * nq + np.arange(nm)] = -1.0
-        g_all = np.concatenate([gt, ge, gm * km[:, :, None]], axis=1)  # (runs, N, nq)
-        p = -np.matmul(take(b.minv), np.swapaxes(g_all, 1, 2))  # (runs, nq, N)
+        a = np.ascontiguousarray(take(b.a))
+        p = -np.matmul(take(b.minv), np.swapaxes(take(b.g), 1, 2))  # (runs, nq, N)
         r_acc, r_q, r_f = take(b.r_acc), take(b.r_q), take(b.r_f)
         no = r_acc.shape[1]
-        r = np.zeros((count, no, width + n_el))
-        r[:, :, :nq] = r_q
-        r[:, :, width:] = np.matmul(r_acc, p)
+        r = np.zeros((count, no, width + n_el + ns))
+        r[:, :, :n] = r_q
+        r[:, :, width:width + n_el] = np.matmul(r_acc, p)
         r[:, :, width:width + nt] += r_f
         self.a, self.p, self.r = a, p, r
         self.floor = np.ascontiguousarray(take(b.floor))
-        self.rate = np.ascontiguousarray(rate)
         self.gated = b.gated
         if b.gated:  # gate factor of every non-tyre element: [gate weights per tyre, gate_on]
-            gw = np.concatenate([np.concatenate([take(b.gate_w), take(b.gate_on)[:, :, None]], axis=2),
-                                 np.concatenate([take(b.gate_wm), take(b.gate_on_m)[:, :, None]], axis=2)], axis=1)
-            self.gw = gw  # (runs, ne + nm, nt + 1)
-        self.nq, self.nt, self.ne, self.nm, self.size, self.width, self.n_el = nq, nt, ne, nm, size, width, n_el
+            self.gw = np.concatenate([take(b.gate_w), take(b.gate_on)[:, :, None]], axis=2)  # (runs, N - nt, nt + 1)
+        self.seen = None if len(b.seen) == nq else np.array(b.seen, dtype=np.intp)
+        self.nq, self.nt, self.ns, self.n_pos, self.size, self.width, self.n_el = nq, nt, ns, b.n_pos, n, width, n_el
         self.count, self.no = count, no
 
     def buffers(self):
-        """A stage's work arrays: ``E`` (runs, W + N), the derivative ``K`` (runs, size) (its
-        ``s'`` rows 0 without Maxwell elements) and the lifted tyres ``L`` (runs, tyres)."""
-        return (np.zeros((self.count, self.width + self.n_el)), np.zeros((self.count, self.size)),
+        """A stage's work arrays: ``E`` (runs, W + N + S), the derivative ``K`` (runs, size) and the
+        lifted tyres ``L`` (runs, tyres)."""
+        return (np.zeros((self.count, self.width + self.n_el + self.ns)), np.zeros((self.count, self.size)),
                 np.zeros((self.count, self.nt), dtype=bool))
 
     def bind(self, e: np.ndarray, k: np.ndarray, lifted: np.ndarray):
         """A function of no arguments that writes ``k`` = the state derivative and ``lifted`` =
         the tyres off the ground from the state and inputs in ``e[:, :W]`` at the call, and the
-        element forces into ``e[:, W:]`` (every view taken once, here)."""
-        matmul, maximum, less_equal, greater, multiply, copyto = (
-            np.matmul, np.maximum, np.less_equal, np.greater, np.multiply, np.copyto)
-        nq, nt, ne, w = self.nq, self.nt, self.ne, self.width
-        a, p, floor, rate = self.a, self.p, self.floor, self.rate
-        e_in, f3 = e[:, :w, None], e[:, w:, None]
-        f_tyre, f_mw, f_gated = e[:, w:w + nt], e[:, w + nt + ne:], e[:, w + nt:]
-        k_acc, k_q, k_s, velocity = k[:, nq:2 * nq, None], k[:, :nq], k[:, 2 * nq:], e[:, nq:2 * nq]
-        has_m, gated, count_nonzero = self.nm > 0, self.gated, np.count_nonzero
+        element quantities into ``e[:, W:]`` (every view taken once, here)."""
+        matmul, maximum, less_equal, greater, multiply, copyto, take_ = (
+            np.matmul, np.maximum, np.less_equal, np.greater, np.multiply, np.copyto, np.take)
+        nq, nt, w, n_el, n_pos = self.nq, self.nt, self.width, self.n_el, self.n_pos
+        a, p, floor = self.a, self.p, self.floor
+        e_in, f_all = e[:, :w, None], e[:, w:, None]
+        f3 = e[:, w:w + n_el, None]
+        f_tyre, f_gated, d_own = e[:, w:w + nt], e[:, w + nt:w + n_el], e[:, w + n_el:]
+        k_acc, k_q, k_s = k[:, n_pos:n_pos + nq, None], k[:, :n_pos], k[:, n_pos + nq:]
+        velocity = e[:, n_pos:n_pos + nq]
+        seen = self.seen
+        if seen is not None and np.array_equal(seen, np.arange(seen[0], seen[0] + seen.size)):
+            velocity, seen = velocity[:, seen[0]:seen[0] + seen.size], None  # contiguous: a view, no gather
+        has_s, gated, count_nonzero = self.ns > 0, self.gated, np.count_nonzero
         # with every tyre on the ground the clamp is max(f, floor) = f and every gate factor is
         # exactly 1 (weights 1/len(gate) that sum to 1 in floating point): both may be skipped, to the bit
         contact_is_identity = not gated or bool(np.all(np.matmul(self.gw, np.ones((self.count, nt + 1, 1))) == 1.0))
@@ -368,14 +372,14 @@ class _Kernel:
             gw = self.gw
             contact = np.ones((self.count, nt + 1))
             contact3, tyres_contact = contact[:, :, None], contact[:, :nt]
-            factor = np.empty((self.count, ne + self.nm))
+            factor = np.empty((self.count, n_el - nt))
             factor3 = factor[:, :, None]
 
         def rhs() -> None:
-            matmul(a, e_in, out=f3)
+            matmul(a, e_in, out=f_all)
             less_equal(f_tyre, floor, out=lifted)
-            if has_m:
-                multiply(rate, f_mw, out=k_s)
+            if has_s:
+                copyto(k_s, d_own)
             if not contact_is_identity or count_nonzero(lifted):  # else clamp and gates change nothing
                 maximum(f_tyre, floor, out=f_tyre)
                 if gated:
@@ -383,7 +387,10 @@ class _Kernel:
                     matmul(gw, contact3, out=factor3)
                     multiply(f_gated, factor, out=f_gated)
             matmul(p, f3, out=k_acc)
-            copyto(k_q, velocity)
+            if seen is None:
+                copyto(k_q, velocity)
+            else:
+                take_(velocity, seen, axis=1, out=k_q)
 
         return rhs
 
@@ -397,61 +404,27 @@ def _inverse(mass: np.ndarray) -> np.ndarray:
 
 # --------------------------------------------------------------------------- exact path
 class _Exact:
-    """Exact path of one run, resumable: solves from a sample until a tyre would lift off."""
+    """Exact path of one run, resumable: solves from a sample until a tyre would lift off. Its
+    states are the RK4's (the assembly's one layout): a switch hands the state over as it is."""
 
     def __init__(self, asm: Assembly, batch: _Batch, r: int, u: np.ndarray, du: np.ndarray, dt_s: float):
         forces = tuple(f"{t}_force_N" for t in asm.tyres)
         self.record = batch.outputs
         lm = asm.linear(tuple(self.record) + forces)
         self.system = lti.discretise(*lm.abcd, dt_s / 2)
-        self.names = lm.states
         self.n_rec = len(self.record)
         # inputs [u_t, u_t', ...] at dt/2
         self.inputs = np.empty((2 * len(asm.tyres), u.shape[1]))
         self.inputs[0::2], self.inputs[1::2] = u, du
-        self.floors = -batch.static[:, r]
+        self.floors = batch.static[:, r]
         self.n = (u.shape[1] + 1) // 2
-        self.batch, self.r = batch, r
-        self.asm = asm
-        coords = batch.coordinates
-        self._pos = [(i, coords.index(s)) for i, s in enumerate(self.names) if s in coords]
-        self._vel = [(i, batch.nq + coords.index(s[1:])) for i, s in enumerate(self.names)
-                     if s.startswith("v") and s[1:] in coords]
-        mw = [e for e in asm.elements if e.model == "maxwell" and e.stiffness > 0 and e.damping > 0]
-        qs = [s for s in self.names if s == "q" or s.startswith("q_")]
-        self._mw = [(self.names.index(qn), e, 2 * batch.nq + batch.mw_names.index(e.name)) for qn, e in zip(qs, mw)]
         self._rows = [i for i, o in enumerate(self.record) if o.endswith("_rad") or o.endswith("_m")]
 
-    def to_states(self, y: np.ndarray) -> np.ndarray:
-        """RK4 state ``[q, q', s]`` -> the linear model's states."""
-        x = np.zeros(len(self.names))
-        for i, j in self._pos + self._vel:
-            x[i] = y[j]
-        for i, e, js in self._mw:
-            x[i] = self._g(e) @ y[:self.batch.nq] - y[js]
-        return x
-
-    def _g(self, e) -> np.ndarray:
-        out = np.zeros(self.batch.nq)
-        out[[self.batch.coordinates.index(c) for c in self.asm.coordinates]] = e.g
-        return out
-
-    def from_states(self, xs: np.ndarray, y_prev: np.ndarray) -> np.ndarray:
-        """The linear model's states -> RK4 state; what the linear model does not carry (a
-        position no spring sees) keeps its value in ``y_prev``."""
-        y = np.array(y_prev, float)
-        for i, j in self._pos + self._vel:
-            y[j] = xs[i]
-        for i, e, js in self._mw:
-            y[js] = self._g(e) @ y[:self.batch.nq] - xs[i]  # q = d - s
-        return y
-
     def solve(self, k0: int, y, out: dict, row: int, lift_off: bool, chunk: int | None = None):
-        """Fill ``out[.][row, k0:k]`` exactly from the RK4 state ``y`` at sample ``k0`` (``None``:
+        """Fill ``out[.][row, k0:k]`` exactly from the state ``y`` at sample ``k0`` (``None``:
         rest); return ``(k, y_k)`` with ``k`` the last sample before a tyre would lift off (RK4
         takes over there), or ``(n, None)`` when the record ends in contact."""
-        x = None if y is None else self.to_states(y)
-        y_prev = np.zeros(self.batch.size) if y is None else y
+        x = None if y is None else np.asarray(y, float)
         pos = k0
         nr, nt = self.n_rec, len(self.floors)
         while True:
@@ -472,12 +445,11 @@ class _Exact:
             for key, r in zip(self.record, range(nr)):
                 out[key][row, pos:end] = y[r]
             if len(hit):
-                return end, self.from_states(self.system.state_at(kept, 2 * m), y_prev)
+                return end, np.array(self.system.state_at(kept, 2 * m), float)
             if end == self.n:
                 return self.n, None
             x, pos = self.system.state_at(kept, 2 * (stop - pos)), stop
             chunk = min(2 * chunk, EXACT_CHUNK_MAX) if chunk else None  # in contact for the whole chunk: look further
-
 
 # --------------------------------------------------------------------------- simulate
 def simulate(
@@ -558,12 +530,12 @@ def simulate(
 
 
 def _structure(asm: Assembly) -> tuple:
-    """What sets the shape of a run's arrays in a batch: its coordinates, tyres and element slots.
+    """What sets the shape of a run's arrays in a batch: its coordinates, tyres, states and element slots.
     Runs of one structure share a :class:`_Batch`, so that no run sums another's zero terms (the
     order of a matrix product's sums depends on its length): a run gives the same bits alone as
     in any batch."""
-    return (tuple(asm.coordinates), tuple(asm.tyres),
-            tuple((e.name, e.model == "maxwell", e.input is None) for e in asm.elements))
+    return (tuple(asm.coordinates), tuple(asm.tyres), tuple(asm.state_names()),
+            tuple((e.name, type(e).__name__, e.states()) for e in asm.elements))
 
 
 def _simulate_group(assemblies, u, du, dt_s, lift_off, gravity_m_s2, method, record, out, off) -> np.ndarray:

@@ -94,3 +94,85 @@ def test_reference_agrees_with_the_project_without_lateral_elements(tmp_path, pi
     for ax, wname in (("z", "Wk"), ("x", "Wd"), ("y", "Wd")):
         expected = weighted(seat[ax], f, wname)
         assert row[f"a_w{ax}_m_s2"] == pytest.approx(expected, rel=0.03, abs=1e-6), (ax, row[f"a_w{ax}_m_s2"], expected)
+
+
+KY, CY = {"front": 200.0, "rear": 300.0}, {"front": 2.0, "rear": 3.0}  # kN/m, kN s/m per tyre
+I_YAW = 6000.0
+
+
+def _project_lateral(tmp_path, left, right, pivot, lateral):
+    front_axle = (f'[front_axle]\nmount = "pivot"\nroll_inertia_kg_m2 = {I_AXLE}\nheight_m = 0.6' if pivot else "")
+    body = text(sine_tracks(tmp_path, left, right), "[9]", front_axle, lateral=lateral)
+    body = body.replace(f'lateral_model = "{lateral}"', f'lateral_model = "{lateral}"\nyaw_inertia_kg_m2 = {I_YAW}')
+    for axle in ("front", "rear"):
+        body = body.replace(f"[tyres.{axle}]\n", f"[tyres.{axle}]\nlateral_stiffness_kN_per_m = {KY[axle]}\n"
+                                                 f"lateral_damping_kN_s_per_m = {CY[axle]}\n")
+    (tmp_path / "s.toml").write_text(body)
+    return ride.ride(load_scenario(tmp_path / "s.toml"), with_spectra=False)
+
+
+@pytest.mark.parametrize("lateral", ["kelvin_voigt", "maxwell"])
+@pytest.mark.parametrize("pivot", [False, True])
+@pytest.mark.parametrize("inputs", ["pure_roll", "one_sided"])
+def test_reference_agrees_with_the_projects_second_system(tmp_path, lateral, pivot, inputs):
+    """Issue 33's check: the project's 3-D tractor on lateral tyre elements (y, yaw, the static loads'
+    moment) against the independent reference: natural frequencies within 1 %, seat a_wx, a_wy, a_wz
+    within 3 %, rigid and pivoting front axles, Kelvin-Voigt and Maxwell lateral tyres, pure-roll and
+    one-sided sinusoids."""
+    amp = 0.01
+    left, right = (amp, -amp) if inputs == "pure_roll" else (amp, 0.0)
+    res = _project_lateral(tmp_path, left, right, pivot, lateral)
+    t = tractor(pivot_front=pivot, lateral=lateral, yaw_inertia_kg_m2=I_YAW, pivot_height_m=0.6,
+                ky_front=1e3 * KY["front"], ky_rear=1e3 * KY["rear"], cy_front=1e3 * CY["front"],
+                cy_rear=1e3 * CY["rear"])
+    freqs = ref.natural_frequencies_Hz(t)
+    assert len(res.natural_frequencies_Hz) == len(freqs)
+    for name, f in res.natural_frequencies_Hz.items():
+        assert np.min(np.abs(freqs - f)) / f < 0.01, (name, f, freqs)
+    assert {"lateral_roll", "yaw", "roll"} <= set(res.natural_frequencies_Hz) or \
+        {"lateral", "yaw", "roll"} <= set(res.natural_frequencies_Hz)
+    v = 9 / 3.6
+    f = v / 2.0
+    amps = {"front_left": left, "rear_left": left, "front_right": right, "rear_right": right}
+    seat = ref.seat_response(t, f, amps, v)
+    row = res.speeds.iloc[0]
+    for ax, wname in (("z", "Wk"), ("x", "Wd"), ("y", "Wd")):
+        expected = weighted(seat[ax], f, wname)
+        assert row[f"a_w{ax}_m_s2"] == pytest.approx(expected, rel=0.03, abs=1e-6), (ax, row[f"a_w{ax}_m_s2"], expected)
+
+
+def test_a_lateral_element_acts_only_while_its_tyre_touches_the_ground():
+    """Issue 33: the ground under the front left wheel falls away (the tyre lifts off for the whole run):
+    its lateral element carries nothing, so the run is the same with that element's stiffness zeroed;
+    without lift-off (the tyre pulled down with the ground) the element acts and the runs differ."""
+    import dataclasses
+
+    from tyrelab.vehicle.model import Axle, Chassis, Parts, SeatPoint, assemble
+    from tyrelab.vehicle.tractor import simulate
+
+    def assembly(zero_front_left: bool):
+        fa = Axle("front", A, 1e3 * K_TYRE["front"], 1e3 * C_TYRE["front"], TF, lateral_model="kelvin_voigt",
+                  lateral_stiffness_N_per_m=2e5, lateral_damping_N_s_per_m=2e3)
+        ra = Axle("rear", -B, 1e3 * K_TYRE["rear"], 1e3 * C_TYRE["rear"], TR, lateral_model="kelvin_voigt",
+                  lateral_stiffness_N_per_m=3e5, lateral_damping_N_s_per_m=3e3)
+        asm = assemble(Parts(Chassis(M, I_PITCH, H, I_ROLL, I_YAW), fa, ra, SeatPoint(SEAT["ahead"], SEAT["left"],
+                                                                                    SEAT["height"]),
+                             static_load_moment=True))
+        if zero_front_left:
+            asm.elements = [dataclasses.replace(e, stiffness=0.0, damping=0.0) if e.name == "front_left_lateral" else e
+                            for e in asm.elements]
+        return asm
+
+    asms = [assembly(False), assembly(True)]
+    t = np.arange(2 * 2000 - 1) * 0.5e-3
+    u = np.zeros((2, len(asms[0].tyres), t.size))
+    du = np.zeros_like(u)
+    j = asms[0].tyres.index("front_left")
+    u[:, j] = -0.5 * np.clip(t / 0.01, 0.0, 1.0)  # 0.5 m down in 10 ms
+    du[:, j] = np.where(t < 0.01, -50.0, 0.0)
+    lifted = simulate(asms, u, du, method="rk4", record=("seat_lateral_m_s2",))
+    assert lifted["lift_off_fraction_front_left"][0] == 1.0
+    assert np.max(np.abs(lifted["seat_lateral_m_s2"][0])) > 0.5  # the body does move sideways
+    assert np.array_equal(lifted["seat_lateral_m_s2"][0], lifted["seat_lateral_m_s2"][1])
+    held = simulate(asms, u, du, method="rk4", lift_off=False, record=("seat_lateral_m_s2",))
+    assert np.max(np.abs(held["seat_lateral_m_s2"][0] - held["seat_lateral_m_s2"][1])) > 0.05

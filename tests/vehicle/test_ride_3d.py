@@ -19,8 +19,12 @@ K_TYRE, C_TYRE = {"front": 500.0, "rear": 600.0}, {"front": 1.5, "rear": 2.0}  #
 G = 9.81
 
 
-def text(surface: str, speeds="[9]", front_axle="", extra="", tilt=False, roll=True) -> str:
+def text(surface: str, speeds="[9]", front_axle="", extra="", tilt=False, roll=True, lateral="none") -> str:
+    """The tractor of these tests; ``lateral``: its ``lateral_model`` (``none``: the body rolls about its
+    CG, the hand-derived answers below; None: the key left out, the 3-D default)."""
     roll_keys = f"roll_inertia_kg_m2 = {I_ROLL}\nfront_track_m = {TF}\nrear_track_m = {TR}" if roll else ""
+    if roll and lateral is not None:
+        roll_keys += f'\nlateral_model = "{lateral}"'
     return f"""
 name = "3-D tractor"
 [tractor]
@@ -337,3 +341,45 @@ def test_shifted_profile_pair_matches_the_cross_spectral_expectation(tmp_path, s
         tol = 2 * 1 / (2 * math.sqrt(1.0 * record_s))
         for ax in ("z", "x", "y"):
             assert row[f"a_w{ax}_m_s2"] == pytest.approx(row[f"expected_a_w{ax}_m_s2"], rel=tol), (ax, row["speed_km_h"])
+
+
+def test_bad_lateral_keys_all_listed_exit_2(tmp_path, capsys):
+    """Issue 33: a negative or NaN lateral stiffness, an unknown lateral model, lateral keys without the
+    3-D model: every problem at once, exit 2."""
+    body = text('kind = "iso8608"\nclass = "B"\nlength_m = 40', lateral="maxwell")
+    body = body.replace("[tyres.front]\n", "[tyres.front]\nlateral_stiffness_kN_per_m = -5\n")
+    body = body.replace("[tyres.rear]\n", "[tyres.rear]\nlateral_stiffness_kN_per_m = nan\nlateral_damping_kN_s_per_m = 0\n")
+    p = _write(tmp_path, body)
+    assert cli.main(["ride", str(p)]) == 2
+    err = capsys.readouterr().err
+    assert "tyres.front.lateral_stiffness_kN_per_m" in err and "tyres.rear.lateral_stiffness_kN_per_m" in err
+    assert "tyres.rear.lateral_damping_kN_s_per_m" in err and "Traceback" not in err
+    flat = text('kind = "iso8608"\nclass = "B"\nlength_m = 40', roll=False).replace(
+        "[tractor]\n", "[tractor]\nlateral_model = \"kelvin_voigt\"\n").replace(
+        "[tyres.rear]\n", "[tyres.rear]\nlateral_stiffness_kN_per_m = 300\n")
+    assert cli.main(["ride", str(_write(tmp_path, flat, "flat.toml"))]) == 2
+    err = capsys.readouterr().err
+    assert "tractor.lateral_model needs tractor.roll_inertia_kg_m2" in err
+    assert "tyres.rear.lateral_stiffness_kN_per_m needs the 3-D model" in err
+    bad_model = _write(tmp_path, text('kind = "iso8608"\nclass = "B"\nlength_m = 40', lateral="coulomb"), "m.toml")
+    assert cli.main(["ride", str(bad_model)]) == 2
+    assert "tractor.lateral_model" in capsys.readouterr().err
+
+
+def test_a_3d_scenario_defaults_to_lateral_tyre_elements(tmp_path):
+    """Issue 33: without lateral_model a 3-D scenario gets Kelvin-Voigt lateral tyres (stand-in stiffness
+    k_y = 0.57 k_z, its interval in ride.json) and a low coupled lateral-roll mode; "none" keeps the body
+    rolling about its CG and says a_wy is indicative."""
+    res = ride.ride(load_scenario(_write(tmp_path, text('kind = "iso8608"\nclass = "B"\nlength_m = 40',
+                                                         lateral=None))), with_spectra=False)
+    t = res.tyres["front"]
+    assert t.lateral_stiffness_kN_per_m[0] == pytest.approx(0.5657 * K_TYRE["front"], rel=1e-3)
+    doc = ride.result_json([res])
+    assert doc["lateral_model"] == "kelvin_voigt" and "stand-in" in doc["lateral_note"]
+    assert doc["tyres"]["front"]["lateral_stiffness_ci95_kN_per_m"][0] < t.lateral_stiffness_kN_per_m[0]
+    roll_cg = math.sqrt(1e3 * (K_TYRE["front"] * TF**2 + K_TYRE["rear"] * TR**2) / 2 / I_ROLL) / (2 * math.pi)
+    low = min(v for k, v in res.natural_frequencies_Hz.items() if k in ("lateral_roll", "lateral"))
+    assert low < 0.75 * roll_cg and "yaw" in res.natural_frequencies_Hz
+    none = ride.ride(load_scenario(_write(tmp_path, text('kind = "iso8608"\nclass = "B"\nlength_m = 40'), "n.toml")),
+                     with_spectra=False)
+    assert "indicative" in ride.result_json([none])["lateral_note"]
