@@ -44,16 +44,15 @@ def test_a_stage_reading_an_undeclared_table_is_refused(tmp_path):
 
 
 def test_run_stage_refuses_a_stage_that_reads_an_undeclared_table(tmp_path, monkeypatch):
-    from tyrelab.stages import ingest
+    from tyrelab.stages import methods
 
     def sneaky(ctx):
-        ctx.read_table("ride_results")  # ingest reads the raw folder only (simulate writes this table later)
+        ctx.read_table("tyres")  # the methods stage reads the published tables and results only (issue 34)
 
-    monkeypatch.setattr(ingest, "run", sneaky)
+    monkeypatch.setattr(methods, "run", sneaky)
     ctx = Context(raw=tmp_path / "raw", build=tmp_path / "build", jobs=1, log=log)
-    assert not may_read("ingest", "parquet/ride_results.parquet")
-    with pytest.raises(RuntimeError, match="stage ingest reads table 'ride_results', which it does not declare"):
-        run_stage("ingest", ctx)
+    with pytest.raises(RuntimeError, match="stage methods reads table 'tyres', which it does not declare"):
+        run_stage("methods", ctx)
     assert ctx.stage is None
 
 
