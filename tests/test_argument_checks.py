@@ -340,6 +340,10 @@ ROWS = [
     # vehicle/model.py
     (f"{VE}.model.assemble", dict(parts="tractor"), "parts"),
     (f"{VE}.model.coordinate_output", dict(name=None), "name"),
+    (f"{VE}.published_layouts.tractor_axles_si", dict(row={}), "row"),
+    (f"{VE}.model.needs", dict(part="wheel"), "part"),
+    (f"{VE}.model.scenario_key", dict(field_name=None), "field_name"),
+    (f"{VE}.elements.element", dict(name="e", g=[1.0], stiffness=1.0, damping=1.0, model="coulomb"), "model"),
     # vehicle/crg.py, road_class.py, tyre/lateral.py (issue 33)
     ("tyrelab.tyre.lateral.estimate_lateral_stiffness", dict(vertical_stiffness_kN_per_m=-1.0), "vertical_stiffness_kN_per_m"),
     (f"{VE}.crg.wheel_positions", dict(lateral_offset_m=NAN, front_track_m=1.8, rear_track_m=1.9), "lateral_offset_m"),
@@ -352,8 +356,6 @@ ROWS = [
     (f"{VE}.ride.crg_profile", dict(scenario=None), "scenario"),
     (f"{VE}.ride.road_classes", dict(profile=None), "profile"),
     (f"{VE}.profiles.uniform_grid", dict(x_m=[0.0, NAN, 1.0]), "x_m"),
-    (f"{VE}.published_layouts.tractor_axles_si", dict(row={}), "row"),
-    (f"{VE}.elements.element", dict(name="e", g=[1.0], stiffness=1.0, damping=1.0, model="coulomb"), "model"),
     # vehicle/profiles.py
     (f"{VE}.profiles.spectral_synthesis", dict(n_samples=100, dx_m=0.05, g0_m3=-1e-4, rng=lambda: np.random.default_rng(1)), "g0_m3"),
     (f"{VE}.profiles.slatted_track", dict(length_m=0.0), "length_m"),
@@ -465,6 +467,8 @@ CHECKED_PACKAGES = ("tyrelab.tyre", "tyrelab.vehicle")
 #: Public functions of those packages with no argument a caller can get wrong, each with the reason.
 EXEMPT: dict[str, str] = {
     "tyrelab.vehicle.scenario.key_table": "takes no argument",
+    "tyrelab.vehicle.model.cab_mount_problems": "returns its arguments' problems as lines, by design",
+    "tyrelab.vehicle.model.pivot_problem": "writes the pivot rule's line for a section name (any text)",
     "tyrelab.vehicle.units.from_kilo": "a unit conversion of any number or array (numpy's arithmetic): nothing to refuse",
     "tyrelab.vehicle.units.to_kilo": "a unit conversion of any number or array (numpy's arithmetic): nothing to refuse",
     # these check arguments for a living: every problem is a returned line, so that a caller prints them all

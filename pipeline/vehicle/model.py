@@ -82,7 +82,8 @@ from .elements import Element, Maxwell, SpringDamper, StateLayout, StaticLoadMom
 
 __all__ = ["Chassis", "Axle", "Cab", "Implement", "Ballast", "SeatPoint", "SeatSuspension", "Parts", "Part",
            "Builder", "Element", "Assembly", "LinearModel", "assemble", "coordinate_output", "AXLE_MOUNTS",
-           "LONGITUDINAL_MODELS", "LATERAL_MODELS", "CHASSIS_FREEDOMS"]
+           "LONGITUDINAL_MODELS", "LATERAL_MODELS", "CHASSIS_FREEDOMS", "needs", "scenario_key", "pivot_problem",
+           "cab_mount_problems"]
 
 #: How an axle is carried (:class:`Axle`).
 AXLE_MOUNTS = ("rigid", "pivot", "suspended")
@@ -93,6 +94,78 @@ LATERAL_MODELS = ("none", "kelvin_voigt", "maxwell")
 #: The chassis' freedoms, in the order they are coordinates (those some part asks for): lateral
 #: ``y`` and yaw ``psi`` (nose left) with lateral tyre elements (issue 33).
 CHASSIS_FREEDOMS = ("z", "th", "x", "phi", "y", "psi")
+
+
+def needs(part: str, mount: str = "rigid", three_d: bool = False) -> tuple[str, ...]:
+    """The fields a part kind needs given for its ``mount`` (and the 3-D model or not): the one
+    place of these rules (issue 35). The model refuses such a field that is not a finite number,
+    or not positive where it is a mass, inertia, stiffness or track (:meth:`Part.check`); a
+    scenario file refuses a missing key (:mod:`tyrelab.vehicle.scenario`, its keys
+    :func:`scenario_key`).
+
+    Examples
+    --------
+    >>> needs("axle", "suspended", three_d=True)
+    ('roll_inertia_kg_m2', 'mass_kg', 'suspension_stiffness_N_per_m')
+    >>> needs("implement", "hitch_spring")
+    ('mass_kg', 'behind_rear_axle_m', 'height_m', 'hitch_stiffness_N_m_per_rad')
+    """
+    kinds = ("axle", "cab", "implement", "ballast")
+    if part not in kinds:
+        raise ValueError(f"part {part!r}: expected one of {kinds}")
+    out: tuple[str, ...] = ()
+    if part == "axle":
+        if mount in ("pivot", "suspended") and three_d:
+            out += ("roll_inertia_kg_m2",)
+        if mount == "suspended":
+            out += ("mass_kg", "suspension_stiffness_N_per_m")
+    elif part == "cab" and mount == "suspended":
+        out += ("mass_kg", "pitch_inertia_kg_m2", "front_mount_ahead_of_cg_m", "rear_mount_ahead_of_cg_m",
+                "mount_track_m", "mount_stiffness_N_per_m") + (("roll_inertia_kg_m2",) if three_d else ())
+    elif part in ("implement", "ballast"):
+        out += ("mass_kg", "behind_rear_axle_m" if part == "implement" else "ahead_of_front_axle_m", "height_m")
+        if part == "implement" and mount == "hitch_spring":
+            out += ("hitch_stiffness_N_m_per_rad",)
+    return out
+
+
+def scenario_key(field_name: str) -> str:
+    """A part field's key in a scenario file: stiffness and damping in kN (``_N_`` -> ``_kN_``).
+
+    Examples
+    --------
+    >>> scenario_key("hitch_stiffness_N_m_per_rad"), scenario_key("mass_kg")
+    ('hitch_stiffness_kN_m_per_rad', 'mass_kg')
+    """
+    if not isinstance(field_name, str) or not field_name:
+        raise ValueError(f"field_name must be a part field's name (text), got {field_name!r}")
+    return field_name.replace("_N_", "_kN_")
+
+
+def pivot_problem(section: str) -> str:
+    """Why a pivot axle needs the 3-D model (the model and the scenario file say it so)."""
+    return (f"{section}.mount = \"pivot\" needs the roll model (tractor.roll_inertia_kg_m2): a pivot axle only "
+            "differs from a rigid one in roll")
+
+
+def cab_mount_problems(front_mount_ahead_of_cg_m: float, rear_mount_ahead_of_cg_m: float) -> list[str]:
+    """A suspended cab's front mounts must be ahead of its rear mounts (m ahead of the CG)."""
+    if front_mount_ahead_of_cg_m > rear_mount_ahead_of_cg_m:
+        return []
+    return [f"cab.front_mount_ahead_of_cg_m ({front_mount_ahead_of_cg_m} m) must be ahead of "
+            f"cab.rear_mount_ahead_of_cg_m ({rear_mount_ahead_of_cg_m} m)"]
+
+
+def _needed_problems(section: str, part, kind: str, mount: str, three_d: bool) -> list[str]:
+    """:func:`needs` checked on a part's values."""
+    out = []
+    for name in needs(kind, mount, three_d):
+        value = getattr(part, name)
+        if name.endswith(("_kg", "_kg_m2", "_N_per_m", "_N_m_per_rad", "track_m")):
+            out += _positive(f"{section}.{name}", value)
+        elif isinstance(value, bool) or not isinstance(value, (int, float)) or not np.isfinite(value):
+            out.append(f"{section}.{name} must be a finite number, got {value!r}")
+    return out
 
 
 class Part:
@@ -235,13 +308,9 @@ class Axle(Part):
             out += _positive(f"{ax.name}_axle.lateral_stiffness_N_per_m", ax.lateral_stiffness_N_per_m)
             if ax.lateral_model == "maxwell":
                 out += _positive(f"{ax.name}_axle.lateral_damping_N_s_per_m", ax.lateral_damping_N_s_per_m)
-        if ax.mount != "rigid" and three_d:
-            out += _positive(f"{ax.name}_axle.roll_inertia_kg_m2", ax.roll_inertia_kg_m2)
+        out += _needed_problems(f"{ax.name}_axle", ax, "axle", ax.mount, three_d)
         if ax.mount == "pivot" and not three_d:
-            out.append(f"{ax.name}_axle.mount = 'pivot' needs the roll model (chassis roll_inertia_kg_m2)")
-        if ax.mount == "suspended":
-            out += _positive(f"{ax.name}_axle.mass_kg", ax.mass_kg)
-            out += _positive(f"{ax.name}_axle.suspension_stiffness_N_per_m", ax.suspension_stiffness_N_per_m)
+            out.append(pivot_problem(f"{ax.name}_axle"))
         if three_d:
             out += _positive(f"{ax.name}_axle.track_m", ax.track_m)
         return out
@@ -338,6 +407,10 @@ class Cab(Part):
     mount_stiffness_N_per_m: float
     mount_damping_N_s_per_m: float
 
+    def check(self, three_d: bool) -> list[str]:
+        out = _needed_problems("cab", self, "cab", "suspended", three_d)
+        return out or cab_mount_problems(self.front_mount_ahead_of_cg_m, self.rear_mount_ahead_of_cg_m)
+
     def declare(self, b: "Builder") -> None:
         b.coordinate("cab_z")
         b.coordinate("cab_th")
@@ -388,6 +461,11 @@ class Implement(Part):
     hitch_stiffness_N_m_per_rad: float = 0.0
     hitch_damping_N_m_s_per_rad: float = 0.0
 
+    def check(self, three_d: bool) -> list[str]:
+        if self.mount not in ("rigid", "hitch_spring"):
+            return [f"implement.mount {self.mount!r}: expected one of ('rigid', 'hitch_spring')"]
+        return _needed_problems("implement", self, "implement", self.mount, three_d)
+
     def declare(self, b: "Builder") -> None:
         if self.mount == "hitch_spring":
             b.coordinate("implement_th")
@@ -419,6 +497,9 @@ class Ballast(Part):
     height_m: float
     pitch_inertia_kg_m2: float = 0.0
     roll_inertia_kg_m2: float = 0.0
+
+    def check(self, three_d: bool) -> list[str]:
+        return _needed_problems("ballast", self, "ballast", "rigid", three_d)
 
     def contribute(self, b: "Builder") -> None:
         bl = self

@@ -45,7 +45,7 @@ import pandas as pd
 from .. import _validate as _checks
 from ..schema import load_schema
 from ..tyre.sizes import TyreSizeError, parse_tyre_size
-from .model import Ballast
+from .model import Ballast, cab_mount_problems, needs, pivot_problem, scenario_key
 from .scenario_limits import scenario_problems
 
 __all__ = [
@@ -636,14 +636,8 @@ def _parts_problems(doc: dict) -> list[str]:
             continue
         mount = t.get("mount", "rigid")
         if mount == "pivot" and not three_d:
-            problems.append(f"{axle}.mount = \"pivot\" needs tractor.roll_inertia_kg_m2 (a pivot axle only differs "
-                            "from a rigid one in roll)")
-        if mount in ("pivot", "suspended") and three_d and "roll_inertia_kg_m2" not in t:
-            problems.append(f"{axle}.roll_inertia_kg_m2 is required with mount = \"{mount}\"")
-        if mount == "suspended":
-            for k in ("mass_kg", "suspension_stiffness_kN_per_m"):
-                if k not in t:
-                    problems.append(f"{axle}.{k} is required with mount = \"suspended\"")
+            problems.append(pivot_problem(axle))
+        problems += _missing(axle, t, needs("axle", mount, three_d), f" with mount = \"{mount}\"")
         if mount == "rigid":
             extra = sorted(k for k in t if k != "mount")
             if extra:
@@ -654,16 +648,10 @@ def _parts_problems(doc: dict) -> list[str]:
                         "(tractor.roll_inertia_kg_m2, front_track_m, rear_track_m)")
     cab, _ = _section_values(doc, "cab")
     if cab and cab.get("mount", "rigid") == "suspended":
-        needed = ["mass_kg", "pitch_inertia_kg_m2", "front_mount_ahead_of_cg_m", "rear_mount_ahead_of_cg_m",
-                  "mount_track_m", "mount_stiffness_kN_per_m"] + (["roll_inertia_kg_m2"] if three_d else [])
-        for k in needed:
-            if k not in cab:
-                problems.append(f"cab.{k} is required with mount = \"suspended\"")
+        problems += _missing("cab", cab, needs("cab", "suspended", three_d), " with mount = \"suspended\"")
         if _given(cab, "front_mount_ahead_of_cg_m") and _given(cab, "rear_mount_ahead_of_cg_m"):
             front, rear = cab["front_mount_ahead_of_cg_m"], cab["rear_mount_ahead_of_cg_m"]
-            if not front > rear:
-                problems.append(f"cab.front_mount_ahead_of_cg_m ({front} m) must be ahead of "
-                                f"cab.rear_mount_ahead_of_cg_m ({rear} m)")
+            problems += cab_mount_problems(front, rear)
             seat, _ = _section_values(doc, "seat")
             seat = seat or {}
             x, y = seat.get("ahead_of_cg_m", 0.0), seat.get("left_of_cg_m", 0.0)
@@ -675,17 +663,19 @@ def _parts_problems(doc: dict) -> list[str]:
                 problems.append(f"seat.left_of_cg_m = {y} m lies outside the cab (its mounts are {half} m apart)")
     imp, _ = _section_values(doc, "implement")
     if imp:
-        for k in ("mass_kg", "behind_rear_axle_m", "height_m"):
-            if k not in imp:
-                problems.append(f"implement.{k} is required")
-        if imp.get("mount") == "hitch_spring" and "hitch_stiffness_kN_m_per_rad" not in imp:
-            problems.append("implement.hitch_stiffness_kN_m_per_rad is required with mount = \"hitch_spring\"")
+        problems += _missing("implement", imp, needs("implement"), "")
+        if imp.get("mount") == "hitch_spring":
+            problems += _missing("implement", imp, needs("implement", "hitch_spring")[len(needs("implement")):],
+                                 " with mount = \"hitch_spring\"")
     ballast, _ = _section_values(doc, "ballast")
     if ballast:
-        for k in ("mass_kg", "ahead_of_front_axle_m", "height_m"):
-            if k not in ballast:
-                problems.append(f"ballast.{k} is required")
+        problems += _missing("ballast", ballast, needs("ballast"), "")
     return problems
+
+
+def _missing(section: str, table: dict, fields, why: str) -> list[str]:
+    """The part fields :func:`tyrelab.vehicle.model.needs` names that ``table`` lacks, as its keys."""
+    return [f"{section}.{scenario_key(f)} is required{why}" for f in fields if scenario_key(f) not in table]
 
 
 def _resolve_inside(base_dir: Path, relative: str, confine: bool = True,

@@ -58,6 +58,8 @@ LIMITS: dict[str, tuple[float, float, str]] = {
     "surface.dx_m": (0.001, 1.0, "m"),
     "surface.lead_in_m": (0.0, 1_000.0, "m"),
     "surface.spectrum_g0_m3": (1e-9, 1.0, "m³"),
+    "surface.start_m": (0.0, 100_000.0, "m"),
+    "surface.lateral_offset_m": (-50.0, 50.0, "m"),
     "surface.spectrum_waviness": (0.5, 5.0, ""),
     "exposure.speeds_km_h": (0.5, 80.0, "km/h"),
     "exposure.hours_per_day": (0.01, 24.0, "h"),
@@ -117,6 +119,8 @@ def scenario_problems(scenario) -> list[str]:
         checks.append((f"surface.{name}", getattr(surf, name)))
     if surf.spectrum_g0_m3 is not None:
         checks.append(("surface.spectrum_g0_m3", surf.spectrum_g0_m3))
+    if surf.kind == "crg":  # issue 33: where on the road the tractor drives
+        checks += [("surface.start_m", surf.start_m), ("surface.lateral_offset_m", surf.lateral_offset_m)]
     checks += [("exposure.speeds_km_h", v) for v in s.exposure.speeds_km_h]
     checks.append(("exposure.hours_per_day", s.exposure.hours_per_day))
     if s.simulation.duration_s is not None:

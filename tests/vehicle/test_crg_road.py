@@ -151,3 +151,4 @@ def test_the_ride_page_and_json_state_a_profile_roads_class(tmp_path, capsys):
     iso = write(tmp_path, 'kind = "iso8608"\nclass = "C"\nlength_m = 40', "i.toml", speeds="[8]")
     assert cli.main(["ride", str(iso)]) == 0
     assert json.loads(capsys.readouterr().out)["road_class"] is None
+
