@@ -10,7 +10,7 @@ the shortest one, against the linear path of ``ride`` on the same run (inputs
 built once for both). Prints wall times, ratios and the largest relative
 difference of the seat vertical acceleration between the two paths.
 
-    .venv/bin/python bench/bench_ride.py [--skip-sweep] [--targets] [--lateral]
+    .venv/bin/python bench/bench_ride.py [--skip-sweep] [--targets] [--lateral] [--methods]
 
 ``--targets`` also measures issue 23's sweep targets as ratios to u = one 4-speed scenario
 (``one_scenario_cpu_s``) in this process, all in CPU seconds: the whole 10 x 10 pressure grid x 8
@@ -24,6 +24,17 @@ median of three runs.
 
 ``--lateral`` (issue 33): a 3-D scenario with the tyres' lateral elements against the same with
 ``lateral_model = "none"`` in this process (``lateral_over_none``, target <= 1.5).
+
+``--methods`` measures issue 36 in this process, in CPU seconds: the 10 x 10 pressure grid x 8
+speeds (4-18 km/h) of ``ride_sweep`` under ``--method auto`` (spectral rows for every variant, the
+first variant simulated beside them: the scenario's own pressures are not on the grid) against
+``--method time`` (``grid_time_over_auto``, target >= 30); the whole command a user runs,
+``tyrelab ride modern_tractor.toml --front-pressure x10 --rear-pressure x10 --speeds x8 --out DIR``
+(page and JSON; ``tyrelab.cli.main`` in this process, auto first so that it pays the imports)
+against the same with ``--method time`` (``command_time_over_auto``, target >= 10); and how far
+each time-domain a_w of the grid lies from its spectral row (one realisation's sampling scatter:
+median, 95th percentile and largest relative difference per axis, and the largest difference
+between a spectral a_w and the time row's own expectation, which should be rounding).
 """
 
 from __future__ import annotations
@@ -63,7 +74,11 @@ def main(argv=None) -> int:
     p.add_argument("--targets", action="store_true", help="also the issue-23 sweep targets (minutes of CPU)")
     p.add_argument("--lateral", action="store_true",
                    help="also issue 33's cost: a 3-D scenario with lateral tyre elements against lateral_model = none")
+    p.add_argument("--methods", action="store_true", help="only issue 36: the grid and the command, auto against time")
     args = p.parse_args(argv)
+    if args.methods:
+        print(json.dumps(_methods(), indent=2))
+        return 0
     sc = load_scenario(scenarios_dir() / "modern_tractor.toml")
     ride.ride(with_overrides(sc, [16.0]), with_spectra=False)  # warm-up: imports, caches
     # u: the median of three runs (one run alone varied by +-25 % on the shared machine)
@@ -182,6 +197,69 @@ def _targets(sc, u_s: float) -> dict:
             "grid_weighting_alone_cpu_s": round(t_floor, 1), "grid_weighting_alone_over_u": round(t_floor / u_s, 1),
             "grid_runs": runs, "grid_cpu_s": round(t_grid, 1), "grid_800_over_u": round(t_grid / u_s, 1),
             "fd_variant_speeds": len(table), "fd_cpu_s": round(t_fd, 2), "fd_10000_over_u": round(t_fd / u_s, 1)}
+
+
+def _cpu() -> float:
+    """CPU seconds of this process and its finished children."""
+    import resource
+
+    return time.process_time() + resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime + \
+        resource.getrusage(resource.RUSAGE_CHILDREN).ru_stime
+
+
+def _methods() -> dict:
+    """Issue 36: the 10 x 10 x 8 grid and the user's command under auto and time (module docstring)."""
+    import contextlib
+    import io
+    import tempfile
+
+    from tyrelab.cli import main as cli_main
+    from tyrelab.vehicle import scenario_limits as limits
+
+    path = scenarios_dir() / "modern_tractor.toml"
+    sc = load_scenario(path)
+    speeds8 = [2.0 * k for k in range(2, 10)]
+    fronts = [round(0.8 + 0.15 * i, 4) for i in range(10)]
+    rears = [round(0.6 + 0.12 * i, 4) for i in range(10)]
+    ride.ride_sweep(sc, fronts[:2], rears[:1], [16.0], with_spectra=False)  # warm-up: imports, caches
+    out: dict = {"load_average_1min_start": round(os.getloadavg()[0], 1)}
+    tables = {}
+    for method in ("auto", "time"):
+        c0 = _cpu()
+        res = ride.ride_sweep(sc, fronts, rears, speeds8, with_spectra=False, method=method, max_samples=10**9)
+        out[f"grid_{method}_cpu_s"] = round(_cpu() - c0, 2)
+        tables[method] = ride.results_table(res)
+    out["grid_time_over_auto"] = round(out["grid_time_cpu_s"] / out["grid_auto_cpu_s"], 1)
+    auto, timed = tables["auto"], tables["time"]
+    spectral = auto[auto["method"] == "spectral"]
+    out["grid_rows"] = {"auto": auto["method"].value_counts().to_dict(), "time": len(timed)}
+    keys = ["front_pressure_bar", "rear_pressure_bar", "speed_km_h"]
+    both = spectral.merge(timed, on=keys, suffixes=("_spectral", "_time"))
+    for ax in ("z", "x"):
+        rel = (both[f"a_w{ax}_m_s2_time"] / both[f"a_w{ax}_m_s2_spectral"] - 1).abs()
+        out[f"a_w{ax}_time_vs_spectral_percent"] = {
+            "median": round(100 * float(rel.median()), 2), "p95": round(100 * float(rel.quantile(0.95)), 2),
+            "max": round(100 * float(rel.max()), 2), "rows": len(rel)}
+        own = (both[f"a_w{ax}_m_s2_spectral"] / both[f"expected_a_w{ax}_m_s2_time"] - 1).abs()
+        out[f"a_w{ax}_spectral_vs_time_rows_expectation_max"] = float(f"{float(own.max()):.1e}")
+    # the bounds: 100 x 100 x 8 spectral is allowed, the same in the time domain refused before it starts
+    out["bounds_100x100x8"] = {m: limits.work_problems(sc, 100 * 100, speeds8, method=m) == []
+                               for m in ("spectral", "auto", "time")}
+    # the whole command, page and JSON included
+    args = ["ride", str(path), "--front-pressure", *map(str, fronts), "--rear-pressure", *map(str, rears),
+            "--speeds", *(f"{v:g}" for v in speeds8), "--max-samples", str(10**9)]
+    for method in ("auto", "time"):
+        with tempfile.TemporaryDirectory() as tmp:
+            sink = io.StringIO()
+            c0 = _cpu()
+            with contextlib.redirect_stdout(sink):
+                code = cli_main([*args, "--method", method, "--out", tmp])
+            out[f"command_{method}_cpu_s"] = round(_cpu() - c0, 2)
+            out[f"command_{method}_exit"] = code
+            out[f"command_{method}_json_MB"] = round(len(sink.getvalue()) / 1e6, 2)
+    out["command_time_over_auto"] = round(out["command_time_cpu_s"] / out["command_auto_cpu_s"], 1)
+    out["load_average_1min_end"] = round(os.getloadavg()[0], 1)
+    return out
 
 
 if __name__ == "__main__":

@@ -37,7 +37,7 @@ import sys
 from pathlib import Path
 
 from . import __version__
-from .io import os_error_line  # noqa: F401 - also this module's, for the commands' error lines
+from .io import MissingExtra, os_error_line, printable  # noqa: F401 - also this module's, for the commands' error lines
 
 __all__ = ["EXIT_CODES_HELP", "STAGE_HELP", "ALIASES", "cmd_completion", "cmd_generate", "cmd_run", "cmd_watch", "cmd_stage", "cmd_sql", "cmd_analyze_run", "cmd_estimate_stiffness",
     "cmd_natural_frequencies", "cmd_road", "build_parser", "main"]
@@ -50,6 +50,43 @@ EXIT_INTERRUPTED = 130
 EXIT_BROKEN_PIPE = 141
 
 log = logging.getLogger("tyrelab")
+
+
+class OutputError(OSError):
+    """stdout cannot be written (a full device, ``> /dev/full``, an I/O error): one line, exit 2."""
+
+
+#: Bytes handed to the operating system per write of stdout.
+_WRITE_BYTES = 1 << 16
+
+
+def _out(text: str) -> None:
+    """Write ``text`` to stdout, every byte or an error.
+
+    Through a file descriptor, each piece goes to ``os.write`` until it is all written: a pipe
+    whose reader leaves in the middle of a long write (``tyrelab sql … | head``) gives a short
+    write, which Python's buffered stdout dropped without a word (the command exited 0), and then
+    ``BrokenPipeError`` (exit 141). Any other failure (a full device) raises :class:`OutputError`.
+    """
+    try:
+        fd = sys.stdout.fileno()
+    except (AttributeError, OSError, ValueError):  # a captured or replaced stdout (tests, a notebook)
+        fd = None
+    try:
+        if fd is None:
+            sys.stdout.write(text)
+            return
+        sys.stdout.flush()
+        data = memoryview(text.encode(sys.stdout.encoding or "utf-8", errors=sys.stdout.errors or "strict"))
+        while len(data):
+            n = os.write(fd, data[:_WRITE_BYTES])
+            data = data[n:]
+    except BrokenPipeError:
+        raise
+    except OutputError:
+        raise
+    except OSError as exc:
+        raise OutputError(exc.errno, f"cannot write the output ({exc.strerror or exc})") from None
 
 
 def _context(args):
@@ -113,7 +150,7 @@ def cmd_run(args) -> int:
     if getattr(args, "explain", False):  # read-only: no lock, nothing written
         from .stages import explain
 
-        print(explain(_context(args)))
+        _out(explain(_context(args)) + "\n")
         return EXIT_OK
 
     def work() -> int:
@@ -162,10 +199,57 @@ def cmd_stage(args) -> int:
     return _writing(args, args.stage, work)
 
 
+#: Share of ``--memory-limit`` a ``--format table`` result may take (it is aligned whole; csv and
+#: json stream).
+TABLE_SHARE = 0.25
+
+
+def _print_result(fmt: str, names: list, frames, first: bool, table_bytes: int) -> None:
+    """One statement's result on stdout, batch after batch (csv, json) or aligned (table, at most
+    ``table_bytes`` of result)."""
+    import pandas as pd
+
+    if fmt == "json":  # one JSON array per statement, on one line
+        _out("[")
+        sep = ""
+        for df in frames:
+            if len(df):
+                _out(sep + df.to_json(orient="records", date_format="iso", double_precision=15)[1:-1])
+                sep = ","
+        _out("]\n")
+        return
+    if not first:
+        _out("\n")
+    if fmt == "csv":
+        header = True
+        for df in frames:
+            if len(df) or header:
+                _out(df.to_csv(index=False, header=header))
+                header = False
+        if header:
+            _out(pd.DataFrame(columns=names).to_csv(index=False))
+        return
+    held, size = [], 0
+    for df in frames:
+        size += int(df.memory_usage(index=False, deep=True).sum())
+        if size > table_bytes:
+            raise _ResultTooLarge(len(pd.concat(held)) if held else 0)
+        held.append(df)
+    df = pd.concat(held, ignore_index=True) if held else pd.DataFrame(columns=names)
+    if df.empty:  # not pandas' "Empty DataFrame / Columns: [...] / Index: []"
+        _out(f"no rows (columns: {', '.join(map(str, df.columns))})\n" if len(df.columns) else "no rows\n")
+    else:
+        _out(df.to_string(index=False) + "\n")
+
+
+class _ResultTooLarge(Exception):
+    """A ``--format table`` result beyond its share of ``--memory-limit``."""
+
+
 def cmd_sql(args) -> int:
     import duckdb
 
-    from .warehouse import QueryLimits, QueryTimeout, WriteRefused, query_all
+    from .warehouse import QueryLimits, QueryTimeout, WriteRefused, iter_query, memory_bound
 
     try:
         limits = QueryLimits(args.memory_limit, args.max_spill, args.timeout or None)
@@ -176,35 +260,35 @@ def cmd_sql(args) -> int:
             text = text.replace(field_name, option)
         print(f"tyrelab sql: {text}", file=sys.stderr)
         return EXIT_USAGE
+    # Several statements: each result is printed, in order (a blank line between tables/CSV, one JSON
+    # array per line), as it comes: a result is never held whole (but for --format table, which is
+    # aligned whole: at most TABLE_SHARE of --memory-limit), and the process's memory is bounded by
+    # --memory-limit (warehouse.memory_bound).
     try:
-        frames = query_all(Path(args.build) / "warehouse.duckdb", args.query, limits)
+        with memory_bound(limits.memory_limit_bytes):
+            for i, (names, frames) in enumerate(iter_query(Path(args.build) / "warehouse.duckdb", args.query, limits)):
+                _print_result(args.format, names, frames, i == 0, int(TABLE_SHARE * limits.memory_limit_bytes))
     except (WriteRefused, FileNotFoundError) as exc:
         print(f"tyrelab sql: {exc}", file=sys.stderr)
         return EXIT_USAGE
     except QueryTimeout as exc:
         print(f"tyrelab sql: {exc}; --timeout SECONDS changes it (0: none)", file=sys.stderr)
         return EXIT_USAGE
-    except duckdb.OutOfMemoryException as exc:
-        print(f"tyrelab sql: {str(exc).splitlines()[0]} (limits: --memory-limit {args.memory_limit} bytes, "
+    except _ResultTooLarge as exc:
+        print(f"tyrelab sql: the result is larger than --format table holds within --memory-limit "
+              f"{args.memory_limit} bytes (stopped after {exc.args[0]} rows); --format csv or json stream it, or "
+              "add a LIMIT", file=sys.stderr)
+        return EXIT_USAGE
+    except (duckdb.OutOfMemoryException, MemoryError) as exc:
+        first = str(exc).splitlines()[0] if str(exc) else "out of memory"
+        print(f"tyrelab sql: {first} (limits: --memory-limit {args.memory_limit} bytes, "
               f"--max-spill {args.max_spill} bytes; raise them, e.g. --memory-limit 8GB)", file=sys.stderr)
         return EXIT_USAGE
+    except (BrokenPipeError, OutputError):
+        raise
     except Exception as exc:  # noqa: BLE001 - DuckDB errors are the user's query errors
         print(f"tyrelab sql: {type(exc).__name__}: {str(exc).splitlines()[0]}", file=sys.stderr)
         return EXIT_USAGE
-    # Several statements: each result is printed, in order (a blank line between tables/CSV,
-    # one JSON array per line).
-    for i, df in enumerate(frames):
-        if args.format == "json":
-            sys.stdout.write(df.to_json(orient="records", date_format="iso", double_precision=15) + "\n")
-            continue
-        if i:
-            sys.stdout.write("\n")
-        if args.format == "csv":
-            sys.stdout.write(df.to_csv(index=False))
-        elif df.empty:  # not pandas' "Empty DataFrame / Columns: [...] / Index: []"
-            sys.stdout.write(f"no rows (columns: {', '.join(map(str, df.columns))})\n" if len(df.columns) else "no rows\n")
-        else:
-            sys.stdout.write(df.to_string(index=False) + "\n")
     return EXIT_OK
 
 
@@ -217,11 +301,11 @@ def cmd_analyze_run(args) -> int:
     except (RunFileError, ValueError) as exc:  # ValueError: e.g. no time_s column and no --sample-rate
         text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         text = text.replace("sample_rate_Hz is needed", "--sample-rate HZ is needed")
-        print(f"tyrelab analyze-run: {args.file}: {text}", file=sys.stderr)
+        print(f"tyrelab analyze-run: {printable(args.file)}: {printable(text)}", file=sys.stderr)
         return EXIT_USAGE
-    print(json.dumps(out, indent=2))
+    _out(json.dumps(out, indent=2) + "\n")
     if out["stiffness_N_per_m"] is None and not out["qc_ok"]:  # e.g. excitation outside the band: refused
-        print(f"tyrelab analyze-run: {args.file}: {'; '.join(out['qc_reasons'])}", file=sys.stderr)
+        print(f"tyrelab analyze-run: {printable(args.file)}: {'; '.join(out['qc_reasons'])}", file=sys.stderr)
         return EXIT_QUARANTINE
     return EXIT_OK
 
@@ -277,12 +361,12 @@ def cmd_estimate_stiffness(args) -> int:
     if args.json or args.format == "json":
         from .io import json_safe
 
-        print(json.dumps(json_safe(est.to_dict()), indent=2, ensure_ascii=False, allow_nan=False))
+        _out(json.dumps(json_safe(est.to_dict()), indent=2, ensure_ascii=False, allow_nan=False) + "\n")
     else:
         pi = est.prediction_interval_kN_per_m
-        print(f"{est.stiffness_kN_per_m:.1f} kN/m" + (
+        _out(f"{est.stiffness_kN_per_m:.1f} kN/m" + (
             f" (95 % prediction interval {pi[0]:.1f} to {pi[1]:.1f} kN/m)" if pi else " (no prediction interval: "
-            + est.prediction_interval_basis.removeprefix("none: ") + ")"))
+            + est.prediction_interval_basis.removeprefix("none: ") + ")") + "\n")
     return EXIT_OK
 
 
@@ -307,7 +391,7 @@ def cmd_natural_frequencies(args) -> int:
     _warn(prog, out.get("warnings", ()))
     from .io import json_safe
 
-    print(json.dumps(json_safe(out), indent=2, ensure_ascii=False))  # a nodal point at infinity: null
+    _out(json.dumps(json_safe(out), indent=2, ensure_ascii=False) + "\n")  # a nodal point at infinity: null
     return EXIT_OK
 
 
@@ -329,7 +413,7 @@ def cmd_export_tyre(args) -> int:
         return EXIT_USAGE
     _warn(prog, export.warnings)
     for path in written:
-        print(path)
+        _out(f"{path}\n")
     return EXIT_OK
 
 
@@ -344,7 +428,7 @@ def cmd_ride(args) -> int:
         scenario = load_scenario(args.scenario, confine=False)  # the user's own file: any profile path
     except ScenarioError as exc:
         for problem in exc.problems:
-            print(f"tyrelab ride: {exc.path}: {problem}", file=sys.stderr)
+            print(f"tyrelab ride: {printable(exc.path)}: {printable(problem)}", file=sys.stderr)
         return EXIT_USAGE
     from .executor import map_batches
     from .stages.simulate import WarehouseTyres
@@ -356,14 +440,15 @@ def cmd_ride(args) -> int:
         sets = parse_sets(args.set or [])
         results = ride_sweep(scenario, args.front_pressure, args.rear_pressure, args.speeds,
                              WarehouseTyres(args.build) if args.build else None,
-                             lambda task, items: map_batches(task, items, ctx), with_spectra=bool(args.out), sets=sets,
-                             max_variants=args.max_variants, max_samples=args.max_samples)
+                             lambda task, items: map_batches(task, items, ctx),
+                             with_spectra="nominal" if args.out else False, sets=sets,
+                             max_variants=args.max_variants, max_samples=args.max_samples, method=args.method)
     except ScenarioError as exc:  # a swept value the scenario refuses: every problem, one line each
         for problem in exc.problems:
-            print(f"tyrelab ride: {exc.path}: {problem}", file=sys.stderr)
+            print(f"tyrelab ride: {printable(exc.path)}: {printable(problem)}", file=sys.stderr)
         return EXIT_USAGE
     except ValueError as exc:
-        print(f"tyrelab ride: {args.scenario}: {exc}", file=sys.stderr)
+        print(f"tyrelab ride: {printable(args.scenario)}: {printable(exc)}", file=sys.stderr)
         return EXIT_USAGE
     except OSError as exc:  # e.g. --scheduler unreachable
         print(f"tyrelab ride: {os_error_line(exc)}", file=sys.stderr)
@@ -376,7 +461,7 @@ def cmd_ride(args) -> int:
             print(f"tyrelab ride: --out {args.out}: {os_error_line(exc)} (nothing written)", file=sys.stderr)
             return EXIT_USAGE
         log.info("ride: wrote %s and %s", paths["json"], paths["html"])
-    sys.stdout.write(dumps(doc) if args.format == "json" else format_table(doc))
+    _out(dumps(doc) if args.format == "json" else format_table(doc))
     return EXIT_OK
 
 
@@ -437,7 +522,7 @@ def cmd_road(args) -> int:
 def cmd_completion(args) -> int:
     import argcomplete
 
-    sys.stdout.write(argcomplete.shellcode(["tyrelab"], shell=args.shell))
+    _out(argcomplete.shellcode(["tyrelab"], shell=args.shell))
     return EXIT_OK
 
 
@@ -479,7 +564,7 @@ def cmd_exposure(args) -> int:
         print(f"{prog}: {printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)}", file=sys.stderr)
         return EXIT_QUARANTINE
     _warn(prog, doc["warnings"])
-    sys.stdout.write(json.dumps(doc, indent=2, ensure_ascii=False) + "\n" if args.format == "json" else format_table(doc))
+    _out(json.dumps(doc, indent=2, ensure_ascii=False) + "\n" if args.format == "json" else format_table(doc))
     return EXIT_QUARANTINE if str(doc.get("verdict", "")).startswith("no verdict") else EXIT_OK
 
 
@@ -691,9 +776,11 @@ def build_parser() -> argparse.ArgumentParser:
                    help="table: aligned text, 'no rows' for an empty result (default); csv; json: one array per "
                         "statement")
     q.add_argument("--memory-limit", type=_size, default="2GiB", metavar="SIZE",
-                   help="DuckDB memory limit, e.g. 512MB, 8GiB (default 2GiB)")
+                   help="DuckDB memory limit, e.g. 512MB, 8GiB (default 2GiB); the command's memory is bounded by "
+                        "it too: results stream to the output (a --format table result may take a quarter of it)")
     q.add_argument("--max-spill", type=_size, default="4GiB", metavar="SIZE",
-                   help="what may spill to disk, into <build>/.sql-spill/ only (default 4GiB; 0: no spilling)")
+                   help="what may spill to disk, into a folder of its own inside the build only "
+                        "(<build>/.sql-spill-<pid>-<n>/, removed afterwards; default 4GiB; 0: no spilling)")
     q.add_argument("--timeout", type=_non_negative, default=300.0, metavar="SECONDS",
                    help="stop a statement after this many seconds (default 300; 0: no limit)")
     q.set_defaults(func=cmd_sql)
@@ -781,8 +868,14 @@ def build_parser() -> argparse.ArgumentParser:
     rd.add_argument("--set", action="append", default=None, metavar="KEY=V1,V2,...",
                     help="sweep a numeric scenario key, e.g. implement.mass_kg=0,500,1000 (repeatable: every combination)")
     rd.add_argument("--jobs", type=_jobs, default=1, help="worker processes for a sweep (default 1)")
+    rd.add_argument("--method", choices=["auto", "time", "spectral"], default=None,
+                    help="how the rows are computed (default the scenario's [simulation] method, else auto): time "
+                         "simulates every variant; spectral gives each its exact expectation in the frequency domain "
+                         "(no MTVV or crest factor); auto simulates one variant, and a sweep on an ISO 8608 surface "
+                         "spectrally with the nominal variant and any that may lift a tyre simulated beside")
     rd.add_argument("--max-variants", type=_whole(10**6), default=None, metavar="N",
-                    help="most pressure pairs a sweep may run (default 400; more is refused with an estimate)")
+                    help="most variants a sweep may run (default 400 in the time domain, 20000 spectral; more is "
+                         "refused with an estimate)")
     rd.add_argument("--max-samples", type=_whole(10**12), default=None, metavar="N",
                     help="most 1 kHz samples the command may simulate over all pairs and speeds (default 10 million)")
     rd.add_argument("--executor", choices=["local", "dask"], default="local",
@@ -923,11 +1016,23 @@ def main(argv: list[str] | None = None) -> int:
         previous = None
     try:
         code = args.func(args)
-        sys.stdout.flush()  # here, not at exit: a reader gone is caught below
+        try:
+            sys.stdout.flush()  # here, not at exit: a reader gone is caught below
+        except BrokenPipeError:
+            raise
+        except OSError as exc:
+            raise OutputError(exc.errno, f"cannot write the output ({exc.strerror or exc})") from None
         return code
     except BrokenPipeError:  # stdout piped into `head` (or a pager) that quit reading: no traceback
         _discard_stdout()
         return EXIT_BROKEN_PIPE
+    except OutputError as exc:  # a full device: one line, what was printed may be cut short
+        _discard_stdout()
+        print(f"tyrelab {args.command}: {exc.strerror}", file=sys.stderr)
+        return EXIT_USAGE
+    except MissingExtra as exc:  # e.g. --executor dask without dask installed
+        print(f"tyrelab {args.command}: {exc}", file=sys.stderr)
+        return EXIT_USAGE
     except KeyboardInterrupt:
         print(f"tyrelab {args.command}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED

@@ -24,6 +24,8 @@ import os
 from concurrent.futures import ProcessPoolExecutor
 from typing import Any, Callable, Sequence
 
+from .io import MissingExtra
+
 __all__ = ["EXECUTORS", "BLAS_THREAD_VARIABLES", "WORKER_PRELOAD", "map_batches", "map_alongside", "map_in_background", "Background",
            "single_threaded_blas", "command_gc", "GC_THRESHOLDS", "start_worker_server", "worker_server_state", "worker_pool", "abandon_pool"]
 
@@ -288,7 +290,7 @@ def _map_dask(fn: Callable[[Any], Any], batches: list[Any], ctx, done: Callable[
     try:
         from dask.distributed import Client, as_completed
     except ImportError:  # pragma: no cover - depends on the installed extras
-        raise RuntimeError("--executor dask needs dask[distributed]: pip install 'tyrelab[dask]'") from None
+        raise MissingExtra("--executor dask needs dask[distributed]: pip install 'tyrelab[dask]'") from None
     import logging
 
     # distributed logs every worker start, stop and heartbeat at INFO (~270 lines for 24 workers), and

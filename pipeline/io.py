@@ -25,7 +25,32 @@ if TYPE_CHECKING:  # pandas/pyarrow are imported where used: a no-op run never n
 
 __all__ = ["atomic_path", "write_parquet_atomic", "write_text_atomic", "write_texts_atomic", "file_sha256",
            "discover_campaigns", "os_error_line", "make_folder", "safe_name", "walk", "json_safe",
-           "raw_problem", "printable", "MissingExtra"]
+           "raw_problem", "printable", "MissingExtra", "MAX_HEADER_BYTES", "head_lines"]
+
+#: Longest header line of a CSV the pipeline reads in pieces (a vehicle recording, a track profile),
+#: bytes: it is read first, bounded, so that a file without line ends is refused instead of being read
+#: whole as its header (a 2 GB one took 15 GB and a minute).
+MAX_HEADER_BYTES = 64 * 1024
+
+
+def head_lines(path: str | os.PathLike, n: int, what: str) -> list[bytes]:
+    """The first ``n`` lines of a text file, each read bounded (:data:`MAX_HEADER_BYTES`).
+
+    Raises
+    ------
+    ValueError
+        ``cannot read (…)`` for a file the system will not open, or for a first line longer than
+        the bound (a file without line ends), naming ``what`` the first line should hold.
+    """
+    try:
+        with open(path, "rb") as fh:
+            lines = [fh.readline(MAX_HEADER_BYTES + 1) for _ in range(n)]
+    except OSError as exc:
+        raise ValueError(f"cannot read ({exc.strerror or exc})") from None
+    if len(lines[0]) > MAX_HEADER_BYTES:
+        raise ValueError(f"the header line is longer than {MAX_HEADER_BYTES // 1024} KiB (a file without line ends?): "
+                         f"the first line names the columns ({what})")
+    return lines
 
 
 class MissingExtra(RuntimeError):

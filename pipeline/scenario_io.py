@@ -15,6 +15,7 @@ import numpy as np
 import pandas as pd
 
 from . import _validate
+from .io import head_lines, printable
 from .vehicle.scenario import Scenario, ScenarioError
 from .vehicle.scenario import parse_scenario as _parse_text
 
@@ -85,12 +86,19 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarr
     """
     _validate.instance("path", path, (str, Path))
     path = Path(path)
+    shown = printable(path)
     if not path.is_file():
-        raise ValueError(f"{path}: no such file")
+        raise ValueError(f"{shown}: no such file")
+    try:  # the header line first, bounded: a file without line ends is not read whole as its header
+        head_lines(path, 1, "distance_m, height_m")
+    except ValueError as exc:
+        raise ValueError(f"{shown}: {exc}") from None
     try:
         df = pd.read_csv(path)
     except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as exc:
-        raise ValueError(f"{path}: not a readable CSV ({str(exc).splitlines()[0]})") from None
+        raise ValueError(f"{shown}: not a readable CSV ({printable(str(exc).splitlines()[0][:200])})") from None
+    except OSError as exc:
+        raise ValueError(f"{shown}: cannot read ({exc.strerror or exc})") from None
     problems = []
     if "distance_m" not in df:
         problems.append("no distance_m column")
@@ -102,7 +110,7 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarr
         cols = []
         problems.append("no height_m column (or height_left_m and height_right_m)")
     if problems:
-        raise ValueError(f"{path}: {'; '.join(problems)} (columns: {', '.join(map(str, df.columns))})")
+        raise ValueError(f"{shown}: {'; '.join(problems)} (columns: {printable(', '.join(map(str, df.columns)))[:200]})")
     num = {c: pd.to_numeric(df[c], errors="coerce") for c in {"distance_m", *cols}}
     for c, v in num.items():
         if v.isna().any():

@@ -39,6 +39,7 @@ Examples
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import logging
 import os
@@ -53,7 +54,7 @@ import pyarrow.parquet as pq
 from . import io
 
 __all__ = ["READ_ONLY_STATEMENTS", "SANDBOX_SETTINGS", "SPILL_FOLDER", "QueryLimits", "QueryTimeout", "WriteRefused",
-    "view_name", "build_warehouse", "warehouse_path", "connect_read_only", "check_read_only", "query", "query_all", "parse_size"]
+    "view_name", "build_warehouse", "warehouse_path", "connect_read_only", "check_read_only", "query", "query_all", "parse_size", "iter_query", "memory_bound", "BATCH_ROWS"]
 
 log = logging.getLogger("tyrelab")
 
@@ -450,6 +451,146 @@ def _statement(con: duckdb.DuckDBPyConnection, statement: str, timeout_s: float 
     if "exc" in box:
         raise box["exc"]
     return box["df"]
+
+
+#: Rows per batch of a streamed result (:func:`iter_query`).
+BATCH_ROWS = 1 << 14
+
+
+def _pandas(batch) -> pd.DataFrame:
+    """A result batch as DuckDB's ``df()`` gives it: integers as pandas' nullable integers (so that
+    a batch with a NULL and one without print alike)."""
+    import pyarrow as pa
+
+    ints = {t: d for t, d in ((pa.int8(), pd.Int8Dtype()), (pa.int16(), pd.Int16Dtype()), (pa.int32(), pd.Int32Dtype()),
+                              (pa.int64(), pd.Int64Dtype()), (pa.uint8(), pd.UInt8Dtype()),
+                              (pa.uint16(), pd.UInt16Dtype()), (pa.uint32(), pd.UInt32Dtype()),
+                              (pa.uint64(), pd.UInt64Dtype()))}
+    df = batch.to_pandas(types_mapper=ints.get)
+    for i, field in enumerate(batch.schema):  # text as DuckDB gives it: objects, a NULL as None (not NaN)
+        if pa.types.is_string(field.type) or pa.types.is_large_string(field.type):
+            col = df.iloc[:, i].astype(object)
+            df.isetitem(i, col.where(col.notna(), None))
+    return df
+
+
+def _streamed(con: duckdb.DuckDBPyConnection, statement: str, timeout_s: float | None):
+    """The batches of one statement's result (pyarrow RecordBatches, :data:`BATCH_ROWS` rows), fetched in
+    a helper thread into a queue of two: the result is never held whole. Ctrl-C and the time limit
+    interrupt the statement (as :func:`_statement`); a caller that stops early (its reader went away)
+    stops the helper. Yields the schema first."""
+    import queue
+    import threading
+    import time
+
+    box: queue.Queue = queue.Queue(maxsize=2)
+    quit_ = threading.Event()
+
+    def put(item) -> bool:
+        while not quit_.is_set():
+            try:
+                box.put(item, timeout=0.1)
+                return True
+            except queue.Full:
+                continue
+        return False
+
+    def run() -> None:
+        try:
+            reader = con.sql(statement).to_arrow_reader(BATCH_ROWS)
+            if not put(("schema", reader.schema)):
+                return
+            for batch in reader:
+                if not put(("batch", batch)):
+                    return
+            put(("end", None))
+        except BaseException as exc:  # noqa: BLE001 - handed to the waiting thread
+            put(("exc", exc))
+
+    def stop(helper) -> None:
+        quit_.set()
+        while helper.is_alive():
+            try:
+                con.interrupt()
+                helper.join(0.1)
+            except KeyboardInterrupt:  # a second Ctrl-C: the statement is being stopped already
+                continue
+
+    deadline = None if timeout_s is None else time.monotonic() + timeout_s
+    helper = threading.Thread(target=run, name="tyrelab-sql", daemon=True)
+    helper.start()
+    finished = False
+    try:
+        while True:
+            try:
+                kind, item = box.get(timeout=0.1 if deadline is None else max(0.0, min(0.1, deadline - time.monotonic())))
+            except queue.Empty:
+                if deadline is not None and time.monotonic() >= deadline:
+                    raise QueryTimeout(f"statement stopped after {timeout_s:g} s (the time limit)") from None
+                continue
+            if kind == "exc":
+                raise item
+            if kind == "end":
+                finished = True
+                return
+            yield kind, item
+    finally:
+        if not finished:
+            stop(helper)
+
+
+def iter_query(db_path: Path, sql: str, limits: QueryLimits | None = None):
+    """Run one or several read-only statements (``;``-separated) and stream their results: yields,
+    per statement, its column names and an iterator of DataFrames (:data:`BATCH_ROWS` rows each,
+    read only as the caller asks for them). What ``tyrelab sql`` prints: a result larger than memory
+    is written as it comes, never held whole.
+
+    Raises as :func:`query_all` does (while the batches are read).
+    """
+    statements = check_read_only(sql)
+    con = connect_read_only(db_path, limits)
+    timeout_s = limits.timeout_s if limits is not None else None
+    try:
+        for statement in statements:
+            stream = _streamed(con, statement, timeout_s)
+            try:
+                kind, schema = next(stream)
+                yield list(schema.names), (_pandas(batch) for kind, batch in stream)
+            finally:
+                stream.close()
+    finally:
+        con.close()
+
+
+@contextlib.contextmanager
+def memory_bound(memory_limit_bytes: int, headroom_bytes: int = 512 * 2**20):
+    """Bound this process's data memory (``RLIMIT_DATA``) to what it uses now, plus twice
+    ``memory_limit_bytes`` and ``headroom_bytes``, while the block runs (then the previous limit).
+
+    DuckDB's ``memory_limit`` bounds its buffers, not every allocation (``repeat('x', 1e9)`` builds
+    a 1 GB string outside it, and the command's copy to print it another): under this bound such
+    an allocation fails (DuckDB's out-of-memory error, Python's ``MemoryError``) instead of taking
+    the machine's memory. A no-op where the limit cannot be read or set.
+    """
+    import resource
+
+    try:
+        with open("/proc/self/status", encoding="ascii") as fh:
+            now = next(int(line.split()[1]) * 1024 for line in fh if line.startswith("VmData:"))
+        soft, hard = resource.getrlimit(resource.RLIMIT_DATA)
+        bound = now + 2 * memory_limit_bytes + headroom_bytes
+        if hard != resource.RLIM_INFINITY:
+            bound = min(bound, hard)
+        if soft != resource.RLIM_INFINITY:
+            bound = min(bound, soft)
+        resource.setrlimit(resource.RLIMIT_DATA, (bound, hard))
+    except (OSError, ValueError, StopIteration):
+        yield
+        return
+    try:
+        yield
+    finally:
+        resource.setrlimit(resource.RLIMIT_DATA, (soft, hard))
 
 
 def query_all(db_path: Path, sql: str, limits: QueryLimits | None = None) -> list[pd.DataFrame]:

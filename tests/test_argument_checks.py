@@ -398,6 +398,8 @@ ROWS = [
     (f"{VE}.ride.ride", dict(scenario="modern.toml"), "scenario"),
     (f"{VE}.ride.ride_sweep", dict(scenario=_scenario, max_variants=0), "max_variants"),
     (f"{VE}.ride.ride_variants", dict(scenarios=["modern.toml"]), "scenarios"),
+    (f"{VE}.ride.spectral_variants", dict(scenarios=["modern.toml"]), "scenarios"),
+    (f"{VE}.ride.ride_sweep", dict(scenario=_scenario, method="fast"), "method"),
     (f"{VE}.ride.expected_sweep", dict(scenario="modern.toml", front_pressures_bar=[1.0], rear_pressures_bar=[1.0]), "scenario"),
     (f"{VE}.ride.expected_sweep", dict(scenario=_scenario, front_pressures_bar=[], rear_pressures_bar=[1.0]), "front_pressures_bar"),
     (f"{VE}.ride.expected_weighted_rms", dict(a=np.zeros((1, 2, 2)), b=np.zeros((1, 2, 4)), c=np.zeros((1, 1, 2)), d=np.zeros((1, 1, 3)), tyres=["front", "rear"], grid={}, env={}, seat_tf=None, axes=["z"]), "a"),
@@ -419,6 +421,13 @@ ROWS = [
     (f"{VE}.scenario.parse_sets", dict(items=[("tractor.mass_kg", 1.0)]), "items"),
     # vehicle/scenario_limits.py
     (f"{VE}.scenario_limits.work_estimate", dict(scenario=_scenario, n_variants=0), "n_variants"),
+    (f"{VE}.scenario_limits.uses_spectral", dict(scenario=_scenario, method="fast", n_variants=2), "method"),
+    # vehicle/spectral_ride.py
+    (f"{VE}.spectral_ride.lift_off_probability", dict(static_load_N=1e4, force_sd_N=[-1.0]), "force_sd_N"),
+    (f"{VE}.spectral_ride.nominal_index", dict(scenario="modern.toml", variants=[]), "scenario"),
+    (f"{VE}.spectral_ride.spectral_row", dict(speed_km_h=8.0, tyres={}, i=0, aw_m_s2={"z": 1.0}, axes=["z"], hours_per_day=8.0, duration_s=10.0, force_sd_N={"front": -1.0, "rear": 1.0}, static_load_N={"front": 1e4, "rear": 1e4}, tyres_per_element=2, exposure={}), "force_sd_N"),
+    (f"{VE}.spectral_ride.lifting_speeds", dict(rows=None), "rows"),
+    (f"{VE}.spectral_ride.primary_rows", dict(table=None), "table"),
     # vehicle/studies.py
     (f"{VE}.studies.carriage_case_inputs", dict(table_xii=None, stationary=pd.DataFrame()), "table_xii"),
     (f"{VE}.studies.carriage_study", dict(table_xii=pd.DataFrame(), stationary=pd.DataFrame(), seed=-1), "seed"),

@@ -49,6 +49,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
+from ..io import MAX_HEADER_BYTES as _io_MAX_HEADER_BYTES
 from . import mapped
 from .mapped import RunFileError
 
@@ -93,10 +94,9 @@ GRAVITY_M_S2 = 9.80665
 #: vibration: the recording is refused naming the channel and row (the sums of the analysis
 #: would otherwise overflow, or give an A(8) of 1e27 m/s²).
 MAX_ABS_SAMPLE = 1000.0
-#: Longest header line of a ``.csv`` recording, bytes (the longest real one, every channel of
-#: :data:`RIDE_CHANNELS` with long names, is under 1 kB): it is read before anything else, so a
-#: file without a line end is refused instead of being read whole as its header.
-MAX_HEADER_BYTES = 64 * 1024
+#: Longest header line of a ``.csv`` recording, bytes (:data:`tyrelab.io.MAX_HEADER_BYTES`; every
+#: channel of :data:`RIDE_CHANNELS` makes under 1 kB).
+MAX_HEADER_BYTES = _io_MAX_HEADER_BYTES
 _DELIMITER_NAMES = {",": "','", ";": "';'", "\t": "tab"}
 
 
@@ -198,17 +198,12 @@ def _read_error(exc: Exception, suffix: str) -> RunFileError:
 def _csv_dialect(path: Path) -> tuple[list[str], str, str]:
     """The header names, separator and decimal mark of a ``.csv`` recording, from its first two
     lines read bounded (:data:`MAX_HEADER_BYTES` each)."""
-    from ..io import printable
+    from ..io import head_lines, printable
 
     try:
-        with open(path, "rb") as fh:
-            head = fh.readline(MAX_HEADER_BYTES + 1)
-            second = fh.readline(MAX_HEADER_BYTES + 1)
-    except OSError as exc:
-        raise RunFileError(f"cannot read ({exc.strerror or exc})") from None
-    if len(head) > MAX_HEADER_BYTES:
-        raise RunFileError(f"the header line is longer than {MAX_HEADER_BYTES // 1024} KiB (a file without line ends?): "
-                           "a recording's first line names its columns (time_s, seat_z_m_s2, …)")
+        head, second = head_lines(path, 2, "time_s, seat_z_m_s2, …")
+    except ValueError as exc:
+        raise RunFileError(str(exc)) from None
     try:
         header = head.decode("utf-8-sig").strip("\r\n")
         first_row = second.decode("utf-8", errors="replace").strip("\r\n")

@@ -339,10 +339,12 @@ CHAPTERS: tuple[Chapter, ...] = (
                                    "expected_a_wz_m_s2, a_wx_m_s2, a_wy_m_s2, a_v_m_s2, vdv_m_s1_75, crest_factor, "
                                    "lift_off_fraction_front, lift_off_fraction_rear, a8_m_s2, hours_to_eav, "
                                    "hours_to_elv, verdict FROM ride_results WHERE is_nominal "
-                                   "ORDER BY scenario, variant, speed_km_h",
+                                   "QUALIFY row_number() OVER (PARTITION BY file, variant, speed_km_h "
+                                   "ORDER BY method = 'spectral' DESC) = 1 ORDER BY scenario, variant, speed_km_h",
                           note="A(8) = max(1.4·a_wx, 1.4·a_wy, a_wz)·√(T/8 h) (the Directive's highest axis, not the "
                                "vector sum a_v; a_wy = 0 in the pitch-plane model); expected_a_wz is the "
-                               "frequency-domain expectation of the linear model. "
+                               "frequency-domain expectation of the linear model; of a scenario with a sweep, the "
+                               "nominal variant's spectral rows (ride_results.method: time or spectral). "
                                "Pressure sweeps: tyrelab sql \"SELECT * FROM ride_results\"."),
                 TableSpec("", "Ride scenarios", "ride_scenarios", "simulate",
                           columns=("scenario", "source", "mass_kg", "front_size", "front_pressure_bar", "rear_size",

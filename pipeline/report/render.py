@@ -131,7 +131,7 @@ UNITS = {
     "_kN_per_m": " (kN/m)", "_kN_s_per_m": " (kN s/m)", "_km_h": " (km/h)", "_bar": " (bar)",
     "_kNm": " (kN m)", "_kN": " (kN)", "_kg": " (kg)", "_Hz": " (Hz)", "_mm_pp": " (mm p-p)",
     "_m_s2": " (m/s²)", "_rad_s2": " (rad/s²)", "_m_s1_75": " (m/s^1.75)", "_m_s": " (m/s)",
-    "_percent": " (%)", "_in": " (in)",
+    "_percent": " (%)", "_in": " (in)", "_N": " (N)",
 }
 
 

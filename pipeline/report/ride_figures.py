@@ -23,6 +23,7 @@ from matplotlib.lines import Line2D
 
 from ..vehicle import iso2631
 from .figures import MARKERS, _figure, _has, _plain_log, to_svg
+from ..vehicle.spectral_ride import primary_rows
 
 __all__ = ["seat_psd", "seat_transmissibility", "aw_against_speed", "aw_against_pressure", "ride_aw_speed",
            "study_aw_speed", "exposure_levels", "hours_heatmap", "ride_aw_axes_speed"]
@@ -231,7 +232,7 @@ def ride_aw_speed(ride_results: pd.DataFrame) -> str | None:
     first variant), EAV/ELV in 8 h."""
     if not _has(ride_results, "scenario", "speed_km_h", "a_wz_m_s2", "a_wx_m_s2"):
         return None
-    r = ride_results
+    r = primary_rows(ride_results)
     if "is_nominal" in r:
         r = r[r["is_nominal"].astype(bool)]
     if "variant" in r:  # a sweep of other keys at the scenario's pressures: its first variant
@@ -257,7 +258,7 @@ def ride_aw_axes_speed(ride_results: pd.DataFrame) -> str | None:
     own tyre pressures (:func:`aw_against_speed` with the scenarios as its variants)."""
     if not _has(ride_results, "scenario", "speed_km_h", "a_wz_m_s2", "a_wx_m_s2"):
         return None
-    r = ride_results
+    r = primary_rows(ride_results)
     if "is_nominal" in r:
         r = r[r["is_nominal"].astype(bool)]
     return aw_against_speed(r.assign(variant=r["scenario"].astype(str)), 8.0)

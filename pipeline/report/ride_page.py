@@ -19,24 +19,36 @@ from .ride_sections import PRESSURE_COLUMNS, variant_name, scenario_figures, sur
 from .render import column_label, environment, format_number
 from .tables import significant_decimals, uncertainty_decimals
 
-__all__ = ["SPEED_COLUMNS", "QUANTITIES", "number_formats", "format_table", "figures", "psd_edge_note", "render_page", "write_outputs", "dumps", "variants",
+__all__ = ["SPEED_COLUMNS", "QUANTITIES", "method_words", "number_formats", "format_table", "figures", "psd_edge_note", "render_page", "write_outputs", "dumps", "variants",
            "variant_label", "swept_keys"]
 
-#: Columns of the per-speed table (text and HTML), in order.
+#: Columns of the per-speed table (text and HTML), in order; those no row has are left out. A
+#: spectral row (:mod:`tyrelab.vehicle.spectral_ride`) with a time row beside it shows the simulated
+#: a_w and their difference (``simulated_*``, ``difference_*_percent``: :func:`_rows`).
 SPEED_COLUMNS = ["speed_km_h", "front_pressure_bar", "rear_pressure_bar", "variant", "a_wz_m_s2", "expected_a_wz_m_s2",
-                 "a_wx_m_s2", "expected_a_wx_m_s2", "a_wy_m_s2", "expected_a_wy_m_s2", "a_v_m_s2", "vdv_m_s1_75", "crest_factor",
-                 "lift_off_fraction_front", "lift_off_fraction_rear", "a8_m_s2", "hours_to_eav", "hours_to_elv",
-                 "verdict", "simulation"]
+                 "simulated_a_wz_m_s2", "difference_a_wz_percent",
+                 "a_wx_m_s2", "expected_a_wx_m_s2", "simulated_a_wx_m_s2", "difference_a_wx_percent",
+                 "a_wy_m_s2", "expected_a_wy_m_s2", "simulated_a_wy_m_s2", "difference_a_wy_percent",
+                 "a_v_m_s2", "vdv_m_s1_75", "evdv_m_s1_75", "mtvv_m_s2", "crest_factor",
+                 "lift_off_fraction_front", "lift_off_fraction_rear", "lift_off_probability_front",
+                 "lift_off_probability_rear", "front_tyre_force_sd_N", "rear_tyre_force_sd_N",
+                 "a8_m_s2", "hours_to_eav", "hours_to_elv", "verdict", "simulation", "method"]
 
 #: Per-speed columns that hold one quantity and so share one number format (:func:`number_formats`).
 QUANTITIES = {
-    "weighted acceleration": ("a_wz_m_s2", "expected_a_wz_m_s2", "a_wx_m_s2", "expected_a_wx_m_s2", "a_wy_m_s2",
-                              "expected_a_wy_m_s2", "a_v_m_s2", "a8_m_s2"),
-    "vibration dose value": ("vdv_m_s1_75",),
+    "weighted acceleration": ("a_wz_m_s2", "expected_a_wz_m_s2", "simulated_a_wz_m_s2", "a_wx_m_s2",
+                              "expected_a_wx_m_s2", "simulated_a_wx_m_s2", "a_wy_m_s2", "expected_a_wy_m_s2",
+                              "simulated_a_wy_m_s2", "a_v_m_s2", "mtvv_m_s2", "a8_m_s2"),
+    "difference": ("difference_a_wz_percent", "difference_a_wx_percent", "difference_a_wy_percent"),
+    "vibration dose value": ("vdv_m_s1_75", "evdv_m_s1_75"),
     "crest factor": ("crest_factor",),
     "lift-off fraction": ("lift_off_fraction_front", "lift_off_fraction_rear"),
+    "lift-off probability": ("lift_off_probability_front", "lift_off_probability_rear"),
+    "tyre force": ("front_tyre_force_sd_N", "rear_tyre_force_sd_N"),
     "hours": ("hours_to_eav", "hours_to_elv"),
 }
+#: Columns whose empty value (JSON null) is "never reached" (inf), not "no value".
+INFINITE_WHEN_EMPTY = ("hours_to_eav", "hours_to_elv")
 #: Columns shown as given (the scenario's speeds and pressures).
 KEY_COLUMNS = ("speed_km_h", "front_pressure_bar", "rear_pressure_bar")
 #: Narrowest column of ``--format table`` (a header wraps at word boundaries within it).
@@ -51,19 +63,91 @@ def dumps(doc: dict) -> str:
 
 
 #: Per-speed columns shown as text.
-TEXT_COLUMNS = ("variant", "verdict", "simulation")
+TEXT_COLUMNS = ("variant", "verdict", "simulation", "method")
+
+
+def _beside(row: dict, time_rows: dict) -> dict:
+    """A speed row as the table shows it: a spectral row without its ``expected_*`` (the same
+    numbers) and, where the variant was simulated at that speed too, the simulated a_w per axis and
+    their difference from the expectation (%), as a time row's expected/simulated pair."""
+    if row.get("method") != "spectral":
+        return row
+    out = {k: v for k, v in row.items() if not k.startswith("expected_")}
+    t = time_rows.get(row["speed_km_h"])
+    if t is not None:
+        for ax in ("z", "x", "y"):
+            s, m = row.get(f"a_w{ax}_m_s2"), t.get(f"a_w{ax}_m_s2")
+            if m is None or (ax == "y" and not s and not m):
+                continue
+            out[f"simulated_a_w{ax}_m_s2"] = m
+            out[f"difference_a_w{ax}_percent"] = 100.0 * (m - s) / s if s else None
+        out["simulation"] = f"{row['simulation']}; simulated beside: {t['simulation']}"
+    return out
 
 
 def _rows(doc: dict) -> list[dict]:
     """Every speed row of every variant; a sweep of scenario keys names each row's swept values
-    (``variant``, as the variant table: ``mass_kg=500, cg_height_m=0.9``)."""
+    (``variant``, as the variant table: ``mass_kg=500, cg_height_m=0.9``); a spectral row carries
+    its variant's time row of the same speed beside it (:func:`_beside`)."""
     blocks = doc.get("sweep") or [doc]
-    return [{**row, **({"variant": ", ".join(f"{k.rpartition('.')[2]}={v:g}" for k, v in b["variant"].items())}
-                       if b.get("variant") else {})} for b in blocks for row in b["speeds"]]
+    out = []
+    for b in blocks:
+        named = {"variant": ", ".join(f"{k.rpartition('.')[2]}={v:g}" for k, v in b["variant"].items())} \
+            if b.get("variant") else {}
+        time_rows = {t["speed_km_h"]: t for t in b.get("time_domain", [])}
+        out += [{**_beside(row, time_rows), **named} for row in b["speeds"]]
+    return out
+
+
+def method_words(rows: list[dict]) -> str:
+    """How the rows of a ride were computed, in words (the page and ``--format table`` say it under
+    the table): the time domain, the frequency domain, and where both stand side by side.
+
+    Examples
+    --------
+    >>> method_words([{"method": "time"}])[:60]
+    'Every row was simulated in the time domain: one realisation '
+    """
+    from ..vehicle.spectral_ride import LIFT_OFF_PROBABILITY_LIMIT
+
+    spectral = [r for r in rows if r.get("method") == "spectral"]
+    if not spectral:
+        return ("Every row was simulated in the time domain: one realisation of the track (the generated random "
+                "track, or the given profile); expected_* beside it is the frequency-domain expectation of the "
+                "linear model for the track's spectrum.")
+    n, k = len(rows), len(spectral)
+    text = (f"{'Every row was' if k == n else f'{k} of {n} rows were'} computed in the frequency domain "
+            "(method = spectral): the exact expectation of the linear model for the track's spectrum: a_w per axis, evdv = the estimated VDV 1.4 a_w T^¼ of ISO 2631-1 §6.3.2 (T the "
+            "record a simulation would take; daily: the exposure time), A(8) and the hours to the EU values, the "
+            "standard deviation of a tyre's dynamic force and the probability that a tyre leaves the ground "
+            "(Gaussian: Φ(−static load / standard deviation)). MTVV and crest factor are properties of one "
+            "record: a spectral row has none (–).")
+    beside = [r for r in spectral if "simulated_a_wz_m_s2" in r]
+    lifting = [r for r in spectral if max(r.get("lift_off_probability_front") or 0.0,
+                                          r.get("lift_off_probability_rear") or 0.0) > LIFT_OFF_PROBABILITY_LIMIT]
+    if beside:
+        lifted = sum(1 for r in beside if r in lifting)
+        text += (f" {len(beside)} of them were also simulated in the time domain (the nominal variant's"
+                 + (f", and those whose lift-off probability exceeds {LIFT_OFF_PROBABILITY_LIMIT:g}: {lifted} rows, "
+                    "where the linear expectation no longer holds" if lifted else "")
+                 + "): the simulated a_w stands beside the expectation with their difference, the sampling error "
+                   "of one random track (and the effect of tyre lift-off where the simulation is nonlinear). The "
+                   "heatmap and the variant table use the spectral rows.")
+    missing = [r for r in lifting if r not in beside]
+    if missing:
+        text += (f" {len(missing)} spectral row(s) have a lift-off probability above {LIFT_OFF_PROBABILITY_LIMIT:g} "
+                 "and no simulation beside them: there tyres leave the ground and the linear expectation does not "
+                 "hold (--method auto simulates them).")
+    return text
+
+
+#: Columns shown even where every row leaves them empty: what a spectral row has not got ("–").
+SHOWN_EMPTY = ("crest_factor", "mtvv_m_s2", *INFINITE_WHEN_EMPTY)
 
 
 def _columns(doc: dict, rows: list[dict]) -> list[str]:
-    return [c for c in SPEED_COLUMNS if c in rows[0] and (c not in ("front_pressure_bar", "rear_pressure_bar")
+    present = {c for r in rows for c, v in r.items() if v is not None or c in SHOWN_EMPTY}
+    return [c for c in SPEED_COLUMNS if c in present and (c not in ("front_pressure_bar", "rear_pressure_bar")
                                                           or "sweep" in doc)]
 
 
@@ -104,9 +188,9 @@ def number_formats(doc: dict) -> dict:
             "nodal": significant_decimals(nodal)}
 
 
-def _cell(value, decimals: int | None) -> str:
-    if value is None:
-        return "inf"  # hours to a value the vibration never reaches
+def _cell(value, decimals: int | None, column: str = "") -> str:
+    if value is None:  # hours to a value the vibration never reaches; else no value (a spectral row's MTVV)
+        return "inf" if column in INFINITE_WHEN_EMPTY else "–"
     if isinstance(value, str):
         return value
     return f"{value:g}" if decimals is None else format_number(float(value), decimals=decimals)
@@ -187,12 +271,13 @@ def format_table(doc: dict) -> str:
         lines.append(f"  warning: {w}")
     rows = _rows(doc)
     cols = _columns(doc, rows)
-    cells = [[_cell(r[c], fmt["columns"].get(c)) for c in cols] for r in rows]
+    cells = [[_cell(r.get(c), fmt["columns"].get(c), c) for c in cols] for r in rows]
     numeric = [c not in TEXT_COLUMNS for c in cols]
     lines += _text_table([column_label(c) for c in cols], cells, numeric)
     lines.append("  a_wz: W_k-weighted, a_wx and a_wy: W_d-weighted r.m.s. (ISO 2631-1); expected: the "
                  "frequency-domain expectation; a_v: vector sum; a8 = A(8) = max(1.4 a_wx, 1.4 a_wy, a_wz) "
                  "sqrt(T/8 h); vdv: vibration dose value; inf: never reached")
+    lines += ["  " + line for line in textwrap.wrap(method_words(rows), 110)]
     return "\n".join(lines) + "\n"
 
 
@@ -214,10 +299,11 @@ def variants(results: list[RideResult]) -> list[dict]:
 
 def figures(results: list[RideResult]) -> list[dict]:
     """The page's figures (caption + inline SVG, or the sentence why a figure is not drawn), those of
-    :func:`scenario_figures` with the spectra of the first variant."""
-    first = results[0]
-    specs = scenario_figures(results_table(results), first.spectra, first.transmissibility,
-                             first.scenario.exposure.hours_per_day, psd_edge_note(first), variant_label(first))
+    :func:`scenario_figures` with the spectra of the first variant that has them (a sweep computes
+    them for its nominal variant alone: ``ride_sweep(with_spectra="nominal")``)."""
+    shown = next((r for r in results if len(r.spectra)), results[0])
+    specs = scenario_figures(results_table(results), shown.spectra, shown.transmissibility,
+                             shown.scenario.exposure.hours_per_day, psd_edge_note(shown), variant_label(shown))
     return [{"name": f.name, "caption": f.caption, "svg": f.draw(), "note": f.note} for f in specs]
 
 
@@ -238,6 +324,7 @@ def render_page(results: list[RideResult], doc: dict | None = None) -> str:
     fmt = number_formats(doc)  # one number format per quantity, as --format table
     return environment().get_template("ride.html.j2").render(
         r=doc, description=results[0].scenario.description, columns=_columns(doc, rows), rows=rows,
+        method_note=method_words(rows),
         figures=figures(results), variants=variants(results), three_d=results[0].scenario.tractor.three_d,
         version=__version__, decimals=fmt["columns"], fmt=fmt)
 

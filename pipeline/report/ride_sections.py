@@ -19,7 +19,9 @@ from dataclasses import dataclass, field
 
 import pandas as pd
 
-__all__ = ["PRESSURE_COLUMNS", "variant_name", "variant_decimals", "scenario_sections", "SECTION_TABLES", "variant_labels", "swept_columns", "variant_rows", "RideFigure", "scenario_figures",
+from ..vehicle.spectral_ride import LIFT_OFF_PROBABILITY_LIMIT, primary_rows
+
+__all__ = ["PRESSURE_COLUMNS", "method_note", "variant_name", "variant_decimals", "scenario_sections", "SECTION_TABLES", "variant_labels", "swept_columns", "variant_rows", "RideFigure", "scenario_figures",
            "surface_edge_note"]
 
 
@@ -75,6 +77,7 @@ def variant_rows(table: pd.DataFrame) -> list[dict]:
     stiffness and damping per tyre at the slowest speed (``front_stiffness_kN_per_m``, ``rear_…``,
     ``front_damping_kN_s_per_m``, ``rear_…``), ``modes``
     (name -> natural frequency, Hz) and ``hours_to_eav`` (at the worst speed; None: never reached)."""
+    table = primary_rows(table)
     t = table.assign(_label=variant_labels(table))
     modes = _mode_names(t)
     out = []
@@ -162,7 +165,7 @@ def scenario_figures(table: pd.DataFrame, spectra: pd.DataFrame, transmissibilit
         swept keys (else a sentence why not; a pressure sweep of one key: a_w against pressure),
         and the seat PSD and transmissibility per axis.
     """
-    table = table.dropna(axis=1, how="all")
+    table = primary_rows(table).dropna(axis=1, how="all")
     keys = swept_columns(table)
     n_variants = variant_labels(table).nunique()
     out = [RideFigure("aw_speed", "Weighted r.m.s. at the seat against speed per axis, one line per variant (dotted: "
@@ -211,7 +214,7 @@ def scenario_sections(scenarios: pd.DataFrame, results: pd.DataFrame, spectra: p
     -------
     list of dict
         In the order of ``scenarios``: ``scenario`` (its name), ``file``, ``anchor`` (an HTML id),
-        ``variants`` (:func:`variant_rows`), their ``decimals`` (:func:`variant_decimals`) and ``figures`` (:func:`scenario_figures` of its
+        ``method`` (:func:`method_note`), ``variants`` (:func:`variant_rows`), their ``decimals`` (:func:`variant_decimals`) and ``figures`` (:func:`scenario_figures` of its
         ``ride_results`` rows and the PSD and transmissibility of the variant shown there).
     """
     if not {"scenario", "file"} <= set(scenarios.columns) or not {"file", "speed_km_h"} <= set(results.columns):
@@ -227,9 +230,28 @@ def scenario_sections(scenarios: pd.DataFrame, results: pd.DataFrame, spectra: p
         note = surface_edge_note(getattr(row, "surface", "iso8608"), float(rows["speed_km_h"].min()))
         variants = variant_rows(rows)
         out.append({"scenario": row.scenario, "file": row.file, "anchor": f"scenario-{k + 1}",
-                    "variants": variants, "decimals": variant_decimals(variants),
+                    "method": method_note(rows), "variants": variants, "decimals": variant_decimals(variants),
                     "figures": scenario_figures(rows, psd, trans, hours, note, shown)})
     return out
+
+
+def method_note(table: pd.DataFrame) -> str:
+    """How a scenario's ``ride_results`` rows were computed, in a sentence (``method``:
+    :mod:`tyrelab.vehicle.spectral_ride`).
+
+    Examples
+    --------
+    >>> method_note(pd.DataFrame({"method": ["spectral"] * 4 + ["time"]}))[:44]
+    '4 rows in the frequency domain (the linear m'
+    """
+    methods = table["method"].value_counts() if "method" in table else pd.Series(dtype=int)
+    spectral, timed = int(methods.get("spectral", 0)), int(methods.get("time", 0))
+    if not spectral:
+        return "Every row simulated in the time domain (one realisation of the track; expected_*: the expectation)."
+    return (f"{spectral} rows in the frequency domain (the linear model's exact expectation for the track's "
+            "spectrum; no MTVV or crest factor), "
+            + (f"{timed} simulated beside them (the nominal variant, and speeds whose lift-off probability exceeds "
+               f"{LIFT_OFF_PROBABILITY_LIMIT:g})" if timed else "none simulated") + "; the figures and the variant table read the spectral rows.")
 
 
 def surface_edge_note(surface_kind: str, speed_km_h: float) -> str:

@@ -27,11 +27,11 @@ from __future__ import annotations
 import math
 import time
 from pathlib import Path
-from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
 
+from ..io import printable
 from ..rawformat import RunFileError
 from ..rawformat.files import confined_run_path, read_delimited
 from ..schema import load_schema, row_problems
@@ -39,7 +39,7 @@ from .base import Context, Progress, StageResult, write_quarantine
 from .dag import FIT_TABLES, RIDES_TABLES
 from .state import ItemCache
 
-__all__ = ["INPUTS", "OUTPUTS", "discover_ride_campaigns", "run", "item_plan"]
+__all__ = ["INPUTS", "OUTPUTS", "discover_ride_campaigns", "run"]
 
 #: What the stage reads and writes (declared in :data:`tyrelab.stages.dag.STAGES`; these are its names).
 INPUTS = ["raw", *FIT_TABLES]
@@ -89,8 +89,8 @@ def _analyse(path: Path, channel_map) -> dict:
 
     try:
         a = analyse_recording(open_recording(path, channel_map))
-    except RunFileError as exc:
-        return {"error": str(exc)}
+    except (ValueError, ArithmeticError) as exc:  # RunFileError, or a value the analysis refuses: this row only
+        return {"error": printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)}
     axes = []
     spectra = []
     for c, r in a.channels.items():
@@ -151,8 +151,8 @@ def _validate(path: Path, channel_map, scenario_path: Path, speed_km_h: float, t
         if measured is None:
             measured = analyse_recording(rec)
         predicted, fs = rv.predicted_seat(scenario, speed_km_h, track, tyre_data)
-    except (RunFileError, ValueError) as exc:
-        return {"error": str(exc).splitlines()[0]}
+    except (ValueError, ArithmeticError) as exc:  # RunFileError included: this row only
+        return {"error": printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)}
     rows = rv.validation_rows(measured, predicted, fs, track.known_profile, signals)
     from ..vehicle.measured_ride import analyse_signals
 
@@ -169,45 +169,50 @@ def _plain(row: dict) -> dict:
     return {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in row.items()}
 
 
-class _Row(NamedTuple):
-    """A usable ``rides.csv`` row, planned: its recording's item key and its validation's (or None)."""
-
-    campaign: Path
-    row: dict
-    path: Path
-    channel_map: object
-    digest: str
-    key: str
-    scenario_path: Path | None
-    track: object
-    fits: dict | None
-    vkey: str | None
-
-
-def _rows(ctx: Context, cache: ItemCache, fit_tables: dict, refuse, counts: dict, progress: bool = True):
-    """The usable rows of every ``rides.csv``, each with its items' keys (:class:`_Row`), computing
-    nothing; a row or file that cannot be used is ``refuse(campaign, ride_id, file, reason)``'d.
-    ``counts`` gets ``n_in`` (rows) and ``n_rejected`` (files refused as a whole)."""
+def run(ctx: Context) -> StageResult:
+    """Analyse every recording of every ``rides.csv``; write the tables and quarantine rows."""
     from ..rawformat import load_channel_map
-    from ..scenario_io import ScenarioError, load_scenario
     from ..vehicle import ride_validation as rv
-    from .tyredata import scenario_fits
+    from ..vehicle.daily_exposure import (HOURS_TOLERANCE_H, MAX_HOURS_PER_DAY, TaskExposure, daily_exposure,
+                                          hours_problem)
+    from ..scenario_io import ScenarioError, load_scenario
+    from .tyredata import FitTyres, read_fit_tables, scenario_fits
 
+    t0 = time.perf_counter()
     schema = load_schema("raw_rides")
+    cache = ItemCache(ctx, "rides")
+    quarantine: list[dict] = []
+    recordings, axes, spectra, validation, tasks = [], [], [], [], []
     seen: dict[str, str] = {}
-    counts.setdefault("n_in", 0)
-    counts.setdefault("n_rejected", 0)
+    n_in = n_rejected = 0
+    fit_tables = read_fit_tables(ctx)
+
+    def where(campaign) -> str:
+        """A campaign folder as the warehouse holds it: relative to the raw folder (``.`` for the raw
+        folder itself), never this machine's path."""
+        try:
+            return Path(campaign).resolve().relative_to(Path(ctx.raw).resolve()).as_posix()
+        except ValueError:
+            return Path(campaign).name
+
+    def refuse(campaign: Path, ride_id, file, reason: str) -> None:
+        reason = printable(reason)
+        quarantine.append({"campaign": where(campaign), "run_id": None if ride_id is None else str(ride_id),
+                           "file": None if file is None else str(file), "stage": "rides", "reason": reason})
+        ctx.log.warning("rides: %s: %s: %s", printable(campaign.name),
+                        printable(ride_id) if ride_id is not None else "rides.csv", reason)
+
     for campaign in discover_ride_campaigns(ctx.raw):
         try:
             table = read_delimited(campaign / "rides.csv", schema)
         except RunFileError as exc:
-            counts["n_rejected"] += 1
+            n_rejected += 1
             refuse(campaign, None, "rides.csv", f"rides.csv: {exc}")
             continue
         frame = table.frame
         whole, by_row = row_problems(frame, schema)
         if whole:
-            counts["n_rejected"] += 1
+            n_rejected += 1
             refuse(campaign, None, "rides.csv", "rides.csv: " + "; ".join(whole))
             continue
         channel_map = None
@@ -217,11 +222,9 @@ def _rows(ctx: Context, cache: ItemCache, fit_tables: dict, refuse, counts: dict
             except RunFileError as exc:
                 channel_map = None
                 ctx.log.warning("rides: %s: channel_map.json: %s", campaign.name, exc)
-        rows = frame.to_dict("records")
-        if progress:
-            rows = Progress(f"rides: {campaign.name}", len(frame), logger=ctx.log, unit="recordings").iterate(rows)
-        for i, row in enumerate(rows):
-            counts["n_in"] += 1
+        progress = Progress(f"rides: {campaign.name}", len(frame), logger=ctx.log, unit="recordings")
+        for i, row in enumerate(progress.iterate(frame.to_dict("records"))):
+            n_in += 1
             ride_id, file = row.get("ride_id"), row.get("file")
             if by_row.get(i):
                 refuse(campaign, ride_id, file, "; ".join(by_row[i]))
@@ -229,7 +232,7 @@ def _rows(ctx: Context, cache: ItemCache, fit_tables: dict, refuse, counts: dict
             if ride_id in seen:
                 refuse(campaign, ride_id, file, f"duplicate ride_id (also in {seen[ride_id]})")
                 continue
-            seen[ride_id] = str(campaign)
+            seen[ride_id] = where(campaign)
             try:
                 path = confined_run_path(campaign, file)
             except RunFileError as exc:
@@ -250,99 +253,82 @@ def _rows(ctx: Context, cache: ItemCache, fit_tables: dict, refuse, counts: dict
                 refuse(campaign, ride_id, file, f"scenario {row.get('scenario')}: {'; '.join(problems)}"
                        if isinstance(exc, (ScenarioError, RunFileError)) else str(exc))
                 continue
+            hours = row.get("hours_per_day")
+            hours = float(hours) if hours not in (None, "") and not (isinstance(hours, float) and math.isnan(hours)) \
+                else None
+            if hours is not None and hours_problem(hours):  # e.g. 1e-320 h: refused before anything is read
+                refuse(campaign, ride_id, file, f"hours_per_day: {hours_problem(hours)}")
+                continue
+            speed = float(row["speed_km_h"])
+            if scenario_path is not None and not speed > 0:
+                refuse(campaign, ride_id, file, f"speed_km_h {speed:g}: a row with a scenario is checked against its "
+                                                "prediction at this speed, which needs a speed above 0")
+                continue
             digest = cache.file_digest(path)  # by content; an unchanged file (size, mtime) is not read again
             key = cache.key("recording", digest, str(path.suffix), channel_map)
-            vkey = None
-            if scenario_path is not None:
+            result = cache.get_or_compute(key, lambda: _analyse(path, channel_map))
+            if "error" in result:
+                refuse(campaign, ride_id, file, result["error"])
+                continue
+            ident = {"ride_id": ride_id, "campaign": where(campaign), "file": str(file), "vehicle": row["vehicle"],
+                     "speed_km_h": speed, "track": str(row.get("track") or "scenario"),
+                     "recorded_on": str(row["recorded_on"]), "scenario": row.get("scenario") or None,
+                     "task": row.get("task") or None}
+            val = None
+            if scenario_path is not None:  # checked before the row is kept: a row is kept or quarantined, not both
                 # its recording, its scenario and the fits of ITS tyres (scenario_fits): a new run of
                 # another tyre leaves the key alone
-                vkey = cache.key("validation", digest, cache.file_digest(scenario_path), float(row["speed_km_h"]),
-                                 repr(track), fits, channel_map, profiles)
-            yield _Row(campaign, row, path, channel_map, digest, key, scenario_path, track, fits, vkey)
-
-
-def item_plan(ctx: Context) -> list[str]:
-    """What a run of the stage now would compute, item by item, computing nothing (``run --explain``):
-    the recordings to analyse and the validations to compute (a recording's new file; a validation's
-    recording, scenario or the fit rows of its tyres changed)."""
-    from .tyredata import read_fit_tables
-
-    cache = ItemCache(ctx, "rides")
-    keys, vkeys = set(), set()
-    for r in _rows(ctx, cache, read_fit_tables(ctx), lambda *a: None, {}, progress=False):
-        keys.add(r.key)
-        if r.vkey is not None:
-            vkeys.add(r.vkey)
-    kept, vkept = sum(map(cache.has, keys)), sum(map(cache.has, vkeys))
-    return [f"recordings: {kept} kept, {len(keys) - kept} to analyse; validations: {vkept} kept, "
-            f"{len(vkeys) - vkept} to compute"]
-
-
-def run(ctx: Context) -> StageResult:
-    """Analyse every recording of every ``rides.csv``; write the tables and quarantine rows."""
-    from ..vehicle import ride_validation as rv
-    from ..vehicle.daily_exposure import TaskExposure, daily_exposure
-    from .tyredata import FitTyres, read_fit_tables
-
-    t0 = time.perf_counter()
-    cache = ItemCache(ctx, "rides")
-    quarantine: list[dict] = []
-    recordings, axes, spectra, validation, tasks = [], [], [], [], []
-    counts: dict = {}
-
-    def refuse(campaign: Path, ride_id, file, reason: str) -> None:
-        quarantine.append({"campaign": str(campaign), "run_id": None if ride_id is None else str(ride_id),
-                           "file": None if file is None else str(file), "stage": "rides", "reason": reason})
-        ctx.log.warning("rides: %s: %s: %s", campaign.name, ride_id if ride_id is not None else "rides.csv", reason)
-
-    for campaign, row, path, channel_map, digest, key, scenario_path, track, fits, vkey in \
-            _rows(ctx, cache, read_fit_tables(ctx), refuse, counts):
-        ride_id, file = row.get("ride_id"), row.get("file")
-        result = cache.get_or_compute(key, lambda: _analyse(path, channel_map))
-        if "error" in result:
-            refuse(campaign, ride_id, file, result["error"])
-            continue
-        speed = float(row["speed_km_h"])
-        ident = {"ride_id": ride_id, "campaign": str(campaign), "file": str(file), "vehicle": row["vehicle"],
-                 "speed_km_h": speed, "track": str(row.get("track") or "scenario"),
-                 "recorded_on": str(row["recorded_on"]), "scenario": row.get("scenario") or None,
-                 "task": row.get("task") or None}
-        hours = row.get("hours_per_day")
-        hours = float(hours) if hours not in (None, "") and not (isinstance(hours, float) and math.isnan(hours)) \
-            else None
-        study = {k: (str(row[k]).strip() if isinstance(row.get(k), str) and row[k].strip() else None)
-                 for k in STUDY_COLUMNS}
-        recordings.append({**ident, "hours_per_day": hours, **result["summary"], **study, "file_sha256": digest})
-        axes.extend({"ride_id": ride_id, **a} for a in result["axes"])
-        for s in result["spectra"]:
-            spectra.append(pd.DataFrame({"ride_id": ride_id, "source": "measured", "channel": s["channel"],
-                                         "frequency_Hz": s["frequency_Hz"], "psd_m2_s4_per_Hz": s["psd"]}))
-        if hours and row.get("task") and result["exposure"]:
-            tasks.append((ident, hours, result))
-        if vkey is not None:
-            val = cache.get_or_compute(vkey, lambda: _validate(path, channel_map, scenario_path, speed, track,
-                                                               FitTyres(fits, str(ctx.parquet)),
-                                                               result.get("analysis")))
-            if "error" in val:
-                refuse(campaign, ride_id, file, f"prediction: {val['error']}")
-                continue
-            validation.extend({**ident, **r} for r in val["rows"])
-            for s in val["spectra"]:
-                spectra.append(pd.DataFrame({"ride_id": ride_id, "source": "predicted", "channel": s["channel"],
-                                             "frequency_Hz": s["frequency_Hz"],
-                                             "psd_m2_s4_per_Hz": s["psd"]}))
+                vkey = cache.key("validation", digest, cache.file_digest(scenario_path), speed, repr(track), fits,
+                                 channel_map, profiles)
+                val = cache.get_or_compute(vkey, lambda: _validate(path, channel_map, scenario_path, speed, track,
+                                                                   FitTyres(fits, str(ctx.parquet)),
+                                                                   result.get("analysis")))
+                if "error" in val:
+                    refuse(campaign, ride_id, file, f"prediction: {val['error']}")
+                    continue
+            study = {k: (str(row[k]).strip() if isinstance(row.get(k), str) and row[k].strip() else None)
+                     for k in STUDY_COLUMNS}
+            recordings.append({**ident, "hours_per_day": hours, **result["summary"], **study, "file_sha256": digest})
+            axes.extend({"ride_id": ride_id, **a} for a in result["axes"])
+            for s in result["spectra"]:
+                spectra.append(pd.DataFrame({"ride_id": ride_id, "source": "measured", "channel": s["channel"],
+                                             "frequency_Hz": s["frequency_Hz"], "psd_m2_s4_per_Hz": s["psd"]}))
+            if hours and row.get("task"):  # a task without a seat channel stays in its day (no verdict), named
+                tasks.append((ident, hours, result))
+            if val is not None:
+                validation.extend({**ident, **r} for r in val["rows"])
+                for s in val["spectra"]:
+                    spectra.append(pd.DataFrame({"ride_id": ride_id, "source": "predicted", "channel": s["channel"],
+                                                 "frequency_Hz": s["frequency_Hz"],
+                                                 "psd_m2_s4_per_Hz": s["psd"]}))
     days = []
     by_day: dict = {}
     for ident, hours, result in tasks:
         by_day.setdefault((ident["campaign"], ident["vehicle"], ident["recorded_on"]), []).append((ident, hours, result))
     for (campaign, vehicle, day), items in sorted(by_day.items()):
+        # a task whose recording has no seat channel cannot be in the day's A(8): the day keeps it,
+        # named, and gets no verdict (its A(8) would leave those hours out)
+        seatless = [(i, h) for i, h, r in items if not r["exposure"]]
+        seated = [(i, h, r) for i, h, r in items if r["exposure"]]
         try:
+            if not seated:
+                raise ValueError("no task has a seat channel (seat_x_m_s2, seat_y_m_s2 or seat_z_m_s2)")
+            total = sum(h for _, h, _ in items)
+            if total > MAX_HOURS_PER_DAY + HOURS_TOLERANCE_H:
+                raise ValueError(f"tasks add up to {total:g} h, more than a day ({MAX_HOURS_PER_DAY:g} h)")
             d = daily_exposure([TaskExposure(i["task"], h, {k: v[0] for k, v in r["exposure"].items()},
                                              {k: v[1] for k, v in r["exposure"].items()}, r["summary"]["duration_s"],
-                                             r["summary"]["dz_m_s2"]) for i, h, r in items])
+                                             r["summary"]["dz_m_s2"]) for i, h, r in seated])
         except ValueError as exc:
-            refuse(Path(campaign), None, "rides.csv", f"{vehicle} on {day}: {exc}")
+            refuse(Path(ctx.raw) / campaign, None, "rides.csv", f"{vehicle} on {day}: {exc}")
             continue
+        if seatless:
+            names = ", ".join(f"{i['task']} ({h:g} h, {i['ride_id']})" for i, h in seatless)
+            withheld = (f"no verdict: task(s) {names} without a seat channel: the daily exposure is taken at the "
+                        "seat, and the A(8) leaves those hours out")
+            ctx.log.warning("rides: %s on %s: %s", printable(vehicle), day, printable(withheld))
+            d = {**d, "verdict": withheld, "vdv_verdict": withheld, "hours_to_eav": math.nan, "hours_to_elv": math.nan,
+                 "hours_per_day": d["hours_per_day"] + sum(h for _, h in seatless)}
         days.append({"campaign": campaign, "vehicle": vehicle, "recorded_on": day, "tasks": len(items),
                      "hours_per_day": d["hours_per_day"], "a8_m_s2": d["a8_m_s2"], "a8_axis": d["a8_axis"],
                      **{f"a8_{k}_m_s2": v for k, v in d["a8_axes_m_s2"].items()},
@@ -360,7 +346,6 @@ def run(ctx: Context) -> StageResult:
     write_quarantine(ctx, "rides", quarantine)
     cache.prune()
     n_bad = sum(1 for q in quarantine if q["run_id"] is not None)
-    return StageResult("rides", n_in=counts.get("n_in", 0), n_ok=len(recordings), n_quarantined=n_bad,
-                       n_rejected=counts.get("n_rejected", 0),
+    return StageResult("rides", n_in=n_in, n_ok=len(recordings), n_quarantined=n_bad, n_rejected=n_rejected,
                        seconds=time.perf_counter() - t0,
                        message=f"recordings {cache.summary('recording')}, validations {cache.summary('validation')}")

@@ -68,7 +68,7 @@ from .tyredata import FitTyres, WarehouseTyres, read_fit_tables, scenario_fits
 __all__ = ["SEED", "STEMS", "THESIS_XX_STATISTICS", "run", "start_studies_ahead", "abandon_studies_ahead",
            "start_ahead", "abandon_ahead", "item_plan",
            "WarehouseTyres", "scenario_files", "scenario_items", "scenario_task", "run_scenarios", "collect_scenarios",
-           "collect_scenario_spectra", "RIDE_TABLES"]
+           "collect_scenario_spectra", "RIDE_TABLES", "portable_path"]
 
 SEED = 5007
 
@@ -94,7 +94,12 @@ def _read(ctx: Context) -> tuple[dict[str, pd.DataFrame], pd.DataFrame]:
     for stem in STEMS:
         tables[stem] = published.read_published(stem, ctx.raw)
         path = published.published_dir(ctx.raw) / f"{stem}.csv"
-        sources.append({"table": stem, "source": str(path), "rows": len(tables[stem])})
+        # relative to the raw folder (published/table_x.csv), a shipped table as shipped/table_x.csv: no
+        # path of this machine in the warehouse
+        shipped = published.published_dir(None)
+        source = (f"shipped/{path.name}" if path.parent.resolve() == shipped.resolve() else
+                  portable_path(str(path), ctx.raw))
+        sources.append({"table": stem, "source": source, "rows": len(tables[stem])})
     return tables, pd.DataFrame(sources)
 
 
@@ -217,10 +222,11 @@ def read_study_recordings(ctx: Context, cache: ItemCache | None = None) -> tuple
     if "study" not in table.columns:
         return carriage, tractor, problems
     for row in table[table["study"].notna()].to_dict("records"):
-        campaign, file = Path(str(row["campaign"])), str(row["file"])
+        # the rides stage's campaign is relative to the raw folder (an absolute one, of an older build, stays)
+        campaign, file = Path(ctx.raw) / str(row["campaign"]), str(row["file"])
 
         def refuse(reason: str) -> None:
-            problems.append({"campaign": str(campaign), "run_id": str(row["ride_id"]), "file": file,
+            problems.append({"campaign": str(row["campaign"]), "run_id": str(row["ride_id"]), "file": file,
                              "stage": "simulate", "reason": f"{row['study']} study: {reason}"})
             ctx.log.warning("simulate: %s: %s study: %s", row["ride_id"], row["study"], reason)
 
@@ -509,6 +515,11 @@ def _compute(ctx: Context, pub: dict, sources: pd.DataFrame, cache: ItemCache, f
     }
     # ride scenarios (issue 13)
     ride_tables, bad = _ride_finish(ctx, files, cache, ride_keys, ride_done, ride_todo, ride_outputs)
+    portable = {path: portable_path(path, ctx.raw) for path, _ in files}
+    for name, df in ride_tables.items():  # the warehouse holds no path of this machine (a build is portable)
+        if "file" in df:
+            ride_tables[name] = df.assign(file=df["file"].map(lambda f: portable.get(f, f)))
+    bad = [{**b, "file": portable.get(b["file"], b["file"])} for b in bad]
     tables.update(ride_tables)
     quarantine = [{"campaign": None, "run_id": None, "file": b["file"], "stage": "simulate", "reason": b["reason"]}
                   for b in bad] + rec_problems
@@ -607,6 +618,26 @@ def scenario_files(raw: Path | None) -> list[tuple[str, str]]:
         if p.is_file() and p.read_bytes() not in seen:  # a named pipe is skipped (the raw walk warns of it)
             out.append((str(p), "raw"))
     return out
+
+
+def portable_path(path: str, raw: Path | None) -> str:
+    """A file read as the warehouse holds it (``ride_results.file`` and the other ride tables,
+    ``simulate_inputs.source``): relative to the raw folder (``scenarios/field.toml``), a shipped
+    scenario relative to the shipped folder (``mf698t.toml``), never this machine's absolute path.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> portable_path(str(scenarios_dir() / "mf698t.toml"), None)
+    'mf698t.toml'
+    """
+    p = Path(path).resolve()
+    for base in ([Path(raw)] if raw is not None else []) + [resources.scenarios_dir()]:
+        try:
+            return p.relative_to(Path(base).resolve()).as_posix()
+        except ValueError:
+            continue
+    return p.name
 
 
 def scenario_items(files: list[tuple[str, str]], build: Path | None = None, tyre_data: list | None = None) -> list[tuple]:

@@ -68,7 +68,7 @@ from . import profiles as pr
 from .carriage import GRAVITY_M_S2
 from .scenario import Scenario, with_overrides, with_values
 from .carriage import half_step_input
-from .model import Assembly, Axle, Cab, Chassis, Implement, Parts, SeatPoint, SeatSuspension, assemble
+from .model import Assembly, Parts, SeatPoint, SeatSuspension, assemble
 from .tractor import Tractor, simulate, tractor_parts
 from .units import KILO, from_kilo, to_kilo
 from .scenario_limits import MIN_VERDICT_DURATION_S
@@ -104,6 +104,7 @@ __all__ = [
     "ride_variants",
     "RideCache",
     "ride_sweep",
+    "spectral_variants",
     "expected_weighted_rms",
     "expected_sweep",
     "result_json",
@@ -271,7 +272,7 @@ def _damping_fit():
                                                              published.read_published("table_ii")))
 
 
-def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
+def resolve_tyres(scenario: Scenario, tyre_data=None, memo: dict | None = None) -> dict[str, AxleTyres]:
     """Stiffness, damping, radius and footprint of the front and rear tyres per speed.
 
     Order of precedence per quantity: the scenario's override, the measured tyre
@@ -280,7 +281,9 @@ def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
     :func:`~tyrelab.tyre.speed_dependence.at_speeds`), the fitted formula (stiffness,
     ``tyre_data.stiffness_model``: ``formula`` = thesis or build) or the Table VII damping
     model (damping, with its prediction interval in the warnings). ``tyre_data`` default
-    :class:`ShippedTyres` (no warehouse).
+    :class:`ShippedTyres` (no warehouse). ``memo``: a dict that keeps each axle's result by its
+    tyre, speeds, static load and ``tyre_data`` (:class:`RideCache`: the variants of a sweep share
+    most axles).
 
     Raises
     ------
@@ -288,6 +291,7 @@ def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
         When a measured tyre cannot be found.
     """
     _validate.instance("scenario", scenario, Scenario)
+    source = id(tyre_data) if tyre_data is not None else None
     tyre_data = tyre_data or ShippedTyres()
     speeds = np.asarray(scenario.exposure.speeds_km_h, float)
     lists = scenario.exposure.list_speeds_km_h
@@ -296,6 +300,10 @@ def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
               "rear": t.mass_kg * GRAVITY_M_S2 * t.front_distance_m / t.wheelbase_m / 2}
     out = {}
     for axle, spec in (("front", scenario.front), ("rear", scenario.rear)):
+        key = (axle, spec, tuple(speeds), tuple(lists), load_n[axle], source)
+        if memo is not None and key in memo:
+            out[axle] = memo[key]
+            continue
         warnings: list[str] = []
         k_u = 0.0
         if spec.stiffness_kN_per_m is not None:
@@ -329,6 +337,8 @@ def resolve_tyres(scenario: Scenario, tyre_data=None) -> dict[str, AxleTyres]:
             lateral = _lateral_tyre(spec, k, np.maximum(c, 0.0))
         out[axle] = AxleTyres(spec.size, spec.pressure_bar, k, np.maximum(c, 0.0), k_src, c_src, float(radius), fp,
                               tuple(warnings), float(k_u), **lateral)
+        if memo is not None:
+            memo[key] = out[axle]
     return out
 
 
@@ -362,56 +372,21 @@ def build_tractor(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Tr
 def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Parts:
     """The tractor's :class:`~tyrelab.vehicle.model.Parts` at speed index ``i`` (per tyre, SI).
 
-    The scenario's kN, kN s and kN m values become N, N s, N m here, once; the rear tyres carry
-    the longitudinal element. Without ``tractor.roll_inertia_kg_m2`` the parts are those of the
-    pitch-plane :class:`~tyrelab.vehicle.tractor.Tractor` of :func:`build_tractor`.
+    The looked-up tyre numbers at that speed in SI, then the scenario's own parts
+    (:meth:`tyrelab.vehicle.scenario.Scenario.parts`, where its kN values become SI). Without
+    ``tractor.roll_inertia_kg_m2`` the parts are those of the pitch-plane
+    :class:`~tyrelab.vehicle.tractor.Tractor` of :func:`build_tractor`.
     """
     _validate.instance("scenario", scenario, Scenario)
     _validate.positive_int("i", i, minimum=0)
-    t, seat = scenario.tractor, scenario.seat
-    lon = t.longitudinal_model
-    kx = from_kilo(t.longitudinal_stiffness_kN_per_m) if lon != "none" else 0.0
-    cx = from_kilo(t.longitudinal_damping_kN_s_per_m) if lon != "none" else 0.0
-    if lon == "maxwell" and not (kx > 0 and cx > 0):
-        lon = "none"  # a Maxwell element without spring or damper carries no force
-
-    def axle(name: str, ahead: float, spec, track_m, **extra) -> Axle:
-        ty = tyres[name]
-        kw = {}
-        if spec.mount != "rigid":
-            kw["roll_inertia_kg_m2"] = spec.roll_inertia_kg_m2 or 0.0
-        if ty.lateral_stiffness_kN_per_m is not None:  # issue 33: the tyres' lateral elements
-            kw.update(lateral_model=t.lateral_model,
-                      lateral_stiffness_N_per_m=from_kilo(float(ty.lateral_stiffness_kN_per_m[i])),
-                      lateral_damping_N_s_per_m=from_kilo(float(ty.lateral_damping_kN_s_per_m[i])))
-            if spec.mount == "pivot":  # the pivot at the axle centre, a rolling radius above the ground
-                kw["height_m"] = spec.height_m if spec.height_m is not None else ty.radius_m
-        if spec.mount == "suspended":
-            kw.update(mass_kg=spec.mass_kg, height_m=spec.height_m if spec.height_m is not None else ty.radius_m,
-                      suspension_stiffness_N_per_m=from_kilo(spec.suspension_stiffness_kN_per_m),
-                      suspension_damping_N_s_per_m=from_kilo(spec.suspension_damping_kN_s_per_m))
-        return Axle(name, ahead, from_kilo(float(ty.stiffness_kN_per_m[i])), from_kilo(float(ty.damping_kN_s_per_m[i])),
-                    track_m=track_m or 0.0, mount=spec.mount, **kw, **extra)
-
-    cab = None
-    if scenario.cab.mount == "suspended":
-        c = scenario.cab
-        cab = Cab(c.mass_kg, c.pitch_inertia_kg_m2, c.roll_inertia_kg_m2 or 0.0, c.ahead_of_cg_m, c.height_above_cg_m,
-                  c.front_mount_ahead_of_cg_m, c.rear_mount_ahead_of_cg_m, c.mount_track_m,
-                  from_kilo(c.mount_stiffness_kN_per_m), from_kilo(c.mount_damping_kN_s_per_m))
-    imp = None
-    if scenario.implement is not None:
-        m = scenario.implement
-        imp = Implement(m.mass_kg, m.pitch_inertia_kg_m2, m.roll_inertia_kg_m2, m.behind_rear_axle_m, m.height_m,
-                        m.mount, m.hitch_behind_rear_axle_m, m.hitch_height_m,
-                        from_kilo(m.hitch_stiffness_kN_m_per_rad or 0.0), from_kilo(m.hitch_damping_kN_m_s_per_rad))
-    return Parts(
-        Chassis(t.mass_kg, t.pitch_inertia_kg_m2, t.cg_height_m, t.roll_inertia_kg_m2, t.yaw_inertia_kg_m2),
-        axle("front", t.front_distance_m, scenario.front_axle, t.front_track_m),
-        axle("rear", -t.rear_distance_m, scenario.rear_axle, t.rear_track_m, longitudinal_model=lon,
-             longitudinal_stiffness_N_per_m=kx, longitudinal_damping_N_s_per_m=cx),
-        _seat_part(seat), cab, imp, scenario.ballast, static_load_moment=True)
-
+    si = {}
+    for axle, ty in tyres.items():  # the looked-up tyre numbers (kN) at this speed, in SI
+        si[axle] = {"stiffness_N_per_m": from_kilo(float(ty.stiffness_kN_per_m[i])),
+                    "damping_N_s_per_m": from_kilo(float(ty.damping_kN_s_per_m[i])), "radius_m": ty.radius_m}
+        if ty.lateral_stiffness_kN_per_m is not None:
+            si[axle].update(lateral_stiffness_N_per_m=from_kilo(float(ty.lateral_stiffness_kN_per_m[i])),
+                            lateral_damping_N_s_per_m=from_kilo(float(ty.lateral_damping_kN_s_per_m[i])))
+    return scenario.parts(si)
 
 # --------------------------------------------------------------------------- linear model
 def state_names(tractor: Tractor) -> list[str]:
@@ -507,14 +482,6 @@ def seat_filter(natural_frequency_Hz: float, damping_ratio: float):
     if not (math.isfinite(z) and z >= 0):
         raise ValueError(f"damping_ratio must be finite and non-negative, got {damping_ratio!r}")
     return SeatSuspension(natural_frequency_Hz, damping_ratio).linear().abcd
-
-
-def _seat_part(seat) -> SeatPoint:
-    """The seat of a scenario's ``[seat]`` as a part: its point and its suspension
-    (:class:`~tyrelab.vehicle.model.SeatSuspension`, None for a rigid seat)."""
-    suspension = (SeatSuspension(seat.natural_frequency_Hz, seat.damping_ratio) if seat.suspension == "linear"
-                  else None)
-    return SeatPoint(seat.ahead_of_cg_m, seat.left_of_cg_m, seat.height_above_cg_m, suspension)
 
 
 def frequency_response(a, b, c, d, frequency_Hz) -> np.ndarray:
@@ -874,6 +841,9 @@ class RideResult:
     #: 3-D with a stand-in lateral stiffness (issue 33): speed (km/h) -> A(8) (m/s²) with every stand-in
     #: lateral stiffness at the low and at the high end of its 95 % interval (:func:`_lateral_interval`).
     a8_lateral_ci95_m_s2: dict = field(default_factory=dict)
+    #: Of a variant whose ``speeds`` are spectral rows: its time-domain rows where it was simulated too
+    #: (``method = "auto"``, :mod:`tyrelab.vehicle.spectral_ride`), else empty.
+    time_rows: pd.DataFrame = field(default_factory=pd.DataFrame)
 
 
 def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float | None) -> tuple[int, int]:
@@ -993,6 +963,8 @@ class RideCache:
         self.tracks: dict = {}
         self.enveloped: dict = {}
         self.seat: dict = {}
+        #: :func:`resolve_tyres`' memo
+        self.tyres: dict = {}
 
     def track(self, scenario: Scenario) -> tuple[tuple, Track]:
         """(key, :class:`Track`) of ``scenario``'s surface (:func:`build_profile`, once per surface)."""
@@ -1018,7 +990,7 @@ class RideCache:
     def seat_system(self, seat) -> lti.FohSystem | None:
         """The seat's suspension (a scenario's ``[seat]`` or a :class:`~tyrelab.vehicle.model.SeatSuspension`
         part) discretised at :data:`DT_S` (None for a rigid seat)."""
-        part = seat if isinstance(seat, SeatSuspension) else _seat_part(seat).suspension
+        part = seat if isinstance(seat, SeatSuspension) else seat.part().suspension
         if part is None:
             return None
         if part not in self.seat:
@@ -1085,10 +1057,10 @@ def ride_variants(scenarios, tyre_data=None, with_spectra: bool = True, with_sig
 
 def _prepare(scenario: Scenario, tyre_data, cache: RideCache) -> dict:
     """Per variant: tyres, track, seat filter, outputs; the runs are filled in by :func:`_linear_run`."""
-    tyres = resolve_tyres(scenario, tyre_data)
+    tyres = resolve_tyres(scenario, tyre_data, cache.tyres)
     track_key, track = cache.track(scenario)
     axes = seat_axes(scenario)  # axis -> output name
-    seat = _seat_part(scenario.seat).suspension  # the seat part's filter (no feedback on the tractor)
+    seat = scenario.seat.part().suspension  # the seat part's filter (no feedback on the tractor)
     return {"sc": scenario, "tyres": tyres, "track": track, "track_key": track_key,
             "wb": scenario.tractor.wheelbase_m, "speeds": scenario.exposure.speeds_km_h, "axes": axes,
             "seat_sys": cache.seat_system(seat) if seat is not None else None,
@@ -1212,12 +1184,14 @@ def _reduce(p: dict, i: int, y: np.ndarray) -> None:
         "vdv_m_s1_75": vdv,
         "vdv_daily_m_s1_75": float(vdv * (hours * 3600.0 / duration) ** 0.25),
         "crest_factor": iso2631.crest_factor(weighted["z"]),
+        "mtvv_m_s2": max(iso2631.AXIS_FACTOR[ax] * iso2631.mtvv(sig, FS_HZ) for ax, sig in weighted.items()),
         "lift_off_fraction_front": r["lift"][0],
         "lift_off_fraction_rear": r["lift"][1],
         **exposure(aw["z"], aw["x"], hours, aw["y"]),
         "hours_per_day": hours,
         "duration_s": duration,
         "simulation": r["method"],
+        "method": "time",
     }
     if duration < MIN_VERDICT_DURATION_S:  # the exposure numbers stay; the verdict is withheld
         row["verdict"] = f"no verdict: record {duration:.2f} s, shorter than {MIN_VERDICT_DURATION_S:g} s"
@@ -1351,10 +1325,11 @@ def input_cross_spectra(tyres: list[str], side_spectrum, f_Hz, v: float, wheelba
     return out
 
 
-def _expected_batch(members: list, v: float) -> None:
+def _expected_batch(members: list, v: float, forces: bool = False) -> None:
     """Expected weighted r.m.s. per seat axis (``run["expected"]``) of the runs ``members``
     (``(variant, speed index)`` pairs sharing a track and speed ``v``, m/s) from the
-    frequency-domain path: one batched :func:`expected_weighted_rms` per model structure."""
+    frequency-domain path: one batched :func:`expected_weighted_rms` per model structure; with
+    ``forces`` also the r.m.s. of every tyre element's dynamic force (``run["force_sd"]``, N)."""
     batches: dict = {}
     for p, i in members:
         r, sc = p["runs"][i], p["sc"]
@@ -1373,13 +1348,17 @@ def _expected_batch(members: list, v: float) -> None:
             table = np.array([enveloping_response(sc.surface.enveloping, fp, track.profile.dx_m, grid["n"]) for fp in fps])
             env[axle] = (table, np.array([fps.index(r["fp"][j]) for r in runs]))
         seat_tf = _seat_tf(p0["seat_ss"], grid["f"]) if p0["seat_ss"] is not None else None
-        na = len(axes)
+        tyres = runs[0]["asm"].tyres
+        rows = axes + [f"force:{t}" for t in tyres] if forces else axes  # the rows of lm: seat axes, tyre forces
+        na = len(rows)
         lms = [r["lm"] for r in runs]
         out = expected_weighted_rms(np.array([m.a for m in lms]), np.array([m.b for m in lms]),
                                     np.array([m.c[:na] for m in lms]), np.array([m.d[:na] for m in lms]),
-                                    runs[0]["asm"].tyres, grid, env, seat_tf, axes)
+                                    tyres, grid, env, seat_tf, rows, chunk=4 if forces else 8)
         for k, r in enumerate(runs):
-            r["expected"] = {ax: float(val[k]) for ax, val in out.items()}
+            r["expected"] = {ax: float(out[ax][k]) for ax in axes}
+            if forces:
+                r["force_sd"] = {t: float(out[f"force:{t}"][k]) for t in tyres}
 
 
 def _fd_grid(scenario: Scenario, track: Track, v: float) -> dict:
@@ -1425,7 +1404,8 @@ def expected_weighted_rms(a, b, c, d, tyres, grid: dict, env: dict, seat_tf, axe
     seat_tf : ndarray or None
         Seat suspension transmissibility on the grid (applied to ``z``).
     axes : sequence of str
-        Seat axes of the output rows (``z``, ``x``, ``y``).
+        Names of the output rows: seat axes (``z``, ``x``, ``y``: weighted) or any other name (an
+        output taken unweighted, e.g. a tyre force: its r.m.s. in its own unit).
     chunk : int
         Variants per vectorised step (memory).
 
@@ -1455,7 +1435,8 @@ def expected_weighted_rms(a, b, c, d, tyres, grid: dict, env: dict, seat_tf, axe
     seat2 = np.abs(seat_tf) ** 2 if seat_tf is not None else None
     quad = {}
     for ax in axes:
-        q = trap * np.abs(iso2631.weighting_response(f, {"x": "Wd", "y": "Wd", "z": "Wk"}[ax])) ** 2
+        weighting = {"x": "Wd", "y": "Wd", "z": "Wk"}.get(ax)  # any other output (a force): unweighted
+        q = trap * np.abs(iso2631.weighting_response(f, weighting)) ** 2 if weighting else trap
         if seat2 is not None and ax == "z":
             q = q * seat2
         quad[ax] = q * grid["s_u"] if "s_u" in grid else q
@@ -1574,6 +1555,165 @@ def _ride_batch(item: tuple) -> list[RideResult]:
     return ride_variants(scenarios, tyre_data, with_spectra)
 
 
+# --------------------------------------------------------------------------- spectral rows (issue 36)
+def spectral_variants(scenarios, tyre_data=None, with_spectra: bool = True,
+                      cache: RideCache | None = None) -> list[RideResult]:
+    """:func:`ride_variants` in the frequency domain: per variant and speed a spectral row
+    (:func:`tyrelab.vehicle.spectral_ride.spectral_row`: the exact expectation of the linear model
+    for the track's spectrum), no simulation.
+
+    Parameters
+    ----------
+    scenarios : sequence of Scenario
+    tyre_data : object, optional
+        As :func:`ride`.
+    with_spectra : bool
+        Also the expected seat PSD per axis (on a 0.1 Hz grid of 0.2-20 Hz) and the transmissibility.
+    cache : RideCache, optional
+
+    Returns
+    -------
+    list of RideResult
+        One per scenario, its ``speeds`` the spectral rows.
+    """
+    for k, sc in enumerate(scenarios):
+        _validate.instance(f"scenarios[{k}]", sc, Scenario)
+    cache = cache or RideCache()
+    preps = [_prepare(sc, tyre_data, cache) for sc in scenarios]
+    groups: dict = {}
+    for p in preps:
+        p["with_spectra"], p["with_signals"] = with_spectra, False
+        for i, speed in enumerate(p["speeds"]):
+            v = speed / 3.6
+            start, stop = _record_window(p["track"], p["wb"], v, p["sc"].simulation.duration_s)
+            _linear_model(p, i, v, start, stop)
+            groups.setdefault((p["track_key"], v), []).append((p, i))
+    for (_, v), members in groups.items():
+        _expected_batch(members, v, forces=True)
+        for p, i in members:
+            _spectral_reduce(p, i)
+    return [_finish(p) for p in preps]
+
+
+def _spectral_reduce(p: dict, i: int) -> None:
+    """The spectral row of speed ``i`` of variant ``p`` (and its expected seat PSD and transmissibility)."""
+    from . import spectral_ride as sr
+
+    sc, tyres, r, axes = p["sc"], p["tyres"], p["runs"][i], p["axes"]
+    hours = sc.exposure.hours_per_day
+    aw = {ax: r["expected"].get(ax, 0.0) for ax in ("z", "x", "y")}
+    asm = r["asm"]
+    k = (float(tyres["front"].stiffness_kN_per_m[i]), float(tyres["rear"].stiffness_kN_per_m[i]))
+    static = p.setdefault("static_loads", {})  # they change with the tyres' stiffness only (statically indeterminate)
+    if k not in static:
+        static[k] = asm.static_tyre_loads_N()
+    r["row"] = sr.spectral_row(p["speeds"][i], tyres, i, aw, axes, hours, (r["stop"] - r["start"]) * DT_S,
+                               r["force_sd"], static[k], 1 if asm.parts.three_d else 2,
+                               exposure(aw["z"], aw["x"], hours, aw["y"]))
+    if p["with_spectra"]:
+        speed = float(p["speeds"][i])
+        r["spectra"] = _expected_psd(p, i, sr.PSD_FREQUENCIES_HZ, speed)
+        r["trans"] = _transmissibility(r, axes, p["seat_ss"], np.geomspace(*FIGURE_BAND_HZ, 300), r["v"], p["wb"], speed)
+
+
+def _expected_psd(p: dict, i: int, f_Hz: np.ndarray, speed: float) -> pd.DataFrame:
+    """The expected seat acceleration PSD per axis (m²/s⁴/Hz, unweighted; the seat suspension on z) of
+    run ``i`` of ``p`` at ``f_Hz``: ``h S h^H`` with the enveloping filters and the wheelbase delay."""
+    r, sc, track, axes = p["runs"][i], p["sc"], p["track"], p["axes"]
+    v = r["v"]
+    n = f_Hz / v
+    env = {axle: enveloping_response(sc.surface.enveloping, r["fp"][j], track.profile.dx_m, n)
+           for j, axle in enumerate(("front", "rear"))}
+    h, tyres = _wheel_responses(r, f_Hz, v, env)
+    h = h[:len(axes)]
+    if not sc.tractor.three_d:
+        n_s, g_s = track.spectrum
+        s_u = np.interp(n, n_s, g_s, left=0.0, right=0.0) / v
+        delay = np.array([np.exp(-2j * math.pi * f_Hz * p["wb"] / v) if t.startswith("rear") else np.ones_like(f_Hz)
+                          for t in tyres])
+        power = np.abs(np.einsum("ptf,tf->pf", h, delay)) ** 2 * s_u
+    else:
+        n_s = track.side_spectrum[0]
+        inside = (n >= n_s[0]) & (n <= n_s[-1])
+        s_in = input_cross_spectra(list(tyres), track.side_spectrum, f_Hz, v, p["wb"]) * inside
+        power = np.einsum("pif,ijf,pjf->pf", h, s_in, np.conj(h)).real
+    out = {"speed_km_h": speed, "frequency_Hz": f_Hz}
+    for k, ax in enumerate(axes):
+        s = power[k]
+        if ax == "z" and p["seat_ss"] is not None:
+            s = s * np.abs(_seat_tf(p["seat_ss"], f_Hz)) ** 2
+        out[f"seat_{AXIS_WORDS[ax]}_psd_m2_s4_per_Hz"] = np.maximum(s, 0.0)
+    return pd.DataFrame(out)
+
+
+def _spectral_batch(item: tuple) -> list[RideResult]:
+    """Executor task: a chunk of variants in the frequency domain (module level, picklable)."""
+    scenarios, tyre_data, with_spectra = item
+    return spectral_variants(scenarios, tyre_data, with_spectra)
+
+
+def _in_chunks(task, scenarios: list, size: int, tyre_data, with_spectra: bool, map_fn) -> list[RideResult]:
+    """``task`` (:func:`_ride_batch`, :func:`_spectral_batch`) over chunks of ``scenarios`` of
+    ``size``, through the caller's executor ``map_fn``; results in order."""
+    chunks = [(scenarios[k:k + size], tyre_data, with_spectra) for k in range(0, len(scenarios), size)]
+    return [r for chunk in map_fn(task, chunks) for r in chunk]
+
+
+def _sweep_results(scenarios: list, method: str, nominal: int, tyre_data, with_spectra: bool | str, map_fn,
+                   max_samples: int | None) -> list[RideResult]:
+    """The results of a sweep's variants under ``method`` (:mod:`tyrelab.vehicle.spectral_ride`), in
+    order, with figure data as :func:`ride_sweep`'s ``with_spectra`` says. ``auto``'s time-domain
+    checks stay within ``max_samples`` (the nominal variant first, then the lifting speeds in order;
+    those beyond are left spectral, with a warning)."""
+    from . import scenario_limits as limits
+    from . import spectral_ride as sr
+
+    cache = RideCache()  # shared by the runs in this process (tracks, enveloped wheel tracks, tyres)
+
+    def timed(chosen: list, spectra: bool) -> list[RideResult]:  # chunks of variants, each batched in its task
+        if map_fn is None or len(chosen) <= 1:
+            return ride_variants(chosen, tyre_data, spectra, cache=cache) if chosen else []
+        return _in_chunks(_ride_batch, chosen, max(1, min(SWEEP_CHUNK, -(-len(chosen) // 8))), tyre_data, spectra,
+                          map_fn)
+
+    def spectral(chosen: list, spectra: bool) -> list[RideResult]:
+        if map_fn is None or len(chosen) <= sr.SPECTRAL_CHUNK:
+            return spectral_variants(chosen, tyre_data, spectra, cache) if chosen else []
+        return _in_chunks(_spectral_batch, chosen, sr.SPECTRAL_CHUNK, tyre_data, spectra, map_fn)
+
+    run = spectral if limits.uses_spectral(scenarios[0], method, len(scenarios)) else timed
+    if with_spectra == "nominal":  # the figure data of the nominal variant alone (what a sweep's page draws)
+        results = run(scenarios[:nominal] + scenarios[nominal + 1:], False)
+        results.insert(nominal, run([scenarios[nominal]], True)[0])
+    else:
+        results = run(scenarios, bool(with_spectra))
+    if run is timed or method == "spectral":
+        return results
+    checks = [(nominal, scenarios[nominal])]  # auto: the nominal variant and the speeds that may lift a tyre
+    budget = (max_samples or limits.MAX_SAMPLES) - limits.work_estimate(scenarios[nominal], 1)["samples"]
+    skipped = []
+    for j, r in enumerate(results):
+        lifting = sr.lifting_speeds(r.speeds) if j != nominal else []
+        if not lifting:
+            continue
+        sc = with_overrides(scenarios[j], lifting)
+        cost = limits.work_estimate(sc, 1)["samples"]
+        if cost > budget:
+            skipped.append(j)
+            continue
+        budget -= cost
+        checks.append((j, sc))
+    for (j, _), t in zip(checks, timed([sc for _, sc in checks], False)):
+        results[j].time_rows = t.speeds
+        results[j].warnings = list(dict.fromkeys(results[j].warnings + t.warnings))
+    for j in skipped:
+        results[j].warnings.append(
+            f"{len(skipped)} variant(s) whose lift-off probability exceeds {sr.LIFT_OFF_PROBABILITY_LIMIT:g} were not "
+            "simulated in the time domain (the --max-samples budget): their rows are the linear expectation, which "
+            "does not hold where tyres lift off")
+    return results
+
+
 #: Variants per executor task of :func:`ride_sweep` (a task shares its wheel inputs between them).
 SWEEP_CHUNK = 25
 
@@ -1585,10 +1725,11 @@ def ride_sweep(
     speeds_km_h=None,
     tyre_data=None,
     map_fn=None,
-    with_spectra: bool = True,
+    with_spectra: bool | str = True,
     sets: dict | None = None,
     max_variants: int | None = None,
     max_samples: int | None = None,
+    method: str | None = None,
 ) -> list[RideResult]:
     """:func:`ride` for every variant: each front × rear pressure pair (the scenario's own when not
     given) and every combination of the swept keys.
@@ -1605,12 +1746,22 @@ def ride_sweep(
     map_fn : callable, optional
         ``map_fn(task, items) -> results`` in order (the caller's executor, e.g.
         :func:`tyrelab.executor.map_batches` bound to a context); default in-process.
+    with_spectra : bool or "nominal"
+        Seat PSD and transmissibility (figure data) of every variant, of none, or (``"nominal"``)
+        of the nominal variant alone (:func:`tyrelab.vehicle.spectral_ride.nominal_index`: what a
+        sweep's page draws).
     sets : dict, optional
         Numeric scenario keys (``"section.key"``, :func:`tyrelab.vehicle.scenario.numeric_key`)
         -> values to run, on top of (and replacing the same keys of) the scenario's ``[sweep]``.
     max_variants, max_samples : int, optional
-        Bounds of the work (:mod:`tyrelab.vehicle.scenario_limits`; default its ``MAX_VARIANTS``,
-        ``MAX_SAMPLES``): more is refused with a ValueError giving the estimate, before any work.
+        Bounds of the work (:mod:`tyrelab.vehicle.scenario_limits`; default its ``MAX_VARIANTS``
+        for the time domain, ``MAX_SPECTRAL_VARIANTS`` for spectral rows, and ``MAX_SAMPLES``): more
+        is refused with a ValueError giving the estimate, before any work.
+    method : {"auto", "time", "spectral"}, optional
+        How the rows are computed (default the scenario's ``[simulation] method``;
+        :func:`tyrelab.vehicle.spectral_ride`): ``auto`` simulates one variant, and computes a
+        sweep on an ISO 8608 surface in the frequency domain with the time domain beside it for
+        the nominal variant and for speeds that may lift a tyre.
 
     Returns
     -------
@@ -1618,6 +1769,13 @@ def ride_sweep(
         Pressure pairs front-major, then the swept keys in order (the last varying fastest);
         :attr:`RideResult.variant` names each variant's swept values.
     """
+    from .scenario_limits import METHODS
+    from .spectral_ride import nominal_index
+
+    method = method or scenario.simulation.method
+    _validate.choice("method", method, METHODS)
+    if with_spectra not in (True, False, "nominal"):
+        raise ValueError(f"with_spectra must be True, False or 'nominal', got {with_spectra!r}")
     if max_variants is not None:
         _validate.positive_int("max_variants", max_variants)
     if max_samples is not None:
@@ -1632,8 +1790,8 @@ def ride_sweep(
     if bad:
         raise ValueError("; ".join(bad))
     too_much = limits.work_problems(scenario, len(fronts) * len(rears) * len(combos), speeds_km_h,
-                                    max_variants=max_variants or limits.MAX_VARIANTS,
-                                    max_samples=max_samples or limits.MAX_SAMPLES)
+                                    max_variants=max_variants, max_samples=max_samples or limits.MAX_SAMPLES,
+                                    method=method)
     if too_much:  # before any work (the variants are not even built)
         raise ValueError("; ".join(too_much))
     variants = []
@@ -1643,12 +1801,8 @@ def ride_sweep(
                 base = with_values(scenario, combo) if combo else scenario
                 variants.append((with_overrides(base, speeds_km_h, pf, pr_), combo))
     scenarios = [v for v, _ in variants]
-    if map_fn is None or len(scenarios) == 1:
-        results = ride_variants(scenarios, tyre_data, with_spectra)
-    else:  # chunks of variants to the caller's executor, each batched in its task
-        size = max(1, min(SWEEP_CHUNK, -(-len(scenarios) // 8)))
-        chunks = [(scenarios[k:k + size], tyre_data, with_spectra) for k in range(0, len(scenarios), size)]
-        results = [r for chunk in map_fn(_ride_batch, chunks) for r in chunk]
+    results = _sweep_results(scenarios, method, nominal_index(scenario, variants), tyre_data, with_spectra, map_fn,
+                             max_samples)
     for r, (_, combo) in zip(results, variants):
         r.variant = dict(combo)
     return results
@@ -1701,7 +1855,7 @@ def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, 
     axes = seat_axes(base)
     tyres0 = {"front": front[fronts[0]], "rear": rear[rears[0]]}
     seat = base.seat
-    seat_ss = _seat_part(seat).suspension.linear().abcd if seat.suspension == "linear" else None
+    seat_ss = seat.part().suspension.linear().abcd if seat.suspension == "linear" else None
     pf_all = np.repeat(fronts, len(rears))
     pr_all = np.tile(rears, len(fronts))
     frames = []
@@ -1809,11 +1963,17 @@ def result_json(results: list[RideResult]) -> dict:
     ``speed_km_h``, pressures and tyre values used, ``a_wz_m_s2`` (W_k),
     ``a_wx_m_s2`` (W_d), ``expected_a_wz_m_s2``/``expected_a_wx_m_s2`` (frequency
     domain), ``a_v_m_s2`` (k = 1.4 on x), ``vdv_m_s1_75``, ``vdv_daily_m_s1_75``,
-    ``crest_factor``, ``lift_off_fraction_front``/``_rear``, ``a8_m_s2``,
+    ``crest_factor``, ``mtvv_m_s2``, ``lift_off_fraction_front``/``_rear``, ``a8_m_s2``,
     ``hours_to_eav``, ``hours_to_elv``, ``verdict``, ``duration_s``,
-    ``simulation``), ``warnings`` and, for more than one pressure pair, ``sweep``
+    ``simulation``, ``method``: ``"time"``), ``warnings`` and, for more than one pressure pair, ``sweep``
     (one object per pair with ``front_pressure_bar``, ``rear_pressure_bar``,
     ``tyres``, ``natural_frequencies_Hz``, ``nodal_points_m``, ``speeds``).
+
+    A variant computed in the frequency domain (:mod:`tyrelab.vehicle.spectral_ride`) has spectral
+    ``speeds`` (``method``: ``"spectral"``; ``vdv_*``, ``mtvv_m_s2``, ``crest_factor`` and
+    ``lift_off_fraction_*`` null; ``evdv_m_s1_75``, ``evdv_daily_m_s1_75``, ``front_tyre_force_sd_N``,
+    ``rear_tyre_force_sd_N``, ``lift_off_probability_front``/``_rear`` besides) and, where it was
+    simulated too, ``time_domain``: those speeds' time rows.
     """
     if not _validate.instances("results", results, RideResult):
         raise ValueError("results must hold at least one RideResult")
@@ -1824,6 +1984,8 @@ def result_json(results: list[RideResult]) -> dict:
             "natural_frequencies_Hz_ci95": {k: [_clean(x) for x in v] for k, v in r.natural_frequency_intervals_Hz.items()},
             "nodal_points_m": {k: _clean(v) for k, v in r.nodal_points_m.items()},
             "speeds": [{k: _clean(v) for k, v in row.items()} for row in r.speeds.to_dict(orient="records")],
+            **({"time_domain": [{k: _clean(v) for k, v in row.items()} for row in r.time_rows.to_dict(orient="records")]}
+               if len(r.time_rows) else {}),
         }
 
     first = results[0]
@@ -1847,15 +2009,19 @@ def result_json(results: list[RideResult]) -> dict:
 def results_table(results: list[RideResult], scenario_id: str | None = None) -> pd.DataFrame:
     """One row per speed × pressure pair (the ``ride_results`` layout).
 
+    ``scenario`` is ``scenario_id`` (default: the scenario's name), ``name`` the scenario's name.
     ``is_nominal`` marks the pair of the scenario's own tyre pressures. The natural frequencies are
     ``modes_Hz`` (text) and one ``<mode>_Hz`` column per mode (``bounce_Hz``, ``pitch_Hz``,
     ``roll_Hz`` always; ``front_axle_roll_Hz``, ``cab_pitch_Hz``, ... where the model has them).
+    ``method`` says how a row was computed (``time``, ``spectral``): a variant computed both ways
+    (:attr:`RideResult.time_rows`) has its spectral rows, then its time rows.
     """
     _validate.instances("results", results, RideResult)
     frames = []
     for r in results:
-        df = r.speeds.copy()
+        df = pd.concat([r.speeds, r.time_rows], ignore_index=True) if len(r.time_rows) else r.speeds.copy()
         df.insert(0, "scenario", scenario_id or r.scenario.name)
+        df.insert(1, "name", r.scenario.name)  # the scenario's own name (``scenario`` may be an id given)
         df["bounce_Hz"] = r.natural_frequencies_Hz.get("bounce", math.nan)
         df["pitch_Hz"] = r.natural_frequencies_Hz.get("pitch", math.nan)
         df["roll_Hz"] = r.natural_frequencies_Hz.get("roll", math.nan)

@@ -45,7 +45,9 @@ import pandas as pd
 from .. import _validate as _checks
 from ..schema import load_schema
 from ..tyre.sizes import TyreSizeError, parse_tyre_size
-from .model import Ballast, cab_mount_problems, needs, pivot_problem, scenario_key
+from .model import (Axle, Ballast, Cab, Chassis, Implement, Parts, SeatPoint, SeatSuspension, cab_mount_problems, needs,
+                    pivot_problem, scenario_key)
+from .units import from_kilo
 from .scenario_limits import scenario_problems
 
 __all__ = [
@@ -122,6 +124,13 @@ class SeatSpec:
     damping_ratio: float | None = None
     left_of_cg_m: float = 0.0
     gravity_tilt: bool = False
+
+    def part(self) -> SeatPoint:
+        """The seat as a model part: its point and its suspension
+        (:class:`~tyrelab.vehicle.model.SeatSuspension`, None for a rigid seat)."""
+        suspension = (SeatSuspension(self.natural_frequency_Hz, self.damping_ratio) if self.suspension == "linear"
+                      else None)
+        return SeatPoint(self.ahead_of_cg_m, self.left_of_cg_m, self.height_above_cg_m, suspension)
 
 
 @dataclass(frozen=True)
@@ -252,10 +261,12 @@ class ExposureSpec:
 
 @dataclass(frozen=True)
 class SimulationSpec:
-    """``[simulation]``: record-length cap (s) and tyre lift-off."""
+    """``[simulation]``: record-length cap (s), tyre lift-off and how the rows are computed
+    (``method``: ``"auto"``, ``"time"`` or ``"spectral"``; :mod:`tyrelab.vehicle.spectral_ride`)."""
 
     duration_s: float | None = None
     lift_off: bool = True
+    method: str = "auto"
 
 
 @dataclass(frozen=True)
@@ -310,6 +321,60 @@ class Scenario:
     #: The parsed TOML and the folder its paths are relative to (for :func:`with_values`).
     doc: dict = field(default_factory=dict, repr=False, compare=False)
     base_dir: Path | None = field(default=None, repr=False, compare=False)
+
+    def parts(self, tyres: dict[str, dict]) -> Parts:
+        """The scenario's tractor as model parts in SI: the one place its kN, kN s and kN m values
+        become N, N s and N m (:func:`tyrelab.vehicle.units.from_kilo`).
+
+        ``tyres``: ``front``/``rear`` -> one tyre's ``stiffness_N_per_m``, ``damping_N_s_per_m``,
+        ``radius_m`` and, with lateral elements (issue 33), ``lateral_stiffness_N_per_m``,
+        ``lateral_damping_N_s_per_m`` (:func:`tyrelab.vehicle.ride.build_parts` gives them at a
+        speed). The rear tyres carry the longitudinal element; without
+        ``tractor.roll_inertia_kg_m2`` the parts are the pitch-plane tractor's.
+        """
+        t = self.tractor
+        lon = t.longitudinal_model
+        kx = from_kilo(t.longitudinal_stiffness_kN_per_m) if lon != "none" else 0.0
+        cx = from_kilo(t.longitudinal_damping_kN_s_per_m) if lon != "none" else 0.0
+        if lon == "maxwell" and not (kx > 0 and cx > 0):
+            lon = "none"  # a Maxwell element without spring or damper carries no force
+
+        def axle(name: str, ahead: float, spec: AxleSpec, track_m, **extra) -> Axle:
+            ty = tyres[name]
+            kw = {}
+            if spec.mount != "rigid":
+                kw["roll_inertia_kg_m2"] = spec.roll_inertia_kg_m2 or 0.0
+            if ty.get("lateral_stiffness_N_per_m") is not None:  # issue 33: the tyres' lateral elements
+                kw.update(lateral_model=t.lateral_model, lateral_stiffness_N_per_m=ty["lateral_stiffness_N_per_m"],
+                          lateral_damping_N_s_per_m=ty["lateral_damping_N_s_per_m"])
+                if spec.mount == "pivot":  # the pivot at the axle centre, a rolling radius above the ground
+                    kw["height_m"] = spec.height_m if spec.height_m is not None else ty["radius_m"]
+            if spec.mount == "suspended":
+                kw.update(mass_kg=spec.mass_kg, height_m=spec.height_m if spec.height_m is not None else ty["radius_m"],
+                          suspension_stiffness_N_per_m=from_kilo(spec.suspension_stiffness_kN_per_m),
+                          suspension_damping_N_s_per_m=from_kilo(spec.suspension_damping_kN_s_per_m))
+            return Axle(name, ahead, ty["stiffness_N_per_m"], ty["damping_N_s_per_m"], track_m=track_m or 0.0,
+                        mount=spec.mount, **kw, **extra)
+
+        cab = None
+        if self.cab.mount == "suspended":
+            c = self.cab
+            cab = Cab(c.mass_kg, c.pitch_inertia_kg_m2, c.roll_inertia_kg_m2 or 0.0, c.ahead_of_cg_m,
+                      c.height_above_cg_m, c.front_mount_ahead_of_cg_m, c.rear_mount_ahead_of_cg_m, c.mount_track_m,
+                      from_kilo(c.mount_stiffness_kN_per_m), from_kilo(c.mount_damping_kN_s_per_m))
+        imp = None
+        if self.implement is not None:
+            m = self.implement
+            imp = Implement(m.mass_kg, m.pitch_inertia_kg_m2, m.roll_inertia_kg_m2, m.behind_rear_axle_m, m.height_m,
+                            m.mount, m.hitch_behind_rear_axle_m, m.hitch_height_m,
+                            from_kilo(m.hitch_stiffness_kN_m_per_rad or 0.0),
+                            from_kilo(m.hitch_damping_kN_m_s_per_rad))
+        return Parts(
+            Chassis(t.mass_kg, t.pitch_inertia_kg_m2, t.cg_height_m, t.roll_inertia_kg_m2, t.yaw_inertia_kg_m2),
+            axle("front", t.front_distance_m, self.front_axle, t.front_track_m),
+            axle("rear", -t.rear_distance_m, self.rear_axle, t.rear_track_m, longitudinal_model=lon,
+                 longitudinal_stiffness_N_per_m=kx, longitudinal_damping_N_s_per_m=cx),
+            self.seat.part(), cab, imp, self.ballast, static_load_moment=True)
 
 
 @cache
@@ -777,7 +842,7 @@ def _build(doc: dict, path: Path | None, base_dir: Path, confine: bool = True, p
             crg_data=crg_data,
         ),
         exposure=ExposureSpec(tuple(float(v) for v in ex["speeds_km_h"]), float(ex.get("hours_per_day", 8.0))),
-        simulation=SimulationSpec(sim.get("duration_s"), bool(sim.get("lift_off", True))),
+        simulation=SimulationSpec(sim.get("duration_s"), bool(sim.get("lift_off", True)), str(sim.get("method", "auto"))),
         sweep=SweepSpec(tuple(float(v) for v in sweep.get("front_pressures_bar", ())),
                         tuple(float(v) for v in sweep.get("rear_pressures_bar", ())),
                         {k: tuple(float(x) for x in v) for k, v in sweep.items() if "." in k}),

@@ -29,8 +29,8 @@ import numpy as np
 
 from .. import _validate
 
-__all__ = ["LIMITS", "MAX_VARIANTS", "MAX_SAMPLES", "MIN_VERDICT_DURATION_S", "BYTES_PER_SAMPLE",
-           "SECONDS_PER_SAMPLE", "scenario_problems", "override_problems", "work_estimate", "work_problems"]
+__all__ = ["LIMITS", "METHODS", "uses_spectral", "MAX_VARIANTS", "MAX_SPECTRAL_VARIANTS", "MAX_SAMPLES", "MIN_VERDICT_DURATION_S",
+           "BYTES_PER_SAMPLE", "SECONDS_PER_SAMPLE", "SECONDS_PER_SPECTRAL_ROW", "scenario_problems", "override_problems", "work_estimate", "work_problems"]
 
 #: key -> (lowest, highest, unit) of every number of a scenario the model is built for.
 LIMITS: dict[str, tuple[float, float, str]] = {
@@ -67,8 +67,14 @@ LIMITS: dict[str, tuple[float, float, str]] = {
     "profile.height_m": (-2.0, 2.0, "m"),
     "profile.gap_m": (0.0, 10.0, "m"),
 }
-#: Most pressure pairs one scenario may sweep (``tyrelab ride --max-variants`` lifts it).
+#: Most variants one scenario may sweep in the time domain (``tyrelab ride --max-variants`` lifts it).
 MAX_VARIANTS = 400
+#: Most variants of a sweep computed in the frequency domain (``--method auto`` or ``spectral``;
+#: ``--max-variants`` lifts it): 100 x 100 pressures and a swept key of two values, about 4 min.
+MAX_SPECTRAL_VARIANTS = 20_000
+#: Time of one spectral speed row (variant x speed), s: the 10 x 10 x 8 grid of bench/bench_ride.py
+#: took about 1.2 ms a row (tyres, assembly, expectation on 4,000 frequencies, modes; issue 36).
+SECONDS_PER_SPECTRAL_ROW = 1.5e-3
 #: Most samples (1 kHz) one command may simulate over all speeds and pairs (``--max-samples``).
 MAX_SAMPLES = 10_000_000
 #: Memory and time per simulated sample (measured: 2.2 GB and 18 s for 7.2 million samples).
@@ -180,8 +186,35 @@ def override_problems(speeds_km_h=None, front_pressures_bar=None, rear_pressures
     return problems
 
 
-def work_estimate(scenario, n_variants: int, speeds_km_h=None) -> dict:
-    """Samples, memory and time of ``n_variants`` pressure pairs at every speed (an estimate).
+#: How a ride's rows are computed (``[simulation] method``; :mod:`tyrelab.vehicle.spectral_ride`).
+METHODS = ("auto", "time", "spectral")
+
+
+def uses_spectral(scenario, method: str, n_variants: int) -> bool:
+    """Whether ``method`` computes spectral rows for a sweep of ``n_variants`` of ``scenario``:
+    ``spectral``; ``auto`` for more than one variant on an ISO 8608 surface (a profile or any other
+    deterministic road is simulated).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as NS
+    >>> s = NS(surface=NS(kind="iso8608"))
+    >>> uses_spectral(s, "auto", 1), uses_spectral(s, "auto", 2), uses_spectral(s, "time", 2)
+    (False, True, False)
+    """
+    _validate.choice("method", method, METHODS)
+    if method == "auto":
+        return n_variants > 1 and scenario.surface.kind == "iso8608"
+    return method == "spectral"
+
+
+def work_estimate(scenario, n_variants: int, speeds_km_h=None, method: str = "time") -> dict:
+    """Samples, memory and time of ``n_variants`` variants at every speed (an estimate) under
+    ``method`` (:mod:`tyrelab.vehicle.spectral_ride`): ``time`` simulates every variant; spectral
+    rows (``spectral``, or ``auto`` for a sweep on an ISO 8608 surface) simulate nothing
+    (``spectral_rows``: variant x speed rows, :data:`SECONDS_PER_SPECTRAL_ROW` each), ``auto``
+    the nominal variant besides (the speeds that may lift a tyre are bounded when known, by
+    ``max_samples``).
 
     Examples
     --------
@@ -193,6 +226,7 @@ def work_estimate(scenario, n_variants: int, speeds_km_h=None) -> dict:
     (7740000, 2.3, 19)
     """
     _validate.positive_int("n_variants", n_variants)
+    spectral = uses_spectral(scenario, method, n_variants)
     speeds = list(speeds_km_h or scenario.exposure.speeds_km_h)
     span_m = scenario.surface.length_m + scenario.surface.lead_in_m + \
         scenario.tractor.front_distance_m + scenario.tractor.rear_distance_m
@@ -202,22 +236,50 @@ def work_estimate(scenario, n_variants: int, speeds_km_h=None) -> dict:
         if scenario.simulation.duration_s is not None:
             seconds = min(seconds, scenario.simulation.duration_s + span_m - scenario.surface.length_m)
         samples += seconds * 1000.0
-    total = samples * n_variants
+    simulated = 0 if method == "spectral" and spectral else 1 if spectral else n_variants
+    rows = n_variants * len(speeds) if spectral else 0
+    total = samples * simulated
     return {"variants": n_variants, "speeds": len(speeds), "samples": int(round(total)),
-            "largest_run_samples": int(round(samples)),
-            "memory_GB": samples * BYTES_PER_SAMPLE / 1e9, "seconds": total * SECONDS_PER_SAMPLE}
+            "largest_run_samples": int(round(samples)) if simulated else 0,
+            "memory_GB": samples * BYTES_PER_SAMPLE / 1e9 if simulated else 0.0,
+            "seconds": total * SECONDS_PER_SAMPLE + rows * SECONDS_PER_SPECTRAL_ROW,
+            "spectral_rows": rows, "simulated_variants": simulated}
 
 
-def work_problems(scenario, n_variants: int, speeds_km_h=None, *, max_variants: int = MAX_VARIANTS,
-                  max_samples: int = MAX_SAMPLES) -> list[str]:
-    """Refusals, each with the estimate and the option that lifts the bound (empty: go ahead)."""
-    e = work_estimate(scenario, n_variants, speeds_km_h)
+def work_problems(scenario, n_variants: int, speeds_km_h=None, *, max_variants: int | None = None,
+                  max_samples: int = MAX_SAMPLES, method: str = "time") -> list[str]:
+    """Refusals, each with the estimate and the option that lifts the bound (empty: go ahead).
+
+    ``max_variants`` default: :data:`MAX_SPECTRAL_VARIANTS` where ``method`` computes spectral rows
+    (:func:`work_estimate`), else :data:`MAX_VARIANTS`.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as NS
+    >>> s = NS(surface=NS(length_m=400.0, lead_in_m=5.0, kind="iso8608"),
+    ...        tractor=NS(front_distance_m=1.5, rear_distance_m=1.0),
+    ...        exposure=NS(speeds_km_h=tuple(range(4, 20, 2))), simulation=NS(duration_s=None))
+    >>> work_problems(s, 100 * 100, method="spectral"), work_problems(s, 100 * 100, method="auto")
+    ([], [])
+    >>> print(work_problems(s, 100 * 100, method="time")[0])
+    10000 variants (pressure pairs x swept values) is more than 400 in the time domain (about 33539 s of simulation); --max-variants N lifts the bound, --method auto or spectral computes them in the frequency domain (about 120 s)
+    """
+    e = work_estimate(scenario, n_variants, speeds_km_h, method)
     problems = []
-    if n_variants > max_variants:
-        problems.append(f"{n_variants} pressure pairs is more than {max_variants} (about {e['seconds']:.0f} s of "
-                        "simulation); --max-variants N lifts the bound")
+    spectral = e["spectral_rows"] > 0
+    limit = max_variants or (MAX_SPECTRAL_VARIANTS if spectral else MAX_VARIANTS)
+    if n_variants > limit:
+        if spectral:
+            problems.append(f"{n_variants} variants (pressure pairs x swept values) is more than {limit} (about {e['seconds']:.0f} s in the frequency "
+                            "domain); --max-variants N lifts the bound")
+        else:
+            rows = n_variants * e["speeds"] * SECONDS_PER_SPECTRAL_ROW
+            problems.append(f"{n_variants} variants (pressure pairs x swept values) is more than {limit} in the time domain (about {e['seconds']:.0f} s "
+                            "of simulation); --max-variants N lifts the bound"
+                            + (f", --method auto or spectral computes them in the frequency domain (about {rows:.0f} s)"
+                               if scenario.surface.kind == "iso8608" else ""))
     if e["samples"] > max_samples:
-        problems.append(f"{e['variants']} pair(s) x {e['speeds']} speed(s) simulate {e['samples']:,} samples "
+        problems.append(f"{e['simulated_variants']} variant(s) x {e['speeds']} speed(s) simulate {e['samples']:,} samples "
                         f"(about {e['memory_GB']:.1f} GB for the longest run and {e['seconds']:.0f} s), more than "
                         f"{max_samples:,}; --max-samples N lifts the bound (or raise the speed, shorten the track)")
     return problems

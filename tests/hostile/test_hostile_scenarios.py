@@ -80,7 +80,7 @@ def test_sweeps_are_bounded_before_any_work(tmp_path, capsys, monkeypatch):
     pressures = [str(1 + i / 1000) for i in range(1000)]
     assert main(["ride", str(path), "--front-pressure", *pressures, "--rear-pressure", *pressures]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "1000000 pressure pairs" in err and "--max-variants" in err
+    assert err.count("\n") == 1 and "1000000 variants" in err and "--max-variants" in err
     assert main(["ride", str(path), "--speeds", *[str(0.5 + i / 100) for i in range(2000)]]) == 2
     err = capsys.readouterr().err
     assert "samples" in err and "--max-samples" in err and "GB" in err

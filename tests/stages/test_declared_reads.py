@@ -98,7 +98,7 @@ def test_a_measured_tyre_scenario_reads_this_runs_fits_and_equals_tyrelab_ride(f
     assert "ride scenarios 2 reused, 3 computed" in result.message, result.message  # the shipped two were cached
     assert ctx.read_table("stages/quarantine_simulate").empty
     rows = ctx.read_table("ride_results")
-    ours = rows[rows["file"] == str(paths["measured"])].reset_index(drop=True)
+    ours = rows[rows["file"] == simulate.portable_path(str(paths["measured"]), ctx.raw)].reset_index(drop=True)
     assert len(ours) == 2 and ours["rear_stiffness_source"].str.contains("measured tyre T1").all()
 
     run_stage("warehouse", ctx)  # the finished build: `tyrelab ride --build` reads its warehouse
@@ -131,10 +131,11 @@ def test_an_edited_build_formula_re_runs_exactly_the_scenarios_that_use_it(fresh
     result = run_stage("simulate", ctx)
     assert "ride scenarios 4 reused, 1 computed" in result.message, result.message
     after = ctx.read_table("ride_results")
-    mine = after["file"] == str(paths["build"])
+    file = simulate.portable_path(str(paths["build"]), ctx.raw)  # as the warehouse holds it: no machine's path
+    mine = after["file"] == file
     assert mine.any()
     pd.testing.assert_frame_equal(after[~mine].reset_index(drop=True),
-                                  before[before["file"] != str(paths["build"])].reset_index(drop=True))
+                                  before[before["file"] != file].reset_index(drop=True))
 
 
 def test_new_fits_of_a_tyre_re_run_only_the_scenarios_naming_it(fresh):
@@ -162,7 +163,7 @@ def test_new_fits_of_a_tyre_re_run_only_the_scenarios_naming_it(fresh):
     assert "ride scenarios 4 reused, 1 computed" in result.message and "Table XX 1 reused, 0 computed" in \
         result.message, result.message
     after = ctx.read_table("ride_results")
-    mine = after["file"] == str(paths["measured"])
+    mine = after["file"] == simulate.portable_path(str(paths["measured"]), ctx.raw)
     pd.testing.assert_frame_equal(after[~mine].reset_index(drop=True),
                                   before["ride_results"][~mine].reset_index(drop=True))
     assert (after.loc[mine, "rear_stiffness_kN_per_m"].to_numpy()

@@ -20,7 +20,8 @@ RELATIVE = 1e-12
 def _compare(full: bool) -> dict:
     stored = np.load(golden.path(full))
     now = golden.compute(full)
-    assert sorted(now) == sorted(stored.files)
+    # every stored number is still computed; quantities added since (issue 36: mtvv_m_s2) are not compared
+    assert not sorted(set(stored.files) - set(now))
     report = {}
     for k in stored.files:
         a, b = stored[k], now[k]

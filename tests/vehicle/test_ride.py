@@ -235,14 +235,16 @@ def test_ride_cli_json_fields_and_outputs(tmp_path, capsys):
 
 def test_pressure_sweep_through_the_executor(tmp_path):
     sc = load_scenario(write(tmp_path, scenario_text('kind = "iso8608"\nclass = "B"\nlength_m = 30', "[10]")))
-    local = ride.ride_sweep(sc, [1.2, 2.0], [1.0], with_spectra=False)
+    local = ride.ride_sweep(sc, [1.2, 2.0], [1.0], with_spectra=False, method="time")
     from tyrelab.executor import map_batches
 
     ctx = SimpleNamespace(executor="local", jobs=2, scheduler=None)
-    pooled = ride.ride_sweep(sc, [1.2, 2.0], [1.0], map_fn=lambda task, items: map_batches(task, items, ctx),
-                             with_spectra=False)
-    assert [r.tyres["front"].pressure_bar for r in pooled] == [1.2, 2.0]
-    assert ride.results_table(local).equals(ride.results_table(pooled))
+    for method in ("time", "auto"):  # auto: the spectral rows here, the time rows of the first variant there
+        pooled = ride.ride_sweep(sc, [1.2, 2.0], [1.0], map_fn=lambda task, items: map_batches(task, items, ctx),
+                                 with_spectra=False, method=method)
+        assert [r.tyres["front"].pressure_bar for r in pooled] == [1.2, 2.0]
+        here = local if method == "time" else ride.ride_sweep(sc, [1.2, 2.0], [1.0], with_spectra=False)
+        assert ride.results_table(here).equals(ride.results_table(pooled))
     k = ride.results_table(local)["front_stiffness_kN_per_m"]
     assert k.iloc[1] > k.iloc[0]  # stiffer at the higher pressure
     doc = ride.result_json(local)
@@ -264,8 +266,9 @@ def test_run_scenarios_quarantines_a_bad_file_and_runs_the_rest(tmp_path):
                                          extra="[sweep]\nrear_pressures_bar = [1.0, 1.4]"), "good.toml")
     bad = write(tmp_path, "name = 1\n", "bad.toml")
     scen, res, problems = simulate_stage.run_scenarios([(str(good), "raw"), (str(bad), "raw")])
-    assert list(scen["scenario"]) == ["test tractor"] and len(res) == 2
-    assert res["is_nominal"].tolist() == [False, False]  # the sweep does not include 1.2 bar
+    # auto: two spectral rows, and the first variant simulated beside them (no variant is the nominal one)
+    assert list(scen["scenario"]) == ["test tractor"] and res["method"].tolist() == ["spectral", "time", "spectral"]
+    assert res["is_nominal"].tolist() == [False, False, False]  # the sweep does not include 1.2 bar
     assert problems[0]["file"] == str(bad) and "name: expected text" in problems[0]["reason"]
 
 
@@ -330,7 +333,7 @@ def test_scenario_row_gives_the_modes_at_its_own_pressures(tmp_path):
     absent = write(tmp_path, base.replace('name = "test tractor"', 'name = "absent"')
                    + "[sweep]\nfront_pressures_bar = [0.8, 2.4]\n", "absent.toml")
     scen, res, problems = simulate_stage.run_scenarios([(str(second), "raw"), (str(absent), "raw")])
-    assert not problems and len(res) == 4
+    assert not problems and (res["method"] == "spectral").sum() == 4
     # the modes at 1.6/1.2 bar from the tyres alone (bounce_pitch through the CLI's own path)
     nominal = ride.ride(load_scenario(write(tmp_path, base, "nominal.toml")), with_spectra=False)
     low = res[(res["scenario"] == "test tractor") & (res["front_pressure_bar"] == 0.8)]
@@ -343,8 +346,9 @@ def test_scenario_row_gives_the_modes_at_its_own_pressures(tmp_path):
     # (bounce -1.0 %, pitch -29 %: the pitch mode leans on the front axle)
     for mode, least in (("bounce", 0.005), ("pitch", 0.2)):
         assert low[f"{mode}_Hz"].iloc[0] < (1 - least) * nominal.natural_frequencies_Hz[mode], mode
-    nominal_rows = res[res["is_nominal"]]
-    assert nominal_rows["bounce_Hz"].tolist() == pytest.approx([nominal.natural_frequencies_Hz["bounce"]])
+    nominal_rows = res[res["is_nominal"]]  # its spectral row and, beside it, its time row
+    assert nominal_rows["method"].tolist() == ["spectral", "time"]
+    assert nominal_rows["bounce_Hz"].tolist() == pytest.approx([nominal.natural_frequencies_Hz["bounce"]] * 2)
 
 
 def _profile_scenario(tmp_path, length_m: float, name: str, extra_surface: str = "") -> Path:
