@@ -47,11 +47,11 @@ def test_run_stage_refuses_a_stage_that_reads_an_undeclared_table(tmp_path, monk
     from tyrelab.stages import methods
 
     def sneaky(ctx):
-        ctx.read_table("results")  # the methods stage reads the published tables only
+        ctx.read_table("tyres")  # the methods stage reads the published tables and results only (issue 34)
 
     monkeypatch.setattr(methods, "run", sneaky)
     ctx = Context(raw=tmp_path / "raw", build=tmp_path / "build", jobs=1, log=log)
-    with pytest.raises(RuntimeError, match="stage methods reads table 'results', which it does not declare"):
+    with pytest.raises(RuntimeError, match="stage methods reads table 'tyres', which it does not declare"):
         run_stage("methods", ctx)
     assert ctx.stage is None
 
