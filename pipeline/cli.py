@@ -479,7 +479,16 @@ def cmd_road(args) -> int:
             data = read_crg(path)
             half = 0.5 * args.track_width_m
             pos = {"left": args.lateral_offset_m + half, "right": args.lateral_offset_m - half}
-            x, tracks = wheel_tracks(data, pos, args.start_m, args.length_m, args.fill_missing)
+            try:
+                x, tracks = wheel_tracks(data, pos, args.start_m, args.length_m, args.fill_missing)
+            except ValueError as exc:  # the scenario's keys are this verb's options
+                text = str(exc)
+                for key, option in (("surface.lateral_offset_m", "--lateral-offset-m"), ("surface.start_m", "--start-m"),
+                                    ("surface.length_m", "--length-m"), ("surface.file: ", ""),
+                                    ("fill_missing = true", "--fill-missing"),
+                                    ("the track widths and the offset", "--track-width-m and --lateral-offset-m")):
+                    text = text.replace(key, option)
+                raise ValueError(text) from None
             dx = data.u_inc_m
         else:
             from .vehicle.scenario_limits import _profile_problems
@@ -892,9 +901,9 @@ def build_parser() -> argparse.ArgumentParser:
     ro.add_argument("file", help="profile CSV or OpenCRG .crg file")
     ro.add_argument("--track-width-m", type=_positive, default=1.8,
                     help=".crg: distance between the left and right wheel lines, m (default 1.8)")
-    ro.add_argument("--lateral-offset-m", type=float, default=0.0,
+    ro.add_argument("--lateral-offset-m", type=_finite, default=0.0,
                     help=".crg: the wheels' centre line, m left of the road's reference line (default 0)")
-    ro.add_argument("--start-m", type=float, default=0.0, help=".crg: start past the first cross section, m (default 0)")
+    ro.add_argument("--start-m", type=_non_negative, default=0.0, help=".crg: start past the first cross section, m (default 0)")
     ro.add_argument("--length-m", type=_positive, default=None, help=".crg: length, m (default: the rest of the file)")
     ro.add_argument("--fill-missing", action="store_true",
                     help=".crg: fill missing heights (NaN) as OpenCRG does (default: refuse them)")

@@ -19,11 +19,14 @@ from .io import head_lines, printable
 from .vehicle.scenario import Scenario, ScenarioError
 from .vehicle.scenario import parse_scenario as _parse_text
 
-__all__ = ["MAX_CRG_BYTES", "MAX_SCENARIO_BYTES", "ScenarioError", "load_scenario", "parse_scenario", "read_crg",
+__all__ = ["MAX_CRG_BYTES", "MAX_PROFILE_BYTES", "MAX_SCENARIO_BYTES", "ScenarioError", "load_scenario", "parse_scenario", "read_crg",
            "read_profile_csv"]
 
 #: Largest OpenCRG file read, bytes (a text CRG holds about 20 bytes per height: 10 million heights).
 MAX_CRG_BYTES = 200_000_000
+#: Largest profile CSV read, bytes (about 40 bytes a row: 5 million points, 100 km at 2 cm), checked before
+#: pandas reads it.
+MAX_PROFILE_BYTES = 200_000_000
 
 
 def read_crg(path: str | Path):
@@ -82,13 +85,16 @@ def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarr
     ------
     ValueError
         Naming the file and every problem (missing columns, non-numeric values,
-        distances not strictly increasing, fewer than 16 points).
+        distances not strictly increasing, fewer than 16 points, above :data:`MAX_PROFILE_BYTES`).
     """
     _validate.instance("path", path, (str, Path))
     path = Path(path)
     shown = printable(path)
     if not path.is_file():
-        raise ValueError(f"{shown}: no such file")
+        raise ValueError(f"{shown}: no such file" if not path.exists() else f"{shown}: not a regular file")
+    size = path.stat().st_size
+    if size > MAX_PROFILE_BYTES:
+        raise ValueError(f"{shown}: {size} bytes, above the {MAX_PROFILE_BYTES} bytes a profile CSV may have")
     try:  # the header line first, bounded: a file without line ends is not read whole as its header
         head_lines(path, 1, "distance_m, height_m")
     except ValueError as exc:

@@ -95,11 +95,11 @@ def road_class(elevation_m, dx_m: float, segment_m: float | None = None) -> dict
     segment_m = _validate.positive("segment_m", segment_m)
     out = {"class": None, "g0_m3": None, "rms_m": float(np.std(h)), "length_m": float(length),
            "band_cycles_per_m": None}
-    n, g = profile_spectrum(h, dx_m, segment_m)
     lo = max(ISO8608_BAND_CYCLES_PER_M[0], 2.0 / segment_m)
     hi = min(ISO8608_BAND_CYCLES_PER_M[1], 0.8 * 0.5 / dx_m)
-    if not hi > lo:
+    if not hi > lo:  # before the spectrum: a spacing above segment_m / 2 has no Welch segment
         return out
+    n, g = profile_spectrum(h, dx_m, segment_m)
     # third-octave bands between lo and hi (centres n0 2^(k/3), edges a sixth of an octave away)
     k = np.arange(math.ceil(3 * math.log2(lo / ISO8608_N0_CYCLES_PER_M)),
                   math.floor(3 * math.log2(hi / ISO8608_N0_CYCLES_PER_M)) + 1)

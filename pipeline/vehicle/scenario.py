@@ -48,7 +48,7 @@ from ..tyre.sizes import TyreSizeError, parse_tyre_size
 from .model import (Axle, Ballast, Cab, Chassis, Implement, Parts, SeatPoint, SeatSuspension, cab_mount_problems, needs,
                     pivot_problem, scenario_key)
 from .units import from_kilo
-from .scenario_limits import scenario_problems
+from .scenario_limits import LIMITS, scenario_problems
 
 __all__ = [
     "Scenario",
@@ -549,19 +549,23 @@ def _crg_problems(doc: dict, surf: dict, base_dir: Path, confine: bool, read_crg
     except ValueError as exc:
         return [f"surface.file: {exc}"]
     profiles[full] = data
+    gap_problem = []
+    if data.u_inc_m > LIMITS["profile.gap_m"][1]:  # as a profile CSV's distances
+        gap_problem = [f"surface.file: {data.name}'s cross sections are {data.u_inc_m:g} m apart, above "
+                       f"{LIMITS['profile.gap_m'][1]:g} m"]
     tractor, _ = _section_values(doc, "tractor")
     tractor = tractor or {}
     numbers = {k: surf.get(k, d) for k, d in (("lateral_offset_m", 0.0), ("start_m", 0.0))}
     length = surf.get("length_m")
     if not all(_is_number(v) for v in numbers.values()) or (length is not None and not _is_number(length)):
-        return []  # listed as type problems
+        return gap_problem  # the rest listed as type problems
     three_d = "roll_inertia_kg_m2" in tractor
     tracks = [tractor.get(k) if three_d else None for k in ("front_track_m", "rear_track_m")]
     if any(t is not None and not _is_number(t) for t in tracks):
-        return []
+        return gap_problem
     from .crg import crg_problems, wheel_positions
 
-    return crg_problems(data, wheel_positions(numbers["lateral_offset_m"], *tracks), float(numbers["start_m"]),
+    return gap_problem + crg_problems(data, wheel_positions(numbers["lateral_offset_m"], *tracks), float(numbers["start_m"]),
                         None if length is None else float(length), bool(surf.get("fill_missing", False)))
 
 

@@ -152,3 +152,54 @@ def test_the_ride_page_and_json_state_a_profile_roads_class(tmp_path, capsys):
     assert cli.main(["ride", str(iso)]) == 0
     assert json.loads(capsys.readouterr().out)["road_class"] is None
 
+
+
+def test_a_coarse_road_is_not_resolved_not_a_traceback(tmp_path, capsys):
+    """Cross sections 300 m apart: no Welch segment of the classification fits (scipy raised
+    'nperseg=0' through ``tyrelab road``, a traceback) (review of issue 33)."""
+    rng = np.random.default_rng(0)
+    assert road_class(rng.normal(0, 0.01, 20), 300.0)["class"] is None
+    pyopencrg.CrgRoad(rng.normal(0, 0.01, (20, V.size)), u_inc=300.0, v=V).save(tmp_path / "c300.crg")
+    assert cli.main(["road", str(tmp_path / "c300.crg"), "--format", "json"]) == 0
+    assert json.loads(capsys.readouterr().out)["tracks"]["left"]["class"] is None
+
+
+def test_a_ride_refuses_a_crg_spaced_above_a_profiles_gap(tmp_path, capsys):
+    """A CRG road's cross sections 20 m apart are refused as a profile CSV's 20 m gap is, with the
+    scenario's other problems (review of issue 33)."""
+    rng = np.random.default_rng(0)
+    pyopencrg.CrgRoad(rng.normal(0, 0.01, (100, V.size)), u_inc=20.0, v=V).save(tmp_path / "c20.crg")
+    path = write(tmp_path, 'kind = "crg"\nfile = "c20.crg"\nlateral_offset_m = 1.0')
+    assert cli.main(["ride", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert "surface.file: c20.crg's cross sections are 20 m apart, above 10 m" in err
+    assert "surface.lateral_offset_m: the front left wheel" in err
+
+
+def test_tyrelab_road_names_its_own_options(tmp_path, capsys):
+    """``tyrelab road`` on a CRG names its options, not the scenario's surface keys it has no scenario
+    for, and refuses a NaN start as argparse does (it was 'cannot convert float NaN to integer')."""
+    two_track_road(tmp_path, length_m=40.0)
+    crg = str(tmp_path / "road.crg")
+    assert cli.main(["road", crg, "--lateral-offset-m", "1.0"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--lateral-offset-m: the left wheel's line v = 1.9 m" in err
+    assert "surface." not in err
+    with pytest.raises(SystemExit) as e:
+        cli.main(["road", crg, "--start-m", "nan"])
+    assert e.value.code == 2 and "--start-m: nan is not a finite number" in capsys.readouterr().err
+
+
+def test_a_profile_csv_is_bounded_before_it_is_read(tmp_path, capsys, monkeypatch):
+    """A profile CSV above MAX_PROFILE_BYTES is one line, exit 2, before pandas reads it (a CRG has
+    its bound; a CSV had none), and a directory is 'not a regular file' (review of issue 33)."""
+    from tyrelab import scenario_io
+
+    two_track_road(tmp_path, length_m=40.0)
+    monkeypatch.setattr(scenario_io, "MAX_PROFILE_BYTES", 1000, raising=False)
+    monkeypatch.setattr(scenario_io.pd, "read_csv", lambda *a, **k: pytest.fail("read before the bound"))
+    assert cli.main(["road", str(tmp_path / "tracks.csv")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "bytes, above the 1000 bytes a profile CSV may have" in err
+    assert cli.main(["road", str(tmp_path)]) == 2
+    assert "not a regular file" in capsys.readouterr().err
