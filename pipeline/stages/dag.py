@@ -184,6 +184,7 @@ STAGES: dict[str, Stage] = {s.name: s for s in (
     Stage("regress", reads=(*_tables("results", "tyres"), "published"),
           writes=_tables(*REGRESS_TABLES),
           items=("per-tyre fits <- that tyre's results and catalogue row",
+                 "formula fit of a source <- its points (the published source's: the printed Table III)",
                  "published-only parts <- the published tables they read"),
           doc="Tables III-X, size regressions, formula accuracy, spoke model"),
     Stage("simulate", reads=("raw", "published", "scenarios", *_tables(*FIT_TABLES, "recordings")),
