@@ -40,7 +40,7 @@ def evaluate(seed: int, noise_scale: float, limit: int | None = None) -> pd.Data
     """One row per measurement run: truth, both estimates, relative errors."""
     cfg = dataclasses.replace(RigConfig(), noise_scale=noise_scale)
     plan = campaign_plan("full", cfg)
-    plan = plan[plan["kind"] == "measurement"]
+    plan = plan[(plan["kind"] == "measurement") & (plan["method"] == "stepped_sine")]
     if limit:
         plan = plan.iloc[:: max(len(plan) // limit, 1)]
     rows = []

@@ -143,8 +143,9 @@ def generate_campaign(out: Path, scale: str = "small", seed: int = 1991, scatter
         amplitudes.append(info["amplitude_mm_pp"])
     manifest = plan[MANIFEST_COLUMNS].copy()
     cal = manifest["kind"] == "calibration"
-    # calibration runs have no nominal sinusoid: record the p-p equivalent of the axle rms
-    manifest.loc[cal, "amplitude_mm_pp"] = [round(a, 2) for a, c in zip(amplitudes, cal) if c]
+    # calibration and broadband runs have no nominal sinusoid: record the p-p equivalent of the axle rms
+    nominal = manifest["amplitude_mm_pp"].isna() | cal
+    manifest.loc[nominal, "amplitude_mm_pp"] = [round(a, 2) for a, c in zip(amplitudes, nominal) if c]
     io.write_text_atomic(manifest.to_csv(index=False, float_format="%.6g", lineterminator="\n"),
                          out / "manifest.csv")
     # Provenance for the report (no timestamp: the same command gives the same bytes).

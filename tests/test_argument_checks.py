@@ -187,6 +187,8 @@ ROWS = [
     # tyre/formula_fit.py
     (f"{TY}.formula_fit.design_matrix", dict(sizes=["13.6R38"], age_years=[-1.0], pressure_bar=[1.2]), "age_years"),
     (f"{TY}.formula_fit.design_matrix", dict(sizes=["13.6R38"], age_years=[1.0], pressure_bar=[INF]), "pressure_bar"),
+    (f"{TY}.directional.directional_tyre", dict(tyre_id="T1", direction="vertical", pressure_bar=1.0, speed_km_h=0.0), "direction"),
+    (f"{TY}.directional.directional_tyre", dict(tyre_id="T1", direction="lateral", pressure_bar=1.0, speed_km_h=-1.0), "speed_km_h"),
     (f"{TY}.formula_fit.extended_design_matrix", dict(sizes=["13.6R38"], age_years=[1.0], pressure_bar=[-1.2]), "pressure_bar"),
     (f"{TY}.formula_fit.fit_formula", dict(points=lambda: pd.DataFrame({"tyre_id": ["T1"]})), "points"),
     (f"{TY}.formula_fit.leave_one_tyre_out", dict(points="points.csv"), "points"),

@@ -23,12 +23,16 @@ from scipy import signal
 from .._validate import band, positive, positive_int, same_last_axis
 from .apparent_mass import h1_spectrum
 
-__all__ = ["METHODS", "TABLE_I_SOURCE", "load_deflection_stiffness", "free_vibration", "half_power"]
+__all__ = ["METHODS", "TABLE_I_SOURCE", "TABLE_I_RECORDINGS_SOURCE", "load_deflection_stiffness", "free_vibration",
+           "half_power", "table_i_runs", "table_i_from_results"]
 
 #: The methods of Table I (§3.4), as named in ``raw/published/table_i.csv``.
 METHODS = ("apparent_mass", "load_deflection", "free_vibration", "forced_vibration")
 #: Where our Table I comes from: virtual experiments, not the campaign's recordings.
 TABLE_I_SOURCE = "virtual experiments on the truth-model tyre (tyrelab.rig.experiments)"
+#: ... or the campaign's recordings of several methods on one tyre and condition (issue 34).
+TABLE_I_RECORDINGS_SOURCE = "recordings: {tyre} at {pressure:g} bar, {load:g} kN, stationary ({runs} runs)"
+_G = 9.80665
 
 
 def load_deflection_stiffness(force_N: np.ndarray, deflection_m: np.ndarray, fraction: tuple[float, float] = (0.2, 0.9)) -> float:
@@ -134,3 +138,87 @@ def half_power(force_N: np.ndarray, accel_m_s2: np.ndarray, sample_rate_Hz: floa
     wn = 2 * np.pi * fn
     return {"stiffness_N_per_m": mass_kg * wn**2, "damping_N_s_per_m": 2 * zeta * mass_kg * wn,
             "natural_frequency_Hz": fn, "damping_ratio": zeta}
+
+
+def table_i_runs(results: pd.DataFrame) -> pd.DataFrame:
+    """Vertical stationary runs grouped by tyre and condition, with the Table I method each gives
+    (``table_i_method``; None where none): stepped sine → apparent mass, swept sine and random →
+    forced vibration, free vibration, load deflection. Only runs whose QC passed."""
+    need = {"tyre_id", "pressure_bar", "load_kN", "speed_km_h", "method", "direction", "qc_ok"}
+    if results is None or results.empty or not need <= set(results.columns):
+        return pd.DataFrame(columns=[*need, "table_i_method"])
+    r = results.loc[(results["direction"].fillna("vertical") == "vertical") & (results["speed_km_h"] == 0)
+                    & results["qc_ok"].fillna(False).astype(bool)].copy()
+    r["table_i_method"] = r["method"].fillna("stepped_sine").map(
+        {"stepped_sine": "apparent_mass", "swept_sine": "forced_vibration", "random": "forced_vibration",
+         "free_vibration": "free_vibration", "load_deflection": "load_deflection"})
+    r["pressure_bar"] = r["pressure_bar"].round(2)
+    r["load_kN"] = r["load_kN"].round(1)
+    return r
+
+
+def table_i_from_results(results: pd.DataFrame, thesis: pd.DataFrame) -> pd.DataFrame | None:
+    """Table I from a campaign's recordings (issue 34), or None where no tyre and condition has a
+    stepped-sine run and a run of another method.
+
+    The case with the most methods (ties: most runs, then tyre, pressure, load) is taken. Per
+    method the mean over its runs: apparent mass K and C of the stepped-sine runs (those at
+    4 ± 0.5 Hz where there are any, the thesis' frequency); forced
+    vibration from the broadband runs' response peak and half-power width, free vibration
+    from the decay's natural frequency and damping ratio, both with the suspended mass L/g as
+    the thesis computes them (§3.4; :func:`tyrelab.rig.experiments.suspended_mass_kg`);
+    load deflection the secant stiffness (no damping: "the viscous damping coefficient cannot
+    be measured by this means", §3.4). Columns as :func:`tyrelab.rig.experiments.table_i`
+    (``truth_*`` null) and ``source`` naming the case.
+    """
+    runs = table_i_runs(results)
+    runs = runs.loc[runs["table_i_method"].notna()]
+    if runs.empty:
+        return None
+    keys = ["tyre_id", "pressure_bar", "load_kN"]
+    best = None
+    for key, g in runs.groupby(keys, sort=True):
+        methods = set(g["table_i_method"])
+        if "apparent_mass" not in methods or len(methods) < 2:
+            continue
+        score = (len(methods), len(g))
+        if best is None or score > best[0]:
+            best = (score, key, g)
+    if best is None:
+        return None
+    (_, (tyre, pressure, load), g) = best
+    m = load * 1e3 / _G
+    ours = {}
+    for method, sub in g.groupby("table_i_method"):
+        if method == "apparent_mass":
+            at4 = (sub["excitation_frequency_Hz"] - 4.0).abs() <= 0.5  # the thesis' 4 Hz where there are such runs
+            sub = sub.loc[at4] if at4.any() else sub
+            k, c = sub["stiffness_N_per_m"].mean(), sub["damping_N_s_per_m"].mean()
+        elif method == "load_deflection":
+            k, c = sub["secant_stiffness_N_per_m"].mean(), np.nan
+        else:
+            f, z = (("response_peak_Hz", "response_damping_ratio") if method == "forced_vibration"
+                    else ("natural_frequency_Hz", "damping_ratio"))
+            wn = 2 * np.pi * sub[f].to_numpy(float)
+            k = float(np.nanmean(m * wn**2))
+            c = float(np.nanmean(2 * sub[z].to_numpy(float) * m * wn))
+        ours[method] = (float(k), float(c), len(sub))
+    th = thesis.set_index("method")
+    source = TABLE_I_RECORDINGS_SOURCE.format(tyre=tyre, pressure=pressure, load=load, runs=len(g))
+    k0, c0, _ = ours["apparent_mass"]
+    tk0, tc0 = (float(th.loc["apparent_mass", c]) for c in ("stiffness_kN_per_m", "damping_kN_s_per_m"))
+    rows = []
+    for method in METHODS:
+        tk, tc = (float(th.loc[method, c]) for c in ("stiffness_kN_per_m", "damping_kN_s_per_m"))
+        k, c, n = ours.get(method, (np.nan, np.nan, 0))
+        rows.append({
+            "method": method, "method_label": th.loc[method, "method_label"], "source": source,
+            "thesis_stiffness_kN_per_m": tk, "thesis_damping_kN_s_per_m": tc,
+            "stiffness_kN_per_m": k / 1e3, "damping_kN_s_per_m": c / 1e3,
+            "stiffness_difference_kN_per_m": k / 1e3 - tk, "damping_difference_kN_s_per_m": c / 1e3 - tc,
+            "thesis_stiffness_ratio": tk / tk0, "stiffness_ratio": k / k0,
+            "thesis_damping_excess_kN_s_per_m": tc - tc0, "damping_excess_kN_s_per_m": (c - c0) / 1e3,
+            "truth_stiffness_kN_per_m": np.nan, "truth_damping_kN_s_per_m": np.nan,
+            "tyre_id": tyre, "pressure_bar": pressure, "load_kN": load, "n_runs": n,
+        })
+    return pd.DataFrame(rows)

@@ -3,7 +3,10 @@
 A run file holds one row per sample at a constant rate: ``time_s`` and the
 channels :data:`CHANNELS` (accelerations of the two axle ends, upward
 positive, m/s²; the four load-beam forces the carriage exerts on the axle,
-upward positive, N), plus ``force_plate_N`` on force-plate calibration runs.
+upward positive, N), plus ``force_plate_N`` on force-plate calibration runs
+and ``deflection_m`` (tyre deflection, m, compression positive) on
+``load_deflection`` runs (issue 34). A lateral or longitudinal run records the
+same channels along its direction (:mod:`tyrelab.measurement.rig_methods`).
 ``.parquet`` and ``.csv`` are read as they are; ``.mf4``/``.tdms`` go through
 a channel map (:mod:`tyrelab.rawformat.mapped`). Every problem raises
 :class:`RunFileError` with a one-line reason, which the stages put in the
@@ -59,7 +62,8 @@ ACCEL_CHANNELS = ["accel_left_m_s2", "accel_right_m_s2"]
 BEAM_CHANNELS = ["load_beam_1_N", "load_beam_2_N", "load_beam_3_N", "load_beam_4_N"]
 #: Every required channel but time, in this order (accelerations, then beams).
 CHANNELS = [*ACCEL_CHANNELS, *BEAM_CHANNELS]
-OPTIONAL_CHANNELS = ["force_plate_N"]
+#: Channels some runs add: the force plate of a calibration run, the deflection of a load-deflection run.
+OPTIONAL_CHANNELS = ["force_plate_N", "deflection_m"]
 #: Suffixes of run files: raw format v1, and other formats read through a channel map.
 RUN_SUFFIXES = (".parquet", ".csv", *mapped.SUFFIXES)
 

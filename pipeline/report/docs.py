@@ -32,7 +32,7 @@ from .. import resources
 __all__ = ["DOCS", "Gap", "Document", "document", "section_id", "gap_link"]
 
 #: The documents of ``docs/`` the site carries (``docs/<name>.html``): the ones its pages link to.
-DOCS = ("findings", "simulation", "uncertainty")
+DOCS = ("findings", "simulation", "uncertainty", "rig_methods")
 
 
 @dataclass(frozen=True)

@@ -47,6 +47,7 @@ from markupsafe import escape
 from .chapters import ABBREVIATIONS, Chapter, FigureSpec, TableSpec
 from .docs import gap_link
 from .pages import ChapterPage, Page, registered, run_page_name
+from . import methods_page  # noqa: F401  (registers itself: the rig-methods page, issue 34)
 from .render import abbreviations_used, environment, provenance
 
 __all__ = ["MAX_PLAIN_ROWS", "POOL_MIN_FIGURES", "Missing", "Warehouse", "resolve_table", "table_queries",

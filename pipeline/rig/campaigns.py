@@ -18,7 +18,12 @@ run (§3.2.9).
 * driving torque up to 4.7 kNm (T1) and 2.8 kNm (T2, T3) at 1, 8, 10, 15 km/h (§4.3.6, §5.3.6);
 * the surfaces of Tables V and IX with T4 and T5 at 5 and 10 km/h (§4.3.7, §5.3.7);
 * a repeatability day (T1, repeated runs, §3.6) and a deliberately
-  miscalibrated day (load-beam amplifiers +5 %) repeating it.
+  miscalibrated day (load-beam amplifiers +5 %) repeating it;
+* the other methods and directions (issue 34, :mod:`tyrelab.rig.method_runs`), on the last
+  day so that every earlier run keeps its date and seed: T1 stationary at 1.38 bar and the
+  nominal load by random and swept-sine excitation, free vibration and load deflection (the
+  thesis' Table I case, §3.4), and lateral and longitudinal random runs over pressure and
+  speed (``full`` also over load).
 
 ``scale="small"`` keeps one of each kind and enough for the Table III
 regressions of every tyre (three pressures at 0 km/h and at 10 and 15 km/h).
@@ -34,6 +39,7 @@ import pandas as pd
 
 from . import truth
 from .instrument import RigConfig
+from .method_runs import METHOD_DURATION_S, simulate_method_run
 
 __all__ = ["MANIFEST_COLUMNS", "TRACK_LENGTH_M", "RUN_DURATION_S", "CALIBRATION_DURATION_S",
     "CALIBRATION_BAND_HZ", "MISCALIBRATED_BEAM_GAIN_ERROR", "FIRST_DAY", "SILSOE_SPEEDS", "BERLIN_SPEEDS",
@@ -44,7 +50,10 @@ __all__ = ["MANIFEST_COLUMNS", "TRACK_LENGTH_M", "RUN_DURATION_S", "CALIBRATION_
 MANIFEST_COLUMNS = [
     "run_id", "file", "tyre_id", "speed_km_h", "pressure_bar", "load_kN", "excitation_frequency_Hz",
     "amplitude_mm_pp", "torque_kNm", "surface", "axle_mass_kg", "recorded_on", "kind", "sample_rate_Hz", "notes",
+    "direction", "method", "band_low_Hz", "band_high_Hz",
 ]
+#: Band of the broadband runs of the virtual campaign, Hz (the calibration band, §3.2.9).
+METHOD_BAND_HZ = (1.0, 8.0)
 #: Straight track length usable for one recording; §3.5: above 15 km/h there was
 #: not enough track for 50 s in one run.
 TRACK_LENGTH_M = 180.0
@@ -115,7 +124,23 @@ class _Planner:
             "axle_mass_kg": self.cfg.axle_mass_kg, "recorded_on": self.day.isoformat(), "kind": kind,
             "sample_rate_Hz": self.cfg.sample_rate_Hz, "notes": notes,
             "plan_duration_s": float(dur), "plan_beam_gain_error": self.gain_error, "plan_set": "",
+            "direction": "vertical", "method": "stepped_sine", "band_low_Hz": float("nan"), "band_high_Hz": float("nan"),
         }
+
+    def method_run(self, method: str, direction: str, tyre_id: str, v: float, p: float,
+                   load: float = truth.NOMINAL_LOAD_KN) -> None:
+        set_name = f"{direction[:3]}_{method}"
+        key = f"{tyre_id}_{set_name}"
+        i = self.counter.get(key, 0) + 1
+        self.counter[key] = i
+        run_id = f"{tyre_id}_{set_name}_{i:03d}"
+        row = self._row(run_id, "measurement", tyre_id, v, p, load, float("nan"), float("nan"), 0.0, "concrete",
+                        METHOD_DURATION_S[method], f"{method}, {direction} (issue 34)")
+        broadband = method in ("random", "swept_sine")
+        row.update(plan_set=set_name, direction=direction, method=method,
+                   band_low_Hz=METHOD_BAND_HZ[0] if broadband else float("nan"),
+                   band_high_Hz=METHOD_BAND_HZ[1] if broadband else float("nan"))
+        self.rows.append(row)
 
     def run(self, set_name: str, tyre_id: str, v: float, p: float, load: float = truth.NOMINAL_LOAD_KN,
             f: float = truth.NOMINAL_FREQUENCY_HZ, a: float = truth.NOMINAL_AMPLITUDE_MM_PP, tq: float = 0.0,
@@ -208,6 +233,18 @@ def campaign_plan(scale: str = "small", cfg: RigConfig = RigConfig()) -> pd.Data
         for v in (0.0, 10.0):
             for _ in range(3 if full else 1):
                 pl.run("repeat", "T1", v, nominal_pressure("T1"), notes=note.lstrip("; "))
+
+    # the other methods and directions (issue 34), last so that no earlier run changes
+    pl.new_day("T1")
+    p0 = nominal_pressure("T1")
+    for method in ("random", "swept_sine", "free_vibration", "load_deflection"):
+        pl.method_run(method, "vertical", "T1", 0.0, p0)
+    for direction in ("lateral", "longitudinal"):
+        for p in (pressures("T1", 3) if full else (pressures("T1", 3)[0], pressures("T1", 3)[-1])):
+            for v in ((0.0, 2.5, 5.0, 10.0) if full else (0.0, 5.0)):
+                pl.method_run("random", direction, "T1", v, p)
+        for load in (LOADS_KN if full else ()):
+            pl.method_run("random", direction, "T1", 5.0, p0, load=load)
 
     df = pd.DataFrame(pl.rows)
     if df["run_id"].duplicated().any():
@@ -303,6 +340,12 @@ def simulate_run(row, seed: int, cfg: RigConfig = RigConfig(), keep_signals: boo
     from .instrument import record, simulate_axle
 
     get = row.get if hasattr(row, "get") else (lambda k, d=None: getattr(row, k, d))
+    if get("method", "stepped_sine") not in ("stepped_sine", None) and get("kind", "measurement") == "measurement":
+        rng = np.random.default_rng(run_seed(seed, get("run_id")))
+        day = day_state(seed, get("recorded_on"), float(get("plan_beam_gain_error", 0.0) or 0.0), cfg)
+        run, info = simulate_method_run(row, rng, day, cfg)
+        info["amplitude_mm_pp"] = rms_to_pp_mm(float(info.pop("displacement_rms_m")))
+        return run, info
     tyre = get("plan_tyre", None) or truth.tyre_params(get("tyre_id"))
     rng = np.random.default_rng(run_seed(seed, get("run_id")))
     day = day_state(seed, get("recorded_on"), float(get("plan_beam_gain_error", 0.0) or 0.0), cfg)

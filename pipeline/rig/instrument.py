@@ -444,7 +444,7 @@ def _adc(x: np.ndarray, full_scale: float) -> np.ndarray:
 
 
 def record(signals: RunSignals, day: DayCalibration, rng: np.random.Generator, cfg: RigConfig = RigConfig(),
-           force_plate: bool = False) -> pd.DataFrame:
+           force_plate: bool = False, gravity_m_s2: float = G) -> pd.DataFrame:
     """Turn physical signals into a raw-format-v1 run table.
 
     Accelerometers: specific force ``a + g`` plus a small roll component that
@@ -452,11 +452,12 @@ def record(signals: RunSignals, day: DayCalibration, rng: np.random.Generator, c
     shared unequally between the four beams, with opposing preloads of the
     parallel pairs and a pitch component that cancels in the sum. Then gain,
     offset, noise (``cfg.noise_scale``), quantisation and clipping.
-    Optional ``force_plate_N`` (calibration runs, §3.2.9).
+    Optional ``force_plate_N`` (calibration runs, §3.2.9). ``gravity_m_s2``: what a DC
+    accelerometer adds along the run's direction (``G`` vertical, 0 lateral or longitudinal).
     """
     n = signals.time_s.size
     s = cfg.noise_scale
-    acc = signals.axle_acceleration_m_s2 + G
+    acc = signals.axle_acceleration_m_s2 + gravity_m_s2
     roll = 0.03 * signals.axle_acceleration_m_s2
     out = {TIME: signals.time_s}
     for i, (sign, name) in enumerate(zip((1, -1), ACCEL_CHANNELS)):

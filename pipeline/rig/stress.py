@@ -83,7 +83,8 @@ def stress_plan(runs_per_cell: int, seed: int = 1991) -> pd.DataFrame:
     if runs_per_cell < 1:
         raise ValueError(f"runs_per_cell must be at least 1, got {runs_per_cell!r}")
     plan = campaign_plan("full")
-    pool = plan[(plan["kind"] == "measurement") & (plan["plan_beam_gain_error"] == 0)].reset_index(drop=True)
+    pool = plan[(plan["kind"] == "measurement") & (plan["plan_beam_gain_error"] == 0)
+                & (plan["method"] == "stepped_sine")].reset_index(drop=True)  # the stress artefacts are the stepped sine's
     from . import truth
 
     traction = np.array([truth.tyre_params(t).traction for t in pool["tyre_id"]], dtype=bool)

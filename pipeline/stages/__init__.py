@@ -129,22 +129,36 @@ def plan(ctx: Context, stages: list[str] | None = None) -> list[tuple[str, str |
 def explain(ctx: Context, stages: list[str] | None = None) -> str:
     """:func:`plan` as text, one stage a line, then the stage graph (:func:`tyrelab.stages.dag.graph_text`).
 
-    Under a stage that will run, its items (``Stage.items``: what each is computed again from); for one
-    whose inputs are there now (not waiting for an earlier stage), what its module's ``item_plan(ctx)``
-    says of them, if it has one (the ride scenarios and tables of ``simulate``: kept or to compute)."""
+    Under a stage that will run, its items (``Stage.items``: what each is computed again from), and
+    what its module's ``item_plan(ctx)`` says of them, if it has one (the ride scenarios and tables of
+    ``simulate``: kept or to compute), on its inputs as they are now: when stages it reads from run
+    before it, the line says so (they may change those inputs)."""
     from .dag import graph_text
 
-    lines = []
+    lines, running = [], set()
     for name, reason in plan(ctx, stages):
         lines.append(f"{name:<10} {'runs: ' + reason if reason else 'up to date: skipped'}")
         if reason is None:
             continue
         lines.extend(f"{'':<10}   item {item}" for item in STAGES[name].items)
-        if not reason.startswith("after "):
-            module = importlib.import_module(STAGES[name].module)
-            if hasattr(module, "item_plan"):
-                lines.extend(f"{'':<10}   now: {line}" for line in module.item_plan(ctx))
+        waits = sorted(upstream(name) & running, key=ORDER.index)
+        running.add(name)
+        module = importlib.import_module(STAGES[name].module) if _has_item_plan(STAGES[name]) else None
+        if module is not None:  # on its inputs as they are now (before the stages it reads from run, if any)
+            when = f"now, before {', '.join(waits)} run" if waits else "now"
+            lines.extend(f"{'':<10}   {when}: {line}" for line in module.item_plan(ctx))
     return "\n".join(["plan:", *lines, "", "stage graph (tyrelab.stages.dag.STAGES):", graph_text()])
+
+
+def _has_item_plan(stage) -> bool:
+    """Whether the stage's module defines ``item_plan`` (read from its source: nothing imported)."""
+    import ast
+
+    path = state._module_file(stage.module)
+    if path is None:
+        return False
+    tree = ast.parse(path.read_bytes())
+    return any(isinstance(node, ast.FunctionDef) and node.name == "item_plan" for node in tree.body)
 
 
 def _worker_server_ready() -> bool:

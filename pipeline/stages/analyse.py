@@ -11,6 +11,16 @@ Both estimators are stored: the thesis' Welch H1 read at the excitation bin
 (``welch_*`` columns) and the phase-locked synchronous demodulation used
 downstream (``stiffness_kN_per_m``, ``damping_kN_s_per_m``).
 
+Runs of the other methods (the manifest's ``method``: swept sine, random, free vibration,
+load deflection; issue 34) are analysed one at a time by
+:func:`tyrelab.measurement.rig_methods.analyse_method_run` into the same table, with their
+K, C, 95 % intervals and QC reasons and the method's own columns
+(:data:`~tyrelab.measurement.rig_methods.METHOD_COLUMNS`); a broadband run's frequency
+response goes to the table ``frf``. Every row carries ``direction`` and ``method``; stepped-sine
+rows are computed exactly as before. A free-vibration run that never decays or a
+load-deflection run without a loading branch is quarantined with its reason; a broadband
+run without coherence over its band keeps its row with the reason and no K or C.
+
 Incremental: the stage is skipped when what it reads (:data:`tyrelab.stages.dag.STAGES`) is
 unchanged (see :mod:`tyrelab.stages.state`); otherwise a run whose
 ``input_hash`` (file SHA-256, manifest row, and the code fingerprint of this stage: its source
@@ -34,6 +44,7 @@ import pyarrow.parquet as pq
 from ..measurement.calibration import CALIBRATION_REASON
 from ..measurement import qc
 from ..measurement.recording import analyse_batch
+from ..measurement import rig_methods as rm
 from ..tyre.sizes import lugs_per_side, tyre_rolling_circumference_m
 from ..executor import map_batches
 from .base import Context, Progress, StageResult, write_quarantine
@@ -41,7 +52,7 @@ from .dag import ANALYSED
 from .state import code_fingerprint
 from ..rawformat import CHANNELS
 
-__all__ = ["OUTPUT", "BATCH", "CONDITION_COLUMNS", "input_hash",
+__all__ = ["OUTPUT", "BATCH", "CONDITION_COLUMNS", "METHOD_CONDITION_COLUMNS", "input_hash", "analyse_method_path",
     "load_signals", "wheel_interference_Hz", "batches", "analyse_paths", "reuse_freed_memory", "run", "empty_results"]
 
 #: The table the stage writes (declared in :data:`tyrelab.stages.dag.STAGES`); calibrate reads it.
@@ -53,6 +64,10 @@ CONDITION_COLUMNS = [
     "campaign", "run_id", "tyre_id", "kind", "speed_km_h", "pressure_bar", "load_kN",
     "excitation_frequency_Hz", "amplitude_mm_pp", "torque_kNm", "surface", "axle_mass_kg", "recorded_on",
 ]
+#: Manifest columns of the other methods (issue 34) kept in ``results`` after the conditions.
+METHOD_CONDITION_COLUMNS = ["direction", "method", "band_low_Hz", "band_high_Hz"]
+#: Reasons of a method run that quarantine it (bad input rather than a QC finding).
+QUARANTINE_REASONS = ("no free decay", "no loading branch", "the deflection does not change", "moving mass")
 
 
 def input_hash(sha256: str, row_hash: str, code: str) -> str:
@@ -166,6 +181,46 @@ def analyse_paths(task: dict) -> pd.DataFrame:
     return analyse_batch(accel, beams, masses, task["sample_rate_Hz"], interference)
 
 
+def _method_task(row: pd.Series) -> dict:
+    """A run of another method, as paths and scalars for :func:`analyse_method_path`."""
+    lo, hi = row.get("band_low_Hz"), row.get("band_high_Hz")
+    band_Hz = (float(lo), float(hi)) if pd.notna(lo) and pd.notna(hi) else None
+    return {"path": row["run_path"], "run_id": row["run_id"], "method": row["method"],
+            "direction": row["direction"], "band_Hz": band_Hz, "axle_mass_kg": float(row["axle_mass_kg"]),
+            "rolling": bool(float(row["speed_km_h"]) > 0)}
+
+
+def analyse_method_path(task: dict) -> tuple[dict, pd.DataFrame]:
+    """Read and analyse one run of another method (runs in a worker process): its ``results``
+    fields and its ``frf`` rows (:func:`tyrelab.measurement.rig_methods.analyse_method_run`)."""
+    pf = pq.ParquetFile(task["path"])
+    names = set(pf.schema_arrow.names)
+    table = pf.read(columns=["time_s", *CHANNELS, *([rm.DEFLECTION] if rm.DEFLECTION in names else [])])
+    col = lambda c: table.column(c).to_numpy().astype(np.float64)  # noqa: E731
+    accel = np.stack([col(c) for c in CHANNELS[:2]])
+    beams = np.stack([col(c) for c in CHANNELS[2:]])
+    row, frf = rm.analyse_method_run(task["method"], task["direction"], col("time_s"), accel, beams,
+                                     task["axle_mass_kg"], band_Hz=task["band_Hz"], rolling=task["rolling"],
+                                     deflection_m=col(rm.DEFLECTION) if rm.DEFLECTION in names else None,
+                                     run_id=task["run_id"])
+    return row, frf
+
+
+def _method_rows(runs: pd.DataFrame, outs: list) -> pd.DataFrame:
+    """``results`` rows of the other methods: conditions, K and C (N and kN), uncertainty, QC."""
+    rows = []
+    for (_, r), (fields, _) in zip(runs.iterrows(), outs):
+        reasons = list(fields.pop("reasons", []))
+        row = {**r.to_dict(), **fields}
+        for q, unit in (("stiffness", "N_per_m"), ("damping", "N_s_per_m")):
+            row[f"{q}_k{unit}"] = row.get(f"{q}_{unit}", np.nan) / 1e3
+        row["qc_ok"] = not reasons and np.isfinite(row.get("stiffness_N_per_m", np.nan))
+        row["qc_reasons"] = "; ".join(reasons)
+        row["uncertainty_source"] = "type A of the method, §3.2.9 limits" if not reasons else ""
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
 def _flagged_by_analyse(reasons: str) -> bool:
     """Whether a run's ``qc_reasons`` hold a reason of this stage's QC (not calibrate's day flag)."""
     prefix = CALIBRATION_REASON.split("{")[0]
@@ -183,6 +238,8 @@ def run(ctx: Context) -> StageResult:
         res.seconds = time.perf_counter() - t0
         return res
     runs = manifest[manifest["kind"].fillna("measurement") == "measurement"].copy()
+    for name, default in (("direction", "vertical"), ("method", "stepped_sine")):
+        runs[name] = runs[name].fillna(default) if name in runs else default
     code = code_fingerprint(__name__)
     runs["input_hash"] = [input_hash(s, h, code) for s, h in zip(runs["sha256"], runs["row_hash"])]
     previous = pd.DataFrame() if ctx.force else _previous(ctx)
@@ -195,15 +252,21 @@ def run(ctx: Context) -> StageResult:
         reuse = reuse.assign(campaign=reuse["run_id"].map(runs.set_index("run_id")["campaign"]))
     todo = runs[~runs["input_hash"].isin(set(reuse["input_hash"]) if not reuse.empty else set())]
     res.n_in = len(runs)
+    other = todo[todo["method"] != "stepped_sine"]
+    todo = todo[todo["method"] == "stepped_sine"]
     chunks = batches(todo)
     ctx.log.info("analyse: %d run(s) reused, %d to analyse in %d batch(es) (%s)",
                  len(reuse), len(todo), len(chunks), ctx.executor)
     catalogue = ctx.read_table("tyres") if ctx.has_table("tyres") else pd.DataFrame(columns=["tyre_id"])
     tyres = {r["tyre_id"]: r for _, r in catalogue.iterrows()}
-    progress = Progress("analyse", len(todo), logger=ctx.log)
+    progress = Progress("analyse", len(todo) + len(other), logger=ctx.log)
     outs = map_batches(analyse_paths, [_batch_task(c, tyres) for c in chunks], ctx,
                        on_done=lambda i: progress.step(len(chunks[i])), alongside=True)
     frames = [pd.concat([c.reset_index(drop=True), o], axis=1) for c, o in zip(chunks, outs)]
+    method_outs = map_batches(analyse_method_path, [_method_task(r) for _, r in other.iterrows()], ctx,
+                              on_done=lambda i: progress.step(), alongside=True) if len(other) else []
+    if len(other):
+        frames.append(_method_rows(other, method_outs))
     new = pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
     if not new.empty:
         new["rolling"] = new["speed_km_h"] > 0
@@ -211,29 +274,61 @@ def run(ctx: Context) -> StageResult:
     quarantine = []
     if not results.empty:
         results = results.sort_values("run_id", kind="stable").reset_index(drop=True)
+        for name, kind in rm.METHOD_COLUMNS.items():  # every build has them, whatever methods it holds
+            if name not in results:
+                results[name] = pd.Series(dtype=object if kind is str else float, index=results.index)
+        # the issue 34 columns after every earlier one (a reader of the old columns sees them unmoved)
+        added = METHOD_CONDITION_COLUMNS + list(rm.METHOD_COLUMNS)
         keep = [c for c in CONDITION_COLUMNS if c in results] + [
-            c for c in results.columns if c not in CONDITION_COLUMNS and c not in manifest.columns
-        ] + ["input_hash"]
-        results = results[list(dict.fromkeys(keep))]
-        bad = results[~results["excitation_frequency_measured_Hz"].notna()]
+            c for c in results.columns if c not in CONDITION_COLUMNS and c not in manifest.columns and c not in added
+        ] + added + ["input_hash"]
+        results = results.reindex(columns=list(dict.fromkeys(keep)))
+        stepped = (results["method"] == "stepped_sine").to_numpy()
+        bad = results[stepped & ~results["excitation_frequency_measured_Hz"].notna()]
+        refused = results[~stepped & results["qc_reasons"].fillna("").str.contains("|".join(QUARANTINE_REASONS))]
         files = manifest.set_index("run_id")["file"]
         quarantine = [
             {"campaign": r["campaign"], "run_id": r["run_id"], "file": str(Path(r["campaign"]) / files[r["run_id"]]),
-             "stage": "analyse", "reason": "excitation not found"}
-            for _, r in bad.iterrows()
+             "stage": "analyse", "reason": reason}
+            for frame, fixed in ((bad, "excitation not found"), (refused, None)) for _, r in frame.iterrows()
+            for reason in [fixed or f"run {r['run_id']}: method {r['method']}: {r['qc_reasons']}"]
         ]
         for q in quarantine:
             ctx.log.error("%s: %s", q["file"], q["reason"])
+        caveat = results.loc[(results["method"] == "free_vibration") & results["speed_km_h"].gt(0)
+                             & results["method_note"].fillna("").str.contains(rm.ROLLING_CAVEAT, regex=False)]
+        for _, r in caveat.iterrows():  # thesis §3.4's caveat, printed for every rolling free-vibration run
+            ctx.log.warning("run %s (free vibration, %g km/h): %s", r["run_id"], r["speed_km_h"], rm.ROLLING_CAVEAT)
     ctx.write_table(OUTPUT, results)
+    ctx.write_table("frf", _frf_table(ctx, reuse, other, method_outs))
     write_quarantine(ctx, "analyse", quarantine)
     # this stage's QC only: calibrate adds "calibration failed on <day>" to the results it keeps
     own_flag = results["qc_reasons"].fillna("").map(_flagged_by_analyse) if not results.empty else pd.Series([], dtype=bool)
-    res.n_ok = int((~own_flag & results["excitation_frequency_measured_Hz"].notna()).sum()) if not results.empty else 0
+    reported = results["excitation_frequency_measured_Hz"].notna() | (
+        (results["method"] != "stepped_sine") & results["stiffness_N_per_m"].notna()) if not results.empty else None
+    res.n_ok = int((~own_flag & reported).sum()) if not results.empty else 0
     res.n_quarantined = len(quarantine)
     flagged = len(results) - res.n_ok - len(quarantine) if not results.empty else 0
     res.message = f"{len(reuse)} reused, {len(new)} analysed" + (f", {flagged} flagged by QC" if flagged else "")
     res.seconds = time.perf_counter() - t0
     return res
+
+
+def _frf_table(ctx: Context, reuse: pd.DataFrame, other: pd.DataFrame, outs: list) -> pd.DataFrame:
+    """Table ``frf``: the reused runs' rows of the last one, then the runs analysed now, by run and frequency."""
+    parts = []
+    if not reuse.empty and (reuse["method"] != "stepped_sine").any():
+        try:
+            previous = pd.read_parquet(ctx.table("frf"))
+            parts.append(previous[previous["run_id"].isin(set(reuse["run_id"]))])
+        except (OSError, ValueError):
+            pass
+    parts += [frf for _, frf in outs if len(frf)]
+    if not parts:
+        return pd.DataFrame({c: pd.Series(dtype=object if c in ("run_id", "direction", "method") else
+                                          (bool if c == "in_fit" else float)) for c in rm.FRF_COLUMNS})
+    out = pd.concat(parts, ignore_index=True).reindex(columns=rm.FRF_COLUMNS)
+    return out.sort_values(["run_id", "frequency_Hz"], kind="stable").reset_index(drop=True)
 
 
 def _previous(ctx: Context) -> pd.DataFrame:
@@ -247,7 +342,9 @@ def _previous(ctx: Context) -> pd.DataFrame:
 def empty_results() -> pd.DataFrame:
     """The ``results`` table with no run: its columns (as :func:`run` writes them), no rows."""
     rows = analyse_batch(np.zeros((0, 2, 1024), np.float32), np.zeros((0, 4, 1024), np.float32), np.zeros(0), 256.0)
-    text = {"campaign", "run_id", "tyre_id", "kind", "surface", "recorded_on"}
+    text = {"campaign", "run_id", "tyre_id", "kind", "surface", "recorded_on", "direction", "method"}
     cond = {c: pd.Series(dtype="string" if c in text else float) for c in CONDITION_COLUMNS}
-    return pd.DataFrame({**cond, **{c: rows[c] for c in rows.columns}, "rolling": pd.Series(dtype=bool),
-                         "input_hash": pd.Series(dtype="string")})
+    added = {c: pd.Series(dtype="string" if c in text else float) for c in METHOD_CONDITION_COLUMNS}
+    extra = {c: pd.Series(dtype="string" if kind is str else float) for c, kind in rm.METHOD_COLUMNS.items()}
+    return pd.DataFrame({**cond, **{c: rows[c] for c in rows.columns}, "rolling": pd.Series(dtype=bool), **added,
+                         **extra, "input_hash": pd.Series(dtype="string")})

@@ -125,6 +125,10 @@ REGRESS_TABLES = (
     "size_regression_search", "formula_predictions", "formula_accuracy", "formula_fit", "formula_fit_loto", "damping_fit",
     "spoke_force", "spoke_speed",
     "spoke_frequency", "spoke_amplitude", "spoke_deflection", "spoke_fit", "spoke_fit_points",
+    # issue 34: the lateral and longitudinal runs (:func:`tyrelab.stages.regress.directional_fits`)
+    *(f"{d}_{q}" for d in ("lateral", "longitudinal")
+      for q in ("stiffness_pressure_by_speed", "damping_pressure_by_speed", "factor_regressions")),
+    "series_damping_speed",
 )
 #: The ride tables simulate writes, per scenario file (:func:`tyrelab.stages.simulate.scenario_task`): one
 #: row per scenario; per scenario × speed × variant; the seat PSD and the transmissibility per axis of the
@@ -166,18 +170,21 @@ STAGES: dict[str, Stage] = {s.name: s for s in (
           items=("run <- its raw file (by content) and manifest row",),
           doc="validate raw campaigns against schemas/, convert each run to Parquet"),
     Stage("analyse", reads=(*_tables("manifest", "tyres"), "parquet/runs/"),
-          writes=(table(ANALYSED), quarantine_part("analyse")), pools=True,
-          items=("run <- its Parquet file and manifest row",),
-          doc="per run: apparent mass, K, C, amplitude, coherence, QC"),
+          writes=(table(ANALYSED), table("frf"), quarantine_part("analyse")), pools=True,
+          items=("run <- its Parquet file and manifest row (a broadband run's frf rows with it)",),
+          doc="per run and method: apparent mass (H(f) of broadband runs: frf), K, C, amplitude, coherence, QC"),
     Stage("calibrate", reads=(*_tables("manifest", ANALYSED), "parquet/runs/", "param:calibration_correct"),
           writes=_tables("calibration", "calibration_tf", "results"),
           items=("check <- its calibration run (by content)", "day <- its runs' results, its transfer function"),
           doc="force-plate check per day; results = analysed runs with their day's flags and uncertainty"),
-    Stage("methods", reads=("published",), writes=(table("table_i"),), items=("Table I <- the published tables it reads",),
-          doc="Table I: the measurement methods of §3.4 on virtual experiments (reads no campaign)"),
+    Stage("methods", reads=("published", table("results")), writes=(table("table_i"),),
+          items=("Table I from recordings <- the results of several methods on one tyre and condition",
+                 "Table I from virtual experiments <- the published tables it reads"),
+          doc="Table I: the measurement methods of §3.4, from recordings of several methods or virtual experiments"),
     Stage("regress", reads=(*_tables("results", "tyres"), "published"),
           writes=_tables(*REGRESS_TABLES),
           items=("per-tyre fits <- that tyre's results and catalogue row",
+                 "formula fit of a source <- its points (the published source's: the printed Table III)",
                  "published-only parts <- the published tables they read"),
           doc="Tables III-X, size regressions, formula accuracy, spoke model"),
     Stage("simulate", reads=("raw", "published", "scenarios", *_tables(*FIT_TABLES, "recordings")),

@@ -6,6 +6,13 @@ the tyre catalogue (``raw/tyres.csv`` shipped with tyrelab, extended by any
 never stops the batch: it is written to the ``quarantine`` table with a
 one-line reason naming the file, and good runs go through.
 
+Each row's ``method`` and ``direction`` (issue 34, :mod:`tyrelab.measurement.rig_methods`;
+defaults ``stepped_sine`` and ``vertical``) are checked against what the row and the file hold,
+one line naming run, method and what is missing: ``excitation_frequency_Hz`` for a stepped
+sine, ``band_low_Hz``/``band_high_Hz`` for a random run, ``deflection_m`` in the file of a
+load-deflection run. The ``manifest`` table carries ``direction`` and ``method`` with their
+defaults filled in; a manifest without these columns converts exactly as before.
+
 Run files may be ``.parquet``/``.csv`` (raw format v1) or ``.mf4``/``.tdms``
 read through the campaign's ``channel_map.json`` (:mod:`tyrelab.rawformat.mapped`).
 Files are hashed, checked and converted in parallel by
@@ -45,6 +52,7 @@ from .. import rawformat as rf
 from ..rawformat import CHANNEL_MAP, CHANNELS, MAX_RUN_FILE_BYTES, RUN_SUFFIXES, RunFileError, check_run, read_run_file
 from ..rawformat.files import confined_run_path, read_delimited
 from ..executor import map_batches
+from ..measurement.rig_methods import BAND_REQUIRED, channel_problem
 from ..schema import field_names, load_schema, row_problems, validate_frame
 from ..tyre.sizes import TyreSizeError, parse_tyre_size
 from .base import Context, Progress, StageResult, write_quarantine
@@ -201,6 +209,9 @@ def convert_run(task: dict) -> dict:
     try:
         cmap = rf.load_channel_map(task["channel_map"]) if task.get("channel_map") else None
         df = read_run_file(src, channel_map=cmap)
+        problem = channel_problem(task["run_id"], task.get("method", "stepped_sine"), df.columns)
+        if problem:
+            raise RunFileError(problem)
         ri = check_run(df, task["excitation_frequency_Hz"], task["sample_rate_Hz"])
         with io.atomic_path(out) as tmp:
             table = _run_table(df, task["run_id"], ri.channels)
@@ -213,7 +224,35 @@ def convert_run(task: dict) -> dict:
 
 def _optional_float(row, name: str) -> float | None:
     value = row.get(name)
-    return float(value) if value is not None and pd.notna(value) else None
+    return float(value) if value is not None and pd.notna(value) and str(value).strip() != "" else None
+
+
+def _method(row) -> str:
+    """A manifest row's method (``stepped_sine`` where the column is absent or blank)."""
+    value = row.get("method")
+    return str(value).strip() if isinstance(value, str) and value.strip() else "stepped_sine"
+
+
+def method_problem(row) -> str | None:
+    """One line naming run, method and what its manifest row lacks for the method, or None (issue 34)."""
+    run_id, method = row.get("run_id"), _method(row)
+    if method == "stepped_sine" and _optional_float(row, "excitation_frequency_Hz") is None:
+        return f"run {run_id}: method stepped_sine needs excitation_frequency_Hz, which the row leaves empty"
+    lo, hi = _optional_float(row, "band_low_Hz"), _optional_float(row, "band_high_Hz")
+    if method in BAND_REQUIRED and (lo is None or hi is None):
+        missing = " and ".join(n for n, v in (("band_low_Hz", lo), ("band_high_Hz", hi)) if v is None)
+        return f"run {run_id}: method {method} needs its excitation band, {missing} missing"
+    if lo is not None and hi is not None and not lo < hi:
+        return f"run {run_id}: band_low_Hz {lo:g} is not below band_high_Hz {hi:g}"
+    return None
+
+
+def _cycle_frequency(row) -> float:
+    """The frequency the sampling rate must resolve (8 samples a cycle): the excitation of a stepped
+    sine, the band's top of a broadband run, none (0) otherwise."""
+    if _method(row) == "stepped_sine":
+        return float(row["excitation_frequency_Hz"])
+    return _optional_float(row, "band_high_Hz") or 0.0
 
 
 @dataclass
@@ -262,6 +301,8 @@ def _plan(ctx: Context, schema: dict, campaigns: list[Path], sizes_ok: dict) -> 
                 reject(run_id, row.get("file"), f"manifest row {i + 2}: " + "; ".join(problems))
             elif run_id in seen:
                 reject(run_id, row["file"], f"duplicate run_id {run_id!r} (already in {seen[run_id]})")
+            elif method_problem(row):
+                reject(run_id, row["file"], method_problem(row))
             elif row["tyre_id"] not in sizes_ok:
                 reject(run_id, row["file"], f"unknown tyre_id {row['tyre_id']!r} (not in any tyres.csv)")
             elif not sizes_ok[row["tyre_id"]]:
@@ -367,7 +408,7 @@ def run(ctx: Context) -> StageResult:
         tasks.append({
             "run_id": run_id, "src": str(src), "out": str(out), "row": row_hash, "size": st.st_size, "prev": prev,
             "touched": not prev or (prev["size"], prev["mtime_ns"]) != (st.st_size, st.st_mtime_ns),
-            "excitation_frequency_Hz": float(row["excitation_frequency_Hz"]),
+            "excitation_frequency_Hz": _cycle_frequency(row), "method": _method(row),
             "sample_rate_Hz": _optional_float(row, "sample_rate_Hz"),
             "channel_map": str(cmap) if cmap.is_file() and src.suffix.lower() in rf.mapped.SUFFIXES else None,
         })
@@ -464,6 +505,9 @@ def _manifest_table(records: list[dict], numeric: list[str]) -> pd.DataFrame:
     if "kind" not in df:
         df["kind"] = "measurement"
     df["kind"] = df["kind"].fillna("measurement")
+    for name, default in (("direction", "vertical"), ("method", "stepped_sine")):
+        df[name] = df[name].where(df[name].notna() & (df[name].astype(str).str.strip() != ""), default) \
+            if name in df else default
     return df.sort_values("run_id", kind="stable").reset_index(drop=True)
 
 

@@ -65,7 +65,8 @@ from .base import Context, Progress, StageResult
 from .state import ItemCache
 
 __all__ = ["FIT_INPUT_COLUMNS", "PUBLISHED", "FACTORS", "read_published", "read_tyres", "tyre_fits", "tyre_fits_each",
-           "FIT_PASSES", "ACROSS_TYRE_STEPS", "all_tyre_fits", "formula_fits", "damping_fits", "compute", "run"]
+           "FIT_PASSES", "ACROSS_TYRE_STEPS", "all_tyre_fits", "formula_fits", "damping_fits", "compute", "thesis_pool", "DIRECTIONS",
+           "DIRECTIONAL_TABLES", "direction_pool", "directional_fits", "run"]
 
 #: The ``results`` columns the per-tyre fits read (:mod:`tyrelab.tyre.conditions` and the
 #: runs' uncertainties): the fits are given only these, and a tyre's cache key is the digest
@@ -355,6 +356,75 @@ def compute(results: pd.DataFrame, tyres: pd.DataFrame | None,
     return out
 
 
+#: Directions with tables of their own (issue 34) and the tables each gets.
+DIRECTIONS = ("lateral", "longitudinal")
+DIRECTIONAL_TABLES = tuple(f"{d}_{q}" for d in DIRECTIONS for q in (
+    "stiffness_pressure_by_speed", "damping_pressure_by_speed", "factor_regressions")) + ("series_damping_speed",)
+
+
+#: ``results`` columns the direction tables read (an empty frame of them stands for no runs).
+DIRECTIONAL_INPUT_COLUMNS = ("tyre_id", "kind", "direction", "method", "band_low_Hz", "band_high_Hz", "speed_km_h",
+                             "pressure_bar", "load_kN", "excitation_frequency_Hz", "amplitude_mm_pp", "torque_kNm",
+                             "surface", "stiffness_kN_per_m", "damping_kN_s_per_m", "stiffness_u_N_per_m",
+                             "damping_u_N_s_per_m", "qc_ok", "qc_reasons", "model", "series_damping_N_s_per_m")
+
+
+def direction_pool(results: pd.DataFrame, direction: str) -> pd.DataFrame:
+    """The runs of ``direction`` whose K and C passed QC, as the regressions read them: a broadband
+    run's K and C hold over its band, so it counts as excited at the nominal frequency (4 Hz inside
+    the band) and amplitude."""
+    if results.empty or "direction" not in results:
+        return results.iloc[0:0]
+    pool = results.loc[results["direction"] == direction].copy()
+    broadband = pool["method"].isin(("random", "swept_sine"))
+    inside = (pool["band_low_Hz"].fillna(1.0) <= 4.0) & (pool["band_high_Hz"].fillna(8.0) >= 4.0)
+    pool.loc[broadband & inside, "excitation_frequency_Hz"] = 4.0
+    pool.loc[broadband, "amplitude_mm_pp"] = 14.0
+    return pool
+
+
+def directional_fits(results: pd.DataFrame) -> dict[str, pd.DataFrame]:
+    """Tables of the lateral and longitudinal runs (issue 34), the shape of the vertical ones: K and C
+    against pressure per tyre and speed (``<direction>_stiffness_pressure_by_speed``,
+    ``<direction>_damping_pressure_by_speed``), the load rates per tyre and speed
+    (``<direction>_factor_regressions``), and the series damper of rolling runs against 1/speed
+    (``series_damping_speed``: ``c₂ = a / v``, thesis §2.5, per tyre and direction)."""
+    out = {}
+    rows = []
+    if results.empty or "direction" not in results:  # no runs, or a build from before issue 34: the tables' columns
+        results = pd.DataFrame({c: pd.Series(dtype=float) for c in DIRECTIONAL_INPUT_COLUMNS}).astype(
+            {c: object for c in ("tyre_id", "direction", "method", "surface", "kind", "model", "qc_reasons")})
+    for d in DIRECTIONS:
+        pool = direction_pool(results, d)
+        ids = reg.measured_tyres(pool) if len(pool) else []
+        out[f"{d}_stiffness_pressure_by_speed"] = reg.pressure_regressions(pool, reg.STIFFNESS, by="speed", tyre_ids=ids)
+        out[f"{d}_damping_pressure_by_speed"] = reg.pressure_regressions(pool, reg.DAMPING, by="speed", tyre_ids=ids)
+        out[f"{d}_factor_regressions"] = reg.factor_regressions(pool, "load")
+        mw = pool.loc[(pool.get("model", pd.Series(dtype=object)) == "maxwell") & (pool["speed_km_h"] > 0)
+                      & pool["qc_ok"].fillna(False).astype(bool)] if len(pool) else pool
+        for tyre, g in mw.groupby("tyre_id", sort=True):
+            x = 1.0 / g["speed_km_h"].to_numpy(float)
+            y = g["series_damping_N_s_per_m"].to_numpy(float) / 1e3
+            a = float(np.sum(x * y) / np.sum(x * x))
+            se = float(np.sqrt(np.sum((y - a * x) ** 2) / max(len(x) - 1, 1) / np.sum(x * x))) if len(x) > 1 else np.nan
+            rows.append({"direction": d, "tyre_id": tyre, "n": len(x), "speeds_km_h": " ".join(f"{v:g}" for v in sorted(set(g["speed_km_h"]))),
+                         "coefficient_kN_s_per_m_times_km_h": a, "coefficient_se": se,
+                         "note": "series damper c2 = a / v of the rolling runs fitted with the maxwell model"})
+    out["series_damping_speed"] = pd.DataFrame(rows, columns=["direction", "tyre_id", "n", "speeds_km_h",
+                                                              "coefficient_kN_s_per_m_times_km_h", "coefficient_se", "note"])
+    return out
+
+
+def thesis_pool(results: pd.DataFrame) -> pd.DataFrame:
+    """The runs the thesis' tables rest on: vertical stepped-sine runs (issue 34: runs of the other
+    methods and directions have tables of their own; a build without the columns is all of them)."""
+    keep = pd.Series(True, index=results.index)
+    for name, value in (("direction", "vertical"), ("method", "stepped_sine")):
+        if name in results:
+            keep &= results[name].fillna(value).astype(str) == value
+    return results.loc[keep] if not keep.all() else results
+
+
 def run(ctx: Context) -> StageResult:
     """Compute and write every regress table (module docstring)."""
     t0 = time.perf_counter()
@@ -362,10 +432,13 @@ def run(ctx: Context) -> StageResult:
     results = ctx.read_table("results") if ctx.has_table("results") else pd.DataFrame()
     if not results.empty and "tyre_id" in results:
         results["tyre_id"] = results["tyre_id"].astype(str)
+    directional = directional_fits(results)
+    results = thesis_pool(results)
     cache = ItemCache(ctx, "regress")
     progress = Progress("regress", len(reg.measured_tyres(results)) + ACROSS_TYRE_STEPS + 1, logger=ctx.log, unit="steps")
     tables = compute(results, read_tyres(ctx), read_published(ctx), cache, on_done=progress.step)
     cache.prune()
+    tables.update(directional)
     for name, df in tables.items():
         ctx.write_table(name, df.reset_index(drop=True))
     progress.step()

@@ -11,7 +11,9 @@ def calibrated_campaign(folder: Path, per_day: int = 3, seed: int = 1991) -> Pat
     """Two days of the small plan: a passing and a failing force-plate check, ``per_day`` runs on each."""
     plan = campaign_plan("small")
     cal = plan[plan["kind"] == "calibration"]
-    good = cal[cal["plan_beam_gain_error"] == 0].iloc[-1]
+    stepped_days = set(plan.loc[plan["method"] == "stepped_sine", "recorded_on"]) - set(
+        plan.loc[plan["method"] != "stepped_sine", "recorded_on"])  # not the day of the other methods (issue 34)
+    good = cal[(cal["plan_beam_gain_error"] == 0) & cal["recorded_on"].isin(stepped_days)].iloc[-1]
     bad = cal[cal["plan_beam_gain_error"] > 0].iloc[0]
     meas = plan[plan["kind"] == "measurement"]
     rows = [good, bad]

@@ -49,9 +49,14 @@ def results(tmp_path_factory):
 
 
 def test_same_runs_and_columns(results):
+    from tyrelab.measurement.rig_methods import METHOD_COLUMNS
+    from tyrelab.stages.analyse import METHOD_CONDITION_COLUMNS
+
     assert sorted(results["run_id"]) == sorted(EXPECTED)
     cols = [c for c in results.columns if c not in ("campaign", "input_hash", "run_id")]
-    assert cols == list(EXPECTED["sd0"])
+    # the old columns unmoved; issue 34 added its columns after them (add, never rename)
+    assert cols == list(EXPECTED["sd0"]) + METHOD_CONDITION_COLUMNS + list(METHOD_COLUMNS)
+    assert set(results["direction"]) == {"vertical"} and set(results["method"]) == {"stepped_sine"}
 
 
 @pytest.mark.parametrize("run_id", ["sd0", "sd1", "sd2", "sd3", "T5_surface_003", "T2_sweep_003"])

@@ -47,11 +47,11 @@ def test_run_stage_refuses_a_stage_that_reads_an_undeclared_table(tmp_path, monk
     from tyrelab.stages import methods
 
     def sneaky(ctx):
-        ctx.read_table("results")  # the methods stage reads the published tables only
+        ctx.read_table("tyres")  # the methods stage reads the published tables and results only (issue 34)
 
     monkeypatch.setattr(methods, "run", sneaky)
     ctx = Context(raw=tmp_path / "raw", build=tmp_path / "build", jobs=1, log=log)
-    with pytest.raises(RuntimeError, match="stage methods reads table 'results', which it does not declare"):
+    with pytest.raises(RuntimeError, match="stage methods reads table 'tyres', which it does not declare"):
         run_stage("methods", ctx)
     assert ctx.stage is None
 
@@ -177,7 +177,9 @@ def test_explain_lists_the_items_of_a_stage_that_runs(tmp_path):
     rides = text.split("\nrides ", 1)[1].split("\nsimulate ", 1)[0]
     assert "item validation <- its recording's analysis, its scenario, the fit rows of its tyres" in rides
     simulate_part = text.split("\nsimulate ", 1)[1].split("\nwarehouse ", 1)[0]
-    assert "now: ride scenarios: 0 kept, 2 to run; Table XX: to run" in simulate_part  # nothing built yet
+    # nothing built yet; on the inputs as they are now, before the stages it reads from run
+    assert "now, before ingest, analyse, calibrate, regress, rides run: ride scenarios: 0 kept, 2 to run; " \
+        "Table XX: to run" in simulate_part, simulate_part
 
 
 def test_a_scenarios_profile_csv_is_in_its_key(tmp_path):

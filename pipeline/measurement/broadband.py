@@ -1,0 +1,599 @@
+"""Broadband rig runs (swept sine, random): the apparent mass across the band, K and C fitted (issue 34).
+
+A servo-hydraulic rig driven with a swept sine or band-limited random signal gives the
+apparent mass at every frequency of the band, not at one: the thesis' own calibration
+runs are such (random noise, 1-8 Hz, §3.2.9), and its vibrator could drive "narrow band
+random vibration" (§3.2.5). This module turns such a recording into
+
+* the frequency response: ``H1 = S_af / S_aa`` (noise on the force: the tyre force is the
+  difference of two similar signals, §3.2.9, so it is the noisier channel) and ``H2 =
+  S_ff / S_fa`` (noise on the acceleration), with the ordinary coherence ``|S_af|² / (S_aa
+  S_ff)`` (Bendat & Piersol, *Random Data*, §9.1-9.2); spectra from ``scipy.signal.csd``
+  and ``scipy.signal.welch`` (Hann, 50 % overlap), never by hand;
+* the dynamic stiffness ``Z(ω) = ω² F/A = K(ω) + jω C(ω)`` per bin (thesis §3.3.1, eqs 6-9:
+  ``K = Re(-ω² H)``, ``C = Re(jω H)`` with the thesis' ``H = -F/A``), with the per-bin
+  random error of Bendat & Piersol (eq. 9.73): ``ε = sqrt(1 - γ²) / (|γ| sqrt(2 n_d))``,
+  ``u(K) = |Z| ε``, ``u(C) = |Z| ε / ω``;
+* the tyre model fitted over the *coherent* band (bins of the stated band whose coherence
+  is at least :data:`MIN_COHERENCE`): Kelvin–Voigt ``Z = K + jωC``, and for a rolling tyre
+  also the Kelvin–Voigt unit in series with a damper (``maxwell``, thesis §2.5: "a spring
+  and damper connected in series", Lines 1987) ``Z = jωc₂ (K + jωC) / (K + jω(C + c₂))``;
+  the smaller residual per degree of freedom decides which is reported.
+
+Uncertainty of the fitted K, C (and c₂): batch means (the recording cut into
+:data:`BLOCKS` contiguous blocks, the spectra of each from one vectorised ``csd`` call,
+the model fitted to each block; the spread of the block estimates over sqrt(blocks),
+Student t on blocks − 1 degrees of freedom), which needs no assumption about how the
+bins' errors correlate, combined with the §3.2.9 instrument limits
+(:func:`tyrelab.measurement.uncertainty.limits_budget`: gain ±3 %, phase ±1°, rectangular).
+
+All functions are pure; SI units inside (N/m, N s/m).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import fft as sfft
+from scipy import optimize, signal
+from scipy.stats import t as student_t
+
+from .._validate import band, positive
+
+__all__ = ["MIN_COHERENCE", "BLOCKS", "RESOLUTION_Hz", "BLOCK_RESOLUTION_Hz", "MODELS", "FrfEstimate", "ModelFit", "BroadbandResult",
+           "frf_blocks", "kelvin_voigt_impedance", "maxwell_impedance", "fit_model", "analyse_broadband",
+           "half_power_response", "response_mode"]
+
+#: Least coherence of a bin used in the fit (the stepped-sine QC's limit, :data:`tyrelab.measurement.qc.MIN_COHERENCE`).
+MIN_COHERENCE = 0.9
+#: Contiguous blocks of the batch-means uncertainty (at least 3 are needed).
+BLOCKS = 8
+#: Frequency resolution of the whole record's spectra (the FRF, K(f), C(f) and the fit), Hz
+#: (segment length = sample rate / resolution): fine enough that the Hann window's average over a
+#: bin does not bend a series damper's fast-changing Z at the lowest bins (0.5 Hz: 5 % low at 2.5 Hz).
+RESOLUTION_Hz = 0.25
+#: ... and of the blocks of the batch-means uncertainty (coarser: three segments in each block).
+BLOCK_RESOLUTION_Hz = 0.5
+#: The tyre models :func:`fit_model` fits.
+MODELS = ("kelvin_voigt", "maxwell")
+#: Fewest coherent bins a fit needs (two or three parameters and a residual).
+MIN_BINS = {"kelvin_voigt": 4, "maxwell": 5}
+
+
+@dataclass(frozen=True)
+class FrfEstimate:
+    """Spectra of a run and of its blocks (arrays over frequency; ``blocks`` on the first axis).
+
+    ``s_af`` is ``csd(a, f)`` (scipy: ``conj(A) F``), so ``H1 = s_af / s_aa`` is the apparent
+    mass F/A (upward-positive force on the axle per upward acceleration, kg).
+    """
+
+    frequency_Hz: np.ndarray
+    s_aa: np.ndarray  #: (blocks, bins) acceleration auto-spectra, (m/s²)²/Hz
+    s_ff: np.ndarray  #: (blocks, bins) force auto-spectra, N²/Hz
+    s_af: np.ndarray  #: (blocks, bins) cross-spectra, N m/s²/Hz
+    segments_per_block: int
+    #: per bin, what turns the reference signal into the acceleration: 1, or -ω² where the spectra's
+    #: reference is the displacement (``s_aa``, ``s_af`` then of the displacement, m²/Hz and N m/Hz)
+    to_acceleration: np.ndarray | float = 1.0
+
+    def mean(self, name: str) -> np.ndarray:
+        """Spectrum ``name`` averaged over the blocks (the whole record's Welch estimate)."""
+        return getattr(self, name).mean(axis=0)
+
+    @property
+    def segments(self) -> int:
+        """Segments averaged over the whole record, ``n_d``."""
+        return self.segments_per_block * self.s_aa.shape[0]
+
+    def h1(self, per_block: bool = False) -> np.ndarray:
+        """``H1 = S_af / S_aa`` (kg): F/A, per block or of the whole record."""
+        s_af, s_aa = (self.s_af, self.s_aa) if per_block else (self.mean("s_af"), self.mean("s_aa"))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return s_af / s_aa / self.to_acceleration
+
+    def h2(self) -> np.ndarray:
+        """``H2 = S_ff / S_fa`` (kg) of the whole record (``S_fa = conj(S_af)``)."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return self.mean("s_ff") / np.conj(self.mean("s_af")) / self.to_acceleration
+
+    def coherence(self) -> np.ndarray:
+        """Ordinary coherence ``|S_af|² / (S_aa S_ff)`` of the whole record."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.abs(self.mean("s_af")) ** 2 / (self.mean("s_aa") * self.mean("s_ff"))
+
+
+def frf_blocks(force_N, accel_m_s2, sample_rate_Hz: float, *, blocks: int = BLOCKS,
+               resolution_Hz: float = RESOLUTION_Hz, displacement_from_Hz: float | None = None) -> FrfEstimate:
+    """Welch spectra of force and acceleration in ``blocks`` contiguous blocks (one ``csd`` call).
+
+    The segment length is ``sample_rate_Hz / resolution_Hz`` samples, halved until every block
+    holds at least three 50 %-overlapping segments (and no shorter than one second).
+
+    ``displacement_from_Hz``: the spectra's reference is the displacement, the acceleration
+    integrated twice over the whole record (``scipy.fft``: ``X = A / (−ω²)`` above this frequency,
+    nothing below), and the apparent mass is ``(S_xf / S_xx) / (−ω²)``. The ratio a Welch average
+    estimates is then ``F/X = −(K + jωC)``, which changes slowly across a bin, where ``F/A``
+    changes as 1/ω²: with a resonance inside the band the segments' window, averaging over a
+    bin, biased the acceleration-referenced estimate by several per cent at the lowest bins.
+    Both signals are first tapered by one Tukey window (a second at each end) so that the
+    integration does not wrap the record's ends into each other.
+
+    Raises
+    ------
+    ValueError
+        Naming the argument: a rate or resolution that is not positive, fewer than 3 blocks,
+        signals of different lengths, or a recording too short for the blocks.
+
+    Examples
+    --------
+    A pure mass of 600 kg: H1 = 600 kg and coherence 1 at every bin.
+
+    >>> rng = np.random.default_rng(0)
+    >>> a = rng.standard_normal(256 * 60)
+    >>> e = frf_blocks(600.0 * a, a, 256.0)
+    >>> bool(np.allclose(e.h1()[1:], 600.0) and np.allclose(e.coherence()[1:], 1.0))
+    True
+    """
+    sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
+    resolution_Hz = positive("resolution_Hz", resolution_Hz)
+    if not (isinstance(blocks, (int, np.integer)) and blocks >= 1):
+        raise ValueError(f"blocks must be a positive integer, got {blocks!r}")
+    f = np.asarray(force_N, dtype=float)
+    a = np.asarray(accel_m_s2, dtype=float)
+    if f.shape != a.shape or f.ndim != 1:
+        raise ValueError(f"force_N and accel_m_s2 must be 1-D of one length, got {f.shape} and {a.shape}")
+    if displacement_from_Hz is not None:
+        f, a = _displacement_reference(f, a, sample_rate_Hz, displacement_from_Hz)
+    return _block_spectra(f, a, sample_rate_Hz, blocks, resolution_Hz, displacement_from_Hz is not None)
+
+
+def _displacement_reference(f, a, sample_rate_Hz, from_Hz):
+    """Force and displacement, both tapered (see :func:`frf_blocks`)."""
+    # the record is not periodic: both signals tapered (Tukey, a second at each end) so that the
+    # integration does not wrap its ends into each other; one window on both keeps F = -Z X
+    taper = signal.windows.tukey(a.size, min(1.0, 2 * sample_rate_Hz / a.size))
+    a = (a - a.mean()) * taper
+    f = (f - f.mean()) * taper
+    spec = sfft.rfft(a)
+    w = 2 * np.pi * sfft.rfftfreq(a.size, 1 / sample_rate_Hz)
+    keep = w >= 2 * np.pi * from_Hz
+    return f, sfft.irfft(np.where(keep, -spec / np.where(keep, w, 1.0) ** 2, 0.0), a.size)
+
+
+def _block_spectra(f, a, sample_rate_Hz, blocks, resolution_Hz, displacement: bool) -> FrfEstimate:
+    block_len = f.size // blocks
+    nperseg = int(round(sample_rate_Hz / resolution_Hz))
+    while nperseg > sample_rate_Hz and (block_len - nperseg) // (nperseg // 2) + 1 < 3:
+        nperseg //= 2
+    if nperseg < 8 or block_len < 2 * nperseg:
+        raise ValueError(f"accel_m_s2: {f.size} samples are too few for {blocks} blocks of at least three "
+                         f"{nperseg}-sample segments")
+    to_acc = 1.0
+    fb = f[: blocks * block_len].reshape(blocks, block_len)
+    ab = a[: blocks * block_len].reshape(blocks, block_len)
+    # one csd call for the three spectra: (a, f), (a, a), (f, f); csd(x, x) is welch(x) (complex type)
+    # the displacement reference and the tapered force have no mean: no per-segment detrend then
+    freq, s = signal.csd(np.stack([ab, ab, fb]), np.stack([fb, ab, fb]), fs=sample_rate_Hz, nperseg=nperseg, axis=-1,
+                         detrend=False if displacement else "constant")
+    s_af, s_aa, s_ff = s[0], s[1].real, s[2].real
+    n_seg = (block_len - nperseg) // (nperseg // 2) + 1
+    if displacement:
+        to_acc = np.where(freq > 0, -(2 * np.pi * freq) ** 2, np.nan)
+    return FrfEstimate(freq, s_aa, s_ff, s_af, int(n_seg), to_acc)
+
+
+def kelvin_voigt_impedance(omega_rad_s, stiffness_N_per_m: float, damping_N_s_per_m: float) -> np.ndarray:
+    """Dynamic stiffness ``K + jωC`` of a Kelvin–Voigt tyre (N/m).
+
+    Examples
+    --------
+    >>> complex(kelvin_voigt_impedance(2.0, 1e5, 1e3))
+    (100000+2000j)
+    """
+    w = np.asarray(omega_rad_s, dtype=float)
+    return stiffness_N_per_m + 1j * w * damping_N_s_per_m
+
+
+def maxwell_impedance(omega_rad_s, stiffness_N_per_m: float, damping_N_s_per_m: float,
+                      series_damping_N_s_per_m: float) -> np.ndarray:
+    """Dynamic stiffness of a Kelvin–Voigt unit (K, C) in series with a damper c₂ (N/m):
+    ``jωc₂ (K + jωC) / (K + jω(C + c₂))``; c₂ → ∞ gives the Kelvin–Voigt unit, C = 0 the
+    spring and damper in series of the vehicle model (``maxwell``, thesis §2.5).
+
+    Examples
+    --------
+    >>> z = maxwell_impedance(2.0, 1e5, 1e3, 1e12)
+    >>> round(z.real), round(z.imag)
+    (100000, 2000)
+    """
+    w = np.asarray(omega_rad_s, dtype=float)
+    kv = stiffness_N_per_m + 1j * w * damping_N_s_per_m
+    d = 1j * w * series_damping_N_s_per_m
+    return kv * d / (kv + d)
+
+
+@dataclass(frozen=True)
+class ModelFit:
+    """A tyre model fitted to the dynamic stiffness over the coherent bins."""
+
+    model: str  #: ``kelvin_voigt`` or ``maxwell``
+    stiffness_N_per_m: float
+    damping_N_s_per_m: float
+    series_damping_N_s_per_m: float  #: c₂ (NaN for Kelvin–Voigt)
+    chi2: float  #: weighted residual sum of squares
+    dof: int  #: bins × 2 − parameters
+
+    @property
+    def reduced_chi2(self) -> float:
+        """``chi2 / dof``: the residual that decides between the models."""
+        return self.chi2 / self.dof if self.dof > 0 else math.inf
+
+
+def _kv_fit(omega, z, weight) -> ModelFit:
+    # Re Z = K and Im Z / ω = C, each a weighted mean (weights 1/u² of the component)
+    wk = weight
+    wc = weight * omega**2
+    k = float(np.sum(wk * z.real) / np.sum(wk))
+    c = float(np.sum(wc * z.imag / omega) / np.sum(wc))
+    r = z - kelvin_voigt_impedance(omega, k, c)
+    return ModelFit("kelvin_voigt", k, c, math.nan, float(np.sum(weight * np.abs(r) ** 2)), 2 * omega.size - 2)
+
+
+def _kv_given_series(omega, z, weight, c2):
+    """K, C of the Kelvin–Voigt unit for a given series damper c₂: the unit's own dynamic stiffness
+    ``z d / (d − z)`` (``d = jωc₂``) per bin, weighted by how it carries the bins' error
+    (``|d/(d − z)|⁴``), as :func:`_kv_fit` — and the fit's χ² back in ``z``."""
+    d = 1j * omega * c2
+    den = d - z
+    kv = z * d / den
+    w = weight / np.abs(d / den) ** 4
+    k = float(np.sum(w * kv.real) / np.sum(w))
+    c = max(float(np.sum(w * omega * kv.imag) / np.sum(w * omega**2)), 0.0)
+    chi2 = float(np.sum(weight * np.abs(z - maxwell_impedance(omega, k, c, c2)) ** 2))
+    return k, c, chi2
+
+
+def _kv_given_series_blocks(omega, z, weight, c2):
+    """:func:`_kv_given_series` for blocks at once: ``z`` (blocks, bins), ``c2`` (blocks,)."""
+    d = 1j * omega[None, :] * c2[:, None]
+    den = d - z
+    kv = z * d / den
+    w = weight[None, :] / np.abs(d / den) ** 4
+    k = np.sum(w * kv.real, axis=1) / np.sum(w, axis=1)
+    c = np.maximum(np.sum(w * omega * kv.imag, axis=1) / np.sum(w * omega**2, axis=1), 0.0)
+    kvm = k[:, None] + 1j * omega[None, :] * c[:, None]
+    chi2 = np.sum(weight[None, :] * np.abs(z - kvm * d / (kvm + d)) ** 2, axis=1)
+    return k, c, chi2
+
+
+def _maxwell_blocks(omega, zb, weight, around: float, tol: float = 3e-3) -> np.ndarray:
+    """The series-damper model fitted to each block: for every block at once, a golden-section search
+    of ln c₂ one decade either side of ``around`` (the whole record's c₂) to ``tol``, with K and C
+    solved for each c₂ (:func:`_kv_given_series_blocks`). Returns (blocks, 3): K, C, c₂."""
+    g = (math.sqrt(5) - 1) / 2
+    a = np.full(zb.shape[0], math.log(around / 10))
+    b = np.full(zb.shape[0], math.log(around * 10))
+    x1, x2 = b - g * (b - a), a + g * (b - a)
+    f1 = _kv_given_series_blocks(omega, zb, weight, np.exp(x1))[2]
+    f2 = _kv_given_series_blocks(omega, zb, weight, np.exp(x2))[2]
+    while np.max(b - a) > tol:
+        left = f1 < f2  # the minimum is in [a, x2]
+        b = np.where(left, x2, b)
+        a = np.where(left, a, x1)
+        x1n, x2n = b - g * (b - a), a + g * (b - a)
+        fn = _kv_given_series_blocks(omega, zb, weight, np.exp(np.where(left, x1n, x2n)))[2]
+        f1, f2 = np.where(left, fn, f2), np.where(left, f1, fn)
+        x1, x2 = np.where(left, x1n, x2), np.where(left, x1, x2n)
+    c2 = np.exp((a + b) / 2)
+    k, c, _ = _kv_given_series_blocks(omega, zb, weight, c2)
+    return np.column_stack([k, c, c2])
+
+
+def _maxwell_fit(omega, z, weight, start: ModelFit, around: float | None = None, polish: bool = True) -> ModelFit:
+    """The series-damper model: c₂ by a bounded scalar search (``scipy.optimize.minimize_scalar``) of
+    the χ² with K and C solved for each c₂ (:func:`_kv_given_series`); ``polish``: then all three by
+    ``scipy.optimize.least_squares`` from there. ``around``: search one decade either side of it."""
+    c0 = max(start.damping_N_s_per_m, 1.0)
+    lo, hi = (math.log(around / 10), math.log(around * 10)) if around else (math.log(0.3 * c0), math.log(1e4 * c0 + 1e6))
+    # c₂ to 0.01 % when polished after, else to 0.3 % (a block's estimate: its spread is percents)
+    best = optimize.minimize_scalar(lambda q: _kv_given_series(omega, z, weight, math.exp(q))[2], bounds=(lo, hi),
+                                    method="bounded", options={"xatol": 1e-4 if polish else 3e-3})
+    c2 = math.exp(best.x)
+    k, c, chi2 = _kv_given_series(omega, z, weight, c2)
+    if polish:
+        sw = np.sqrt(weight)
+
+        def resid(p):
+            r = (z - maxwell_impedance(omega, math.exp(p[0]), p[1], math.exp(p[2]))) * sw
+            return np.concatenate([r.real, r.imag])
+
+        sol = optimize.least_squares(resid, [math.log(max(k, 1.0)), c, math.log(c2)], x_scale=[1.0, c0, 1.0],
+                                     bounds=([-np.inf, 0.0, lo], [np.inf, np.inf, hi]))
+        if 2 * sol.cost < chi2:
+            k, c, c2, chi2 = math.exp(sol.x[0]), float(sol.x[1]), math.exp(sol.x[2]), float(2 * sol.cost)
+    return ModelFit("maxwell", k, c, c2, chi2, 2 * omega.size - 3)
+
+
+def fit_model(frequency_Hz, dynamic_stiffness_N_per_m, u_N_per_m, model: str = "kelvin_voigt") -> ModelFit:
+    """Fit ``model`` (:data:`MODELS`) to the dynamic stiffness ``Z`` of some bins, weights ``1/u²``.
+
+    Kelvin–Voigt is linear (K and C weighted means of Re Z and Im Z/ω); ``maxwell``: c₂ by a
+    bounded scalar search with K and C solved for each c₂, then all three polished by
+    ``scipy.optimize.least_squares`` (K and c₂ positive through their logarithms, C ≥ 0).
+
+    Raises
+    ------
+    ValueError
+        Naming the argument: an unknown model, arrays of different lengths, too few bins.
+
+    Examples
+    --------
+    >>> f = np.linspace(1.0, 8.0, 15)
+    >>> z = maxwell_impedance(2 * np.pi * f, 4e5, 1.5e3, 8e3)
+    >>> m = fit_model(f, z, np.full(f.size, 1e3), "maxwell")
+    >>> round(m.stiffness_N_per_m / 1e3), round(m.damping_N_s_per_m), round(m.series_damping_N_s_per_m)
+    (400, 1500, 8000)
+    """
+    if model not in MODELS:
+        raise ValueError(f"model must be one of {', '.join(MODELS)}, got {model!r}")
+    f = np.asarray(frequency_Hz, dtype=float)
+    z = np.asarray(dynamic_stiffness_N_per_m, dtype=complex)
+    u = np.asarray(u_N_per_m, dtype=float)
+    if not (f.shape == z.shape == u.shape) or f.ndim != 1:
+        raise ValueError("frequency_Hz, dynamic_stiffness_N_per_m and u_N_per_m must be 1-D of one length")
+    if f.size < MIN_BINS[model]:
+        raise ValueError(f"frequency_Hz: {model} needs at least {MIN_BINS[model]} bins, got {f.size}")
+    omega = 2 * np.pi * f
+    weight = 1.0 / np.maximum(u, 1e-12 * np.abs(z).max()) ** 2
+    kv = _kv_fit(omega, z, weight)
+    return kv if model == "kelvin_voigt" else _maxwell_fit(omega, z, weight, kv)
+
+
+def half_power_response(frequency_Hz, accel_psd, band_Hz) -> tuple[float, float]:
+    """Peak frequency (Hz) and damping ratio of the displacement response ``S_aa / ω⁴`` in ``band_Hz``:
+    half-power points (|X|² at half the peak, linear interpolation), ``ζ = (f₂ − f₁)/(2 f_n)``
+    (thesis §3.4 c, the forced-vibration method, for a drive flat over the band). NaN where the
+    peak or a half-power point lies on the band's edge.
+
+    Examples
+    --------
+    >>> f = np.linspace(1, 8, 701)
+    >>> w, wn, z = 2 * np.pi * f, 2 * np.pi * 4.0, 0.1
+    >>> s = w**4 / ((wn**2 - w**2) ** 2 + (2 * z * wn * w) ** 2)
+    >>> fn, zeta = half_power_response(f, s, (1.0, 8.0))
+    >>> round(fn, 2), round(zeta, 3)
+    (3.96, 0.102)
+    """
+    lo, hi = band("band_Hz", band_Hz)
+    f = np.asarray(frequency_Hz, dtype=float)
+    sel = (f >= lo) & (f <= hi) & (f > 0)
+    f = f[sel]
+    r = np.asarray(accel_psd, dtype=float)[sel] / (2 * np.pi * f) ** 4
+    if f.size < 5:
+        return math.nan, math.nan
+    k = int(np.argmax(r))
+    if k == 0 or k == f.size - 1:
+        return math.nan, math.nan
+    ym, y0, yp = np.log(r[k - 1 : k + 2])
+    den = ym - 2 * y0 + yp
+    dk = 0.5 * (ym - yp) / den if den else 0.0
+    fn = f[k] + dk * (f[1] - f[0])
+    level = math.exp(y0 - 0.25 * (ym - yp) * dk) / 2
+    below = np.flatnonzero(r[:k] < level)
+    above = np.flatnonzero(r[k:] < level)
+    if not below.size or not above.size:
+        return fn, math.nan
+    i1, i2 = below[-1], k + above[0]
+    f1 = np.interp(level, [r[i1], r[i1 + 1]], [f[i1], f[i1 + 1]])
+    f2 = np.interp(level, [r[i2], r[i2 - 1]], [f[i2], f[i2 - 1]])
+    return float(fn), float((f2 - f1) / (2 * fn))
+
+
+def response_mode(accel_m_s2, sample_rate_Hz: float, band_Hz, resolution_Hz: float = 0.1) -> tuple[float, float]:
+    """Natural frequency (Hz) and damping ratio of the response peak in ``band_Hz`` (the forced-vibration
+    method, thesis §3.4 c, for a drive flat over the band): the displacement spectrum ``S_aa / ω⁴``
+    (``scipy.signal.welch`` at ``resolution_Hz``, finer than the FRF's: a tyre's resonance is a few
+    tenths of a hertz wide) fitted near the peak found by :func:`half_power_response` (within six
+    half-power widths) by a single mode ``A / ((ω_n² − ω²)² + (2 ζ ω_n ω)²)``, linear in its
+    reciprocal. NaN where the peak lies on the band's edge.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(1)
+    >>> fs, n = 256.0, 256 * 400
+    >>> wn, z = 2 * np.pi * 3.8, 0.05
+    >>> sys = signal.lti([-wn**2, 0, 0], [1, 2 * z * wn, wn**2])  # acceleration per unit force
+    >>> _, acc, _ = signal.lsim(sys, rng.standard_normal(n), np.arange(n) / fs)
+    >>> fn, zeta = response_mode(acc, fs, (1.0, 8.0))
+    >>> round(fn, 1), round(zeta, 2)
+    (3.8, 0.05)
+    """
+    lo, hi = band("band_Hz", band_Hz)
+    a = np.asarray(accel_m_s2, dtype=float)
+    nperseg = int(min(a.size // 4, round(sample_rate_Hz / resolution_Hz)))
+    if nperseg < 16:
+        return math.nan, math.nan
+    f, s_aa = signal.welch(a, fs=sample_rate_Hz, nperseg=nperseg)
+    fn0, z0 = half_power_response(f, s_aa, (lo, hi))
+    if not (np.isfinite(fn0) and np.isfinite(z0) and z0 > 0):
+        return fn0, z0
+    sel = (f >= max(lo, fn0 * (1 - 6 * z0))) & (f <= min(hi, fn0 * (1 + 6 * z0))) & (f > 0)
+    if sel.sum() < 5:
+        return fn0, z0
+    w2 = (2 * np.pi * f[sel]) ** 2
+    sxx = s_aa[sel] / w2**2
+    # 1/S = (ω⁴ + b ω² + c)/A is linear in (1/A, b/A, c/A): least squares weighted by S (relative
+    # residuals, as a fit in log would weigh them), ω_n² = sqrt(c), 4ζ²ω_n² − 2ω_n² = b
+    design = np.column_stack([w2**2, w2, np.ones_like(w2)]) * sxx[:, None]
+    p = np.linalg.lstsq(design, np.ones_like(w2), rcond=None)[0]
+    if not p[0] > 0 or not p[2] > 0:
+        return fn0, z0
+    wn2 = math.sqrt(p[2] / p[0])
+    z2 = (p[1] / p[0] + 2 * wn2) / (4 * wn2)
+    if not z2 > 0:
+        return fn0, z0
+    return math.sqrt(wn2) / (2 * np.pi), math.sqrt(z2)
+
+
+@dataclass(frozen=True)
+class BroadbandResult:
+    """K and C of one broadband run, its FRF, and why it was refused (``reasons``; empty: reported)."""
+
+    frequency_Hz: np.ndarray
+    h1_kg: np.ndarray  #: F/A (upward-positive), per bin
+    h2_kg: np.ndarray
+    coherence: np.ndarray
+    stiffness_N_per_m_f: np.ndarray  #: K(f) = Re(ω² H1)
+    damping_N_s_per_m_f: np.ndarray  #: C(f) = Im(ω² H1)/ω
+    stiffness_u_f: np.ndarray
+    damping_u_f: np.ndarray
+    in_fit: np.ndarray  #: bins the model was fitted to
+    fit: ModelFit | None
+    alternatives: dict
+    stiffness_u_N_per_m: float
+    damping_u_N_s_per_m: float
+    series_damping_u_N_s_per_m: float
+    coverage_factor: float
+    dof: int
+    response_peak_Hz: float
+    response_damping_ratio: float
+    reasons: tuple[str, ...]
+
+    def interval(self, value: float, u: float) -> tuple[float, float]:
+        """``value ± k u`` (the 95 % interval)."""
+        return value - self.coverage_factor * u, value + self.coverage_factor * u
+
+
+def _instrument_u(k, c, c2, omega_c, budget) -> tuple[float, float, float]:
+    """§3.2.9 limits: gain error scales Z, phase error rotates it (at the band's centre ω)."""
+    g, ph = budget.force_gain, budget.phase_rad
+    uk = math.hypot(g * k, ph * omega_c * c)
+    uc = math.hypot(g * c, ph * k / omega_c)
+    return uk, uc, (g * c2 if np.isfinite(c2) else math.nan)
+
+
+def analyse_broadband(force_N, accel_m_s2, sample_rate_Hz: float, band_Hz, *, rolling: bool = False,
+                      swept: bool = False, instrument=None, min_coherence: float = MIN_COHERENCE, blocks: int = BLOCKS,
+                      resolution_Hz: float = RESOLUTION_Hz) -> BroadbandResult:
+    """The broadband analysis of one run (module docstring).
+
+    Parameters
+    ----------
+    force_N, accel_m_s2 : ndarray, shape (n,)
+        Tyre force on the axle and axle acceleration along the run's direction (upward /
+        outward positive), as :func:`tyrelab.measurement.apparent_mass.tyre_force` gives.
+    sample_rate_Hz : float
+    band_Hz : (float, float)
+        The band the run was excited over (``band_low_Hz``, ``band_high_Hz``).
+    rolling : bool
+        Fit the series-damper model too (thesis §2.5: rolling tyres).
+    swept : bool
+        A swept sine: each block of the record holds a different part of the band, so the
+        type A uncertainty comes from the fit's residual over the bins (the weighted residual
+        variance, inflated for the Hann window's neighbouring-bin correlation,
+        :data:`tyrelab.measurement.uncertainty.HANN_BIN_CORRELATION`; Student t on bins −
+        parameters) instead of batch means.
+    instrument : InstrumentBudget, optional
+        Type B budget (:func:`tyrelab.measurement.uncertainty.limits_budget` if None).
+
+    Returns
+    -------
+    BroadbandResult
+        With ``fit`` None and ``reasons`` naming why where too few coherent bins remain.
+    """
+    from .uncertainty import limits_budget
+
+    lo, hi = band("band_Hz", band_Hz)
+    f_ref, x_ref = _displacement_reference(np.asarray(force_N, dtype=float), np.asarray(accel_m_s2, dtype=float),
+                                           positive("sample_rate_Hz", sample_rate_Hz), lo / 2)
+    est = _block_spectra(f_ref, x_ref, sample_rate_Hz, 1, resolution_Hz, True)
+    f = est.frequency_Hz
+    omega = 2 * np.pi * f
+    h1, h2, coh = est.h1(), est.h2(), est.coherence()
+    z = omega**2 * h1
+    n_d = est.segments
+    with np.errstate(divide="ignore", invalid="ignore"):
+        eps = np.sqrt(np.clip(1 - coh, 0, None)) / (np.sqrt(np.clip(coh, 1e-12, None)) * math.sqrt(2 * n_d))
+        uk_f = np.abs(z) * eps
+        uc_f = np.abs(z) * eps / omega
+    in_band = (f >= lo) & (f <= hi) & (f > 0)
+    # a bin within one resolution of the band's edge averages in leakage from outside the drive
+    inner = (f >= lo + (f[1] - f[0])) & (f <= hi - (f[1] - f[0]))
+    in_fit = inner & (coh >= min_coherence) & np.isfinite(z)
+    peak_Hz, zeta = response_mode(accel_m_s2, sample_rate_Hz, (lo, hi))
+    base = dict(frequency_Hz=f, h1_kg=h1, h2_kg=h2, coherence=coh, stiffness_N_per_m_f=z.real,
+                damping_N_s_per_m_f=np.where(omega > 0, z.imag / np.where(omega > 0, omega, 1), np.nan),
+                stiffness_u_f=uk_f, damping_u_f=uc_f, in_fit=in_fit, response_peak_Hz=peak_Hz,
+                response_damping_ratio=zeta)
+    need = MIN_BINS["maxwell" if rolling else "kelvin_voigt"]
+    if in_fit.sum() < MIN_BINS["kelvin_voigt"]:
+        best = float(np.nanmax(coh[in_band])) if in_band.any() else math.nan
+        reason = (f"coherence below {min_coherence:g} over the band {lo:g}-{hi:g} Hz: {int(in_fit.sum())} of "
+                  f"{int(in_band.sum())} bins usable (highest coherence {best:.2f}); K and C not reported")
+        return BroadbandResult(**base, fit=None, alternatives={}, stiffness_u_N_per_m=math.nan,
+                               damping_u_N_s_per_m=math.nan, series_damping_u_N_s_per_m=math.nan,
+                               coverage_factor=math.nan, dof=0, reasons=(reason,))
+    models = ["kelvin_voigt"] + (["maxwell"] if rolling and in_fit.sum() >= need else [])
+    fits = {m: fit_model(f[in_fit], z[in_fit], uk_f[in_fit], m) for m in models}
+    chosen = min(fits.values(), key=lambda m: m.reduced_chi2)
+    om, wt = omega[in_fit], 1.0 / np.maximum(uk_f[in_fit], 1e-12 * np.abs(z[in_fit]).max()) ** 2
+    if swept:
+        se, dof = _residual_se(om, z[in_fit], wt, chosen)
+    else:
+        # batch means: the chosen model fitted to each block (coarser bins, its own coherent ones);
+        # the spread of the blocks' estimates over sqrt(blocks) is the whole record's standard error
+        eb = _block_spectra(f_ref, x_ref, sample_rate_Hz, blocks, BLOCK_RESOLUTION_Hz, True)
+        fb = eb.frequency_Hz
+        step = fb[1] - fb[0]
+        use = (fb >= lo + step) & (fb <= hi - step) & (eb.coherence() >= min_coherence)
+        if use.sum() < MIN_BINS[chosen.model]:
+            use = (fb >= lo + step) & (fb <= hi - step)
+        omb = 2 * np.pi * fb[use]
+        zb = omb**2 * eb.h1(per_block=True)[:, use]
+        zm = omb**2 * eb.h1()[use]
+        eps_b = np.sqrt(np.clip(1 - eb.coherence()[use], 1e-6, None) / np.clip(eb.coherence()[use], 1e-6, None))
+        wb = 1.0 / (np.abs(zm) * eps_b) ** 2
+        if chosen.model == "maxwell":
+            reps = _maxwell_blocks(omb, zb, wb, chosen.series_damping_N_s_per_m)
+        else:
+            reps = np.array([_params(_kv_fit(omb, zb[b], wb)) for b in range(zb.shape[0])])
+        se = reps.std(axis=0, ddof=1) / math.sqrt(reps.shape[0])
+        dof = reps.shape[0] - 1
+    k_cov = float(student_t.ppf(0.975, dof))
+    ub = _instrument_u(chosen.stiffness_N_per_m, chosen.damping_N_s_per_m, chosen.series_damping_N_s_per_m,
+                       2 * np.pi * float(np.mean(f[in_fit])), instrument or limits_budget())
+    # the type B parts are limits read as rectangular: added in quadrature; the factor stays the t of the type A
+    uk, uc, uc2 = (math.hypot(a, b) if np.isfinite(b) else a for a, b in zip(se, ub))
+    return BroadbandResult(**base, fit=chosen, alternatives=fits, stiffness_u_N_per_m=float(uk),
+                           damping_u_N_s_per_m=float(uc), series_damping_u_N_s_per_m=float(uc2),
+                           coverage_factor=k_cov, dof=dof, reasons=())
+
+
+def _residual_se(omega, z, weight, fit: ModelFit) -> tuple[np.ndarray, int]:
+    """Standard errors of (K, C, c₂) from the fit's weighted residual (see ``swept``) and their dof."""
+    from .uncertainty import HANN_BIN_CORRELATION
+
+    inflation = 1 + 2 * sum(HANN_BIN_CORRELATION)
+    dof = max(fit.dof, 1)
+    scale = max(fit.chi2 / dof, 1.0) * inflation
+    if fit.model == "kelvin_voigt":
+        se = np.array([math.sqrt(scale / np.sum(weight)), math.sqrt(scale / np.sum(weight * omega**2)), math.nan])
+        return se, dof
+    p = np.array([math.log(fit.stiffness_N_per_m), fit.damping_N_s_per_m, math.log(fit.series_damping_N_s_per_m)])
+    sw = np.sqrt(weight)
+
+    def resid(q):
+        r = (z - maxwell_impedance(omega, math.exp(q[0]), q[1], math.exp(q[2]))) * sw
+        return np.concatenate([r.real, r.imag])
+
+    jac = optimize.approx_fprime(p, resid, np.maximum(np.abs(p), 1.0) * 1e-6)
+    cov = np.linalg.pinv(jac.T @ jac) * scale
+    d = np.sqrt(np.clip(np.diag(cov), 0, None))
+    return np.array([fit.stiffness_N_per_m * d[0], d[1], fit.series_damping_N_s_per_m * d[2]]), dof
+
+
+def _params(m: ModelFit) -> tuple[float, float, float]:
+    return m.stiffness_N_per_m, m.damping_N_s_per_m, m.series_damping_N_s_per_m
