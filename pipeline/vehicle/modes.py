@@ -43,6 +43,7 @@ from scipy import linalg, optimize
 from .. import _validate
 from . import bounce_pitch
 from .model import Assembly, assemble
+from .units import from_kilo, to_kilo
 
 __all__ = ["MODE_NAMES", "LATERAL_ROLL_SHARE", "FOLLOW_MAC", "ModeSet", "mode_set", "mac_matrix", "frequency_intervals", "follow_names"]
 
@@ -236,7 +237,7 @@ def frequency_intervals(asm: Assembly, u_front_tyre_kN_per_m: float, u_rear_tyre
     if _is_beam(asm):
         _, intervals = bounce_pitch.frequency_uncertainty(
             p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m, -p.rear.ahead_of_cg_m,
-            p.front.tyre_stiffness_N_per_m / 1e3, p.rear.tyre_stiffness_N_per_m / 1e3,
+            to_kilo(p.front.tyre_stiffness_N_per_m), to_kilo(p.rear.tyre_stiffness_N_per_m),
             u_front_tyre_kN_per_m, u_rear_tyre_kN_per_m)
         # the beam's two frequencies come in ascending order, as the set's
         raw = {n: list(iv) for n, iv in zip(sorted(freqs, key=freqs.get), intervals)}
@@ -253,7 +254,7 @@ def frequency_intervals(asm: Assembly, u_front_tyre_kN_per_m: float, u_rear_tyre
                 if j_up is None or j_down is None:
                     lost[n] = (axle, min(mac_up, mac_down))
                     continue
-                var[n] += ((up.frequencies_Hz[j_up] - down.frequencies_Hz[j_down]) / (0.02 * k) * 1e3 * u) ** 2
+                var[n] += ((up.frequencies_Hz[j_up] - down.frequencies_Hz[j_down]) / (0.02 * k) * from_kilo(u)) ** 2
         raw = {n: [f - 1.96 * math.sqrt(var[n]), f + 1.96 * math.sqrt(var[n])] for n, f in freqs.items()}
     out, notes = {}, []
     for n in freqs:
