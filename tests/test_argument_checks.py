@@ -430,6 +430,14 @@ ROWS = [
     (f"{VE}.spectral_ride.spectral_row", dict(speed_km_h=8.0, tyres={}, i=0, aw_m_s2={"z": 1.0}, axes=["z"], hours_per_day=8.0, duration_s=10.0, force_sd_N={"front": -1.0, "rear": 1.0}, static_load_N={"front": 1e4, "rear": 1e4}, tyres_per_element=2, exposure={}), "force_sd_N"),
     (f"{VE}.spectral_ride.lifting_speeds", dict(rows=None), "rows"),
     (f"{VE}.spectral_ride.primary_rows", dict(table=None), "table"),
+    # vehicle/modes.py
+    (f"{VE}.modes.mode_set", dict(asm="tractor"), "asm"),
+    (f"{VE}.modes.mac_matrix", dict(reference=None, other=None), "reference"),
+    (f"{VE}.modes.frequency_intervals", dict(asm="tractor", u_front_tyre_kN_per_m=1.0, u_rear_tyre_kN_per_m=1.0), "asm"),
+    (f"{VE}.modes.follow_names", dict(reference=None, other=None), "reference"),
+    # vehicle/sweeps.py
+    (f"{VE}.sweeps.pressure_axes", dict(scenario="modern.toml", front_pressures_bar=None, rear_pressures_bar=None, keys={}), "scenario"),
+    (f"{VE}.sweeps.unused_key_problems", dict(scenario=None, keys=[]), "scenario"),
     # vehicle/studies.py
     (f"{VE}.studies.carriage_case_inputs", dict(table_xii=None, stationary=pd.DataFrame()), "table_xii"),
     (f"{VE}.studies.carriage_study", dict(table_xii=pd.DataFrame(), stationary=pd.DataFrame(), seed=-1), "seed"),

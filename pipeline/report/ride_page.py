@@ -178,7 +178,7 @@ def number_formats(doc: dict) -> dict:
     tyres = [b["tyres"][axle] for b in blocks for axle in ("front", "rear")]
     u = [COVERAGE_95 * t.get("stiffness_u_kN_per_m", 0.0) for t in tyres if t.get("stiffness_u_kN_per_m")]
     stiffness = uncertainty_decimals(u) if u else significant_decimals([t["stiffness_kN_per_m"] for t in tyres])
-    ci = [(hi - lo) / 2 for b in blocks for lo, hi in b.get("natural_frequencies_Hz_ci95", {}).values()
+    ci = [(hi - lo) / 2 for b in blocks for lo, hi in filter(None, b.get("natural_frequencies_Hz_ci95", {}).values())
           if lo is not None and hi is not None and hi > lo]
     freqs = [f for b in blocks for f in b["natural_frequencies_Hz"].values() if f is not None]
     nodal = [x for b in blocks for x in b.get("nodal_points_m", {}).values() if x is not None]
@@ -256,10 +256,12 @@ def format_table(doc: dict) -> str:
         if nf[mode] is None:
             continue
         text = f"{mode} {format_number(nf[mode], decimals=fmt['frequency'])} Hz"
-        lo, hi = ci.get(mode, (None, None))
+        lo, hi = ci.get(mode) or (None, None)
         if lo is not None and hi is not None and hi > lo:
             text += (f" [{format_number(lo, decimals=fmt['frequency'])}, "
                      f"{format_number(hi, decimals=fmt['frequency'])}]")
+        elif mode in ci and fmt["frequency_intervals"]:  # a mode that cannot be followed (a warning says why)
+            text += " [no interval]"
         if nodal.get(mode) is not None:
             where = "ahead of" if nodal[mode] >= 0 else "behind"
             text += f" (node {format_number(abs(nodal[mode]), decimals=fmt['nodal'])} m {where} the CG)"

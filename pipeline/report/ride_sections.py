@@ -133,7 +133,8 @@ def _heatmap_note(keys: list[str], n_variants: int) -> str:
         return ("No heatmap of the hours to the action value: this scenario runs one variant. A scenario whose "
                 "[sweep] (or tyrelab ride --set KEY=V1,V2,…) varies two keys, e.g. front_pressures_bar and "
                 "rear_pressures_bar, gets a heatmap of the hours over those two keys.")
-    return (f"No heatmap of the hours to the action value: this scenario sweeps one key ({keys[0]}); a heatmap "
+    swept = f"one key ({keys[0]})" if keys else "no key whose values differ between the variants"
+    return (f"No heatmap of the hours to the action value: this scenario sweeps {swept}; a heatmap "
             "needs two (add a second key to its [sweep], or tyrelab ride --set KEY=V1,V2,…). The hours per "
             "variant are in the table above.")
 

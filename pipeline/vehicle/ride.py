@@ -48,7 +48,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from scipy import linalg, signal
+from scipy import signal
 
 from .. import _validate
 from .. import published
@@ -57,7 +57,6 @@ from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
 from ..tyre.speed_dependence import at_speeds
 from ..tyre.lateral import estimate_lateral_stiffness
 from ..tyre.stiffness import estimate_stiffness
-from . import bounce_pitch
 from . import crg
 from . import road_class as rc
 from . import enveloping as ev
@@ -66,12 +65,13 @@ from . import lti
 from . import metrics as mt
 from . import profiles as pr
 from .carriage import GRAVITY_M_S2
-from .scenario import Scenario, with_overrides, with_values
+from .scenario import Scenario, ScenarioError, with_overrides, with_values
 from .carriage import half_step_input
 from .model import Assembly, Parts, SeatPoint, SeatSuspension, assemble
 from .tractor import Tractor, simulate, tractor_parts
 from .units import KILO, from_kilo, to_kilo
 from .scenario_limits import MIN_VERDICT_DURATION_S
+from .modes import LATERAL_ROLL_SHARE, MODE_NAMES, ModeSet, follow_names, frequency_intervals, mode_set  # noqa: F401 (names: their old home)
 
 __all__ = [
     "OUTPUTS",
@@ -828,7 +828,8 @@ class RideResult:
     spectrum_source: str
     track_length_m: float = math.nan
     warnings: list = field(default_factory=list)
-    #: ``bounce``/``pitch`` -> [low, high], 95 %, from the tyres' stiffness uncertainty (:func:`_mode_intervals`)
+    #: mode -> [low, high], 95 %, from the tyres' stiffness uncertainty (:func:`~tyrelab.vehicle.modes.frequency_intervals`;
+    #: None where the mode cannot be followed: :attr:`warnings` says why)
     natural_frequency_intervals_Hz: dict = field(default_factory=dict)
     #: With ``ride(..., with_signals=True)``: speed (km/h) -> the seat's predicted record, raw-format channel
     #: name (``seat_z_m_s2``, ``seat_x_m_s2``, ``floor_z_m_s2``, ``floor_x_m_s2``; in 3-D also
@@ -844,6 +845,8 @@ class RideResult:
     #: Of a variant whose ``speeds`` are spectral rows: its time-domain rows where it was simulated too
     #: (``method = "auto"``, :mod:`tyrelab.vehicle.spectral_ride`), else empty.
     time_rows: pd.DataFrame = field(default_factory=pd.DataFrame)
+    #: The undamped modes (:class:`~tyrelab.vehicle.modes.ModeSet`) the natural frequencies name.
+    modes: ModeSet | None = field(default=None, repr=False)
 
 
 def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float | None) -> tuple[int, int]:
@@ -853,105 +856,18 @@ def _record_window(track: Track, wheelbase_m: float, v: float, duration_s: float
     return start, start + int(round(length / DT_S))
 
 
-#: Mode names by the coordinate that moves most (:func:`modes`).
-#: The lowest mode led by the body's lateral or roll motion is named ``lateral_roll`` when the lesser of
-#: the two holds at least this share of its kinetic energy (issue 33; a documented choice), else by
-#: what moves most (``lateral``, ``roll``); the other modes as :data:`MODE_NAMES`.
-LATERAL_ROLL_SHARE = 0.05
-MODE_NAMES = {"lateral_roll": "lateral_roll", "z": "bounce", "th": "pitch", "phi": "roll", "y": "lateral", "psi": "yaw",
-              "front_axle_roll": "front_axle_roll",
-              "rear_axle_roll": "rear_axle_roll", "front_axle_z": "front_axle_bounce", "rear_axle_z": "rear_axle_bounce",
-              "cab_z": "cab_bounce", "cab_th": "cab_pitch", "cab_phi": "cab_roll", "implement_th": "implement_pitch"}
-
-
-def _is_beam(asm) -> bool:
-    """The thesis' §8.2 beam on two springs (the undamped model has z and θ only)."""
-    return asm.undamped()[2] == ("z", "th")
-
-
 def modes(asm) -> tuple[dict, dict]:
     """Undamped natural frequencies (Hz) of an assembled tractor, each named by the coordinate
-    that moves most (kinetic-energy share; :data:`MODE_NAMES`, a second mode of the same name
-    ``_2``), and the bounce and pitch modes' nodal points ahead of the CG (m).
+    that moves most (:func:`tyrelab.vehicle.modes.mode_set`: kinetic-energy share,
+    :data:`~tyrelab.vehicle.modes.MODE_NAMES`, a second mode of the same name ``_2``), and the
+    bounce and pitch modes' nodal points ahead of the CG (m).
 
     The pitch-plane tractor on rigid axles is thesis §8.2's beam on two springs
     (:func:`tyrelab.vehicle.bounce_pitch.mode_shapes`, the same eigenproblem).
     """
     _validate.instance("asm", asm, Assembly)
-    p = asm.parts
-    if _is_beam(asm):
-        ms = bounce_pitch.mode_shapes(p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m,
-                                      -p.rear.ahead_of_cg_m, 2 * p.front.tyre_stiffness_N_per_m,
-                                      2 * p.rear.tyre_stiffness_N_per_m)
-        return ({k: ms[k]["frequency_Hz"] for k in ("bounce", "pitch")},
-                {k: ms[k]["nodal_point_ahead_of_cg_m"] for k in ("bounce", "pitch")})
-    k, m, names = asm.undamped()
-    if np.array_equal(k, k.T):
-        w2, vecs = linalg.eigh(k, m)
-    else:  # the static loads' moment (issue 33) makes K unsymmetric: real modes of the undamped system
-        w2, vecs = linalg.eig(k, m)
-        order = np.argsort(w2.real)
-        w2, vecs = w2.real[order], vecs[:, order].real
-    shares = [vecs[:, i] * (m @ vecs[:, i]) for i in range(len(w2))]
-    dominant = [names[int(np.argmax(np.abs(sh)))] for sh in shares]
-    if "y" in names:  # issue 33: the lowest mode led by the body's lateral or roll motion, with both in it,
-        iy, iphi = names.index("y"), names.index("phi")  # is the coupled lateral-roll mode
-        for i, sh in enumerate(shares):
-            ey, ephi, total = abs(sh[iy]), abs(sh[iphi]), float(np.sum(np.abs(sh)))
-            if dominant[i] in ("y", "phi"):
-                if min(ey, ephi) >= LATERAL_ROLL_SHARE * total:
-                    dominant[i] = "lateral_roll"
-                break
-    # the body's bounce and pitch (modes led by z or θ): by thesis §8.2's rule, the larger
-    # |z|/(r |θ|) is bounce (a tie to the lower frequency), the other pitch
-    body = [i for i in range(len(w2)) if dominant[i] in ("z", "th")]
-    iz, ith = names.index("z"), names.index("th")
-    ranked = sorted(body, key=lambda i: -abs(shares[i][iz]) / max(abs(shares[i][ith]), 1e-300))
-    label = {i: MODE_NAMES.get(dominant[i], dominant[i]) for i in range(len(w2))}
-    for j, i in enumerate(ranked[:2]):
-        label[i] = ("bounce", "pitch")[j] if len(ranked) > 1 else MODE_NAMES[dominant[i]]
-    freqs, nodal = {}, {}
-    for i in range(len(w2)):
-        name = label[i]
-        while name in freqs:
-            name = f"{name}_2" if not name[-1].isdigit() else f"{name[:-1]}{int(name[-1]) + 1}"
-        freqs[name] = math.sqrt(max(w2[i], 0.0)) / (2 * math.pi)
-        if name in ("bounce", "pitch"):
-            z, th = vecs[iz, i], vecs[ith, i]
-            nodal[name] = float(-z / th) + 0.0 if abs(th) > 1e-12 * abs(z) else math.inf
-    return freqs, nodal
-
-
-def _modes(asm) -> tuple[dict, dict]:
-    return modes(asm)
-
-
-def _mode_intervals(asm, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: float) -> dict:
-    """95 % intervals of the natural frequencies from the tyre stiffness uncertainties: first order,
-    central differences (±1 % of each axle's tyre stiffness), independent axles, ``f ± 1.96 u``
-    (:func:`tyrelab.vehicle.bounce_pitch.frequency_uncertainty` for thesis §8.2's beam; the same
-    method on the assembled model otherwise)."""
-    p = asm.parts
-    base, _ = modes(asm)
-    if _is_beam(asm):
-        _, intervals = bounce_pitch.frequency_uncertainty(
-            p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m, -p.rear.ahead_of_cg_m,
-            to_kilo(p.front.tyre_stiffness_N_per_m), to_kilo(p.rear.tyre_stiffness_N_per_m),
-            u_front_tyre_kN_per_m, u_rear_tyre_kN_per_m)
-        centres = [0.5 * (lo + hi) for lo, hi in intervals]
-        return {m: list(intervals[int(np.argmin([abs(c - f) for c in centres]))]) for m, f in base.items()}
-    var = dict.fromkeys(base, 0.0)
-    for axle, u in (("front", u_front_tyre_kN_per_m), ("rear", u_rear_tyre_kN_per_m)):
-        if not u > 0:
-            continue
-        part = getattr(p, axle)
-        k = part.tyre_stiffness_N_per_m
-        up, _ = modes(assemble(dataclasses.replace(p, **{axle: dataclasses.replace(part, tyre_stiffness_N_per_m=1.01 * k)})))
-        down, _ = modes(assemble(dataclasses.replace(p, **{axle: dataclasses.replace(part, tyre_stiffness_N_per_m=0.99 * k)})))
-        for m in var:
-            if m in up and m in down:
-                var[m] += ((up[m] - down[m]) / (0.02 * k) * KILO * u) ** 2  # u in kN/m
-    return {m: [base[m] - 1.96 * math.sqrt(var[m]), base[m] + 1.96 * math.sqrt(var[m])] for m in base}
+    m = mode_set(asm)
+    return m.frequencies(), m.nodal()
 
 
 class RideCache:
@@ -1228,8 +1144,10 @@ def _finish(p: dict) -> RideResult:
             spectra.append(r.pop("spectra"))
             trans.append(r.pop("trans"))
     first = p["runs"][0]["asm"]
-    nat, nodal = _modes(first)
-    nat_ci = _mode_intervals(first, tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
+    shapes = mode_set(first)
+    nat, nodal = shapes.frequencies(), shapes.nodal()
+    nat_ci, notes = frequency_intervals(first, tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
+    warnings += [f"natural frequencies: {n}" for n in notes]
     cols = ["speed_km_h", "frequency_Hz"]
     return RideResult(
         scenario=sc, tyres=tyres, natural_frequencies_Hz=nat, nodal_points_m=nodal,
@@ -1239,6 +1157,7 @@ def _finish(p: dict) -> RideResult:
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
         warnings=warnings, natural_frequency_intervals_Hz=nat_ci, signals=signals, road_classes=track.road_classes,
         a8_lateral_ci95_m_s2=_lateral_interval(p, rows),
+        modes=shapes,
     )
 
 
@@ -1767,7 +1686,16 @@ def ride_sweep(
     -------
     list of RideResult
         Pressure pairs front-major, then the swept keys in order (the last varying fastest);
-        :attr:`RideResult.variant` names each variant's swept values.
+        :attr:`RideResult.variant` names each variant's swept values. Every variant's modes carry
+        the first variant's names, followed by shape (:func:`tyrelab.vehicle.modes.follow_names`).
+
+    Raises
+    ------
+    ScenarioError
+        A swept key (or a swept pressure) that the scenario's model does not use, each with the
+        reason (:func:`tyrelab.vehicle.sweeps.unused_key_problems`), before any work.
+    ValueError
+        A pressure given by option and swept key both, values out of range, too much work.
     """
     from .scenario_limits import METHODS
     from .spectral_ride import nominal_index
@@ -1780,15 +1708,20 @@ def ride_sweep(
         _validate.positive_int("max_variants", max_variants)
     if max_samples is not None:
         _validate.positive_int("max_samples", max_samples)
-    fronts = list(front_pressures_bar or scenario.sweep.front_pressures_bar or [scenario.front.pressure_bar])
-    rears = list(rear_pressures_bar or scenario.sweep.rear_pressures_bar or [scenario.rear.pressure_bar])
-    swept = {**scenario.sweep.keys, **(sets or {})}
-    combos = [dict(zip(swept, values)) for values in itertools.product(*swept.values())] if swept else [{}]
     from . import scenario_limits as limits
+    from . import sweeps
 
-    bad = limits.override_problems(speeds_km_h, front_pressures_bar, rear_pressures_bar)
+    # the pressures are the sweep's pressure axes however given (an option, --set or [sweep])
+    fronts, rears, swept, pressures = sweeps.pressure_axes(scenario, front_pressures_bar, rear_pressures_bar,
+                                                           {**scenario.sweep.keys, **(sets or {})})
+    combos = [dict(zip(swept, values)) for values in itertools.product(*swept.values())] if swept else [{}]
+    bad = limits.override_problems(speeds_km_h, fronts, rears)
     if bad:
         raise ValueError("; ".join(bad))
+    spectral = limits.uses_spectral(scenario, method, len(fronts) * len(rears) * len(combos))
+    bad = sweeps.unused_key_problems(scenario, pressures) + sweeps.unused_key_problems(scenario, swept, spectral)
+    if bad:  # a key that changes nothing would run identical variants under different labels
+        raise ScenarioError(scenario.path or "<scenario>", bad)
     too_much = limits.work_problems(scenario, len(fronts) * len(rears) * len(combos), speeds_km_h,
                                     max_variants=max_variants, max_samples=max_samples or limits.MAX_SAMPLES,
                                     method=method)
@@ -1805,7 +1738,27 @@ def ride_sweep(
                              max_samples)
     for r, (_, combo) in zip(results, variants):
         r.variant = dict(combo)
+    _follow_modes(results)
     return results
+
+
+def _follow_modes(results: list[RideResult]) -> None:
+    """Every variant's modes under the first variant's names, followed by shape
+    (:func:`tyrelab.vehicle.modes.follow_names`): a sweep's ``bounce_Hz`` is one mode in every
+    variant. A mode of the first variant that a variant does not have (by shape) is NaN there,
+    with a warning."""
+    ref = results[0].modes
+    for r in results[1:]:
+        if ref is None or r.modes is None:
+            continue
+        mapping, notes = follow_names(ref, r.modes)
+        back = {new: own for own, new in mapping.items()}
+        r.natural_frequencies_Hz = {n: r.natural_frequencies_Hz[back[n]] if n in back else math.nan for n in ref.names}
+        r.natural_frequency_intervals_Hz = {n: r.natural_frequency_intervals_Hz.get(back[n]) if n in back else None
+                                            for n in ref.names}
+        r.nodal_points_m = {n: r.modes.nodal_points_m[r.modes.names.index(back[n])] if n in back else math.nan
+                            for n in ref.nodal()}
+        r.warnings += [f"natural frequencies: {n}" for n in notes]
 
 
 def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, speeds_km_h=None,
@@ -1981,7 +1934,8 @@ def result_json(results: list[RideResult]) -> dict:
         return {
             "tyres": {ax: _tyre_json(r.tyres[ax]) for ax in ("front", "rear")},
             "natural_frequencies_Hz": {k: _clean(v) for k, v in r.natural_frequencies_Hz.items()},
-            "natural_frequencies_Hz_ci95": {k: [_clean(x) for x in v] for k, v in r.natural_frequency_intervals_Hz.items()},
+            "natural_frequencies_Hz_ci95": {k: None if v is None else [_clean(x) for x in v]
+                                            for k, v in r.natural_frequency_intervals_Hz.items()},
             "nodal_points_m": {k: _clean(v) for k, v in r.nodal_points_m.items()},
             "speeds": [{k: _clean(v) for k, v in row.items()} for row in r.speeds.to_dict(orient="records")],
             **({"time_domain": [{k: _clean(v) for k, v in row.items()} for row in r.time_rows.to_dict(orient="records")]}
@@ -2027,7 +1981,8 @@ def results_table(results: list[RideResult], scenario_id: str | None = None) -> 
         df["roll_Hz"] = r.natural_frequencies_Hz.get("roll", math.nan)
         for mode, f in r.natural_frequencies_Hz.items():  # every further mode (front_axle_roll_Hz, cab_pitch_Hz, ...)
             df[f"{mode}_Hz"] = f
-        df["modes_Hz"] = "; ".join(f"{k} {v:.3f}" for k, v in r.natural_frequencies_Hz.items())
+        df["modes_Hz"] = "; ".join(f"{k} {v:.3f}" if math.isfinite(v) else f"{k} not followed"
+                                   for k, v in r.natural_frequencies_Hz.items())
         df["front_stiffness_source"] = r.tyres["front"].stiffness_source
         df["rear_stiffness_source"] = r.tyres["rear"].stiffness_source
         df["variant"] = ", ".join(f"{k}={v:g}" for k, v in r.variant.items())

@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import math
 import tomllib
+import unicodedata
 from dataclasses import dataclass, field, replace
 from functools import cache
 from pathlib import Path
@@ -407,6 +408,19 @@ def key_table() -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+def _control_characters(text: str, allowed: str = "") -> str:
+    r"""The control characters (Unicode category Cc: NUL, ESC, newline, DEL, C1) in ``text`` other than
+    ``allowed``, as escapes (``"U+001B, U+000A"``); empty when there are none.
+
+    Examples
+    --------
+    >>> _control_characters("tractor\x1b[2J\n"), _control_characters("a\tb", allowed="\t")
+    ('U+001B, U+000A', '')
+    """
+    found = dict.fromkeys(c for c in text if unicodedata.category(c) == "Cc" and c not in allowed)
+    return ", ".join(f"U+{ord(c):04X}" for c in found)
+
+
 def _is_number(v) -> bool:
     return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
 
@@ -419,6 +433,9 @@ def _check_value(where: str, f: dict, value, n_speeds: int | None) -> list[str]:
     if t == "string":
         if not isinstance(value, str):
             return [f"{where}: expected text, got {value!r}"]
+        control = _control_characters(value, allowed="\t\n" if where == "description" else "")
+        if control:  # they would reach the terminal, the page and the report as they are
+            return [f"{where}: holds control characters ({control}): give printable text"]
         if "enum" in c and value not in c["enum"]:
             return [f"{where}: {value!r} is not one of {', '.join(c['enum'])}"]
         return []
@@ -711,6 +728,11 @@ def _parts_problems(doc: dict) -> list[str]:
             extra = sorted(k for k in t if k != "mount")
             if extra:
                 problems.append(f"{axle}: {', '.join(extra)} apply to a pivot or suspended axle, not mount = \"rigid\"")
+    mounts = {axle: (_section_values(doc, axle)[0] or {}).get("mount", "rigid") for axle in ("front_axle", "rear_axle")}
+    if three_d and "rigid" not in mounts.values():
+        problems.append(f"front_axle.mount = \"{mounts['front_axle']}\" and rear_axle.mount = \"{mounts['rear_axle']}\": "
+                        "nothing holds the body in roll (a pivot or suspended axle passes no roll moment); make one "
+                        "axle rigid")
     surf, _ = _section_values(doc, "surface")
     if surf and surf.get("tracks") == "isotropic" and not three_d:
         problems.append("surface.tracks = \"isotropic\" needs the track widths of the 3-D model "

@@ -23,6 +23,7 @@ Examples
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -66,6 +67,42 @@ LIMITS: dict[str, tuple[float, float, str]] = {
     "simulation.duration_s": (1.0, 3_600.0, "s"),
     "profile.height_m": (-2.0, 2.0, "m"),
     "profile.gap_m": (0.0, 10.0, "m"),
+    # the 3-D model and the tractor's parts (issue 23; bounds issue 37): roll inertias as the pitch
+    # inertias' scale, tracks and offsets within a tractor's width, parts' masses below the
+    # heaviest tractor's, stiffnesses as the tyres'
+    "tractor.roll_inertia_kg_m2": (10.0, 500_000.0, "kg m²"),
+    "tractor.front_track_m": (0.5, 5.0, "m"),
+    "tractor.rear_track_m": (0.5, 5.0, "m"),
+    "seat.left_of_cg_m": (-2.5, 2.5, "m"),
+    "axle.roll_inertia_kg_m2": (1.0, 20_000.0, "kg m²"),
+    "axle.mass_kg": (10.0, 10_000.0, "kg"),
+    "axle.height_m": (0.0, 3.0, "m"),
+    "axle.suspension_stiffness_kN_per_m": (1.0, 100_000.0, "kN/m"),
+    "axle.suspension_damping_kN_s_per_m": (0.0, 1_000.0, "kN s/m"),
+    "cab.mass_kg": (10.0, 10_000.0, "kg"),
+    "cab.pitch_inertia_kg_m2": (1.0, 100_000.0, "kg m²"),
+    "cab.roll_inertia_kg_m2": (1.0, 100_000.0, "kg m²"),
+    "cab.ahead_of_cg_m": (-10.0, 10.0, "m"),
+    "cab.height_above_cg_m": (-10.0, 10.0, "m"),
+    "cab.front_mount_ahead_of_cg_m": (-10.0, 10.0, "m"),
+    "cab.rear_mount_ahead_of_cg_m": (-10.0, 10.0, "m"),
+    "cab.mount_track_m": (0.1, 5.0, "m"),
+    "cab.mount_stiffness_kN_per_m": (1.0, 100_000.0, "kN/m"),
+    "cab.mount_damping_kN_s_per_m": (0.0, 1_000.0, "kN s/m"),
+    "implement.mass_kg": (1.0, 20_000.0, "kg"),
+    "implement.pitch_inertia_kg_m2": (0.0, 200_000.0, "kg m²"),
+    "implement.roll_inertia_kg_m2": (0.0, 200_000.0, "kg m²"),
+    "implement.behind_rear_axle_m": (0.0, 10.0, "m"),
+    "implement.height_m": (0.0, 5.0, "m"),
+    "implement.hitch_behind_rear_axle_m": (0.0, 10.0, "m"),
+    "implement.hitch_height_m": (0.0, 5.0, "m"),
+    "implement.hitch_stiffness_kN_m_per_rad": (1.0, 1_000_000.0, "kN m/rad"),
+    "implement.hitch_damping_kN_m_s_per_rad": (0.0, 100_000.0, "kN m s/rad"),
+    "ballast.mass_kg": (1.0, 10_000.0, "kg"),
+    "ballast.ahead_of_front_axle_m": (0.0, 5.0, "m"),
+    "ballast.height_m": (0.0, 5.0, "m"),
+    "ballast.pitch_inertia_kg_m2": (0.0, 100_000.0, "kg m²"),
+    "ballast.roll_inertia_kg_m2": (0.0, 100_000.0, "kg m²"),
 }
 #: Most variants one scenario may sweep in the time domain (``tyrelab ride --max-variants`` lifts it).
 MAX_VARIANTS = 400
@@ -86,8 +123,25 @@ SECONDS_PER_SAMPLE = 2.5e-6
 MIN_VERDICT_DURATION_S = 10.0
 
 
+def _limit(key: str) -> tuple[float, float, str]:
+    """The :data:`LIMITS` entry of a scenario key (a tyre's by its name, an axle's as ``axle.``)."""
+    if key.startswith(("tyres.", "sweep.")):
+        return LIMITS[key.rsplit(".", 1)[-1]]
+    if key.startswith(("front_axle.", "rear_axle.")):
+        return LIMITS["axle." + key.split(".", 1)[1]]
+    return LIMITS[key]
+
+
+def _known(key: str) -> bool:
+    try:
+        _limit(key)
+    except KeyError:
+        return False
+    return True
+
+
 def _out(key: str, value: float) -> str | None:
-    low, high, unit = LIMITS[key.rsplit(".", 1)[-1] if key.startswith("tyres.") or key.startswith("sweep.") else key]
+    low, high, unit = _limit(key)
     if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)) or not math.isfinite(value):
         return f"{key}: {value!r} is not a finite number"
     if not low <= value <= high:
@@ -112,6 +166,15 @@ def scenario_problems(scenario) -> list[str]:
     for name in ("ahead_of_cg_m", "height_above_cg_m", "natural_frequency_Hz", "damping_ratio"):
         if getattr(s.seat, name) is not None:
             checks.append((f"seat.{name}", getattr(s.seat, name)))
+    checks += [(f"tractor.{name}", getattr(s.tractor, name)) for name in ("roll_inertia_kg_m2", "front_track_m",
+                                                                         "rear_track_m")
+               if getattr(s.tractor, name) is not None] + [("seat.left_of_cg_m", s.seat.left_of_cg_m)]
+    for section in ("front_axle", "rear_axle", "cab", "implement", "ballast"):  # the tractor's parts
+        part = getattr(s, section, None)
+        if part is not None:
+            checks += [(f"{section}.{f.name}", getattr(part, f.name)) for f in dataclasses.fields(part)
+                       if _known(f"{section}.{f.name}")
+                       if getattr(part, f.name) is not None and not isinstance(getattr(part, f.name), str)]
     for axle, t in (("front", s.front), ("rear", s.rear)):
         checks.append((f"tyres.{axle}.pressure_bar", t.pressure_bar))
         checks.append((f"tyres.{axle}.age_years", t.age_years))
@@ -143,27 +206,96 @@ def scenario_problems(scenario) -> list[str]:
         problems.append(f"surface.dx_m: {surf.dx_m:g} m is longer than surface.length_m / 16 "
                         f"({surf.length_m / 16:g} m): the track needs at least 16 points")
     if surf.kind == "profile" and surf.profile_data is not None:
-        problems += _profile_problems(*surf.profile_data)
+        problems += _profile_problems(*surf.profile_data, surf.profile)
+    if isinstance(surf.seed, int) and surf.seed < 0:
+        problems.append(f"surface.seed: {surf.seed} is negative (a seed is a whole number from 0)")
+    if not problems:
+        problems += _held_parts_problems(s)
     return problems
 
 
-def _profile_problems(x, left, right) -> list[str]:
-    """What the model cannot take of a profile's data (distance, left and right heights, m)."""
+def _held_parts_problems(scenario) -> list[str]:
+    """A suspended cab and suspended axles are part of ``tractor.mass_kg`` and its inertias and are
+    taken out of the body (:func:`tyrelab.vehicle.model.assemble`): what is left of the body (mass,
+    pitch and roll inertia about the tractor's CG, with the parts' offsets) must be positive
+    definite. An implement on a hitch spring must have an inertia about its hitch."""
+    t = scenario.tractor
+    three_d = t.roll_inertia_kg_m2 is not None
+    n = 3 if three_d else 2
+    left = np.diag([t.mass_kg, t.pitch_inertia_kg_m2, t.roll_inertia_kg_m2 or 0.0][:n])
+    held = []
+
+    def take(mass, pitch_inertia, roll_inertia, ahead_m, above_m):
+        z = np.array([1.0, ahead_m, 0.0][:n])
+        x = np.array([0.0, -above_m, 0.0][:n])
+        y = np.array([0.0, 0.0, -above_m][:n])
+        left[...] -= mass * (np.outer(z, z) + np.outer(x, x) + np.outer(y, y))
+        left[1, 1] -= pitch_inertia
+        if three_d:
+            left[2, 2] -= roll_inertia
+
+    cab = scenario.cab
+    if cab.mount == "suspended" and cab.mass_kg is not None:
+        take(cab.mass_kg, cab.pitch_inertia_kg_m2 or 0.0, cab.roll_inertia_kg_m2 or 0.0, cab.ahead_of_cg_m,
+             cab.height_above_cg_m)
+        held.append("cab.mass_kg, its inertias and place")
+    for axle, ahead in (("front", t.front_distance_m), ("rear", -t.rear_distance_m)):
+        spec = getattr(scenario, f"{axle}_axle")
+        if spec.mount == "suspended" and spec.mass_kg is not None:
+            height = spec.height_m if spec.height_m is not None else _tyre_radius_m(getattr(scenario, axle))
+            take(spec.mass_kg, 0.0, 0.0, ahead, height - t.cg_height_m)
+            held.append(f"{axle}_axle.mass_kg")
+    problems = []
+    if held and np.linalg.eigvalsh(left).min() <= 0:
+        keys = "tractor.mass_kg, tractor.pitch_inertia_kg_m2" + (", tractor.roll_inertia_kg_m2" if three_d else "")
+        problems.append(f"{keys}: the whole tractor's mass and inertias hold {' and '.join(held)}, and are smaller "
+                        f"than those parts' own about the tractor's CG (nothing, or less than nothing, is left of the "
+                        f"body: mass {left[0, 0]:.4g} kg)")
+    imp = scenario.implement
+    if imp is not None and imp.mount == "hitch_spring" and imp.pitch_inertia_kg_m2 + imp.mass_kg * (
+            (imp.behind_rear_axle_m - imp.hitch_behind_rear_axle_m) ** 2 + (imp.height_m - imp.hitch_height_m) ** 2) <= 0:
+        problems.append("implement.pitch_inertia_kg_m2, behind_rear_axle_m, height_m, hitch_behind_rear_axle_m, "
+                        "hitch_height_m: the implement has no inertia about its hitch (its CG at the hitch and no "
+                        "pitch inertia)")
+    return problems
+
+
+def _tyre_radius_m(tyre) -> float:
+    """A tyre's rolling radius, m: given, or from its size (as :func:`tyrelab.vehicle.ride.resolve_tyres`)."""
+    from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
+
+    return tyre.radius_m or rolling_circumference_m(parse_tyre_size(tyre.size)) / (2 * math.pi)
+
+
+def _profile_problems(x, left, right, path=None) -> list[str]:
+    """What the model cannot take of a profile's data (distance, left and right heights, m; read
+    from ``path``, named in each line): not finite, gaps or a length out of range, a step (the
+    median spacing, the track's grid) finer than ``surface.dx_m``'s bound (it sets the samples
+    the track is resampled to, before any is allocated), heights out of range."""
+    where = f"surface.profile {str(path)!r}" if path is not None else "surface.profile"
     problems = []
     if not np.isfinite(x).all():
-        problems.append("surface.profile: distance_m has values that are not finite")
-    else:
-        gap = float(np.max(np.diff(x))) if len(x) > 1 else 0.0
+        problems.append(f"{where}: distance_m has values that are not finite")
+    elif len(x) > 1:
+        gap = float(np.max(np.diff(x)))
         low, high, _ = LIMITS["profile.gap_m"]
         if gap > high:
-            problems.append(f"surface.profile: a gap of {gap:g} m between points is above {high:g} m")
+            problems.append(f"{where}: a gap of {gap:g} m between points is above {high:g} m")
         if x[-1] - x[0] > LIMITS["surface.length_m"][1]:
-            problems.append(f"surface.profile: {x[-1] - x[0]:g} m long, above {LIMITS['surface.length_m'][1]:g} m")
+            problems.append(f"{where}: {x[-1] - x[0]:g} m long, above {LIMITS['surface.length_m'][1]:g} m")
+        step = float(np.median(np.diff(x)))
+        low = LIMITS["surface.dx_m"][0]
+        if step < low:
+            problems.append(f"{where}: a step of {step:g} m between points (the median) is below {low:g} m: "
+                            f"the track would hold {(x[-1] - x[0]) / step:.3g} points")
     low, high, _ = LIMITS["profile.height_m"]
     h = np.concatenate([left, right])
     if not (np.isfinite(h).all() and h.min() >= low and h.max() <= high):
-        problems.append(f"surface.profile: heights must be finite and within {low:g} to {high:g} m "
-                        f"(found {np.nanmin(h):g} to {np.nanmax(h):g} m)")
+        finite = h[np.isfinite(h)]
+        found = f"{finite.min():g} to {finite.max():g} m" if finite.size else "no finite value"
+        bad = int((~np.isfinite(h)).sum())
+        problems.append(f"{where}: heights must be finite and within {low:g} to {high:g} m (found {found}"
+                        + (f", and {bad} values that are not finite" if bad else "") + ")")
     return problems
 
 

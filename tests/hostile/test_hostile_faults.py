@@ -138,7 +138,7 @@ def test_analyze_recording_refuses_what_it_cannot_read():
 def test_dask_scheduler_unreachable_is_one_line(capsys, monkeypatch):
     pytest.importorskip("dask.distributed")
     monkeypatch.setattr(executor, "DASK_CONNECT_TIMEOUT_S", 1.0)
-    rc = main(["ride", SCENARIO, "--executor", "dask", "--scheduler", "127.0.0.1:1", "--front-pressure", "1", "1.5"])
+    rc = main(["ride", SCENARIO, "--executor", "dask", "--scheduler", "127.0.0.1:1", "--set", "tractor.mass_kg=5000,5200"])
     out, err = capsys.readouterr()
     assert rc == 2 and out == "" and one_line(err) and "--scheduler 127.0.0.1:1" in err
 
