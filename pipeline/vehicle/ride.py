@@ -1756,7 +1756,8 @@ def ride_sweep(
     bad = limits.override_problems(speeds_km_h, fronts, rears)
     if bad:
         raise ValueError("; ".join(bad))
-    bad = sweeps.unused_key_problems(scenario, pressures) + sweeps.unused_key_problems(scenario, swept)
+    spectral = limits.uses_spectral(scenario, method, len(fronts) * len(rears) * len(combos))
+    bad = sweeps.unused_key_problems(scenario, pressures) + sweeps.unused_key_problems(scenario, swept, spectral)
     if bad:  # a key that changes nothing would run identical variants under different labels
         raise ScenarioError(scenario.path or "<scenario>", bad)
     too_much = limits.work_problems(scenario, len(fronts) * len(rears) * len(combos), speeds_km_h,

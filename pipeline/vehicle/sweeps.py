@@ -93,8 +93,9 @@ def _tyre_reason(scenario: Scenario, axle: str, name: str) -> str | None:
     return None
 
 
-def _reason(scenario: Scenario, key: str, values) -> str | None:
-    """Why ``key`` takes no part in ``scenario``'s results (None: it does)."""
+def _reason(scenario: Scenario, key: str, values, spectral: bool = False) -> str | None:
+    """Why ``key`` takes no part in ``scenario``'s results (None: it does; ``spectral``: the rows are
+    the frequency-domain expectation, :mod:`tyrelab.vehicle.spectral_ride`)."""
     section, _, name = key.rpartition(".")
     t = scenario.tractor
     three_d, lateral = t.three_d, t.lateral_model != "none"
@@ -162,6 +163,11 @@ def _reason(scenario: Scenario, key: str, values) -> str | None:
             return f"surface.kind is \"{kind}\": the key applies to kind = \"crg\""
         if name == "seed" and kind not in ("iso8608", "slatted"):
             return f"surface.kind is \"{kind}\": a seed draws a generated track (\"iso8608\", \"slatted\")"
+        duration = scenario.simulation.duration_s
+        if name == "length_m" and spectral and duration is not None and kind == "iso8608" and values and all(
+                duration <= v / (speed / 3.6) for v in values for speed in scenario.exposure.speeds_km_h):
+            return (f"spectral rows of a record of simulation.duration_s = {duration:g} s, shorter than the track at "
+                    "every speed: the length changes no number (sweep it with --method time)")
         if name == "dx_m" and kind == "slatted":
             return "surface.kind is \"slatted\": the slats set the track's points"
         if name == "dx_m" and kind == "crg":
@@ -176,7 +182,7 @@ def _reason(scenario: Scenario, key: str, values) -> str | None:
     return None
 
 
-def unused_key_problems(scenario: Scenario, keys) -> list[str]:
+def unused_key_problems(scenario: Scenario, keys, spectral: bool = False) -> list[str]:
     """One line per swept key that would change no result of ``scenario`` (``"KEY: why"``).
 
     Parameters
@@ -184,12 +190,14 @@ def unused_key_problems(scenario: Scenario, keys) -> list[str]:
     scenario : Scenario
     keys : dict or iterable of str
         The swept keys (``{"section.key": values}`` or the keys alone).
+    spectral : bool
+        The sweep's rows are spectral (:func:`tyrelab.vehicle.scenario_limits.uses_spectral`).
     """
     _validate.instance("scenario", scenario, Scenario)
     items = keys.items() if isinstance(keys, dict) else ((k, ()) for k in keys)
     problems = []
     for key, values in items:
-        why = _reason(scenario, key, tuple(values))
+        why = _reason(scenario, key, tuple(values), spectral)
         if why:
             problems.append(f"{key}: {why}")
     return problems

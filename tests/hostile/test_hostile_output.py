@@ -126,7 +126,7 @@ def test_executor_dask_without_dask_is_one_line(monkeypatch, capsys):
     from tyrelab.resources import scenarios_dir
 
     monkeypatch.setitem(sys.modules, "dask.distributed", None)  # as if the extra were not installed
-    rc = main(["ride", str(scenarios_dir() / "modern_tractor.toml"), "--speeds", "10", "--method", "time", "--rear-pressure", "1.0", "1.2",
+    rc = main(["ride", str(scenarios_dir() / "mf698t.toml"), "--speeds", "10", "--set", "tractor.mass_kg=5000,5200",
                "--executor", "dask"])
     err = capsys.readouterr().err
     assert rc == 2 and err.count("\n") == 1 and "pip install 'tyrelab[dask]'" in err

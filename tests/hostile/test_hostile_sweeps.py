@@ -161,6 +161,16 @@ def test_every_swept_surface_key_of_a_profile_slatted_or_crg_road_reaches_the_mo
     assert not ignored and not unnamed, f"{kind}: swept and ignored: {ignored}; refused without the key: {unnamed}"
 
 
+def test_a_spectral_sweep_refuses_a_track_length_its_record_never_reaches():
+    """Spectral rows (a sweep's default on an ISO 8608 track) of a record capped by simulation.duration_s
+    do not depend on the track's length: identical variants under different labels."""
+    scenario = parse_scenario(RICH)
+    with pytest.raises(ScenarioError, match="surface.length_m: spectral rows"):
+        ride.ride_sweep(scenario, sets={"surface.length_m": (10, 12)}, with_spectra=False)
+    a, b = ride.ride_sweep(scenario, sets={"surface.length_m": (10, 12)}, with_spectra=False, method="time")
+    assert _numbers(a) != _numbers(b)
+
+
 def _ride_json(capsys, *args) -> dict:
     assert main(["ride", *map(str, args)]) == 0
     return json.loads(capsys.readouterr().out)
