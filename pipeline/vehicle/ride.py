@@ -61,6 +61,7 @@ from . import crg
 from . import road_class as rc
 from . import enveloping as ev
 from . import iso2631
+from . import spectral_ride
 from . import lti
 from . import metrics as mt
 from . import profiles as pr
@@ -1123,12 +1124,7 @@ def _reduce(p: dict, i: int, y: np.ndarray) -> None:
     expected = r["expected"]  # frequency-domain path (_expected_batch)
     row = {
         "speed_km_h": float(speed),
-        "front_pressure_bar": tyres["front"].pressure_bar,
-        "rear_pressure_bar": tyres["rear"].pressure_bar,
-        "front_stiffness_kN_per_m": float(tyres["front"].stiffness_kN_per_m[i]),
-        "rear_stiffness_kN_per_m": float(tyres["rear"].stiffness_kN_per_m[i]),
-        "front_damping_kN_s_per_m": float(tyres["front"].damping_kN_s_per_m[i]),
-        "rear_damping_kN_s_per_m": float(tyres["rear"].damping_kN_s_per_m[i]),
+        **spectral_ride.tyre_columns(tyres, i),
         "a_wz_m_s2": aw["z"],
         "a_wx_m_s2": aw["x"],
         "a_wy_m_s2": aw["y"],

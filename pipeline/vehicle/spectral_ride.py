@@ -148,6 +148,14 @@ def nominal_index(scenario: Scenario, variants: list[tuple[Scenario, dict]]) -> 
 
 
 # --------------------------------------------------------------------------- spectral rows
+def tyre_columns(tyres: dict, i: int) -> dict:
+    """The tyre columns of a speed row (time and spectral rows alike): each axle's pressure (bar),
+    and its stiffness (kN/m) and damping (kN s/m) at speed index ``i``."""
+    return {f"{axle}_{q}": v for q in ("pressure_bar", "stiffness_kN_per_m", "damping_kN_s_per_m")
+            for axle in ("front", "rear")
+            for v in [tyres[axle].pressure_bar if q == "pressure_bar" else float(getattr(tyres[axle], q)[i])]}
+
+
 def spectral_row(speed_km_h: float, tyres: dict, i: int, aw_m_s2: dict, axes, hours_per_day: float,
                  duration_s: float, force_sd_N: dict, static_load_N: dict, tyres_per_element: int,
                  exposure: dict) -> dict:
@@ -178,12 +186,7 @@ def spectral_row(speed_km_h: float, tyres: dict, i: int, aw_m_s2: dict, axes, ho
         prob[axle] = max(float(lift_off_probability(static_load_N[t], force_sd_N[t])) for t in mine)
     return {
         "speed_km_h": float(speed_km_h),
-        "front_pressure_bar": tyres["front"].pressure_bar,
-        "rear_pressure_bar": tyres["rear"].pressure_bar,
-        "front_stiffness_kN_per_m": float(tyres["front"].stiffness_kN_per_m[i]),
-        "rear_stiffness_kN_per_m": float(tyres["rear"].stiffness_kN_per_m[i]),
-        "front_damping_kN_s_per_m": float(tyres["front"].damping_kN_s_per_m[i]),
-        "rear_damping_kN_s_per_m": float(tyres["rear"].damping_kN_s_per_m[i]),
+        **tyre_columns(tyres, i),
         "a_wz_m_s2": aw["z"],
         "a_wx_m_s2": aw["x"],
         "a_wy_m_s2": aw["y"],
