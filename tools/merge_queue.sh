@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# The merge queue: land finished branches on main, one gate per batch, bisect on failure.
+#   tools/merge_queue.sh BRANCH [BRANCH ...]
+# Every branch is merged (--no-ff) onto the current main in a clean gate work tree (../wt/_gate);
+# a branch that does not merge cleanly is left out and named. The gate then runs once for the batch:
+# `make test` (the README's test command), `make docs` (as .ci/run does), and `make test-package`
+# when packaging inputs (pyproject.toml, lock files, schemas/, reports/, raw/) changed. A green gate
+# fast-forwards main to the batch. A red gate with one branch rejects it; with several it is bisected
+# (each half gated on its own, recursively), so one broken branch never holds the others back.
+# Logs: ../wt/_gate-logs/. Set GATE_DOCS=0 to skip the docs build for a batch that cannot affect it.
+set -uo pipefail
+[ $# -ge 1 ] || { echo "usage: tools/merge_queue.sh BRANCH [BRANCH ...]" >&2; exit 2; }
+main_dir=$(git rev-parse --show-toplevel)
+root=${WT_ROOT:-$(dirname "$main_dir")/wt}
+gate="$root/_gate"
+logs="$root/_gate-logs"
+mkdir -p "$logs"
+[ -z "$(git -C "$main_dir" status --porcelain --untracked-files=no)" ] || { echo "queue: $main_dir has uncommitted changes; commit or stash them first" >&2; exit 2; }
+if [ ! -d "$gate" ]; then
+  git -C "$main_dir" worktree add -q --detach "$gate" main
+fi
+
+run_batch() {
+  local branches=("$@") merged=() b stamp log
+  cd "$gate" || return 2
+  git checkout -q --detach main && git reset -q --hard main && git clean -qfdx -e .venv -e raw/demo -e build/docs-work
+  for b in "${branches[@]}"; do
+    if git merge -q --no-ff --no-edit -m "Merge branch '$b'" "$b" >/dev/null 2>&1; then merged+=("$b")
+    else git merge --abort 2>/dev/null; echo "queue: $b does not merge cleanly onto main: left out (rebase it on main)"; fi
+  done
+  [ ${#merged[@]} -gt 0 ] || return 1
+  stamp=$(date +%H%M%S); log="$logs/$stamp-${merged[0]}.log"
+  echo "queue: gate for ${merged[*]} -> $log"
+  local changed ok=1
+  changed=$(git diff --name-only main HEAD)
+  # A changed dependency set rebuilds the gate's virtualenv from scratch.
+  if echo "$changed" | grep -qE '^(pyproject.toml|uv.lock|requirements|pylock|Makefile)'; then rm -rf .venv; fi
+  { nice -n -5 make test || ok=0
+    if [ $ok = 1 ] && [ "${GATE_DOCS:-1}" = 1 ]; then nice -n -5 make docs || ok=0; fi
+    if [ $ok = 1 ] && echo "$changed" | grep -qE '^(pyproject.toml|uv.lock|requirements|pylock|schemas/|reports/|raw/)'; then nice -n -5 make test-package || ok=0; fi
+  } >"$log" 2>&1
+  tail -n 3 "$log" | sed 's/^/  | /'
+  if [ $ok = 1 ]; then
+    local sha; sha=$(git rev-parse HEAD)
+    if git -C "$main_dir" merge -q --ff-only "$sha"; then echo "queue: LANDED ${merged[*]} (main = ${sha:0:8})"; return 0; fi
+    echo "queue: main moved during the gate; run the queue again"; return 1
+  fi
+  if [ ${#merged[@]} -eq 1 ]; then echo "queue: REJECTED ${merged[0]} (see $log)"; return 1; fi
+  local half=$(( ${#merged[@]} / 2 ))
+  echo "queue: batch failed; bisecting"
+  run_batch "${merged[@]:0:$half}"
+  run_batch "${merged[@]:$half}"
+}
+run_batch "$@"
