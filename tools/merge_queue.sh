@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # The merge queue: land finished branches on main, one gate per batch, bisect on failure.
-#   tools/merge_queue.sh BRANCH [BRANCH ...]
+#   tools/merge_queue.sh BRANCH[@SHA] [BRANCH[@SHA] ...]
+# (with @SHA the commit named lands, not whatever the branch has moved on to since). Engineers
+# usually do not call this directly: `tools/submit.sh` queues their branch and the queue daemon
+# (`tools/queue_daemon.sh`, run by the session's lead) takes everything queued as one batch.
 # Every branch is merged (--no-ff) onto the current main in a clean gate work tree (../wt/_gate);
 # a branch that does not merge cleanly is left out and named. The gate then runs once for the batch:
 # `make test` (the README's test command), `make docs` (as .ci/run does), and `make test-package`
@@ -9,6 +12,8 @@
 # (each half gated on its own, recursively), so one broken branch never holds the others back.
 # Logs: ../wt/_gate-logs/. Set GATE_DOCS=0 to skip the docs build for a batch that cannot affect it.
 set -uo pipefail
+exec 9>"${WT_ROOT:-$(dirname "$(git rev-parse --show-toplevel)")/wt}/.queue.lock"
+flock 9
 [ $# -ge 1 ] || { echo "usage: tools/merge_queue.sh BRANCH [BRANCH ...]" >&2; exit 2; }
 main_dir=$(git rev-parse --show-toplevel)
 root=${WT_ROOT:-$(dirname "$main_dir")/wt}
@@ -25,7 +30,8 @@ run_batch() {
   cd "$gate" || return 2
   git checkout -q --detach main && git reset -q --hard main && git clean -qfdx -e .venv -e raw/demo -e build/docs-work
   for b in "${branches[@]}"; do
-    if git merge -q --no-ff --no-edit -m "Merge branch '$b'" "$b" >/dev/null 2>&1; then merged+=("$b")
+    local name=${b%@*} rev=${b#*@}
+    if git merge -q --no-ff --no-edit -m "Merge branch '$name'" "$rev" >/dev/null 2>&1; then merged+=("$b")
     else git merge --abort 2>/dev/null; echo "queue: $b does not merge cleanly onto main: left out (rebase it on main)"; fi
   done
   [ ${#merged[@]} -gt 0 ] || return 1
