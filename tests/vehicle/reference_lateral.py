@@ -120,9 +120,25 @@ def coordinates(t: Tractor) -> list[str]:
     return q
 
 
+def _vertical_tyres(t: Tractor, row, n: int):
+    """``K``, ``C`` of the vertical tyres over ``n`` coordinates (rows from ``row(**coef)``) and the input
+    rows ``[(tyre, g_z, k_z, c_z)]``."""
+    k, c, inputs = np.zeros((n, n)), np.zeros((n, n)), []
+    for name, a, b in t.tyres:
+        front = name.startswith("front")
+        kz, cz = (t.k_front, t.c_front) if front else (t.k_rear, t.c_rear)
+        gz = row(z=1.0, th=a, alpha=b) if (front and t.pivot_front) else row(z=1.0, th=a, phi=b)
+        k += kz * np.outer(gz, gz)
+        c += cz * np.outer(gz, gz)
+        inputs.append((name, gz, kz, cz))
+    return k, c, inputs
+
+
 def matrices(t: Tractor):
     """``M``, ``K`` (springs and the static loads' moment), ``C`` (Kelvin-Voigt dampers), the Maxwell
     elements ``[(g, k, c)]``, the input rows ``[(tyre, g_z, k, c)]`` and the co-ordinate names."""
+    if t.lateral == "rolling" or t.longitudinal != "none":
+        raise ValueError("matrices: issue 33's elements only; the rolling tyre and fore-aft: augmented()")
     names = coordinates(t)
     ix = {n: i for i, n in enumerate(names)}
     n = len(names)
@@ -142,17 +158,11 @@ def matrices(t: Tractor):
         m[ix["psi"], ix["psi"]] = t.yaw_inertia_kg_m2
     if "alpha" in ix:
         m[ix["alpha"], ix["alpha"]] = t.axle_roll_inertia_kg_m2
-    k = np.zeros((n, n))
-    c = np.zeros((n, n))
-    maxwell, inputs = [], []
+    k, c, inputs = _vertical_tyres(t, row, n)
+    maxwell = []
     h, r = t.cg_height_m, t.pivot_height_m
     for name, a, b in t.tyres:
         front = name.startswith("front")
-        kz, cz = (t.k_front, t.c_front) if front else (t.k_rear, t.c_rear)
-        gz = row(z=1.0, th=a, alpha=b) if (front and t.pivot_front) else row(z=1.0, th=a, phi=b)
-        k += kz * np.outer(gz, gz)
-        c += cz * np.outer(gz, gz)
-        inputs.append((name, gz, kz, cz))
         if t.lateral == "none":
             continue
         ky, cy = (t.ky_front, t.cy_front) if front else (t.ky_rear, t.cy_rear)
@@ -205,18 +215,24 @@ def undamped_modes(t: Tractor):
     return np.sqrt(np.abs(lam.real[order])) / (2 * math.pi), vec[:, order].real, names
 
 
+def ground_force(t: Tractor, inputs, n: int, w: float, amplitudes: dict, speed_m_s: float) -> np.ndarray:
+    """The generalised force (complex amplitude over ``n`` coordinates) of sinusoidal ground displacements
+    ``amplitudes[tyre]`` (m) at ``w`` rad/s through the vertical tyres ``inputs``, the rear a wheelbase later."""
+    tau = (t.front_distance_m + t.rear_distance_m) / speed_m_s
+    rhs = np.zeros(n, complex)
+    for name, gz, kz, cz in inputs:
+        u = amplitudes.get(name, 0.0) * (np.exp(-1j * w * tau) if name.startswith("rear") else 1.0)
+        rhs += gz * (kz + 1j * w * cz) * u
+    return rhs
+
+
 def seat_response(t: Tractor, f_Hz: float, amplitudes: dict, speed_m_s: float) -> dict:
     """Complex seat accelerations (``x``, ``y``, ``z``, m/s²) under sinusoidal ground displacements of
     amplitude ``amplitudes[tyre]`` (m) at ``f_Hz``, the rear tyres a wheelbase later."""
     w = 2 * math.pi * f_Hz
     _, _, _, _, inputs, names = matrices(t)
     ix = {n: i for i, n in enumerate(names)}
-    tau = (t.front_distance_m + t.rear_distance_m) / speed_m_s
-    rhs = np.zeros(len(names), complex)
-    for name, gz, kz, cz in inputs:
-        u = amplitudes.get(name, 0.0) * (np.exp(-1j * w * tau) if name.startswith("rear") else 1.0)
-        rhs += gz * (kz + 1j * w * cz) * u
-    q = np.linalg.solve(dynamic_stiffness(t, w), rhs)
+    q = np.linalg.solve(dynamic_stiffness(t, w), ground_force(t, inputs, len(names), w, amplitudes, speed_m_s))
     acc = -(w**2) * q
     sx, sy, sz = t.seat
 
@@ -286,15 +302,7 @@ def augmented(t: Tractor):
                        ("x", t.mass_kg)):
         if key in ix:
             m[ix[key], ix[key]] = value
-    k, c = np.zeros((n, n)), np.zeros((n, n))
-    inputs = []
-    for name, a, b in t.tyres:
-        front = name.startswith("front")
-        kz, cz = (t.k_front, t.c_front) if front else (t.k_rear, t.c_rear)
-        gz = row(z=1.0, th=a, alpha=b) if (front and t.pivot_front) else row(z=1.0, th=a, phi=b)
-        k += kz * np.outer(gz, gz)
-        c += cz * np.outer(gz, gz)
-        inputs.append((name, gz, kz, cz))
+    k, c, inputs = _vertical_tyres(t, row, n)
     for name, coef, ke, ce, c2, kind, axle, f_static in horiz:
         d = row(**coef)
         g = d - row(**{f"s_{name}": 1.0})  # the unit's deflection: patch point minus contact point
@@ -397,12 +405,7 @@ def seat_response_augmented(t: Tractor, f_Hz: float, amplitudes: dict, speed_m_s
     w = 2 * math.pi * f_Hz
     m, c, k, names, inputs = augmented(t)
     ix = {n: i for i, n in enumerate(names)}
-    tau = (t.front_distance_m + t.rear_distance_m) / speed_m_s
-    rhs = np.zeros(len(names), complex)
-    for name, gz, kz, cz in inputs:
-        u = amplitudes.get(name, 0.0) * (np.exp(-1j * w * tau) if name.startswith("rear") else 1.0)
-        rhs += gz * (kz + 1j * w * cz) * u
-    q = np.linalg.solve(k + 1j * w * c - w**2 * m, rhs)
+    q = np.linalg.solve(k + 1j * w * c - w**2 * m, ground_force(t, inputs, len(names), w, amplitudes, speed_m_s))
     sx, sy, sz = t.seat
 
     def acc(n):

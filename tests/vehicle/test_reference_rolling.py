@@ -172,10 +172,7 @@ def test_the_rolling_element_through_its_dynamic_stiffness(pivot):
                 g[ix[key]] += value
             zkv = ky + 1j * w * cy
             dyn = dyn + zkv * 1j * w * c2 / (zkv + 1j * w * c2) * np.outer(g, g)
-        tau = (roll.front_distance_m + roll.rear_distance_m) / 2.5
-        rhs = sum(gz * (kz + 1j * w * cz) * amps.get(n, 0.0) * (np.exp(-1j * w * tau) if n.startswith("rear") else 1)
-                  for n, gz, kz, cz in inputs)
-        q = np.linalg.solve(dyn, rhs)
+        q = np.linalg.solve(dyn, ref.ground_force(roll, inputs, len(names), w, amps, 2.5))
         sx, sy, sz = roll.seat
         acc = -(w**2) * q
         expected_y = acc[ix["y"]] - sz * acc[ix["phi"]] + sx * acc[ix["psi"]]
