@@ -348,6 +348,11 @@ ROWS = [
     (f"{VE}.elements.element", dict(name="e", g=[1.0], stiffness=1.0, damping=1.0, model="coulomb"), "model"),
     # vehicle/crg.py, road_class.py, tyre/lateral.py (issue 33)
     ("tyrelab.tyre.lateral.estimate_lateral_stiffness", dict(vertical_stiffness_kN_per_m=-1.0), "vertical_stiffness_kN_per_m"),
+    # tyre/rolling.py (issue 42)
+    ("tyrelab.tyre.rolling.series_damping_N_s_per_m", dict(a_kN_s_per_m_km_h=NAN, speed_km_h=8.0), "a_kN_s_per_m_km_h"),
+    ("tyrelab.tyre.rolling.series_damping_N_s_per_m", dict(a_kN_s_per_m_km_h=-100.0, speed_km_h=8.0), "a_kN_s_per_m_km_h"),
+    ("tyrelab.tyre.rolling.series_damping_N_s_per_m", dict(a_kN_s_per_m_km_h=100.0, speed_km_h=-1.0), "speed_km_h"),
+    ("tyrelab.tyre.rolling.estimate_series_damping", dict(direction="vertical"), "direction"),
     (f"{VE}.crg.wheel_positions", dict(lateral_offset_m=NAN, front_track_m=1.8, rear_track_m=1.9), "lateral_offset_m"),
     (f"{VE}.crg.wheel_positions", dict(lateral_offset_m=0.0, front_track_m=-1.8, rear_track_m=1.9), "front_track_m"),
     (f"{VE}.crg.crg_problems", dict(data=None, positions={}, start_m=0.0, length_m=None), "data"),

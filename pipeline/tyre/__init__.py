@@ -25,6 +25,14 @@ is imported on first use (:mod:`tyrelab._lazy`). One tyre run's K and C is
    damping_fit       -- damping of an unmeasured tyre from the Table VII lines.
    spoke             -- the rotating-spoke damping model (§5.5.2).
 
+.. rubric:: Lateral and longitudinal
+
+.. autosummary::
+
+   lateral           -- a tyre's lateral stiffness where none is measured (a stand-in from its vertical one).
+   rolling           -- a rolling tyre's series damper c2 = a / v and its stand-in (§2.5).
+   directional       -- a tyre's lateral and longitudinal coefficients: build, catalogue.
+
 .. rubric:: Export
 
 .. autosummary::

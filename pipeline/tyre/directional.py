@@ -21,6 +21,7 @@ import numpy as np
 import pandas as pd
 
 from .. import _validate
+from .rolling import series_damping_N_s_per_m
 
 __all__ = ["DIRECTIONS", "CATALOGUE_COLUMNS", "DirectionalTyre", "directional_tyre"]
 
@@ -112,5 +113,5 @@ def directional_tyre(tyre_id: str, direction: str, pressure_bar: float, speed_km
         aa = get(f"{direction}_series_damping_kN_s_per_m_km_h")
         a = float(aa) if aa is not None and pd.notna(aa) else None
         source = f"the tyre catalogue's {direction} coefficients of {tyre_id}"
-    series = a * 1e3 / speed_km_h if a is not None and a > 0 and speed_km_h > 0 else math.inf
+    series = series_damping_N_s_per_m(a, speed_km_h) if a is not None and a > 0 else math.inf
     return DirectionalTyre(direction, k * 1e3, c * 1e3, series, source)
