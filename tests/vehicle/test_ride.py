@@ -15,6 +15,7 @@ from tyrelab.stages import simulate as simulate_stage
 from tyrelab.vehicle import iso2631, ride
 from tyrelab.vehicle import profiles as pr
 from tyrelab.scenario_io import ScenarioError, load_scenario, parse_scenario
+from tyrelab.vehicle.model import SeatSuspension
 from tyrelab.vehicle.tractor import Tractor, simulate_tractor
 
 
@@ -510,12 +511,12 @@ def test_natural_frequency_intervals_with_one_tyre_given_and_one_from_the_formul
         assert ci[mode] == pytest.approx([nat[mode] - 1.96 * u, nat[mode] + 1.96 * u], rel=1e-4)
 
 
-def test_seat_filter_is_the_base_excited_transmissibility():
+def test_the_seat_part_is_the_base_excited_transmissibility():
     """|T| of a seat on a spring and damper: 1 far below its frequency, sqrt(1 + (2 zeta)^2) / (2 zeta) at
     it (1.84 for zeta = 0.3), and 2 zeta f_n / f (plus the spring's (f_n/f)^2) far above."""
     fn, z = 1.8, 0.3
     f = np.array([0.01, fn, 40.0])
-    t = ride.frequency_response(*ride.seat_filter(fn, z), f)[0, 0]
+    t = ride.frequency_response(*SeatSuspension(fn, z).linear().abcd, f)[0, 0]
     r = f / fn
     exact = np.abs((1 + 2j * z * r) / (1 - r**2 + 2j * z * r))
     np.testing.assert_allclose(np.abs(t), exact, rtol=1e-9)
