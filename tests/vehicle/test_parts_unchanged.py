@@ -56,8 +56,10 @@ def before_issue_33(monkeypatch):
         strip = {ax: dataclasses.replace(getattr(p, ax), lateral_model="none") for ax in ("front", "rear")}
         return dataclasses.replace(p, static_load_moment=False, **strip)
 
-    monkeypatch.setattr(ride, "build_parts", old_parts)
-    monkeypatch.setattr(tyres, "build_parts", old_parts)
+    from tyrelab.vehicle.run import plan, sweep
+
+    for module in (ride, tyres, plan, sweep):  # every module of the ride that builds parts (issue 45's layers)
+        monkeypatch.setattr(module, "build_parts", old_parts)
 
 
 @pytest.fixture
