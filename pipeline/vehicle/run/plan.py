@@ -23,6 +23,8 @@ from .track import DT_S, Track
 
 __all__ = ["LATERAL_INTERVAL_STEPS", "seat_axes", "modes"]
 
+#: The seat output the seat suspension filters (:func:`seat_axes`' ``z``).
+SEAT_VERTICAL = "seat_vertical_m_s2"
 #: Steps across a stand-in lateral stiffness' interval for :func:`_lateral_interval` (odd: the middle is the stand-in).
 LATERAL_INTERVAL_STEPS = 9
 
@@ -54,10 +56,19 @@ def prepare(scenario: Scenario, tyre_data, cache: RideCache, with_spectra: bool 
     axes and seat filter; the runs are added by :func:`speed_run`."""
     tyres, asms = _resolve(scenario, tyre_data, cache.tyres)
     track_key, track = cache.track(scenario)
-    seat = scenario.seat.part().suspension  # the seat part's filter (no feedback on the tractor)
+    if asms and asms[0] is None:  # footprints given: the first speed's assembly, built here (speed_run takes it)
+        asms[0] = assemble(build_parts(scenario, tyres, 0))
+    seat = seat_filter(asms[0]) if asms else None  # the seat part's filter (no feedback on the tractor)
     return VariantPlan(scenario, tyres, track, track_key, seat_axes(scenario),
                        cache.seat_system(seat) if seat is not None else None,
                        seat.linear().abcd if seat is not None else None, asms, with_spectra, with_signals)
+
+
+def seat_filter(asm: Assembly):
+    """The filter the assembly puts on the seat's vertical output (:attr:`Assembly.output_filters`: a
+    suspended seat's :class:`~tyrelab.vehicle.model.SeatSuspension`, whose ``linear()`` both paths
+    apply), or None for a rigid seat."""
+    return asm.output_filters.get(SEAT_VERTICAL)
 
 
 def speed_run(p: VariantPlan, i: int, v: float, start: int, stop: int) -> None:
@@ -147,7 +158,7 @@ def seat_axes(scenario: Scenario) -> dict[str, str]:
     accelerometer reads (plus ``g θ`` fore-aft and ``g φ`` lateral)."""
     _validate.instance("scenario", scenario, Scenario)
     tilt = "_tilt" if scenario.seat.gravity_tilt else ""
-    axes = {"z": "seat_vertical_m_s2", "x": f"seat_longitudinal{tilt}_m_s2"}
+    axes = {"z": SEAT_VERTICAL, "x": f"seat_longitudinal{tilt}_m_s2"}
     if scenario.tractor.three_d:
         axes["y"] = f"seat_lateral{tilt}_m_s2"
     return axes

@@ -18,7 +18,7 @@ from ..scenario import Scenario, limits, with_overrides
 from ..tyres import build_parts, resolve_tyres
 from ..units import from_kilo
 from .frequency import spectral_variants
-from .plan import seat_axes
+from .plan import seat_axes, seat_filter
 from .records import RideCache, RideResult
 from .rows import exposure
 from .spectral import _fd_grid, _seat_tf, enveloping_response, expected_weighted_rms
@@ -171,8 +171,8 @@ def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, 
     _, track = cache.track(base)
     axes = seat_axes(base)
     tyres0 = {"front": front[fronts[0]], "rear": rear[rears[0]]}
-    seat = base.seat
-    seat_ss = seat.part().suspension.linear().abcd if seat.suspension == "linear" else None
+    seat = seat_filter(assemble(build_parts(base, tyres0, 0)))  # the assembly's filter on the seat output
+    seat_ss = seat.linear().abcd if seat is not None else None
     pf_all = np.repeat(fronts, len(rears))
     pr_all = np.tile(rears, len(fronts))
     frames = []
