@@ -56,12 +56,12 @@ from .tractor import Tractor, simulate  # noqa: F401 (old names of this module)
 from .tyres import AxleTyres, ShippedTyres, build_parts, build_tractor, per_speed, resolve_tyres  # noqa: F401
 from .tyres import _damping_fit, _formula_stiffness, _lateral_tyre, _model_damping, _thesis_stiffness_model  # noqa: F401
 from .run.frequency import _spectral_reduce, spectral_variants  # noqa: F401
-from .run.output import _clean, _clean_class, _lateral_note, _tyre_json, result_json, results_table  # noqa: F401
+from .run.output import RideResult, _clean, _clean_class, _lateral_note, _tyre_json, result_json, results_table  # noqa: F401
 from .run.pitch_plane import OUTPUTS, ground_response, simulate_state_space, state_names, state_space  # noqa: F401
 from .run.plan import LATERAL_INTERVAL_STEPS, _lateral_interval, axle_flags as _axle_flags, finish as _finish  # noqa: F401
 from .run.plan import modes, prepare as _prepare, record_window as _record_window, seat_axes  # noqa: F401
 from .run.plan import speed_run as _linear_model  # noqa: F401
-from .run.records import AXIS_WORDS, FIGURE_BAND_HZ, RideCache, RideResult, SpeedRun, VariantPlan  # noqa: F401
+from .run.records import AXIS_WORDS, FIGURE_BAND_HZ, RideCache, SpeedRun, VariantPlan  # noqa: F401
 from .run.rows import VERDICTS, SpeedRow, exposure  # noqa: F401
 from .run.spectral import (_expected_batch, _expected_psd, _fd_grid, _rows, _seat_tf, _transmissibility,  # noqa: F401
                            _wheel_responses, enveloping_response, expected_weighted_rms, frequency_response,
@@ -73,9 +73,11 @@ from .run.track import (DT_S, FS_HZ, Track, axle_inputs, build_profile, crg_prof
                         road_classes, track_width_m as _track_width_m, tyre_inputs, wheel_inputs)
 from .units import KILO, from_kilo, to_kilo  # noqa: F401 (old names of this module)
 
+#: This module's names and those of the layers in vehicle/run/ (whose package lists none: these are
+#: the names ``tyrelab.vehicle`` re-exports); the tyres' (AxleTyres, ShippedTyres, per_speed,
+#: resolve_tyres, build_tractor, build_parts) are :mod:`tyrelab.vehicle.tyres`' and still import from here.
 __all__ = [
-    "OUTPUTS", "AxleTyres", "Track", "RideResult", "per_speed", "resolve_tyres", "ShippedTyres", "build_tractor",
-    "build_parts", "tyre_inputs", "state_names", "state_space", "simulate_state_space", "frequency_response",
+    "OUTPUTS", "Track", "RideResult", "tyre_inputs", "state_names", "state_space", "simulate_state_space", "frequency_response",
     "ground_response", "enveloping_response", "build_profile", "crg_profile", "road_classes", "axle_inputs",
     "exposure", "seat_axes", "modes", "input_cross_spectra", "ride", "ride_variants", "RideCache", "ride_sweep",
     "spectral_variants", "expected_weighted_rms", "expected_sweep", "result_json", "results_table", "VERDICTS",

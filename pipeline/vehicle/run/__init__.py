@@ -13,3 +13,5 @@
 
 :mod:`tyrelab.vehicle.ride` runs a scenario or a sweep with these and keeps every old name.
 """
+
+__all__ = []  # the layers' names are their modules' (tyrelab.vehicle.ride re-exports them)

@@ -11,7 +11,8 @@ from ... import _validate
 from .. import spectral_ride as sr
 from ..scenario import Scenario
 from .plan import finish, prepare, record_window, speed_run
-from .records import FIGURE_BAND_HZ, RideCache, RideResult, VariantPlan
+from .output import RideResult
+from .records import FIGURE_BAND_HZ, RideCache, VariantPlan
 from .rows import exposure
 from .spectral import _expected_batch, _expected_psd, _transmissibility
 from .track import DT_S

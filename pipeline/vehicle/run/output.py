@@ -1,20 +1,105 @@
-"""A ride's output (issues 13, 36, 45): the ``tyrelab ride`` JSON document and the ``ride_results``
-table of a run's :class:`~tyrelab.vehicle.run.records.RideResult` s.
+"""A ride's result and its output (issues 13, 36, 45): :class:`RideResult`, the ``tyrelab ride`` JSON
+document and the ``ride_results`` table of a run's results.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
 
 from ... import _validate
+from ..modes import ModeSet
 from ..scenario import Scenario
 from ..tyres import AxleTyres
-from .records import RideResult
 
-__all__ = ["result_json", "results_table"]
+__all__ = ["RideResult", "result_json", "results_table"]
+
+
+@dataclass
+class RideResult:
+    """Everything :func:`~tyrelab.vehicle.ride.ride` computed for one scenario and pressure pair.
+
+    Attributes
+    ----------
+    scenario : Scenario
+    tyres : dict
+        ``front``/``rear`` -> :class:`~tyrelab.vehicle.tyres.AxleTyres`.
+    natural_frequencies_Hz, nodal_points_m : dict
+        ``bounce``/``pitch`` (at the first speed's stiffness); nodal point ahead of the CG.
+    speeds : DataFrame
+        One row per speed (:class:`~tyrelab.vehicle.run.rows.SpeedRow`; see
+        :func:`~tyrelab.vehicle.ride.result_json` for the fields).
+    spectra : DataFrame
+        ``speed_km_h, frequency_Hz, seat_vertical_psd_m2_s4_per_Hz, seat_longitudinal_psd_m2_s4_per_Hz``.
+    transmissibility : DataFrame
+        ``speed_km_h, frequency_Hz, seat_vertical, seat_longitudinal_per_m`` (``|seat
+        acceleration / ground acceleration|``, and fore-aft per unit ground acceleration).
+    track_label, spectrum_source : str
+    track_length_m : float
+        Length of the track without lead-in, m.
+    warnings : list of str
+    """
+
+    scenario: Scenario
+    tyres: dict
+    natural_frequencies_Hz: dict
+    nodal_points_m: dict
+    speeds: pd.DataFrame
+    spectra: pd.DataFrame
+    transmissibility: pd.DataFrame
+    track_label: str
+    spectrum_source: str
+    track_length_m: float = math.nan
+    warnings: list = field(default_factory=list)
+    #: mode -> [low, high], 95 %, from the tyres' stiffness uncertainty (:func:`~tyrelab.vehicle.modes.frequency_intervals`;
+    #: None where the mode cannot be followed: :attr:`warnings` says why)
+    natural_frequency_intervals_Hz: dict = field(default_factory=dict)
+    #: With ``ride(..., with_signals=True)``: speed (km/h) -> the seat's predicted record, raw-format channel
+    #: name (``seat_z_m_s2``, ``seat_x_m_s2``, ``floor_z_m_s2``, ``floor_x_m_s2``; in 3-D also
+    #: ``seat_y_m_s2``, ``floor_y_m_s2``) -> samples at ``FS_HZ`` from the front axle's entry on the track
+    signals: dict = field(default_factory=dict)
+    #: The swept keys' values of this variant (:func:`~tyrelab.vehicle.ride.ride_sweep`), ``{"section.key": value}``.
+    variant: dict = field(default_factory=dict)
+    #: A profile or CRG road's ISO 8608 class per wheel track (:func:`~tyrelab.vehicle.run.track.road_classes`); empty otherwise.
+    road_classes: dict = field(default_factory=dict)
+    #: 3-D with a stand-in lateral stiffness (issue 33): speed (km/h) -> A(8) (m/s²) with every stand-in
+    #: lateral stiffness at the low and at the high end of its 95 % interval.
+    a8_lateral_ci95_m_s2: dict = field(default_factory=dict)
+    #: The undamped modes (:class:`~tyrelab.vehicle.modes.ModeSet`) the natural frequencies name.
+    modes: ModeSet | None = field(default=None, repr=False)
+    #: The variant at the scenario's own values (its tyre pressures and the file's value of every swept
+    #: key; :func:`~tyrelab.vehicle.ride.ride_sweep`): the one whose spectra the pages show.
+    nominal: bool = True
+
+    #: Of a variant whose ``speeds`` are spectral rows: its time-domain rows where it was simulated too
+    #: (``method = "auto"``, :mod:`tyrelab.vehicle.spectral_ride`), else empty.
+    time_rows: pd.DataFrame = field(default_factory=pd.DataFrame)
+
+    @property
+    def mode_table(self) -> pd.DataFrame:
+        """The natural frequencies as a table, one row per mode (:attr:`modes` holds the shapes): ``mode``, ``frequency_Hz``, ``low_Hz``/``high_Hz`` (its 95 %
+        interval from the tyre stiffness uncertainty; NaN without one) and ``nodal_point_m``
+        (ahead of the CG; NaN for a mode that does not pitch)."""
+        rows = []
+        for mode, f in self.natural_frequencies_Hz.items():
+            lo, hi = self.natural_frequency_intervals_Hz.get(mode) or (None, None)  # None: no interval
+            rows.append({"mode": mode, "frequency_Hz": float(f), "low_Hz": math.nan if lo is None else float(lo),
+                         "high_Hz": math.nan if hi is None else float(hi),
+                         "nodal_point_m": float(self.nodal_points_m.get(mode, math.nan))})
+        return pd.DataFrame(rows, columns=["mode", "frequency_Hz", "low_Hz", "high_Hz", "nodal_point_m"])
+
+    def to_dict(self) -> dict:
+        """The JSON document of ``tyrelab ride`` for this result (:func:`~tyrelab.vehicle.ride.result_json`)."""
+        return result_json([self])
+
+    def to_json(self) -> str:
+        """:meth:`to_dict` as JSON text (indented, no NaN: a missing value is ``null``)."""
+        import json
+
+        return json.dumps(self.to_dict(), indent=2, ensure_ascii=False, allow_nan=False) + "\n"
 
 
 def _lateral_note(sc: Scenario) -> str | None:

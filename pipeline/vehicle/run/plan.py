@@ -16,7 +16,8 @@ from ..model import Assembly, assemble
 from ..modes import frequency_intervals, mode_set
 from ..scenario import Scenario
 from ..tyres import _resolve, build_parts
-from .records import RideCache, RideResult, SpeedRun, VariantPlan
+from .output import RideResult
+from .records import RideCache, SpeedRun, VariantPlan
 from .rows import exposure
 from .spectral import _fd_grid, _seat_tf, enveloping_response, expected_weighted_rms
 from .track import DT_S, Track

@@ -19,7 +19,8 @@ from ..tyres import build_parts, resolve_tyres
 from ..units import from_kilo
 from .frequency import spectral_variants
 from .plan import seat_axes, seat_filter
-from .records import RideCache, RideResult
+from .output import RideResult
+from .records import RideCache
 from .rows import exposure
 from .spectral import _fd_grid, _seat_tf, enveloping_response, expected_weighted_rms
 from .time import ride_variants

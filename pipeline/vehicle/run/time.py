@@ -22,7 +22,8 @@ from ..scenario import Scenario
 from ..scenario.limits import MIN_VERDICT_DURATION_S
 from ..tractor import simulate
 from .plan import axle_flags, finish, prepare, record_window, speed_run
-from .records import AXIS_WORDS, FIGURE_BAND_HZ, RideCache, RideResult, VariantPlan
+from .output import RideResult
+from .records import AXIS_WORDS, FIGURE_BAND_HZ, RideCache, VariantPlan
 from .rows import SpeedRow, exposure, tyre_columns
 from .spectral import AXIS_WEIGHTING, _expected_batch, _transmissibility
 from .track import DT_S, FS_HZ, tyre_inputs, wheel_inputs
