@@ -760,7 +760,7 @@ def scenario_wheel_geometry(scenario) -> list[tuple[float, int]]:
     >>> from types import SimpleNamespace as S
     >>> sc = S(front=S(size="7.50-18", radius_m=None, traction=False), rear=S(size="13.6R38", radius_m=None, traction=True))
     >>> [(round(c, 2), n) for c, n in scenario_wheel_geometry(sc)][1:3]
-    [(2.7, 0), (4.66, 23)]
+    [(2.35, 0), (4.66, 23)]
     """
     from ..tyre.sizes import lugs_per_side, parse_tyre_size, rolling_circumference_m
 
