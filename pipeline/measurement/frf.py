@@ -199,8 +199,12 @@ class CrossSpectraAccumulator:
         y = np.asarray(outputs, dtype=float).reshape(self.p, -1)
         if x.shape[0] != self.q or y.shape[1] != x.shape[1]:
             raise ValueError(f"inputs must be ({self.q}, n) and outputs ({self.p}, n), got {x.shape} and {y.shape}")
-        self.n_samples += x.shape[1]
-        z = np.vstack([x, y])
+        block = self.nperseg + (self.BLOCK_SEGMENTS - 1) * self.step
+        for i in range(0, x.shape[1], block):  # a block at a time: no copy of a whole chunk
+            self._add(np.vstack([x[:, i:i + block], y[:, i:i + block]]))
+
+    def _add(self, z: np.ndarray) -> None:
+        self.n_samples += z.shape[1]
         if self.heights.any():  # second difference of the heights, the other channels one sample late
             z = z if self._carry is None else np.concatenate([self._carry, z], axis=1)
             if z.shape[1] < 3:
@@ -488,13 +492,13 @@ def _projected(params: np.ndarray, w, h, wt) -> np.ndarray:
     a = phi[None, :, :] * wt.T[:, :, None]  # (m, n, k)
     a = np.concatenate([a.real, a.imag], axis=1)  # (m, 2n, k)
     b = (h * wt).T
-    b = np.concatenate([b.real, b.imag], axis=1)  # (m, 2n)
-    norm = np.sqrt(np.einsum("mnk,mnk->mk", a, a))
+    b = np.concatenate([b.real, b.imag], axis=1)[:, :, None]  # (m, 2n, 1)
+    norm = np.sqrt((a * a).sum(axis=1))
     norm[norm == 0] = 1.0
     a = a / norm[:, None, :]
-    ata = np.einsum("mnk,mnl->mkl", a, a) + 1e-12 * np.eye(a.shape[2])
-    coef = np.linalg.solve(ata, np.einsum("mnk,mn->mk", a, b)[:, :, None])
-    return (np.einsum("mnk,mk->mn", a, coef[:, :, 0]) - b).reshape(-1)
+    at = np.swapaxes(a, 1, 2)
+    coef = np.linalg.solve(at @ a + 1e-12 * np.eye(a.shape[2]), at @ b)
+    return (a @ coef - b).reshape(-1)
 
 
 def fit_vehicle_modes(frequency_Hz, h, sigma, usable=None, max_modes: int = MAX_MODES,
@@ -556,6 +560,8 @@ def fit_vehicle_modes(frequency_Hz, h, sigma, usable=None, max_modes: int = MAX_
         resid = _projected(prev, w, h0, wt) if prev.size else None
         lb, ub = np.repeat(lower, r), np.repeat(upper, r)
         trial = None
+        accepted = False
+        # the largest residual peak first; the other candidates only when it gives no acceptable fit
         for fc in _candidates(f, h0, wt, resid, len(cols)):
             x0 = np.clip(np.concatenate([prev[:r - 1], [fc], prev[r - 1:], [0.15]]), lb, ub)
             try:
@@ -563,14 +569,18 @@ def fit_vehicle_modes(frequency_Hz, h, sigma, usable=None, max_modes: int = MAX_
                                              x_scale=np.repeat([1.0, 0.1], r), max_nfev=100, ftol=1e-6, xtol=1e-6)
             except (ValueError, np.linalg.LinAlgError):
                 continue
+            # a pole at a bound or contributing nothing stands for noise or what lies outside the band
+            if not _all_modes(res.x, w, h0, wt, lb, ub):
+                continue
+            bic = n_obs * math.log(max(2 * res.cost, 1e-300) / n_obs) + n_par * math.log(n_obs)
             if trial is None or res.cost < trial.cost:
-                trial = res
-        if trial is None or not _all_modes(trial.x, w, h0, wt, lb, ub):
-            break  # a pole at a bound or contributing nothing stands for noise or what lies outside the band
-        rss = 2 * trial.cost
-        bic = n_obs * math.log(max(rss, 1e-300) / n_obs) + n_par * math.log(n_obs)
-        if best is not None and bic >= best[0]:
+                trial, trial_bic = res, bic
+            if best is None or bic < best[0]:
+                accepted = True
+                break
+        if not accepted:
             break
+        bic = trial_bic
         best = (bic, trial.x.copy(), trial, n_par)
         order = np.argsort(trial.x[:r])
         prev = np.concatenate([trial.x[:r][order], trial.x[r:][order]])
