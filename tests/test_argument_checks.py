@@ -525,7 +525,7 @@ def _public_functions() -> list[str]:
     out = []
     for package in CHECKED_PACKAGES:
         pkg = importlib.import_module(package)
-        for info in pkgutil.walk_packages(pkg.__path__, f"{package}."):  # sub-packages too (issue 45)
+        for info in pkgutil.walk_packages(pkg.__path__, f"{package}."):
             module = importlib.import_module(info.name)
             for name in getattr(module, "__all__", ()):
                 obj = getattr(module, name)
