@@ -39,26 +39,42 @@ RELATIVE = 1e-9
 
 @contextlib.contextmanager
 def before_issue_33_parts():
-    """The ride's parts as before issue 33: no lateral tyre elements (the 3-D scenarios here give no
-    ``lateral_model``, now ``kelvin_voigt`` by default) and no static loads' moment (which moves the
-    shipped modern_tractor.toml, a Maxwell longitudinal element: docs/simulation.md). With both off the
-    new code paths must move no number; the thesis' studies never had either."""
+    """The vehicle's parts and footprints as the goldens were computed.
+
+    Before issue 33: no lateral tyre elements (the 3-D scenarios here give no ``lateral_model``, now
+    ``kelvin_voigt`` by default) and no static loads' moment (which moves the shipped
+    modern_tractor.toml, a Maxwell longitudinal element: docs/simulation.md). With both off the new
+    code paths must move no number; the thesis' studies never had either.
+
+    Before issue 45: the footprints from the tractor's mass alone (``m g b / L / 2`` per tyre), not
+    the whole vehicle's static loads; only the 3-D runs with an implement, ballast and cab
+    (``PARTS``) move with the fix (tests/vehicle/test_tyres.py checks the new loads).
+    """
     import dataclasses
 
-    from tyrelab.vehicle import ride
+    from tyrelab.vehicle import ride, tyres
+    from tyrelab.vehicle.carriage import GRAVITY_M_S2
 
-    build = ride.build_parts
+    build = tyres.build_parts
+    kept = ride.build_parts, tyres.build_parts, tyres.static_tyre_loads
 
-    def old_parts(scenario, tyres, i):
-        p = build(scenario, tyres, i)
+    def old_parts(scenario, tyre_data, i):
+        p = build(scenario, tyre_data, i)
         strip = {ax: dataclasses.replace(getattr(p, ax), lateral_model="none") for ax in ("front", "rear")}
         return dataclasses.replace(p, static_load_moment=False, **strip)
 
-    ride.build_parts = old_parts
+    def tractor_alone(asm):
+        p = asm.parts
+        a, b = p.front.ahead_of_cg_m, -p.rear.ahead_of_cg_m
+        m_g = p.chassis.mass_kg * GRAVITY_M_S2
+        return {"front": m_g * b / (a + b) / 2, "rear": m_g * a / (a + b) / 2}
+
+    ride.build_parts = tyres.build_parts = old_parts
+    tyres.static_tyre_loads = tractor_alone
     try:
         yield
     finally:
-        ride.build_parts = build
+        ride.build_parts, tyres.build_parts, tyres.static_tyre_loads = kept
 
 
 def _compare(stored, now) -> dict:
