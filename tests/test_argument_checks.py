@@ -397,6 +397,7 @@ ROWS = [
     (f"{VE}.tyres.build_tractor", dict(scenario="modern.toml", tyres={}, i=0), "scenario"),
     (f"{VE}.tyres.build_parts", dict(scenario=_scenario, tyres={}, i=-1), "i"),
     (f"{VE}.tyres.static_tyre_loads", dict(asm="tractor"), "asm"),
+    (f"{VE}.tyres.scenario_fits", dict(scenario=None, tables={}), "scenario"),
     (f"{VE}.run.track.wheel_inputs", dict(tyres=("front", "rear"), three_d=False, track=None, kind="none", footprints=(0.3, 0.4), radii=(0.6, 0.8), speed_m_s=1.0, wheelbase_m=2.5, n_steps=10), "track"),
     (f"{VE}.scenario.variants.sweep_variants", dict(scenario="modern.toml"), "scenario"),
     (f"{VE}.run.track.tyre_inputs", dict(asm=None, track=None, kind="none", footprints=(0.3, 0.4), radii=(0.6, 0.8), speed_m_s=1.0, wheelbase_m=2.5, n_steps=10), "asm"),

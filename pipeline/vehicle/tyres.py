@@ -237,6 +237,7 @@ def scenario_fits(scenario, tables: dict) -> dict:
     lacks stays None (the scenario then fails naming it). Returns name -> DataFrame or None,
     only the tables read: the item key of the scenario and what :class:`FitTyres` is given.
     """
+    _validate.instance("scenario", scenario, Scenario)
     out: dict = {}
     for spec in (scenario.front, scenario.rear):
         tyre_id = getattr(spec, "measured_tyre_id", None)
