@@ -18,7 +18,11 @@ random vibration" (§3.2.5). This module turns such a recording into
   is at least :data:`MIN_COHERENCE`): Kelvin–Voigt ``Z = K + jωC``, and for a rolling tyre
   also the Kelvin–Voigt unit in series with a damper (``maxwell``, thesis §2.5: "a spring
   and damper connected in series", Lines 1987) ``Z = jωc₂ (K + jωC) / (K + jω(C + c₂))``;
-  the smaller residual per degree of freedom decides which is reported.
+  the F test of the series damper decides which is reported (:func:`model_test`; a rolling run
+  with fewer than :data:`MIN_CHOICE_BINS` coherent bins is reported with the series damper and
+  flagged). The apparent mass K and C come from is :meth:`FrfEstimate.hc` where the two axle
+  accelerometers are given (the accelerometers' noise is in force and acceleration at once: H1 and
+  H2 are both biased then), H1 otherwise; K and C from H1 and H2 are kept beside it (issue 44).
 
 Uncertainty of the fitted K, C (and c₂): batch means (the recording cut into
 :data:`BLOCKS` contiguous blocks, the spectra of each from one vectorised ``csd`` call,
@@ -620,7 +624,7 @@ def model_test(kelvin_voigt: ModelFit, maxwell: ModelFit) -> float:
     return float(f_dist.sf(stat, 1, nu))
 
 
-def _same_model(f, z, u, model, like: ModelFit | None = None) -> ModelFit | None:
+def _same_model(f, z, u, model) -> ModelFit | None:
     """``model`` fitted to another estimator's ``z`` over the same bins (None where it cannot be)."""
     try:
         return fit_model(f, z, u, model) if np.all(np.isfinite(z)) else None
