@@ -37,6 +37,7 @@ from . import lti
 
 __all__ = [
     "GRAVITY_M_S2",
+    "THESIS_GRAVITY_M_S2",
     "PARASITIC_DAMPING_N_S_PER_M",
     "Carriage",
     "ground_input",
@@ -50,7 +51,12 @@ __all__ = [
     "damped_natural_frequency",
 ]
 
-GRAVITY_M_S2 = 9.81
+#: Gravity of the thesis' studies, m/s² (chapters 6 and 7 computed with 9.81): the carriage and the
+#: ch. 7 tractor study use it to reproduce the printed Tables; everything else uses the standard
+#: gravity :data:`tyrelab.vehicle.units.STANDARD_GRAVITY_M_S2`.
+THESIS_GRAVITY_M_S2 = 9.81
+#: The carriage's gravity (the thesis' 9.81; the name kept for callers of issue 35).
+GRAVITY_M_S2 = THESIS_GRAVITY_M_S2
 #: Linkage damping estimated by the thesis from free decay on coil springs (§6.3).
 PARASITIC_DAMPING_N_S_PER_M = 1000.0
 
@@ -236,7 +242,7 @@ def simulate_nonlinear(
     dt_s: float = 1e-3,
     lift_off: bool = True,
     friction_velocity_m_s: float = 0.005,
-    gravity_m_s2: float = GRAVITY_M_S2,
+    gravity_m_s2: float = THESIS_GRAVITY_M_S2,
     n_steps=None,
 ) -> dict[str, np.ndarray]:
     """Fixed-step RK4 carriage with tyre lift-off and Coulomb linkage friction.
@@ -399,7 +405,7 @@ def simulate_ivp(
     u0 = float(spline(x_start_m))
     m, k, c = carriage.mass_kg, carriage.stiffness_N_per_m, carriage.damping_N_s_per_m
     cp, fc = carriage.parasitic_damping_N_s_per_m, carriage.coulomb_friction_N
-    floor = -m * GRAVITY_M_S2 if lift_off else -np.inf
+    floor = -m * THESIS_GRAVITY_M_S2 if lift_off else -np.inf
 
     def accel(t, z, v):
         x = x_start_m + speed_m_s * t

@@ -65,7 +65,7 @@ from . import spectral_ride
 from . import lti
 from . import metrics as mt
 from . import profiles as pr
-from .carriage import GRAVITY_M_S2
+from .units import STANDARD_GRAVITY_M_S2 as GRAVITY_M_S2
 from .scenario import Scenario, ScenarioError, with_overrides, with_values
 from .carriage import half_step_input
 from .model import Assembly, Parts, SeatPoint, SeatSuspension, assemble
