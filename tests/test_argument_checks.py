@@ -498,6 +498,7 @@ EXEMPT: dict[str, str] = {
     "tyrelab.vehicle.model.pivot_problem": "writes the pivot rule's line for a section name (any text)",
     "tyrelab.vehicle.units.from_kilo": "a unit conversion of any number or array (numpy's arithmetic): nothing to refuse",
     "tyrelab.vehicle.units.to_kilo": "a unit conversion of any number or array (numpy's arithmetic): nothing to refuse",
+    "tyrelab.vehicle.units.km_h_to_m_s": "a unit conversion of any number or array (numpy's arithmetic): nothing to refuse",
     # these check arguments for a living: every problem is a returned line, so that a caller prints them all
     # at once (tyrelab ride); each line names the key and the bound (doctests of vehicle/scenario_limits.py)
     "tyrelab.vehicle.scenario_limits.scenario_problems": "returns its argument's problems as lines, by design",
