@@ -34,7 +34,8 @@ import math
 from dataclasses import dataclass, field
 
 from .. import _validate
-from . import iso2631, iso2631_5
+from . import iso2631
+from . import iso2631_5
 from .scenario_limits import LIMITS, MIN_VERDICT_DURATION_S
 
 __all__ = ["TaskExposure", "daily_exposure", "governing_axis", "verdict", "EXPOSURE_VERDICTS", "MAX_HOURS_PER_DAY", "MIN_HOURS_PER_DAY",

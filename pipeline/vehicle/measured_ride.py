@@ -45,7 +45,8 @@ import numpy as np
 
 from .. import _validate
 from .._validate import positive
-from . import iso2631, iso2631_5
+from . import iso2631
+from . import iso2631_5
 from . import metrics as mt
 
 __all__ = ["WEIGHTING_OF", "ChannelResult", "ChannelAnalyser", "RecordingAnalysis", "analyse_recording",

@@ -32,10 +32,10 @@ import pandas as pd
 
 from .. import _validate
 from . import carriage as cm
-from . import enveloping as ev
+from .terrain import enveloping as ev
 from . import iso2631
 from . import metrics as mt
-from . import profiles as pr
+from .terrain import profiles as pr
 from . import published_layouts as layouts
 from .tractor import PARAMETERS, Tractor, simulate_tractor
 from .units import KILO, from_kilo, km_h_to_m_s, to_kilo

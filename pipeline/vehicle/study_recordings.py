@@ -219,7 +219,7 @@ def study_recordings(pub: dict, seed: int) -> tuple[pd.DataFrame, dict, pd.DataF
             slatted if track == "SBT" else "ISO 8608 class D", TRACTOR_DAY, "tractor", lc, track,
             {"floor_z_m_s2": r["vertical_m_s2"], "pitch_rad_s2": r["pitch_rad_s2"],
              "floor_x_m_s2": r["longitudinal_m_s2"]})
-    from .profiles import slatted_track
+    from .terrain.profiles import slatted_track
 
     t = slatted_track(seed=TRACK_SEED)
     return pd.DataFrame(rows), frames, pd.DataFrame({"x_m": t.x_m, "left_m": t.left_m, "right_m": t.right_m})
