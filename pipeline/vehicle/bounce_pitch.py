@@ -25,7 +25,7 @@ from scipy import linalg
 
 from .. import _validate
 from ..tyre.stiffness import estimate_stiffness
-from .metrics import ratio_error_statistics
+from .comfort.metrics import ratio_error_statistics
 from .model import Axle, Chassis, Parts, assemble
 from .units import from_kilo
 

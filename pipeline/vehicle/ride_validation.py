@@ -30,8 +30,8 @@ import numpy as np
 import pandas as pd
 
 from .. import _validate
-from . import metrics as mt
-from .measured_ride import RecordingAnalysis, analyse_signals
+from .comfort import metrics as mt
+from .comfort.measured_ride import RecordingAnalysis, analyse_signals
 
 __all__ = ["ValidationTrack", "track_of", "predicted_seat", "validation_rows", "validation_statistics",
            "ENVELOPE_CUTOFF_HZ", "MAX_ENVELOPE_S", "SEAT_AXES"]

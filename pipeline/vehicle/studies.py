@@ -33,8 +33,8 @@ import pandas as pd
 from .. import _validate
 from . import carriage as cm
 from .terrain import enveloping as ev
-from . import iso2631
-from . import metrics as mt
+from .comfort import iso2631
+from .comfort import metrics as mt
 from .terrain import profiles as pr
 from . import published_layouts as layouts
 from .tractor import PARAMETERS, Tractor, simulate_tractor
