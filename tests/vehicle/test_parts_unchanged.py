@@ -48,14 +48,7 @@ def _check(report: dict) -> None:
 @pytest.fixture
 def thesis_gravity(monkeypatch):
     """The vehicle model's default gravity set back to the thesis' 9.81 m/s² (as before issue 45)."""
-    import sys
-
-    from tyrelab.vehicle import ride
-    from tyrelab.vehicle.carriage import THESIS_GRAVITY_M_S2
-    from tyrelab.vehicle.model import assemble
-
-    monkeypatch.setattr(sys.modules[assemble.__module__], "STANDARD_GRAVITY_M_S2", THESIS_GRAVITY_M_S2)
-    monkeypatch.setattr(ride, "GRAVITY_M_S2", THESIS_GRAVITY_M_S2, raising=False)  # the footprints' loads
+    golden.use_thesis_gravity(monkeypatch)
 
 
 @pytest.fixture
