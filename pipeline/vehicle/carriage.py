@@ -33,7 +33,7 @@ from scipy import integrate, interpolate
 
 from .. import _validate
 from .._validate import positive
-from . import lti
+from .solvers import lti
 
 __all__ = [
     "GRAVITY_M_S2",

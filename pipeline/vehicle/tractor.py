@@ -42,7 +42,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from .. import _validate
-from . import lti
+from .solvers import lti
 from .model import Assembly, Axle, Chassis, Parts, SeatPoint, assemble, coordinate_output
 from .units import STANDARD_GRAVITY_M_S2 as GRAVITY_M_S2  # noqa: F401  (the name of issue 35)
 
