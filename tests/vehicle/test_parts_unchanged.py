@@ -51,12 +51,7 @@ def thesis_gravity(monkeypatch):
     golden.use_thesis_gravity(monkeypatch)
 
 
-@pytest.fixture
-def before_issue_33(monkeypatch, thesis_gravity):
-    """The ride's parts as before issue 33: no lateral tyre elements (the 3-D scenarios here give no
-    ``lateral_model``, now ``kelvin_voigt`` by default) and no static loads' moment (which moves the
-    shipped modern_tractor.toml, a Maxwell longitudinal element: docs/simulation.md). With both off the
-    new code paths must move no number; the thesis' studies never had either."""
+def _parts_before_issue_33(monkeypatch):
     import dataclasses
 
     from tyrelab.vehicle import ride, tyres
@@ -70,6 +65,20 @@ def before_issue_33(monkeypatch, thesis_gravity):
 
     monkeypatch.setattr(ride, "build_parts", old_parts)
     monkeypatch.setattr(tyres, "build_parts", old_parts)
+
+
+@pytest.fixture
+def parts_before_issue_33(monkeypatch):
+    """The ride's parts as before issue 33: no lateral tyre elements (the 3-D scenarios here give no
+    ``lateral_model``, now ``kelvin_voigt`` by default) and no static loads' moment (which moves the
+    shipped modern_tractor.toml, a Maxwell longitudinal element: docs/simulation.md). With both off the
+    new code paths must move no number; the thesis' studies never had either."""
+    _parts_before_issue_33(monkeypatch)
+
+
+@pytest.fixture
+def before_issue_33(parts_before_issue_33, thesis_gravity):
+    """:func:`parts_before_issue_33` under the thesis' gravity the model had then."""
 
 
 @pytest.fixture
@@ -108,21 +117,9 @@ def _gravity_bound(key: str) -> float:
     return STANDARD_GRAVITY_MOVES["seat readings"]
 
 
-def test_standard_gravity_moves_the_scenarios_by(monkeypatch):
+def test_standard_gravity_moves_the_scenarios_by(parts_before_issue_33, before_issue_45):
     """Without ``thesis_gravity``: the thesis' tables stay to the bit (the studies pass 9.81), the
     scenarios move by at most :data:`STANDARD_GRAVITY_MOVES` and some do move."""
-    import dataclasses
-
-    from tyrelab.vehicle import ride
-
-    build = ride.build_parts
-
-    def old_parts(scenario, tyres, i):
-        p = build(scenario, tyres, i)
-        strip = {ax: dataclasses.replace(getattr(p, ax), lateral_model="none") for ax in ("front", "rear")}
-        return dataclasses.replace(p, static_load_moment=False, **strip)
-
-    monkeypatch.setattr(ride, "build_parts", old_parts)
     report = _compare(False)
     assert not [k for k in report if k.startswith(("study/", "table_xx/"))], report
     assert any(k.startswith("shipped/") for k in report)
