@@ -60,7 +60,7 @@ from . import lti
 from . import metrics as mt
 from . import profiles as pr
 from .scenario import Scenario, ScenarioError, with_overrides, with_values
-from .carriage import half_step_input
+from .terrain.wheel_inputs import half_step_input
 from .model import Assembly, Parts, SeatPoint, SeatSuspension, assemble
 from .tractor import Tractor, simulate, tractor_parts
 from .units import KILO, from_kilo, to_kilo
