@@ -47,6 +47,7 @@ run: data compile
 	@echo "report: $(BUILD)/reports/index.html — query: $(BIN)/tyrelab sql \"SELECT * FROM table_iii\""
 
 test: install compile
+	$(BIN)/lint-imports --no-cache
 	$(BIN)/python -m pytest -q -m "not slow" -n auto
 
 # The built wheel in a fresh virtualenv: generate -> run -> sql -> report from an empty folder.
