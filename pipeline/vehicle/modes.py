@@ -48,7 +48,7 @@ from .model import Assembly, assemble
 from .units import from_kilo, to_kilo
 
 __all__ = ["MODE_NAMES", "LATERAL_ROLL_SHARE", "FOLLOW_MAC", "ZERO_ROOT", "ModeSet", "mode_set", "mac_matrix",
-           "frequency_intervals", "follow_names", "DampedMode", "damped_modes", "FOLLOW_STEPS"]
+           "frequency_intervals", "follow_names", "DampedMode", "damped_modes", "follow_damped", "FOLLOW_STEPS"]
 
 #: Mode names by the coordinate that moves most (the body's ``z`` and ``th`` by thesis §8.2's rule;
 #: ``y`` and ``psi``: the body's lateral and yaw freedoms of issue 33's lateral tyre elements).
@@ -143,14 +143,21 @@ def _is_beam(asm: Assembly) -> bool:
     return asm.undamped()[2] == ("z", "th")
 
 
-def _shape_names(shares, coords) -> list[str]:
+def _shape_names(shares, coords, one_to_one: bool = False) -> list[str]:
     """Names of modes (ascending in frequency) from their kinetic-energy shares over ``coords``
     (:func:`mode_set`'s rules: what moves most, :data:`MODE_NAMES`; the lowest mode led by the body's
     lateral or roll motion with both in it ``lateral_roll``; of the modes led by ``z`` or ``θ`` the
-    larger ``|z|/|θ|`` share is bounce, the other pitch, thesis §8.2; a second of a name ``_2``)."""
+    larger ``|z|/|θ|`` share is bounce, the other pitch, thesis §8.2; a second of a name ``_2``).
+    ``one_to_one``: each mode leads by a coordinate of its own, the assignment of modes to coordinates
+    with the largest total share (:func:`scipy.optimize.linear_sum_assignment`; the damped modes of
+    issue 42, where a heavily damped pair can share its leader)."""
     coords = list(coords)
     iz, ith = coords.index("z"), coords.index("th")
     dominant = [coords[int(np.argmax(np.abs(sh)))] for sh in shares]
+    if one_to_one and len(shares) <= len(coords):
+        rows, cols = optimize.linear_sum_assignment(-np.abs(np.array(shares, float)))
+        for i, j in zip(rows, cols):
+            dominant[int(i)] = coords[int(j)]
     if "y" in coords:  # issue 33: the lowest mode led by the body's lateral or roll motion, with both in it,
         iy, iphi = coords.index("y"), coords.index("phi")  # is the coupled lateral-roll mode
         for i, sh in enumerate(shares):
@@ -325,6 +332,11 @@ class DampedMode:
     damping_ratio: float
     overdamped: bool
     mac: float
+    #: The shape over ``coordinates`` (complex, the velocity part of the eigenvector) and the mass matrix
+    #: over them (:func:`follow_damped`).
+    shape: np.ndarray | None = dataclasses.field(default=None, repr=False, compare=False)
+    coordinates: tuple = dataclasses.field(default=(), repr=False, compare=False)
+    mass: np.ndarray | None = dataclasses.field(default=None, repr=False, compare=False)
 
 
 #: The series dampers are released along ``1/c₂ = share / c₂`` with ``share`` from 0 (locked) through
@@ -462,10 +474,49 @@ def damped_modes(asm: Assembly, gravity_m_s2: float = GRAVITY_M_S2, reference: M
     final = state["shapes"]
     shares = [np.real(final[:, j].conj() * (m @ final[:, j])) for j in chosen]
     out = {}
-    for name, j in zip(_shape_names(shares, ref.coordinates), chosen):
+    for name, j in zip(_shape_names(shares, ref.coordinates, one_to_one=True), chosen):
         lam = complex(roots[j])
         size = abs(lam)
         overdamped = abs(lam.imag) <= 1e-9 * size
         out[name] = DampedMode(name, lam, size / (2 * math.pi), 0.0 if overdamped else lam.imag / (2 * math.pi),
-                               1.0 if overdamped else -lam.real / size, bool(overdamped), quality_of[j])
+                               1.0 if overdamped else -lam.real / size, bool(overdamped), quality_of[j],
+                               final[:, j], tuple(ref.coordinates), m)
+    return out
+
+
+def follow_damped(reference: dict, other: dict, threshold: float = FOLLOW_MAC) -> dict:
+    """``{reference name: other's DampedMode, or None}``: each damped mode of ``reference``
+    (:func:`damped_modes`) paired one to one with the mode of ``other`` whose shape it resembles most
+    (mass-weighted MAC of the complex shapes over the coordinates they share, the reference's mass);
+    None below ``threshold`` (the mode cannot be followed). Names then stay the reference's across a
+    scenario's intervals, speeds and a sweep.
+
+    Examples
+    --------
+    >>> from tyrelab.vehicle.model import assemble
+    >>> from tyrelab.vehicle.tractor import Tractor, tractor_parts
+    >>> d = damped_modes(assemble(tractor_parts(Tractor(1000, 250, 1.0, 1.0, 0.5, 1e5, 1e5, 2e3, 2e3))))
+    >>> {k: v.name for k, v in follow_damped(d, d).items()}
+    {'bounce': 'bounce', 'pitch': 'pitch'}
+    """
+    if not isinstance(reference, dict) or not isinstance(other, dict):
+        raise ValueError("reference, other: dicts of DampedMode (damped_modes)")
+    out = dict.fromkeys(reference)
+    if not reference or not other:
+        return out
+    first = next(iter(reference.values()))
+    names_o = list(other)
+    o0 = other[names_o[0]]
+    common = [c for c in first.coordinates if c in o0.coordinates]
+    ia = [first.coordinates.index(c) for c in common]
+    ib = [o0.coordinates.index(c) for c in common]
+    m = first.mass[np.ix_(ia, ia)]
+    a = np.stack([d.shape[ia] for d in reference.values()], axis=1)
+    b = np.stack([other[n].shape[ib] for n in names_o], axis=1)
+    mac = _complex_mac(m, a, b)
+    rows, cols = optimize.linear_sum_assignment(-mac)
+    names_r = list(reference)
+    for i, j in zip(rows, cols):
+        if mac[i, j] >= threshold:
+            out[names_r[i]] = other[names_o[j]]
     return out

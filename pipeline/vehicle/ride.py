@@ -71,9 +71,11 @@ from .carriage import half_step_input
 from .model import Assembly, Parts, SeatPoint, SeatSuspension, assemble
 from .tractor import Tractor, simulate, tractor_parts
 from .units import KILO, from_kilo, to_kilo
+from ..tyre.rolling import series_damping_N_s_per_m
 from .scenario_limits import MIN_VERDICT_DURATION_S
 from .daily_exposure import governing_axis
 from .modes import LATERAL_ROLL_SHARE, MODE_NAMES, ModeSet, follow_names, frequency_intervals, mode_set  # noqa: F401 (names: their old home)
+from .modes import damped_modes, follow_damped
 
 __all__ = [
     "OUTPUTS",
@@ -169,6 +171,15 @@ class AxleTyres:
     lateral_damping_kN_s_per_m: np.ndarray | None = None
     lateral_source: str = ""
     lateral_ci95_kN_per_m: tuple | None = None
+    #: The rolling element (issue 42): ``a`` of the series damper ``c₂ = a / v`` (kN s/m × km/h), its
+    #: 95 % interval where it is the stand-in, and per coefficient where it came from
+    #: (``{"stiffness_kN_per_m": "measured", ...}``: :data:`tyrelab.tyre.directional.SOURCE_KINDS`).
+    lateral_series_damping_kN_s_per_m_km_h: float | None = None
+    lateral_series_ci95_kN_s_per_m_km_h: tuple | None = None
+    lateral_sources: dict = field(default_factory=dict)
+    #: The rear tyres' longitudinal rolling element's ``a`` and its source (``longitudinal_model = "rolling"``).
+    longitudinal_series_damping_kN_s_per_m_km_h: float | None = None
+    longitudinal_series_source: str = ""
 
 
 def per_speed(values, list_speeds_km_h, speeds_km_h) -> np.ndarray:
@@ -336,7 +347,9 @@ def resolve_tyres(scenario: Scenario, tyre_data=None, memo: dict | None = None) 
             fp = np.array([ev.contact_length(radius, load_n[axle] / from_kilo(kk)) for kk in k])
         lateral = {}
         if scenario.tractor.three_d and scenario.tractor.lateral_model != "none":
-            lateral = _lateral_tyre(spec, k, np.maximum(c, 0.0))
+            lateral = _lateral_tyre(spec, k, np.maximum(c, 0.0), speeds, tyre_data)
+        if axle == "rear" and scenario.tractor.longitudinal_model == "rolling":
+            lateral.update(_longitudinal_series(scenario.tractor, spec, speeds, tyre_data))
         out[axle] = AxleTyres(spec.size, spec.pressure_bar, k, np.maximum(c, 0.0), k_src, c_src, float(radius), fp,
                               tuple(warnings), float(k_u), **lateral)
         if memo is not None:
@@ -344,24 +357,51 @@ def resolve_tyres(scenario: Scenario, tyre_data=None, memo: dict | None = None) 
     return out
 
 
-def _lateral_tyre(spec, k: np.ndarray, c: np.ndarray) -> dict:
-    """One tyre's lateral element per speed: the scenario's, else the stand-in from its vertical
-    stiffness (:mod:`tyrelab.tyre.lateral`) and its vertical damping."""
-    if spec.lateral_stiffness_kN_per_m is not None:
-        ky, src, ci = np.full(k.shape, float(spec.lateral_stiffness_kN_per_m)), "override (scenario)", None
-    else:
-        est = [estimate_lateral_stiffness(float(x)) for x in k]
-        ky = np.array([e["lateral_stiffness_kN_per_m"] for e in est])
-        src, ci = est[0]["source"], (np.array([e["ci95_kN_per_m"][0] for e in est]),
-                                     np.array([e["ci95_kN_per_m"][1] for e in est]))
-    if spec.lateral_damping_kN_s_per_m is not None:
-        cy = np.full(k.shape, float(spec.lateral_damping_kN_s_per_m))
-        src += "; damping: override (scenario)"
-    else:
-        cy = np.where(c > 0, c, 1e-3)  # a Maxwell element needs a damper: 1 N s/m at least
-        src += "; damping: the tyre's vertical damping (stand-in)"
-    return {"lateral_stiffness_kN_per_m": ky, "lateral_damping_kN_s_per_m": cy, "lateral_source": src,
-            "lateral_ci95_kN_per_m": ci}
+def _directional_tables(tyre_data, spec, direction: str) -> dict:
+    """The build's tables of ``spec``'s measured tyre in ``direction`` and its catalogue row, as
+    :func:`tyrelab.tyre.directional.rolling_coefficients` takes them (none without a measured tyre or
+    a reader that has them: ``tyre_data.directional``)."""
+    if not spec.measured_tyre_id or not hasattr(tyre_data, "directional"):
+        return {}
+    return tyre_data.directional(spec.measured_tyre_id, direction)
+
+
+def _lateral_tyre(spec, k: np.ndarray, c: np.ndarray, speeds: np.ndarray, tyre_data=None) -> dict:
+    """One tyre's lateral element per speed (issues 33, 42): K, C and the rolling element's ``a``, each
+    from the scenario, the measured tyre's build, the catalogue or the stand-in (from the tyre's vertical
+    stiffness, :mod:`tyrelab.tyre.lateral`; its vertical damping; :mod:`tyrelab.tyre.rolling`):
+    :func:`tyrelab.tyre.directional.rolling_coefficients`."""
+    from ..tyre.directional import rolling_coefficients
+
+    r = rolling_coefficients("lateral", spec.pressure_bar, speeds, tyre_id=spec.measured_tyre_id or None,
+                             vertical_stiffness_kN_per_m=k, vertical_damping_kN_s_per_m=c,
+                             given={"stiffness_kN_per_m": spec.lateral_stiffness_kN_per_m,
+                                    "damping_kN_s_per_m": spec.lateral_damping_kN_s_per_m,
+                                    "series_damping_kN_s_per_m_km_h": spec.lateral_series_damping_kN_s_per_m_km_h},
+                             **_directional_tables(tyre_data, spec, "lateral"))
+    texts = r.source_text
+    src = (texts["stiffness_kN_per_m"] + "; damping: " + texts["damping_kN_s_per_m"]
+           + "; series damper a: " + texts["series_damping_kN_s_per_m_km_h"])
+    cy = np.where(r.damping_kN_s_per_m > 0, r.damping_kN_s_per_m, 1e-3)  # a Maxwell element needs a damper: 1 N s/m
+    return {"lateral_stiffness_kN_per_m": r.stiffness_kN_per_m, "lateral_damping_kN_s_per_m": cy,
+            "lateral_source": src, "lateral_ci95_kN_per_m": r.ci95.get("stiffness_kN_per_m"),
+            "lateral_series_damping_kN_s_per_m_km_h": r.series_damping_kN_s_per_m_km_h,
+            "lateral_series_ci95_kN_s_per_m_km_h": r.ci95.get("series_damping_kN_s_per_m_km_h"),
+            "lateral_sources": dict(r.sources)}
+
+
+def _longitudinal_series(tractor, spec, speeds: np.ndarray, tyre_data=None) -> dict:
+    """``a`` of the rear tyres' longitudinal rolling element (issue 42): ``[tractor]``'s, the measured
+    tyre's, the catalogue's or the stand-in (the element's K and C are ``[tractor]``'s)."""
+    from ..tyre.directional import rolling_coefficients
+
+    r = rolling_coefficients("longitudinal", spec.pressure_bar, speeds, tyre_id=spec.measured_tyre_id or None,
+                             given={"stiffness_kN_per_m": tractor.longitudinal_stiffness_kN_per_m,
+                                    "damping_kN_s_per_m": tractor.longitudinal_damping_kN_s_per_m,
+                                    "series_damping_kN_s_per_m_km_h": tractor.longitudinal_series_damping_kN_s_per_m_km_h},
+                             **_directional_tables(tyre_data, spec, "longitudinal"))
+    return {"longitudinal_series_damping_kN_s_per_m_km_h": r.series_damping_kN_s_per_m_km_h,
+            "longitudinal_series_source": r.source_text["series_damping_kN_s_per_m_km_h"]}
 
 
 def build_tractor(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Tractor:
@@ -388,6 +428,13 @@ def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Part
         if ty.lateral_stiffness_kN_per_m is not None:
             si[axle].update(lateral_stiffness_N_per_m=from_kilo(float(ty.lateral_stiffness_kN_per_m[i])),
                             lateral_damping_N_s_per_m=from_kilo(float(ty.lateral_damping_kN_s_per_m[i])))
+        speed = float(scenario.exposure.speeds_km_h[i])  # issue 42: each speed its own c2 = a / v
+        if ty.lateral_series_damping_kN_s_per_m_km_h is not None:
+            si[axle]["lateral_series_damping_N_s_per_m"] = series_damping_N_s_per_m(
+                ty.lateral_series_damping_kN_s_per_m_km_h, speed)
+        if ty.longitudinal_series_damping_kN_s_per_m_km_h is not None:
+            si[axle]["longitudinal_series_damping_N_s_per_m"] = series_damping_N_s_per_m(
+                ty.longitudinal_series_damping_kN_s_per_m_km_h, speed)
     return scenario.parts(si)
 
 # --------------------------------------------------------------------------- linear model
@@ -856,6 +903,22 @@ class RideResult:
     a8_lateral_ci95_m_s2: dict = field(default_factory=dict)
     #: The undamped modes (:class:`~tyrelab.vehicle.modes.ModeSet`) the natural frequencies name.
     modes: ModeSet | None = field(default=None, repr=False)
+    #: 3-D with horizontal tyre elements (issue 42): the modes with their damping from the complex roots
+    #: (:func:`~tyrelab.vehicle.modes.damped_modes`), per speed (each speed its own series dampers), the
+    #: names the first speed's followed by shape; ``natural_frequencies_Hz`` is then ``|λ| / 2π`` of the
+    #: first speed's. Empty otherwise (the undamped modes of the pitch plane, thesis §8.2).
+    modes_by_speed: dict = field(default_factory=dict, repr=False)
+    #: mode -> [low, high] of the first speed's damping ratio across the same perturbations as the
+    #: frequencies' intervals (issue 42).
+    damping_ratio_intervals: dict = field(default_factory=dict)
+
+    @property
+    def damping_ratios(self) -> dict:
+        """``{mode: ζ}`` at the first speed (None: overdamped); empty without :attr:`modes_by_speed`."""
+        if not self.modes_by_speed:
+            return {}
+        first = next(iter(self.modes_by_speed.values()))
+        return {n: (None if d is None or d.overdamped else d.damping_ratio) for n, d in first.items()}
     #: The variant at the scenario's own values (its tyre pressures and the file's value of every swept
     #: key; :func:`ride_sweep`): the one whose spectra the pages show.
     nominal: bool = True
@@ -1180,7 +1243,15 @@ def _finish(p: dict) -> RideResult:
     first = p["runs"][0]["asm"]
     shapes = mode_set(first)
     nat, nodal = shapes.frequencies(), shapes.nodal()
-    nat_ci, notes = frequency_intervals(first, tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
+    by_speed, zeta_ci = {}, {}
+    if sc.tractor.three_d and (sc.tractor.lateral_model != "none" or sc.tractor.longitudinal_model != "none"):
+        by_speed = _damped_by_speed(p, shapes)  # issue 42: the complex roots, per speed
+        d0 = next(iter(by_speed.values()))
+        nat = {n: d.undamped_Hz for n, d in d0.items() if d is not None}
+        nodal = {n: x for n, x in nodal.items() if n in nat}
+        nat_ci, zeta_ci, notes = _damped_intervals(p, d0, shapes)
+    else:
+        nat_ci, notes = frequency_intervals(first, tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
     warnings += [f"natural frequencies: {n}" for n in notes]
     cols = ["speed_km_h", "frequency_Hz"]
     return RideResult(
@@ -1191,8 +1262,83 @@ def _finish(p: dict) -> RideResult:
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
         warnings=warnings, natural_frequency_intervals_Hz=nat_ci, signals=signals, road_classes=track.road_classes,
         a8_lateral_ci95_m_s2=_lateral_interval(p, rows),
-        modes=shapes,
+        modes=shapes, modes_by_speed=by_speed, damping_ratio_intervals=zeta_ci,
     )
+
+
+def _damped_by_speed(p: dict, shapes: ModeSet) -> dict:
+    """Speed (km/h) -> ``{mode: DampedMode}`` (issue 42): each speed's assembly's damped modes (its own
+    series dampers), each named by its own shape (:func:`~tyrelab.vehicle.modes.damped_modes`: a mode
+    that changes its character with speed changes its name)."""
+    return {float(speed): damped_modes(p["runs"][i]["asm"], reference=shapes) for i, speed in enumerate(p["speeds"])}
+
+
+def _damped_intervals(p: dict, nominal: dict, shapes: ModeSet) -> tuple[dict, dict, list]:
+    """95 % intervals of the first speed's damped modes (issue 42): first order in each axle's vertical
+    tyre stiffness uncertainty (GUM 5.1.2, ±1 %, as :func:`~tyrelab.vehicle.modes.frequency_intervals`),
+    widened to hold every stand-in's spread: the lateral stiffness, lateral damping and series damper
+    ``a`` at both ends of their 95 % intervals (x/÷ 2) where they are stand-ins. Every perturbed model's
+    modes are followed from the nominal ones by shape. Returns the frequencies' and the damping ratios'
+    intervals and a note per mode that cannot be followed."""
+    sc, tyres = p["sc"], p["tyres"]
+    base = build_parts(sc, tyres, 0)
+    nat = {n: d for n, d in nominal.items() if d is not None}
+
+    def modes_of(parts):
+        return follow_damped(nat, damped_modes(assemble(parts), reference=shapes))
+
+    def scaled(parts, axle, **factors):
+        part = getattr(parts, axle)
+        return dataclasses.replace(parts, **{axle: dataclasses.replace(part, **{
+            k: f * getattr(part, k) for k, f in factors.items()})})
+
+    var_f, var_z, lost = dict.fromkeys(nat, 0.0), dict.fromkeys(nat, 0.0), {}
+    for axle in ("front", "rear"):
+        u = tyres[axle].stiffness_u_kN_per_m
+        if not u > 0:
+            continue
+        k = getattr(base, axle).tyre_stiffness_N_per_m
+        up = modes_of(scaled(base, axle, tyre_stiffness_N_per_m=1.01))
+        down = modes_of(scaled(base, axle, tyre_stiffness_N_per_m=0.99))
+        for n in nat:
+            if up[n] is None or down[n] is None:
+                lost[n] = axle
+                continue
+            var_f[n] += ((up[n].undamped_Hz - down[n].undamped_Hz) / (0.02 * k) * from_kilo(u)) ** 2
+            var_z[n] += ((up[n].damping_ratio - down[n].damping_ratio) / (0.02 * k) * from_kilo(u)) ** 2
+    f_ci = {n: [d.undamped_Hz - 1.96 * math.sqrt(var_f[n]), d.undamped_Hz + 1.96 * math.sqrt(var_f[n])]
+            for n, d in nat.items()}
+    z_ci = {n: [d.damping_ratio - 1.96 * math.sqrt(var_z[n]), d.damping_ratio + 1.96 * math.sqrt(var_z[n])]
+            for n, d in nat.items()}
+    spreads = []
+    for axle in ("front", "rear"):
+        t = tyres[axle]
+        sources = t.lateral_sources or {}
+        for key, field_ in (("stiffness_kN_per_m", "lateral_stiffness_N_per_m"),
+                            ("damping_kN_s_per_m", "lateral_damping_N_s_per_m"),
+                            ("series_damping_kN_s_per_m_km_h", "lateral_series_damping_N_s_per_m")):
+            if sources.get(key) == "stand-in" and math.isfinite(getattr(base, axle).__dict__.get(field_, 0.0) or 0.0):
+                spreads += [scaled(base, axle, **{field_: f}) for f in (0.5, 2.0)]
+    for parts in spreads:
+        other = modes_of(parts)
+        for n, d in other.items():
+            if d is None:
+                lost.setdefault(n, "stand-in")
+                continue
+            f_ci[n] = [min(f_ci[n][0], d.undamped_Hz), max(f_ci[n][1], d.undamped_Hz)]
+            z_ci[n] = [min(z_ci[n][0], d.damping_ratio), max(z_ci[n][1], d.damping_ratio)]
+    notes = []
+    for n, why in lost.items():
+        f_ci[n] = z_ci[n] = None
+        notes.append(f"{n}: no 95 % interval: the mode cannot be followed by its shape when the "
+                     + (f"{why} tyre stiffness changes by 1 %" if why != "stand-in" else
+                        "stand-ins move across their 95 % intervals") + " (it trades places with another mode)")
+    for n, ci in f_ci.items():
+        if ci is not None and ci[0] < 0:
+            f_ci[n] = None
+            notes.append(f"{n}: no 95 % interval: the first-order interval would reach below 0 Hz")
+    z_ci = {n: (None if ci is None else [max(ci[0], 0.0), min(ci[1], 1.0)]) for n, ci in z_ci.items()}
+    return f_ci, z_ci, notes
 
 
 def _lateral_interval(p: dict, rows: list) -> dict:
@@ -1934,9 +2080,38 @@ def _tyre_json(t: AxleTyres) -> dict:
             "lateral_damping_kN_s_per_m": _clean(t.lateral_damping_kN_s_per_m[0]),
             "lateral_source": t.lateral_source,
             "lateral_stiffness_ci95_kN_per_m": None if t.lateral_ci95_kN_per_m is None
-            else [_clean(t.lateral_ci95_kN_per_m[0][0]), _clean(t.lateral_ci95_kN_per_m[1][0])]}
+            else [_clean(t.lateral_ci95_kN_per_m[0][0]), _clean(t.lateral_ci95_kN_per_m[1][0])],
+            "lateral_series_damping_kN_s_per_m_km_h": _clean(t.lateral_series_damping_kN_s_per_m_km_h),
+            "lateral_series_damping_ci95_kN_s_per_m_km_h": None if t.lateral_series_ci95_kN_s_per_m_km_h is None
+            else [_clean(x) for x in t.lateral_series_ci95_kN_s_per_m_km_h],
+            "lateral_sources": dict(t.lateral_sources)}
            if t.lateral_stiffness_kN_per_m is not None else {}),
+        **({"longitudinal_series_damping_kN_s_per_m_km_h": _clean(t.longitudinal_series_damping_kN_s_per_m_km_h),
+            "longitudinal_series_source": t.longitudinal_series_source}
+           if t.longitudinal_series_damping_kN_s_per_m_km_h is not None else {}),
     }
+
+
+def _damped_json(r: RideResult) -> dict:
+    """The modes with their damping (issue 42): ``damping_ratio`` beside ``natural_frequencies_Hz`` (null:
+    overdamped), ``damped_frequencies_Hz`` (``Im λ / 2π``; null: overdamped), ``overdamped_modes``,
+    ``damping_ratio_ci95`` and, per speed, ``modes_by_speed``."""
+    first = next(iter(r.modes_by_speed.values()))
+
+    def one(d):
+        return None if d is None else {"natural_frequency_Hz": _clean(d.undamped_Hz),
+                                       "damped_frequency_Hz": None if d.overdamped else _clean(d.damped_Hz),
+                                       "damping_ratio": None if d.overdamped else _clean(d.damping_ratio),
+                                       "overdamped": bool(d.overdamped)}
+
+    return {"damping_ratio": {k: _clean(v) for k, v in r.damping_ratios.items()},
+            "damped_frequencies_Hz": {k: None if d is None or d.overdamped else _clean(d.damped_Hz)
+                                      for k, d in first.items()},
+            "overdamped_modes": [k for k, d in first.items() if d is not None and d.overdamped],
+            "damping_ratio_ci95": {k: None if v is None else [_clean(x) for x in v]
+                                   for k, v in r.damping_ratio_intervals.items()},
+            "modes_by_speed": [{"speed_km_h": v, "modes": {k: one(d) for k, d in ms.items()}}
+                               for v, ms in r.modes_by_speed.items()]}
 
 
 def result_json(results: list[RideResult]) -> dict:
@@ -1977,6 +2152,7 @@ def result_json(results: list[RideResult]) -> dict:
             "natural_frequencies_Hz": {k: _clean(v) for k, v in r.natural_frequencies_Hz.items()},
             "natural_frequencies_Hz_ci95": {k: None if v is None else [_clean(x) for x in v]
                                             for k, v in r.natural_frequency_intervals_Hz.items()},
+            **(_damped_json(r) if r.modes_by_speed else {}),
             "nodal_points_m": {k: _clean(v) for k, v in r.nodal_points_m.items()},
             "speeds": [{k: _clean(v) for k, v in row.items()} for row in r.speeds.to_dict(orient="records")],
             **({"time_domain": [{k: _clean(v) for k, v in row.items()} for row in r.time_rows.to_dict(orient="records")]}

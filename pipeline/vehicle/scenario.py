@@ -100,10 +100,13 @@ class TractorSpec:
     roll_inertia_kg_m2: float | None = None
     front_track_m: float | None = None
     rear_track_m: float | None = None
-    #: Each tyre's lateral element (issue 33): ``kelvin_voigt`` by default with roll, ``maxwell``,
-    #: or ``none`` (the body rolls about its CG); see :func:`parse_scenario`.
+    #: Each tyre's lateral element (issues 33, 42): ``rolling`` by default with roll, ``kelvin_voigt``,
+    #: ``maxwell``, or ``none`` (the body rolls about its CG); see :func:`parse_scenario`.
     lateral_model: str = "none"
     yaw_inertia_kg_m2: float | None = None
+    #: ``longitudinal_model = "rolling"``: ``a`` of the rear tyres' series damper ``c₂ = a / v`` (issue 42);
+    #: None: the measured tyre's, the catalogue's or the stand-in (:func:`tyrelab.tyre.directional.rolling_coefficients`).
+    longitudinal_series_damping_kN_s_per_m_km_h: float | None = None
 
     @property
     def three_d(self) -> bool:
@@ -207,6 +210,8 @@ class TyreSpec:
     formula: str = "thesis"
     lateral_stiffness_kN_per_m: float | None = None
     lateral_damping_kN_s_per_m: float | None = None
+    #: ``a`` of the rolling lateral element's series damper ``c₂ = a / v``, kN s/m × km/h (issue 42).
+    lateral_series_damping_kN_s_per_m_km_h: float | None = None
 
 
 @dataclass(frozen=True)
@@ -362,6 +367,7 @@ class Scenario:
         cx = from_kilo(t.longitudinal_damping_kN_s_per_m) if lon != "none" else 0.0
         if lon == "maxwell" and not (kx > 0 and cx > 0):
             lon = "none"  # a Maxwell element without spring or damper carries no force
+        lon_c2 = tyres["rear"].get("longitudinal_series_damping_N_s_per_m", math.inf) if lon == "rolling" else math.inf
 
         def axle(name: str, ahead: float, spec: AxleSpec, track_m, **extra) -> Axle:
             ty = tyres[name]
@@ -370,7 +376,8 @@ class Scenario:
                 kw["roll_inertia_kg_m2"] = spec.roll_inertia_kg_m2 or 0.0
             if ty.get("lateral_stiffness_N_per_m") is not None:  # issue 33: the tyres' lateral elements
                 kw.update(lateral_model=t.lateral_model, lateral_stiffness_N_per_m=ty["lateral_stiffness_N_per_m"],
-                          lateral_damping_N_s_per_m=ty["lateral_damping_N_s_per_m"])
+                          lateral_damping_N_s_per_m=ty["lateral_damping_N_s_per_m"],
+                          lateral_series_damping_N_s_per_m=ty.get("lateral_series_damping_N_s_per_m", math.inf))
                 if spec.mount == "pivot":  # the pivot at the axle centre, a rolling radius above the ground
                     kw["height_m"] = spec.height_m if spec.height_m is not None else ty["radius_m"]
             if spec.mount == "suspended":
@@ -397,7 +404,8 @@ class Scenario:
             Chassis(t.mass_kg, t.pitch_inertia_kg_m2, t.cg_height_m, t.roll_inertia_kg_m2, t.yaw_inertia_kg_m2),
             axle("front", t.front_distance_m, self.front_axle, t.front_track_m),
             axle("rear", -t.rear_distance_m, self.rear_axle, t.rear_track_m, longitudinal_model=lon,
-                 longitudinal_stiffness_N_per_m=kx, longitudinal_damping_N_s_per_m=cx),
+                 longitudinal_stiffness_N_per_m=kx, longitudinal_damping_N_s_per_m=cx,
+                 longitudinal_series_damping_N_s_per_m=lon_c2),
             self.seat.part(), cab, imp, self.ballast, static_load_moment=True)
 
 
@@ -738,12 +746,26 @@ def _parts_problems(doc: dict) -> list[str]:
             key = "lateral_model" if tractor.get("lateral_model", "none") != "none" else "yaw_inertia_kg_m2"
             problems.append(f"tractor.{key} needs tractor.roll_inertia_kg_m2 (the 3-D model: lateral tyre "
                             "elements move the body sideways, in roll and in yaw)")
+        if tractor.get("longitudinal_model") == "rolling":
+            problems.append("tractor.longitudinal_model = \"rolling\" needs tractor.roll_inertia_kg_m2 (the 3-D "
+                            "model; the pitch plane keeps the thesis' elements of §7.3 and §7.5)")
         for axle in ("front", "rear"):
             ty, _ = _section_values(doc, f"tyres.{axle}")
-            for k in ("lateral_stiffness_kN_per_m", "lateral_damping_kN_s_per_m"):
+            for k in ("lateral_stiffness_kN_per_m", "lateral_damping_kN_s_per_m",
+                      "lateral_series_damping_kN_s_per_m_km_h"):
                 if ty and k in ty:
                     problems.append(f"tyres.{axle}.{k} needs the 3-D model (tractor.roll_inertia_kg_m2 and the "
                                     "track widths)")
+    if three_d:  # issue 42: a series damper's a applies to the rolling element only
+        lateral = tractor.get("lateral_model", "rolling")
+        for axle in ("front", "rear"):
+            ty, _ = _section_values(doc, f"tyres.{axle}")
+            if ty and "lateral_series_damping_kN_s_per_m_km_h" in ty and lateral != "rolling":
+                problems.append(f"tyres.{axle}.lateral_series_damping_kN_s_per_m_km_h applies to "
+                                f"tractor.lateral_model = \"rolling\", not {lateral!r}")
+    if "longitudinal_series_damping_kN_s_per_m_km_h" in tractor and tractor.get("longitudinal_model") != "rolling":
+        problems.append("tractor.longitudinal_series_damping_kN_s_per_m_km_h applies to longitudinal_model = "
+                        f"\"rolling\", not {tractor.get('longitudinal_model', 'none')!r}")
     for axle in ("front_axle", "rear_axle"):
         t, _ = _section_values(doc, axle)
         if not t:
@@ -859,11 +881,15 @@ def _build(doc: dict, path: Path | None, base_dir: Path, confine: bool = True, p
             formula=str(d.get("formula", "thesis")),
             lateral_stiffness_kN_per_m=_float_or_none(d.get("lateral_stiffness_kN_per_m")),
             lateral_damping_kN_s_per_m=_float_or_none(d.get("lateral_damping_kN_s_per_m")),
+            lateral_series_damping_kN_s_per_m_km_h=_float_or_none(d.get("lateral_series_damping_kN_s_per_m_km_h")),
         )
 
     t = dict(t)
-    if "roll_inertia_kg_m2" in t and "lateral_model" not in t:
-        t["lateral_model"] = "kelvin_voigt"  # issue 33: a 3-D scenario's tyres have lateral elements
+    three_d = "roll_inertia_kg_m2" in t
+    if three_d and "lateral_model" not in t:
+        t["lateral_model"] = "rolling"  # issues 33, 42: a 3-D scenario's tyres have rolling lateral elements
+    s = dict(s)
+    s.setdefault("gravity_tilt", three_d)  # issue 42: ISO 2631-1's seat pad is body-fixed (3-D)
 
     profile = _resolve_inside(base_dir, surf["profile"], confine)[0] if "profile" in surf else None
     crg_file = _resolve_inside(base_dir, surf["file"], confine, "surface.file")[0] \
