@@ -5,7 +5,10 @@ A ride scenario reads a build's fits in two ways (:func:`tyrelab.vehicle.ride.re
 - ``measured_tyre_id = "T3"``: the per-speed pressure fits of that tyre, the rows of tyre ``T3`` in
   ``stiffness_pressure_by_speed`` and ``damping_pressure_by_speed`` (:data:`MEASURED_TABLES`);
 - ``formula = "build"``: the build's own stiffness formula and damping model, the ``ours`` rows of
-  ``formula_fit`` and ``damping_fit`` (:data:`BUILD_FORMULA_TABLES`).
+  ``formula_fit`` and ``damping_fit`` (:data:`BUILD_FORMULA_TABLES`);
+- a measured tyre's lateral and longitudinal fits, its series damper and its catalogue row
+  (:data:`DIRECTIONAL_TABLES`: the rolling element of a 3-D scenario, issue 42; a build without them
+  leaves those coefficients to the catalogue or the stand-in, :meth:`FitTyres.directional`).
 
 A stage that runs scenarios (``simulate``, ``rides``) reads these tables of *this* run from Parquet
 (declared in :data:`tyrelab.stages.dag.STAGES`, checked when read), picks with :func:`scenario_fits`
@@ -21,15 +24,19 @@ from pathlib import Path
 
 from ..vehicle import ride
 
-__all__ = ["MEASURED_TABLES", "BUILD_FORMULA_TABLES", "FIT_TABLES", "FitTyres", "WarehouseTyres", "scenario_fits",
-           "read_fit_tables"]
+__all__ = ["MEASURED_TABLES", "BUILD_FORMULA_TABLES", "DIRECTIONAL_TABLES", "FIT_TABLES", "FitTyres", "WarehouseTyres",
+           "scenario_fits", "read_fit_tables"]
 
 #: Per-speed pressure fits of the measured tyres (``measured_tyre_id``).
 MEASURED_TABLES = ("stiffness_pressure_by_speed", "damping_pressure_by_speed")
 #: The build's stiffness formula and damping model (``formula = "build"``).
 BUILD_FORMULA_TABLES = ("formula_fit", "damping_fit")
+#: A measured tyre's lateral and longitudinal per-speed fits, series damper and catalogue row (issue 42).
+DIRECTIONAL_TABLES = tuple(f"{d}_{q}" for d in ("lateral", "longitudinal")
+                           for q in ("stiffness_pressure_by_speed", "damping_pressure_by_speed")) + (
+    "series_damping_speed", "tyres")
 #: Every table a scenario's tyres may read.
-FIT_TABLES = MEASURED_TABLES + BUILD_FORMULA_TABLES
+FIT_TABLES = MEASURED_TABLES + BUILD_FORMULA_TABLES + DIRECTIONAL_TABLES
 
 
 def _measured_rows(table, tyre_id: str):
@@ -77,6 +84,27 @@ class FitTyres(ride.ShippedTyres):
         if rows.empty:
             raise ValueError(f"{why}: no fitted rows in {table} of {self.source}")
         return rows["speed_km_h"].to_numpy(float), (rows["intercept"] + rows["slope"] * pressure_bar).to_numpy(float)
+
+    def directional(self, tyre_id: str, direction: str) -> dict:
+        """The tables of ``tyre_id`` in ``direction`` as :func:`tyrelab.tyre.directional.rolling_coefficients`
+        takes them (``stiffness_lines``, ``damping_lines``, ``series_damping``, ``catalogue_row``); a table the
+        build lacks (one from before issue 34) is left out: those coefficients fall to the catalogue or the
+        stand-in, whose source the ride names."""
+        out = {}
+        for key, name in (("stiffness_lines", f"{direction}_stiffness_pressure_by_speed"),
+                          ("damping_lines", f"{direction}_damping_pressure_by_speed"),
+                          ("series_damping", "series_damping_speed"), ("catalogue_row", "tyres")):
+            try:
+                table = self._table(name, f"measured_tyre_id {tyre_id!r}")
+            except ValueError:
+                continue
+            if key == "catalogue_row":
+                rows = table.loc[table["tyre_id"].astype(str) == str(tyre_id)] if "tyre_id" in table else table.iloc[:0]
+                if len(rows):
+                    out[key] = rows.iloc[0].to_dict()
+            elif key == "series_damping" or {"tyre_id", "speed_km_h", "intercept", "slope"} <= set(table.columns):
+                out[key] = table
+        return out
 
     def stiffness_model(self, formula: str):
         """The thesis' stiffness formula, or the build's fit (table ``formula_fit``) for ``"build"``."""
@@ -154,6 +182,12 @@ def scenario_fits(scenario, tables: dict) -> dict:
     for spec in (scenario.front, scenario.rear):
         tyre_id = getattr(spec, "measured_tyre_id", None)
         if tyre_id:
+            for name in DIRECTIONAL_TABLES:  # issue 42: the rolling element's fits and catalogue row
+                t = tables.get(name)
+                if t is None:
+                    continue
+                part = _safe(lambda: t.loc[t["tyre_id"].astype(str) == str(tyre_id)].reset_index(drop=True), t)
+                out[name] = part if out.get(name) is None else _concat(out[name], part)
             for name in MEASURED_TABLES:
                 t = tables.get(name)
                 part = None if t is None else _safe(lambda: _measured_rows(t, tyre_id), t)

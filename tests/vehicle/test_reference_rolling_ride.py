@@ -30,7 +30,7 @@ def _scenario(tmp_path, left, right, pivot, speeds, keys: dict):
     body = body.replace("front_track_m", f"yaw_inertia_kg_m2 = {I_YAW}\nfront_track_m")
     for axle in ("front", "rear"):
         body = body.replace(f"[tyres.{axle}]\n", f"[tyres.{axle}]\n" + "".join(
-            f"{k} = {v[axle]}\n" for k, v in keys.items()))
+            f"{k} = {v[axle]}\n" for k, v in keys.items() if v.get(axle) is not None))
     (tmp_path / "s.toml").write_text(body)
     return load_scenario(tmp_path / "s.toml")
 
@@ -79,3 +79,57 @@ def test_the_rolling_tyre_agrees_with_the_independent_reference(tmp_path, pivot)
     _check(res, pivot, SPEEDS, amp, 0.0, si["ky"], si["cy"], si["a"])
     assert res.tyres["front"].lateral_sources == dict.fromkeys(
         ("stiffness_kN_per_m", "damping_kN_s_per_m", "series_damping_kN_s_per_m_km_h"), "scenario")
+
+
+def _lines(rows):
+    import pandas as pd
+
+    return pd.DataFrame(rows, columns=["tyre_id", "speed_km_h", "intercept", "slope"])
+
+
+def test_a_measured_tyre_rides_on_its_own_lateral_coefficients_and_agrees_with_the_reference(tmp_path):
+    """``measured_tyre_id = "T1"`` on the rear: its lateral K and C (the build's per-speed pressure lines,
+    interpolated in speed) and ``a`` (``series_damping_speed``) reach the rolling element, each named
+    ``measured``; the front keeps its given ones. The same modes and seat a_w as the reference fed the
+    same numbers, worked out here from the tables by hand."""
+    import pandas as pd
+
+    from tyrelab.stages.tyredata import FitTyres
+
+    pressure = 1.2  # test_ride_3d's rear pressure
+    tables = {
+        "stiffness_pressure_by_speed": _lines([("T1", 0.0, 400.0, 150.0), ("T1", 10.0, 340.0, 150.0)]),
+        "damping_pressure_by_speed": _lines([("T1", 0.0, 3.0, 0.4), ("T1", 10.0, 1.6, 0.4)]),
+        "lateral_stiffness_pressure_by_speed": _lines([("T1", 0.0, 230.0, 40.0), ("T1", 10.0, 250.0, 40.0)]),
+        "lateral_damping_pressure_by_speed": _lines([("T1", 0.0, 1.4, 0.05), ("T1", 10.0, 1.2, 0.05)]),
+        "series_damping_speed": pd.DataFrame([{"direction": "lateral", "tyre_id": "T1", "n": 4,
+                                               "coefficient_kN_s_per_m_times_km_h": 99.0}]),
+    }
+    amp = 0.01
+    sc = _scenario(tmp_path, amp, 0.0, False, SPEEDS, {
+        "lateral_stiffness_kN_per_m": {"front": KY["front"]}, "lateral_damping_kN_s_per_m": {"front": CY["front"]},
+        "lateral_series_damping_kN_s_per_m_km_h": {"front": A_SERIES["front"]}, "measured_tyre_id": {"rear": '"T1"'}})
+    res = ride.ride(sc, tyre_data=FitTyres(tables, "the test's tables"), with_spectra=False)
+    rear = res.tyres["rear"]
+    assert rear.lateral_sources == dict.fromkeys(
+        ("stiffness_kN_per_m", "damping_kN_s_per_m", "series_damping_kN_s_per_m_km_h"), "measured")
+    assert "T1" in rear.lateral_source and res.tyres["front"].lateral_sources["stiffness_kN_per_m"] == "scenario"
+    v = np.array(SPEEDS, float)
+    ky_rear = np.interp(v, [0.0, 10.0], [230.0 + 40.0 * pressure, 250.0 + 40.0 * pressure])
+    cy_rear = np.interp(v, [0.0, 10.0], [1.4 + 0.05 * pressure, 1.2 + 0.05 * pressure])
+    assert rear.lateral_stiffness_kN_per_m == pytest.approx(ky_rear, rel=1e-12)
+    assert rear.lateral_damping_kN_s_per_m == pytest.approx(cy_rear, rel=1e-12)
+    assert rear.lateral_series_damping_kN_s_per_m_km_h == 99.0
+    for i, speed in enumerate(SPEEDS):  # K_y and C_y move with speed: one reference tractor per speed
+        _check(_subset(res, i), False, (speed,), amp, 0.0, {"front": 1e3 * KY["front"], "rear": 1e3 * ky_rear[i]},
+               {"front": 1e3 * CY["front"], "rear": 1e3 * cy_rear[i]},
+               {"front": 1e3 * A_SERIES["front"], "rear": 99e3})
+
+
+def _subset(res, i):
+    """``res`` with the one speed row ``i`` (its modes and seat row) for :func:`_check`."""
+    import dataclasses
+
+    speed = float(res.speeds.iloc[i]["speed_km_h"])
+    return dataclasses.replace(res, speeds=res.speeds.iloc[[i]].reset_index(drop=True),
+                               modes_by_speed={speed: res.modes_by_speed[speed]})
