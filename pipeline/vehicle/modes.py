@@ -344,8 +344,8 @@ class DampedMode:
 #: with a small damper goes through its change near ``share`` ~ its ``c``/``k``-time's, far below 1);
 #: a step whose best match is below :data:`FOLLOW_SURE` is halved (in ``log share``), up to
 #: :data:`FOLLOW_SPLITS` times.
-FOLLOW_STEPS = 16
-FOLLOW_FROM = 1e-6
+FOLLOW_STEPS = 8
+FOLLOW_FROM = 1e-4
 FOLLOW_SURE = 0.9
 FOLLOW_SPLITS = 6
 
