@@ -1244,7 +1244,7 @@ def _finish(p: dict) -> RideResult:
     shapes = mode_set(first)
     nat, nodal = shapes.frequencies(), shapes.nodal()
     by_speed, zeta_ci = {}, {}
-    if sc.tractor.three_d and (sc.tractor.lateral_model != "none" or sc.tractor.longitudinal_model != "none"):
+    if any(e.name.endswith("_lateral") for e in first.elements):  # the 3-D lateral system: its damping matters
         by_speed = _damped_by_speed(p, shapes)  # issue 42: the complex roots, per speed
         d0 = next(iter(by_speed.values()))
         nat = {n: d.undamped_Hz for n, d in d0.items() if d is not None}

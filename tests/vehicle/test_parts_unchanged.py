@@ -57,6 +57,14 @@ def before_issue_33(monkeypatch):
         return dataclasses.replace(p, static_load_moment=False, **strip)
 
     monkeypatch.setattr(ride, "build_parts", old_parts)
+    seat_axes = ride.seat_axes
+
+    def inertial(scenario):  # issue 42 made body-fixed seat axes the 3-D default; before it they were inertial
+        given = "gravity_tilt" in (scenario.doc.get("seat") or {})
+        return seat_axes(scenario if given else dataclasses.replace(
+            scenario, seat=dataclasses.replace(scenario.seat, gravity_tilt=False)))
+
+    monkeypatch.setattr(ride, "seat_axes", inertial)
 
 
 def test_vehicle_numbers_unchanged(before_issue_33):
