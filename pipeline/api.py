@@ -4,6 +4,8 @@
   ``analyze_recording`` is the same function.
 - :func:`ride` -- seat vibration and daily exposure of a tractor scenario (``tyrelab ride``).
 - :func:`exposure` -- a driver's daily exposure from seat recordings (``tyrelab exposure``).
+- :func:`vehicle_frf` -- a vehicle's transfer functions and modes from a recording with wheel
+  inputs (``tyrelab frf``; thesis ch. 2, issue 43).
 
 Each answers without the stage machinery: reading the input is the only I/O here; the work is
 the pure packages' (:func:`tyrelab.measurement.recording.analyse_frame`,
@@ -26,14 +28,15 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
-from ._validate import positive
+from ._validate import finite, positive, shown
 from .exposure import exposure
 from .measurement.recording import RecordingResult, analyse_frame
 from .rawformat import read_run_file
 
-__all__ = ["analyse_recording", "analyze_recording", "ride", "exposure"]
+__all__ = ["analyse_recording", "analyze_recording", "ride", "exposure", "vehicle_frf"]
 
 
 def analyse_recording(
@@ -92,11 +95,13 @@ def analyse_recording(
     ...
     ValueError: axle_mass_kg must be finite and positive, got 0.0
     """
+    positive("axle_mass_kg", axle_mass_kg)  # before reading a file
+    if sample_rate_Hz is not None:
+        positive("sample_rate_Hz", sample_rate_Hz)
     if isinstance(recording, pd.DataFrame):
         return analyse_frame(recording, axle_mass_kg, sample_rate_Hz=sample_rate_Hz, interference_Hz=interference_Hz)
     if not isinstance(recording, (str, os.PathLike)):
         raise ValueError(f"recording must be a path or a pandas DataFrame, got {type(recording).__name__}")
-    positive("axle_mass_kg", axle_mass_kg)  # before reading a file
     frame = read_run_file(Path(recording), channel_map=channel_map)
     return analyse_frame(frame, axle_mass_kg, sample_rate_Hz=sample_rate_Hz, interference_Hz=interference_Hz,
                          file=str(recording))
@@ -133,6 +138,7 @@ def ride(
     rear_pressure_bar: float | None = None,
     build: str | os.PathLike | None = None,
     with_spectra: bool = False,
+    max_samples: int | None = None,
 ):
     """Seat vibration and EU daily exposure of a tractor scenario: what ``tyrelab ride`` computes.
 
@@ -154,6 +160,10 @@ def ride(
         lab's fitted formula (``formula = "build"``).
     with_spectra : bool
         Also compute the seat PSD and transmissibility per speed (the page's figures).
+    max_samples : int, optional
+        Most 1 kHz samples the call may simulate over all speeds (default
+        :data:`tyrelab.vehicle.scenario_limits.MAX_SAMPLES`, as ``tyrelab ride --max-samples``):
+        more is refused with an estimate before any work.
 
     Returns
     -------
@@ -170,7 +180,9 @@ def ride(
     tyrelab.vehicle.scenario.ScenarioError
         Every problem of the scenario at once (a ``ValueError``; ``.problems``, one per key).
     ValueError
-        A bad argument, naming it.
+        A bad argument, naming it (a speed or pressure outside what the model is built for, an
+        integer too large for a float, a bool where a number belongs), or more work than
+        ``max_samples`` allows.
 
     See Also
     --------
@@ -190,12 +202,156 @@ def ride(
     'z'
     """
     from .vehicle import ride as ride_module
+    from .vehicle import scenario_limits as limits
     from .vehicle.scenario import with_overrides
 
-    sc = with_overrides(_scenario(scenario), speeds_km_h, front_pressure_bar, rear_pressure_bar)
+    speeds, front, rear = _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spectra,
+                                          max_samples)
+    sc = with_overrides(_scenario(scenario), speeds, front, rear)
+    too_much = limits.work_problems(sc, 1, method=sc.simulation.method,
+                                    max_samples=limits.MAX_SAMPLES if max_samples is None else max_samples)
+    if too_much:  # before any work, as tyrelab ride refuses it
+        raise ValueError("; ".join(p.replace("--max-samples N", "max_samples=N") for p in too_much))
     tyres = None
     if build is not None:
         from .stages.simulate import WarehouseTyres
 
         tyres = WarehouseTyres(build)
     return ride_module.ride(sc, tyres, with_spectra=bool(with_spectra))
+
+
+def _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spectra, max_samples):
+    """:func:`ride`'s speeds and pressures as floats, checked like ``tyrelab ride``'s options (finite,
+    within :data:`tyrelab.vehicle.scenario_limits.LIMITS`); ValueError naming every bad one at once."""
+    from .vehicle import scenario_limits as limits
+
+    problems = []
+
+    def number(name, value):
+        try:
+            return finite(name, value)
+        except ValueError as exc:
+            problems.append(str(exc))
+            return None
+
+    speeds = None
+    if speeds_km_h is not None:
+        if isinstance(speeds_km_h, (str, bytes)) or not hasattr(speeds_km_h, "__iter__"):
+            problems.append(f"speeds_km_h must be a list of numbers, got {shown(speeds_km_h)}")
+        else:
+            speeds = [number(f"speeds_km_h[{i}]", v) for i, v in enumerate(speeds_km_h)]
+            if not speeds:
+                problems.append("speeds_km_h must hold at least one speed (None: the scenario's)")
+    front = None if front_pressure_bar is None else number("front_pressure_bar", front_pressure_bar)
+    rear = None if rear_pressure_bar is None else number("rear_pressure_bar", rear_pressure_bar)
+    if not isinstance(with_spectra, (bool, np.bool_)):
+        problems.append(f"with_spectra must be True or False, got {shown(with_spectra)}")
+    if max_samples is not None and (isinstance(max_samples, bool) or not isinstance(max_samples, (int, np.integer))
+                                    or max_samples < 1):
+        problems.append(f"max_samples must be an integer >= 1, got {shown(max_samples)}")
+    if not problems:
+        problems = limits.override_problems(speeds, None if front is None else [front],
+                                            None if rear is None else [rear])
+        problems = [p.replace("front_pressures_bar", "front_pressure_bar").replace("rear_pressures_bar",
+                                                                                     "rear_pressure_bar")
+                    for p in problems]
+    if problems:
+        raise ValueError("; ".join(problems))
+    return speeds, front, rear
+
+
+class _FrameRecording:
+    """A DataFrame of raw-format ride channels as an opened recording (one chunk)."""
+
+    def __init__(self, frame: pd.DataFrame, sample_rate_Hz: float | None):
+        import numpy as np
+
+        from .rawformat import RunFileError
+        from .rawformat.rides import RIDE_CHANNELS, Chunk
+
+        self.channels = tuple(c for c in RIDE_CHANNELS if c in frame.columns)
+        if not self.channels:
+            raise RunFileError(f"no known channel (expected any of {', '.join(RIDE_CHANNELS)})")
+        if "time_s" in frame.columns:
+            t = frame["time_s"].to_numpy(dtype=float)
+            dt = np.diff(t)
+            if t.size < 2 or not np.all(np.isfinite(t)) or not (dt > 0).all():
+                raise RunFileError("time_s is not finite and strictly increasing")
+            fs = 1.0 / float(np.mean(dt))
+            if sample_rate_Hz is not None and abs(fs - sample_rate_Hz) > 0.01 * sample_rate_Hz:
+                raise RunFileError(f"time_s gives {fs:.6g} Hz, not the {sample_rate_Hz:g} Hz given")
+        elif sample_rate_Hz is None:
+            raise ValueError("sample_rate_Hz is needed for a frame without time_s")
+        else:
+            fs = float(sample_rate_Hz)
+            t = np.arange(len(frame)) / fs
+        data = {}
+        for c in self.channels:
+            v = frame[c].to_numpy(dtype=float)
+            if not np.all(np.isfinite(v)):
+                raise RunFileError(f"channel {c} has a NaN or infinite sample at row {int(np.flatnonzero(~np.isfinite(v))[0])}")
+            data[c] = v
+        self.sample_rate_Hz = fs
+        self._chunk = Chunk(t, data)
+
+    def chunks(self):
+        yield self._chunk
+
+
+def vehicle_frf(
+    recording: str | os.PathLike | pd.DataFrame,
+    *,
+    speed_km_h: float = 0.0,
+    scenario=None,
+    sample_rate_Hz: float | None = None,
+    channel_map: dict | None = None,
+):
+    """A vehicle's transfer functions from each wheel input to each output, and its modes.
+
+    Thesis ch. 2: a four-post stand or a track with a measured profile (issue 43). The
+    multiple-input H1 with its coherences, random error and conditioning, the rotation and
+    lug-passing bins masked, the modes fitted with 95 % intervals
+    (:func:`tyrelab.measurement.frf.recording_frf`, what the rides stage writes to
+    ``vehicle_frf`` and ``vehicle_modes``).
+
+    Parameters
+    ----------
+    recording : path or DataFrame
+        Raw format v1 ride recording (``schemas/raw_ride.json``) with input channels
+        ``input_<wheel>_z_m_s2`` or ``input_<wheel>_z_m``; or a DataFrame of them (without
+        ``time_s``, give ``sample_rate_Hz``).
+    speed_km_h : float
+        Rolling speed (0: stationary).
+    scenario : path, str, dict or Scenario, optional
+        The vehicle (as :func:`ride`): with a speed above 0 its tyres' rotation and lug-passing
+        bins are masked.
+    sample_rate_Hz : float, optional
+    channel_map : dict, optional
+        For ``.mf4``/``.tdms``.
+
+    Returns
+    -------
+    tyrelab.measurement.frf.RecordingFrf
+        ``to_json()`` is ``tyrelab frf``'s JSON.
+
+    Raises
+    ------
+    tyrelab.rawformat.RunFileError, ValueError
+        One line: an unreadable recording, no input channel, a constant input, too short.
+    """
+    from .measurement.frf import recording_frf
+    from .rawformat.rides import open_recording
+
+    speed = float(speed_km_h)
+    if not (speed >= 0 and speed < float("inf")):
+        raise ValueError(f"speed_km_h must be finite and >= 0, got {speed_km_h!r}")
+    wheels = None
+    if scenario is not None and speed > 0:
+        from .measurement.frf import scenario_wheel_geometry
+
+        wheels = scenario_wheel_geometry(_scenario(scenario))
+    if isinstance(recording, pd.DataFrame):
+        rec = _FrameRecording(recording, sample_rate_Hz)
+    else:
+        rec = open_recording(Path(recording), channel_map)
+    return recording_frf(rec, speed, wheels)

@@ -129,6 +129,8 @@ REGRESS_TABLES = (
     *(f"{d}_{q}" for d in ("lateral", "longitudinal")
       for q in ("stiffness_pressure_by_speed", "damping_pressure_by_speed", "factor_regressions")),
     "series_damping_speed",
+    # issue 44: the runs of each direction apart (:func:`tyrelab.stages.regress.direction_tables`)
+    "results_vertical", "results_lateral", "results_longitudinal",
 )
 #: The ride tables simulate writes, per scenario file (:func:`tyrelab.stages.simulate.scenario_task`): one
 #: row per scenario; per scenario × speed × variant; the seat PSD and the transmissibility per axis of the
@@ -142,7 +144,7 @@ SIMULATE_TABLES = (
 )
 #: Tables the rides stage writes (vehicle recordings; :mod:`tyrelab.stages.rides`).
 RIDES_TABLES = ("recordings", "recording_axes", "recording_spectra", "exposure_days", "ride_validation",
-                "ride_validation_statistics")
+                "ride_validation_statistics", "vehicle_frf", "vehicle_modes")
 #: The fits a ride scenario's tyres may read (:mod:`tyrelab.stages.tyredata`): a measured tyre's
 #: per-speed pressure fits (``measured_tyre_id``; its lateral and longitudinal ones, series damper and
 #: catalogue row: issue 42) and the build's formula (``formula = "build"``).
@@ -202,8 +204,10 @@ STAGES: dict[str, Stage] = {s.name: s for s in (
     Stage("rides", reads=("raw", *_tables(*FIT_TABLES)),
           writes=(*_tables(*RIDES_TABLES), quarantine_part("rides")),
           items=("recording <- its file (by content; an unchanged file is not read again)",
-                 "validation <- its recording's analysis, its scenario, the fit rows of its tyres"),
-          doc="vehicle recordings (rides.csv): whole-body vibration, daily exposure, predictions checked"),
+                 "validation <- its recording's analysis, its scenario, the fit rows of its tyres",
+                 "frf <- its recording (with input channels), speed and the scenario's tyres"),
+          doc="vehicle recordings (rides.csv): whole-body vibration, daily exposure, predictions checked, "
+              "transfer functions and modes"),
     Stage("warehouse", reads=("parquet/*.parquet", *(quarantine_part(s) for s in QUARANTINE_PARTS), "parquet/runs/",
                               "published"),
           writes=("parquet/published/", table("quarantine"), "warehouse.duckdb"),
