@@ -133,3 +133,39 @@ def _subset(res, i):
     speed = float(res.speeds.iloc[i]["speed_km_h"])
     return dataclasses.replace(res, speeds=res.speeds.iloc[[i]].reset_index(drop=True),
                                modes_by_speed={speed: res.modes_by_speed[speed]})
+
+
+def test_bad_rolling_keys_are_refused_all_at_once_with_exit_2(tmp_path, capsys):
+    """Issue 42: a negative, NaN or non-numeric ``a``, ``a`` beside another element, and ``rolling`` on a
+    pitch-plane scenario: every problem one line naming its key, exit 2, no traceback."""
+    from tyrelab import cli
+    from tyrelab.scenario_io import ScenarioError
+
+    from .test_ride_3d import _write
+
+    track = 'kind = "iso8608"\nclass = "C"\nlength_m = 20'
+    body = text(track, lateral=None).replace("[tractor]\n", '[tractor]\nlongitudinal_model = "rolling"\n'
+                                             'longitudinal_series_damping_kN_s_per_m_km_h = "fast"\n')
+    body = body.replace("[tyres.front]\n", "[tyres.front]\nlateral_series_damping_kN_s_per_m_km_h = -5\n")
+    body = body.replace("[tyres.rear]\n", "[tyres.rear]\nlateral_series_damping_kN_s_per_m_km_h = nan\n")
+    flat = text(track, roll=False).replace("[tractor]\n", '[tractor]\nlateral_model = "rolling"\n'
+                                           'longitudinal_model = "rolling"\n')
+    flat = flat.replace("[tyres.front]\n", "[tyres.front]\nlateral_series_damping_kN_s_per_m_km_h = 100\n")
+    kv = text(track, lateral="kelvin_voigt").replace("[tyres.rear]\n",
+                                                     "[tyres.rear]\nlateral_series_damping_kN_s_per_m_km_h = 100\n")
+    for name, body_, expected in (
+            ("bad.toml", body, ("tyres.front.lateral_series_damping_kN_s_per_m_km_h",
+                                "tyres.rear.lateral_series_damping_kN_s_per_m_km_h",
+                                "tractor.longitudinal_series_damping_kN_s_per_m_km_h")),
+            ("flat.toml", flat, ("tractor.lateral_model", "tractor.longitudinal_model = \"rolling\" needs",
+                                 "tyres.front.lateral_series_damping_kN_s_per_m_km_h needs the 3-D model")),
+            ("kv.toml", kv, ("tyres.rear.lateral_series_damping_kN_s_per_m_km_h applies to",))):
+        path = _write(tmp_path, body_, name)
+        with pytest.raises(ScenarioError) as info:
+            load_scenario(path)
+        problems = "\n".join(info.value.problems)
+        for e in expected:
+            assert e in problems, (name, e, problems)
+        assert cli.main(["ride", str(path)]) == 2
+        err = capsys.readouterr().err
+        assert "Traceback" not in err and all(e in err for e in expected), err
