@@ -619,14 +619,20 @@ class RideResult:
     def mode_table(self) -> pd.DataFrame:
         """The natural frequencies as a table, one row per mode (:attr:`modes` holds the shapes): ``mode``, ``frequency_Hz``, ``low_Hz``/``high_Hz`` (its 95 %
         interval from the tyre stiffness uncertainty; NaN without one) and ``nodal_point_m``
-        (ahead of the CG; NaN for a mode that does not pitch)."""
+        (ahead of the CG; NaN for a mode that does not pitch); with the damped modes (3-D, issue 42) also
+        ``damping_ratio`` (NaN: overdamped) and ``overdamped``, at the first speed."""
         rows = []
+        zeta = self.damping_ratios
         for mode, f in self.natural_frequencies_Hz.items():
             lo, hi = self.natural_frequency_intervals_Hz.get(mode) or (None, None)  # None: no interval
             rows.append({"mode": mode, "frequency_Hz": float(f), "low_Hz": math.nan if lo is None else float(lo),
                          "high_Hz": math.nan if hi is None else float(hi),
                          "nodal_point_m": float(self.nodal_points_m.get(mode, math.nan))})
-        return pd.DataFrame(rows, columns=["mode", "frequency_Hz", "low_Hz", "high_Hz", "nodal_point_m"])
+            if zeta:
+                rows[-1].update(damping_ratio=math.nan if zeta.get(mode) is None else float(zeta[mode]),
+                                overdamped=zeta.get(mode) is None)
+        cols = ["mode", "frequency_Hz", "low_Hz", "high_Hz", "nodal_point_m"]
+        return pd.DataFrame(rows, columns=cols + (["damping_ratio", "overdamped"] if zeta else []))
 
     def to_dict(self) -> dict:
         """The JSON document of ``tyrelab ride`` for this result (:func:`result_json`)."""
