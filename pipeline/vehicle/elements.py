@@ -35,7 +35,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Element", "SpringDamper", "Tyre", "Maxwell", "Rolling", "StaticLoadMoment", "StateLayout", "element"]
+__all__ = ["Element", "SpringDamper", "Tyre", "Maxwell", "Rolling", "StaticLoadMoment", "StateLayout", "element",
+           "RESEAT_S"]
 
 
 class StateLayout:
@@ -126,6 +127,11 @@ class Element:
         """Time derivatives of :meth:`states` as rows over ``[states, inputs]``."""
         return {}
 
+    def free_rows(self, layout: StateLayout) -> dict[str, np.ndarray]:
+        """Time derivatives of :meth:`states` while the element's tyres are off the ground (its gate
+        closed): by default the same as in contact (:meth:`derivative_rows`)."""
+        return self.derivative_rows(layout)
+
 
 @dataclass(frozen=True)
 class SpringDamper(Element):
@@ -188,6 +194,12 @@ class Maxwell(Element):
         return {q: r}
 
 
+#: The shortest time a lifted rolling element takes to re-seat, s: its unit's own ``c/k`` where longer
+#: (a few ms for a tractor tyre); a floor so that the time-domain solver's step (0.5 ms, RK4 stable below
+#: ``2.8/dt``) follows it.
+RESEAT_S = 5e-3
+
+
 @dataclass(frozen=True)
 class Rolling(Element):
     """A rolling tyre's horizontal element (issue 42, thesis §2.5): a Kelvin-Voigt unit (``k``,
@@ -246,6 +258,16 @@ class Rolling(Element):
         r = layout.row(np.zeros(layout.nq), share * self.g)
         r[layout.index[q]] = -self.stiffness * inv
         return {q: r}
+
+    def free_rows(self, layout: StateLayout) -> dict[str, np.ndarray]:
+        """Off the ground the contact point is free (no ground to hold it, ``c₂ = 0``): the unit relaxes,
+        ``e' = -e / τ`` with ``τ = max(c / k, RESEAT_S)``, and the tyre touches down with its contact
+        point under the patch again (it re-seats; issue 42)."""
+        if not self.states():
+            return {}
+        q = f"q_{self.name}"
+        tau = max(self.damping / self.stiffness if self.stiffness > 0 else RESEAT_S, RESEAT_S)
+        return {q: layout.at(q, -1.0 / tau)}
 
     def contact_row(self, layout: StateLayout) -> np.ndarray:
         """The contact point's displacement over the ground ``s = g·q - e`` over ``[states, inputs]``:
