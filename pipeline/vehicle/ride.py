@@ -1898,6 +1898,12 @@ def results_table(results: list[RideResult], scenario_id: str | None = None) -> 
             df[f"{mode}_Hz"] = f
         df["modes_Hz"] = "; ".join(f"{k} {v:.3f}" if math.isfinite(v) else f"{k} not followed"
                                    for k, v in r.natural_frequencies_Hz.items())
+        if r.modes_by_speed:  # issue 42: each speed's modes with their damping (its own series dampers)
+            df["modes_damping"] = [
+                "; ".join(f"{k} overdamped ({d.undamped_Hz:.3f} Hz)" if d.overdamped else
+                          f"{k} {d.undamped_Hz:.3f} Hz ζ {d.damping_ratio:.3f}"
+                          for k, d in r.modes_by_speed.get(float(v), {}).items() if d is not None)
+                for v in df["speed_km_h"]]
         df["front_stiffness_source"] = r.tyres["front"].stiffness_source
         df["rear_stiffness_source"] = r.tyres["rear"].stiffness_source
         df["working_speed_km_h"] = r.scenario.exposure.working_speed  # the heatmap's speed ([exposure])
