@@ -69,12 +69,21 @@ def before_issue_33_parts():
         m_g = p.chassis.mass_kg * GRAVITY_M_S2
         return {"front": m_g * b / (a + b) / 2, "rear": m_g * a / (a + b) / 2}
 
+    seat_axes = ride.seat_axes
+
+    def inertial(scenario):  # issue 42 made body-fixed seat axes the 3-D default; before it they were inertial
+        given = "gravity_tilt" in (scenario.doc.get("seat") or {})
+        return seat_axes(scenario if given else dataclasses.replace(
+            scenario, seat=dataclasses.replace(scenario.seat, gravity_tilt=False)))
+
     ride.build_parts = tyres.build_parts = old_parts
     tyres.static_tyre_loads = tractor_alone
+    ride.seat_axes = inertial
     try:
         yield
     finally:
         ride.build_parts, tyres.build_parts, tyres.static_tyre_loads = kept
+        ride.seat_axes = seat_axes
 
 
 def _compare(stored, now) -> dict:
