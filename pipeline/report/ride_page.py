@@ -266,6 +266,10 @@ def format_table(doc: dict) -> str:
         if nf[mode] is None:
             continue
         text = f"{mode} {format_number(nf[mode], decimals=fmt['frequency'])} Hz"
+        if mode in doc.get("damping_ratio", {}):  # issue 42: the modes with their damping
+            z = doc["damping_ratio"][mode]
+            text = (f"{mode} overdamped (real root at {format_number(nf[mode], decimals=fmt['frequency'])} Hz)"
+                    if z is None else text + f" ζ {format_number(z, decimals=2)}")
         lo, hi = ci.get(mode) or (None, None)
         if lo is not None and hi is not None and hi > lo:
             text += (f" [{format_number(lo, decimals=fmt['frequency'])}, "
@@ -277,6 +281,11 @@ def format_table(doc: dict) -> str:
             text += f" (node {format_number(abs(nodal[mode]), decimals=fmt['nodal'])} m {where} the CG)"
         parts.append(text)
     lines.append("  " + ", ".join(parts))
+    for entry in (doc.get("modes_by_speed") or [])[1:]:  # issue 42: each speed its own series dampers
+        lines.append(f"  modes at {entry['speed_km_h']:g} km/h: " + ", ".join(
+            f"{m} overdamped ({format_number(d['natural_frequency_Hz'], decimals=fmt['frequency'])} Hz)"
+            if d["overdamped"] else f"{m} {format_number(d['natural_frequency_Hz'], decimals=fmt['frequency'])} Hz "
+            f"ζ {format_number(d['damping_ratio'], decimals=2)}" for m, d in entry["modes"].items() if d is not None))
     if fmt["frequency_intervals"]:
         lines.append("  [ ]: 95 % interval from the tyre stiffness uncertainty; K ± the 95 % half-width")
     for w in doc.get("warnings", []):

@@ -53,6 +53,8 @@ LIMITS: dict[str, tuple[float, float, str]] = {
     "age_years": (0.0, 60.0, "years"),
     "lateral_stiffness_kN_per_m": (1.0, 100_000.0, "kN/m"),
     "lateral_damping_kN_s_per_m": (0.01, 1_000.0, "kN s/m"),
+    "lateral_series_damping_kN_s_per_m_km_h": (1.0, 10_000.0, "kN s/m km/h"),
+    "tractor.longitudinal_series_damping_kN_s_per_m_km_h": (1.0, 10_000.0, "kN s/m km/h"),
     "tractor.yaw_inertia_kg_m2": (10.0, 500_000.0, "kg m²"),
     "radius_m": (0.1, 2.0, "m"),
     "footprint_m": (0.01, 2.0, "m"),
@@ -163,8 +165,9 @@ def scenario_problems(scenario) -> list[str]:
     for name in ("mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_m", "cg_height_m",
                  "longitudinal_stiffness_kN_per_m", "longitudinal_damping_kN_s_per_m"):
         checks.append((f"tractor.{name}", getattr(s.tractor, name)))
-    if s.tractor.yaw_inertia_kg_m2 is not None:
-        checks.append(("tractor.yaw_inertia_kg_m2", s.tractor.yaw_inertia_kg_m2))
+    for name in ("yaw_inertia_kg_m2", "longitudinal_series_damping_kN_s_per_m_km_h"):
+        if getattr(s.tractor, name) is not None:
+            checks.append((f"tractor.{name}", getattr(s.tractor, name)))
     for name in ("ahead_of_cg_m", "height_above_cg_m", "natural_frequency_Hz", "damping_ratio"):
         if getattr(s.seat, name) is not None:
             checks.append((f"seat.{name}", getattr(s.seat, name)))
@@ -181,7 +184,8 @@ def scenario_problems(scenario) -> list[str]:
         checks.append((f"tyres.{axle}.pressure_bar", t.pressure_bar))
         checks.append((f"tyres.{axle}.age_years", t.age_years))
         for name in ("stiffness_kN_per_m", "damping_kN_s_per_m", "radius_m", "footprint_m",
-                     "lateral_stiffness_kN_per_m", "lateral_damping_kN_s_per_m"):
+                     "lateral_stiffness_kN_per_m", "lateral_damping_kN_s_per_m",
+                     "lateral_series_damping_kN_s_per_m_km_h"):
             v = getattr(t, name)
             for x in (v if isinstance(v, tuple) else () if v is None else (v,)):
                 checks.append((f"tyres.{axle}.{name}", x))
