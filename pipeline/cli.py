@@ -249,7 +249,7 @@ class _ResultTooLarge(Exception):
 def cmd_sql(args) -> int:
     import duckdb
 
-    from .warehouse import QueryLimits, QueryTimeout, WriteRefused, iter_query, memory_bound
+    from .warehouse import QueryLimits, QueryTimeout, WriteRefused, error_line, iter_query, memory_bound
 
     try:
         limits = QueryLimits(args.memory_limit, args.max_spill, args.timeout or None)
@@ -286,6 +286,9 @@ def cmd_sql(args) -> int:
         return EXIT_USAGE
     except (BrokenPipeError, OutputError):
         raise
+    except duckdb.Error as exc:  # the user's query errors: a misspelt name gets the closest the warehouse has
+        print(f"tyrelab sql: {type(exc).__name__}: {error_line(Path(args.build), exc)}", file=sys.stderr)
+        return EXIT_USAGE
     except Exception as exc:  # noqa: BLE001 - DuckDB errors are the user's query errors
         print(f"tyrelab sql: {type(exc).__name__}: {str(exc).splitlines()[0]}", file=sys.stderr)
         return EXIT_USAGE

@@ -20,7 +20,7 @@ from .ride_sections import (AXIS_WORDS, PRESSURE_COLUMNS, answer, scenario_figur
 from .render import column_label, environment, format_number
 from .tables import significant_decimals, uncertainty_decimals
 
-__all__ = ["SPEED_COLUMNS", "QUANTITIES", "method_words", "number_formats", "format_table", "figures", "psd_edge_note", "render_page", "write_outputs", "dumps", "variants",
+__all__ = ["SPEED_COLUMNS", "QUANTITIES", "method_words", "number_formats", "below_precision", "format_table", "figures", "psd_edge_note", "render_page", "write_outputs", "dumps", "variants",
            "variant_label", "swept_keys"]
 
 #: Columns of the per-speed table (text and HTML), in order; those no row has are left out. A
@@ -50,6 +50,11 @@ QUANTITIES = {
 }
 #: Decimals of a fraction of the record (lift-off): one sample in a thousand.
 FRACTION_DECIMALS = 3
+#: Decimals of a probability (a spectral row's lift-off probability); one below it is "< 1e-4".
+PROBABILITY_DECIMALS = 4
+#: Quantities whose value between 0 and the printed precision is shown as ``< 1e-N``, not as 0
+#: (:func:`below_precision`): a tyre that left the ground for 2e-5 of the record did leave it.
+SMALL_SHOWN_AS_BOUND = ("lift-off fraction", "lift-off probability")
 #: Columns whose empty value (JSON null) is "never reached" (inf), not "no value".
 INFINITE_WHEN_EMPTY = ("hours_to_eav", "hours_to_elv")
 #: Columns shown as given (the scenario's speeds and pressures).
@@ -184,7 +189,8 @@ def number_formats(doc: dict) -> dict:
     for quantity, cols in QUANTITIES.items():
         values = [r[c] for r in rows for c in cols if c in r and isinstance(r[c], (int, float))]
         for c in cols:  # a fraction of the record: to 0.001 always (a 0 is a measured none, "0.000")
-            columns[c] = FRACTION_DECIMALS if quantity == "lift-off fraction" else significant_decimals(values)
+            columns[c] = (FRACTION_DECIMALS if quantity == "lift-off fraction" else PROBABILITY_DECIMALS
+                          if quantity == "lift-off probability" else significant_decimals(values))
     tyres = [b["tyres"][axle] for b in blocks for axle in ("front", "rear")]
     u = [COVERAGE_95 * t.get("stiffness_u_kN_per_m", 0.0) for t in tyres if t.get("stiffness_u_kN_per_m")]
     stiffness = uncertainty_decimals(u) if u else significant_decimals([t["stiffness_kN_per_m"] for t in tyres])
@@ -198,12 +204,44 @@ def number_formats(doc: dict) -> dict:
             "nodal": significant_decimals(nodal)}
 
 
+_BOUNDED_COLUMNS = {c for q in SMALL_SHOWN_AS_BOUND for c in QUANTITIES[q]}
+
+
+def below_precision(value, decimals: int | None, column: str) -> str | None:
+    """``"< 1e-N"`` for a lift-off fraction or probability above 0 that ``N`` decimals would print
+    as 0 (a probability of 2.2e-5 is not "0.0000"); ``None`` for any other value or column.
+
+    Examples
+    --------
+    >>> below_precision(2.2e-5, 4, "lift_off_probability_rear"), below_precision(0.0, 3, "lift_off_fraction_front")
+    ('< 1e-4', None)
+    >>> below_precision(0.0004, 3, "lift_off_fraction_front"), below_precision(2e-5, 3, "a_wz_m_s2")
+    ('< 1e-3', None)
+
+    See Also
+    --------
+    number_formats : the decimals of each column.
+    """
+    if column not in _BOUNDED_COLUMNS or decimals is None or not isinstance(value, (int, float)):
+        return None
+    return f"< 1e-{decimals}" if 0 < value < 0.5 * 10.0 ** -decimals else None
+
+
 def _cell(value, decimals: int | None, column: str = "") -> str:
     if value is None:  # hours to a value the vibration never reaches; else no value (a spectral row's MTVV)
         return "inf" if column in INFINITE_WHEN_EMPTY else "–"
     if isinstance(value, str):
         return value
+    bound = below_precision(value, decimals, column)
+    if bound:
+        return bound
     return f"{value:g}" if decimals is None else format_number(float(value), decimals=decimals)
+
+
+def _html_cell(value, decimals: int | None, column: str) -> str:
+    """A per-speed cell of the page: as ``format_number`` (the report's), a lift-off value below
+    the printed precision as ``< 1e-N`` (:func:`below_precision`)."""
+    return below_precision(value, decimals, column) or format_number(value, decimals=decimals)
 
 
 def _text_table(header: list[str], cells: list[list[str]], numeric: list[bool]) -> list[str]:
@@ -346,7 +384,7 @@ def render_page(results: list[RideResult], doc: dict | None = None) -> str:
         method_note=method_words(rows),
         figures=figures(results), variants=variants(results), three_d=results[0].scenario.tractor.three_d,
         version=__version__, decimals=fmt["columns"], fmt=fmt, answer=answer(results_table(results)),
-        axis_words=AXIS_WORDS, warning_groups=warning_groups(doc.get("warnings", [])),
+        axis_words=AXIS_WORDS, warning_groups=warning_groups(doc.get("warnings", [])), cell=_html_cell,
         working_source=results[0].scenario.exposure.working_speed_source)
 
 
