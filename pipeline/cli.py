@@ -37,7 +37,7 @@ import sys
 from pathlib import Path
 
 from . import __version__
-from .io import MissingExtra, os_error_line, printable  # noqa: F401 - also this module's, for the commands' error lines
+from .io import TEXT_WIDTH, MissingExtra, fit_lines, os_error_line, printable  # noqa: F401 - also this module's, for the commands' error lines
 
 __all__ = ["EXIT_CODES_HELP", "STAGE_HELP", "ALIASES", "cmd_completion", "cmd_generate", "cmd_run", "cmd_watch", "cmd_stage", "cmd_sql", "cmd_analyze_run", "cmd_estimate_stiffness",
     "cmd_natural_frequencies", "cmd_road", "build_parser", "main"]
@@ -204,7 +204,7 @@ def cmd_stage(args) -> int:
 TABLE_SHARE = 0.25
 
 
-def _print_result(fmt: str, names: list, frames, first: bool, table_bytes: int) -> None:
+def _print_result(fmt: str, names: list, frames, first: bool, table_bytes: int, width: int | None = None) -> None:
     """One statement's result on stdout, batch after batch (csv, json) or aligned (table, at most
     ``table_bytes`` of result)."""
     import pandas as pd
@@ -239,7 +239,7 @@ def _print_result(fmt: str, names: list, frames, first: bool, table_bytes: int) 
     if df.empty:  # not pandas' "Empty DataFrame / Columns: [...] / Index: []"
         _out(f"no rows (columns: {', '.join(map(str, df.columns))})\n" if len(df.columns) else "no rows\n")
     else:
-        _out(df.to_string(index=False) + "\n")
+        _out(df.to_string(index=False, line_width=width) + "\n")  # wider than width: blocks of columns
 
 
 class _ResultTooLarge(Exception):
@@ -267,7 +267,8 @@ def cmd_sql(args) -> int:
     try:
         with memory_bound(limits.memory_limit_bytes):
             for i, (names, frames) in enumerate(iter_query(Path(args.build) / "warehouse.duckdb", args.query, limits)):
-                _print_result(args.format, names, frames, i == 0, int(TABLE_SHARE * limits.memory_limit_bytes))
+                _print_result(args.format, names, frames, i == 0, int(TABLE_SHARE * limits.memory_limit_bytes),
+                              None if args.wide else TEXT_WIDTH)
     except (WriteRefused, FileNotFoundError) as exc:
         print(f"tyrelab sql: {exc}", file=sys.stderr)
         return EXIT_USAGE
@@ -464,7 +465,7 @@ def cmd_ride(args) -> int:
             print(f"tyrelab ride: --out {args.out}: {os_error_line(exc)} (nothing written)", file=sys.stderr)
             return EXIT_USAGE
         log.info("ride: wrote %s and %s", paths["json"], paths["html"])
-    _out(dumps(doc) if args.format == "json" else format_table(doc))
+    _out(dumps(doc) if args.format == "json" else format_table(doc, None if args.wide else TEXT_WIDTH))
     return EXIT_OK
 
 
@@ -527,7 +528,7 @@ def cmd_road(args) -> int:
             g0 = f"G_d(n0) = {c['g0_m3']:.3g} m³" if c["g0_m3"] else "G_d(n0) not resolved (too short or coarse)"
             lines.append(f"  {name}{where}: class {c['class'] or '-'}, {g0}, r.m.s. {c['rms_m'] * 1000:.2f} mm, "
                          f"length {c['length_m']:g} m")
-        sys.stdout.write("\n".join(lines) + "\n")
+        sys.stdout.write("\n".join(fit_lines(lines, None if args.wide else TEXT_WIDTH)) + "\n")
     return EXIT_OK
 
 
@@ -576,7 +577,8 @@ def cmd_exposure(args) -> int:
         print(f"{prog}: {printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)}", file=sys.stderr)
         return EXIT_QUARANTINE
     _warn(prog, doc["warnings"])
-    _out(json.dumps(doc, indent=2, ensure_ascii=False) + "\n" if args.format == "json" else format_table(doc))
+    _out(json.dumps(doc, indent=2, ensure_ascii=False) + "\n" if args.format == "json"
+         else format_table(doc, None if args.wide else TEXT_WIDTH))
     return EXIT_QUARANTINE if str(doc.get("verdict", "")).startswith("no verdict") else EXIT_OK
 
 
@@ -787,6 +789,9 @@ def build_parser() -> argparse.ArgumentParser:
     q.add_argument("--format", choices=["table", "csv", "json"], default="table",
                    help="table: aligned text, 'no rows' for an empty result (default); csv; json: one array per "
                         "statement")
+    q.add_argument("--wide", action="store_true",
+                    help="with --format table: every column on one line per row, however wide (default: lines of at "
+                         "most 100 characters; a wide table splits into blocks of columns)")
     q.add_argument("--memory-limit", type=_size, default="2GiB", metavar="SIZE",
                    help="DuckDB memory limit, e.g. 512MB, 8GiB (default 2GiB); the command's memory is bounded by "
                         "it too: results stream to the output (a --format table result may take a quarter of it)")
@@ -871,6 +876,9 @@ def build_parser() -> argparse.ArgumentParser:
     rd.add_argument("--out", default=None, help="folder to write ride.json and ride.html into")
     rd.add_argument("--format", choices=["json", "table"], default="json",
                     help="json: the ride document (default); table: a text summary per speed")
+    rd.add_argument("--wide", action="store_true",
+                    help="with --format table: every column on one line per row, however wide (default: lines of at "
+                         "most 100 characters; a wide table splits into blocks of columns)")
     rd.add_argument("--front-pressure", type=_positive, nargs="+", default=None, metavar="BAR",
                     help="front pressures to sweep, bar (default: the scenario's)")
     rd.add_argument("--rear-pressure", type=_positive, nargs="+", default=None, metavar="BAR",
@@ -912,6 +920,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help=".crg: fill missing heights (NaN) as OpenCRG does (default: refuse them)")
     ro.add_argument("--format", choices=["json", "table"], default="table",
                     help="table: one line per track (default); json: the numbers")
+    ro.add_argument("--wide", action="store_true",
+                    help="with --format table: every column on one line per row, however wide (default: lines of at "
+                         "most 100 characters; a wide table splits into blocks of columns)")
     ro.set_defaults(func=cmd_road)
 
     ex = sub.add_parser("exposure", help="a driver's daily whole-body vibration exposure from seat recordings "
@@ -927,6 +938,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="a task of the day: its name, recording and daily hours (repeat for each task)")
     ex.add_argument("--format", choices=["json", "table"], default="json",
                     help="json: the exposure document (default); table: a text summary per task")
+    ex.add_argument("--wide", action="store_true",
+                    help="with --format table: every column on one line per row, however wide (default: lines of at "
+                         "most 100 characters; a wide table splits into blocks of columns)")
     ex.set_defaults(func=cmd_exposure)
 
     c = sub.add_parser("completion", help="print the shell code that completes tyrelab's verbs and options",

@@ -100,7 +100,7 @@ def _rows(doc: dict) -> list[dict]:
     blocks = doc.get("sweep") or [doc]
     out = []
     for b in blocks:
-        named = {"variant": ", ".join(f"{k.rpartition('.')[2]}={v:g}" for k, v in b["variant"].items())} \
+        named = {"variant": ", ".join(f"{k}={v:g}" for k, v in b["variant"].items())} \
             if b.get("variant") else {}
         time_rows = {t["speed_km_h"]: t for t in b.get("time_domain", [])}
         out += [{**_beside(row, time_rows), **named} for row in b["speeds"]]
@@ -244,33 +244,110 @@ def _html_cell(value, decimals: int | None, column: str) -> str:
     return below_precision(value, decimals, column) or format_number(value, decimals=decimals)
 
 
-def _text_table(header: list[str], cells: list[list[str]], numeric: list[bool]) -> list[str]:
+def _text_table(header: list[str], cells: list[list[str]], numeric: list[bool], keys: int = 0,
+                width: int | None = None) -> list[str]:
     """Lines of a plain-text table; each header is the report's column label wrapped over lines
-    (its unit on the last) to the width of the column's values or longest word."""
+    (its unit on the last) to the width of the column's values or longest word.
+
+    A table wider than ``width`` is split into blocks of columns, one under the other (a blank line
+    between), each repeating the first ``keys`` columns (the speed, the variant) so that every row
+    can be read across; ``width=None``: one block.
+    """
     wrapped = []
     for h, col in zip(header, zip(*cells) if cells else [()] * len(header)):
         name, _, unit = h.partition(" (")
         words = name.split()
-        width = max([len(v) for v in col] + [len(w) for w in words] + [len(unit) + 1 if unit else 0, MIN_HEADER_WIDTH])
-        lines = textwrap.wrap(name, width=width, break_long_words=False) + ([f"({unit}"] if unit else [])
-        wrapped.append((width, lines))
-    depth = max(len(lines) for _, lines in wrapped)
+        size = max([len(v) for v in col] + [len(w) for w in words] + [len(unit) + 1 if unit else 0, MIN_HEADER_WIDTH])
+        lines = textwrap.wrap(name, width=size, break_long_words=False) + ([f"({unit}"] if unit else [])
+        wrapped.append((size, lines))
+
+    def block(index: list[int]) -> list[str]:
+        depth = max(len(wrapped[i][1]) for i in index)
+        out = []
+        for d in range(depth):
+            parts = []
+            for i in index:
+                size, lines = wrapped[i]
+                text = lines[d] if d < len(lines) else ""
+                parts.append(text.rjust(size) if numeric[i] else text.ljust(size))
+            out.append("  ".join(parts).rstrip())
+        for row in cells:
+            out.append("  ".join(row[i].rjust(wrapped[i][0]) if numeric[i] else row[i].ljust(wrapped[i][0])
+                                 for i in index).rstrip())
+        return out
+
+    if not wrapped:
+        return []
+    lead = list(range(min(keys, len(wrapped))))
+    blocks, current = [], list(lead)
+    used = sum(wrapped[i][0] + 2 for i in lead)
+    for i in range(len(lead), len(wrapped)):
+        need = wrapped[i][0] + 2
+        if width is not None and len(current) > len(lead) and used + need - 2 > width:
+            blocks.append(current)
+            current, used = list(lead), sum(wrapped[j][0] + 2 for j in lead)
+        current.append(i)
+        used += need
+    blocks.append(current)
     out = []
-    for i in range(depth):
-        parts = []
-        for (width, lines), num in zip(wrapped, numeric):
-            text = lines[i] if i < len(lines) else ""
-            parts.append(text.rjust(width) if num else text.ljust(width))
-        out.append("  ".join(parts).rstrip())
-    for row in cells:
-        out.append("  ".join(v.rjust(w) if num else v.ljust(w) for v, (w, _), num in zip(row, wrapped, numeric)).rstrip())
+    for n, index in enumerate(blocks):
+        out += ([""] if n else []) + block(index)
     return out
 
 
-def format_table(doc: dict) -> str:
+#: A variant name longer than this is a number in the table, with the names listed above it.
+VARIANT_WIDTH = 24
+
+
+def _narrow(doc: dict, rows: list[dict]) -> tuple[list[str], list[dict], list[tuple[str, str]]]:
+    """The per-speed columns and rows as a narrow table shows them (``--format table``, the page): a
+    tyre pressure every row shares is left out (the tyre lines above give it), and variant names
+    longer than :data:`VARIANT_WIDTH` become numbers, with ``(number, name)`` of each in the legend."""
+    cols = [c for c in _columns(doc, rows) if c not in ("front_pressure_bar", "rear_pressure_bar")
+            or len({r.get(c) for r in rows}) > 1]
+    names = list(dict.fromkeys(r["variant"] for r in rows if r.get("variant")))
+    if not names or max(map(len, names)) <= VARIANT_WIDTH:
+        return cols, rows, []
+    number = {name: str(i) for i, name in enumerate(names, start=1)}
+    return cols, [{**r, "variant": number[r["variant"]]} if r.get("variant") else r for r in rows], \
+        [(number[name], name) for name in names]
+
+
+def format_table(doc: dict, width: int | None = io.TEXT_WIDTH) -> str:
     """A plain-text summary of a ride document (what ``--format table`` prints): the JSON's
     quantities under the report's names (``a_wz (m/s²)``), one number format per quantity
-    (:func:`number_formats`)."""
+    (:func:`number_formats`).
+
+    No line is wider than ``width`` (``--format table``'s 100 characters; ``None``, ``--wide``: one
+    line per row of every column): the text wraps, the per-speed table splits into blocks of
+    columns that repeat the speed and variant (:func:`_text_table`), and variant names longer than
+    :data:`VARIANT_WIDTH` are numbered in the table and listed above it.
+
+    See Also
+    --------
+    number_formats : the decimals of each quantity.
+    render_page : the same as an HTML page.
+
+    Examples
+    --------
+    >>> doc = {"name": "demo", "track": "a track", "hours_per_day": 8, "natural_frequencies_Hz": {"bounce": 2.5},
+    ...        "nodal_points_m": {}, "tyres": {a: {"size": "13.6R38", "pressure_bar": 1.2, "stiffness_kN_per_m": 350.0,
+    ...        "stiffness_source": "given", "damping_kN_s_per_m": 1.0, "damping_source": "given"} for a in ("front", "rear")},
+    ...        "speeds": [{"speed_km_h": 8.0, "a_wz_m_s2": 0.61, "a8_m_s2": 0.61, "a8_axis": "z", "hours_to_eav": 5.4,
+    ...                    "hours_to_elv": 28.4, "verdict": "above action value", "simulation": "linear"}]}
+    >>> print(format_table(doc).split("  a_wz: W_k")[0])
+    demo
+      track: a track; daily exposure 8 h
+      front 13.6R38 at 1.2 bar: K = 350 kN/m (given), C = 1.00 kN s/m (given)
+      rear  13.6R38 at 1.2 bar: K = 350 kN/m (given), C = 1.00 kN s/m (given)
+      bounce 2.50 Hz
+       speed      a_wz        a8  a8 axis   hours to  hours to  verdict             simulation
+      (km/h)    (m/s²)    (m/s²)                 eav       elv
+           8     0.610     0.610  z              5.4      28.4  above action value  linear
+    <BLANKLINE>
+    >>> max(len(line) for line in format_table(doc, width=60).splitlines()) <= 60
+    True
+    """
     fmt = number_formats(doc)
     lines = [f"{doc['name']}", f"  track: {doc['track']}; daily exposure {doc['hours_per_day']:g} h"]
     if doc.get("road_class"):
@@ -320,14 +397,17 @@ def format_table(doc: dict) -> str:
     for w in doc.get("warnings", []):
         lines.append(f"  warning: {w}")
     rows = _rows(doc)
-    cols = _columns(doc, rows)
+    cols, rows, legend = _narrow(doc, rows) if width is not None else (_columns(doc, rows), rows, [])
+    lines += [f"  variant {n}: {name}" for n, name in legend]
     cells = [[_cell(r.get(c), fmt["columns"].get(c), c) for c in cols] for r in rows]
     numeric = [c not in TEXT_COLUMNS for c in cols]
-    lines += _text_table([column_label(c) for c in cols], cells, numeric)
-    lines.append("  a_wz: W_k-weighted, a_wx and a_wy: W_d-weighted r.m.s. (ISO 2631-1); expected: the "
-                 "frequency-domain expectation; a_v: vector sum; a8 = A(8) = max(1.4 a_wx, 1.4 a_wy, a_wz) "
-                 "sqrt(T/8 h); vdv: vibration dose value; inf: never reached")
-    lines += ["  " + line for line in textwrap.wrap(method_words(rows), 110)]
+    keys = next((i for i, c in enumerate(cols) if c not in (*KEY_COLUMNS, "variant")), len(cols))
+    lines = io.fit_lines(lines, width)
+    lines += _text_table([column_label(c) for c in cols], cells, numeric, keys, width)
+    lines += io.fit_lines(["  a_wz: W_k-weighted, a_wx and a_wy: W_d-weighted r.m.s. (ISO 2631-1); expected: the "
+                           "frequency-domain expectation; a_v: vector sum; a8 = A(8) = max(1.4 a_wx, 1.4 a_wy, a_wz) "
+                           "sqrt(T/8 h); vdv: vibration dose value; inf: never reached"], width)
+    lines += ["  " + line for line in textwrap.wrap(method_words(rows), min(110, (width or 112) - 2))]
     return "\n".join(lines) + "\n"
 
 
@@ -379,8 +459,9 @@ def render_page(results: list[RideResult], doc: dict | None = None) -> str:
     doc = doc or result_json(results)
     rows = _rows(doc)
     fmt = number_formats(doc)  # one number format per quantity, as --format table
+    columns, shown, legend = _narrow(doc, rows)  # fits a 1400 px window: long variant names numbered
     return environment().get_template("ride.html.j2").render(
-        r=doc, description=results[0].scenario.description, columns=_columns(doc, rows), rows=rows,
+        r=doc, description=results[0].scenario.description, columns=columns, rows=shown, legend=legend,
         method_note=method_words(rows),
         figures=figures(results), variants=variants(results), three_d=results[0].scenario.tractor.three_d,
         version=__version__, decimals=fmt["columns"], fmt=fmt, answer=answer(results_table(results)),
