@@ -41,9 +41,16 @@ run_batch() {
   changed=$(git diff --name-only main HEAD)
   # A changed dependency set rebuilds the gate's virtualenv from scratch.
   if echo "$changed" | grep -qE '^(pyproject.toml|uv.lock|requirements|pylock|Makefile)'; then rm -rf .venv; fi
-  { nice -n -5 make test || ok=0
-    if [ $ok = 1 ] && [ "${GATE_DOCS:-1}" = 1 ]; then nice -n -5 make docs || ok=0; fi
-    if [ $ok = 1 ] && echo "$changed" | grep -qE '^(pyproject.toml|uv.lock|requirements|pylock|schemas/|reports/|raw/)'; then nice -n -5 make test-package || ok=0; fi
+  { nice -n -15 make test || ok=0
+    # Failures main itself has (listed one test id a line in ../wt/KNOWN_FAILURES by the lead, e.g.
+    # flaky tests whose fix is under way) do not hold a batch back; any other failure or error does.
+    if [ $ok = 0 ] && [ -s "$root/KNOWN_FAILURES" ] && grep -q '^FAILED ' "$log" && ! grep -q '^ERROR ' "$log"; then
+      if [ -z "$(grep '^FAILED ' "$log" | sed 's/^FAILED //; s/ - .*//' | grep -vxF -f "$root/KNOWN_FAILURES")" ]; then
+        echo "queue: only known failures of main (../wt/KNOWN_FAILURES); gate continues"; ok=1
+      fi
+    fi
+    if [ $ok = 1 ] && [ "${GATE_DOCS:-1}" = 1 ]; then nice -n -15 make docs || ok=0; fi
+    if [ $ok = 1 ] && echo "$changed" | grep -qE '^(pyproject.toml|uv.lock|requirements|pylock|schemas/|reports/|raw/)'; then nice -n -15 make test-package || ok=0; fi
   } >"$log" 2>&1
   tail -n 3 "$log" | sed 's/^/  | /'
   if [ $ok = 1 ]; then
