@@ -338,8 +338,8 @@ def format_table(doc: dict, width: int | None = io.TEXT_WIDTH) -> str:
     >>> print(format_table(doc).split("  a_wz: W_k")[0])
     demo
       track: a track; daily exposure 8 h
-      front 13.6R38 at 1.2 bar: K = 350 kN/m (given), C = 1.00 kN s/m (given)
-      rear  13.6R38 at 1.2 bar: K = 350 kN/m (given), C = 1.00 kN s/m (given)
+      front 13.6R38 at 1.2 bar: K = 350 kN/m (given), C = 1 kN s/m (given)
+      rear  13.6R38 at 1.2 bar: K = 350 kN/m (given), C = 1 kN s/m (given)
       bounce 2.50 Hz
        speed      a_wz        a8  a8 axis   hours to  hours to  verdict             simulation
       (km/h)    (m/s²)    (m/s²)                 eav       elv
