@@ -38,7 +38,7 @@ def test_a_lift_off_below_the_printed_precision_is_a_bound_not_a_zero(tmp_path):
     doc["speeds"][0]["lift_off_fraction_front"] = 2.2e-5  # as a nonlinear row that lifted a tyre briefly
     doc["speeds"][1]["lift_off_probability_rear"] = 3e-6  # as a spectral row
     doc["speeds"][0]["lift_off_probability_rear"] = 0.25
-    rows = ride_page.format_table(doc).split("  a_wz: W_k")[0].splitlines()
+    rows = ride_page.format_table(doc, width=None).split("  a_wz: W_k")[0].splitlines()  # --wide: a row a line
     assert "< 1e-3" in rows[-2] and "0.2500" in rows[-2] and "< 1e-4" in rows[-1]
     html = ride_page.render_page([res], doc)
     table = re.search(r'<table class="speeds">.*?</table>', html, re.S).group(0)
