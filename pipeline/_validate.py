@@ -25,20 +25,93 @@ import math
 import numpy as np
 
 __all__ = ["positive", "positive_array", "finite_array", "same_last_axis", "band", "non_negative", "probability",
-           "positive_int", "frame", "choice", "instances", "instance", "non_negative_array"]
+           "positive_int", "frame", "choice", "instances", "instance", "non_negative_array", "finite", "in_range",
+           "shown"]
+
+
+def shown(value, width: int = 40) -> str:
+    """``repr(value)`` for a message, at most about ``width`` characters: a 400-digit integer is
+    shown by its first and last digits and its length, not in full.
+
+    Examples
+    --------
+    >>> shown(10**400)
+    '1000000000…0000000000 (401 digits)'
+    >>> shown(2.5)
+    '2.5'
+    """
+    if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**width:
+        digits = str(abs(value))
+        return f"{'-' if value < 0 else ''}{digits[:10]}…{digits[-10:]} ({len(digits)} digits)"
+    text = repr(value)
+    return text if len(text) <= 2 * width else text[:width] + "…"
+
+
+def finite(name: str, value) -> float:
+    """``value`` as a float; ValueError naming ``name`` unless it is a finite real number.
+
+    A bool is no number here (``True`` is not one hour), and an integer too large for a float
+    (``1`` and 400 zeros, which TOML and Python hold exactly) is refused like infinity, never an
+    ``OverflowError``.
+
+    Examples
+    --------
+    >>> finite("hours", 8)
+    8.0
+    >>> finite("hours", True)
+    Traceback (most recent call last):
+    ...
+    ValueError: hours must be a number, got True
+    >>> finite("mass_kg", 10**400)
+    Traceback (most recent call last):
+    ...
+    ValueError: mass_kg must be a finite number, got 1000000000…0000000000 (401 digits)
+    """
+    v = _number(name, value)
+    if not math.isfinite(v):
+        raise ValueError(f"{name} must be a finite number, got {shown(value)}")
+    return v
+
+
+def in_range(name: str, value, low: float, high: float, unit: str = "") -> float:
+    """``value`` as a float; ValueError naming ``name`` and the range unless ``low <= value <= high``
+    (finite, not a bool: :func:`finite`).
+
+    Examples
+    --------
+    >>> in_range("--mass", 4000, 200, 50_000, "kg")
+    4000.0
+    >>> in_range("--mass", 1e308, 200, 50_000, "kg")
+    Traceback (most recent call last):
+    ...
+    ValueError: --mass must be within 200 to 50000 kg, got 1e+308
+    """
+    v = finite(name, value)
+    if not low <= v <= high:
+        u = f" {unit}" if unit else ""
+        raise ValueError(f"{name} must be within {low:g} to {high:g}{u}, got {v:g}")
+    return v
 
 
 def positive(name: str, value) -> float:
     """``value`` as a float; ValueError naming ``name`` unless it is a finite number > 0 (not a bool: True is no mass)."""
-    if isinstance(value, (bool, np.bool_)):
-        raise ValueError(f"{name} must be a number, got {value!r}")
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    v = _number(name, value)
     if not math.isfinite(v) or v <= 0:
-        raise ValueError(f"{name} must be finite and positive, got {value!r}")
+        raise ValueError(f"{name} must be finite and positive, got {shown(value)}")
     return v
+
+
+def _number(name: str, value) -> float:
+    """``float(value)``, infinity for an integer too large for a float (the callers refuse it as
+    not finite); ValueError naming ``name`` for a bool, a string or what is no number."""
+    if isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} must be a number, got {shown(value)}")
+    try:
+        return float(value)
+    except OverflowError:
+        return -math.inf if isinstance(value, int) and value < 0 else math.inf
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {shown(value)}") from None
 
 
 def positive_int(name: str, value, minimum: int = 1) -> int:
@@ -54,7 +127,7 @@ def positive_int(name: str, value, minimum: int = 1) -> int:
     ValueError: min_run must be an integer >= 1, got 0
     """
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < minimum:
-        raise ValueError(f"{name} must be an integer >= {minimum}, got {value!r}")
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {shown(value)}")
     return int(value)
 
 
@@ -70,17 +143,19 @@ def _signed_array(name: str, value, allow_nan: bool, strict: bool) -> np.ndarray
     """:func:`positive_array` (``strict``) and :func:`non_negative_array`."""
     try:
         if np.asarray(value).dtype == bool:
-            raise ValueError(f"{name} must be numbers, got booleans {value!r}")
+            raise ValueError(f"{name} must be numbers, got booleans {shown(value)}")
         a = np.asarray(value, dtype=float)
+    except OverflowError:  # an integer too large for a float
+        raise ValueError(f"{name} must be finite numbers, got {shown(value)}") from None
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be numbers, got {value!r}") from None
+        raise ValueError(f"{name} must be numbers, got {shown(value)}") from None
     ok = np.isfinite(a) & ((a > 0) if strict else (a >= 0))
     if allow_nan:
         ok |= np.isnan(a)
     if not ok.all():
         word = "positive" if strict else "non-negative"
-        shown = a.tolist() if a.size <= 6 else f"{a.size} values, {int((~ok).sum())} bad"
-        raise ValueError(f"{name} must be {f'{word} (or NaN)' if allow_nan else f'finite and {word}'}, got {shown}")
+        listed = a.tolist() if a.size <= 6 else f"{a.size} values, {int((~ok).sum())} bad"
+        raise ValueError(f"{name} must be {f'{word} (or NaN)' if allow_nan else f'finite and {word}'}, got {listed}")
     return a
 
 
@@ -88,6 +163,8 @@ def finite_array(name: str, value, min_samples: int = 1) -> np.ndarray:
     """``value`` as a float array with at least ``min_samples`` along the last axis, every sample finite."""
     try:
         a = np.asarray(value, dtype=float)
+    except OverflowError:
+        raise ValueError(f"{name} has non-finite samples") from None
     except (TypeError, ValueError):
         raise ValueError(f"{name} must be numeric samples") from None
     if a.ndim == 0 or a.shape[-1] < min_samples:
@@ -107,11 +184,11 @@ def same_last_axis(**arrays: np.ndarray) -> None:
 def band(name: str, value) -> tuple[float, float]:
     """``(low, high)`` in Hz with ``0 <= low < high``, finite; ValueError naming ``name`` otherwise."""
     try:
-        lo, hi = (float(v) for v in value)
+        lo, hi = (_number(name, v) for v in value)
     except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a (low, high) pair in Hz, got {value!r}") from None
+        raise ValueError(f"{name} must be a (low, high) pair in Hz, got {shown(value)}") from None
     if not (math.isfinite(lo) and math.isfinite(hi) and 0 <= lo < hi):
-        raise ValueError(f"{name} must satisfy 0 <= low < high, got {value!r}")
+        raise ValueError(f"{name} must satisfy 0 <= low < high, got {shown(value)}")
     return lo, hi
 
 
@@ -123,12 +200,9 @@ def non_negative(name: str, value) -> float:
     >>> non_negative("age_years", 0)
     0.0
     """
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    v = _number(name, value)
     if not math.isfinite(v) or v < 0:
-        raise ValueError(f"{name} must be finite and non-negative, got {value!r}")
+        raise ValueError(f"{name} must be finite and non-negative, got {shown(value)}")
     return v
 
 
@@ -143,11 +217,11 @@ def probability(name: str, value) -> float:
     ValueError: alpha must be a number in (0, 1), got 2
     """
     try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number in (0, 1), got {value!r}") from None
+        v = _number(name, value)
+    except ValueError:
+        raise ValueError(f"{name} must be a number in (0, 1), got {shown(value)}") from None
     if not 0 < v < 1:
-        raise ValueError(f"{name} must be a number in (0, 1), got {value!r}")
+        raise ValueError(f"{name} must be a number in (0, 1), got {shown(value)}")
     return v
 
 
@@ -189,7 +263,7 @@ def choice(name: str, value, options):
     except TypeError:
         ok = False
     if not ok:
-        raise ValueError(f"{name} must be one of {', '.join(repr(o) for o in options)}, got {value!r}")
+        raise ValueError(f"{name} must be one of {', '.join(repr(o) for o in options)}, got {shown(value)}")
     return value
 
 

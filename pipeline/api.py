@@ -26,9 +26,10 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
-from ._validate import positive
+from ._validate import finite, positive, shown
 from .exposure import exposure
 from .measurement.recording import RecordingResult, analyse_frame
 from .rawformat import read_run_file
@@ -92,11 +93,13 @@ def analyse_recording(
     ...
     ValueError: axle_mass_kg must be finite and positive, got 0.0
     """
+    positive("axle_mass_kg", axle_mass_kg)  # before reading a file
+    if sample_rate_Hz is not None:
+        positive("sample_rate_Hz", sample_rate_Hz)
     if isinstance(recording, pd.DataFrame):
         return analyse_frame(recording, axle_mass_kg, sample_rate_Hz=sample_rate_Hz, interference_Hz=interference_Hz)
     if not isinstance(recording, (str, os.PathLike)):
         raise ValueError(f"recording must be a path or a pandas DataFrame, got {type(recording).__name__}")
-    positive("axle_mass_kg", axle_mass_kg)  # before reading a file
     frame = read_run_file(Path(recording), channel_map=channel_map)
     return analyse_frame(frame, axle_mass_kg, sample_rate_Hz=sample_rate_Hz, interference_Hz=interference_Hz,
                          file=str(recording))
@@ -133,6 +136,7 @@ def ride(
     rear_pressure_bar: float | None = None,
     build: str | os.PathLike | None = None,
     with_spectra: bool = False,
+    max_samples: int | None = None,
 ):
     """Seat vibration and EU daily exposure of a tractor scenario: what ``tyrelab ride`` computes.
 
@@ -154,6 +158,10 @@ def ride(
         lab's fitted formula (``formula = "build"``).
     with_spectra : bool
         Also compute the seat PSD and transmissibility per speed (the page's figures).
+    max_samples : int, optional
+        Most 1 kHz samples the call may simulate over all speeds (default
+        :data:`tyrelab.vehicle.scenario_limits.MAX_SAMPLES`, as ``tyrelab ride --max-samples``):
+        more is refused with an estimate before any work.
 
     Returns
     -------
@@ -170,7 +178,9 @@ def ride(
     tyrelab.vehicle.scenario.ScenarioError
         Every problem of the scenario at once (a ``ValueError``; ``.problems``, one per key).
     ValueError
-        A bad argument, naming it.
+        A bad argument, naming it (a speed or pressure outside what the model is built for, an
+        integer too large for a float, a bool where a number belongs), or more work than
+        ``max_samples`` allows.
 
     See Also
     --------
@@ -190,12 +200,59 @@ def ride(
     'z'
     """
     from .vehicle import ride as ride_module
+    from .vehicle import scenario_limits as limits
     from .vehicle.scenario import with_overrides
 
-    sc = with_overrides(_scenario(scenario), speeds_km_h, front_pressure_bar, rear_pressure_bar)
+    speeds, front, rear = _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spectra,
+                                          max_samples)
+    sc = with_overrides(_scenario(scenario), speeds, front, rear)
+    too_much = limits.work_problems(sc, 1, method=sc.simulation.method,
+                                    max_samples=limits.MAX_SAMPLES if max_samples is None else max_samples)
+    if too_much:  # before any work, as tyrelab ride refuses it
+        raise ValueError("; ".join(p.replace("--max-samples N", "max_samples=N") for p in too_much))
     tyres = None
     if build is not None:
         from .stages.simulate import WarehouseTyres
 
         tyres = WarehouseTyres(build)
     return ride_module.ride(sc, tyres, with_spectra=bool(with_spectra))
+
+
+def _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spectra, max_samples):
+    """:func:`ride`'s speeds and pressures as floats, checked like ``tyrelab ride``'s options (finite,
+    within :data:`tyrelab.vehicle.scenario_limits.LIMITS`); ValueError naming every bad one at once."""
+    from .vehicle import scenario_limits as limits
+
+    problems = []
+
+    def number(name, value):
+        try:
+            return finite(name, value)
+        except ValueError as exc:
+            problems.append(str(exc))
+            return None
+
+    speeds = None
+    if speeds_km_h is not None:
+        if isinstance(speeds_km_h, (str, bytes)) or not hasattr(speeds_km_h, "__iter__"):
+            problems.append(f"speeds_km_h must be a list of numbers, got {shown(speeds_km_h)}")
+        else:
+            speeds = [number(f"speeds_km_h[{i}]", v) for i, v in enumerate(speeds_km_h)]
+            if not speeds:
+                problems.append("speeds_km_h must hold at least one speed (None: the scenario's)")
+    front = None if front_pressure_bar is None else number("front_pressure_bar", front_pressure_bar)
+    rear = None if rear_pressure_bar is None else number("rear_pressure_bar", rear_pressure_bar)
+    if not isinstance(with_spectra, (bool, np.bool_)):
+        problems.append(f"with_spectra must be True or False, got {shown(with_spectra)}")
+    if max_samples is not None and (isinstance(max_samples, bool) or not isinstance(max_samples, (int, np.integer))
+                                    or max_samples < 1):
+        problems.append(f"max_samples must be an integer >= 1, got {shown(max_samples)}")
+    if not problems:
+        problems = limits.override_problems(speeds, None if front is None else [front],
+                                            None if rear is None else [rear])
+        problems = [p.replace("front_pressures_bar", "front_pressure_bar").replace("rear_pressures_bar",
+                                                                                     "rear_pressure_bar")
+                    for p in problems]
+    if problems:
+        raise ValueError("; ".join(problems))
+    return speeds, front, rear

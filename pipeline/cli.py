@@ -104,8 +104,12 @@ def _context(args):
 
 
 def cmd_generate(args) -> int:
-    from .generate import generate_campaign
+    from .generate import MAX_SEED, generate_campaign
 
+    if not 0 <= args.seed <= MAX_SEED:
+        print(f"tyrelab generate: --seed must be a whole number from 0 to {MAX_SEED}, got {_typed(str(args.seed))}",
+              file=sys.stderr)
+        return EXIT_USAGE
     summary = generate_campaign(Path(args.out), scale=args.scale, seed=args.seed, scatter=args.scatter,
                                 rides=args.rides, tyre_population=getattr(args, "tyre_population", 0))
     log.info("generate: %s", json.dumps(summary, default=str))
@@ -163,18 +167,17 @@ def cmd_run(args) -> int:
 def cmd_watch(args) -> int:
     from .watch import WatchOptions, watch
 
-    problem = _check_raw(args, need_campaign=True)
-    if problem:
-        print(f"tyrelab watch: {problem}", file=sys.stderr)
+    problems = [_check_raw(args, need_campaign=True)]
+    for field_name, option, kwargs in (("interval_s", "--interval", {"interval_s": args.interval}),
+                                       ("settle_s", "--settle", {"settle_s": args.settle}),
+                                       ("max_runs", "--max-runs", {"max_runs": args.max_runs})):
+        try:  # each option alone: every problem at once
+            WatchOptions(**kwargs)
+        except ValueError as exc:
+            problems.append(str(exc).replace(field_name, option))
+    if _refused("tyrelab watch", [p for p in problems if p]):
         return EXIT_USAGE
-    try:
-        options = WatchOptions(interval_s=args.interval, settle_s=args.settle, max_runs=args.max_runs)
-    except ValueError as exc:
-        text = str(exc)
-        for field_name, option in (("interval_s", "--interval"), ("settle_s", "--settle"), ("max_runs", "--max-runs")):
-            text = text.replace(field_name, option)
-        print(f"tyrelab watch: {text}", file=sys.stderr)
-        return EXIT_USAGE
+    options = WatchOptions(interval_s=args.interval, settle_s=args.settle, max_runs=args.max_runs)
 
     def work() -> int:
         runs = watch(_context(args), options)
@@ -298,8 +301,14 @@ def cmd_sql(args) -> int:
 
 def cmd_analyze_run(args) -> int:
     from .api import analyze_recording
-    from .rawformat import RunFileError
+    from .rawformat import SAMPLE_RATE_RANGE_Hz, RunFileError
 
+    problems = _option_problems(args, ("axle_mass",))
+    if args.sample_rate is not None and not SAMPLE_RATE_RANGE_Hz[0] <= args.sample_rate <= SAMPLE_RATE_RANGE_Hz[1]:
+        problems.append(f"--sample-rate must be within {SAMPLE_RATE_RANGE_Hz[0]:g} to {SAMPLE_RATE_RANGE_Hz[1]:g} Hz "
+                        f"(raw format v1), got {args.sample_rate:g}")
+    if _refused("tyrelab analyze-run", problems):
+        return EXIT_USAGE
     try:
         out = analyze_recording(Path(args.file), args.axle_mass, sample_rate_Hz=args.sample_rate).to_dict()
     except (RunFileError, ValueError) as exc:  # ValueError: e.g. no time_s column and no --sample-rate
@@ -318,6 +327,46 @@ def _warn(prog: str, warnings) -> None:
     """Print range warnings on stderr, one line each (the result still goes to stdout)."""
     for w in warnings:
         print(f"{prog}: warning: {w}", file=sys.stderr)
+
+
+#: Option ranges of the verbs that take a tractor's or a tyre's numbers: the ``dest`` of each option
+#: and the :data:`tyrelab.vehicle.scenario_limits.LIMITS` key whose range (what the models are built
+#: for) it shares with the scenario key of the same meaning.
+OPTION_LIMITS = {
+    "mass": "tractor.mass_kg", "pitch_inertia": "tractor.pitch_inertia_kg_m2",
+    "front_distance": "tractor.front_distance_m", "rear_distance": "tractor.rear_distance_m",
+    "pressure": "pressure_bar", "front_pressure": "pressure_bar", "rear_pressure": "pressure_bar",
+    "age": "age_years", "front_stiffness": "stiffness_kN_per_m", "rear_stiffness": "stiffness_kN_per_m",
+    "front_stiffness_u": "stiffness_u_kN_per_m", "rear_stiffness_u": "stiffness_u_kN_per_m",
+    "axle_mass": "axle.mass_kg", "track_width_m": "tractor.front_track_m",
+    "lateral_offset_m": "surface.lateral_offset_m", "start_m": "surface.start_m", "length_m": "surface.length_m",
+}
+
+
+def _option_problems(args, dests) -> list[str]:
+    """One line per numeric option of ``dests`` outside its range (:data:`OPTION_LIMITS`), naming it:
+    checked before any work, every problem at once (``--mass 1e308`` would give 1.8e-152 Hz)."""
+    from . import _validate
+    from .vehicle.scenario_limits import LIMITS
+
+    limits = {**LIMITS, "stiffness_u_kN_per_m": (0.0, LIMITS["stiffness_kN_per_m"][1], "kN/m")}
+    problems = []
+    for dest in dests:
+        value = getattr(args, dest, None)
+        for v in value if isinstance(value, list) else [] if value is None else [value]:
+            low, high, unit = limits[OPTION_LIMITS[dest]]
+            try:
+                _validate.in_range("--" + dest.replace("_", "-"), v, low, high, unit)
+            except ValueError as exc:
+                problems.append(f"{exc} (the range the model is built for)" if "within" in str(exc) else str(exc))
+    return problems
+
+
+def _refused(prog: str, problems: list[str]) -> bool:
+    """Print ``problems`` one line each on stderr (True if there were any)."""
+    for problem in problems:
+        print(f"{prog}: {printable(problem)}", file=sys.stderr)
+    return bool(problems)
 
 
 def _stiffness_model(prog: str, build: str | None):
@@ -348,6 +397,8 @@ def cmd_estimate_stiffness(args) -> int:
     from .tyre.stiffness import estimate_stiffness
 
     prog = "tyrelab estimate-stiffness"
+    if _refused(prog, _option_problems(args, ("pressure", "age"))):
+        return EXIT_USAGE
     try:
         model = _stiffness_model(prog, getattr(args, "build", None))
         est = estimate_stiffness(
@@ -379,6 +430,10 @@ def cmd_natural_frequencies(args) -> int:
     from .vehicle.bounce_pitch import tractor_natural_frequencies
 
     prog = "tyrelab natural-frequencies"
+    if _refused(prog, _option_problems(args, ("mass", "pitch_inertia", "front_distance", "rear_distance",
+                                              "front_pressure", "rear_pressure", "age", "front_stiffness",
+                                              "rear_stiffness", "front_stiffness_u", "rear_stiffness_u"))):
+        return EXIT_USAGE
     try:
         out = tractor_natural_frequencies(
             args.mass, args.pitch_inertia, args.front_distance, args.rear_distance,
@@ -404,6 +459,8 @@ def cmd_export_tyre(args) -> int:
     from .tyre.sizes import TyreSizeError
 
     prog = "tyrelab export-tyre"
+    if _refused(prog, _option_problems(args, ("pressure",))):
+        return EXIT_USAGE
     try:
         export, written = export_tyre(Path(args.build) / "warehouse.duckdb", args.tyre_id, args.pressure, args.out)
     except (LookupError, TyreSizeError, ValueError) as exc:
@@ -476,6 +533,8 @@ def cmd_road(args) -> int:
     from .vehicle import road_class as rc
 
     path = Path(args.file)
+    if _refused("tyrelab road", _option_problems(args, ("track_width_m", "lateral_offset_m", "start_m", "length_m"))):
+        return EXIT_USAGE
     try:
         if path.suffix.lower() == ".crg":
             from .vehicle.crg import wheel_tracks
@@ -582,13 +641,19 @@ def cmd_exposure(args) -> int:
     return EXIT_QUARANTINE if str(doc.get("verdict", "")).startswith("no verdict") else EXIT_OK
 
 
+def _typed(text: str) -> str:
+    """``text`` as a bad option value is shown: at most about 40 characters (``1`` and 400 zeros is
+    not printed whole)."""
+    return text if len(text) <= 40 else f"{text[:18]}…{text[-18:]} ({len(text)} characters)"
+
+
 def _finite(text: str) -> float:
     try:
         value = float(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+        raise argparse.ArgumentTypeError(f"{_typed(text)!r} is not a number") from None
     if not math.isfinite(value):
-        raise argparse.ArgumentTypeError(f"{text} is not a finite number")
+        raise argparse.ArgumentTypeError(f"{_typed(text)} is not a finite number")
     return value
 
 
@@ -596,8 +661,16 @@ def _positive(text: str) -> float:
     """argparse type: a finite float > 0."""
     value = _finite(text)
     if not value > 0:
-        raise argparse.ArgumentTypeError(f"{text} is not a positive number")
+        raise argparse.ArgumentTypeError(f"{_typed(text)} is not a positive number")
     return value
+
+
+def _integer(text: str) -> int:
+    """argparse type: a whole number (its range is the command's to check, in one line with the others)."""
+    try:
+        return int(text)
+    except ValueError:  # also Python's limit of 4300 digits
+        raise argparse.ArgumentTypeError(f"{_typed(text)!r} is not a whole number") from None
 
 
 def _population(text: str) -> int:
@@ -605,9 +678,9 @@ def _population(text: str) -> int:
     try:
         value = int(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"{text} is not an integer") from None
+        raise argparse.ArgumentTypeError(f"{_typed(text)} is not an integer") from None
     if not 0 <= value <= 99:
-        raise argparse.ArgumentTypeError(f"{text} is not from 0 to 99")
+        raise argparse.ArgumentTypeError(f"{_typed(text)} is not from 0 to 99")
     return value
 
 
@@ -615,7 +688,7 @@ def _non_negative(text: str) -> float:
     """argparse type: a finite float >= 0."""
     value = _finite(text)
     if not value >= 0:
-        raise argparse.ArgumentTypeError(f"{text} is negative")
+        raise argparse.ArgumentTypeError(f"{_typed(text)} is negative")
     return value
 
 
@@ -629,9 +702,9 @@ def _whole(high: int):
         try:
             value = int(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+            raise argparse.ArgumentTypeError(f"{_typed(text)!r} is not a whole number") from None
         if not 1 <= value <= high:
-            raise argparse.ArgumentTypeError(f"{value} is not from 1 to {high}")
+            raise argparse.ArgumentTypeError(f"{_typed(text)} is not from 1 to {high}")
         return value
     return parse
 
@@ -693,7 +766,8 @@ ALIASES = {"analyze-run": ["analyse-run", "analyze"]}
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse with "did you mean" for a mistyped verb or choice, and the exit codes in ``--help``."""
+    """argparse with "did you mean" for a mistyped verb or choice, the exit codes in ``--help``, and
+    a usage error in one line on stderr (exit 2)."""
 
     def __init__(self, *args, **kwargs):
         kwargs.setdefault("formatter_class", argparse.RawDescriptionHelpFormatter)
@@ -714,7 +788,8 @@ class _Parser(argparse.ArgumentParser):
             message = f"unknown {what} '{m.group(1)}'" + (
                 f"; did you mean {' or '.join(repr(c) for c in close)}?" if close else
                 f" (choose from {', '.join(choices)})")
-        super().error(message)
+        # one line naming the option (the usage block is --help's): a bad value reads as every other refusal
+        self.exit(2, f"{self.prog}: error: {printable(message)} (options: {self.prog} --help)\n")
 
 
 def _global_options(parser: argparse.ArgumentParser, on_verb: bool) -> None:
@@ -741,7 +816,8 @@ def build_parser() -> argparse.ArgumentParser:
     g.add_argument("--out", required=True, help="campaign folder to write")
     g.add_argument("--scale", choices=["small", "full"], default="small",
                    help="small: ~190 runs, a build in about a minute (default); full: the whole virtual campaign")
-    g.add_argument("--seed", type=int, default=1991, help="random seed: the same seed gives the same bytes (default 1991)")
+    g.add_argument("--seed", type=_integer, default=1991,
+                   help="random seed, 0 to 2^63-1: the same seed gives the same bytes (default 1991)")
     g.add_argument("--no-scatter", dest="scatter", action="store_false",
                    help="no run-to-run / day-to-day tyre scatter (thesis §3.6 repeatability is on by default: "
                         "K 2 %% + 1.5 %% per day, C 4 %% + 3 %% per day, standard deviations)")
@@ -774,7 +850,7 @@ def build_parser() -> argparse.ArgumentParser:
     w.add_argument("--interval", type=float, default=1.0, help="seconds between looks at the raw folder (default 1)")
     w.add_argument("--settle", type=float, default=1.0,
                    help="act on a change once the raw folder has stayed unchanged this many seconds (default 1)")
-    w.add_argument("--max-runs", type=int, default=None, help="stop after this many pipeline runs (default: until Ctrl-C)")
+    w.add_argument("--max-runs", type=_integer, default=None, help="stop after this many pipeline runs (default: until Ctrl-C)")
     w.set_defaults(func=cmd_watch)
     for name in ORDER:
         s = sub.add_parser(name, help=_stage_help(name),

@@ -30,7 +30,6 @@ from __future__ import annotations
 
 import dataclasses
 import json
-import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -127,6 +126,28 @@ def _tir(out: str | os.PathLike) -> Path:
     return out if out.suffix.lower() == ".tir" else out.with_name(out.name + ".tir")
 
 
+def _pressures(pressures_bar) -> list[float]:
+    """``pressures_bar`` as floats, each within the range the tyre models are built for
+    (:data:`tyrelab.vehicle.scenario_limits.LIMITS` ``pressure_bar``: no ``INFLPRES = inf``);
+    ValueError naming every bad one at once."""
+    from . import _validate
+    from .vehicle.scenario_limits import LIMITS
+
+    if isinstance(pressures_bar, (str, bytes)) or not hasattr(pressures_bar, "__iter__"):
+        raise ValueError(f"pressures_bar must be a list of pressures, bar, got {_validate.shown(pressures_bar)}")
+    pressures, bad = [], []
+    for i, p in enumerate(pressures_bar):
+        try:
+            pressures.append(_validate.in_range(f"pressures_bar[{i}]", p, *LIMITS["pressure_bar"]))
+        except ValueError as exc:
+            bad.append(str(exc))
+    if not pressures and not bad:
+        bad.append("pressures_bar must hold at least one pressure")
+    if bad:
+        raise ValueError("; ".join(bad))
+    return pressures
+
+
 def _tested(tyre: MeasuredTyre, pressure_bar: float) -> bool:
     low, high = tyre.pressure_range_bar
     return low - 1e-9 <= pressure_bar <= high + 1e-9
@@ -181,14 +202,10 @@ def tyre_export(tables: TyreTables, tyre_id: str, pressures_bar=None, *, source:
     kind = runs["kind"].fillna("measurement") if "kind" in runs else pd.Series("measurement", index=runs.index)
     tested = runs.loc[(runs["tyre_id"].astype(str) == tyre_id) & (kind == "measurement"), "pressure_bar"]
     tested = np.unique(np.round(pd.to_numeric(tested, errors="coerce").to_numpy(dtype=float), 3))
+    pressures = None if pressures_bar is None else _pressures(pressures_bar)  # before any work
     tyre = measured_tyre(tyre_id, tables.tyres, tables.table_iii, tables.damping_by_speed, tested, source=source)
-    if pressures_bar is None:
+    if pressures is None:
         pressures = [round(float(np.mean(tyre.pressure_range_bar)), 3)]
-    else:
-        pressures = [float(p) for p in pressures_bar]
-        bad = [p for p in pressures if not (math.isfinite(p) and p > 0)]
-        if not pressures or bad:
-            raise ValueError(f"pressures_bar must be finite and positive, got {list(pressures_bar)!r}")
     low, high = tyre.pressure_range_bar
     warnings = [f"pressure {p:g} bar is outside the tested range {low:g}-{high:g} bar: K and C there are "
                 "extrapolated from the measured lines" for p in pressures if not _tested(tyre, p)]

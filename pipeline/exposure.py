@@ -33,6 +33,7 @@ import types
 from dataclasses import dataclass
 from pathlib import Path
 
+from ._validate import finite, shown
 from .io import printable
 from .rawformat import RunFileError
 
@@ -294,8 +295,6 @@ def exposure(recording, hours: float = 8.0, *, channel_map: dict | None = None) 
     >>> day.a8_axis, day.verdict, round(day.a8_m_s2, 3), round(day.hours_to_eav, 1)
     ('z', 'above action value', 0.547, 6.7)
     """
-    from .vehicle.daily_exposure import hours_problem
-
     if isinstance(recording, (str, os.PathLike)):
         tasks = [(Path(recording).stem, recording, hours)]
     elif isinstance(recording, (list, tuple)) and recording and all(isinstance(t, (list, tuple)) and len(t) == 3
@@ -304,10 +303,23 @@ def exposure(recording, hours: float = 8.0, *, channel_map: dict | None = None) 
     else:
         raise ValueError("recording must be a path or a list of (name, path, hours) tasks, "
                          f"got {type(recording).__name__}")
-    problems = [f"hours of task {name!r}: {p}" for name, _, h in tasks if (p := hours_problem(h))]
+    problems = [f"hours of task {name!r}: {p}" for name, _, h in tasks if (p := _hours_problem(h))]
     if problems:  # before any file is read
         raise ValueError("; ".join(problems))
     return ExposureResult(assess([Task(str(n), Path(p), float(h)) for n, p, h in tasks], channel_map))
+
+
+def _hours_problem(hours) -> str | None:
+    """:func:`tyrelab.vehicle.daily_exposure.hours_problem` of a number alone: a bool (``True`` is no
+    hour) and an integer too large for a float are refused like every other argument
+    (:func:`tyrelab._validate.finite`), never an ``OverflowError``."""
+    from .vehicle.daily_exposure import hours_problem
+
+    try:
+        hours = finite("hours", hours)
+    except ValueError as exc:
+        return f"{shown(hours)} is not a {'finite ' if 'finite' in str(exc) else ''}number of hours"
+    return hours_problem(hours)
 
 
 class _CallableModule(types.ModuleType):

@@ -32,7 +32,11 @@ from . import __version__, io
 from .rig.campaigns import MANIFEST_COLUMNS, campaign_plan, population_plan, simulate_run
 from .rig.instrument import NO_SCATTER, RigConfig
 
-__all__ = ["write_run", "write_rides", "write_study_recordings", "generate_campaign"]
+__all__ = ["write_run", "write_rides", "write_study_recordings", "generate_campaign", "MAX_SEED"]
+
+#: Largest campaign seed: what an int64 column (``generator.json`` read back by pandas, DuckDB) holds
+#: exactly (a documented choice; numpy's generators take any non-negative integer).
+MAX_SEED = 2**63 - 1
 
 
 def write_run(run: pd.DataFrame, path: Path) -> None:
@@ -104,7 +108,7 @@ def generate_campaign(out: Path, scale: str = "small", seed: int = 1991, scatter
         ``small``: one run of each kind, Table III regressions possible, seconds.
         ``full``: the thesis programme (see :mod:`tyrelab.rig.campaigns`).
     seed : int
-        Campaign seed.
+        Campaign seed, 0 to :data:`MAX_SEED`.
     scatter : bool
         The tyre's run-to-run and day-to-day scatter of thesis §3.6
         (:class:`tyrelab.rig.instrument.RigConfig` ``run_scatter``,
@@ -124,6 +128,11 @@ def generate_campaign(out: Path, scale: str = "small", seed: int = 1991, scatter
         ``runs`` (written), ``measurement_runs``, ``calibration_runs``, ``days``,
         ``seconds``, ``out``, ``scale``, ``seed``.
     """
+    from . import _validate
+
+    _validate.positive_int("seed", seed, minimum=0)  # before anything is written
+    if seed > MAX_SEED:
+        raise ValueError(f"seed must be an integer from 0 to {MAX_SEED}, got {_validate.shown(seed)}")
     t0 = time.perf_counter()
     out = Path(out)
     cfg = RigConfig() if scatter else dataclasses.replace(RigConfig(), **NO_SCATTER)

@@ -21,7 +21,7 @@ from .vehicle.scenario import parse_scenario as _parse_text
 from .vehicle.scenario import scenario_from_dict as _from_dict
 
 __all__ = ["MAX_CRG_BYTES", "MAX_PROFILE_BYTES", "MAX_SCENARIO_BYTES", "ScenarioError", "load_scenario", "parse_scenario", "read_crg", "scenario_from_dict",
-           "read_profile_csv"]
+           "read_profile_csv", "huge_number_problems"]
 
 #: Largest OpenCRG file read, bytes (a text CRG holds about 20 bytes per height: 10 million heights).
 MAX_CRG_BYTES = 200_000_000
@@ -145,7 +145,73 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
     >>> s.surface.kind, s.surface.profile_data is None
     ('iso8608', True)
     """
+    import tomllib
+
+    try:
+        doc = tomllib.loads(text) if isinstance(text, str) else None
+    except (tomllib.TOMLDecodeError, RecursionError):
+        doc = None  # the parser below says what is wrong with the text
+    _refuse_huge(doc, path, base_dir, confine)
     return _parse_text(text, base_dir, path, confine=confine, read_profile=read_profile_csv, read_crg=read_crg)
+
+
+def huge_number_problems(doc, prefix: str = "", depth: int = 0) -> list[str]:
+    """Every integer of a scenario document too large for a float (``mass_kg = 1`` and 400 zeros:
+    TOML keeps it exactly, a model cannot use it), one line each naming its key.
+
+    Examples
+    --------
+    >>> huge_number_problems({"tractor": {"mass_kg": 10**400, "pitch_inertia_kg_m2": 5500}})
+    ['tractor.mass_kg: 1000000000…0000000000 (401 digits) is not a finite number']
+    """
+    if depth > 64:
+        return []
+    if isinstance(doc, dict):
+        items = [(f"{prefix}.{k}" if prefix else str(k), v) for k, v in doc.items()]
+    elif isinstance(doc, (list, tuple)):
+        items = [(f"{prefix}[{i}]", v) for i, v in enumerate(doc)]
+    else:
+        items = []
+    problems = []
+    for key, value in items:
+        if isinstance(value, int) and not isinstance(value, bool):
+            try:
+                float(value)
+            except OverflowError:
+                problems.append(f"{printable(key)}: {_validate.shown(value)} is not a finite number")
+        elif isinstance(value, (dict, list, tuple)):
+            problems += huge_number_problems(value, key, depth + 1)
+    return problems
+
+
+def _refuse_huge(doc, path, base_dir, confine: bool) -> None:
+    """ScenarioError naming every key of ``doc`` that :func:`huge_number_problems` finds, with the
+    document's other problems (those numbers taken as infinite), all at once."""
+    problems = huge_number_problems(doc) if isinstance(doc, dict) else []
+    if not problems:
+        return
+    keys = tuple(p.split(": ", 1)[0] + ":" for p in problems)
+    try:
+        _from_dict(_as_infinite(doc), base_dir, path, confine=confine, read_profile=read_profile_csv, read_crg=read_crg)
+    except ScenarioError as exc:
+        problems += [p for p in exc.problems if not p.startswith(keys)]
+    raise ScenarioError(str(path) if path is not None else "<scenario>", problems)
+
+
+def _as_infinite(doc, depth: int = 0):
+    """``doc`` with every integer too large for a float as infinity (of its sign)."""
+    if depth > 64:
+        return doc
+    if isinstance(doc, dict):
+        return {k: _as_infinite(v, depth + 1) for k, v in doc.items()}
+    if isinstance(doc, (list, tuple)):
+        return [_as_infinite(v, depth + 1) for v in doc]
+    if isinstance(doc, int) and not isinstance(doc, bool):
+        try:
+            float(doc)
+        except OverflowError:
+            return float("inf") if doc > 0 else float("-inf")
+    return doc
 
 
 def scenario_from_dict(doc, base_dir: str | Path = ".", path: str | Path | None = None, *,
@@ -157,6 +223,10 @@ def scenario_from_dict(doc, base_dir: str | Path = ".", path: str | Path | None 
     parse_scenario : the same from TOML text.
     load_scenario : the same from a file.
     """
+    from collections.abc import Mapping
+
+    if isinstance(doc, Mapping):
+        _refuse_huge(dict(doc), path, base_dir, confine)
     return _from_dict(doc, base_dir, path, confine=confine, read_profile=read_profile_csv, read_crg=read_crg)
 
 

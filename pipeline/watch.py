@@ -26,7 +26,7 @@ import time
 from dataclasses import dataclass, field
 from typing import Callable
 
-__all__ = ["WatchOptions", "WatchRun", "watch", "preload"]
+__all__ = ["WatchOptions", "WatchRun", "watch", "preload", "MAX_WAIT_S", "MAX_RUNS"]
 
 log = logging.getLogger("tyrelab")
 
@@ -59,14 +59,33 @@ class WatchOptions:
     max_runs: int | None = None
 
     def __post_init__(self):
-        import math
+        from ._validate import finite, shown
 
-        if not (isinstance(self.interval_s, (int, float)) and math.isfinite(self.interval_s) and self.interval_s > 0):
-            raise ValueError(f"interval_s must be a finite number > 0, got {self.interval_s!r}")
-        if not (isinstance(self.settle_s, (int, float)) and math.isfinite(self.settle_s) and self.settle_s >= 0):
-            raise ValueError(f"settle_s must be a finite number >= 0, got {self.settle_s!r}")
-        if self.max_runs is not None and not (isinstance(self.max_runs, int) and self.max_runs >= 1):
-            raise ValueError(f"max_runs must be a whole number >= 1 or None, got {self.max_runs!r}")
+        def number(v) -> bool:  # a finite real number, not a bool (True is no second), not 10**400
+            try:
+                return isinstance(v, (int, float)) and finite("v", v) is not None
+            except ValueError:
+                return False
+
+        if not (number(self.interval_s) and self.interval_s > 0):
+            raise ValueError(f"interval_s must be a finite number > 0, got {shown(self.interval_s)}")
+        if not (number(self.settle_s) and self.settle_s >= 0):
+            raise ValueError(f"settle_s must be a finite number >= 0, got {shown(self.settle_s)}")
+        for name in ("interval_s", "settle_s"):
+            if getattr(self, name) > MAX_WAIT_S:
+                raise ValueError(f"{name} must be at most {MAX_WAIT_S:g} s (a day), got {getattr(self, name):g}")
+        if self.max_runs is not None and not (isinstance(self.max_runs, int) and not isinstance(self.max_runs, bool)
+                                              and self.max_runs >= 1):
+            raise ValueError(f"max_runs must be a whole number >= 1 or None, got {shown(self.max_runs)}")
+        if self.max_runs is not None and self.max_runs > MAX_RUNS:
+            raise ValueError(f"max_runs must be at most {MAX_RUNS}, got {shown(self.max_runs)}")
+
+
+#: Longest ``interval_s`` or ``settle_s``, s: a day (a documented choice: a rarer look is a cron job's,
+#: and ``time.sleep`` refuses what a C timeout cannot hold).
+MAX_WAIT_S = 86_400.0
+#: Most pipeline runs ``max_runs`` may ask for (a documented choice: a run a second for 30 years).
+MAX_RUNS = 10**9
 
 
 @dataclass

@@ -124,11 +124,14 @@ def _ride_plan(ctx: Context, files: list[tuple[str, str]], cache: ItemCache) -> 
     tables = read_fit_tables(ctx)
     keys, tyres = [], []
     for path, source in files:
-        text = Path(path).read_bytes()
+        try:
+            text = Path(path).read_bytes()
+        except OSError as exc:  # unreadable (its task says why): keyed by the error, re-tried next run
+            text = f"unreadable: {exc}".encode()
         try:
             sc = load_scenario(path)
             fits, profile = scenario_fits(sc, tables), sc.surface.profile_data  # a profile CSV's data, as read
-        except (ScenarioError, ValueError, OSError):
+        except Exception:  # noqa: BLE001 - any failure of one file: its task refuses it (one quarantine line)
             fits, profile = {}, None  # its task refuses the file, reading the same bytes
         keys.append(cache.key("ride", path, source, text, fits, profile))
         tyres.append(FitTyres(fits, str(ctx.parquet)))
@@ -665,7 +668,7 @@ def scenario_task(item: tuple) -> dict:
                       ride.modes(assemble(ride.build_parts(sc, ride.resolve_tyres(sc, tyre_data), 0))))
     except (ScenarioError, ValueError) as exc:
         return {"file": path, "error": str(exc).replace("\n", "; ")}
-    except (ArithmeticError, MemoryError, RecursionError) as exc:  # the model failed: this scenario only
+    except Exception as exc:  # noqa: BLE001 - the model failed: this scenario only (quarantined), the others run
         return {"file": path, "error": f"the ride model failed: {type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"}
     table = ride.results_table(results, sc.name)
     table["file"] = path  # rows are keyed by the scenario file: two files may share a name
