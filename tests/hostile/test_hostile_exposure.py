@@ -57,6 +57,17 @@ def test_a_five_second_recording_gets_no_verdict_a_twenty_second_one_does(tmp_pa
     assert rc == 0 and json.loads(out)["verdict"] == "above action value"
 
 
+def test_the_table_gives_the_vdv_verdict_beside_the_a8_one(tmp_path, capsys):
+    """Issue 47: the JSON's ``vdv_verdict`` was missing from ``--format table``."""
+    recording(tmp_path / "r.csv", seat_z_m_s2=lambda t: 6 * np.sin(2 * np.pi * 4 * t))  # VDV above 21 over 8 h
+    rc, out, err = exposure(capsys, tmp_path / "r.csv", "--format", "json")
+    doc = json.loads(out)
+    rc, out, err = exposure(capsys, tmp_path / "r.csv", "--format", "table")
+    vdv = next(line for line in out.splitlines() if line.strip().startswith("VDV"))
+    assert doc["vdv_verdict"] == "above limit value" and f"({doc['vdv_daily_axis']} axis), above limit value" in vdv
+    assert "action value 9.1, limit value 21 m/s^1.75" in vdv
+
+
 # -- spreadsheet CSV: ';' and decimal commas, as manifests ------------------------------------------
 
 def test_a_spreadsheet_recording_reads_as_the_plain_one(tmp_path, capsys):
