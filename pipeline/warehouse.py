@@ -357,6 +357,28 @@ def connect_read_only(db_path: Path, limits: QueryLimits | None = None) -> duckd
     ``limits.spill_limit_bytes`` (4 GiB without ``limits``), or nowhere when the build folder
     is read-only; ``limits`` also bounds the memory (DuckDB's default, 80 % of the machine's,
     without). The statement timeout is :func:`query_all`'s.
+
+    See Also
+    --------
+    query : one query's result as a DataFrame.
+    iter_query : results streamed in batches (what ``tyrelab sql`` prints).
+
+    Examples
+    --------
+    >>> import tempfile, pandas as pd
+    >>> from tyrelab import io
+    >>> build = Path(tempfile.mkdtemp())
+    >>> _ = io.write_parquet_atomic(pd.DataFrame({"k": [1, 2]}), build / "parquet" / "t.parquet")
+    >>> _ = build_warehouse(build / "warehouse.duckdb", build / "parquet")
+    >>> con = connect_read_only(build)
+    >>> con.execute("SELECT count(*) FROM t").fetchone()[0]
+    2
+    >>> try:
+    ...     con.execute("CREATE TABLE x AS SELECT 1")
+    ... except duckdb.Error as exc:
+    ...     print(type(exc).__name__)
+    InvalidInputException
+    >>> con.close()
     """
     db_path = warehouse_path(db_path)
     if not db_path.is_file():
@@ -619,7 +641,25 @@ def query_all(db_path: Path, sql: str, limits: QueryLimits | None = None) -> lis
 
 def query(db_path: Path, sql: str, limits: QueryLimits | None = None) -> pd.DataFrame:
     """Run a read-only query against the warehouse (the file, or the build folder holding it) and
-    return a DataFrame (of the last statement)."""
+    return a DataFrame (of the last statement).
+
+    See Also
+    --------
+    query_all : every statement's result.
+    error_line : one line, with the closest names, for a query DuckDB refuses.
+
+    Examples
+    --------
+    >>> import tempfile, pandas as pd
+    >>> from tyrelab import io
+    >>> build = Path(tempfile.mkdtemp())
+    >>> _ = io.write_parquet_atomic(pd.DataFrame({"tyre_id": ["T1", "T2"], "k": [300.0, 350.0]}),
+    ...                             build / "parquet" / "tyres.parquet")
+    >>> _ = build_warehouse(build / "warehouse.duckdb", build / "parquet")
+    >>> query(build, "SELECT tyre_id, k FROM tyres WHERE k > 320")
+      tyre_id      k
+    0      T2  350.0
+    """
     return query_all(db_path, sql, limits)[-1]
 
 
