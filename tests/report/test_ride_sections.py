@@ -144,3 +144,17 @@ def test_a_legend_too_long_to_fit_says_how_many_lines_it_leaves_out():
             for i in range(20) for v in (4.0, 8.0)]
     svg = ride_figures.aw_against_speed(pd.DataFrame(rows), 8.0)
     assert "9 more lines (see the table)" in svg and "variant 10" in svg and "variant 11" not in svg
+
+
+def test_a_model_without_fore_aft_motion_is_not_drawn_as_measured_zeros():
+    """Issue 47: the Ride page drew MF698T's 1.4 a_wx (no fore-aft element: 0 throughout) as a line of zeros."""
+    import pandas as pd
+
+    from tyrelab.report import ride_figures
+
+    rows = [{"speed_km_h": v, "a_wz_m_s2": 0.1 * v, "a_wx_m_s2": 0.05 * v if name == "modern" else 0.0, "variant": name}
+            for name in ("modern", "MF698T") for v in (4.0, 8.0)]
+    svg = ride_figures.aw_against_speed(pd.DataFrame(rows), 8.0)
+    assert "not drawn, no motion on this axis in its model" in svg and svg.count("MF698T") >= 2  # legend and note
+    alone = ride_figures.aw_against_speed(pd.DataFrame([r for r in rows if r["variant"] == "MF698T"]), 8.0)
+    assert "zero throughout" in alone
