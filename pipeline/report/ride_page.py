@@ -460,7 +460,14 @@ def render_page(results: list[RideResult], doc: dict | None = None) -> str:
     rows = _rows(doc)
     fmt = number_formats(doc)  # one number format per quantity, as --format table
     columns, shown, legend = _narrow(doc, rows)  # fits a 1400 px window: long variant names numbered
-    return environment().get_template("ride.html.j2").render(
+    # the Tyres and Natural frequencies sections: the variant at the scenario's own values, as the
+    # verdict and the spectra (said), not whichever variant came first
+    nominal = nominal_result(results)
+    blocks = doc.get("sweep") or []
+    n = blocks[results.index(nominal)] if len(blocks) == len(results) > 1 else doc
+    shown_words = (f"the scenario's own values ({variant_label(nominal)})" if nominal.nominal else
+                   f"the first variant ({variant_label(nominal)}: the sweep does not hold the scenario's own values)")
+    return environment().get_template("ride.html.j2").render(n=n, shown_words=shown_words,
         r=doc, description=results[0].scenario.description, columns=columns, rows=shown, legend=legend,
         method_note=method_words(rows),
         figures=figures(results), variants=variants(results), three_d=results[0].scenario.tractor.three_d,
