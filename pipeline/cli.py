@@ -519,6 +519,26 @@ def cmd_export_tyre(args) -> int:
     return EXIT_OK
 
 
+def _key_suggestion(problem: str) -> str:
+    """A scenario problem naming a key that does not exist (``--set``, a TOML key), with the closest
+    scenario keys: ``…; did you mean 'seat.damping_ratio'?``; any other problem as it is."""
+    import re
+
+    from .vehicle.scenario import key_table
+    from .warehouse import did_you_mean
+
+    m = (re.search(r"'([\w.]+)' is not a numeric scenario key", problem)
+         or re.search(r"unknown key '([\w.]+)'", problem))
+    if not m:
+        return problem
+    table = key_table()
+    if "numeric scenario key" in problem:
+        table = table[table["type"].astype(str).str.contains("number|integer")]
+    keys = [f"{sec}.{key}" if sec else key for sec, key in table[["section", "key"]].itertuples(index=False)]
+    close = did_you_mean(m.group(1), keys)
+    return problem + ("; did you mean " + " or ".join(f"'{c}'" for c in close) + "?" if close else "")
+
+
 def cmd_ride(args) -> int:
     from types import SimpleNamespace
 
@@ -530,7 +550,7 @@ def cmd_ride(args) -> int:
         scenario = load_scenario(args.scenario, confine=False)  # the user's own file: any profile path
     except ScenarioError as exc:
         for problem in exc.problems:
-            print(f"tyrelab ride: {printable(exc.path)}: {printable(problem)}", file=sys.stderr)
+            print(f"tyrelab ride: {printable(exc.path)}: {printable(_key_suggestion(problem))}", file=sys.stderr)
         return EXIT_USAGE
     from .executor import map_batches
     from .stages.simulate import WarehouseTyres
@@ -547,10 +567,10 @@ def cmd_ride(args) -> int:
                              max_variants=args.max_variants, max_samples=args.max_samples, method=args.method)
     except ScenarioError as exc:  # a swept value the scenario refuses: every problem, one line each
         for problem in exc.problems:
-            print(f"tyrelab ride: {printable(exc.path)}: {printable(problem)}", file=sys.stderr)
+            print(f"tyrelab ride: {printable(exc.path)}: {printable(_key_suggestion(problem))}", file=sys.stderr)
         return EXIT_USAGE
     except ValueError as exc:
-        print(f"tyrelab ride: {printable(args.scenario)}: {printable(exc)}", file=sys.stderr)
+        print(f"tyrelab ride: {printable(args.scenario)}: {printable(_key_suggestion(str(exc)))}", file=sys.stderr)
         return EXIT_USAGE
     except OSError as exc:  # e.g. --scheduler unreachable
         print(f"tyrelab ride: {os_error_line(exc)}", file=sys.stderr)

@@ -320,3 +320,16 @@ def test_progress_iterate_counts_an_item_when_the_body_is_done_with_it(caplog):
                 continue  # a refused row is counted too
     assert seen == [("a", 0), ("b", 1), ("c", 2)] and p.done == 3
     assert "rides: c1: 3/3 recordings" in caplog.text
+
+
+def test_a_misspelt_scenario_key_gets_did_you_mean(tmp_path, capsys):
+    """Issue 47: ``--set seat.dampingratio=0.2`` said "not a numeric scenario key" and no more."""
+    from tests.scenarios import scenario_text, write
+
+    path = write(tmp_path, scenario_text(speeds="[8]"))
+    assert cli.main(["-q", "ride", str(path), "--set", "tractor.mas_kg=4000,4500"]) == 2
+    assert "did you mean 'tractor.mass_kg'" in capsys.readouterr().err
+    bad = tmp_path / "bad.toml"
+    bad.write_text(path.read_text().replace("[tractor]", "[tractor]\nmas_kg = 1", 1))
+    assert cli.main(["-q", "ride", str(bad)]) == 2
+    assert "did you mean 'tractor.mass_kg'" in capsys.readouterr().err
