@@ -24,15 +24,16 @@ SECTIONS = {
 
 
 def public_functions() -> dict[str, object]:
-    """``module.name`` -> function, for every function in the packages' ``__all__`` (each once)."""
-    found = {}
+    """``package.name`` -> function, for every function in the packages' ``__all__`` (each once, under
+    the first package that exports it: the name a user imports, whichever module defines it)."""
+    found, seen = {}, set()
     for package in PACKAGES:
         module = importlib.import_module(package)
         for name in module.__all__:
             obj = getattr(module, name)
-            if inspect.isfunction(obj) or (callable(obj) and type(obj).__name__ == "module"):
-                key = f"{getattr(obj, '__module__', package)}.{getattr(obj, '__qualname__', name)}"
-                found.setdefault(key, obj)
+            if (inspect.isfunction(obj) or (callable(obj) and type(obj).__name__ == "module")) and id(obj) not in seen:
+                seen.add(id(obj))
+                found[f"{package}.{name}"] = obj
     return found
 
 
