@@ -18,7 +18,7 @@ EXTRAS ?= dev,dask,formats,browser
 # Extra arguments of tools/mutation.py, e.g. MUTATION_ARGS="--sample 40 vehicle/iso2631.py".
 MUTATION_ARGS ?=
 
-.PHONY: all install compile data run test test-steady test-package test-all mutation bench docs clean distclean
+.PHONY: all install compile data run test test-steady test-package test-all mutation bench docs docs-outputs clean distclean
 
 all: run
 
@@ -91,6 +91,13 @@ docs: $(VENV)/.docs-extra compile
 	$(DOCS_ENV) $(BIN)/sphinx-build -W --keep-going -q -b html -d $(BUILD)/docs-doctrees docs/site $(BUILD)/docs
 	$(DOCS_ENV) $(BIN)/sphinx-build -W --keep-going -q -b doctest -d $(BUILD)/docs-doctrees docs/site $(BUILD)/docs-doctest
 	@echo "docs: $(BUILD)/docs/index.html"
+
+# The outputs shown in README.md and docs/*.md, written from their commands (make docs checks them:
+# docs/site/_ext/tyrelab_outputs.py).
+docs-outputs: $(VENV)/.docs-extra compile
+	@test -f $(DOCS_WORK)/raw/demo/manifest.csv || $(BIN)/tyrelab generate --out $(DOCS_WORK)/raw/demo --scale small --seed 1991
+	$(BIN)/tyrelab run -q --raw $(DOCS_WORK)/raw --build $(DOCS_WORK)/build
+	$(DOCS_ENV) $(BIN)/python docs/site/_ext/tyrelab_outputs.py --update --work $(DOCS_WORK)
 
 bench: install
 	$(BIN)/python bench/run_all.py

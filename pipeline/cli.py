@@ -38,7 +38,7 @@ import sys
 from pathlib import Path
 
 from . import __version__
-from .io import MissingExtra, os_error_line, printable  # noqa: F401 - also this module's, for the commands' error lines
+from .io import TEXT_WIDTH, MissingExtra, fit_lines, os_error_line, printable  # noqa: F401 - also this module's, for the commands' error lines
 
 __all__ = ["EXIT_CODES_HELP", "STAGE_HELP", "ALIASES", "cmd_completion", "cmd_generate", "cmd_run", "cmd_watch", "cmd_stage", "cmd_sql", "cmd_analyze_run", "cmd_estimate_stiffness",
     "cmd_natural_frequencies", "cmd_road", "build_parser", "main"]
@@ -208,7 +208,7 @@ def cmd_stage(args) -> int:
 TABLE_SHARE = 0.25
 
 
-def _print_result(fmt: str, names: list, frames, first: bool, table_bytes: int) -> None:
+def _print_result(fmt: str, names: list, frames, first: bool, table_bytes: int, width: int | None = None) -> None:
     """One statement's result on stdout, batch after batch (csv, json) or aligned (table, at most
     ``table_bytes`` of result)."""
     import pandas as pd
@@ -243,7 +243,7 @@ def _print_result(fmt: str, names: list, frames, first: bool, table_bytes: int) 
     if df.empty:  # not pandas' "Empty DataFrame / Columns: [...] / Index: []"
         _out(f"no rows (columns: {', '.join(map(str, df.columns))})\n" if len(df.columns) else "no rows\n")
     else:
-        _out(df.to_string(index=False) + "\n")
+        _out(df.to_string(index=False, line_width=width) + "\n")  # wider than width: blocks of columns
 
 
 class _ResultTooLarge(Exception):
@@ -253,7 +253,7 @@ class _ResultTooLarge(Exception):
 def cmd_sql(args) -> int:
     import duckdb
 
-    from .warehouse import QueryLimits, QueryTimeout, WriteRefused, iter_query, memory_bound
+    from .warehouse import QueryLimits, QueryTimeout, WriteRefused, error_line, iter_query, memory_bound
 
     try:
         limits = QueryLimits(args.memory_limit, args.max_spill, args.timeout or None)
@@ -276,7 +276,8 @@ def cmd_sql(args) -> int:
     try:
         with memory_bound(limits.memory_limit_bytes):
             for i, (names, frames) in enumerate(iter_query(Path(args.build) / "warehouse.duckdb", args.query, limits)):
-                _print_result(args.format, names, frames, i == 0, int(TABLE_SHARE * limits.memory_limit_bytes))
+                _print_result(args.format, names, frames, i == 0, int(TABLE_SHARE * limits.memory_limit_bytes),
+                              None if args.wide else TEXT_WIDTH)
     except (WriteRefused, FileNotFoundError) as exc:
         print(f"tyrelab sql: {exc}", file=sys.stderr)
         return EXIT_USAGE
@@ -295,6 +296,9 @@ def cmd_sql(args) -> int:
         return EXIT_USAGE
     except (BrokenPipeError, OutputError):
         raise
+    except duckdb.Error as exc:  # the user's query errors: a misspelt name gets the closest the warehouse has
+        print(f"tyrelab sql: {type(exc).__name__}: {error_line(Path(args.build), exc)}", file=sys.stderr)
+        return EXIT_USAGE
     except Exception as exc:  # noqa: BLE001 - DuckDB errors are the user's query errors
         print(f"tyrelab sql: {type(exc).__name__}: {str(exc).splitlines()[0]}", file=sys.stderr)
         return EXIT_USAGE
@@ -515,6 +519,26 @@ def cmd_export_tyre(args) -> int:
     return EXIT_OK
 
 
+def _key_suggestion(problem: str) -> str:
+    """A scenario problem naming a key that does not exist (``--set``, a TOML key), with the closest
+    scenario keys: ``…; did you mean 'seat.damping_ratio'?``; any other problem as it is."""
+    import re
+
+    from .vehicle.scenario import key_table
+    from .warehouse import did_you_mean
+
+    m = (re.search(r"'([\w.]+)' is not a numeric scenario key", problem)
+         or re.search(r"unknown key '([\w.]+)'", problem))
+    if not m:
+        return problem
+    table = key_table()
+    if "numeric scenario key" in problem:
+        table = table[table["type"].astype(str).str.contains("number|integer")]
+    keys = [f"{sec}.{key}" if sec else key for sec, key in table[["section", "key"]].itertuples(index=False)]
+    close = did_you_mean(m.group(1), keys)
+    return problem + ("; did you mean " + " or ".join(f"'{c}'" for c in close) + "?" if close else "")
+
+
 def cmd_ride(args) -> int:
     from types import SimpleNamespace
 
@@ -527,7 +551,7 @@ def cmd_ride(args) -> int:
         scenario = load_scenario(args.scenario, confine=False)  # the user's own file: any profile path
     except ScenarioError as exc:
         for problem in exc.problems:
-            print(f"tyrelab ride: {printable(exc.path)}: {printable(problem)}", file=sys.stderr)
+            print(f"tyrelab ride: {printable(exc.path)}: {printable(_key_suggestion(problem))}", file=sys.stderr)
         return EXIT_USAGE
     from .executor import map_batches
 
@@ -540,10 +564,10 @@ def cmd_ride(args) -> int:
                              max_variants=args.max_variants, max_samples=args.max_samples, method=args.method)
     except ScenarioError as exc:  # a swept value the scenario refuses: every problem, one line each
         for problem in exc.problems:
-            print(f"tyrelab ride: {printable(exc.path)}: {printable(problem)}", file=sys.stderr)
+            print(f"tyrelab ride: {printable(exc.path)}: {printable(_key_suggestion(problem))}", file=sys.stderr)
         return EXIT_USAGE
     except ValueError as exc:
-        print(f"tyrelab ride: {printable(args.scenario)}: {printable(exc)}", file=sys.stderr)
+        print(f"tyrelab ride: {printable(args.scenario)}: {printable(_key_suggestion(str(exc)))}", file=sys.stderr)
         return EXIT_USAGE
     except OSError as exc:  # e.g. --scheduler unreachable
         print(f"tyrelab ride: {os_error_line(exc)}", file=sys.stderr)
@@ -556,7 +580,7 @@ def cmd_ride(args) -> int:
             print(f"tyrelab ride: --out {args.out}: {os_error_line(exc)} (nothing written)", file=sys.stderr)
             return EXIT_USAGE
         log.info("ride: wrote %s and %s", paths["json"], paths["html"])
-    _out(dumps(doc) if args.format == "json" else format_table(doc))
+    _out(dumps(doc) if args.format == "json" else format_table(doc, None if args.wide else TEXT_WIDTH))
     return EXIT_OK
 
 
@@ -581,7 +605,8 @@ def cmd_frf(args) -> int:
     if args.format == "json":
         _out(json.dumps(json_safe(r.to_json(args.max_frequency)), indent=2) + "\n")
     else:
-        _out(frf_table(r, args.max_frequency))
+        _out("\n".join(fit_lines(frf_table(r, args.max_frequency).splitlines(), None if args.wide else TEXT_WIDTH))
+             + "\n")
     e = r.estimate
     band = (e.frequency_Hz >= 0.5) & (e.frequency_Hz <= 12.0)
     if band.any() and e.ill_conditioned[band].all():
@@ -655,7 +680,7 @@ def cmd_road(args) -> int:
             g0 = f"G_d(n0) = {c['g0_m3']:.3g} m³" if c["g0_m3"] else "G_d(n0) not resolved (too short or coarse)"
             lines.append(f"  {name}{where}: class {c['class'] or '-'}, {g0}, r.m.s. {c['rms_m'] * 1000:.2f} mm, "
                          f"length {c['length_m']:g} m")
-        sys.stdout.write("\n".join(lines) + "\n")
+        sys.stdout.write("\n".join(fit_lines(lines, None if args.wide else TEXT_WIDTH)) + "\n")
     return EXIT_OK
 
 
@@ -704,7 +729,8 @@ def cmd_exposure(args) -> int:
         print(f"{prog}: {printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)}", file=sys.stderr)
         return EXIT_QUARANTINE
     _warn(prog, doc["warnings"])
-    _out(json.dumps(doc, indent=2, ensure_ascii=False) + "\n" if args.format == "json" else format_table(doc))
+    _out(json.dumps(doc, indent=2, ensure_ascii=False) + "\n" if args.format == "json"
+         else format_table(doc, None if args.wide else TEXT_WIDTH))
     return EXIT_QUARANTINE if str(doc.get("verdict", "")).startswith("no verdict") else EXIT_OK
 
 
@@ -935,6 +961,9 @@ def build_parser() -> argparse.ArgumentParser:
     q.add_argument("--format", choices=["table", "csv", "json"], default="table",
                    help="table: aligned text, 'no rows' for an empty result (default); csv; json: one array per "
                         "statement")
+    q.add_argument("--wide", action="store_true",
+                    help="with --format table: every column on one line per row, however wide (default: lines of at "
+                         "most 100 characters; a wide table splits into blocks of columns)")
     q.add_argument("--memory-limit", type=_size, default="2GiB", metavar="SIZE",
                    help="DuckDB memory limit, e.g. 512MB, 8GiB (default 2GiB); the command's memory is bounded by "
                         "it too: results stream to the output (a --format table result may take a quarter of it)")
@@ -1019,6 +1048,9 @@ def build_parser() -> argparse.ArgumentParser:
     rd.add_argument("--out", default=None, help="folder to write ride.json and ride.html into")
     rd.add_argument("--format", choices=["json", "table"], default="json",
                     help="json: the ride document (default); table: a text summary per speed")
+    rd.add_argument("--wide", action="store_true",
+                    help="with --format table: every column on one line per row, however wide (default: lines of at "
+                         "most 100 characters; a wide table splits into blocks of columns)")
     rd.add_argument("--front-pressure", type=_positive, nargs="+", default=None, metavar="BAR",
                     help="front pressures to sweep, bar (default: the scenario's)")
     rd.add_argument("--rear-pressure", type=_positive, nargs="+", default=None, metavar="BAR",
@@ -1060,6 +1092,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help=".crg: fill missing heights (NaN) as OpenCRG does (default: refuse them)")
     ro.add_argument("--format", choices=["json", "table"], default="table",
                     help="table: one line per track (default); json: the numbers")
+    ro.add_argument("--wide", action="store_true",
+                    help="with --format table: every column on one line per row, however wide (default: lines of at "
+                         "most 100 characters; a wide table splits into blocks of columns)")
     ro.set_defaults(func=cmd_road)
 
     fr = sub.add_parser("frf", help="a vehicle's transfer functions from each wheel input to each output, and its modes "
@@ -1077,6 +1112,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="highest bin printed, Hz (default 20)")
     fr.add_argument("--format", choices=["json", "table"], default="json",
                     help="json: inputs, outputs, modes and every bin (default); table: a text summary")
+    fr.add_argument("--wide", action="store_true",
+                    help="with --format table: every column on one line per row, however wide (default: lines of at "
+                         "most 100 characters)")
     fr.set_defaults(func=cmd_frf)
 
     ex = sub.add_parser("exposure", help="a driver's daily whole-body vibration exposure from seat recordings "
@@ -1092,6 +1130,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="a task of the day: its name, recording and daily hours (repeat for each task)")
     ex.add_argument("--format", choices=["json", "table"], default="json",
                     help="json: the exposure document (default); table: a text summary per task")
+    ex.add_argument("--wide", action="store_true",
+                    help="with --format table: every column on one line per row, however wide (default: lines of at "
+                         "most 100 characters; a wide table splits into blocks of columns)")
     ex.set_defaults(func=cmd_exposure)
 
     c = sub.add_parser("completion", help="print the shell code that completes tyrelab's verbs and options",

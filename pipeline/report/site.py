@@ -127,18 +127,25 @@ class Missing:
         What is missing, as the start of a sentence (``"Our table_xiii"``).
     empty : bool
         The table exists but has no rows (else it was not produced yet).
+    nothing_to_draw : bool
+        A figure whose input table exists (its stage ran) but holds none of what it draws.
 
     Examples
     --------
     >>> str(Missing("simulate", "Table table_xiii"))
     'Table table_xiii not produced yet by stage simulate.'
+    >>> str(Missing("analyse", "Fig. 21 (results)", empty=True, nothing_to_draw=True))
+    'Fig. 21 (results): stage analyse ran, but its table holds nothing this figure draws.'
     """
 
     stage: str
     subject: str
     empty: bool = False
+    nothing_to_draw: bool = False
 
     def __str__(self) -> str:
+        if self.nothing_to_draw:
+            return f"{self.subject}: stage {self.stage} ran, but its table holds nothing this figure draws."
         if self.empty:
             return f"{self.subject} is empty (stage {self.stage})."
         return f"{self.subject} not produced yet by stage {self.stage}."
@@ -339,7 +346,13 @@ def resolve_figure(wh: Warehouse, spec: FigureSpec, figs: FigureSet | None = Non
     """
     svg = figs[("spec", id(spec))] if figs is not None else draw(figure_task(wh, spec))
     label = f"Fig. {spec.number}" if spec.number else "the figure"
-    missing = None if svg else Missing(spec.stage, f"The data of {label} ({spec.inputs[0]}) are")
+    if svg:
+        missing = None
+    elif all(name in wh for name in spec.inputs):  # the stage ran: nothing of what the figure draws
+        missing = Missing(spec.stage, f"{label[:1].upper()}{label[1:]} ({spec.inputs[0]})", empty=True,
+                          nothing_to_draw=True)
+    else:
+        missing = Missing(spec.stage, f"The data of {label} ({spec.inputs[0]}) are")
     return {"kind": "figure", "spec": spec, "svg": svg, "note": str(missing or ""), "missing": missing}
 
 
