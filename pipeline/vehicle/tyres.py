@@ -394,7 +394,7 @@ def static_tyre_loads(asm) -> dict[str, float]:
     >>> from tyrelab.vehicle.tractor import Tractor, tractor_parts
     >>> asm = assemble(tractor_parts(Tractor(1000, 250, 1.0, 1.5, 0.5, 1e5, 1e5, 0.0, 0.0)))
     >>> {k: round(v, 3) for k, v in static_tyre_loads(asm).items()}  # m g b / L / 2, m g a / L / 2
-    {'front': 2943.0, 'rear': 1962.0}
+    {'front': 2941.995, 'rear': 1961.33}
     """
     _validate.instance("asm", asm, Assembly)
     per = asm.static_tyre_loads_N()

@@ -381,7 +381,7 @@ def test_tyre_footprint_is_the_chord_at_the_static_deflection(tmp_path):
     own load, W = m g b / (a + b) / 2 on a front tyre (m g a / (a + b) / 2 on a rear one)."""
     sc = load_scenario(write(tmp_path, scenario_text('kind = "iso8608"\nclass = "A"\nlength_m = 10', "[10]")))
     tyres = ride.resolve_tyres(sc)
-    m, a, b, g = TRACTOR["mass_kg"], TRACTOR["front_distance_m"], TRACTOR["rear_distance_m"], 9.81  # the model's g
+    m, a, b, g = TRACTOR["mass_kg"], TRACTOR["front_distance_m"], TRACTOR["rear_distance_m"], 9.80665  # the model's g (the standard gravity)
     for axle, arm in (("front", b), ("rear", a)):
         t = tyres[axle]
         d = m * g * arm / (a + b) / 2 / (1e3 * t.stiffness_kN_per_m[0])
@@ -438,7 +438,7 @@ def test_one_axle_lifting_off_sends_the_run_to_the_nonlinear_model(tmp_path, wav
     u = ride.axle_inputs(track.profile, "none", (0.3, 0.3), (0.7, 0.9), v, t.wheelbase_m, stop)
     y = ride.simulate_state_space(*ride.state_space(t), np.vstack([w[::2] for w in u]))
     forces = dict(zip(ride.OUTPUTS, y))
-    static = dict(zip(("front", "rear"), t.mass_kg * 9.81 * np.array([t.rear_distance_m, t.front_distance_m])
+    static = dict(zip(("front", "rear"), t.mass_kg * 9.80665 * np.array([t.rear_distance_m, t.front_distance_m])
                       / t.wheelbase_m))
     other = "rear" if lifted == "front" else "front"
     assert forces[f"{lifted}_force_N"].min() < -static[lifted]

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..units import km_h_to_m_s
 from ... import _validate
 from .. import spectral_ride as sr
 from ..scenario import Scenario
@@ -47,7 +48,7 @@ def spectral_variants(scenarios, tyre_data=None, with_spectra: bool = True,
     groups: dict = {}
     for p in preps:
         for i, speed in enumerate(p.speeds_km_h):
-            v = speed / 3.6
+            v = km_h_to_m_s(speed)
             start, stop = record_window(p.track, p.wheelbase_m, v, p.scenario.simulation.duration_s)
             speed_run(p, i, v, start, stop)
             groups.setdefault((p.track_key, v), []).append((p, i))

@@ -11,6 +11,7 @@ import math
 import numpy as np
 import pandas as pd
 
+from ..units import km_h_to_m_s
 from ... import _validate
 from ..model import Assembly, assemble
 from ..modes import frequency_intervals, mode_set
@@ -130,7 +131,7 @@ def _lateral_interval(p: VariantPlan, rows: list) -> dict:
     factors = np.geomspace(0.5, 2.0, LATERAL_INTERVAL_STEPS)
     out = {}
     for i, speed in enumerate(p.speeds_km_h):
-        v = speed / 3.6  # km/h -> m/s
+        v = km_h_to_m_s(speed)  # km/h -> m/s
         base = build_parts(sc, tyres, i)
         variants = [dataclasses.replace(base, **{ax: dataclasses.replace(getattr(base, ax), lateral_stiffness_N_per_m=f * getattr(
             base, ax).lateral_stiffness_N_per_m) for ax in stand_in}) for f in factors]

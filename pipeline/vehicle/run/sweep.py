@@ -10,6 +10,7 @@ import math
 import numpy as np
 import pandas as pd
 
+from ..units import km_h_to_m_s
 from ... import _validate
 from .. import spectral_ride as sr
 from ..model import assemble
@@ -178,7 +179,7 @@ def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, 
     pr_all = np.tile(rears, len(fronts))
     frames = []
     for i, speed in enumerate(speeds):
-        v = speed / 3.6
+        v = km_h_to_m_s(speed)
         asm = assemble(build_parts(base, tyres0, i))
         k = {"front": np.array([from_kilo(front[p].stiffness_kN_per_m[i]) for p in pf_all]),
              "rear": np.array([from_kilo(rear[p].stiffness_kN_per_m[i]) for p in pr_all])}

@@ -14,6 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from ..units import km_h_to_m_s
 from ... import _validate
 from .. import iso2631
 from .. import lti
@@ -61,7 +62,7 @@ def ride_variants(scenarios, tyre_data=None, with_spectra: bool = True, with_sig
     groups: dict = {}
     for j, p in enumerate(preps):
         for i, speed in enumerate(p.speeds_km_h):
-            v = speed / 3.6
+            v = km_h_to_m_s(speed)
             start, stop = record_window(p.track, p.wheelbase_m, v, p.scenario.simulation.duration_s)
             groups.setdefault((p.track_key, v, start, stop), []).append((j, i))
     for (track_key, v, start, stop), members in groups.items():

@@ -23,7 +23,7 @@ from .. import crg
 from .. import enveloping as ev
 from .. import profiles as pr
 from .. import road_class as rc
-from ..carriage import half_step_input
+from ..terrain.wheel_inputs import half_step_input
 from ..model import Assembly
 from ..scenario import Scenario
 

@@ -28,6 +28,7 @@ import math
 
 import numpy as np
 
+from ..units import km_h_to_m_s
 from ... import _validate
 
 __all__ = ["LIMITS", "METHODS", "uses_spectral", "MAX_VARIANTS", "MAX_SPECTRAL_VARIANTS", "MAX_SAMPLES", "MIN_VERDICT_DURATION_S",
@@ -384,7 +385,7 @@ def work_estimate(scenario, n_variants: int, speeds_km_h=None, method: str = "ti
         scenario.tractor.front_distance_m + scenario.tractor.rear_distance_m
     samples = 0.0
     for v in speeds:
-        seconds = span_m / (v / 3.6)
+        seconds = span_m / km_h_to_m_s(v)
         if scenario.simulation.duration_s is not None:
             seconds = min(seconds, scenario.simulation.duration_s + span_m - scenario.surface.length_m)
         samples += seconds * 1000.0

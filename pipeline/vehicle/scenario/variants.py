@@ -43,6 +43,7 @@ import math
 from dataclasses import replace
 from pathlib import Path
 
+from ..units import km_h_to_m_s
 from ... import _validate
 from .limits import override_problems, scenario_problems, uses_spectral, work_problems, MAX_SAMPLES
 from .parse import _build, _check_value, _validate as _check_doc, numeric_key
@@ -290,7 +291,7 @@ def _reason(scenario: Scenario, key: str, values, spectral: bool = False) -> str
             return f"surface.kind is \"{kind}\": a seed draws a generated track (\"iso8608\", \"slatted\")"
         duration = scenario.simulation.duration_s
         if name == "length_m" and spectral and duration is not None and kind == "iso8608" and values and all(
-                duration <= v / (speed / 3.6) for v in values for speed in scenario.exposure.speeds_km_h):
+                duration <= v / km_h_to_m_s(speed) for v in values for speed in scenario.exposure.speeds_km_h):
             return (f"spectral rows of a record of simulation.duration_s = {duration:g} s, shorter than the track at "
                     "every speed: the length changes no number (sweep it with --method time)")
         if name == "dx_m" and kind == "slatted":
@@ -299,7 +300,7 @@ def _reason(scenario: Scenario, key: str, values, spectral: bool = False) -> str
             return "surface.kind is \"crg\": the road file's grid sets the track's points"
         return None
     if key == "simulation.duration_s":
-        longest = max(scenario.surface.length_m / (v / 3.6) for v in scenario.exposure.speeds_km_h)
+        longest = max(scenario.surface.length_m / km_h_to_m_s(v) for v in scenario.exposure.speeds_km_h)
         if values and all(v >= longest for v in values) and scenario.surface.kind != "profile":
             return (f"every value is at least the {longest:.3g} s the slowest speed takes over the track: each "
                     "record is the whole track")
