@@ -319,6 +319,11 @@ def ride_sweep(
     ValueError
         A bad argument or too much work, naming it.
 
+    See Also
+    --------
+    ride : one variant.
+    tyrelab.vehicle.ride.ride_sweep : the same on a parsed scenario, with the tyre data handed in.
+
     Examples
     --------
     >>> import tyrelab
@@ -373,6 +378,22 @@ def road_class(file: str | os.PathLike, *, track_width_m: float = 1.8, lateral_o
         scenario key: ``surface.start_m``, ...).
     OSError
         The file cannot be opened.
+
+    See Also
+    --------
+    tyrelab.vehicle.road_class.road_class : the class of one track's heights.
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd, tempfile, os
+    >>> x = np.arange(0.0, 200.0, 0.05)
+    >>> h = 2e-3 * np.sin(2 * np.pi * x / 3.0)  # one wavelength of 3 m, 2 mm
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     path = os.path.join(d, "road.csv")
+    ...     pd.DataFrame({"distance_m": x, "height_m": h}).to_csv(path, index=False)
+    ...     doc = road_class(path)
+    >>> list(doc["tracks"]), round(doc["tracks"]["track"]["rms_m"] * 1e3, 2)  # 2 mm / sqrt(2)
+    (['track'], 1.41)
     """
     from .scenario_io import read_crg, read_profile_csv
     from .vehicle import road_class as rc

@@ -271,6 +271,19 @@ def scenario_fits(scenario, tables: dict) -> dict:
     ``ours`` rows of :data:`BUILD_FORMULA_TABLES` (``formula = "build"``). A table the build
     lacks stays None (the scenario then fails naming it). Returns name -> DataFrame or None,
     only the tables read: the item key of the scenario and what :class:`FitTyres` is given.
+
+    See Also
+    --------
+    FitTyres : the tyre data these rows make.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> sc = load_scenario(scenarios_dir() / "modern_tractor.toml")  # formula tyres: no fit read
+    >>> scenario_fits(sc, {"formula_fit": pd.DataFrame({"source": ["ours"]})})
+    {}
     """
     _validate.instance("scenario", scenario, Scenario)
     out: dict = {}

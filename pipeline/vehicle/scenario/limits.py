@@ -279,7 +279,20 @@ def profile_problems(x, left, right, path=None) -> list[str]:
     """What the model cannot take of a profile's data (distance, left and right heights, m; read
     from ``path``, named in each line): not finite, gaps or a length out of range, a step (the
     median spacing, the track's grid) finer than ``surface.dx_m``'s bound (it sets the samples
-    the track is resampled to, before any is allocated), heights out of range."""
+    the track is resampled to, before any is allocated), heights out of range.
+
+    See Also
+    --------
+    scenario_problems : the same for a whole scenario (its profile's data among them).
+
+    Examples
+    --------
+    >>> x = np.arange(0.0, 10.0, 0.05)
+    >>> profile_problems(x, np.zeros_like(x), np.zeros_like(x))
+    []
+    >>> profile_problems(x, np.full_like(x, 5.0), np.zeros_like(x), "road.csv")[0][:60]
+    "surface.profile 'road.csv': heights must be finite and withi"
+    """
     where = f"surface.profile {str(path)!r}" if path is not None else "surface.profile"
     problems = []
     if not np.isfinite(x).all():
