@@ -117,8 +117,12 @@ DOCS_WORK := build/docs-work
 DOCS_ENV = PATH="$(abspath $(BIN)):$$PATH" TYRELAB_DOCS_WORK="$(abspath $(DOCS_WORK))" \
 	TYRELAB_DOCS_BUILD="$(abspath $(DOCS_WORK))/build" PYTHONHASHSEED=0
 
-# (Sphinx and its extensions, the extra docs, are in the lock: installed with the rest)
-docs: compile
+# Sphinx and its extensions (the extra docs) are in the lock, installed with the rest: the stamp only
+# says so to the targets that name it.
+$(VENV)/.docs-extra: $(BIN)/tyrelab
+	@touch $@
+
+docs: $(VENV)/.docs-extra compile
 	@test -f $(DOCS_WORK)/raw/demo/manifest.csv || $(BIN)/tyrelab generate --out $(DOCS_WORK)/raw/demo --scale small --seed 1991
 	$(BIN)/tyrelab run -q --raw $(DOCS_WORK)/raw --build $(DOCS_WORK)/build
 	rm -rf $(BUILD)/docs $(BUILD)/docs-doctrees $(BUILD)/docs-doctest
