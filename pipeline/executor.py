@@ -262,6 +262,9 @@ def _leave_interrupts_to_the_parent() -> None:
     import signal
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    from .progress import say_library_warnings_once
+
+    say_library_warnings_once()  # a worker's library warnings in our words, once each, as the parent's
 
 
 def abandon_pool(pool: ProcessPoolExecutor) -> None:

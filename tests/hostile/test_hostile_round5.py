@@ -309,3 +309,189 @@ def test_the_ride_plan_never_stops_on_one_file(tmp_path, monkeypatch, error):
     cache = ItemCache(Ctx(), "simulate", "round5")
     keys, tyres = simulate_stage._ride_plan(Ctx(), [(str(good), "raw"), (str(bad), "raw")], cache)
     assert len(keys) == 2 and len(set(keys)) == 2
+
+
+# ----------------------------------------------------------------------------- quiet and escaped
+def test_sql_batches_with_duplicate_column_names_keep_each_column():
+    import pyarrow as pa
+
+    from tyrelab.warehouse import _pandas
+
+    batch = pa.record_batch([pa.array([1], pa.int32()), pa.array(["x"]), pa.array([None], pa.int64())],
+                            names=["a", "a", "a"])
+    df = _pandas(batch)
+    assert list(df.columns) == ["a", "a", "a"] and df.iloc[0, 0] == 1 and df.iloc[0, 1] == "x"
+    assert df.iloc[0, 2] is pd_na()
+
+
+def pd_na():
+    import pandas as pd
+
+    return pd.NA
+
+
+@pytest.mark.parametrize("fmt", ["table", "csv", "json"])
+def test_sql_answers_duplicate_column_names_in_every_format(capsys, fmt):
+    import pandas as pd
+
+    from tyrelab.cli import _print_result
+
+    frame = pd.DataFrame([[1, "x", 2]], columns=["a", "a", "a_2"])
+    _print_result(fmt, ["a", "a", "a_2"], [frame], True, 10**6)
+    out, err = capsys.readouterr()
+    if fmt == "json":
+        assert json.loads(out) == [{"a": 1, "a_3": "x", "a_2": 2}] and len(lines(err)) == 1 and "a_3" in err
+    else:
+        assert out.count("a") >= 3 and "x" in out and err == ""
+
+
+def test_unique_keys_never_take_a_name_in_use():
+    from tyrelab.cli import unique_keys
+
+    assert unique_keys(["a", "a", "a"]) == ["a", "a_2", "a_3"]
+    assert unique_keys(["a", "a_2", "a", "a"]) == ["a", "a_2", "a_3", "a_4"]
+    assert unique_keys([1, 1]) == ["1", "1_2"]
+
+
+@pytest.mark.parametrize("fmt", ["table", "json"])
+def test_road_escapes_control_characters_of_a_file_name(tmp_path, capsys, fmt):
+    p = tmp_path / "evil\x1b[31m\u2028.csv"
+    p.write_text("distance_m,height_m\n" + "".join(f"{i},{0.001 * (i % 3)}\n" for i in range(40)))
+    assert main(["road", str(p), "--format", fmt]) == 0
+    out, err = capsys.readouterr()
+    assert "\x1b" not in out and "\u2028" not in out and err == ""
+    bad = tmp_path / "bad\x1b[2J.csv"
+    bad.write_text("x\n1\n")
+    assert main(["road", str(bad)]) == 2
+    err = capsys.readouterr().err
+    assert "\x1b" not in err and len(lines(err)) == 1 and "\\x1b" in err
+
+
+@pytest.mark.parametrize("verb", [["estimate-stiffness", "--size", "evil\x1b[2J", "--pressure", "1.2"],
+                                  ["export-tyre", "T\x1b]0;x\x07", "--build", "nowhere\x1b[2J"],
+                                  ["sql", "SELECT '\x1b[2J' FROM nowhere", "--build", "nowhere\x1b"]])
+def test_error_lines_of_every_verb_are_escaped(tmp_path, monkeypatch, capsys, verb):
+    monkeypatch.chdir(tmp_path)
+    assert main(verb) == 2
+    err = capsys.readouterr().err
+    assert "\x1b" not in err and "\x07" not in err and len(lines(err)) == 1
+
+
+def test_an_executor_that_is_not_used_is_said(capsys):
+    rc = main(["ride", str(MODERN), "--speeds", "8", "--executor", "dask", "--scheduler", "tcp://127.0.0.1:1",
+               "--format", "table"])
+    err = capsys.readouterr().err
+    assert rc == 0 and "--executor dask --scheduler tcp://127.0.0.1:1 was not used" in err and len(lines(err)) == 1
+
+
+def test_no_note_when_nothing_was_asked_of_an_executor(capsys):
+    assert main(["ride", str(MODERN), "--speeds", "8", "--format", "table"]) == 0
+    assert "not used" not in capsys.readouterr().err
+
+
+def test_library_warnings_are_said_once_in_our_words(caplog):
+    import logging
+    import warnings
+
+    from tyrelab.progress import in_our_words, say_library_warnings_once
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("always")
+        previous = say_library_warnings_once(logging.getLogger("tyrelab.round5"))
+        try:
+            with caplog.at_level(logging.WARNING, logger="tyrelab.round5"):
+                for _ in range(3):
+                    np.nanmax(np.array([np.nan]))
+                    np.var(np.array([1.0]), ddof=1)
+        finally:
+            warnings.showwarning = previous
+    said = [r.getMessage() for r in caplog.records if r.name == "tyrelab.round5"]
+    assert len(said) == 3  # All-NaN slice, Degrees of freedom <= 0, its invalid divide: each once
+    assert any("all missing (NaN)" in s for s in said) and any("fewer than two values" in s for s in said)
+    assert in_our_words("something else\nentirely").startswith("a library warned: something else entirely")
+
+
+def test_the_command_line_shows_no_library_warning(capsys, monkeypatch):
+    import warnings
+
+    import argcomplete
+
+    def noisy(*args, **kwargs):
+        with warnings.catch_warnings():
+            warnings.simplefilter("always")
+            for _ in range(2):
+                np.nanmean(np.array([np.nan]))
+        return ""
+
+    monkeypatch.setattr(argcomplete, "shellcode", noisy)
+    assert main(["completion", "bash"]) == 0
+    err = capsys.readouterr().err
+    assert "RuntimeWarning" not in err and err.count("mean of no values") == 1
+
+
+# ----------------------------------------------------------------------------- relative paths, a moved build
+def _path_columns(ctx):
+    import pandas as pd
+
+    out = {}
+    for name in ("manifest", "results", "quarantine"):
+        if ctx.table(name).exists() or name == "quarantine":
+            df = ctx.read_table(name)
+            for col in ("campaign", "run_path", "file"):
+                if col in df:
+                    out[f"{name}.{col}"] = [v for v in df[col].dropna().astype(str)]
+    for part in sorted(ctx.parquet.glob("**/*.parquet")):
+        if "runs" in part.parts:
+            continue
+        df = pd.read_parquet(part)
+        for col in df.columns:
+            if df[col].dtype == object:
+                out[f"{part.name}.{col}"] = [v for v in df[col].dropna() if isinstance(v, str)]
+    return out
+
+
+def test_no_table_holds_an_absolute_path_and_a_moved_raw_and_build_reuse_everything(tmp_path, caplog):
+    import logging
+    import shutil
+
+    from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
+    from tyrelab.stages import Context, run_pipeline
+
+    stages = ["ingest", "analyse", "calibrate", "warehouse"]
+    raw = tmp_path / "first" / "raw"
+    write_campaign(raw / "c", [(manifest_row(f"r{i}", f"r{i}.parquet", pressure_bar=1.0 + 0.1 * i),
+                                spring_damper_recording(duration_s=12.0, seed=i)) for i in range(3)]
+                   + [(manifest_row("bad", "bad.parquet"), b"not a parquet file")])
+    ctx = Context(raw=raw, build=tmp_path / "first" / "build", jobs=1)
+    run_pipeline(ctx, stages)
+    columns = _path_columns(ctx)
+    assert columns["manifest.campaign"] == ["c"] * 3
+    assert all(p.startswith("parquet/runs/") for p in columns["manifest.run_path"])
+    assert columns["quarantine.file"] == ["c/bad.parquet"] and columns["quarantine.campaign"] == ["c"]
+    for key, values in columns.items():
+        assert not any(v.startswith(("/", str(tmp_path))) or str(tmp_path) in v for v in values), key
+
+    shutil.move(str(tmp_path / "first"), str(tmp_path / "moved"))
+    moved = Context(raw=tmp_path / "moved" / "raw", build=tmp_path / "moved" / "build", jobs=1,
+                    calibration_correct=True)
+    caplog.clear()
+    with caplog.at_level(logging.INFO, logger="tyrelab"):
+        results = {r.name: r for r in run_pipeline(moved, stages)}
+    assert results["ingest"].skipped or "0 converted, 3 unchanged" in results["ingest"].message
+    assert results["analyse"].skipped or "3 reused, 0 analysed" in results["analyse"].message
+    assert _path_columns(moved) == columns  # the same tables, wherever the folders are
+
+
+def test_context_paths_relative_and_back(tmp_path):
+    from tyrelab.stages import Context
+
+    ctx = Context(raw=tmp_path / "raw", build=tmp_path / "b")
+    assert ctx.raw_relative(tmp_path / "raw" / "c" / "x.csv") == "c/x.csv"
+    assert ctx.raw_relative(tmp_path / "raw") == "."
+    assert ctx.raw_relative(tmp_path / "elsewhere" / "x.csv") == "x.csv"  # never a path of this machine
+    assert ctx.build_relative(tmp_path / "b" / "parquet" / "runs" / "r.parquet") == "parquet/runs/r.parquet"
+    assert ctx.build_file("parquet/runs/r.parquet") == tmp_path / "b" / "parquet" / "runs" / "r.parquet"
+    old = "/gone/build/parquet/runs/tyre_id=T1/r.parquet"  # an older table's absolute path of a moved build
+    assert ctx.build_file(old) == tmp_path / "b" / "parquet" / "runs" / "tyre_id=T1" / "r.parquet"
+    assert ctx.raw_file("c", "r.csv") == tmp_path / "raw" / "c" / "r.csv"
+    assert ctx.raw_file(".", "r.csv") == tmp_path / "raw" / "r.csv"
