@@ -18,7 +18,7 @@ cd "$dir"
 if [ ! -x .venv/bin/tyrelab ]; then
   uv=$(command -v uv || true)
   [ -n "$uv" ] || { python3 -m pip install -q --user uv >/dev/null; uv=$(python3 -m site --user-base)/bin/uv; }
-  "$uv" venv -q --python "$(command -v python3)" .venv
+  "$uv" venv -q --seed --python "$(command -v python3)" .venv
   "$uv" pip install -q --python .venv/bin/python -e ".[${EXTRAS:-dev,dask,formats,browser}]"
   touch .venv/bin/tyrelab
 fi

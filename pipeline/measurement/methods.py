@@ -23,8 +23,9 @@ from scipy import signal
 from .._validate import band, positive, positive_int, same_last_axis
 from .apparent_mass import h1_spectrum
 
-__all__ = ["METHODS", "TABLE_I_SOURCE", "TABLE_I_RECORDINGS_SOURCE", "load_deflection_stiffness", "free_vibration",
-           "half_power", "table_i_runs", "table_i_from_results"]
+__all__ = ["METHODS", "TABLE_I_SOURCE", "TABLE_I_RECORDINGS_SOURCE", "THESIS_DIRECTION", "THESIS_METHOD",
+           "DIRECTIONS", "load_deflection_stiffness", "free_vibration", "half_power", "direction_runs", "thesis_runs",
+           "table_i_runs", "table_i_from_results"]
 
 #: The methods of Table I (§3.4), as named in ``raw/published/table_i.csv``.
 METHODS = ("apparent_mass", "load_deflection", "free_vibration", "forced_vibration")
@@ -33,6 +34,47 @@ TABLE_I_SOURCE = "virtual experiments on the truth-model tyre (tyrelab.rig.exper
 #: ... or the campaign's recordings of several methods on one tyre and condition (issue 34).
 TABLE_I_RECORDINGS_SOURCE = "recordings: {tyre} at {pressure:g} bar, {load:g} kN, stationary ({runs} runs)"
 _G = 9.80665
+#: The direction and method of the runs the thesis' tables and figures rest on (chapters 4-5: the
+#: vertical apparent mass by stepped sine, §3.2); the other directions have tables of their own (issue 44).
+THESIS_DIRECTION, THESIS_METHOD = "vertical", "stepped_sine"
+#: The directions a rig run may have (raw format v1's ``direction``).
+DIRECTIONS = ("vertical", "lateral", "longitudinal")
+
+
+def direction_runs(results: pd.DataFrame, direction: str) -> pd.DataFrame:
+    """The rows of ``results`` of one ``direction`` (a row without one is vertical: a build from
+    before issue 34); every column kept.
+
+    Examples
+    --------
+    >>> r = pd.DataFrame({"run_id": ["a", "b", "c"], "direction": ["vertical", "lateral", None]})
+    >>> list(direction_runs(r, "vertical")["run_id"]), list(direction_runs(r, "lateral")["run_id"])
+    (['a', 'c'], ['b'])
+    """
+    if direction not in DIRECTIONS:
+        raise ValueError(f"direction must be one of {DIRECTIONS}, got {direction!r}")
+    if results is None or "direction" not in results.columns:
+        return results if direction == THESIS_DIRECTION or results is None else results.iloc[0:0]
+    return results.loc[results["direction"].fillna(THESIS_DIRECTION).astype(str) == direction]
+
+
+def thesis_runs(results: pd.DataFrame) -> pd.DataFrame:
+    """The runs the thesis' tables and figures rest on: vertical stepped-sine runs (issue 34; issue 44:
+    a lateral or longitudinal run never enters a vertical table or figure). A build without the
+    ``direction``/``method`` columns is all of them.
+
+    Examples
+    --------
+    >>> r = pd.DataFrame({"direction": ["vertical", "lateral", "vertical"],
+    ...                   "method": ["stepped_sine", "stepped_sine", "random"]})
+    >>> thesis_runs(r).index.tolist()
+    [0]
+    """
+    keep = pd.Series(True, index=results.index)
+    for name, value in (("direction", THESIS_DIRECTION), ("method", THESIS_METHOD)):
+        if name in results:
+            keep &= results[name].fillna(value).astype(str) == value
+    return results.loc[keep] if not keep.all() else results
 
 
 def load_deflection_stiffness(force_N: np.ndarray, deflection_m: np.ndarray, fraction: tuple[float, float] = (0.2, 0.9)) -> float:

@@ -186,9 +186,9 @@ CHAPTERS: tuple[Chapter, ...] = (
             (
                 TableSpec("III", "Carcass stiffness K_c (kN/m) and pressure dependence ΔK_p (kN/m per bar)",
                           "table_iii", "regress", "published_table_iii"),
-                FigureSpec("20", "Variation in stiffness with inflation pressure", "stiffness_vs_pressure",
+                FigureSpec("20", "Variation in vertical stiffness with inflation pressure (vertical stepped-sine runs)", "stiffness_vs_pressure",
                            ("results",), "analyse"),
-                FigureSpec("21", "Variation of stiffness with rolling speed, tyres T1–T5 at 1.38 bar",
+                FigureSpec("21", "Variation of vertical stiffness with rolling speed, tyres T1–T5 at 1.38 bar (vertical runs)",
                            "stiffness_vs_speed", ("results",), "analyse"),
                 TableSpec("IV", "Rate of change of stiffness with amplitude (kN/m per mm)", "table_iv", "regress",
                           "published_table_iv"),
@@ -228,7 +228,7 @@ CHAPTERS: tuple[Chapter, ...] = (
             (
                 TableSpec("VII", "Carcass damping C_c (kN s/m) and pressure dependence (kN s/m per bar)",
                           "table_vii", "regress", "published_table_vii"),
-                FigureSpec("34", "Variation in damping with rolling speed at 1.38 bar, tyres T1–T5",
+                FigureSpec("34", "Variation in vertical damping with rolling speed at 1.38 bar, tyres T1–T5 (vertical runs)",
                            "damping_vs_speed", ("results",), "analyse"),
                 TableSpec("VIII", "Rate of change of damping with amplitude (kN s/m per mm)", "table_viii",
                           "regress", "published_table_viii"),

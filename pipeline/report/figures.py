@@ -26,6 +26,8 @@ import pandas as pd
 from matplotlib.figure import Figure
 from matplotlib.ticker import LogFormatter, NullFormatter, NullLocator
 
+from ..measurement.methods import thesis_runs
+
 __all__ = ["RC", "SIZE", "T_TYRES", "NOMINAL_PRESSURE_BAR", "MARKERS", "to_svg", "compact_svg",
     "stiffness_vs_pressure", "stiffness_vs_speed", "damping_vs_speed", "pressure_dependence_vs_wr",
     "carcass_stiffness_vs_rim", "predicted_vs_measured", "SPOKE_FIGURES", "spoke_curves", "profile_spectra",
@@ -141,7 +143,9 @@ def _has(df: pd.DataFrame | None, *cols: str) -> bool:
 
 
 def _measurements(results: pd.DataFrame) -> pd.DataFrame:
-    r = results
+    """The QC-passed measurement runs the thesis' figures draw: vertical stepped-sine runs only
+    (:func:`tyrelab.measurement.methods.thesis_runs`; issue 44: never a lateral or longitudinal run)."""
+    r = thesis_runs(results)
     if "kind" in r.columns:
         r = r.loc[r["kind"].fillna("measurement") == "measurement"]
     if "qc_ok" in r.columns:
@@ -159,7 +163,8 @@ def _legend(ax) -> None:
 
 
 def stiffness_vs_pressure(results: pd.DataFrame, tyre_id: str | None = "T2") -> str | None:
-    """Fig. 20: stiffness of one tyre against inflation pressure, one line per speed.
+    """Fig. 20: vertical stiffness of one tyre against inflation pressure, one line per speed
+    (vertical stepped-sine runs only).
 
     Parameters
     ----------
@@ -181,7 +186,7 @@ def stiffness_vs_pressure(results: pd.DataFrame, tyre_id: str | None = "T2") -> 
         m = g.groupby("pressure_bar")["stiffness_kN_per_m"].mean()
         ax.plot(m.index, m.values, marker=MARKERS[i % len(MARKERS)], label=f"{speed:g} km/h")
     ax.set(xlabel="inflation pressure (bar)", ylabel="stiffness K (kN/m)",
-           title=f"Fig. 20 — stiffness of tyre {tyre_id} against pressure")
+           title=f"Fig. 20 — vertical stiffness of tyre {tyre_id} against pressure")
     _legend(ax)
     return to_svg(fig)
 
@@ -204,7 +209,8 @@ def _per_tyre_vs_speed(results: pd.DataFrame, column: str, ylabel: str, title: s
 
 
 def stiffness_vs_speed(results: pd.DataFrame) -> str | None:
-    """Fig. 21: stiffness of tyres T1–T5 against rolling speed at 1.38 bar.
+    """Fig. 21: vertical stiffness of tyres T1–T5 against rolling speed at 1.38 bar (vertical
+    stepped-sine runs only).
 
     Parameters
     ----------
@@ -212,11 +218,12 @@ def stiffness_vs_speed(results: pd.DataFrame) -> str | None:
         ``results`` table.
     """
     return _per_tyre_vs_speed(results, "stiffness_kN_per_m", "stiffness K (kN/m)",
-                              "Fig. 21 — stiffness against rolling speed, 1.38 bar")
+                              "Fig. 21 — vertical stiffness against rolling speed, 1.38 bar")
 
 
 def damping_vs_speed(results: pd.DataFrame) -> str | None:
-    """Fig. 34: damping coefficient of tyres T1–T5 against rolling speed at 1.38 bar.
+    """Fig. 34: vertical damping coefficient of tyres T1–T5 against rolling speed at 1.38 bar
+    (vertical stepped-sine runs only).
 
     Parameters
     ----------
@@ -224,7 +231,7 @@ def damping_vs_speed(results: pd.DataFrame) -> str | None:
         ``results`` table.
     """
     return _per_tyre_vs_speed(results, "damping_kN_s_per_m", "damping C (kN s/m)",
-                              "Fig. 34 — damping against rolling speed, 1.38 bar")
+                              "Fig. 34 — vertical damping against rolling speed, 1.38 bar")
 
 
 def _size_points(table_iii: pd.DataFrame, tyres: pd.DataFrame) -> pd.DataFrame:

@@ -283,7 +283,7 @@ def run(ctx: Context) -> StageResult:
         keep = [c for c in CONDITION_COLUMNS if c in results] + [
             c for c in results.columns if c not in CONDITION_COLUMNS and c not in manifest.columns and c not in added
         ] + added + ["input_hash"]
-        results = results.reindex(columns=list(dict.fromkeys(keep)))
+        results = _with_every_column(results.reindex(columns=list(dict.fromkeys(keep))))
         stepped = (results["method"] == "stepped_sine").to_numpy()
         bad = results[stepped & ~results["excitation_frequency_measured_Hz"].notna()]
         refused = results[~stepped & results["qc_reasons"].fillna("").str.contains("|".join(QUARANTINE_REASONS))]
@@ -313,6 +313,24 @@ def run(ctx: Context) -> StageResult:
     res.message = f"{len(reuse)} reused, {len(new)} analysed" + (f", {flagged} flagged by QC" if flagged else "")
     res.seconds = time.perf_counter() - t0
     return res
+
+
+def _with_every_column(results: pd.DataFrame) -> pd.DataFrame:
+    """``results`` with every column of :func:`empty_results` (null where no run of its method gives
+    it: a campaign without a stepped-sine run has no ``excitation_frequency_measured_Hz`` of its own,
+    issue 44), each missing column placed after its predecessor in that template."""
+    template = empty_results()
+    missing = [c for c in template.columns if c not in results.columns]
+    if not missing:
+        return results
+    for c in missing:
+        results[c] = pd.Series(dtype=template[c].dtype, index=results.index)
+    order = [c for c in results.columns if c not in missing]
+    for c in missing:
+        before = list(template.columns[: list(template.columns).index(c)])
+        anchor = next((b for b in reversed(before) if b in order), None)
+        order.insert(order.index(anchor) + 1 if anchor else 0, c)
+    return results[order]
 
 
 def _frf_table(ctx: Context, reuse: pd.DataFrame, other: pd.DataFrame, outs: list) -> pd.DataFrame:

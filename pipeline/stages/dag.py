@@ -129,6 +129,8 @@ REGRESS_TABLES = (
     *(f"{d}_{q}" for d in ("lateral", "longitudinal")
       for q in ("stiffness_pressure_by_speed", "damping_pressure_by_speed", "factor_regressions")),
     "series_damping_speed",
+    # issue 44: the runs of each direction apart (:func:`tyrelab.stages.regress.direction_tables`)
+    "results_vertical", "results_lateral", "results_longitudinal",
 )
 #: The ride tables simulate writes, per scenario file (:func:`tyrelab.stages.simulate.scenario_task`): one
 #: row per scenario; per scenario × speed × variant; the seat PSD and the transmissibility per axis of the

@@ -29,6 +29,9 @@ table                          contents
 ``spoke_force``                Fig. 43 data; ``spoke_speed`` Figs 44–45; ``spoke_frequency``
                                Fig. 46; ``spoke_amplitude`` Fig. 47; ``spoke_deflection`` Fig. 48
 ``spoke_fit`` / ``spoke_fit_points``  Coulomb and viscous coefficients per tyre from our damping
+``results_vertical``           the ``results`` rows of vertical runs (every method; the thesis' direction)
+``results_lateral`` /          the ``results`` rows of lateral / longitudinal runs, which no table or
+``results_longitudinal``       figure of the thesis reads (issue 44)
 =============================  =============================================================
 
 Every tyre with measurement runs has rows (null estimates and a ``reason``
@@ -53,6 +56,7 @@ import numpy as np
 import pandas as pd
 
 from .. import published
+from ..measurement.methods import DIRECTIONS as ALL_DIRECTIONS, direction_runs, thesis_runs
 from ..tyre import conditions as cond
 from ..tyre import damping_fit as dfit
 from ..tyre import formula_accuracy as fa
@@ -65,7 +69,7 @@ from .base import Context, Progress, StageResult
 from .state import ItemCache
 
 __all__ = ["FIT_INPUT_COLUMNS", "PUBLISHED", "FACTORS", "read_published", "read_tyres", "tyre_fits", "tyre_fits_each",
-           "FIT_PASSES", "ACROSS_TYRE_STEPS", "all_tyre_fits", "formula_fits", "damping_fits", "compute", "thesis_pool", "DIRECTIONS",
+           "FIT_PASSES", "ACROSS_TYRE_STEPS", "all_tyre_fits", "formula_fits", "damping_fits", "compute", "thesis_pool", "direction_tables", "DIRECTIONS",
            "DIRECTIONAL_TABLES", "direction_pool", "directional_fits", "run"]
 
 #: The ``results`` columns the per-tyre fits read (:mod:`tyrelab.tyre.conditions` and the
@@ -415,14 +419,18 @@ def directional_fits(results: pd.DataFrame) -> dict[str, pd.DataFrame]:
     return out
 
 
+def direction_tables(results: pd.DataFrame) -> dict[str, pd.DataFrame]:
+    """``results_<direction>``: the ``results`` rows of each direction, every column (issue 44: the
+    vertical runs — the thesis' direction — apart from the lateral and longitudinal ones, so a query
+    of one direction never averages in another); an empty build gives the tables with no rows."""
+    return {f"results_{d}": direction_runs(results, d).reset_index(drop=True) for d in ALL_DIRECTIONS}
+
+
 def thesis_pool(results: pd.DataFrame) -> pd.DataFrame:
-    """The runs the thesis' tables rest on: vertical stepped-sine runs (issue 34: runs of the other
-    methods and directions have tables of their own; a build without the columns is all of them)."""
-    keep = pd.Series(True, index=results.index)
-    for name, value in (("direction", "vertical"), ("method", "stepped_sine")):
-        if name in results:
-            keep &= results[name].fillna(value).astype(str) == value
-    return results.loc[keep] if not keep.all() else results
+    """The runs the thesis' tables rest on: vertical stepped-sine runs
+    (:func:`tyrelab.measurement.methods.thesis_runs`; runs of the other methods and directions have
+    tables of their own; a build without the columns is all of them)."""
+    return thesis_runs(results)
 
 
 def run(ctx: Context) -> StageResult:
@@ -432,7 +440,7 @@ def run(ctx: Context) -> StageResult:
     results = ctx.read_table("results") if ctx.has_table("results") else pd.DataFrame()
     if not results.empty and "tyre_id" in results:
         results["tyre_id"] = results["tyre_id"].astype(str)
-    directional = directional_fits(results)
+    directional = {**directional_fits(results), **direction_tables(results)}
     results = thesis_pool(results)
     cache = ItemCache(ctx, "regress")
     progress = Progress("regress", len(reg.measured_tyres(results)) + ACROSS_TYRE_STEPS + 1, logger=ctx.log, unit="steps")

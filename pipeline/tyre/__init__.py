@@ -31,7 +31,7 @@ is imported on first use (:mod:`tyrelab._lazy`). One tyre run's K and C is
 
    lateral           -- a tyre's lateral stiffness where none is measured (a stand-in from its vertical one).
    rolling           -- a rolling tyre's series damper c2 = a / v and its stand-in (§2.5).
-   directional       -- a tyre's lateral and longitudinal coefficients: build, catalogue.
+   directional       -- a tyre's lateral and longitudinal coefficients: scenario, build, catalogue, stand-in.
 
 .. rubric:: Export
 

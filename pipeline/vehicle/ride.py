@@ -40,7 +40,6 @@ SI inside; km/h, kN/m and bar at the edges, as in the key names.
 from __future__ import annotations
 
 import dataclasses
-import functools
 import itertools
 import math
 from dataclasses import dataclass, field
@@ -51,12 +50,7 @@ import pandas as pd
 from scipy import signal
 
 from .. import _validate
-from .. import published
 from .._validate import positive
-from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
-from ..tyre.speed_dependence import at_speeds
-from ..tyre.lateral import estimate_lateral_stiffness
-from ..tyre.stiffness import estimate_stiffness
 from . import crg
 from . import road_class as rc
 from . import enveloping as ev
@@ -65,12 +59,13 @@ from . import spectral_ride
 from . import lti
 from . import metrics as mt
 from . import profiles as pr
-from .carriage import GRAVITY_M_S2
 from .scenario import Scenario, ScenarioError, with_overrides, with_values
 from .carriage import half_step_input
 from .model import Assembly, Parts, SeatPoint, SeatSuspension, assemble
 from .tractor import Tractor, simulate, tractor_parts
 from .units import KILO, from_kilo, to_kilo
+from .tyres import AxleTyres, ShippedTyres, _resolve, build_parts, build_tractor, per_speed, resolve_tyres  # noqa: F401 (their old home)
+from .tyres import _damping_fit, _formula_stiffness, _lateral_tyre, _model_damping, _thesis_stiffness_model  # noqa: F401
 from .scenario_limits import MIN_VERDICT_DURATION_S
 from .daily_exposure import governing_axis
 from .modes import LATERAL_ROLL_SHARE, MODE_NAMES, ModeSet, follow_names, frequency_intervals, mode_set  # noqa: F401 (names: their old home)
@@ -127,268 +122,6 @@ VERDICTS = ("below action value", "above action value", "above limit value")
 #: Frequency range of the seat PSD and transmissibility figures, Hz.
 FIGURE_BAND_HZ = (0.2, 20.0)
 
-
-# --------------------------------------------------------------------------- tyres
-@dataclass(frozen=True)
-class AxleTyres:
-    """Resolved characteristics of one tyre of an axle, per scenario speed.
-
-    Attributes
-    ----------
-    size : str
-    pressure_bar : float
-    stiffness_kN_per_m, damping_kN_s_per_m : ndarray
-        Per tyre, one value per speed.
-    stiffness_source, damping_source : str
-        Where the numbers came from (override, measured tyre, formula, thesis table).
-    radius_m : float
-        Rolling radius used by the rigid tread band, m.
-    footprint_m : ndarray
-        Contact length used by the enveloping filter, one per speed, m.
-    warnings : list of str
-        The formula's out-of-range warnings and similar notes.
-    stiffness_u_kN_per_m : float
-        Standard uncertainty of the per-tyre stiffness, kN/m: the formula's (its
-        prediction interval on the thesis' data, issue 14); 0 for an override or a
-        measured tyre (not propagated).
-    """
-
-    size: str
-    pressure_bar: float
-    stiffness_kN_per_m: np.ndarray
-    damping_kN_s_per_m: np.ndarray
-    stiffness_source: str
-    damping_source: str
-    radius_m: float
-    footprint_m: np.ndarray
-    warnings: tuple[str, ...] = ()
-    stiffness_u_kN_per_m: float = 0.0
-    #: Lateral element of one tyre per speed (3-D with lateral_model; issue 33), kN/m and kN s/m,
-    #: where they came from, and the stiffness' 95 % interval per speed when it is the stand-in.
-    lateral_stiffness_kN_per_m: np.ndarray | None = None
-    lateral_damping_kN_s_per_m: np.ndarray | None = None
-    lateral_source: str = ""
-    lateral_ci95_kN_per_m: tuple | None = None
-
-
-def per_speed(values, list_speeds_km_h, speeds_km_h) -> np.ndarray:
-    """A scenario value at each speed: a scalar everywhere, or a per-speed list interpolated.
-
-    Parameters
-    ----------
-    values : float or sequence
-        One value, or one per entry of ``list_speeds_km_h``.
-    list_speeds_km_h, speeds_km_h : sequence of float
-        The speeds the list refers to, and the speeds wanted (linear
-        interpolation, held constant outside).
-
-    Examples
-    --------
-    >>> per_speed([1.0, 2.0], [10, 20], [5, 15, 25]).tolist()
-    [1.0, 1.5, 2.0]
-    """
-    v = np.atleast_1d(np.asarray(values, float))
-    speeds = np.asarray(speeds_km_h, float)
-    if v.size == 1:
-        return np.full(speeds.shape, float(v[0]))
-    ls = np.asarray(list_speeds_km_h, float)
-    if ls.size != v.size:
-        raise ValueError(f"values: {v.size} values for {ls.size} speeds")
-    order = np.argsort(ls)
-    return np.interp(speeds, ls[order], v[order])
-
-
-class ShippedTyres:
-    """Where :func:`resolve_tyres` finds tyre data without a build: the thesis' stiffness formula
-    (published Tables II, III, VI); a measured tyre or ``formula = "build"`` is refused. A caller
-    with a warehouse passes an object with the same two methods
-    (:class:`tyrelab.stages.simulate.WarehouseTyres`): this package reads no warehouse."""
-
-    def measured(self, table: str, tyre_id: str, pressure_bar: float) -> tuple[np.ndarray, np.ndarray]:
-        """(speeds km/h, value at ``pressure_bar``) of a measured tyre's per-speed pressure fits."""
-        raise ValueError(f"measured_tyre_id {tyre_id!r} needs --build (a warehouse with {table})")
-
-    def stiffness_model(self, formula: str):
-        """The :class:`~tyrelab.tyre.stiffness.StiffnessModel` of ``[tyres.*] formula``."""
-        if formula == "build":
-            raise ValueError('formula = "build" needs --build (a warehouse with table formula_fit)')
-        return _thesis_stiffness_model()
-
-    def damping_model(self, formula: str):
-        """The :class:`~tyrelab.tyre.damping_fit.DampingFit` for an unmeasured tyre of ``[tyres.*] formula``:
-        the Table VII model (``"thesis"``); ``"build"`` needs a warehouse."""
-        if formula == "build":
-            raise ValueError('formula = "build" needs --build (a warehouse with table damping_fit)')
-        return _damping_fit()
-
-
-@functools.lru_cache(maxsize=1)
-def _thesis_stiffness_model():
-    """The shipped thesis stiffness model (built once per process: a sweep asks for it per variant)."""
-    return published.thesis_stiffness_model()
-
-
-def _formula_stiffness(spec, tyre_data=None) -> tuple[float, str, list[str], float]:
-    """Per-tyre formula stiffness (kN/m), its rule, the formula's range warnings and its standard uncertainty."""
-    model = (tyre_data or ShippedTyres()).stiffness_model(getattr(spec, "formula", "thesis"))
-    est = estimate_stiffness(spec.size, spec.pressure_bar, spec.age_years, undriven_front=not spec.traction,
-                             water_ballast=spec.water_ballast, model=model)
-    rule = f"formula {est.rule}" + (" x1.25 water ballast" if spec.water_ballast else "")
-    return est.stiffness_kN_per_m, rule, list(est.warnings), est.stiffness_u_kN_per_m or 0.0
-
-
-def _model_damping(spec, speeds_km_h, tyre_data: ShippedTyres) -> tuple[np.ndarray, str, list[str]]:
-    """Damping of an unmeasured tyre per speed from the damping model of ``[tyres.*] formula``
-    (:mod:`tyrelab.tyre.damping_fit`: the Table VII lines', or the build's own for ``"build"``),
-    its source text and warnings (the interval at the first speed, where the model extrapolates)."""
-    fit = tyre_data.damping_model(getattr(spec, "formula", "thesis"))
-    published_model = fit.source == "published"
-    which = "Table VII model" if published_model else "build's damping model (its measured tyres)"
-    preds = [fit.predict(spec.pressure_bar, float(v), spec.age_years, size=parse_tyre_size(spec.size).designation)
-             for v in np.asarray(speeds_km_h, float)]
-    c = np.array([p.damping_kN_s_per_m for p in preds])
-    b = fit.coefficients
-    src = (f"{which} C = {b[0]:.3g} {b[1]:+.3g} A {b[2]:+.3g} v {b[3]:+.3g} P (kN s/m; {fit.n_tyres} "
-           f"traction tyres, cluster-robust by tyre)")
-    lo, hi = preds[0].interval_kN_s_per_m
-    warnings = [f"damping not given: the {'Table VII damping model' if published_model else which} gives "
-                f"{c[0]:.2f} kN s/m at "
-                f"{float(np.asarray(speeds_km_h, float)[0]):g} km/h (95 % prediction interval {max(lo, 0.0):.2f} to "
-                f"{hi:.2f}; a rough stand-in, typical 0.8-3 kN s/m, §5.6)"]
-    v = np.asarray(speeds_km_h, float)
-    held = [(float(a), p.speed_used_km_h) for a, p in zip(v, preds) if p.speed_used_km_h != float(a)]
-    if held:
-        lo_v, hi_v = fit.ranges["speed_km_h"]
-        warnings.append(f"speeds {', '.join(f'{a:g}' for a, _ in held)} km/h are outside the damping model's "
-                        f"{lo_v:g}-{hi_v:g} km/h: evaluated at the nearest of those")
-    warnings += sorted({w for p in preds for w in p.warnings if not w.startswith("speed ")})
-    return c, src, warnings
-
-
-@functools.lru_cache(maxsize=1)
-def _damping_fit():
-    """The Table VII damping model fitted to the shipped tables (once per process: a sweep asks per variant)."""
-    from ..tyre import damping_fit
-
-    return damping_fit.fit_damping(damping_fit.damping_points(published.read_published("table_vii"),
-                                                             published.read_published("table_ii")))
-
-
-def resolve_tyres(scenario: Scenario, tyre_data=None, memo: dict | None = None) -> dict[str, AxleTyres]:
-    """Stiffness, damping, radius and footprint of the front and rear tyres per speed.
-
-    Order of precedence per quantity: the scenario's override, the measured tyre
-    (``measured_tyre_id``, from ``tyre_data.measured``; speeds interpolated, held
-    outside the measured range; a rolling tyre takes the rolling values only,
-    :func:`~tyrelab.tyre.speed_dependence.at_speeds`), the fitted formula (stiffness,
-    ``tyre_data.stiffness_model``: ``formula`` = thesis or build) or the Table VII damping
-    model (damping, with its prediction interval in the warnings). ``tyre_data`` default
-    :class:`ShippedTyres` (no warehouse). ``memo``: a dict that keeps each axle's result by its
-    tyre, speeds, static load and ``tyre_data`` (:class:`RideCache`: the variants of a sweep share
-    most axles).
-
-    Raises
-    ------
-    ValueError
-        When a measured tyre cannot be found.
-    """
-    _validate.instance("scenario", scenario, Scenario)
-    source = id(tyre_data) if tyre_data is not None else None
-    tyre_data = tyre_data or ShippedTyres()
-    speeds = np.asarray(scenario.exposure.speeds_km_h, float)
-    lists = scenario.exposure.list_speeds_km_h
-    t = scenario.tractor
-    load_n = {"front": t.mass_kg * GRAVITY_M_S2 * t.rear_distance_m / t.wheelbase_m / 2,
-              "rear": t.mass_kg * GRAVITY_M_S2 * t.front_distance_m / t.wheelbase_m / 2}
-    out = {}
-    for axle, spec in (("front", scenario.front), ("rear", scenario.rear)):
-        key = (axle, spec, tuple(speeds), tuple(lists), load_n[axle], source)
-        if memo is not None and key in memo:
-            out[axle] = memo[key]
-            continue
-        warnings: list[str] = []
-        k_u = 0.0
-        if spec.stiffness_kN_per_m is not None:
-            k, k_src = per_speed(spec.stiffness_kN_per_m, lists, speeds), "override (scenario)"
-        elif spec.measured_tyre_id:
-            sp, val = tyre_data.measured("stiffness_pressure_by_speed", spec.measured_tyre_id, spec.pressure_bar)
-            k = at_speeds(sp, val, speeds)  # rolling values for a rolling tyre (§4.5.1)
-            k_src = f"measured tyre {spec.measured_tyre_id}: K = Kc + dKp P per speed (stiffness_pressure_by_speed)"
-        else:
-            k0, k_src, warnings, k_u = _formula_stiffness(spec, tyre_data)
-            k = np.full(speeds.shape, k0)
-        if spec.damping_kN_s_per_m is not None:
-            c, c_src = per_speed(spec.damping_kN_s_per_m, lists, speeds), "override (scenario)"
-        elif spec.measured_tyre_id:
-            sp, val = tyre_data.measured("damping_pressure_by_speed", spec.measured_tyre_id, spec.pressure_bar)
-            c = at_speeds(sp, val, speeds)
-            c_src = f"measured tyre {spec.measured_tyre_id}: C = Cc + dC P per speed (damping_pressure_by_speed)"
-        else:
-            c, c_src, c_warnings = _model_damping(spec, speeds, tyre_data)
-            warnings += c_warnings
-        if np.any(k <= 0):
-            raise ValueError(f"tyres.{axle}: stiffness {k.min():.1f} kN/m is not positive")
-        size = parse_tyre_size(spec.size)
-        radius = spec.radius_m or rolling_circumference_m(size) / (2 * math.pi)
-        if spec.footprint_m is not None:
-            fp = np.full(speeds.shape, float(spec.footprint_m))
-        else:
-            fp = np.array([ev.contact_length(radius, load_n[axle] / from_kilo(kk)) for kk in k])
-        lateral = {}
-        if scenario.tractor.three_d and scenario.tractor.lateral_model != "none":
-            lateral = _lateral_tyre(spec, k, np.maximum(c, 0.0))
-        out[axle] = AxleTyres(spec.size, spec.pressure_bar, k, np.maximum(c, 0.0), k_src, c_src, float(radius), fp,
-                              tuple(warnings), float(k_u), **lateral)
-        if memo is not None:
-            memo[key] = out[axle]
-    return out
-
-
-def _lateral_tyre(spec, k: np.ndarray, c: np.ndarray) -> dict:
-    """One tyre's lateral element per speed: the scenario's, else the stand-in from its vertical
-    stiffness (:mod:`tyrelab.tyre.lateral`) and its vertical damping."""
-    if spec.lateral_stiffness_kN_per_m is not None:
-        ky, src, ci = np.full(k.shape, float(spec.lateral_stiffness_kN_per_m)), "override (scenario)", None
-    else:
-        est = [estimate_lateral_stiffness(float(x)) for x in k]
-        ky = np.array([e["lateral_stiffness_kN_per_m"] for e in est])
-        src, ci = est[0]["source"], (np.array([e["ci95_kN_per_m"][0] for e in est]),
-                                     np.array([e["ci95_kN_per_m"][1] for e in est]))
-    if spec.lateral_damping_kN_s_per_m is not None:
-        cy = np.full(k.shape, float(spec.lateral_damping_kN_s_per_m))
-        src += "; damping: override (scenario)"
-    else:
-        cy = np.where(c > 0, c, 1e-3)  # a Maxwell element needs a damper: 1 N s/m at least
-        src += "; damping: the tyre's vertical damping (stand-in)"
-    return {"lateral_stiffness_kN_per_m": ky, "lateral_damping_kN_s_per_m": cy, "lateral_source": src,
-            "lateral_ci95_kN_per_m": ci}
-
-
-def build_tractor(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Tractor:
-    """The :class:`~tyrelab.vehicle.tractor.Tractor` at speed index ``i`` (axle = two tyres, SI)."""
-    _validate.instance("scenario", scenario, Scenario)
-    _validate.positive_int("i", i, minimum=0)
-    return Tractor.of_parts(build_parts(scenario, tyres, i))
-
-
-def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Parts:
-    """The tractor's :class:`~tyrelab.vehicle.model.Parts` at speed index ``i`` (per tyre, SI).
-
-    The looked-up tyre numbers at that speed in SI, then the scenario's own parts
-    (:meth:`tyrelab.vehicle.scenario.Scenario.parts`, where its kN values become SI). Without
-    ``tractor.roll_inertia_kg_m2`` the parts are those of the pitch-plane
-    :class:`~tyrelab.vehicle.tractor.Tractor` of :func:`build_tractor`.
-    """
-    _validate.instance("scenario", scenario, Scenario)
-    _validate.positive_int("i", i, minimum=0)
-    si = {}
-    for axle, ty in tyres.items():  # the looked-up tyre numbers (kN) at this speed, in SI
-        si[axle] = {"stiffness_N_per_m": from_kilo(float(ty.stiffness_kN_per_m[i])),
-                    "damping_N_s_per_m": from_kilo(float(ty.damping_kN_s_per_m[i])), "radius_m": ty.radius_m}
-        if ty.lateral_stiffness_kN_per_m is not None:
-            si[axle].update(lateral_stiffness_N_per_m=from_kilo(float(ty.lateral_stiffness_kN_per_m[i])),
-                            lateral_damping_N_s_per_m=from_kilo(float(ty.lateral_damping_kN_s_per_m[i])))
-    return scenario.parts(si)
 
 # --------------------------------------------------------------------------- linear model
 def state_names(tractor: Tractor) -> list[str]:
@@ -1012,7 +745,7 @@ def ride_variants(scenarios, tyre_data=None, with_spectra: bool = True, with_sig
 
 def _prepare(scenario: Scenario, tyre_data, cache: RideCache) -> dict:
     """Per variant: tyres, track, seat filter, outputs; the runs are filled in by :func:`_linear_run`."""
-    tyres = resolve_tyres(scenario, tyre_data, cache.tyres)
+    tyres, asms = _resolve(scenario, tyre_data, cache.tyres)
     track_key, track = cache.track(scenario)
     axes = seat_axes(scenario)  # axis -> output name
     seat = scenario.seat.part().suspension  # the seat part's filter (no feedback on the tractor)
@@ -1020,7 +753,7 @@ def _prepare(scenario: Scenario, tyre_data, cache: RideCache) -> dict:
             "wb": scenario.tractor.wheelbase_m, "speeds": scenario.exposure.speeds_km_h, "axes": axes,
             "seat_sys": cache.seat_system(seat) if seat is not None else None,
             "seat_ss": seat.linear().abcd if seat is not None else None,
-            "radii": (tyres["front"].radius_m, tyres["rear"].radius_m), "runs": {}}
+            "radii": (tyres["front"].radius_m, tyres["rear"].radius_m), "runs": {}, "asms": asms}
 
 
 def _wheel_inputs(p: dict, asm, fp, v: float, n_steps: int, track_key, inputs: dict, cache: RideCache):
@@ -1052,7 +785,7 @@ def _linear_model(p: dict, i: int, v: float, start: int, stop: int) -> None:
     """Speed ``i`` of variant ``p``: its assembly and linear model (seat outputs, then the tyre
     forces), in ``p["runs"][i]``."""
     sc, tyres = p["sc"], p["tyres"]
-    asm = assemble(build_parts(sc, tyres, i))
+    asm = p["asms"][i] if p["asms"][i] is not None else assemble(build_parts(sc, tyres, i))  # the footprints' assembly
     fp = (float(tyres["front"].footprint_m[i]), float(tyres["rear"].footprint_m[i]))
     lm = asm.linear(tuple(p["axes"].values()) + tuple(f"{t}_force_N" for t in asm.tyres))
     p["runs"][i] = {"asm": asm, "v": v, "start": start, "stop": stop, "fp": fp, "lm": lm, "method": "linear"}

@@ -87,3 +87,27 @@ def test_old_manifests_give_the_old_numbers_to_the_bit_beside_new_methods(tmp_pa
     assert any("run fv_roll (free vibration, 5 km/h)" in m and "thesis §3.4" in m for m in caplog.messages)
     frf = pd.read_parquet(tmp_path / "b_mixed/parquet/frf.parquet")
     assert set(frf["run_id"]) == {"rnd", "lat", "swp"} and frf["coherence"].between(0, 1).all()
+
+
+def test_a_campaign_without_a_stepped_sine_run_goes_through_every_stage(tmp_path):
+    """Issue 44: broadband, free-vibration and load-deflection runs only (no stepped sine) once
+    crashed analyse (KeyError 'excitation_frequency_measured_Hz'); now every stage runs."""
+    base = dict(excitation_frequency_Hz="")
+    runs = [
+        (manifest_row("rnd", "rnd.parquet", method="random", band_low_Hz=1.0, band_high_Hz=8.0, speed_km_h=0.0, **base),
+         broadband_recording(420e3, 2.6e3, seed=1)),
+        (manifest_row("lat", "lat.parquet", method="random", direction="lateral", band_low_Hz=1.0, band_high_Hz=8.0,
+                      speed_km_h=5.0, **base), broadband_recording(200e3, 1.5e3, 9e3, seed=2)),
+        (manifest_row("fv", "fv.parquet", method="free_vibration", speed_km_h=0.0, **base),
+         free_decay_recording(400e3, 4.5e3, seed=4)),
+        (manifest_row("ld", "ld.parquet", method="load_deflection", speed_km_h=0.0, **base),
+         load_deflection_recording(330e3, 4e4, seed=5)),
+    ]
+    raw, build = tmp_path / "raw", tmp_path / "build"
+    write_campaign(raw / "broadband", runs)
+    assert main(["run", "--raw", str(raw), "--build", str(build), "--jobs", "1", "-q"]) == 0
+    r = pd.read_parquet(build / "parquet/results.parquet").set_index("run_id")
+    assert set(r.index) == {"rnd", "lat", "fv", "ld"}
+    assert r["excitation_frequency_measured_Hz"].isna().all()  # the stepped sine's column, there and null
+    assert r.loc["rnd", "stiffness_ci95_low_N_per_m"] < 420e3 < r.loc["rnd", "stiffness_ci95_high_N_per_m"]
+    assert (build / "warehouse.duckdb").is_file() and (build / "reports" / "index.html").is_file()

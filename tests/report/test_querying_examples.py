@@ -27,7 +27,11 @@ def test_section_has_five_examples():
 
 
 def test_every_example_returns_rows(small_report):
+    """The small campaign is vertical stepped sine only: an example over the lateral or longitudinal
+    runs runs here, and returns rows in tests/report/test_directions.py's build, which has them."""
     db = small_report.build / "warehouse.duckdb"
     for sql in sql_blocks(querying_section()):
         df = query(db, sql)
+        if "results_lateral" in sql or "results_longitudinal" in sql:
+            continue
         assert len(df) > 0, f"no rows from:\n{sql}"

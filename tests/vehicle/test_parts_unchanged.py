@@ -47,9 +47,9 @@ def before_issue_33(monkeypatch):
     new code paths must move no number; the thesis' studies never had either."""
     import dataclasses
 
-    from tyrelab.vehicle import ride
+    from tyrelab.vehicle import ride, tyres
 
-    build = ride.build_parts
+    build = tyres.build_parts
 
     def old_parts(scenario, tyres, i):
         p = build(scenario, tyres, i)
@@ -57,12 +57,30 @@ def before_issue_33(monkeypatch):
         return dataclasses.replace(p, static_load_moment=False, **strip)
 
     monkeypatch.setattr(ride, "build_parts", old_parts)
+    monkeypatch.setattr(tyres, "build_parts", old_parts)
 
 
-def test_vehicle_numbers_unchanged(before_issue_33):
+@pytest.fixture
+def before_issue_45(monkeypatch):
+    """The footprints as before issue 45: from the tractor's mass alone (``m g b / L / 2`` per tyre),
+    not the whole vehicle's static loads; only the 3-D runs with an implement, ballast and cab
+    (``PARTS``) move with the fix (tests/vehicle/test_tyres.py checks the new loads)."""
+    from tyrelab.vehicle import tyres
+    from tyrelab.vehicle.carriage import GRAVITY_M_S2
+
+    def tractor_alone(asm):
+        p = asm.parts
+        a, b = p.front.ahead_of_cg_m, -p.rear.ahead_of_cg_m
+        m_g = p.chassis.mass_kg * GRAVITY_M_S2
+        return {"front": m_g * b / (a + b) / 2, "rear": m_g * a / (a + b) / 2}
+
+    monkeypatch.setattr(tyres, "static_tyre_loads", tractor_alone)
+
+
+def test_vehicle_numbers_unchanged(before_issue_33, before_issue_45):
     _check(_compare(False))
 
 
 @pytest.mark.slow  # the whole ch. 7 study and both shipped scenarios at every speed
-def test_vehicle_numbers_unchanged_full(before_issue_33):
+def test_vehicle_numbers_unchanged_full(before_issue_33, before_issue_45):
     _check(_compare(True))
