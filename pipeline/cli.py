@@ -560,6 +560,23 @@ def cmd_ride(args) -> int:
     return EXIT_OK
 
 
+def _road_grid_problems(x) -> list[str]:
+    """The grid ``tyrelab road`` resamples a profile CSV on (its median step from its first distance
+    to its last, :func:`tyrelab.vehicle.profiles.uniform_grid`) bounded before it is built: at most
+    :data:`tyrelab.vehicle.scenario_limits.MAX_SAMPLES` points (a 108 kB file of 30 km at 1 mm asked
+    for 30 million points, 1.8 GB)."""
+    import numpy as np
+
+    from .vehicle.scenario_limits import MAX_SAMPLES
+
+    step = float(np.median(np.diff(x))) if len(x) > 1 else 0.0
+    points = (float(x[-1]) - float(x[0])) / step + 1 if step > 0 else math.inf
+    if points > MAX_SAMPLES:
+        return [f"its median step of {step:g} m over {float(x[-1]) - float(x[0]):g} m makes {points:,.0f} points, "
+                f"more than the {MAX_SAMPLES:,} tyrelab road resamples (a coarser profile, or a part of it)"]
+    return []
+
+
 def cmd_road(args) -> int:
     """``tyrelab road FILE``: the ISO 8608 class, r.m.s. and length of each track of a profile CSV
     or an OpenCRG road."""
@@ -591,7 +608,7 @@ def cmd_road(args) -> int:
             from .vehicle.scenario_limits import _profile_problems
 
             x, left, right = read_profile_csv(path)
-            problems = _profile_problems(x, left, right)
+            problems = _profile_problems(x, left, right) or _road_grid_problems(x)
             if problems:
                 raise ValueError("; ".join(p.replace("surface.profile: ", "") for p in problems))
             from .vehicle.profiles import uniform_grid

@@ -57,6 +57,9 @@ def read_crg(path: str | Path):
     size = path.stat().st_size
     if size > MAX_CRG_BYTES:
         raise ValueError(f"{path}: {size} bytes, above the {MAX_CRG_BYTES} bytes a CRG road may have")
+    problem = _crg_header_problem(path)  # what the data would take, from the header alone, before pyopencrg reads it
+    if problem:
+        raise ValueError(f"{path}: {problem}")
     try:
         with warnings.catch_warnings():  # minor remarks of pyopencrg's checks are not the user's problem
             warnings.simplefilter("ignore")
@@ -72,6 +75,50 @@ def read_crg(path: str | Path):
         text = "; ".join(lines) or type(exc).__name__
         raise ValueError(f"{path}: not a readable OpenCRG file ({text})") from None
     return CrgData.of(road, path.name)
+
+
+#: Bytes of one value in an OpenCRG data section, by format (binary float32/float64; ASCII fields of
+#: 10 and 20 characters on lines of 80, plus their line ends: an upper bound on the value count).
+_CRG_VALUE_BYTES = {"KRBI": 4, "KDBI": 8, "LRFI": 10, "LDFI": 20}
+
+
+def _crg_header_problem(path: Path) -> str | None:
+    """Why an OpenCRG file must be refused from its header alone (None: read it): its data file (a
+    ``$ROAD_CRG_FILE`` reference, else the file itself) above :data:`MAX_CRG_BYTES`, or more heights
+    than :data:`tyrelab.vehicle.crg.MAX_GRID_VALUES` by the data section's size (a sparse file of
+    holes included): about what reading the header costs, never the data."""
+    import warnings
+
+    from .vehicle.crg import MAX_GRID_VALUES
+
+    try:
+        from pyopencrg import io as crg_io
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            _, ipl, layout = crg_io._decode_crg(str(path))  # header and channel layout; no data read
+        data = Path(ipl.filename)
+        if not data.is_absolute():
+            data = path.parent / data if not data.exists() else data
+        size = data.stat().st_size
+    except Exception:  # noqa: BLE001 - a damaged header (or another pyopencrg): the reader below says what is wrong
+        return None
+    if data.resolve() != path.resolve() and size > MAX_CRG_BYTES:
+        return (f"its data file {printable(data.name)} ($ROAD_CRG_FILE) has {size} bytes, above the {MAX_CRG_BYTES} "
+                "bytes a CRG road may have")
+    width = _CRG_VALUE_BYTES.get(str(ipl.fmt))
+    channels = len(getattr(ipl, "kd_def", ()) or ())
+    heights = len(layout.get("z_cols", ()) or ()) if isinstance(layout, dict) else 0
+    if not width or not channels or not heights:
+        return None
+    values = max(0, size - int(ipl.data_offset)) // width
+    if width >= 10:  # ASCII: a line end per 80 characters
+        values = values * 80 // 81
+    grid = values // channels * heights
+    if grid > MAX_GRID_VALUES:
+        return (f"its data section of {size - int(ipl.data_offset)} bytes ({ipl.fmt}, {channels} channels) holds about "
+                f"{grid} heights, above the {MAX_GRID_VALUES} a CRG road may have")
+    return None
 
 
 def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

@@ -495,3 +495,65 @@ def test_context_paths_relative_and_back(tmp_path):
     assert ctx.build_file(old) == tmp_path / "b" / "parquet" / "runs" / "tyre_id=T1" / "r.parquet"
     assert ctx.raw_file("c", "r.csv") == tmp_path / "raw" / "c" / "r.csv"
     assert ctx.raw_file(".", "r.csv") == tmp_path / "raw" / "r.csv"
+
+
+# ----------------------------------------------------------------------------- bounded from the content
+def _crg(folder, records=2000, fmt="KRBI"):
+    import pyopencrg
+
+    v = np.array([-1.0, 0.0, 1.0])
+    pyopencrg.CrgRoad(np.random.default_rng(1).normal(0, 0.01, (records, v.size)), u_inc=0.1, v=v).save(
+        folder / "data.crg", fmt=fmt)
+    (folder / "ref.crg").write_text("$ROAD_CRG_FILE\ndata.crg\n$\n")
+    return folder / "data.crg", folder / "ref.crg"
+
+
+def test_a_crg_referencing_a_large_data_file_is_refused_at_header_cost(tmp_path, monkeypatch):
+    from tyrelab import scenario_io
+
+    data, ref = _crg(tmp_path)
+    assert scenario_io.read_crg(ref).u_inc_m == pytest.approx(0.1)  # a reference within the bounds is read
+    monkeypatch.setattr(scenario_io, "MAX_CRG_BYTES", data.stat().st_size - 1)
+    calls = []
+    monkeypatch.setattr("pyopencrg.open", lambda *a, **k: calls.append(a))  # the data are never opened
+    with pytest.raises(ValueError, match=r"ref\.crg: its data file data\.crg \(\$ROAD_CRG_FILE\) has \d+ bytes"):
+        scenario_io.read_crg(ref)
+    assert not calls
+
+
+@pytest.mark.parametrize("fmt", ["KRBI", "KDBI", "LDFI"])
+def test_a_crg_with_more_heights_than_the_bound_is_refused_before_reading(tmp_path, monkeypatch, fmt):
+    import tyrelab.vehicle.crg as crg
+    from tyrelab import scenario_io
+
+    data, ref = _crg(tmp_path, records=1000, fmt=fmt)
+    monkeypatch.setattr(crg, "MAX_GRID_VALUES", 2000)  # 1000 cross sections x 3 heights
+    for path in (data, ref):
+        with pytest.raises(ValueError, match="heights, above the 2000 a CRG road may have"):
+            scenario_io.read_crg(path)
+
+
+def test_a_sparse_crg_is_refused_before_its_holes_are_read(tmp_path):
+    import resource
+
+    from tyrelab import scenario_io
+
+    data, _ = _crg(tmp_path, records=10)
+    sparse = tmp_path / "sparse.crg"
+    header = data.read_bytes()[: len(data.read_bytes()) - 10 * 3 * 4]
+    with open(sparse, "wb") as f:
+        f.write(header)
+        f.truncate(190_000_000)  # holes: 190 MB on paper, nothing on disk
+    before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    with pytest.raises(ValueError, match="holds about 47499"):
+        scenario_io.read_crg(sparse)
+    assert resource.getrusage(resource.RUSAGE_SELF).ru_maxrss - before < 100_000  # kB: nothing of it was read
+
+
+def test_tyrelab_road_bounds_the_grid_of_a_profile_before_building_it(tmp_path, capsys):
+    x = np.concatenate([np.arange(6000) * 0.001, 6.0 + np.arange(1, 3000) * 9.99])  # median step 1 mm over 30 km
+    p = tmp_path / "long.csv"
+    p.write_text("distance_m,height_m\n" + "".join(f"{v:.3f},0.001\n" for v in x))
+    assert main(["road", str(p)]) == 2
+    err = capsys.readouterr().err
+    assert len(lines(err)) == 1 and "makes 29,966,011 points, more than the 10,000,000" in err
