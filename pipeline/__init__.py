@@ -44,7 +44,7 @@ __getattr__, __dir__ = attach(
     submodules=["api", "measurement", "tyre", "vehicle", "rig", "rawformat", "report", "stages", "resources", "watch",
                 "warehouse", "export", "exposure"],
     attrs={
-        "api": ["analyse_recording", "analyze_recording", "ride"],
+        "api": ["analyse_recording", "analyze_recording", "ride", "vehicle_frf"],
         "measurement.recording": ["RecordingResult", "WelchEstimate", "analyse_frame"],
         "measurement.apparent_mass": ["tyre_force", "stiffness_damping"],
         "rawformat": ["CHANNELS", "RunFileError", "read_run_file", "check_run"],

@@ -4,6 +4,8 @@
   ``analyze_recording`` is the same function.
 - :func:`ride` -- seat vibration and daily exposure of a tractor scenario (``tyrelab ride``).
 - :func:`exposure` -- a driver's daily exposure from seat recordings (``tyrelab exposure``).
+- :func:`vehicle_frf` -- a vehicle's transfer functions and modes from a recording with wheel
+  inputs (``tyrelab frf``; thesis ch. 2, issue 43).
 
 Each answers without the stage machinery: reading the input is the only I/O here; the work is
 the pure packages' (:func:`tyrelab.measurement.recording.analyse_frame`,
@@ -34,7 +36,7 @@ from .exposure import exposure
 from .measurement.recording import RecordingResult, analyse_frame
 from .rawformat import read_run_file
 
-__all__ = ["analyse_recording", "analyze_recording", "ride", "exposure"]
+__all__ = ["analyse_recording", "analyze_recording", "ride", "exposure", "vehicle_frf"]
 
 
 def analyse_recording(
@@ -256,3 +258,100 @@ def _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spe
     if problems:
         raise ValueError("; ".join(problems))
     return speeds, front, rear
+
+
+class _FrameRecording:
+    """A DataFrame of raw-format ride channels as an opened recording (one chunk)."""
+
+    def __init__(self, frame: pd.DataFrame, sample_rate_Hz: float | None):
+        import numpy as np
+
+        from .rawformat import RunFileError
+        from .rawformat.rides import RIDE_CHANNELS, Chunk
+
+        self.channels = tuple(c for c in RIDE_CHANNELS if c in frame.columns)
+        if not self.channels:
+            raise RunFileError(f"no known channel (expected any of {', '.join(RIDE_CHANNELS)})")
+        if "time_s" in frame.columns:
+            t = frame["time_s"].to_numpy(dtype=float)
+            dt = np.diff(t)
+            if t.size < 2 or not np.all(np.isfinite(t)) or not (dt > 0).all():
+                raise RunFileError("time_s is not finite and strictly increasing")
+            fs = 1.0 / float(np.mean(dt))
+            if sample_rate_Hz is not None and abs(fs - sample_rate_Hz) > 0.01 * sample_rate_Hz:
+                raise RunFileError(f"time_s gives {fs:.6g} Hz, not the {sample_rate_Hz:g} Hz given")
+        elif sample_rate_Hz is None:
+            raise ValueError("sample_rate_Hz is needed for a frame without time_s")
+        else:
+            fs = float(sample_rate_Hz)
+            t = np.arange(len(frame)) / fs
+        data = {}
+        for c in self.channels:
+            v = frame[c].to_numpy(dtype=float)
+            if not np.all(np.isfinite(v)):
+                raise RunFileError(f"channel {c} has a NaN or infinite sample at row {int(np.flatnonzero(~np.isfinite(v))[0])}")
+            data[c] = v
+        self.sample_rate_Hz = fs
+        self._chunk = Chunk(t, data)
+
+    def chunks(self):
+        yield self._chunk
+
+
+def vehicle_frf(
+    recording: str | os.PathLike | pd.DataFrame,
+    *,
+    speed_km_h: float = 0.0,
+    scenario=None,
+    sample_rate_Hz: float | None = None,
+    channel_map: dict | None = None,
+):
+    """A vehicle's transfer functions from each wheel input to each output, and its modes.
+
+    Thesis ch. 2: a four-post stand or a track with a measured profile (issue 43). The
+    multiple-input H1 with its coherences, random error and conditioning, the rotation and
+    lug-passing bins masked, the modes fitted with 95 % intervals
+    (:func:`tyrelab.measurement.frf.recording_frf`, what the rides stage writes to
+    ``vehicle_frf`` and ``vehicle_modes``).
+
+    Parameters
+    ----------
+    recording : path or DataFrame
+        Raw format v1 ride recording (``schemas/raw_ride.json``) with input channels
+        ``input_<wheel>_z_m_s2`` or ``input_<wheel>_z_m``; or a DataFrame of them (without
+        ``time_s``, give ``sample_rate_Hz``).
+    speed_km_h : float
+        Rolling speed (0: stationary).
+    scenario : path, str, dict or Scenario, optional
+        The vehicle (as :func:`ride`): with a speed above 0 its tyres' rotation and lug-passing
+        bins are masked.
+    sample_rate_Hz : float, optional
+    channel_map : dict, optional
+        For ``.mf4``/``.tdms``.
+
+    Returns
+    -------
+    tyrelab.measurement.frf.RecordingFrf
+        ``to_json()`` is ``tyrelab frf``'s JSON.
+
+    Raises
+    ------
+    tyrelab.rawformat.RunFileError, ValueError
+        One line: an unreadable recording, no input channel, a constant input, too short.
+    """
+    from .measurement.frf import recording_frf
+    from .rawformat.rides import open_recording
+
+    speed = float(speed_km_h)
+    if not (speed >= 0 and speed < float("inf")):
+        raise ValueError(f"speed_km_h must be finite and >= 0, got {speed_km_h!r}")
+    wheels = None
+    if scenario is not None and speed > 0:
+        from .measurement.frf import scenario_wheel_geometry
+
+        wheels = scenario_wheel_geometry(_scenario(scenario))
+    if isinstance(recording, pd.DataFrame):
+        rec = _FrameRecording(recording, sample_rate_Hz)
+    else:
+        rec = open_recording(Path(recording), channel_map)
+    return recording_frf(rec, speed, wheels)

@@ -15,6 +15,7 @@ Verbs (a stable contract; see docs/architecture.md):
 - ``ride``                 seat vibration and daily exposure of a tractor scenario (TOML)
 - ``exposure``             a driver's daily vibration exposure from seat recordings
 - ``road``                 ISO 8608 class, r.m.s. and length of a road profile's tracks (CSV or OpenCRG)
+- ``frf``                  a vehicle's transfer functions and modes from a recording with wheel inputs
 
 Exit codes: 0 success; 3 some runs (or a manifest/catalogue) were quarantined; 2 usage or input
 error (also: the build is locked by another writer, an OS error); 130 interrupted; 141 the reader of
@@ -577,6 +578,71 @@ def _road_grid_problems(x) -> list[str]:
     return []
 
 
+def cmd_frf(args) -> int:
+    import numpy as np
+
+    from .api import vehicle_frf
+    from .io import json_safe
+    from .rawformat import RunFileError
+    from .scenario_io import ScenarioError
+
+    prog = "tyrelab frf"
+    try:
+        r = vehicle_frf(Path(args.file), speed_km_h=args.speed, scenario=args.scenario)
+    except ScenarioError as exc:
+        print(f"{prog}: --scenario {printable(args.scenario)}: {printable('; '.join(exc.problems))}", file=sys.stderr)
+        return EXIT_USAGE
+    except (RunFileError, ValueError, OSError) as exc:
+        text = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        print(f"{prog}: {printable(args.file)}: {printable(text)}", file=sys.stderr)
+        return EXIT_USAGE
+    if args.format == "json":
+        _out(json.dumps(json_safe(r.to_json(args.max_frequency)), indent=2) + "\n")
+    else:
+        _out(frf_table(r, args.max_frequency))
+    e = r.estimate
+    band = (e.frequency_Hz >= 0.5) & (e.frequency_Hz <= 12.0)
+    if band.any() and e.ill_conditioned[band].all():
+        print(f"{prog}: {printable(args.file)}: the inputs cannot be separated in any bin of 0.5-12 Hz (condition "
+              f"number {float(np.nanmedian(e.condition_number[band])):.3g}: inputs correlated as on a road?): "
+              "no mode fitted", file=sys.stderr)
+        return EXIT_QUARANTINE
+    return EXIT_OK
+
+
+def frf_table(r, max_Hz: float = 20.0) -> str:
+    """``tyrelab frf --format table``: the modes per output, then per input and output the peak
+    ``|H|``, its frequency and the share of bins flagged."""
+    import numpy as np
+
+    from .measurement.frf import frf_unit
+
+    e = r.estimate
+    lines = [f"{len(r.inputs)} inputs, {len(r.outputs)} outputs; {r.duration_s:.0f} s at {r.sample_rate_Hz:g} Hz, "
+             f"bins {e.frequency_Hz[1]:.4g} Hz, n_d {e.n_d:.1f}; speed {r.speed_km_h:g} km/h", "",
+             "modes (damped frequency, damping ratio, 95 % intervals)",
+             f"{'output':<22}{'f_Hz':>8}{'f_95%_Hz':>18}{'zeta':>8}{'zeta_95%':>16}"]
+    for row in r.mode_rows():
+        lines.append(f"{row['output']:<22}{row['frequency_Hz']:>8.3f}"
+                     f"{row['frequency_ci95_low_Hz']:>9.3f}-{row['frequency_ci95_high_Hz']:<8.3f}"
+                     f"{row['damping_ratio']:>8.3f}{row['damping_ci95_low']:>8.3f}-{row['damping_ci95_high']:<7.3f}")
+    if not r.mode_rows():
+        lines.append("(none fitted)")
+    lines += ["", "FRFs over 0.5-12 Hz", f"{'input':<26}{'output':<22}{'peak |H|':>10}{'at_Hz':>8}{'coh':>6}"
+              f"{'flagged':>9}{'masked':>8}  unit"]
+    band = (e.frequency_Hz >= 0.5) & (e.frequency_Hz <= min(12.0, max_Hz))
+    for k, out in enumerate(r.outputs):
+        for j, inp in enumerate(r.inputs):
+            h = np.abs(e.h[band, k, j])
+            ok = np.isfinite(h)
+            i = int(np.nanargmax(np.where(ok, h, -1.0))) if ok.any() else 0
+            lines.append(f"{inp:<26}{out:<22}{(h[i] if ok.any() else float('nan')):>10.4g}"
+                         f"{e.frequency_Hz[band][i]:>8.3f}{float(np.nanmedian(e.multiple_coherence[band, k])):>6.2f}"
+                         f"{100 * float(e.ill_conditioned[band, j].mean()):>8.0f}%"
+                         f"{100 * float(r.masked[band].mean()):>7.0f}%  {frf_unit(out)}")
+    return "\n".join(lines) + "\n"
+
+
 def cmd_road(args) -> int:
     """``tyrelab road FILE``: the ISO 8608 class, r.m.s. and length of each track of a profile CSV
     or an OpenCRG road."""
@@ -1042,6 +1108,23 @@ def build_parser() -> argparse.ArgumentParser:
     ro.add_argument("--format", choices=["json", "table"], default="table",
                     help="table: one line per track (default); json: the numbers")
     ro.set_defaults(func=cmd_road)
+
+    fr = sub.add_parser("frf", help="a vehicle's transfer functions from each wheel input to each output, and its modes "
+                        "(thesis ch. 2), JSON",
+                        description="A recording (raw format v1) with wheel inputs input_<wheel>_z_m_s2 or "
+                                    "input_<wheel>_z_m. Exit 2: an unreadable recording, no input channel, a constant "
+                                    "input, a recording too short; 3: the inputs cannot be separated in any bin "
+                                    "(correlated as on a road): the FRFs are printed, no mode is fitted.")
+    fr.add_argument("file", help="recording: .parquet, .csv, .mf4 or .tdms (raw format v1)")
+    fr.add_argument("--speed", type=_non_negative, default=0.0, metavar="KM_H",
+                    help="rolling speed, km/h (default 0: stationary)")
+    fr.add_argument("--scenario", default=None, metavar="TOML",
+                    help="the vehicle's scenario: its tyres' rotation and lug-passing bins are masked when rolling")
+    fr.add_argument("--max-frequency", type=_positive, default=20.0, metavar="HZ",
+                    help="highest bin printed, Hz (default 20)")
+    fr.add_argument("--format", choices=["json", "table"], default="json",
+                    help="json: inputs, outputs, modes and every bin (default); table: a text summary")
+    fr.set_defaults(func=cmd_frf)
 
     ex = sub.add_parser("exposure", help="a driver's daily whole-body vibration exposure from seat recordings "
                         "(ISO 2631-1/-5, EU Directive 2002/44/EC)",

@@ -54,7 +54,7 @@ from . import mapped
 from .mapped import RunFileError
 
 __all__ = [
-    "RIDE_CHANNELS", "SEAT_CHANNELS", "FLOOR_CHANNELS", "RECORDING_SUFFIXES", "MAX_RECORDING_BYTES",
+    "RIDE_CHANNELS", "SEAT_CHANNELS", "FLOOR_CHANNELS", "INPUT_CHANNELS", "INPUT_HEIGHT_CHANNELS", "RECORDING_SUFFIXES", "MAX_RECORDING_BYTES",
     "CHUNK_ROWS", "READ_ROWS", "GRAVITY_M_S2", "MAX_ABS_SAMPLE", "MAX_HEADER_BYTES", "Chunk", "Recording",
     "open_recording",
 ]
@@ -63,9 +63,14 @@ __all__ = [
 SEAT_CHANNELS = ["seat_x_m_s2", "seat_y_m_s2", "seat_z_m_s2"]
 #: Cab-floor accelerations beneath the seat, m/s².
 FLOOR_CHANNELS = ["floor_x_m_s2", "floor_y_m_s2", "floor_z_m_s2"]
+#: Wheel inputs (issue 43, thesis ch. 2): the stand pad's or the ground's vertical acceleration under
+#: each wheel, m/s² ...
+INPUT_CHANNELS = [f"input_{w}_z_m_s2" for w in ("front_left", "front_right", "rear_left", "rear_right")]
+#: ... or the ground height under it, m (the track method's optical transducer, §2.3).
+INPUT_HEIGHT_CHANNELS = [c[:-len("_s2")] for c in INPUT_CHANNELS]
 #: Every channel a recording may hold besides ``time_s``.
 RIDE_CHANNELS = [*SEAT_CHANNELS, *FLOOR_CHANNELS, "front_axle_z_m_s2", "rear_axle_z_m_s2",
-                 "pitch_rad_s2", "roll_rad_s2"]
+                 "pitch_rad_s2", "roll_rad_s2", "yaw_rad_s2", *INPUT_CHANNELS, *INPUT_HEIGHT_CHANNELS]
 RECORDING_SUFFIXES = (".parquet", ".csv", *mapped.SUFFIXES)
 #: Largest recording read, bytes (streamed: a bound on time, not memory). An 8 h day of
 #: three axes at 500 Hz in float64 Parquet is about 0.5 GB.
@@ -87,7 +92,8 @@ RELEASE_EVERY = 8
 #: Allowed relative jitter of the sampling interval.
 MAX_DT_JITTER = 0.01
 GRAVITY_M_S2 = 9.80665
-#: Largest magnitude of a channel's sample accepted, m/s² (or rad/s² for ``pitch``/``roll``): 1000
+#: Largest magnitude of a channel's sample accepted, m/s² (or rad/s² for ``pitch``/``roll``/``yaw``, m
+#: for a ground height): 1000
 #: m/s² is about 100 g, ten times the ±10 g range of the seat-pad accelerometers ISO 10326-1
 #: describes and beyond the shocks ISO 2631-5 assesses (a documented choice). A sample beyond it
 #: is a corrupt or mis-scaled file (mm/s² for m/s², a logger's overflow code such as 1e30), not
@@ -298,16 +304,34 @@ def _checked(frame, channels, row0: int) -> Chunk:
             bad = ~np.isfinite(v)
             if bad.any():
                 i = int(np.flatnonzero(bad)[0])
+                every = _every_nth(bad)
+                if every:
+                    raise RunFileError(f"channel {c} has a sample only every {every} rows (rows {row0 + i} and on are "
+                                       f"empty between them): recorded at 1/{every} of the rate of time_s? resample "
+                                       "every channel to one rate")
                 raise RunFileError(f"channel {c} has a NaN, infinite or non-numeric sample at row {row0 + i}")
             if c != "time_s":
                 i = int(np.flatnonzero(np.abs(v) > MAX_ABS_SAMPLE)[0])
-                unit = "rad/s²" if c.endswith("rad_s2") else "m/s²"
+                unit = "rad/s²" if c.endswith("rad_s2") else "m" if c.endswith("_m") else "m/s²"
                 raise RunFileError(f"channel {c} has a sample of {v[i]:.3g} {unit} at row {row0 + i}, beyond the "
                                    f"±{MAX_ABS_SAMPLE:g} {unit} a vehicle's vibration can reach (a corrupt or "
                                    "mis-scaled file?)")
         out[c] = v
     t = out.pop("time_s")
     return Chunk(t, out)
+
+
+def _every_nth(bad: np.ndarray) -> int:
+    """``k`` (2 or more) when the finite samples of a chunk recur exactly every ``k`` rows (a channel
+    recorded at a lower rate, its rows between left empty), else 0."""
+    good = np.flatnonzero(~bad)
+    if good.size < 3 or bad.size < 8:
+        return 0
+    step = np.diff(good)
+    k = int(step[0])
+    if k < 2 or not (step == k).all() or good[0] >= k or bad.size - 1 - good[-1] >= k:
+        return 0
+    return k
 
 
 def _regular(t: np.ndarray, dt: float, row0: int) -> None:

@@ -144,7 +144,7 @@ SIMULATE_TABLES = (
 )
 #: Tables the rides stage writes (vehicle recordings; :mod:`tyrelab.stages.rides`).
 RIDES_TABLES = ("recordings", "recording_axes", "recording_spectra", "exposure_days", "ride_validation",
-                "ride_validation_statistics")
+                "ride_validation_statistics", "vehicle_frf", "vehicle_modes")
 #: The fits a ride scenario's tyres may read (:mod:`tyrelab.stages.tyredata`): a measured tyre's
 #: per-speed pressure fits (``measured_tyre_id``) and the build's formula (``formula = "build"``).
 FIT_TABLES = ("stiffness_pressure_by_speed", "damping_pressure_by_speed", "formula_fit", "damping_fit")
@@ -199,8 +199,10 @@ STAGES: dict[str, Stage] = {s.name: s for s in (
     Stage("rides", reads=("raw", *_tables(*FIT_TABLES)),
           writes=(*_tables(*RIDES_TABLES), quarantine_part("rides")),
           items=("recording <- its file (by content; an unchanged file is not read again)",
-                 "validation <- its recording's analysis, its scenario, the fit rows of its tyres"),
-          doc="vehicle recordings (rides.csv): whole-body vibration, daily exposure, predictions checked"),
+                 "validation <- its recording's analysis, its scenario, the fit rows of its tyres",
+                 "frf <- its recording (with input channels), speed and the scenario's tyres"),
+          doc="vehicle recordings (rides.csv): whole-body vibration, daily exposure, predictions checked, "
+              "transfer functions and modes"),
     Stage("warehouse", reads=("parquet/*.parquet", *(quarantine_part(s) for s in QUARANTINE_PARTS), "parquet/runs/",
                               "published"),
           writes=("parquet/published/", table("quarantine"), "warehouse.duckdb"),

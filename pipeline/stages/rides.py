@@ -20,6 +20,12 @@ thesis study it is a run of, ``study``/``load_condition``/``study_track``, which
 ``simulate`` stage reads), ``recording_axes`` (per recording and channel),
 ``recording_spectra`` (seat PSDs, measured and predicted, for the report), ``exposure_days``,
 ``ride_validation`` (per recording and axis), ``ride_validation_statistics``.
+
+Recordings with wheel input channels (issue 43, thesis ch. 2: a four-post stand or a track with a
+measured profile; ``track = "inputs"`` says the inputs are the excitation) also give their
+transfer functions and modes (:func:`tyrelab.measurement.frf.recording_frf`): ``vehicle_frf``
+(per recording, input, output and bin) and ``vehicle_modes`` (per recording, output and mode). The
+rotation and lug-passing bins of a rolling row naming a scenario are masked from its tyres.
 """
 
 from __future__ import annotations
@@ -53,7 +59,7 @@ SPECTRA_MAX_HZ = 20.0
 EMPTY_COLUMNS = {
     "recordings": ["ride_id", "campaign", "file", "vehicle", "speed_km_h", "track", "recorded_on", "scenario", "task",
                    "hours_per_day", "sample_rate_Hz", "duration_s", "a_v_m_s2", "dz_m_s2", "channels", "warnings",
-                   "study", "load_condition", "study_track", "file_sha256"],
+                   "study", "load_condition", "study_track", "file_sha256", "method"],
     "recording_axes": ["ride_id", "channel", "axis", "weighting", "a_w_m_s2", "vdv_m_s1_75", "mtvv_m_s2", "crest_factor",
                        "rms_method_sufficient", "method_reasons", "unweighted_rms", "peak_frequency_Hz",
                        "half_power_width_Hz", "duration_s"],
@@ -61,6 +67,11 @@ EMPTY_COLUMNS = {
     "exposure_days": ["campaign", "vehicle", "recorded_on", "tasks", "hours_per_day", "a8_m_s2", "a8_axis",
                       "vdv_daily_m_s1_75", "vdv_daily_axis", "hours_to_eav", "hours_to_elv", "exposure_points", "verdict",
                       "dzd_m_s2"],
+    "vehicle_frf": ["ride_id", "input", "wheel", "output", "frequency_Hz", "h_magnitude", "h_phase_deg", "h_unit",
+                    "h2_magnitude", "h2_phase_deg", "coherence", "partial_coherence", "multiple_coherence",
+                    "random_error", "condition_number", "input_coherence", "ill_conditioned", "masked"],
+    "vehicle_modes": ["ride_id", "output", "mode", "frequency_Hz", "damping_ratio", "frequency_ci95_low_Hz",
+                      "frequency_ci95_high_Hz", "damping_ci95_low", "damping_ci95_high", "inputs"],
     "ride_validation": ["ride_id", "campaign", "file", "vehicle", "speed_km_h", "track", "recorded_on", "scenario", "task",
                         "axis", "measured_a_w_m_s2", "predicted_a_w_m_s2", "ratio_a_w", "measured_peak_frequency_Hz",
                         "predicted_peak_frequency_Hz", "measured_half_power_width_Hz", "predicted_half_power_width_Hz",
@@ -165,6 +176,22 @@ def _validate(path: Path, channel_map, scenario_path: Path, speed_km_h: float, t
     return {"rows": rows, "spectra": spectra}
 
 
+#: The ``track`` of a row whose excitation is the recording's own input channels (issue 43).
+INPUTS_TRACK = "inputs"
+
+
+def _frf(path: Path, channel_map, speed_km_h: float, wheels) -> dict:
+    """``vehicle_frf`` and ``vehicle_modes`` rows of one recording with inputs, or ``{"error": reason}``."""
+    from ..measurement.frf import recording_frf
+    from ..rawformat.rides import open_recording
+
+    try:
+        r = recording_frf(open_recording(path, channel_map), speed_km_h, wheels)
+    except (ValueError, ArithmeticError) as exc:
+        return {"error": printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)}
+    return {"frf": pd.DataFrame(r.frf_rows()), "modes": r.mode_rows()}
+
+
 def _plain(row: dict) -> dict:
     return {k: (None if isinstance(v, float) and math.isnan(v) else v) for k, v in row.items()}
 
@@ -183,6 +210,7 @@ def run(ctx: Context) -> StageResult:
     cache = ItemCache(ctx, "rides")
     quarantine: list[dict] = []
     recordings, axes, spectra, validation, tasks = [], [], [], [], []
+    frf_parts, mode_rows = [], []
     seen: dict[str, str] = {}
     n_in = n_rejected = 0
     fit_tables = read_fit_tables(ctx)
@@ -238,16 +266,18 @@ def run(ctx: Context) -> StageResult:
             except RunFileError as exc:
                 refuse(campaign, ride_id, file, str(exc))
                 continue
-            scenario_path = track = fits = profiles = None
+            scenario_path = track = fits = profiles = scenario = None
+            by_inputs = str(row.get("track") or "").strip().lower() == INPUTS_TRACK
             try:
-                track = rv.track_of(row.get("track"), campaign)
+                track = None if by_inputs else rv.track_of(row.get("track"), campaign)
                 if isinstance(row.get("scenario"), str) and row["scenario"].strip():
                     scenario_path = confined_run_path(campaign, row["scenario"].strip())
                     scenario = load_scenario(scenario_path)
                     fits = scenario_fits(scenario, fit_tables)
                     # the profiles the prediction reads: the scenario's (as read) or the row's track file
                     profiles = (scenario.surface.profile_data,
-                                cache.file_digest(track.profile) if track.kind == "profile" else None)
+                                cache.file_digest(track.profile) if track is not None and track.kind == "profile"
+                                else None)
             except (ValueError, RunFileError, OSError) as exc:  # OSError: the track's profile went unreadable
                 problems = exc.problems if isinstance(exc, ScenarioError) else [str(exc)]
                 refuse(campaign, ride_id, file, f"scenario {row.get('scenario')}: {'; '.join(problems)}"
@@ -260,7 +290,7 @@ def run(ctx: Context) -> StageResult:
                 refuse(campaign, ride_id, file, f"hours_per_day: {hours_problem(hours)}")
                 continue
             speed = float(row["speed_km_h"])
-            if scenario_path is not None and not speed > 0:
+            if scenario_path is not None and not speed > 0 and not by_inputs:
                 refuse(campaign, ride_id, file, f"speed_km_h {speed:g}: a row with a scenario is checked against its "
                                                 "prediction at this speed, which needs a speed above 0")
                 continue
@@ -270,12 +300,27 @@ def run(ctx: Context) -> StageResult:
             if "error" in result:
                 refuse(campaign, ride_id, file, result["error"])
                 continue
+            from ..measurement.frf import input_channel_wheel, scenario_wheel_geometry
+
+            has_inputs = any(input_channel_wheel(c) for c in result["summary"]["channels"].split(","))
+            if by_inputs and not has_inputs:
+                refuse(campaign, ride_id, file, f"track = {INPUTS_TRACK!r} but the recording has no input channel "
+                                                "(input_<wheel>_z_m_s2 or input_<wheel>_z_m)")
+                continue
+            frf = None
+            if has_inputs:
+                wheels = scenario_wheel_geometry(scenario) if scenario is not None and speed > 0 else None
+                fkey = cache.key("frf", digest, str(path.suffix), channel_map, speed, wheels)
+                frf = cache.get_or_compute(fkey, lambda: _frf(path, channel_map, speed, wheels))
+                if "error" in frf:
+                    refuse(campaign, ride_id, file, f"transfer functions: {frf['error']}")
+                    continue
             ident = {"ride_id": ride_id, "campaign": where(campaign), "file": str(file), "vehicle": row["vehicle"],
                      "speed_km_h": speed, "track": str(row.get("track") or "scenario"),
                      "recorded_on": str(row["recorded_on"]), "scenario": row.get("scenario") or None,
                      "task": row.get("task") or None}
             val = None
-            if scenario_path is not None:  # checked before the row is kept: a row is kept or quarantined, not both
+            if scenario_path is not None and not by_inputs:  # checked before the row is kept: a row is kept or quarantined, not both
                 # its recording, its scenario and the fits of ITS tyres (scenario_fits): a new run of
                 # another tyre leaves the key alone
                 vkey = cache.key("validation", digest, cache.file_digest(scenario_path), speed, repr(track), fits,
@@ -288,7 +333,13 @@ def run(ctx: Context) -> StageResult:
                     continue
             study = {k: (str(row[k]).strip() if isinstance(row.get(k), str) and row[k].strip() else None)
                      for k in STUDY_COLUMNS}
-            recordings.append({**ident, "hours_per_day": hours, **result["summary"], **study, "file_sha256": digest})
+            method = row.get("method")
+            recordings.append({**ident, "hours_per_day": hours, **result["summary"], **study, "file_sha256": digest,
+                               "method": method.strip() if isinstance(method, str) and method.strip() else None})
+            if frf is not None:
+                if len(frf["frf"]):
+                    frf_parts.append(frf["frf"].assign(ride_id=ride_id))
+                mode_rows.extend({"ride_id": ride_id, **m} for m in frf["modes"])
             axes.extend({"ride_id": ride_id, **a} for a in result["axes"])
             for s in result["spectra"]:
                 spectra.append(pd.DataFrame({"ride_id": ride_id, "source": "measured", "channel": s["channel"],
@@ -342,10 +393,16 @@ def run(ctx: Context) -> StageResult:
                                                 else []))
     ctx.write_table("exposure_days", _frame("exposure_days", days))
     ctx.write_table("ride_validation", val_frame)
+    frf_frame = pd.concat(frf_parts, ignore_index=True) if frf_parts else []
+    if len(frf_parts):
+        frf_frame = frf_frame[["ride_id", *[c for c in frf_frame.columns if c != "ride_id"]]]
+    ctx.write_table("vehicle_frf", _frame("vehicle_frf", frf_frame))
+    ctx.write_table("vehicle_modes", _frame("vehicle_modes", mode_rows))
     ctx.write_table("ride_validation_statistics", rv.validation_statistics(val_frame))
     write_quarantine(ctx, "rides", quarantine)
     cache.prune()
     n_bad = sum(1 for q in quarantine if q["run_id"] is not None)
     return StageResult("rides", n_in=n_in, n_ok=len(recordings), n_quarantined=n_bad, n_rejected=n_rejected,
                        seconds=time.perf_counter() - t0,
-                       message=f"recordings {cache.summary('recording')}, validations {cache.summary('validation')}")
+                       message=f"recordings {cache.summary('recording')}, validations {cache.summary('validation')}"
+                               + (f", transfer functions {cache.summary('frf')}" if mode_rows or frf_parts else ""))

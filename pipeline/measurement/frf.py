@@ -1,0 +1,855 @@
+"""A vehicle's multi-input transfer functions and their modes (thesis ch. 2; issue 43).
+
+The thesis measured the tractor's transfer functions from the ground under each wheel to the
+cab floor (§2.2 four-ram stand, §2.3 one wheel on a rough track). With several wheels excited
+at once a single-input estimate mixes the wheels; this module gives, from recordings of ``q``
+inputs (ground or pad vertical acceleration under each wheel, or ground height) and ``p``
+outputs:
+
+* the Welch cross-spectral matrices ``S_xx`` (q × q), ``S_xy`` (q × p) and the outputs'
+  auto-spectra, from ``scipy.signal.csd`` and ``scipy.signal.welch`` (Hann, 50 % overlap,
+  constant detrend: their defaults), accumulated over blocks of segments so the memory is
+  bounded by the segment length, not the recording (:class:`CrossSpectraAccumulator`; the sums
+  equal one ``csd`` call over the whole record);
+* height inputs (ground height under a wheel, m, as the track method's optical transducer
+  measured it, §2.3) turned into accelerations: the second difference in time, whose known
+  response ``-4 fs² sin²(πf/fs)`` is then divided out in the frequency domain so the spectra are
+  those of the exact second derivative ``-(2πf)² X_h`` (:func:`second_difference_correction`).
+  Multiplying the windowed height spectra by ``-(2πf)²`` instead is wrong by terms of the Hann
+  window's derivatives, of order ``(1 / (T f))²``: 4 % at 0.5 Hz with 10 s segments. The same
+  recording as heights and as accelerations gives the same FRFs;
+* the MIMO estimate ``H1 = S_yx S_xx⁻¹`` per output (Bendat & Piersol, *Random Data*, 4th ed.,
+  ch. 7), the ordinary, partial (conditioned on the other inputs) and multiple coherence, the
+  normalised random error of each ``|H|`` on ``n_d − q`` degrees of freedom (B&P eq. 9.90:
+  ``ε = sqrt((1 − γ²_y:x) / (2 (n_d − q) γ²_iy·(q−1)!))``, which for ``q = 1`` is the single-input
+  ``sqrt(1 − γ²) / (|γ| sqrt(2 (n_d − 1)))``), and the condition number of ``S_xx`` per bin
+  (:func:`mimo_frf`); with one input also ``H2 = S_yy / S_yx``;
+* the inputs a bin cannot separate: input ``i`` is flagged (``ill_conditioned``) in a bin where
+  the other inputs explain at least :data:`MAX_INPUT_COHERENCE` of it (its multiple coherence
+  with them; a variance-inflation factor ``1 / (1 − γ²) ≥ 10``, the usual limit of
+  collinearity): its ``H`` there is a guess between correlated inputs and is never fitted. Pure
+  road input (rear = delayed front) is flagged; the thesis' own correlated case (§2.2: the measured
+  wheel independent, the three others correlated like a track) leaves the measured wheel fitted;
+* the bins near each wheel's rotation frequency and its harmonics, half the lug-passing and the
+  lug-passing frequency masked (§2.4.5: the coherence drops there; :func:`wheel_excitation_mask`);
+* the modes per output: a pole–residue model with shared poles over every usable input's FRF
+  (each pole's ``f_d`` and ``ζ`` found by non-linear least squares, the residues and a complex
+  constant per input by linear least squares for given poles — variable projection, Golub &
+  Pereyra 1973), each bin weighted by its random error; the number of modes by the Bayesian
+  information criterion; 95 % intervals from the Jacobian of the projected residual on the
+  fit's degrees of freedom (:func:`fit_vehicle_modes`).
+
+Segments are at least :data:`MIN_SEGMENT_S` long: bins of 0.125 Hz or finer, well under the
+half-power bandwidth ``2 ζ f`` of tractor modes damped 20–30 % around 1.3 Hz (0.5 Hz), which a
+coarser bin would widen (the damping biased up). All functions are pure; SI units inside.
+
+Examples
+--------
+A 2-input, 1-output system ``y = 2 x₁ − x₂`` recovered from partly correlated inputs:
+
+>>> import numpy as np
+>>> rng = np.random.default_rng(1)
+>>> common = rng.standard_normal(20_000)
+>>> x = np.vstack([common + rng.standard_normal(20_000), common + rng.standard_normal(20_000)])
+>>> y = (2 * x[0] - x[1])[None, :]
+>>> est = mimo_frf(cross_spectra(x, y, 50.0, 256))
+>>> np.round(np.abs(est.h[10, 0]), 3), bool(est.ill_conditioned[10].any())
+(array([2., 1.]), False)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy import optimize, signal
+from scipy.stats import t as student_t
+
+from .._validate import positive, positive_int
+
+__all__ = ["MIN_SEGMENT_S", "MAX_INPUT_COHERENCE", "FIT_MIN_COHERENCE", "FIT_BAND_Hz", "MAX_MODES",
+           "MASK_HARMONICS", "MASK_HALF_WIDTH", "CrossSpectra", "CrossSpectraAccumulator", "cross_spectra",
+           "segment_samples", "second_difference_correction", "MimoFrf", "mimo_frf", "wheel_excitation_mask",
+           "VehicleMode", "fit_vehicle_modes", "DAMPING_BOUNDS", "MIN_MODE_CONTRIBUTION", "WHEELS", "STORED_MAX_Hz",
+           "input_channel_wheel", "frf_unit", "RecordingFrf", "recording_frf", "scenario_wheel_geometry"]
+
+#: Shortest Welch segment, s: bins of 1/8 = 0.125 Hz or finer (the issue's limit for 20–30 %
+#: damped modes around 1.3 Hz; a bin is then a quarter of their half-power bandwidth).
+MIN_SEGMENT_S = 8.0
+#: An input whose multiple coherence with the other inputs reaches this in a bin cannot be
+#: separated from them there (variance-inflation factor 1/(1 − 0.9) = 10, the usual
+#: collinearity limit): flagged ``ill_conditioned``, never fitted.
+MAX_INPUT_COHERENCE = 0.9
+#: Least multiple coherence of a bin the modal fit uses (the "coherent band").
+FIT_MIN_COHERENCE = 0.5
+#: Band of the modal fit, Hz: the stand's random excitation, flat 0.5–12 Hz (thesis §2.2).
+FIT_BAND_Hz = (0.5, 12.0)
+#: Most modes fitted per output (bounce, pitch, lateral–roll pair: a tractor shows at most
+#: three or four in one output's band).
+MAX_MODES = 4
+#: Harmonics of the wheel rotation frequency masked (§2.4.5: "at the wheel rotation frequencies
+#: ... and at harmonics of these").
+MASK_HARMONICS = 3
+#: Half width of a masked band, relative to its centre frequency (±10 %: §2.4.5, "because of ...
+#: small variations in the driving speed, these bands of low coherence were wide"), and at
+#: least one bin either side.
+MASK_HALF_WIDTH = 0.10
+
+
+def segment_samples(sample_rate_Hz: float, min_segment_s: float = MIN_SEGMENT_S) -> int:
+    """Welch segment length, samples: the power of two at least ``min_segment_s`` long.
+
+    Examples
+    --------
+    >>> segment_samples(500.0), segment_samples(100.0)
+    (4096, 1024)
+    """
+    fs = positive("sample_rate_Hz", sample_rate_Hz)
+    n = positive("min_segment_s", min_segment_s) * fs
+    return 1 << max(3, math.ceil(math.log2(n)))
+
+
+@dataclass
+class CrossSpectra:
+    """One-sided Welch spectral matrices of ``q`` inputs and ``p`` outputs.
+
+    Attributes
+    ----------
+    frequency_Hz : ndarray, shape (F,)
+    s_xx : ndarray, shape (F, q, q)
+        ``s_xx[f, i, j]`` = ``csd(x_i, x_j)`` (``E[X_i* X_j]``), unit² / Hz.
+    s_xy : ndarray, shape (F, q, p)
+        ``s_xy[f, i, k]`` = ``csd(x_i, y_k)``.
+    s_yy : ndarray, shape (F, p)
+        Outputs' auto-spectra (``welch``).
+    n_segments : int
+        Welch segments averaged (50 % overlap).
+    n_d : float
+        Independent averages for the random error: the record's length in segment lengths
+        (B&P's ``n_d`` counts disjoint records; 50 % overlapped Hann segments add little).
+    sample_rate_Hz : float
+    """
+
+    frequency_Hz: np.ndarray
+    s_xx: np.ndarray
+    s_xy: np.ndarray
+    s_yy: np.ndarray
+    n_segments: int
+    n_d: float
+    sample_rate_Hz: float
+
+
+class CrossSpectraAccumulator:
+    """Welch spectral matrices accumulated over chunks of a recording, memory bounded by the segment.
+
+    Samples are buffered until :attr:`BLOCK_SEGMENTS` segments are complete; one ``csd`` call
+    (inputs against inputs and outputs, broadcast) and one ``welch`` call take them, and their
+    sums are kept. The result equals ``csd`` over the whole record.
+
+    Parameters
+    ----------
+    n_inputs, n_outputs : int
+    sample_rate_Hz : float
+    nperseg : int
+        Segment length, samples (:func:`segment_samples`).
+    heights : sequence of bool, optional
+        Inputs that are ground heights (m): second-differenced as they stream (every channel then
+        loses its first and last sample) and corrected to the exact second derivative in
+        :meth:`finish` (:func:`second_difference_correction`), so they enter as m/s².
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> rng = np.random.default_rng(0)
+    >>> x, y = rng.standard_normal((2, 5000)), rng.standard_normal((1, 5000))
+    >>> acc = CrossSpectraAccumulator(2, 1, 100.0, 256)
+    >>> for i in range(0, 5000, 777):
+    ...     acc.add(x[:, i:i + 777], y[:, i:i + 777])
+    >>> s = acc.finish()
+    >>> from scipy import signal
+    >>> ref = signal.csd(x[0], y[0], fs=100.0, nperseg=256)[1]
+    >>> bool(np.allclose(s.s_xy[:, 0, 0], ref)), s.n_segments
+    (True, 38)
+    """
+
+    #: Segments per ``csd`` call.
+    BLOCK_SEGMENTS = 16
+
+    def __init__(self, n_inputs: int, n_outputs: int, sample_rate_Hz: float, nperseg: int, heights=None):
+        self.q = positive_int("n_inputs", n_inputs)
+        h = np.zeros(self.q, bool) if heights is None else np.asarray(heights, dtype=bool).reshape(-1)
+        if h.size != self.q:
+            raise ValueError(f"heights must flag each of the {self.q} inputs, got {h.size}")
+        self.heights = h
+        self._carry = None
+        self.p = positive_int("n_outputs", n_outputs, minimum=0)
+        self.fs = positive("sample_rate_Hz", sample_rate_Hz)
+        self.nperseg = positive_int("nperseg", nperseg, minimum=8)
+        self.step = self.nperseg // 2
+        self._buf = np.empty((self.q + self.p, 0))
+        self._sxz = None
+        self._syy = None
+        self.n_segments = 0
+        self.n_samples = 0
+
+    def add(self, inputs, outputs) -> None:
+        """Append samples: ``inputs`` (q, n), ``outputs`` (p, n)."""
+        x = np.atleast_2d(np.asarray(inputs, dtype=float))
+        y = np.asarray(outputs, dtype=float).reshape(self.p, -1)
+        if x.shape[0] != self.q or y.shape[1] != x.shape[1]:
+            raise ValueError(f"inputs must be ({self.q}, n) and outputs ({self.p}, n), got {x.shape} and {y.shape}")
+        block = self.nperseg + (self.BLOCK_SEGMENTS - 1) * self.step
+        for i in range(0, x.shape[1], block):  # a block at a time: no copy of a whole chunk
+            self._add(np.vstack([x[:, i:i + block], y[:, i:i + block]]))
+
+    def _add(self, z: np.ndarray) -> None:
+        self.n_samples += z.shape[1]
+        if self.heights.any():  # second difference of the heights, the other channels one sample late
+            z = z if self._carry is None else np.concatenate([self._carry, z], axis=1)
+            if z.shape[1] < 3:
+                self._carry = z
+                return
+            self._carry = z[:, -2:]
+            mid = z[:, 1:-1].copy()
+            hh = z[:self.q][self.heights]
+            mid[:self.q][self.heights] = (hh[:, 2:] - 2 * hh[:, 1:-1] + hh[:, :-2]) * self.fs ** 2
+            z = mid
+        self._buf = np.concatenate([self._buf, z], axis=1)
+        block = self.nperseg + (self.BLOCK_SEGMENTS - 1) * self.step
+        while self._buf.shape[1] >= block:
+            self._take(self._buf[:, :block], self.BLOCK_SEGMENTS)
+            self._buf = self._buf[:, self.BLOCK_SEGMENTS * self.step:]
+
+    def _take(self, z: np.ndarray, k: int) -> None:
+        kw = dict(fs=self.fs, nperseg=self.nperseg, noverlap=self.nperseg - self.step)
+        _, sxz = signal.csd(z[:self.q, None, :], z[None, :, :], **kw)  # (q, q + p, F)
+        sxz = sxz * k
+        syy = signal.welch(z[self.q:], **kw)[1] * k if self.p else np.zeros((0, sxz.shape[-1]))
+        if self._sxz is None:
+            self._sxz, self._syy = sxz, syy
+        else:
+            self._sxz += sxz
+            self._syy += syy
+        self.n_segments += k
+
+    def finish(self) -> CrossSpectra:
+        """The averaged matrices (the whole segments of what is left taken first).
+
+        Raises
+        ------
+        ValueError
+            Fewer samples than one segment.
+        """
+        rest = self._buf.shape[1]
+        if rest >= self.nperseg:
+            k = (rest - self.nperseg) // self.step + 1
+            self._take(self._buf[:, :self.nperseg + (k - 1) * self.step], k)
+        self._buf = np.empty((self.q + self.p, 0))
+        if not self.n_segments:
+            raise ValueError(f"recording has {self.n_samples} samples, fewer than one segment of {self.nperseg} "
+                             f"({self.nperseg / self.fs:.3g} s)")
+        f = np.fft.rfftfreq(self.nperseg, 1.0 / self.fs)
+        sxz = np.moveaxis(self._sxz / self.n_segments, -1, 0)  # (F, q, q + p)
+        s_xx = sxz[:, :, :self.q]
+        s_xx = 0.5 * (s_xx + np.conj(np.swapaxes(s_xx, 1, 2)))  # Hermitian to the last bit
+        s_xy = sxz[:, :, self.q:]
+        if self.heights.any():
+            c = np.where(self.heights[None, :], second_difference_correction(f, self.fs)[:, None], 1.0)  # (F, q)
+            s_xx = s_xx * c[:, :, None] * c[:, None, :]
+            s_xy = s_xy * c[:, :, None]
+        return CrossSpectra(f, s_xx, s_xy, (self._syy / self.n_segments).T, self.n_segments,
+                            self.n_samples / self.nperseg, self.fs)
+
+
+def cross_spectra(inputs, outputs, sample_rate_Hz: float, nperseg: int | None = None, heights=None) -> CrossSpectra:
+    """:class:`CrossSpectra` of whole arrays: ``inputs`` (q, n), ``outputs`` (p, n).
+
+    ``nperseg`` defaults to :func:`segment_samples`; ``heights`` as for :class:`CrossSpectraAccumulator`.
+    """
+    x = np.atleast_2d(np.asarray(inputs, dtype=float))
+    y = np.asarray(outputs, dtype=float)
+    y = y.reshape(-1, x.shape[1]) if y.size else np.empty((0, x.shape[1]))
+    acc = CrossSpectraAccumulator(x.shape[0], y.shape[0], sample_rate_Hz,
+                                  nperseg or segment_samples(sample_rate_Hz), heights)
+    acc.add(x, y)
+    return acc.finish()
+
+
+def second_difference_correction(frequency_Hz, sample_rate_Hz: float) -> np.ndarray:
+    """Factor turning the spectrum of a second difference ``(h[n+1] - 2 h[n] + h[n-1]) fs²`` into
+    that of the second derivative: ``(2πf)² / (4 fs² sin²(πf/fs))`` (1 at 0 Hz).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> np.round(second_difference_correction([0.0, 1.0, 12.0], 50.0), 4)
+    array([1.    , 1.0013, 1.2132])
+    """
+    f = np.asarray(frequency_Hz, dtype=float)
+    fs = positive("sample_rate_Hz", sample_rate_Hz)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        c = (2 * np.pi * f) ** 2 / (4 * fs ** 2 * np.sin(np.pi * f / fs) ** 2)
+    return np.where(f > 0, c, 1.0)
+
+
+@dataclass
+class MimoFrf:
+    """The multi-input FRF estimate of :func:`mimo_frf`; arrays per bin (F), output (p), input (q).
+
+    Attributes
+    ----------
+    frequency_Hz : (F,)
+    h : (F, p, q) complex
+        ``H1 = S_yx S_xx⁻¹``: output unit per input unit.
+    h2 : (F, p, q) complex or None
+        With one input, ``H2 = S_yy / S_yx``; else None.
+    coherence : (F, p, q)
+        Ordinary coherence ``|S_xy|² / (S_xx S_yy)``.
+    partial_coherence : (F, p, q)
+        Coherence of input i and the output conditioned on the other inputs.
+    multiple_coherence : (F, p)
+    random_error : (F, p, q)
+        Normalised random error of ``|H|`` (B&P eq. 9.90, n_d − q dof).
+    condition_number : (F,)
+        Of the inputs' coherence matrix (``S_xx`` scaled to a unit diagonal: independent of the
+        inputs' units and levels).
+    input_coherence : (F, q)
+        Multiple coherence of each input with the other inputs.
+    ill_conditioned : (F, q) bool
+        ``input_coherence >= MAX_INPUT_COHERENCE`` (or a bin without input power).
+    n_d : float
+    """
+
+    frequency_Hz: np.ndarray
+    h: np.ndarray
+    h2: np.ndarray | None
+    coherence: np.ndarray
+    partial_coherence: np.ndarray
+    multiple_coherence: np.ndarray
+    random_error: np.ndarray
+    condition_number: np.ndarray
+    input_coherence: np.ndarray
+    ill_conditioned: np.ndarray
+    n_d: float
+
+
+def mimo_frf(spectra: CrossSpectra, max_input_coherence: float = MAX_INPUT_COHERENCE) -> MimoFrf:
+    """H1 = S_yx S_xx⁻¹ per output with its coherences, random error and conditioning.
+
+    Bins without input power (DC, after a height's differentiation) or whose ``S_xx`` is
+    singular give NaN and are flagged.
+
+    Examples
+    --------
+    One input: H1 and H2 agree when the output is noise-free.
+
+    >>> import numpy as np
+    >>> rng = np.random.default_rng(2)
+    >>> x = rng.standard_normal((1, 8192)); y = 3.0 * x
+    >>> e = mimo_frf(cross_spectra(x, y, 100.0, 512))
+    >>> round(float(abs(e.h[5, 0, 0])), 6), round(float(abs(e.h2[5, 0, 0])), 6), round(float(e.coherence[5, 0, 0]), 6)
+    (3.0, 3.0, 1.0)
+    """
+    s_xx, s_xy, s_yy = spectra.s_xx, spectra.s_xy, spectra.s_yy
+    nf, q, _ = s_xx.shape
+    p = s_xy.shape[2]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        dx = np.real(np.einsum("fii->fi", s_xx))  # (F, q)
+        ok = np.all(dx > 1e-300 * max(1.0, float(np.nanmax(dx)) if dx.size else 1.0), axis=1) & np.all(s_yy >= 0, axis=1)
+        scale = np.where(ok[:, None], 1.0 / np.sqrt(np.where(dx > 0, dx, 1.0)), np.nan)
+        r = s_xx * scale[:, :, None] * scale[:, None, :]  # coherence (correlation) matrix, unit diagonal
+        eye = np.eye(q)
+        r_safe = np.where(ok[:, None, None], r, eye)
+        sv = np.linalg.svd(r_safe, compute_uv=False)
+        cond = np.where(ok & (sv[:, -1] > 0), sv[:, 0] / np.where(sv[:, -1] > 0, sv[:, -1], 1.0), np.inf)
+        finite = ok & (cond < 1e12)
+        r_use = np.where(finite[:, None, None], r, eye)
+        r_inv = np.linalg.inv(r_use)
+        # multiple coherence of input i with the others: 1 - 1 / (R⁻¹)_ii
+        vif = np.real(np.einsum("fii->fi", r_inv))
+        input_coherence = np.where(finite[:, None], 1.0 - 1.0 / vif, 1.0) if q > 1 else np.zeros((nf, 1))
+        # H^T = S_xx⁻¹ S_xy
+        s_xx_use = np.where(finite[:, None, None], s_xx, eye)
+        ht = np.linalg.solve(s_xx_use, s_xy)  # (F, q, p)
+        h = np.where(finite[:, None, None], np.swapaxes(ht, 1, 2), np.nan)
+        # ordinary coherence
+        coh = np.abs(s_xy) ** 2 / (dx[:, :, None] * s_yy[:, None, :])  # (F, q, p)
+        coh = np.swapaxes(np.where(finite[:, None, None], np.clip(coh, 0, 1), np.nan), 1, 2)
+        # multiple coherence: S_xy^H S_xx⁻¹ S_xy / S_yy
+        explained = np.real(np.einsum("fik,fik->fk", np.conj(s_xy), ht))
+        mult = np.where(finite[:, None], np.clip(explained / s_yy, 0, 1), np.nan)
+        # partial coherence of (x_i, y_k) given the other inputs, from the inverse of the
+        # (q+1)x(q+1) matrix of [x; y_k]: |C_iy|² / (C_ii C_yy)
+        partial = np.full((nf, p, q), np.nan)
+        if q == 1:
+            partial[:, :, 0] = coh[:, :, 0]
+        else:
+            for k in range(p):
+                g = np.empty((nf, q + 1, q + 1), complex)
+                g[:, :q, :q] = s_xx_use
+                g[:, :q, q] = s_xy[:, :, k]
+                g[:, q, :q] = np.conj(s_xy[:, :, k])
+                g[:, q, q] = np.where(finite, s_yy[:, k], 1.0)
+                g = np.where(finite[:, None, None], g, np.eye(q + 1))
+                try:
+                    c = np.linalg.inv(g)
+                except np.linalg.LinAlgError:
+                    c = np.linalg.pinv(g)
+                cd = np.real(np.einsum("fii->fi", c))
+                pc = np.abs(c[:, :q, q]) ** 2 / (cd[:, :q] * cd[:, q:q + 1])
+                partial[:, k, :] = np.where(finite[:, None], np.clip(pc, 0, 1), np.nan)
+        dof = spectra.n_d - q
+        if dof <= 0:
+            raise ValueError(f"n_d = {spectra.n_d:.3g} independent averages for {q} inputs: the random error needs "
+                             f"n_d > q (a longer recording)")
+        err = np.sqrt((1.0 - mult[:, :, None]) / (2.0 * dof * partial))
+        h2 = None
+        if q == 1:
+            h2 = np.where(finite[:, None, None], (s_yy / np.conj(s_xy[:, 0, :]))[:, :, None], np.nan)
+    ill = ~finite[:, None] | (input_coherence >= max_input_coherence)
+    return MimoFrf(spectra.frequency_Hz, h, h2, coh, partial, mult, err, cond, input_coherence, ill, spectra.n_d)
+
+
+def wheel_excitation_mask(frequency_Hz, speed_km_h: float, wheels, harmonics: int = MASK_HARMONICS,
+                          half_width: float = MASK_HALF_WIDTH) -> np.ndarray:
+    """Bins near each rolling wheel's rotation frequency (and harmonics) and lug-passing frequencies.
+
+    Parameters
+    ----------
+    frequency_Hz : array
+        The bins.
+    speed_km_h : float
+        0 (stationary: nothing masked) or the rolling speed.
+    wheels : iterable of (circumference_m, lugs_per_side)
+        Each wheel's rolling circumference and lugs on one side (0: ribbed, no lug band).
+    harmonics : int
+        Rotation harmonics masked (1 = the rotation frequency only).
+    half_width : float
+        Half width of a masked band relative to its centre (at least one bin either side).
+
+    Returns
+    -------
+    ndarray of bool
+        True where masked (§2.4.5).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> f = np.arange(0, 20, 0.125)
+    >>> m = wheel_excitation_mask(f, 6.0, [(4.66, 23)])  # rotation 0.358 Hz, lugs 4.1 and 8.2 Hz
+    >>> bool(m[f == 8.25][0]), bool(m[f == 4.0][0]), bool(m[f == 6.0][0]), bool(m[f == 0.375][0])
+    (True, True, False, True)
+    """
+    f = np.asarray(frequency_Hz, dtype=float)
+    mask = np.zeros(f.shape, dtype=bool)
+    if speed_km_h is None or not speed_km_h > 0:
+        return mask
+    v = float(speed_km_h) / 3.6
+    df = float(np.median(np.diff(f))) if f.size > 1 else 0.0
+    centres = []
+    for circumference_m, lugs in wheels:
+        rot = v / positive("circumference_m", circumference_m)
+        centres += [k * rot for k in range(1, int(harmonics) + 1)]
+        if lugs:
+            centres += [0.5 * lugs * rot, lugs * rot]
+    for c in centres:
+        mask |= np.abs(f - c) <= max(half_width * c, 1.01 * df)
+    return mask
+
+
+@dataclass
+class VehicleMode:
+    """One fitted mode: damped frequency, damping ratio and their 95 % intervals."""
+
+    frequency_Hz: float
+    damping_ratio: float
+    frequency_low_Hz: float
+    frequency_high_Hz: float
+    damping_low: float
+    damping_high: float
+    inputs: tuple = field(default_factory=tuple)
+
+
+def _basis(w: np.ndarray, fd: np.ndarray, zeta: np.ndarray) -> np.ndarray:
+    """Complex basis (n, 2R + 2) of the pole-residue model at ``s = jω``: per mode the real and
+    imaginary parts of a residue pair, then a complex constant."""
+    wd = 2 * np.pi * fd
+    wn = wd / np.sqrt(1 - zeta ** 2)
+    pole = -zeta * wn + 1j * wd
+    s = 1j * w[:, None]
+    a = 1.0 / (s - pole[None, :])
+    b = 1.0 / (s - np.conj(pole)[None, :])
+    cols = [a + b, 1j * (a - b)]
+    return np.concatenate([*cols, np.ones((w.size, 1)), 1j * np.ones((w.size, 1))], axis=1)
+
+
+def _projected(params: np.ndarray, w, h, wt) -> np.ndarray:
+    """Weighted residuals of the best linear residues for the poles ``params`` (fd, ζ pairs), every
+    input's least-squares problem solved at once (normal equations of the column-scaled basis)."""
+    r = params.size // 2
+    phi = _basis(w, params[:r], params[r:])  # (n, k)
+    a = phi[None, :, :] * wt.T[:, :, None]  # (m, n, k)
+    a = np.concatenate([a.real, a.imag], axis=1)  # (m, 2n, k)
+    b = (h * wt).T
+    b = np.concatenate([b.real, b.imag], axis=1)[:, :, None]  # (m, 2n, 1)
+    norm = np.sqrt((a * a).sum(axis=1))
+    norm[norm == 0] = 1.0
+    a = a / norm[:, None, :]
+    at = np.swapaxes(a, 1, 2)
+    coef = np.linalg.solve(at @ a + 1e-12 * np.eye(a.shape[2]), at @ b)
+    return (a @ coef - b).reshape(-1)
+
+
+def fit_vehicle_modes(frequency_Hz, h, sigma, usable=None, max_modes: int = MAX_MODES,
+                      band_Hz: tuple[float, float] = FIT_BAND_Hz) -> list[VehicleMode]:
+    """Modes (damped frequency, damping ratio, 95 % intervals) of one output's FRFs from several inputs.
+
+    Parameters
+    ----------
+    frequency_Hz : (F,)
+    h : (F, m) complex
+        The output's FRF from each of ``m`` inputs.
+    sigma : (F, m)
+        Standard error of each ``|H|`` (``random_error * |H|``); the fit's weights.
+    usable : (F, m) bool, optional
+        Bins to fit (unmasked, separable, coherent); the band ``band_Hz`` is applied too.
+    max_modes : int
+    band_Hz : (low, high)
+
+    Returns
+    -------
+    list of VehicleMode
+        By frequency; empty when too few bins are usable.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> f = np.arange(0.5, 12, 0.125); s = 2j * np.pi * f
+    >>> wn = 2 * np.pi * 1.6; zeta = 0.25
+    >>> h = ((wn ** 2 + 2 * zeta * wn * s) / (s ** 2 + 2 * zeta * wn * s + wn ** 2))[:, None]
+    >>> m = fit_vehicle_modes(f, h, np.full(h.shape, 0.01))
+    >>> len(m), round(float(m[0].frequency_Hz / np.sqrt(1 - zeta ** 2)), 3), round(m[0].damping_ratio, 3)
+    (1, 1.6, 0.25)
+    """
+    f = np.asarray(frequency_Hz, dtype=float)
+    h = np.asarray(h, dtype=complex).reshape(f.size, -1)
+    sig = np.asarray(sigma, dtype=float).reshape(h.shape)
+    use = np.ones(h.shape, bool) if usable is None else np.asarray(usable, bool).reshape(h.shape)
+    lo, hi = band_Hz
+    use = use & ((f >= lo) & (f <= hi))[:, None] & np.isfinite(h) & np.isfinite(sig) & (sig > 0)
+    cols = [j for j in range(h.shape[1]) if use[:, j].sum() >= 8]
+    if not cols:
+        return []
+    rows = use[:, cols].any(axis=1)
+    f, h, sig, use = f[rows], h[rows][:, cols], sig[rows][:, cols], use[rows][:, cols]
+    w = 2 * np.pi * f
+    floor = 1e-3 * np.nanmax(np.abs(np.where(use, h, 0)))
+    wt = np.where(use, 1.0 / np.maximum(sig, floor if floor > 0 else 1e-12), 0.0)
+    h0 = np.where(use, h, 0)
+    n_obs = 2 * int(use.sum())
+    fmin, fmax = max(lo, f.min()), min(hi, f.max())
+    df = float(np.median(np.diff(f))) if f.size > 1 else 0.0
+    lower, upper = [fmin, DAMPING_BOUNDS[0]], [fmax, DAMPING_BOUNDS[1]]
+    best = None  # (bic, params, least-squares result, parameters)
+    prev = np.empty(0)
+    for r in range(1, max_modes + 1):
+        n_par = 2 * r + len(cols) * (2 * r + 2)
+        if n_par >= n_obs - 2:
+            break
+        resid = _projected(prev, w, h0, wt) if prev.size else None
+        lb, ub = np.repeat(lower, r), np.repeat(upper, r)
+        trial = None
+        accepted = False
+        # the largest residual peak first; the other candidates only when it gives no acceptable fit
+        for fc in _candidates(f, h0, wt, resid, len(cols)):
+            x0 = np.clip(np.concatenate([prev[:r - 1], [fc], prev[r - 1:], [0.15]]), lb, ub)
+            try:
+                res = optimize.least_squares(_projected, x0, args=(w, h0, wt), method="trf", bounds=(lb, ub),
+                                             x_scale=np.repeat([1.0, 0.1], r), max_nfev=100, ftol=1e-6, xtol=1e-6)
+            except (ValueError, np.linalg.LinAlgError):
+                continue
+            # a pole at a bound or contributing nothing stands for noise or what lies outside the band
+            if not _all_modes(res.x, w, h0, wt, lb, ub):
+                continue
+            bic = n_obs * math.log(max(2 * res.cost, 1e-300) / n_obs) + n_par * math.log(n_obs)
+            if trial is None or res.cost < trial.cost:
+                trial, trial_bic = res, bic
+            if best is None or bic < best[0]:
+                accepted = True
+                break
+        if not accepted:
+            break
+        bic = trial_bic
+        best = (bic, trial.x.copy(), trial, n_par)
+        order = np.argsort(trial.x[:r])
+        prev = np.concatenate([trial.x[:r][order], trial.x[r:][order]])
+    if best is None:
+        return []
+    _, x, res, n_par = best
+    r = x.size // 2
+    dof = max(n_obs - n_par, 1)
+    s2 = 2 * res.cost / dof
+    jac = res.jac
+    cov = np.linalg.pinv(jac.T @ jac) * s2
+    k = float(student_t.ppf(0.975, dof))
+    modes = []
+    for i in range(r):
+        fd, z = float(x[i]), float(x[r + i])
+        # the statistical standard errors with, in quadrature, the resolution's: the bin width as a
+        # rectangular uncertainty of the frequency (df / sqrt(12)), and for the damping the Hann
+        # window's bias of a half-power bandwidth B_r = 2 ζ f by its noise bandwidth B_e = 1.5 df,
+        # (B_e / B_r)² / 3 of it (Bendat & Piersol eq. 8.141)
+        b_r = 2 * z * fd / math.sqrt(1 - z * z)
+        uf = math.sqrt(max(cov[i, i], 0.0) + df ** 2 / 12)
+        uz = math.sqrt(max(cov[r + i, r + i], 0.0) + (z * (1.5 * df / b_r) ** 2 / 3) ** 2)
+        modes.append(VehicleMode(fd, z, fd - k * uf, fd + k * uf, max(z - k * uz, 0.0), z + k * uz, tuple(cols)))
+    return sorted(modes, key=lambda m: m.frequency_Hz)
+
+
+#: Bounds of a fitted damping ratio (a pole at one is not reported as a mode).
+DAMPING_BOUNDS = (0.005, 0.95)
+#: Least peak contribution of a mode to an FRF, relative to the FRF's largest magnitude: a pole
+#: contributing less is noise fitted, not a mode.
+MIN_MODE_CONTRIBUTION = 0.05
+
+
+def _all_modes(x, w, h, wt, lb, ub) -> bool:
+    """Whether every pole of ``x`` is off its bounds and contributes at least
+    :data:`MIN_MODE_CONTRIBUTION` of some input's FRF."""
+    r = x.size // 2
+    at_bound = (x <= lb + 1e-3 * (ub - lb)) | (x >= ub - 1e-3 * (ub - lb))
+    if at_bound.any():
+        return False
+    phi = _basis(w, x[:r], x[r:])
+    peak = np.zeros(r)
+    for j in range(h.shape[1]):
+        keep = wt[:, j] > 0
+        a = phi[keep] * wt[keep, j:j + 1]
+        coef = np.linalg.lstsq(np.vstack([a.real, a.imag]),
+                               np.concatenate([(h[keep, j] * wt[keep, j]).real, (h[keep, j] * wt[keep, j]).imag]),
+                               rcond=None)[0]
+        hmax = np.max(np.abs(h[keep, j]))
+        for i in range(r):
+            term = phi[keep, i] * coef[i] + phi[keep, r + i] * coef[r + i]
+            peak[i] = max(peak[i], float(np.max(np.abs(term))) / hmax if hmax > 0 else 0.0)
+    return bool((peak >= MIN_MODE_CONTRIBUTION).all())
+
+
+def _candidates(f, h, wt, resid, m, n: int = 2) -> list[float]:
+    """Starting frequencies for a new pole: the largest peaks of the weighted data (first mode) or
+    of the previous fit's residual, and the band's geometric middle."""
+    if resid is None:
+        mag = np.sum(np.abs(h) * (wt > 0), axis=1)
+    else:
+        mag = np.abs(resid.reshape(2 * m, -1)).reshape(m, 2, -1).sum(axis=(0, 1))
+    if mag.size > 4:
+        mag = np.convolve(mag, np.ones(3) / 3, mode="same")
+    peaks, _ = signal.find_peaks(mag)
+    peaks = sorted(peaks, key=lambda i: -mag[i])[:n]
+    out = [float(f[i]) for i in peaks]
+    out.append(float(math.sqrt(max(f.min(), 1e-3) * f.max())))
+    return out
+
+
+#: Wheels of a four-wheel vehicle, in the order of the input channels.
+WHEELS = ("front_left", "front_right", "rear_left", "rear_right")
+#: Upper frequency of the stored FRF bins, Hz (the stand's excitation reaches 12 Hz, §2.2).
+STORED_MAX_Hz = 20.0
+
+
+def input_channel_wheel(channel: str) -> tuple[str, bool] | None:
+    """``(wheel, is_height)`` of an input channel name (``input_<wheel>_z_m_s2`` or ``_z_m``), else None.
+
+    Examples
+    --------
+    >>> input_channel_wheel("input_rear_left_z_m"), input_channel_wheel("input_front_right_z_m_s2")
+    (('rear_left', True), ('front_right', False))
+    >>> input_channel_wheel("floor_z_m_s2") is None
+    True
+    """
+    for w in WHEELS:
+        if channel == f"input_{w}_z_m_s2":
+            return w, False
+        if channel == f"input_{w}_z_m":
+            return w, True
+    return None
+
+
+def frf_unit(output: str) -> str:
+    """Unit of an FRF to ``output`` per m/s² of input (heights enter differentiated)."""
+    return "(rad/s²)/(m/s²)" if output.endswith("rad_s2") else "(m/s²)/(m/s²)"
+
+
+@dataclass
+class RecordingFrf:
+    """One recording's FRFs and modes (:func:`recording_frf`).
+
+    Attributes
+    ----------
+    inputs : tuple of str
+        Input channels, in the order of the estimate's last axis.
+    wheels : tuple of str
+    outputs : tuple of str
+    estimate : MimoFrf
+    masked : (F,) bool
+        Rotation and lug-passing bins (§2.4.5).
+    modes : dict
+        Output -> list of :class:`VehicleMode`.
+    speed_km_h : float
+    sample_rate_Hz, duration_s : float
+    """
+
+    inputs: tuple
+    wheels: tuple
+    outputs: tuple
+    estimate: MimoFrf
+    masked: np.ndarray
+    modes: dict
+    speed_km_h: float
+    sample_rate_Hz: float
+    duration_s: float
+
+    def usable(self, k: int) -> np.ndarray:
+        """(F, q) bins of output ``k`` the fit may use: separable, unmasked, coherent."""
+        e = self.estimate
+        return (~e.ill_conditioned & ~self.masked[:, None]
+                & (e.multiple_coherence[:, k:k + 1] >= FIT_MIN_COHERENCE))
+
+    def frf_rows(self, max_Hz: float = STORED_MAX_Hz) -> list[dict]:
+        """One row per input, output and bin in (0, ``max_Hz``] (the ``vehicle_frf`` columns)."""
+        e = self.estimate
+        f = e.frequency_Hz
+        keep = np.flatnonzero((f > 0) & (f <= max_Hz))
+        rows = []
+        for k, out in enumerate(self.outputs):
+            for j, (inp, wheel) in enumerate(zip(self.inputs, self.wheels)):
+                h = e.h[keep, k, j]
+                h2 = e.h2[keep, k, j] if e.h2 is not None else np.full(keep.size, np.nan)
+                for n, i in enumerate(keep):
+                    rows.append({
+                        "input": inp, "wheel": wheel, "output": out, "frequency_Hz": float(f[i]),
+                        "h_magnitude": _num(abs(h[n])), "h_phase_deg": _num(np.degrees(np.angle(h[n]))),
+                        "h_unit": frf_unit(out), "h2_magnitude": _num(abs(h2[n])),
+                        "h2_phase_deg": _num(np.degrees(np.angle(h2[n]))),
+                        "coherence": _num(e.coherence[i, k, j]), "partial_coherence": _num(e.partial_coherence[i, k, j]),
+                        "multiple_coherence": _num(e.multiple_coherence[i, k]),
+                        "random_error": _num(e.random_error[i, k, j]),
+                        "condition_number": _num(e.condition_number[i]),
+                        "input_coherence": _num(e.input_coherence[i, j]),
+                        "ill_conditioned": bool(e.ill_conditioned[i, j]), "masked": bool(self.masked[i])})
+        return rows
+
+    def mode_rows(self) -> list[dict]:
+        """One row per output and mode (the ``vehicle_modes`` columns)."""
+        rows = []
+        for out in self.outputs:
+            for n, m in enumerate(self.modes.get(out, []), start=1):
+                rows.append({"output": out, "mode": n, "frequency_Hz": m.frequency_Hz, "damping_ratio": m.damping_ratio,
+                             "frequency_ci95_low_Hz": m.frequency_low_Hz, "frequency_ci95_high_Hz": m.frequency_high_Hz,
+                             "damping_ci95_low": m.damping_low, "damping_ci95_high": m.damping_high,
+                             "inputs": ",".join(self.inputs[j] for j in m.inputs)})
+        return rows
+
+    def to_json(self, max_Hz: float = STORED_MAX_Hz) -> dict:
+        """``inputs``, ``outputs``, ``speed_km_h``, ``sample_rate_Hz``, ``duration_s``, ``n_d``,
+        ``modes`` (rows) and ``frf`` (rows), NaN as None."""
+        return {"inputs": list(self.inputs), "wheels": list(self.wheels), "outputs": list(self.outputs),
+                "speed_km_h": self.speed_km_h, "sample_rate_Hz": self.sample_rate_Hz, "duration_s": self.duration_s,
+                "n_d": self.estimate.n_d, "modes": self.mode_rows(), "frf": self.frf_rows(max_Hz)}
+
+
+def scenario_wheel_geometry(scenario) -> list[tuple[float, int]]:
+    """``(rolling circumference m, lugs per side)`` of a scenario's four wheels (front, front, rear,
+    rear), for :func:`wheel_excitation_mask`: the tyre's ``radius_m`` if given, else the
+    circumference from its size; no lugs on a tyre without ``traction``
+    (:func:`tyrelab.tyre.sizes.lugs_per_side`).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as S
+    >>> sc = S(front=S(size="7.50-18", radius_m=None, traction=False), rear=S(size="13.6R38", radius_m=None, traction=True))
+    >>> [(round(c, 2), n) for c, n in scenario_wheel_geometry(sc)][1:3]
+    [(2.35, 0), (4.66, 23)]
+    """
+    from ..tyre.sizes import lugs_per_side, parse_tyre_size, rolling_circumference_m
+
+    out = []
+    for spec in (scenario.front, scenario.rear):
+        circ = 2 * math.pi * spec.radius_m if spec.radius_m else rolling_circumference_m(parse_tyre_size(spec.size))
+        out += [(circ, lugs_per_side(circ, ribbed=not spec.traction))] * 2
+    return out
+
+
+def _num(v) -> float | None:
+    v = float(v)
+    return v if math.isfinite(v) else None
+
+
+def recording_frf(recording, speed_km_h: float = 0.0, wheels_geometry=None, outputs=None,
+                  min_segment_s: float = MIN_SEGMENT_S, max_modes: int = MAX_MODES) -> RecordingFrf:
+    """FRFs and modes of an opened recording with input channels (streamed: memory by the segment).
+
+    Parameters
+    ----------
+    recording
+        An opened recording (:func:`tyrelab.rawformat.rides.open_recording`): ``channels``,
+        ``sample_rate_Hz``, ``chunks()``.
+    speed_km_h : float
+        Rolling speed; 0 = stationary (nothing masked).
+    wheels_geometry : iterable of (circumference_m, lugs_per_side), optional
+        The tyres whose rotation and lug bins are masked (none when not given).
+    outputs : sequence of str, optional
+        Output channels (default: every channel that is not an input).
+    min_segment_s : float
+    max_modes : int
+
+    Raises
+    ------
+    ValueError
+        One line: no input channel, an input that is constant (no excitation), a recording
+        shorter than the segments the random error needs.
+    """
+    names = tuple(recording.channels)
+    inputs = [c for c in names if input_channel_wheel(c)]
+    if not inputs:
+        raise ValueError("no input channel (input_<wheel>_z_m_s2 or input_<wheel>_z_m, wheel one of "
+                         f"{', '.join(WHEELS)})")
+    wheels = [input_channel_wheel(c)[0] for c in inputs]
+    twice = sorted({w for w in wheels if wheels.count(w) > 1})
+    if twice:
+        raise ValueError(f"wheel {twice[0]} has both a height and an acceleration input: give one")
+    outs = [c for c in names if c not in inputs] if outputs is None else list(outputs)
+    if not outs:
+        raise ValueError("no output channel beside the inputs")
+    fs = float(recording.sample_rate_Hz)
+    nperseg = segment_samples(fs, min_segment_s)
+    acc = CrossSpectraAccumulator(len(inputs), len(outs), fs, nperseg,
+                                  heights=[input_channel_wheel(c)[1] for c in inputs])
+    lo = np.full(len(inputs), np.inf)
+    hi = np.full(len(inputs), -np.inf)
+    n = 0
+    for chunk in recording.chunks():
+        x = np.vstack([chunk.channels[c] for c in inputs])
+        lo, hi = np.minimum(lo, x.min(axis=1)), np.maximum(hi, x.max(axis=1))
+        acc.add(x, np.vstack([chunk.channels[c] for c in outs]))
+        n += x.shape[1]
+    flat = [c for c, a, b in zip(inputs, lo, hi) if not b > a]
+    if flat:
+        raise ValueError(f"input channel {flat[0]} is constant: no excitation to estimate a transfer function from")
+    duration = n / fs
+    if n < 2 * nperseg:
+        raise ValueError(f"recording is {duration:.3g} s: the FRFs need at least two segments of "
+                         f"{nperseg / fs:.3g} s (bins of {fs / nperseg:.3g} Hz)")
+    spectra = acc.finish()
+    if spectra.n_d <= len(inputs) + 1:
+        raise ValueError(f"recording is {duration:.3g} s: {len(inputs)} inputs need more than {len(inputs) + 1} "
+                         f"segments of {nperseg / fs:.3g} s for the random error (n_d - q degrees of freedom)")
+    est = mimo_frf(spectra)
+    masked = wheel_excitation_mask(est.frequency_Hz, speed_km_h, wheels_geometry or ())
+    result = RecordingFrf(tuple(inputs), tuple(wheels), tuple(outs), est, masked, {}, float(speed_km_h), fs, duration)
+    for k, out in enumerate(outs):
+        h = est.h[:, k, :]
+        result.modes[out] = fit_vehicle_modes(est.frequency_Hz, h, est.random_error[:, k, :] * np.abs(h),
+                                              result.usable(k), max_modes=max_modes)
+    return result
