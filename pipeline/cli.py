@@ -366,6 +366,7 @@ OPTION_LIMITS = {
     "front_stiffness_u": "stiffness_u_kN_per_m", "rear_stiffness_u": "stiffness_u_kN_per_m",
     "axle_mass": "axle.mass_kg", "track_width_m": "tractor.front_track_m",
     "lateral_offset_m": "surface.lateral_offset_m", "start_m": "surface.start_m", "length_m": "surface.length_m",
+    "speed": "frf_speed_km_h", "max_frequency": "frf_max_Hz",
 }
 
 
@@ -375,7 +376,12 @@ def _option_problems(args, dests) -> list[str]:
     from . import _validate
     from .vehicle.scenario_limits import LIMITS
 
-    limits = {**LIMITS, "stiffness_u_kN_per_m": (0.0, LIMITS["stiffness_kN_per_m"][1], "kN/m")}
+    from .rawformat import SAMPLE_RATE_RANGE_Hz
+
+    limits = {**LIMITS, "stiffness_u_kN_per_m": (0.0, LIMITS["stiffness_kN_per_m"][1], "kN/m"),
+              # frf: a standing vehicle (0) to the ride model's fastest; up to the Nyquist frequency of raw format v1
+              "frf_speed_km_h": (0.0, LIMITS["exposure.speeds_km_h"][1], "km/h"),
+              "frf_max_Hz": (0.0, SAMPLE_RATE_RANGE_Hz[1] / 2, "Hz")}
     problems = []
     for dest in dests:
         value = getattr(args, dest, None)
@@ -435,7 +441,7 @@ def cmd_estimate_stiffness(args) -> int:
         print(f"{prog}: {printable(exc)}", file=sys.stderr)
         return EXIT_USAGE
     if not math.isfinite(est.stiffness_kN_per_m):
-        print(f"{prog}: --pressure {args.pressure:g} bar (with --size {args.size}): the formula gives no finite "
+        print(f"{prog}: --pressure {args.pressure:g} bar (with --size {printable(args.size)}): the formula gives no finite "
               "stiffness", file=sys.stderr)
         return EXIT_USAGE
     _warn(prog, est.warnings)
@@ -587,6 +593,8 @@ def cmd_frf(args) -> int:
     from .scenario_io import ScenarioError
 
     prog = "tyrelab frf"
+    if _refused(prog, _option_problems(args, ("speed", "max_frequency"))):
+        return EXIT_USAGE
     try:
         r = vehicle_frf(Path(args.file), speed_km_h=args.speed, scenario=args.scenario)
     except ScenarioError as exc:
