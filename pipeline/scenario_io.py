@@ -21,7 +21,7 @@ from .vehicle.scenario import parse_scenario as _parse_text
 from .vehicle.scenario import scenario_from_dict as _from_dict
 
 __all__ = ["MAX_CRG_BYTES", "MAX_PROFILE_BYTES", "MAX_SCENARIO_BYTES", "ScenarioError", "load_scenario", "parse_scenario", "read_crg", "scenario_from_dict",
-           "read_profile_csv", "huge_number_problems"]
+           "read_profile_csv", "huge_number_problems", "crg_files"]
 
 #: Largest OpenCRG file read, bytes (a text CRG holds about 20 bytes per height: 10 million heights).
 MAX_CRG_BYTES = 200_000_000
@@ -30,10 +30,14 @@ MAX_CRG_BYTES = 200_000_000
 MAX_PROFILE_BYTES = 200_000_000
 
 
-def read_crg(path: str | Path):
+def read_crg(path: str | Path, *, confine_to: str | Path | None = None):
     """Read an OpenCRG road with ``pyopencrg`` (checked as it reads: a short binary section or a bad
     header is refused), bounded before the grid is loaded (:data:`MAX_CRG_BYTES`,
     :data:`tyrelab.vehicle.crg.MAX_GRID_VALUES`).
+
+    With ``confine_to`` (a campaign's scenario folder, when the pipeline reads it), the data file a
+    ``$ROAD_CRG_FILE`` block references must lie inside that folder after symlinks (and environment
+    variables, which pyopencrg expands) are resolved: a campaign reads no file the build does not track.
 
     Returns
     -------
@@ -42,7 +46,8 @@ def read_crg(path: str | Path):
     Raises
     ------
     ValueError
-        One line naming the file and its problem (missing, too large, not a readable OpenCRG file).
+        One line naming the file and its problem (missing, too large, not a readable OpenCRG file,
+        a data file outside ``confine_to``).
     """
     import warnings
 
@@ -58,6 +63,15 @@ def read_crg(path: str | Path):
     if size > MAX_CRG_BYTES:
         raise ValueError(f"{path}: {size} bytes, above the {MAX_CRG_BYTES} bytes a CRG road may have")
     problem = _crg_header_problem(path)  # what the data would take, from the header alone, before pyopencrg reads it
+    if confine_to is not None and not problem:
+        data = _crg_data_file(path)
+        try:
+            inside = data is None or data.is_relative_to(Path(confine_to).resolve())
+        except OSError:
+            inside = False
+        if not inside:
+            problem = (f"its data file {printable(data)} ($ROAD_CRG_FILE) is outside the campaign's folder "
+                       f"{printable(Path(confine_to).resolve())}: a campaign's road reads only its own files")
     if problem:
         raise ValueError(f"{path}: {problem}")
     try:
@@ -80,6 +94,38 @@ def read_crg(path: str | Path):
 #: Bytes of one value in an OpenCRG data section, by format (binary float32/float64; ASCII fields of
 #: 10 and 20 characters on lines of 80, plus their line ends: an upper bound on the value count).
 _CRG_VALUE_BYTES = {"KRBI": 4, "KDBI": 8, "LRFI": 10, "LDFI": 20}
+
+
+def crg_files(path: str | Path) -> list[Path]:
+    """The files an OpenCRG road reads: the file, and the data file its ``$ROAD_CRG_FILE`` block
+    references (resolved, symlinks included; the header alone is read). What a cache key of a
+    result that read the road must hold (editing either re-runs it).
+
+    Examples
+    --------
+    >>> crg_files("no-such.crg")
+    [PosixPath('no-such.crg')]
+    """
+    path = Path(path)
+    data = _crg_data_file(path)
+    return [path] + ([data] if data is not None and data.resolve() != path.resolve() else [])
+
+
+def _crg_data_file(path: Path) -> Path | None:
+    """The data file of an OpenCRG road (the file itself, or the one its ``$ROAD_CRG_FILE`` block
+    names), resolved; None where the header cannot be read (the reader says why)."""
+    import warnings
+
+    try:
+        from pyopencrg import io as crg_io
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            _, ipl, _ = crg_io._decode_crg(str(path))
+    except Exception:  # noqa: BLE001 - a damaged header (or another pyopencrg)
+        return None
+    data = Path(ipl.filename)
+    return (data if data.is_absolute() or data.exists() else path.parent / data).resolve()
 
 
 def _crg_header_problem(path: Path) -> str | None:
@@ -199,7 +245,15 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
     except (tomllib.TOMLDecodeError, RecursionError):
         doc = None  # the parser below says what is wrong with the text
     _refuse_huge(doc, path, base_dir, confine)
-    return _parse_text(text, base_dir, path, confine=confine, read_profile=read_profile_csv, read_crg=read_crg)
+    return _parse_text(text, base_dir, path, confine=confine, read_profile=read_profile_csv,
+                       read_crg=_crg_reader(base_dir, confine))
+
+
+def _crg_reader(base_dir, confine: bool):
+    """:func:`read_crg` as a scenario reads it: confined to ``base_dir`` when ``confine`` is."""
+    import functools
+
+    return functools.partial(read_crg, confine_to=base_dir) if confine else read_crg
 
 
 def huge_number_problems(doc, prefix: str = "", depth: int = 0) -> list[str]:
@@ -274,7 +328,8 @@ def scenario_from_dict(doc, base_dir: str | Path = ".", path: str | Path | None 
 
     if isinstance(doc, Mapping):
         _refuse_huge(dict(doc), path, base_dir, confine)
-    return _from_dict(doc, base_dir, path, confine=confine, read_profile=read_profile_csv, read_crg=read_crg)
+    return _from_dict(doc, base_dir, path, confine=confine, read_profile=read_profile_csv,
+                      read_crg=_crg_reader(base_dir, confine))
 
 
 #: Largest scenario file read, bytes (the shipped ones are ~2 kB).

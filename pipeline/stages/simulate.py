@@ -59,7 +59,7 @@ from ..tyre.models import THESIS_TABLES, thesis_stiffness_model
 from ..vehicle import bounce_pitch, ride, studies
 from ..vehicle import published_layouts as layouts
 from ..vehicle.model import assemble
-from ..scenario_io import ScenarioError, load_scenario
+from ..scenario_io import ScenarioError, crg_files, load_scenario
 from .base import Context, Progress, StageResult, write_quarantine
 from .dag import RIDE_TABLES
 from .state import ItemCache
@@ -131,6 +131,8 @@ def _ride_plan(ctx: Context, files: list[tuple[str, str]], cache: ItemCache) -> 
         try:
             sc = load_scenario(path)
             fits, profile = scenario_fits(sc, tables), sc.surface.profile_data  # a profile CSV's data, as read
+            if sc.surface.kind == "crg" and sc.surface.file is not None:  # a CRG road and its data file, by content
+                profile = [cache.file_digest(f) for f in crg_files(sc.surface.file)]
         except Exception:  # noqa: BLE001 - any failure of one file: its task refuses it (one quarantine line)
             fits, profile = {}, None  # its task refuses the file, reading the same bytes
         keys.append(cache.key("ride", path, source, text, fits, profile))

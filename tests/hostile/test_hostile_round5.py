@@ -560,3 +560,74 @@ def test_tyrelab_road_bounds_the_grid_of_a_profile_before_building_it(tmp_path, 
     assert main(["road", str(p)]) == 2
     err = capsys.readouterr().err
     assert len(lines(err)) == 1 and "makes 29,966,011 points, more than the 10,000,000" in err
+
+
+# ----------------------------------------------------------------------------- confined and tracked
+def _crg_campaign(tmp_path, reference="data.crg", data_at=None):
+    """raw/scenarios/s.toml on ``ref.crg``, whose $ROAD_CRG_FILE names ``reference`` (a 3-D tractor);
+    the data file written at ``data_at`` (default: beside it)."""
+    import pyopencrg
+
+    from tests.vehicle.test_ride_3d import text as text_3d
+
+    folder = tmp_path / "raw" / "scenarios"
+    folder.mkdir(parents=True)
+    v = np.round(np.arange(-1.5, 1.5001, 0.1), 10)
+    z = np.random.default_rng(3).normal(0, 0.005, (1200, v.size))
+    where = data_at or folder / "data.crg"
+    where.parent.mkdir(parents=True, exist_ok=True)
+    pyopencrg.CrgRoad(z, u_inc=0.05, v=v).save(where, fmt="KDBI")
+    (folder / "ref.crg").write_text(f"$ROAD_CRG_FILE\n{reference}\n$\n")
+    path = folder / "s.toml"
+    path.write_text(text_3d('kind = "crg"\nfile = "ref.crg"\nlength_m = 50'))
+    return path, where
+
+
+def test_a_campaign_crg_reads_a_data_file_inside_its_folder(tmp_path):
+    from tyrelab.scenario_io import load_scenario
+
+    path, _ = _crg_campaign(tmp_path)
+    assert load_scenario(path).surface.crg_data is not None
+
+
+@pytest.mark.parametrize("how", ["outside", "symlink", "environment"])
+def test_a_campaign_crg_referencing_a_file_outside_its_folder_is_refused(tmp_path, monkeypatch, how):
+    from tyrelab.scenario_io import load_scenario
+
+    outside = tmp_path / "elsewhere" / "data.crg"
+    if how == "outside":
+        path, _ = _crg_campaign(tmp_path, reference="../../elsewhere/data.crg", data_at=outside)
+    elif how == "symlink":
+        path, _ = _crg_campaign(tmp_path, reference="link.crg", data_at=outside)
+        (path.parent / "link.crg").symlink_to(outside)
+    else:
+        monkeypatch.setenv("I46_UP", "../../elsewhere")  # pyopencrg expands variables in the reference
+        path, _ = _crg_campaign(tmp_path, reference="./$I46_UP/data.crg", data_at=outside)
+    with pytest.raises(ScenarioError) as info:
+        load_scenario(path)
+    assert any("outside the campaign's folder" in p for p in info.value.problems), info.value.problems
+    assert load_scenario(path, confine=False).surface.crg_data is not None  # tyrelab ride on the user's own file
+
+
+def test_editing_a_crg_data_file_changes_its_scenarios_cache_key(tmp_path, monkeypatch):
+    from tyrelab.itemcache import ItemCache
+    from tyrelab.scenario_io import crg_files
+
+    path, data = _crg_campaign(tmp_path)
+    assert [p.name for p in crg_files(path.parent / "ref.crg")] == ["ref.crg", "data.crg"]
+    monkeypatch.setattr(simulate_stage, "read_fit_tables", lambda ctx: {})
+    monkeypatch.setattr(simulate_stage, "scenario_fits", lambda sc, tables: {})
+
+    class Ctx:
+        parquet = tmp_path / "parquet"
+        build = tmp_path / "build"
+
+    def key():
+        return simulate_stage._ride_plan(Ctx(), [(str(path), "raw")], ItemCache(Ctx(), "simulate", "round5"))[0][0]
+
+    before = key()
+    assert key() == before
+    raw = bytearray(data.read_bytes())
+    raw[-8:] = np.float64(0.25).tobytes()[::-1] if raw[-8:] != np.float64(0.25).tobytes()[::-1] else bytes(8)
+    data.write_bytes(bytes(raw))
+    assert key() != before
