@@ -16,6 +16,11 @@ from tyrelab.cli import main
 from tyrelab.resources import scenarios_dir
 from tyrelab.scenario_io import ScenarioError, huge_number_problems, parse_scenario, scenario_from_dict
 from tyrelab.stages import simulate as simulate_stage
+
+try:  # the ride scenarios of the simulate stage (a module of their own since issue 45)
+    from tyrelab.stages import ride_scenarios as ride_stage
+except ImportError:  # pragma: no cover - before it
+    ride_stage = simulate_stage
 from tyrelab.vehicle import ride as ride_module
 from tyrelab.watch import WatchOptions
 
@@ -294,23 +299,23 @@ def test_the_ride_plan_never_stops_on_one_file(tmp_path, monkeypatch, error):
     good, bad = tmp_path / "good.toml", tmp_path / "bad.toml"
     good.write_text(text(name="good"))
     bad.write_text(text(name="bad"))
-    real = simulate_stage.load_scenario
+    real = ride_stage.load_scenario
 
     def loading(path, *a, **k):
         if str(path).endswith("bad.toml"):
             raise error
         return real(path, *a, **k)
 
-    monkeypatch.setattr(simulate_stage, "load_scenario", loading)
-    monkeypatch.setattr(simulate_stage, "read_fit_tables", lambda ctx: {})
-    monkeypatch.setattr(simulate_stage, "scenario_fits", lambda sc, tables: {})
+    monkeypatch.setattr(ride_stage, "load_scenario", loading)
+    monkeypatch.setattr(ride_stage, "read_fit_tables", lambda ctx: {})
+    monkeypatch.setattr(ride_stage, "scenario_fits", lambda sc, tables: {})
 
     class Ctx:
         parquet = tmp_path / "parquet"
         build = tmp_path / "build"
 
     cache = ItemCache(Ctx(), "simulate", "round5")
-    keys, tyres = simulate_stage._ride_plan(Ctx(), [(str(good), "raw"), (str(bad), "raw")], cache)
+    keys, tyres = ride_stage._ride_plan(Ctx(), [(str(good), "raw"), (str(bad), "raw")], cache)
     assert len(keys) == 2 and len(set(keys)) == 2
 
 
@@ -615,15 +620,15 @@ def test_editing_a_crg_data_file_changes_its_scenarios_cache_key(tmp_path, monke
 
     path, data = _crg_campaign(tmp_path)
     assert [p.name for p in crg_files(path.parent / "ref.crg")] == ["ref.crg", "data.crg"]
-    monkeypatch.setattr(simulate_stage, "read_fit_tables", lambda ctx: {})
-    monkeypatch.setattr(simulate_stage, "scenario_fits", lambda sc, tables: {})
+    monkeypatch.setattr(ride_stage, "read_fit_tables", lambda ctx: {})
+    monkeypatch.setattr(ride_stage, "scenario_fits", lambda sc, tables: {})
 
     class Ctx:
         parquet = tmp_path / "parquet"
         build = tmp_path / "build"
 
     def key():
-        return simulate_stage._ride_plan(Ctx(), [(str(path), "raw")], ItemCache(Ctx(), "simulate", "round5"))[0][0]
+        return ride_stage._ride_plan(Ctx(), [(str(path), "raw")], ItemCache(Ctx(), "simulate", "round5"))[0][0]
 
     before = key()
     assert key() == before
