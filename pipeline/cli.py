@@ -139,9 +139,9 @@ def _writing(args, label: str, work) -> int:
             io.remove_stale_temporaries(args.build)  # left by a killed writer: we are the only one now
             return work()
     except (BuildLocked, PublishedTableError) as exc:  # a thesis table in <raw>/published that does not fit
-        print(f"tyrelab {label}: {str(exc).splitlines()[0]}", file=sys.stderr)
+        print(f"tyrelab {label}: {printable(str(exc).splitlines()[0])}", file=sys.stderr)
     except OSError as exc:
-        print(f"tyrelab {label}: {os_error_line(exc)}", file=sys.stderr)
+        print(f"tyrelab {label}: {printable(os_error_line(exc))}", file=sys.stderr)
     return EXIT_USAGE
 
 
@@ -150,7 +150,7 @@ def cmd_run(args) -> int:
 
     problem = _check_raw(args, need_campaign=True)
     if problem:
-        print(f"tyrelab run: {problem}", file=sys.stderr)
+        print(f"tyrelab run: {printable(problem)}", file=sys.stderr)
         return EXIT_USAGE
     if getattr(args, "explain", False):  # read-only: no lock, nothing written
         from .stages import explain
@@ -193,7 +193,7 @@ def cmd_stage(args) -> int:
 
     problem = _check_raw(args, need_campaign=args.stage == "ingest")
     if problem:
-        print(f"tyrelab {args.stage}: {problem}", file=sys.stderr)
+        print(f"tyrelab {args.stage}: {printable(problem)}", file=sys.stderr)
         return EXIT_USAGE
 
     def work() -> int:
@@ -214,9 +214,15 @@ def _print_result(fmt: str, names: list, frames, first: bool, table_bytes: int, 
     import pandas as pd
 
     if fmt == "json":  # one JSON array per statement, on one line
+        keys = unique_keys(names)
+        if keys != list(names):
+            print("tyrelab sql: warning: the result has columns of the same name; their JSON keys are "
+                  + ", ".join(printable(str(k)) for k in keys), file=sys.stderr)
         _out("[")
         sep = ""
         for df in frames:
+            if keys != list(names):
+                df = df.set_axis(keys, axis=1)
             if len(df):
                 _out(sep + df.to_json(orient="records", date_format="iso", double_precision=15)[1:-1])
                 sep = ","
@@ -246,6 +252,29 @@ def _print_result(fmt: str, names: list, frames, first: bool, table_bytes: int, 
         _out(df.to_string(index=False, line_width=width) + "\n")  # wider than width: blocks of columns
 
 
+def unique_keys(names) -> list[str]:
+    """Column names as JSON keys: a repeated name gets ``_2``, ``_3``, … (a name not taken).
+
+    Examples
+    --------
+    >>> unique_keys(["a", "a", "a_2", "b"])
+    ['a', 'a_3', 'a_2', 'b']
+    """
+    names = [str(n) for n in names]
+    taken, out = set(names), []
+    seen = set()
+    for n in names:
+        if n in seen:
+            k = 2
+            while f"{n}_{k}" in taken:
+                k += 1
+            taken.add(f"{n}_{k}")
+            n = f"{n}_{k}"
+        seen.add(n)
+        out.append(n)
+    return out
+
+
 class _ResultTooLarge(Exception):
     """A ``--format table`` result beyond its share of ``--memory-limit``."""
 
@@ -262,7 +291,7 @@ def cmd_sql(args) -> int:
         for field_name, option in (("memory_limit_bytes", "--memory-limit"), ("spill_limit_bytes", "--max-spill"),
                                    ("timeout_s", "--timeout")):
             text = text.replace(field_name, option)
-        print(f"tyrelab sql: {text}", file=sys.stderr)
+        print(f"tyrelab sql: {printable(text)}", file=sys.stderr)
         return EXIT_USAGE
     if (args.query is None) == (args.describe is None):
         print("tyrelab sql: give a query or --describe TABLE (one of them)", file=sys.stderr)
@@ -279,10 +308,10 @@ def cmd_sql(args) -> int:
                 _print_result(args.format, names, frames, i == 0, int(TABLE_SHARE * limits.memory_limit_bytes),
                               None if args.wide else TEXT_WIDTH)
     except (WriteRefused, FileNotFoundError) as exc:
-        print(f"tyrelab sql: {exc}", file=sys.stderr)
+        print(f"tyrelab sql: {printable(exc)}", file=sys.stderr)
         return EXIT_USAGE
     except QueryTimeout as exc:
-        print(f"tyrelab sql: {exc}; --timeout SECONDS changes it (0: none)", file=sys.stderr)
+        print(f"tyrelab sql: {printable(f'{exc}; --timeout SECONDS changes it (0: none)')}", file=sys.stderr)
         return EXIT_USAGE
     except _ResultTooLarge as exc:
         print(f"tyrelab sql: the result is larger than --format table holds within --memory-limit "
@@ -300,7 +329,7 @@ def cmd_sql(args) -> int:
         print(f"tyrelab sql: {type(exc).__name__}: {error_line(Path(args.build), exc)}", file=sys.stderr)
         return EXIT_USAGE
     except Exception as exc:  # noqa: BLE001 - DuckDB errors are the user's query errors
-        print(f"tyrelab sql: {type(exc).__name__}: {str(exc).splitlines()[0]}", file=sys.stderr)
+        print(f"tyrelab sql: {printable(f'{type(exc).__name__}: {str(exc).splitlines()[0]}')}", file=sys.stderr)
         return EXIT_USAGE
     return EXIT_OK
 
@@ -367,7 +396,7 @@ def cmd_analyze_run(args) -> int:
 def _warn(prog: str, warnings) -> None:
     """Print range warnings on stderr, one line each (the result still goes to stdout)."""
     for w in warnings:
-        print(f"{prog}: warning: {w}", file=sys.stderr)
+        print(f"{prog}: {printable(f'warning: {w}')}", file=sys.stderr)
 
 
 #: Option ranges of the verbs that take a tractor's or a tyre's numbers: the ``dest`` of each option
@@ -381,6 +410,7 @@ OPTION_LIMITS = {
     "front_stiffness_u": "stiffness_u_kN_per_m", "rear_stiffness_u": "stiffness_u_kN_per_m",
     "axle_mass": "axle.mass_kg", "track_width_m": "tractor.front_track_m",
     "lateral_offset_m": "surface.lateral_offset_m", "start_m": "surface.start_m", "length_m": "surface.length_m",
+    "speed": "frf_speed_km_h", "max_frequency": "frf_max_Hz",
 }
 
 
@@ -390,7 +420,12 @@ def _option_problems(args, dests) -> list[str]:
     from . import _validate
     from .vehicle.scenario_limits import LIMITS
 
-    limits = {**LIMITS, "stiffness_u_kN_per_m": (0.0, LIMITS["stiffness_kN_per_m"][1], "kN/m")}
+    from .rawformat import SAMPLE_RATE_RANGE_Hz
+
+    limits = {**LIMITS, "stiffness_u_kN_per_m": (0.0, LIMITS["stiffness_kN_per_m"][1], "kN/m"),
+              # frf: a standing vehicle (0) to the ride model's fastest; up to the Nyquist frequency of raw format v1
+              "frf_speed_km_h": (0.0, LIMITS["exposure.speeds_km_h"][1], "km/h"),
+              "frf_max_Hz": (0.0, SAMPLE_RATE_RANGE_Hz[1] / 2, "Hz")}
     problems = []
     for dest in dests:
         value = getattr(args, dest, None)
@@ -447,10 +482,10 @@ def cmd_estimate_stiffness(args) -> int:
             model=model,
         )
     except (TyreSizeError, ValueError) as exc:
-        print(f"{prog}: {exc}", file=sys.stderr)
+        print(f"{prog}: {printable(exc)}", file=sys.stderr)
         return EXIT_USAGE
     if not math.isfinite(est.stiffness_kN_per_m):
-        print(f"{prog}: --pressure {args.pressure:g} bar (with --size {args.size}): the formula gives no finite "
+        print(f"{prog}: --pressure {args.pressure:g} bar (with --size {printable(args.size)}): the formula gives no finite "
               "stiffness", file=sys.stderr)
         return EXIT_USAGE
     _warn(prog, est.warnings)
@@ -486,7 +521,7 @@ def cmd_natural_frequencies(args) -> int:
             stiffness_model=_stiffness_model(prog, getattr(args, "build", None)),
         )
     except (TyreSizeError, ValueError) as exc:
-        print(f"{prog}: {exc}", file=sys.stderr)
+        print(f"{prog}: {printable(exc)}", file=sys.stderr)
         return EXIT_USAGE
     _warn(prog, out.get("warnings", ()))
     from .io import json_safe
@@ -505,17 +540,17 @@ def cmd_export_tyre(args) -> int:
     try:
         export, written = export_tyre(Path(args.build) / "warehouse.duckdb", args.tyre_id, args.pressure, args.out)
     except (LookupError, TyreSizeError, ValueError) as exc:
-        print(f"{prog}: {str(exc).splitlines()[0]}", file=sys.stderr)
+        print(f"{prog}: {printable(str(exc).splitlines()[0])}", file=sys.stderr)
         return EXIT_USAGE
     except OSError as exc:
         if isinstance(exc, FileNotFoundError) and not exc.filename:  # no warehouse yet
-            print(f"{prog}: {exc}", file=sys.stderr)
+            print(f"{prog}: {printable(exc)}", file=sys.stderr)
         else:  # a folder in the way, a full disk, ulimit -f: no file of the set was replaced
-            print(f"{prog}: {os_error_line(exc)} (nothing written)", file=sys.stderr)
+            print(f"{prog}: {printable(f'{os_error_line(exc)} (nothing written)')}", file=sys.stderr)
         return EXIT_USAGE
     _warn(prog, export.warnings)
     for path in written:
-        _out(f"{path}\n")
+        _out(f"{printable(path)}\n")
     return EXIT_OK
 
 
@@ -556,10 +591,16 @@ def cmd_ride(args) -> int:
     from .executor import map_batches
 
     ctx = SimpleNamespace(executor=args.executor, jobs=args.jobs, scheduler=args.scheduler)
+    used = []
+
+    def mapped(task, items):
+        used.append(len(items))
+        return map_batches(task, items, ctx)
+
     try:
         results = ride_sweep(scenario, front_pressures_bar=args.front_pressure, rear_pressures_bar=args.rear_pressure,
                              speeds_km_h=args.speeds, sets=args.set or [], build=args.build,
-                             map_fn=lambda task, items: map_batches(task, items, ctx),
+                             map_fn=mapped,
                              with_spectra="nominal" if args.out else False,
                              max_variants=args.max_variants, max_samples=args.max_samples, method=args.method)
     except ScenarioError as exc:  # a swept value the scenario refuses: every problem, one line each
@@ -570,14 +611,18 @@ def cmd_ride(args) -> int:
         print(f"tyrelab ride: {printable(args.scenario)}: {printable(_key_suggestion(str(exc)))}", file=sys.stderr)
         return EXIT_USAGE
     except OSError as exc:  # e.g. --scheduler unreachable
-        print(f"tyrelab ride: {os_error_line(exc)}", file=sys.stderr)
+        print(f"tyrelab ride: {printable(os_error_line(exc))}", file=sys.stderr)
         return EXIT_USAGE
+    if not used and (args.executor != "local" or args.scheduler):  # said, not silently ignored
+        what = f"--executor {args.executor}" + (f" --scheduler {printable(args.scheduler)}" if args.scheduler else "")
+        print(f"tyrelab ride: note: {what} was not used: every variant ran in this process (one variant, or "
+              "the frequency domain's rows)", file=sys.stderr)
     doc = result_json(results)
     if args.out:
         try:
             paths = write_outputs(results, args.out)
         except OSError as exc:  # neither file replaced (write_outputs writes them as one set)
-            print(f"tyrelab ride: --out {args.out}: {os_error_line(exc)} (nothing written)", file=sys.stderr)
+            print(f"tyrelab ride: {printable(f'--out {args.out}: {os_error_line(exc)} (nothing written)')}", file=sys.stderr)
             return EXIT_USAGE
         log.info("ride: wrote %s and %s", paths["json"], paths["html"])
     _out(dumps(doc) if args.format == "json" else format_table(doc, None if args.wide else TEXT_WIDTH))
@@ -593,6 +638,8 @@ def cmd_frf(args) -> int:
     from .scenario_io import ScenarioError
 
     prog = "tyrelab frf"
+    if _refused(prog, _option_problems(args, ("speed", "max_frequency"))):
+        return EXIT_USAGE
     try:
         r = vehicle_frf(Path(args.file), speed_km_h=args.speed, scenario=args.scenario)
     except ScenarioError as exc:
@@ -669,18 +716,19 @@ def cmd_road(args) -> int:
                                 ("fill_missing = true", "--fill-missing"),
                                 ("the track widths and the offset", "--track-width-m and --lateral-offset-m")):
                 text = text.replace(key, option)
-        print(f"tyrelab road: {text if text.startswith(str(path)) else f'{path}: {text}'}", file=sys.stderr)
+        text = text if text.startswith((str(path), printable(path))) else f"{path}: {text}"
+        print(f"tyrelab road: {printable(text)}", file=sys.stderr)  # a name's control characters escaped
         return EXIT_USAGE
     if args.format == "json":
-        sys.stdout.write(json.dumps(doc, indent=2) + "\n")
+        _out(json.dumps(doc, indent=2) + "\n")
     else:
-        lines = [f"{path}: ISO 8608 class from G_d(n0) fitted with waviness 2"]
+        lines = [f"{printable(path)}: ISO 8608 class from G_d(n0) fitted with waviness 2"]
         for name, c in doc["tracks"].items():
             where = f" (v = {doc['lateral_position_m'][name]:g} m)" if "lateral_position_m" in doc else ""
             g0 = f"G_d(n0) = {c['g0_m3']:.3g} m³" if c["g0_m3"] else "G_d(n0) not resolved (too short or coarse)"
             lines.append(f"  {name}{where}: class {c['class'] or '-'}, {g0}, r.m.s. {c['rms_m'] * 1000:.2f} mm, "
                          f"length {c['length_m']:g} m")
-        sys.stdout.write("\n".join(fit_lines(lines, None if args.wide else TEXT_WIDTH)) + "\n")
+        _out("\n".join(fit_lines(lines, None if args.wide else TEXT_WIDTH)) + "\n")
     return EXIT_OK
 
 
@@ -717,13 +765,13 @@ def cmd_exposure(args) -> int:
         problems.append(f"the tasks add up to {total:g} h, more than a day ({MAX_HOURS_PER_DAY:g} h)")
     if problems:
         for line in problems:
-            print(f"{prog}: {line}", file=sys.stderr)
+            print(f"{prog}: {printable(line)}", file=sys.stderr)
         return EXIT_USAGE
     try:
         doc = json_safe(assess(tasks))
     except RecordingProblem as exc:
         for line in exc.lines:
-            print(f"{prog}: {line}", file=sys.stderr)
+            print(f"{prog}: {printable(line)}", file=sys.stderr)
         return EXIT_USAGE if exc.usage else EXIT_QUARANTINE
     except ValueError as exc:  # a value the analysis refuses: one line, never a traceback
         print(f"{prog}: {printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)}", file=sys.stderr)
@@ -1227,6 +1275,11 @@ def main(argv: list[str] | None = None) -> int:
     _configure_output(args)
     import signal
     import threading
+    import warnings
+
+    from .progress import say_library_warnings_once
+
+    shown_before = say_library_warnings_once()  # no library's RuntimeWarning on stderr: ours, once each
 
     if threading.current_thread() is threading.main_thread():
         previous = signal.signal(signal.SIGTERM, _terminate)
@@ -1262,6 +1315,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"tyrelab {args.command}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
     finally:
+        warnings.showwarning = shown_before
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
 

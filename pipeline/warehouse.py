@@ -491,7 +491,13 @@ def _pandas(batch) -> pd.DataFrame:
                               (pa.int64(), pd.Int64Dtype()), (pa.uint8(), pd.UInt8Dtype()),
                               (pa.uint16(), pd.UInt16Dtype()), (pa.uint32(), pd.UInt32Dtype()),
                               (pa.uint64(), pd.UInt64Dtype()))}
-    df = batch.to_pandas(types_mapper=ints.get)
+    names = list(batch.schema.names)
+    if len(set(names)) < len(names):  # SELECT 1 AS a, 'x' AS a: pyarrow mixes up columns of one name
+        df = pa.Table.from_batches([batch]).rename_columns([f"c{i}" for i in range(len(names))]).to_pandas(
+            types_mapper=ints.get)
+        df.columns = names
+    else:
+        df = batch.to_pandas(types_mapper=ints.get)
     for i, field in enumerate(batch.schema):  # text as DuckDB gives it: objects, a NULL as None (not NaN)
         if pa.types.is_string(field.type) or pa.types.is_large_string(field.type):
             col = df.iloc[:, i].astype(object)

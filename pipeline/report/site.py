@@ -365,10 +365,22 @@ def chapter_items(wh: Warehouse, chapter: Chapter, figs: FigureSet | None = None
             else resolve_figure(wh, it, figs) for it in chapter.items]
 
 
+def _run_file(wh: Warehouse | None, row: pd.Series) -> Path | None:
+    """The converted file of a run (``manifest.run_path``: relative to the build, the warehouse's
+    folder; an absolute one of an older build as it is), or None where there is none."""
+    path = row.get("run_path")
+    if not isinstance(path, str) or not path:
+        return None
+    p = Path(path)
+    if not p.is_absolute() and wh is not None and getattr(wh, "db", None):
+        p = Path(wh.db).parent / p
+    return p if p.exists() else None
+
+
 def read_signals(wh: Warehouse, row: pd.Series) -> pd.DataFrame:
     """One run's signals from its Parquet file (``manifest.run_path``), else from the ``runs`` view."""
-    path = row.get("run_path")
-    if isinstance(path, str) and Path(path).exists():
+    path = _run_file(wh, row)
+    if path is not None:
         return pd.read_parquet(path)
     if wh is not None and "runs" in wh:
         rid = str(row["run_id"]).replace("'", "''")
@@ -393,8 +405,8 @@ def run_figure(wh: Warehouse | None, row: pd.Series) -> str | None:
 
 def run_task(wh: Warehouse, row: pd.Series) -> FigureTask:
     """The :class:`FigureTask` of a run's drill-down: its row and the digest of its signal file."""
-    path = row.get("run_path")
-    source = io.file_sha256(path) if isinstance(path, str) and Path(path).exists() else f"warehouse:{wh.db}:{id(wh)}"
+    path = _run_file(wh, row)
+    source = io.file_sha256(path) if path is not None else f"warehouse:{wh.db}:{id(wh)}"
     return FigureTask("run", "run_drilldown", (row, wh.db), {}, (row.to_dict(), source))
 
 

@@ -221,6 +221,8 @@ def run(ctx: Context) -> StageResult:
     t0 = time.perf_counter()
     res = StageResult("calibrate")
     manifest = ctx.read_table("manifest") if ctx.has_table("manifest") else pd.DataFrame()
+    if "run_path" in manifest:  # relative to the build in the table (a moved build works)
+        manifest = manifest.assign(run_path=[str(ctx.build_file(p)) for p in manifest["run_path"]])
     rows, tfs, averages = [], [], {}
     cal_runs = pd.DataFrame()
     # each check is kept under the digest of the converted run file it read, its axle mass and
