@@ -144,7 +144,7 @@ SIMULATE_TABLES = (
 )
 #: Tables the rides stage writes (vehicle recordings; :mod:`tyrelab.stages.rides`).
 RIDES_TABLES = ("recordings", "recording_axes", "recording_spectra", "exposure_days", "ride_validation",
-                "ride_validation_statistics", "vehicle_frf", "vehicle_modes")
+                "ride_validation_statistics", "vehicle_frf", "vehicle_modes", "vehicle_frf_validation")
 #: The fits a ride scenario's tyres may read (:mod:`tyrelab.stages.tyredata`): a measured tyre's
 #: per-speed pressure fits (``measured_tyre_id``) and the build's formula (``formula = "build"``).
 FIT_TABLES = ("stiffness_pressure_by_speed", "damping_pressure_by_speed", "formula_fit", "damping_fit")
