@@ -92,3 +92,23 @@ def test_validation_rows_compare_the_model_with_its_own_recording(scenario):
                                     for x in fitted)
     errs = [x["frf_magnitude_error"] for x in rows if x["output"] in ("floor_z_m_s2", "pitch_rad_s2")]
     assert max(errs) < 0.05  # the model against recordings of itself
+
+
+def test_the_rides_stage_writes_the_validation_of_a_row_naming_the_scenario(scenario, tmp_path):
+    from tyrelab.generate import write_run
+    from tyrelab.stages import run_stage
+    from tyrelab.stages.base import Context
+
+    c = tmp_path / "raw" / "stand"
+    (c / "rides" / "stand").mkdir(parents=True)
+    (c / "rides" / "stand" / stand.STAND_SCENARIO_FILE).write_text(stand.STAND_SCENARIO_TEXT, encoding="utf-8")
+    row = _row("stand_rear_left_still_0kmh")  # 0 km/h with a scenario: accepted, stationary tyres
+    write_run(stand.stand_recording(scenario, row, 1991), c / row["file"])
+    stand.stand_plan().iloc[[0]].to_csv(c / "rides.csv", index=False)
+    ctx = Context(raw=tmp_path / "raw", build=tmp_path / "build", jobs=1)
+    result = run_stage("rides", ctx)
+    assert (result.n_ok, result.n_quarantined) == (1, 0)
+    v = ctx.read_table("vehicle_frf_validation")
+    assert set(v["ride_id"]) == {row["ride_id"]} and set(v["output"]) == set(stand.MODEL_OUTPUTS)
+    near = v[(v["frequency_ratio"] - 1).abs() < 0.02]
+    assert len(near) >= 4 and near["frequency_in_interval"].mean() > 0.5
