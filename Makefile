@@ -1,6 +1,7 @@
 # tyrelab — two commands from a fresh clone:
 #   make all    create .venv, install, generate the demo campaign, run every stage, render the report
 #   make test   create .venv, install, run the test suite
+#   make test-steady  the suite again and again (-n auto, -n 1, STEADY_LOAD busy processes beside): the next flaky test
 #   make docs   the documentation site (Sphinx) -> build/docs/index.html, every example run
 #   make mutation  mutation testing of the physics and statistics (slow: hours; not in make test)
 PYTHON ?= python3
@@ -17,7 +18,7 @@ EXTRAS ?= dev,dask,formats,browser
 # Extra arguments of tools/mutation.py, e.g. MUTATION_ARGS="--sample 40 vehicle/iso2631.py".
 MUTATION_ARGS ?=
 
-.PHONY: all install compile data run test test-package test-all mutation bench docs clean distclean
+.PHONY: all install compile data run test test-steady test-package test-all mutation bench docs clean distclean
 
 all: run
 
@@ -48,6 +49,13 @@ run: data compile
 
 test: install compile
 	$(BIN)/python -m pytest -q -m "not slow" -n auto
+
+# The default suite STEADY_ROUNDS times under -n auto and -n 1, with STEADY_LOAD busy processes beside
+# it: finds the next flaky test (tools/test_steady.sh; docs/testing.md). Long: run it on a machine of its own.
+STEADY_ROUNDS ?= 2
+STEADY_LOAD ?= 0
+test-steady: install compile
+	PYTHON_BIN=$(BIN)/python tools/test_steady.sh $(STEADY_ROUNDS) $(STEADY_LOAD)
 
 # The built wheel in a fresh virtualenv: generate -> run -> sql -> report from an empty folder.
 test-package: install

@@ -264,6 +264,11 @@ def cmd_sql(args) -> int:
             text = text.replace(field_name, option)
         print(f"tyrelab sql: {text}", file=sys.stderr)
         return EXIT_USAGE
+    if (args.query is None) == (args.describe is None):
+        print("tyrelab sql: give a query or --describe TABLE (one of them)", file=sys.stderr)
+        return EXIT_USAGE
+    if args.describe is not None:
+        return _describe_table(args, limits)
     # Several statements: each result is printed, in order (a blank line between tables/CSV, one JSON
     # array per line), as it comes: a result is never held whole (but for --format table, which is
     # aligned whole: at most TABLE_SHARE of --memory-limit), and the process's memory is bounded by
@@ -293,6 +298,41 @@ def cmd_sql(args) -> int:
     except Exception as exc:  # noqa: BLE001 - DuckDB errors are the user's query errors
         print(f"tyrelab sql: {type(exc).__name__}: {str(exc).splitlines()[0]}", file=sys.stderr)
         return EXIT_USAGE
+    return EXIT_OK
+
+
+def _describe_table(args, limits) -> int:
+    """``tyrelab sql --describe TABLE``: the table's columns (DuckDB's DESCRIBE) with their unit and
+    meaning from the legend (:func:`tyrelab.legend.describe`)."""
+    import re
+
+    import pandas as pd
+
+    from .legend import describe
+    from .warehouse import WriteRefused, query_all
+
+    name = args.describe
+    if not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*", name):
+        print(f"tyrelab sql: --describe {name!r}: not a table name", file=sys.stderr)
+        return EXIT_USAGE
+    try:
+        present = query_all(Path(args.build) / "warehouse.duckdb",
+                            f"SELECT column_name, data_type FROM information_schema.columns WHERE table_name = '{name}' "
+                            "ORDER BY ordinal_position", limits)[-1]
+    except (WriteRefused, FileNotFoundError) as exc:
+        print(f"tyrelab sql: {exc}", file=sys.stderr)
+        return EXIT_USAGE
+    except Exception as exc:  # noqa: BLE001 - DuckDB errors are the user's errors (an unreadable warehouse)
+        print(f"tyrelab sql: {type(exc).__name__}: {str(exc).splitlines()[0]}", file=sys.stderr)
+        return EXIT_USAGE
+    if present.empty:
+        print(f"tyrelab sql: --describe {name}: no such table in {Path(args.build) / 'warehouse.duckdb'}",
+              file=sys.stderr)
+        return EXIT_USAGE
+    rows = describe(name, list(present["column_name"]))
+    df = pd.DataFrame({"column": [r[0] for r in rows], "type": present["data_type"].str.lower().to_list(),
+                       "unit": [r[1] for r in rows], "meaning": [r[2] or "–" for r in rows]})
+    _print_result(args.format, list(df.columns), [df], True, int(TABLE_SHARE * limits.memory_limit_bytes))
     return EXIT_OK
 
 
@@ -921,7 +961,10 @@ def build_parser() -> argparse.ArgumentParser:
         s.set_defaults(func=cmd_stage, stage=name)
 
     q = sub.add_parser("sql", help="read-only SQL query of the warehouse")
-    q.add_argument("query", help='e.g. "SELECT * FROM table_iii"')
+    q.add_argument("query", nargs="?", help='e.g. "SELECT * FROM table_iii" (or --describe TABLE)')
+    q.add_argument("--describe", metavar="TABLE",
+                   help="every column of TABLE with its type, unit and meaning (the warehouse's legend, "
+                        "schemas/warehouse_legend.json) instead of a query")
     q.add_argument("--build", default="build", help="build folder holding warehouse.duckdb (default build/)")
     q.add_argument("--format", choices=["table", "csv", "json"], default="table",
                    help="table: aligned text, 'no rows' for an empty result (default); csv; json: one array per "

@@ -261,7 +261,10 @@ def _leave_interrupts_to_the_parent() -> None:
     """
     import signal
 
+    from ._hold import hold
+
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    hold("worker")  # a test's Ctrl-C to the process group lands here: a worker started, SIGINT ignored
 
 
 def abandon_pool(pool: ProcessPoolExecutor) -> None:

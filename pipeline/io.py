@@ -20,6 +20,8 @@ import tempfile
 from pathlib import Path
 from typing import TYPE_CHECKING, Iterator
 
+from ._hold import hold
+
 if TYPE_CHECKING:  # pandas/pyarrow are imported where used: a no-op run never needs them
     import pandas as pd
 
@@ -121,6 +123,7 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     os.chmod(tmp_path, 0o666 & ~_UMASK)  # mkstemp makes 0600; give outputs the usual permissions
     try:
         yield tmp_path
+        hold("replace")  # a test's kill lands here: the temporary file written, the target still the old one
         os.replace(tmp_path, path)
     finally:
         if tmp_path.exists():
@@ -201,6 +204,7 @@ def write_texts_atomic(files: dict[str | os.PathLike, str]) -> list[Path]:
             with os.fdopen(fd, "w", encoding="utf-8") as fh:
                 fh.write(text)
             os.chmod(tmp, 0o666 & ~_UMASK)
+        hold("replace")  # every temporary file written, no target replaced yet
         for path, tmp in zip(targets, temporaries):
             backup = None
             if len(targets) > 1 and path.is_file() and not path.is_symlink():

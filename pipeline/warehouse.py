@@ -52,6 +52,7 @@ import pandas as pd
 import pyarrow.parquet as pq
 
 from . import io
+from ._hold import hold
 
 __all__ = ["READ_ONLY_STATEMENTS", "SANDBOX_SETTINGS", "SPILL_FOLDER", "QueryLimits", "QueryTimeout", "WriteRefused",
     "view_name", "build_warehouse", "warehouse_path", "connect_read_only", "check_read_only", "query", "query_all", "parse_size", "iter_query", "memory_bound", "BATCH_ROWS"]
@@ -440,6 +441,7 @@ def _statement(con: duckdb.DuckDBPyConnection, statement: str, timeout_s: float 
     deadline = None if timeout_s is None else time.monotonic() + timeout_s
     threading.Thread(target=run, name="tyrelab-sql", daemon=True).start()
     try:
+        hold("sql-statement")  # a test's Ctrl-C lands here: the statement handed to DuckDB's thread
         while not done.wait(0.1 if deadline is None else max(0.0, min(0.1, deadline - time.monotonic()))):
             if deadline is not None and time.monotonic() >= deadline:
                 stop()
@@ -521,6 +523,7 @@ def _streamed(con: duckdb.DuckDBPyConnection, statement: str, timeout_s: float |
     helper.start()
     finished = False
     try:
+        hold("sql-statement")  # a test's Ctrl-C lands here: the statement handed to DuckDB's thread
         while True:
             try:
                 kind, item = box.get(timeout=0.1 if deadline is None else max(0.0, min(0.1, deadline - time.monotonic())))

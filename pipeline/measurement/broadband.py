@@ -18,7 +18,11 @@ random vibration" (§3.2.5). This module turns such a recording into
   is at least :data:`MIN_COHERENCE`): Kelvin–Voigt ``Z = K + jωC``, and for a rolling tyre
   also the Kelvin–Voigt unit in series with a damper (``maxwell``, thesis §2.5: "a spring
   and damper connected in series", Lines 1987) ``Z = jωc₂ (K + jωC) / (K + jω(C + c₂))``;
-  the smaller residual per degree of freedom decides which is reported.
+  the F test of the series damper decides which is reported (:func:`model_test`; a rolling run
+  with fewer than :data:`MIN_CHOICE_BINS` coherent bins is reported with the series damper and
+  flagged). The apparent mass K and C come from is :meth:`FrfEstimate.hc` where the two axle
+  accelerometers are given (the accelerometers' noise is in force and acceleration at once: H1 and
+  H2 are both biased then), H1 otherwise; K and C from H1 and H2 are kept beside it (issue 44).
 
 Uncertainty of the fitted K, C (and c₂): batch means (the recording cut into
 :data:`BLOCKS` contiguous blocks, the spectra of each from one vectorised ``csd`` call,
@@ -42,8 +46,9 @@ from scipy.stats import t as student_t
 
 from .._validate import band, positive
 
-__all__ = ["MIN_COHERENCE", "BLOCKS", "RESOLUTION_Hz", "BLOCK_RESOLUTION_Hz", "MODELS", "FrfEstimate", "ModelFit", "BroadbandResult",
-           "frf_blocks", "kelvin_voigt_impedance", "maxwell_impedance", "fit_model", "analyse_broadband",
+__all__ = ["MIN_COHERENCE", "BLOCKS", "RESOLUTION_Hz", "BLOCK_RESOLUTION_Hz", "MODELS", "MIN_CHOICE_BINS",
+           "MODEL_TEST_LEVEL", "ESTIMATORS", "GROUND_RATIO_LIMIT", "FrfEstimate", "ModelFit", "BroadbandResult",
+           "frf_blocks", "kelvin_voigt_impedance", "maxwell_impedance", "fit_model", "model_test", "ground_motion_ratio", "analyse_broadband",
            "half_power_response", "response_mode"]
 
 #: Least coherence of a bin used in the fit (the stepped-sine QC's limit, :data:`tyrelab.measurement.qc.MIN_COHERENCE`).
@@ -78,6 +83,11 @@ class FrfEstimate:
     #: per bin, what turns the reference signal into the acceleration: 1, or -ω² where the spectra's
     #: reference is the displacement (``s_aa``, ``s_af`` then of the displacement, m²/Hz and N m/Hz)
     to_acceleration: np.ndarray | float = 1.0
+    #: (blocks, bins) ``Re csd(x₁, x₂)`` of the two axle accelerometers (their references): the
+    #: acceleration's auto-spectrum without either sensor's noise (their noises are independent); None
+    #: where the run's two channels were not given
+    s_12: np.ndarray | None = None
+    axle_mass_kg: float = math.nan  #: ``M_a`` of the tyre force ``M_a ā − Σ beams``, kg (with ``s_12``)
 
     def mean(self, name: str) -> np.ndarray:
         """Spectrum ``name`` averaged over the blocks (the whole record's Welch estimate)."""
@@ -94,6 +104,26 @@ class FrfEstimate:
         with np.errstate(divide="ignore", invalid="ignore"):
             return s_af / s_aa / self.to_acceleration
 
+    def hc(self, per_block: bool = False) -> np.ndarray:
+        """The apparent mass (kg) with the accelerometers' noise taken out of both channels:
+        ``(S_āF / T − M_a (S_āā − Re S₁₂)) / Re S₁₂`` (``T`` :attr:`to_acceleration`; 1 and 2 the two
+        axle accelerometers, ā their mean).
+
+        The tyre force is ``M_a ā − Σ beams``, so the accelerometers' noise n̄ is in the force
+        (``M_a n̄``) and in the acceleration at once: H1 is biased low and H2 either way. ``Re S₁₂``
+        is the acceleration's auto-spectrum without either sensor's noise (their noises are
+        independent: Bendat & Piersol, *Random Data*, §9.2.4), ``S_āā − Re S₁₂`` the noise's own,
+        and ``M_a`` times it the noise's part of ``S_āF``; the load beams' noise is independent of
+        the acceleration and biases neither. Where the two accelerometers agree (no noise) this is
+        H1 to the last bit of its form. Unbiased under noise on the accelerometers, the beams or
+        both, to second order in the spectra's random error."""
+        if self.s_12 is None:
+            raise ValueError("hc needs the two accelerometers' spectra (frf_blocks' accel_pair_m_s2)")
+        s_af, s_aa, s_12 = ((self.s_af, self.s_aa, self.s_12) if per_block
+                            else (self.mean("s_af"), self.mean("s_aa"), self.mean("s_12")))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return (s_af / self.to_acceleration - self.axle_mass_kg * (s_aa - s_12)) / s_12
+
     def h2(self) -> np.ndarray:
         """``H2 = S_ff / S_fa`` (kg) of the whole record (``S_fa = conj(S_af)``)."""
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -106,7 +136,8 @@ class FrfEstimate:
 
 
 def frf_blocks(force_N, accel_m_s2, sample_rate_Hz: float, *, blocks: int = BLOCKS,
-               resolution_Hz: float = RESOLUTION_Hz, displacement_from_Hz: float | None = None) -> FrfEstimate:
+               resolution_Hz: float = RESOLUTION_Hz, displacement_from_Hz: float | None = None,
+               accel_pair_m_s2=None, axle_mass_kg: float | None = None) -> FrfEstimate:
     """Welch spectra of force and acceleration in ``blocks`` contiguous blocks (one ``csd`` call).
 
     The segment length is ``sample_rate_Hz / resolution_Hz`` samples, halved until every block
@@ -120,6 +151,9 @@ def frf_blocks(force_N, accel_m_s2, sample_rate_Hz: float, *, blocks: int = BLOC
     bin, biased the acceleration-referenced estimate by several per cent at the lowest bins.
     Both signals are first tapered by one Tukey window (a second at each end) so that the
     integration does not wrap the record's ends into each other.
+
+    ``accel_pair_m_s2`` (2, n), the two axle accelerometers whose mean is ``accel_m_s2``, with
+    ``axle_mass_kg`` (the tyre force's ``M_a``): also the spectra of :meth:`FrfEstimate.hc`.
 
     Raises
     ------
@@ -145,25 +179,50 @@ def frf_blocks(force_N, accel_m_s2, sample_rate_Hz: float, *, blocks: int = BLOC
     a = np.asarray(accel_m_s2, dtype=float)
     if f.shape != a.shape or f.ndim != 1:
         raise ValueError(f"force_N and accel_m_s2 must be 1-D of one length, got {f.shape} and {a.shape}")
+    pair = _pair("accel_pair_m_s2", accel_pair_m_s2, axle_mass_kg, a)
     if displacement_from_Hz is not None:
-        f, a = _displacement_reference(f, a, sample_rate_Hz, displacement_from_Hz)
-    return _block_spectra(f, a, sample_rate_Hz, blocks, resolution_Hz, displacement_from_Hz is not None)
+        f, a, pair = _references(f, a, sample_rate_Hz, displacement_from_Hz, pair)
+    return _block_spectra(f, a, sample_rate_Hz, blocks, resolution_Hz, displacement_from_Hz is not None, pair)
+
+
+def _pair(name, accel_pair_m_s2, axle_mass_kg, a):
+    """``(a₁, a₂, M_a)`` checked against the mean acceleration ``a``, or None."""
+    if accel_pair_m_s2 is None:
+        return None
+    p = np.asarray(accel_pair_m_s2, dtype=float)
+    if p.shape != (2, a.size):
+        raise ValueError(f"{name} must be (2, {a.size}), the two accelerometers, got {p.shape}")
+    return p[0], p[1], positive("axle_mass_kg", axle_mass_kg)
+
+
+def _integrated(x, taper, keep, w):
+    spec = sfft.rfft((x - x.mean()) * taper)
+    return sfft.irfft(np.where(keep, -spec / np.where(keep, w, 1.0) ** 2, 0.0), x.size)
+
+
+def _references(f, a, sample_rate_Hz, from_Hz, pair=None):
+    """Force and displacement, both tapered (see :func:`frf_blocks`); with ``pair`` (a₁, a₂, M_a) also
+    each accelerometer's displacement, integrated alike."""
+    # the record is not periodic: both signals tapered (Tukey, a second at each end) so that the
+    # integration does not wrap its ends into each other; one window on both keeps F = -Z X
+    taper = signal.windows.tukey(a.size, min(1.0, 2 * sample_rate_Hz / a.size))
+    w = 2 * np.pi * sfft.rfftfreq(a.size, 1 / sample_rate_Hz)
+    keep = w >= 2 * np.pi * from_Hz
+    x = _integrated(a, taper, keep, w)
+    out = None
+    if pair is not None:
+        a1, a2, m = pair
+        out = (_integrated(a1, taper, keep, w), _integrated(a2, taper, keep, w), m)
+    return (f - f.mean()) * taper, x, out
 
 
 def _displacement_reference(f, a, sample_rate_Hz, from_Hz):
     """Force and displacement, both tapered (see :func:`frf_blocks`)."""
-    # the record is not periodic: both signals tapered (Tukey, a second at each end) so that the
-    # integration does not wrap its ends into each other; one window on both keeps F = -Z X
-    taper = signal.windows.tukey(a.size, min(1.0, 2 * sample_rate_Hz / a.size))
-    a = (a - a.mean()) * taper
-    f = (f - f.mean()) * taper
-    spec = sfft.rfft(a)
-    w = 2 * np.pi * sfft.rfftfreq(a.size, 1 / sample_rate_Hz)
-    keep = w >= 2 * np.pi * from_Hz
-    return f, sfft.irfft(np.where(keep, -spec / np.where(keep, w, 1.0) ** 2, 0.0), a.size)
+    f, x, _ = _references(f, a, sample_rate_Hz, from_Hz)
+    return f, x
 
 
-def _block_spectra(f, a, sample_rate_Hz, blocks, resolution_Hz, displacement: bool) -> FrfEstimate:
+def _block_spectra(f, a, sample_rate_Hz, blocks, resolution_Hz, displacement: bool, pair=None) -> FrfEstimate:
     block_len = f.size // blocks
     nperseg = int(round(sample_rate_Hz / resolution_Hz))
     while nperseg > sample_rate_Hz and (block_len - nperseg) // (nperseg // 2) + 1 < 3:
@@ -176,13 +235,19 @@ def _block_spectra(f, a, sample_rate_Hz, blocks, resolution_Hz, displacement: bo
     ab = a[: blocks * block_len].reshape(blocks, block_len)
     # one csd call for the three spectra: (a, f), (a, a), (f, f); csd(x, x) is welch(x) (complex type)
     # the displacement reference and the tapered force have no mean: no per-segment detrend then
-    freq, s = signal.csd(np.stack([ab, ab, fb]), np.stack([fb, ab, fb]), fs=sample_rate_Hz, nperseg=nperseg, axis=-1,
+    xs, ys = [ab, ab, fb], [fb, ab, fb]
+    if pair is not None:  # (a₁, a₂): the spectrum of FrfEstimate.hc
+        xs.append(pair[0][: blocks * block_len].reshape(blocks, block_len))
+        ys.append(pair[1][: blocks * block_len].reshape(blocks, block_len))
+    freq, s = signal.csd(np.stack(xs), np.stack(ys), fs=sample_rate_Hz, nperseg=nperseg, axis=-1,
                          detrend=False if displacement else "constant")
     s_af, s_aa, s_ff = s[0], s[1].real, s[2].real
     n_seg = (block_len - nperseg) // (nperseg // 2) + 1
     if displacement:
         to_acc = np.where(freq > 0, -(2 * np.pi * freq) ** 2, np.nan)
-    return FrfEstimate(freq, s_aa, s_ff, s_af, int(n_seg), to_acc)
+    if pair is None:
+        return FrfEstimate(freq, s_aa, s_ff, s_af, int(n_seg), to_acc)
+    return FrfEstimate(freq, s_aa, s_ff, s_af, int(n_seg), to_acc, s[3].real, float(pair[2]))
 
 
 def kelvin_voigt_impedance(omega_rad_s, stiffness_N_per_m: float, damping_N_s_per_m: float) -> np.ndarray:
@@ -438,16 +503,39 @@ def response_mode(accel_m_s2, sample_rate_Hz: float, band_Hz, resolution_Hz: flo
     return math.sqrt(wn2) / (2 * np.pi), math.sqrt(z2)
 
 
+#: Fewest coherent bins with which a rolling run's model is chosen (issue 44): the series-damper model
+#: has three parameters, and the F test of its one extra parameter needs residual degrees of freedom
+#: (2 × bins − 3, less the Hann window's neighbouring-bin correlation) to tell it from Kelvin–Voigt:
+#: with 8 bins it has about 5 effective, where F(1, 5) at 5 % is 6.6 (a series damper that moves Z by
+#: a few per cent is then found). Below it, a rolling run's K and C are reported and flagged.
+MIN_CHOICE_BINS = 8
+#: Significance of the F test that prefers the series-damper model to Kelvin–Voigt (documented choice).
+MODEL_TEST_LEVEL = 0.05
+#: Largest ``ground_motion_ratio`` of a rolling run whose K and C pass QC (documented choice, issue 44;
+#: docs/rig_methods.md "Rolling over a road"): above it the ground's own input under the tyre, which
+#: the drive does not control and no channel records, biases C.
+GROUND_RATIO_LIMIT = 1e-4
+#: The estimators of the apparent mass: ``accelerometer_cross`` (:meth:`FrfEstimate.hc`, reported where
+#: the run's two accelerometers are given) and ``h1`` (a single acceleration).
+ESTIMATORS = ("accelerometer_cross", "h1")
+
+
 @dataclass(frozen=True)
 class BroadbandResult:
-    """K and C of one broadband run, its FRF, and why it was refused (``reasons``; empty: reported)."""
+    """K and C of one broadband run, its FRF, and why it was refused (``reasons``; empty: reported).
+
+    ``flags``: QC findings that leave K and C reported but not passed (too few bins to choose the
+    model, H1 and H2 beyond their expected disagreement); ``h1_fit``, ``h2_fit`` the reported model
+    fitted to H1 and to H2 over the same bins; ``estimator`` which apparent mass K and C come from
+    (:data:`ESTIMATORS`); the type A and type B parts of the uncertainties apart (``*_u_a``,
+    ``*_u_b``), ``stiffness_u_N_per_m`` their combination."""
 
     frequency_Hz: np.ndarray
     h1_kg: np.ndarray  #: F/A (upward-positive), per bin
     h2_kg: np.ndarray
     coherence: np.ndarray
-    stiffness_N_per_m_f: np.ndarray  #: K(f) = Re(ω² H1)
-    damping_N_s_per_m_f: np.ndarray  #: C(f) = Im(ω² H1)/ω
+    stiffness_N_per_m_f: np.ndarray  #: K(f) = Re(ω² H) of the reported estimator
+    damping_N_s_per_m_f: np.ndarray  #: C(f) = Im(ω² H)/ω
     stiffness_u_f: np.ndarray
     damping_u_f: np.ndarray
     in_fit: np.ndarray  #: bins the model was fitted to
@@ -461,6 +549,19 @@ class BroadbandResult:
     response_peak_Hz: float
     response_damping_ratio: float
     reasons: tuple[str, ...]
+    flags: tuple[str, ...] = ()
+    estimator: str = "h1"
+    h1_fit: ModelFit | None = None
+    h2_fit: ModelFit | None = None
+    stiffness_u_a_N_per_m: float = math.nan
+    stiffness_u_b_N_per_m: float = math.nan
+    damping_u_a_N_s_per_m: float = math.nan
+    damping_u_b_N_s_per_m: float = math.nan
+    model_test_p: float = math.nan  #: p value of the F test of the series damper (rolling runs)
+    #: the axle's motion just outside the drive band over that inside it (:func:`ground_motion_ratio`)
+    ground_motion_ratio: float = math.nan
+    h1_h2_stiffness_spread: float = math.nan  #: (K from H2 − K from H1) / K reported
+    h1_h2_expected_spread: float = math.nan  #: its expected size from the coherence, mean(1/γ² − 1)
 
     def interval(self, value: float, u: float) -> tuple[float, float]:
         """``value ± k u`` (the 95 % interval)."""
@@ -475,9 +576,66 @@ def _instrument_u(k, c, c2, omega_c, budget) -> tuple[float, float, float]:
     return uk, uc, (g * c2 if np.isfinite(c2) else math.nan)
 
 
+def ground_motion_ratio(est: FrfEstimate, band_Hz) -> float:
+    """The axle's motion just outside the drive band over its motion inside (acceleration power per
+    hertz, ``Re S₁₂`` of the two accelerometers where given: without their noise; else ``S_āā``).
+
+    The vibrator drives only the band; what moves the axle just outside it (half an octave either
+    side) on a rolling tyre is the ground's input under the tyre — roughness, run-out, lugs — which
+    reaches inside the band too with a spectrum that changes slowly across the band's edge. That
+    input is uncorrelated with the drive and enters force and acceleration through a different
+    relation, so it biases the apparent mass (C most); no channel records it. A ratio above
+    :data:`GROUND_RATIO_LIMIT` flags the run (issue 44). NaN where the record holds no bins there.
+    """
+    lo, hi = band("band_Hz", band_Hz)
+    f = est.frequency_Hz
+    step = f[1] - f[0]
+    ref = est.mean("s_12") if est.s_12 is not None else est.mean("s_aa")
+    acc = np.abs(ref * np.abs(est.to_acceleration) ** 2) if np.ndim(est.to_acceleration) else np.abs(ref)
+    inside = (f >= lo + step) & (f <= hi - step)
+    outside = ((f >= lo / math.sqrt(2)) & (f <= lo - 2 * step)) | ((f >= hi + 2 * step) & (f <= hi * math.sqrt(2)))
+    if not inside.any() or not outside.any():
+        return math.nan
+    return float(np.mean(acc[outside]) / np.mean(acc[inside]))
+
+
+def model_test(kelvin_voigt: ModelFit, maxwell: ModelFit) -> float:
+    """p value of the F test of the series damper: Kelvin–Voigt is the series-damper model with
+    c₂ → ∞ (nested, one parameter fewer), ``F = (χ²_KV − χ²_M) / (χ²_M / ν)`` on (1, ν) degrees of
+    freedom, ν the series-damper fit's residual ones over the Hann window's neighbouring-bin
+    correlation (:data:`tyrelab.measurement.uncertainty.HANN_BIN_CORRELATION`); the χ²'s common
+    scale (the weights' level) cancels.
+
+    Examples
+    --------
+    >>> f = np.linspace(1.5, 7.5, 25); w = 2 * np.pi * f; u = np.full(f.size, 2e3)
+    >>> z = maxwell_impedance(w, 2.6e5, 1.5e3, 2e4) + np.random.default_rng(0).normal(0, 2e3, f.size)
+    >>> model_test(fit_model(f, z, u), fit_model(f, z, u, "maxwell")) < 1e-6
+    True
+    """
+    from scipy.stats import f as f_dist
+
+    from .uncertainty import HANN_BIN_CORRELATION
+
+    nu = maxwell.dof / (1 + 2 * sum(HANN_BIN_CORRELATION))
+    if not (nu > 0 and maxwell.chi2 > 0):
+        return math.nan
+    stat = max(kelvin_voigt.chi2 - maxwell.chi2, 0.0) / (maxwell.chi2 / nu)
+    return float(f_dist.sf(stat, 1, nu))
+
+
+def _same_model(f, z, u, model) -> ModelFit | None:
+    """``model`` fitted to another estimator's ``z`` over the same bins (None where it cannot be)."""
+    try:
+        return fit_model(f, z, u, model) if np.all(np.isfinite(z)) else None
+    except (ValueError, np.linalg.LinAlgError):
+        return None
+
+
 def analyse_broadband(force_N, accel_m_s2, sample_rate_Hz: float, band_Hz, *, rolling: bool = False,
                       swept: bool = False, instrument=None, min_coherence: float = MIN_COHERENCE, blocks: int = BLOCKS,
-                      resolution_Hz: float = RESOLUTION_Hz) -> BroadbandResult:
+                      resolution_Hz: float = RESOLUTION_Hz, accel_pair_m_s2=None,
+                      axle_mass_kg: float | None = None) -> BroadbandResult:
     """The broadband analysis of one run (module docstring).
 
     Parameters
@@ -489,7 +647,9 @@ def analyse_broadband(force_N, accel_m_s2, sample_rate_Hz: float, band_Hz, *, ro
     band_Hz : (float, float)
         The band the run was excited over (``band_low_Hz``, ``band_high_Hz``).
     rolling : bool
-        Fit the series-damper model too (thesis §2.5: rolling tyres).
+        Fit the series-damper model too (thesis §2.5: rolling tyres); the model is chosen by the
+        F test of :func:`model_test` at :data:`MODEL_TEST_LEVEL` with at least
+        :data:`MIN_CHOICE_BINS` coherent bins, else flagged.
     swept : bool
         A swept sine: each block of the record holds a different part of the band, so the
         type A uncertainty comes from the fit's residual over the bins (the weighted residual
@@ -498,6 +658,11 @@ def analyse_broadband(force_N, accel_m_s2, sample_rate_Hz: float, band_Hz, *, ro
         parameters) instead of batch means.
     instrument : InstrumentBudget, optional
         Type B budget (:func:`tyrelab.measurement.uncertainty.limits_budget` if None).
+    accel_pair_m_s2 : ndarray, shape (2, n), optional
+        The two axle accelerometers whose mean is ``accel_m_s2``, with ``axle_mass_kg`` (the tyre
+        force's ``M_a``): K and C then come from :meth:`FrfEstimate.hc` (``estimator``
+        ``accelerometer_cross``), unbiased under noise on the accelerometers, the load beams or
+        both; without them from H1 (``h1``: biased low by the acceleration's noise).
 
     Returns
     -------
@@ -507,13 +672,17 @@ def analyse_broadband(force_N, accel_m_s2, sample_rate_Hz: float, band_Hz, *, ro
     from .uncertainty import limits_budget
 
     lo, hi = band("band_Hz", band_Hz)
-    f_ref, x_ref = _displacement_reference(np.asarray(force_N, dtype=float), np.asarray(accel_m_s2, dtype=float),
-                                           positive("sample_rate_Hz", sample_rate_Hz), lo / 2)
-    est = _block_spectra(f_ref, x_ref, sample_rate_Hz, 1, resolution_Hz, True)
+    force = np.asarray(force_N, dtype=float)
+    accel = np.asarray(accel_m_s2, dtype=float)
+    pair = _pair("accel_pair_m_s2", accel_pair_m_s2, axle_mass_kg, accel)
+    f_ref, x_ref, pair_ref = _references(force, accel, positive("sample_rate_Hz", sample_rate_Hz), lo / 2, pair)
+    est = _block_spectra(f_ref, x_ref, sample_rate_Hz, 1, resolution_Hz, True, pair_ref)
+    estimator = "accelerometer_cross" if pair_ref is not None else "h1"
     f = est.frequency_Hz
     omega = 2 * np.pi * f
     h1, h2, coh = est.h1(), est.h2(), est.coherence()
-    z = omega**2 * h1
+    h = est.hc() if pair_ref is not None else h1
+    z = omega**2 * h
     n_d = est.segments
     with np.errstate(divide="ignore", invalid="ignore"):
         eps = np.sqrt(np.clip(1 - coh, 0, None)) / (np.sqrt(np.clip(coh, 1e-12, None)) * math.sqrt(2 * n_d))
@@ -523,37 +692,55 @@ def analyse_broadband(force_N, accel_m_s2, sample_rate_Hz: float, band_Hz, *, ro
     # a bin within one resolution of the band's edge averages in leakage from outside the drive
     inner = (f >= lo + (f[1] - f[0])) & (f <= hi - (f[1] - f[0]))
     in_fit = inner & (coh >= min_coherence) & np.isfinite(z)
-    peak_Hz, zeta = response_mode(accel_m_s2, sample_rate_Hz, (lo, hi))
+    peak_Hz, zeta = response_mode(accel, sample_rate_Hz, (lo, hi))
     base = dict(frequency_Hz=f, h1_kg=h1, h2_kg=h2, coherence=coh, stiffness_N_per_m_f=z.real,
                 damping_N_s_per_m_f=np.where(omega > 0, z.imag / np.where(omega > 0, omega, 1), np.nan),
                 stiffness_u_f=uk_f, damping_u_f=uc_f, in_fit=in_fit, response_peak_Hz=peak_Hz,
-                response_damping_ratio=zeta)
-    need = MIN_BINS["maxwell" if rolling else "kelvin_voigt"]
-    if in_fit.sum() < MIN_BINS["kelvin_voigt"]:
+                response_damping_ratio=zeta, estimator=estimator)
+    n_fit = int(in_fit.sum())
+    if n_fit < MIN_BINS["kelvin_voigt"] or (rolling and n_fit < MIN_BINS["maxwell"]):
         best = float(np.nanmax(coh[in_band])) if in_band.any() else math.nan
-        reason = (f"coherence below {min_coherence:g} over the band {lo:g}-{hi:g} Hz: {int(in_fit.sum())} of "
-                  f"{int(in_band.sum())} bins usable (highest coherence {best:.2f}); K and C not reported")
+        need = MIN_BINS["maxwell" if rolling else "kelvin_voigt"]
+        reason = (f"coherence below {min_coherence:g} over the band {lo:g}-{hi:g} Hz: {n_fit} of "
+                  f"{int(in_band.sum())} bins usable (highest coherence {best:.2f}; {need} needed"
+                  + (", a rolling tyre's series-damper model" if rolling else "") + "); K and C not reported")
         return BroadbandResult(**base, fit=None, alternatives={}, stiffness_u_N_per_m=math.nan,
                                damping_u_N_s_per_m=math.nan, series_damping_u_N_s_per_m=math.nan,
                                coverage_factor=math.nan, dof=0, reasons=(reason,))
-    models = ["kelvin_voigt"] + (["maxwell"] if rolling and in_fit.sum() >= need else [])
+    flags = []
+    models = ["kelvin_voigt"] + (["maxwell"] if rolling else [])
     fits = {m: fit_model(f[in_fit], z[in_fit], uk_f[in_fit], m) for m in models}
-    chosen = min(fits.values(), key=lambda m: m.reduced_chi2)
+    p_model = math.nan
+    if rolling:
+        # the series damper is kept where the F test finds it; a rolling tyre has one (thesis §2.5), so
+        # a run with too few bins to test is reported with that model and flagged, never Kelvin-Voigt
+        p_model = model_test(fits["kelvin_voigt"], fits["maxwell"])
+        chosen = fits["maxwell"] if (n_fit < MIN_CHOICE_BINS or not p_model >= MODEL_TEST_LEVEL) else fits["kelvin_voigt"]
+        if n_fit < MIN_CHOICE_BINS:
+            flags.append(f"rolling run with {n_fit} coherent bins: too few to choose between the series-damper "
+                         f"and Kelvin-Voigt models (need {MIN_CHOICE_BINS}); reported with the series damper")
+    else:
+        chosen = fits["kelvin_voigt"]
+    ground = ground_motion_ratio(est, (lo, hi)) if rolling else math.nan
+    if rolling and ground > GROUND_RATIO_LIMIT:
+        flags.append(f"rolling run: the axle moves outside the drive band at {100 * ground:.1f} % of its level inside "
+                     f"(limit {100 * GROUND_RATIO_LIMIT:g} %): the ground's input under the tyre biases K and C (C most)")
     om, wt = omega[in_fit], 1.0 / np.maximum(uk_f[in_fit], 1e-12 * np.abs(z[in_fit]).max()) ** 2
     if swept:
         se, dof = _residual_se(om, z[in_fit], wt, chosen)
     else:
         # batch means: the chosen model fitted to each block (coarser bins, its own coherent ones);
         # the spread of the blocks' estimates over sqrt(blocks) is the whole record's standard error
-        eb = _block_spectra(f_ref, x_ref, sample_rate_Hz, blocks, BLOCK_RESOLUTION_Hz, True)
+        eb = _block_spectra(f_ref, x_ref, sample_rate_Hz, blocks, BLOCK_RESOLUTION_Hz, True, pair_ref)
         fb = eb.frequency_Hz
         step = fb[1] - fb[0]
         use = (fb >= lo + step) & (fb <= hi - step) & (eb.coherence() >= min_coherence)
         if use.sum() < MIN_BINS[chosen.model]:
             use = (fb >= lo + step) & (fb <= hi - step)
         omb = 2 * np.pi * fb[use]
-        zb = omb**2 * eb.h1(per_block=True)[:, use]
-        zm = omb**2 * eb.h1()[use]
+        hb, hm = (eb.hc(per_block=True), eb.hc()) if pair_ref is not None else (eb.h1(per_block=True), eb.h1())
+        zb = omb**2 * hb[:, use]
+        zm = omb**2 * hm[use]
         eps_b = np.sqrt(np.clip(1 - eb.coherence()[use], 1e-6, None) / np.clip(eb.coherence()[use], 1e-6, None))
         wb = 1.0 / (np.abs(zm) * eps_b) ** 2
         if chosen.model == "maxwell":
@@ -567,9 +754,32 @@ def analyse_broadband(force_N, accel_m_s2, sample_rate_Hz: float, band_Hz, *, ro
                        2 * np.pi * float(np.mean(f[in_fit])), instrument or limits_budget())
     # the type B parts are limits read as rectangular: added in quadrature; the factor stays the t of the type A
     uk, uc, uc2 = (math.hypot(a, b) if np.isfinite(b) else a for a, b in zip(se, ub))
+    # the same model over the same bins from H1 and from H2: H1 = γ² H2 at every bin, so under noise in
+    # one channel the truth lies between them and their spread is mean(1/γ² − 1); more than that and
+    # twice the type A interval apart from the reported estimate says the noise is not what either assumes
+    h1_fit = _same_model(f[in_fit], (omega**2 * h1)[in_fit], uk_f[in_fit], chosen.model)
+    h2_fit = _same_model(f[in_fit], (omega**2 * h2)[in_fit], uk_f[in_fit], chosen.model)
+    spread = expected = math.nan
+    if h1_fit is not None and h2_fit is not None:
+        k = chosen.stiffness_N_per_m
+        spread = (h2_fit.stiffness_N_per_m - h1_fit.stiffness_N_per_m) / k
+        expected = float(np.mean(1 / np.clip(coh[in_fit], 1e-6, None) - 1))
+        low, high = sorted((h1_fit.stiffness_N_per_m, h2_fit.stiffness_N_per_m))
+        margin = k_cov * se[0]
+        if estimator == "accelerometer_cross" and not (low - margin <= k <= high + margin):
+            flags.append(f"K from the accelerometers' cross-spectrum ({k / 1e3:.1f} kN/m) lies outside K from H1 "
+                         f"and H2 ({low / 1e3:.1f}-{high / 1e3:.1f} kN/m) by more than its type A interval: the "
+                         "channels' noise is not independent")
+        elif estimator == "h1" and abs(spread) > max(2 * expected, 2 * k_cov * se[0] / k):
+            flags.append(f"K from H1 and H2 differ by {100 * spread:.1f} %, more than the coherence explains "
+                         f"({100 * expected:.1f} %)")
     return BroadbandResult(**base, fit=chosen, alternatives=fits, stiffness_u_N_per_m=float(uk),
                            damping_u_N_s_per_m=float(uc), series_damping_u_N_s_per_m=float(uc2),
-                           coverage_factor=k_cov, dof=dof, reasons=())
+                           coverage_factor=k_cov, dof=dof, reasons=(), flags=tuple(flags), h1_fit=h1_fit,
+                           h2_fit=h2_fit, stiffness_u_a_N_per_m=float(se[0]), stiffness_u_b_N_per_m=float(ub[0]),
+                           damping_u_a_N_s_per_m=float(se[1]), damping_u_b_N_s_per_m=float(ub[1]),
+                           model_test_p=p_model, h1_h2_stiffness_spread=spread, h1_h2_expected_spread=expected,
+                           ground_motion_ratio=ground)
 
 
 def _residual_se(omega, z, weight, fit: ModelFit) -> tuple[np.ndarray, int]:

@@ -22,10 +22,13 @@ direction); a ``load_deflection`` run adds ``deflection_m`` (compression positiv
 * ``load_deflection`` — over the loading branch (deflection rising) the secant stiffness
   (chord from the branch's start to its end) and the tangent stiffness (straight line over
   the top quarter of the branch's deflection); over the whole loop the dissipated energy
-  ``E = ∮ F dδ`` and the equivalent viscous damping at the test's own rate
+  ``E = ∮ F dδ`` and its equivalent viscous coefficient at the test's own rate
   ``C_eq = E / ∫ δ'² dt`` (a viscous damper dissipates ``C ∫ δ'² dt``; for a sinusoidal cycle
   this is the familiar ``E / (π ω X²)``). Slow loading lets the rubber creep, so the
-  stiffness is low (§3.4, Fig. 18).
+  stiffness is low (§3.4, Fig. 18), and the loop is the creep's, not the tyre's dynamic
+  damping: "the viscous damping coefficient cannot be measured by this means" (§3.4). So
+  ``C_eq`` is reported as creep, ``creep_coefficient_N_s_per_m`` (issue 44), and the run's
+  ``damping_N_s_per_m`` stays null: it never enters a damping average.
 
 Uncertainty: the type A part of each method with Student t, combined with the §3.2.9
 instrument limits (:func:`tyrelab.measurement.uncertainty.limits_budget`).
@@ -45,7 +48,7 @@ from .._validate import band, positive
 from . import broadband as bb
 
 __all__ = ["DIRECTIONS", "METHODS", "BROADBAND", "BAND_REQUIRED", "DEFLECTION", "ROLLING_CAVEAT", "FRF_COLUMNS",
-           "METHOD_COLUMNS", "channel_problem", "free_vibration_run", "load_deflection_run", "analyse_method_run"]
+           "METHOD_COLUMNS", "channel_problem", "release_index", "free_vibration_run", "load_deflection_run", "analyse_method_run"]
 
 #: Directions a rig run can be recorded in (thesis §3.2.5, Fig. 14).
 DIRECTIONS = ("vertical", "lateral", "longitudinal")
@@ -73,7 +76,14 @@ METHOD_COLUMNS = {"model": str, "series_damping_N_s_per_m": float, "series_dampi
                   "response_peak_Hz": float, "response_damping_ratio": float,
                   "natural_frequency_Hz": float, "damping_ratio": float, "log_decrement": float,
                   "moving_mass_kg": float, "decay_cycles": float, "secant_stiffness_N_per_m": float,
-                  "tangent_stiffness_N_per_m": float, "hysteresis_energy_J": float, "method_note": str}
+                  "tangent_stiffness_N_per_m": float, "hysteresis_energy_J": float, "method_note": str,
+                  # issue 44: what a broadband estimate is worth, and the uncertainty's parts apart
+                  "estimator": str, "h1_stiffness_N_per_m": float, "h1_damping_N_s_per_m": float,
+                  "h2_stiffness_N_per_m": float, "h2_damping_N_s_per_m": float, "h1_h2_stiffness_spread": float,
+                  "h1_h2_expected_spread": float, "model_test_p": float, "ground_motion_ratio": float,
+                  "stiffness_u_a_N_per_m": float, "stiffness_u_b_N_per_m": float,
+                  "damping_u_a_N_s_per_m": float, "damping_u_b_N_s_per_m": float,
+                  "creep_coefficient_N_s_per_m": float, "creep_coefficient_u_N_s_per_m": float}
 
 
 def channel_problem(run_id: str, method: str, channels) -> str | None:
@@ -108,6 +118,58 @@ def _refine(x, i):
     return d, y0 - 0.25 * (ym - yp) * d
 
 
+def release_index(x, sample_rate_Hz: float, noise: float) -> int:
+    """Sample of the release in a free-vibration record ``x`` (offset removed): the start of the
+    decay after the last forcing, found from the envelope (issue 44), whatever came before it.
+
+    The extrema of ``|x|`` above the noise (ten times ``noise`` and 2 % of the largest) are walked
+    back from the last one: an extremum belongs to the decay while the one before it is larger by at
+    least half the decay rate the extrema after it give (the first three: larger at all), within
+    twice the noise. A dwell at resonance before the release keeps its amplitude, so the walk stops
+    at the release; the largest ``|x|`` (the old choice) could be a dwell cycle, whose constant
+    amplitude made the decay look slower (C −62 % in the audit's runs).
+
+    Examples
+    --------
+    Five seconds at constant amplitude (the dwell), then the decay (ζ = 0.1 at 4 Hz):
+
+    >>> fs = 256.0
+    >>> t = np.arange(int(12 * fs)) / fs
+    >>> w, s = 2 * np.pi * 4.0, 0.1 * 2 * np.pi * 4.0
+    >>> x = np.where(t < 5, np.cos(w * t), np.exp(-s * (t - 5)) * np.cos(w * t))
+    >>> round(release_index(x, fs, 1e-4) / fs, 2)
+    5.0
+    """
+    x = np.asarray(x, dtype=float)
+    fs = positive("sample_rate_Hz", sample_rate_Hz)
+    mag = np.abs(x)
+    spec = np.abs(np.fft.rfft(x * np.hanning(x.size)))
+    fq = np.fft.rfftfreq(x.size, 1 / fs)
+    usable = fq > 0.3
+    f_dom = float(fq[usable][np.argmax(spec[usable])]) if usable.any() and x.size > 8 else 1.0
+    ext, _ = signal.find_peaks(mag, distance=max(int(0.35 * fs / f_dom), 1))
+    if ext.size == 0:
+        return int(np.argmax(mag))
+    amp = mag[ext]
+    above = np.flatnonzero(amp >= max(10 * noise, 0.02 * amp.max()))
+    if above.size == 0:
+        return int(np.argmax(mag))
+    e = int(above[-1])
+    tol = 2 * noise
+    j = e
+    while j > 0:
+        if e - j >= 3:
+            slope = float(np.polyfit(ext[j:e + 1] / fs, np.log(amp[j:e + 1]), 1)[0])
+            need = math.exp(-0.5 * min(slope, 0.0) * (ext[j] - ext[j - 1]) / fs)
+        else:
+            need = 1.0
+        if amp[j - 1] >= amp[j] * need - tol:
+            j -= 1
+        else:
+            break
+    return int(ext[j])
+
+
 def free_vibration_run(time_s, accel_m_s2, force_N, *, min_cycles: int = 3, rolling: bool = False,
                        instrument=None) -> dict:
     """K, C of a free-vibration run (module docstring); ``reasons`` says why not where it fails.
@@ -135,9 +197,9 @@ def free_vibration_run(time_s, accel_m_s2, force_N, *, min_cycles: int = 3, roll
     # the offset (g of a DC accelerometer) from the record's last tenth, where the decay has ended;
     # no filter: a decay that starts at the record's first sample would ring in it
     x = a - np.median(a[-max(a.size // 10, 8):])
-    i0 = int(np.argmax(np.abs(x)))
-    tail = x[i0:]
     noise = float(np.std(x[-max(len(x) // 10, 8):]))
+    i0 = release_index(x, fs, noise)
+    tail = x[i0:]
     head = tail[: int(4 * fs)]
     spec = np.abs(np.fft.rfft(head * np.hanning(head.size)))
     fq = np.fft.rfftfreq(head.size, 1 / fs)
@@ -198,15 +260,17 @@ def free_vibration_run(time_s, accel_m_s2, force_N, *, min_cycles: int = 3, roll
     bk, bc = _instrument(instrument or limits_budget(), k, c)
     wn = math.hypot(wd, sigma)
     out.update(stiffness_N_per_m=k, damping_N_s_per_m=c, stiffness_u_N_per_m=math.hypot(u_k, bk),
-               damping_u_N_s_per_m=math.hypot(u_c, bc), coverage_factor=float(student_t.ppf(0.975, dof)),
+               damping_u_N_s_per_m=math.hypot(u_c, bc), stiffness_u_a_N_per_m=u_k, stiffness_u_b_N_per_m=bk,
+               damping_u_a_N_s_per_m=u_c, damping_u_b_N_s_per_m=bc, coverage_factor=float(student_t.ppf(0.975, dof)),
                uncertainty_dof=float(dof), natural_frequency_Hz=wn / (2 * math.pi), damping_ratio=sigma / wn,
                log_decrement=2 * math.pi * sigma / wd, moving_mass_kg=m, decay_cycles=tp.size / 2)
     return out
 
 
 def load_deflection_run(time_s, force_N, deflection_m, *, instrument=None) -> dict:
-    """Secant and tangent stiffness of the loading branch and the loop's equivalent damping
-    (module docstring). K is the secant stiffness, C the equivalent damping.
+    """Secant and tangent stiffness of the loading branch and the loop's equivalent viscous
+    coefficient, the creep (module docstring). K is the secant stiffness; C is null (the loop of a
+    slow cycle is creep, ``creep_coefficient_N_s_per_m``, not dynamic damping).
 
     Examples
     --------
@@ -215,8 +279,10 @@ def load_deflection_run(time_s, force_N, deflection_m, *, instrument=None) -> di
     >>> t = np.arange(0, 40, 0.01)
     >>> d = 0.01 * (1 - np.cos(2 * np.pi * t / 40))
     >>> r = load_deflection_run(t, 3e5 * d + 2e3 * np.gradient(d, t), d)
-    >>> round(r["secant_stiffness_N_per_m"] / 1e3), round(r["damping_N_s_per_m"] / 1e3, 2)
+    >>> round(r["secant_stiffness_N_per_m"] / 1e3), round(r["creep_coefficient_N_s_per_m"] / 1e3, 2)
     (300, 2.0)
+    >>> bool(np.isnan(r["damping_N_s_per_m"]))
+    True
     """
     from .uncertainty import limits_budget
 
@@ -252,18 +318,20 @@ def load_deflection_run(time_s, force_N, deflection_m, *, instrument=None) -> di
     budget = instrument or limits_budget()
     out.update(secant_stiffness_N_per_m=secant, tangent_stiffness_N_per_m=tangent, stiffness_N_per_m=secant,
                stiffness_u_N_per_m=math.hypot(u_sec, budget.force_gain * abs(secant)),
-               coverage_factor=float(student_t.ppf(0.975, dof)), uncertainty_dof=float(dof))
+               stiffness_u_a_N_per_m=u_sec, stiffness_u_b_N_per_m=budget.force_gain * abs(secant),
+               coverage_factor=float(student_t.ppf(0.975, dof)), uncertainty_dof=float(dof),
+               damping_N_s_per_m=math.nan, damping_u_N_s_per_m=math.nan)
     if i_max >= d.size - 10 or float(d[-1] - d.min()) > 0.5 * span:
-        out.update(damping_N_s_per_m=math.nan, damping_u_N_s_per_m=math.nan)
-        out["method_note"] += "; no unloading branch: no hysteresis loop, no damping"
+        out["method_note"] += "; no unloading branch: no hysteresis loop, no creep coefficient"
         return out
     # energy dissipated over the loop (trapezoid of F over the deflection) and the viscous equivalent
     energy = float(_trapezoid(F, d))
     rate2 = float(_trapezoid(ds**2, t))
     c_eq = energy / rate2
     u_e = s_res * math.sqrt(float(np.sum(np.diff(d) ** 2)))
-    out.update(hysteresis_energy_J=energy, damping_N_s_per_m=c_eq,
-               damping_u_N_s_per_m=math.hypot(u_e / rate2, budget.force_gain * abs(c_eq)))
+    out.update(hysteresis_energy_J=energy, creep_coefficient_N_s_per_m=c_eq,
+               creep_coefficient_u_N_s_per_m=math.hypot(u_e / rate2, budget.force_gain * abs(c_eq)))
+    out["method_note"] += "; the loop's equivalent viscous coefficient is creep (creep_coefficient_N_s_per_m), not damping"
     return out
 
 
@@ -308,7 +376,7 @@ def analyse_method_run(method: str, direction: str, time_s, accel_m_s2, beams_N,
             raise ValueError(f"band_Hz: method {method} needs its band")
         lo, hi = band("band_Hz", band_Hz if band_Hz is not None else EXCITATION_BAND_Hz)
         r = bb.analyse_broadband(force, a, fs, (lo, hi), rolling=rolling, swept=method == "swept_sine",
-                                 instrument=instrument)
+                                 instrument=instrument, accel_pair_m_s2=accel[:2], axle_mass_kg=mass)
         b = (r.frequency_Hz >= lo) & (r.frequency_Hz <= hi)
         frf = pd.DataFrame({
             "run_id": run_id, "direction": direction, "method": method, "frequency_Hz": r.frequency_Hz[b],
@@ -318,9 +386,18 @@ def analyse_method_run(method: str, direction: str, time_s, accel_m_s2, beams_N,
             "stiffness_N_per_m": r.stiffness_N_per_m_f[b], "damping_N_s_per_m": r.damping_N_s_per_m_f[b],
             "coherence": r.coherence[b], "stiffness_u_N_per_m": r.stiffness_u_f[b],
             "damping_u_N_s_per_m": r.damping_u_f[b], "in_fit": r.in_fit[b]}, columns=FRF_COLUMNS)
-        row.update(reasons=list(r.reasons), response_peak_Hz=r.response_peak_Hz,
-                   response_damping_ratio=r.response_damping_ratio)
+        row.update(reasons=list(r.reasons) + list(r.flags), response_peak_Hz=r.response_peak_Hz,
+                   response_damping_ratio=r.response_damping_ratio, estimator=r.estimator)
         if r.fit is not None:
+            for name, other in (("h1", r.h1_fit), ("h2", r.h2_fit)):
+                if other is not None:
+                    row[f"{name}_stiffness_N_per_m"] = other.stiffness_N_per_m
+                    row[f"{name}_damping_N_s_per_m"] = other.damping_N_s_per_m
+            row.update(h1_h2_stiffness_spread=r.h1_h2_stiffness_spread, h1_h2_expected_spread=r.h1_h2_expected_spread,
+                       model_test_p=r.model_test_p, ground_motion_ratio=r.ground_motion_ratio,
+                       stiffness_u_a_N_per_m=r.stiffness_u_a_N_per_m,
+                       stiffness_u_b_N_per_m=r.stiffness_u_b_N_per_m, damping_u_a_N_s_per_m=r.damping_u_a_N_s_per_m,
+                       damping_u_b_N_s_per_m=r.damping_u_b_N_s_per_m)
             fb = r.frequency_Hz[r.in_fit]
             row.update(model=r.fit.model, stiffness_N_per_m=r.fit.stiffness_N_per_m,
                        damping_N_s_per_m=r.fit.damping_N_s_per_m,

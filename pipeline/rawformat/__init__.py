@@ -37,7 +37,7 @@ from .mapped import CHANNEL_MAP, FormatError, RunFileError, load_channel_map, re
 
 __all__ = [
     "CHANNELS", "ACCEL_CHANNELS", "BEAM_CHANNELS", "OPTIONAL_CHANNELS", "TIME", "RUN_SUFFIXES",
-    "MAX_RUN_FILE_BYTES", "SAMPLE_RATE_RANGE_Hz", "MIN_SAMPLES_PER_CYCLE", "MIN_DURATION_s", "MAX_DT_JITTER",
+    "MAX_RUN_FILE_BYTES", "SAMPLE_RATE_RANGE_Hz", "MIN_SAMPLES_PER_CYCLE", "MIN_DURATION_s", "TRANSIENT_MIN_DURATION_s", "MAX_DT_JITTER",
     "RunFileError", "FormatError", "RunInfo", "read_run_file", "check_run",
     "CHANNEL_MAP", "load_channel_map", "read_mapped",
 ]
@@ -53,6 +53,12 @@ SAMPLE_RATE_RANGE_Hz = (32.0, 20000.0)
 MIN_SAMPLES_PER_CYCLE = 8
 #: Shortest usable run, s (at least a few dozen cycles at 1.5 Hz).
 MIN_DURATION_s = 10.0
+#: Shortest free-vibration (transient) record, s (issue 44): a decay is over in a few seconds, so it
+#: is not held to the stepped sine's minimum; two seconds hold three cycles of a 1.5 Hz decay
+#: (the analysis needs three, :func:`tyrelab.measurement.rig_methods.free_vibration_run`).
+TRANSIENT_MIN_DURATION_s = 2.0
+#: Methods whose records are transients (:data:`TRANSIENT_MIN_DURATION_s`).
+TRANSIENT_METHODS = ("free_vibration",)
 #: Allowed relative jitter of the sampling interval.
 MAX_DT_JITTER = 0.01
 
@@ -118,13 +124,15 @@ def read_run_file(path: Path, columns: list[str] | None = None, channel_map: dic
     raise RunFileError(f"unknown file type {suffix!r} (expected {', '.join(RUN_SUFFIXES)})")
 
 
-def check_run(df: pd.DataFrame, excitation_frequency_Hz: float, sample_rate_Hz: float | None = None) -> RunInfo:
+def check_run(df: pd.DataFrame, excitation_frequency_Hz: float, sample_rate_Hz: float | None = None,
+              method: str = "stepped_sine") -> RunInfo:
     """Validate a run's channels; return its sampling facts.
 
     Checks required channels, numeric finite samples, a strictly increasing
     and regular time base, the sampling rate (accepted range, enough samples
     per excitation cycle, agreement with the manifest's ``sample_rate_Hz``
-    when given) and a minimum duration.
+    when given) and a minimum duration (:data:`MIN_DURATION_s`; a ``method`` of
+    :data:`TRANSIENT_METHODS`: :data:`TRANSIENT_MIN_DURATION_s`).
 
     Raises
     ------
@@ -184,6 +192,7 @@ def check_run(df: pd.DataFrame, excitation_frequency_Hz: float, sample_rate_Hz: 
             f"(need {MIN_SAMPLES_PER_CYCLE} samples per cycle)"
         )
     duration = float(t[-1] - t[0] + np.mean(dt))
-    if duration < MIN_DURATION_s:
-        raise RunFileError(f"run is {duration:.1f} s long, shorter than {MIN_DURATION_s:g} s (truncated?)")
+    shortest = TRANSIENT_MIN_DURATION_s if method in TRANSIENT_METHODS else MIN_DURATION_s
+    if duration < shortest:
+        raise RunFileError(f"run is {duration:.1f} s long, shorter than {shortest:g} s (truncated?)")
     return RunInfo(fs, int(t.size), duration, tuple(present))

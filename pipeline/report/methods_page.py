@@ -1,4 +1,5 @@
-"""The report's page of the other rig methods and directions (issue 34): H(f), K(f), C(f) per tyre.
+"""The report's page of the other rig methods and directions (issue 34): H(f), K(f), C(f) per tyre
+(issue 44: a lateral or longitudinal tyre's stepped-sine runs get their own K(f), C(f) figure here).
 
 For every tyre with broadband runs (``swept_sine``, ``random``) the frequency response of each
 run from the warehouse's ``frf`` table — the apparent mass H (thesis convention), K(f) and C(f)
@@ -19,7 +20,7 @@ from . import tables
 from .chapters import CHAPTERS
 from .pages import Output, Page, register
 
-__all__ = ["BROADBAND", "RUN_COLUMNS", "frf_figure", "MethodsPage"]
+__all__ = ["BROADBAND", "RUN_COLUMNS", "frf_figure", "stepped_figure", "MethodsPage"]
 
 #: Methods whose runs have a frequency response (``frf``).
 BROADBAND = ("swept_sine", "random")
@@ -80,6 +81,45 @@ def frf_figure(frf: pd.DataFrame, fit: dict) -> str | None:
     return to_svg(fig)
 
 
+def stepped_figure(runs: pd.DataFrame) -> str | None:
+    """The stepped-sine runs of one tyre and direction (issue 44: a lateral or longitudinal run's own
+    figure, never a vertical one's): H at each run's excitation frequency (thesis convention), K(f)
+    and C(f) with their 95 % intervals, coherence; QC-passed runs filled, the others open."""
+    from .figures import _figure, to_svg  # matplotlib in the figure workers only
+
+    need = {"excitation_frequency_Hz", "stiffness_N_per_m", "damping_N_s_per_m"}
+    if runs is None or runs.empty or not need <= set(runs.columns):
+        return None
+    r = runs.loc[runs["stiffness_N_per_m"].notna()].sort_values("excitation_frequency_Hz")
+    if r.empty:
+        return None
+    f = r["excitation_frequency_Hz"].to_numpy(float)
+    ok = r["qc_ok"].fillna(False).astype(bool).to_numpy() if "qc_ok" in r else np.ones(f.size, bool)
+    col = lambda c: r[c].to_numpy(float) if c in r else np.full(f.size, np.nan)  # noqa: E731
+    fig, axes = _figure(2, 2, size=(7.6, 5.0), layout=None)
+    fig.subplots_adjust(left=0.1, right=0.98, bottom=0.1, top=0.92, wspace=0.32, hspace=0.45)
+    (a_h, a_coh), (a_k, a_c) = axes
+    a_h.plot(f, col("apparent_mass_real_kg"), "o", ms=4, label="Re H")
+    a_h.plot(f, col("apparent_mass_imag_kg"), "s", ms=4, label="Im H")
+    a_h.set(xlabel="excitation frequency (Hz)", ylabel="apparent mass H (kg)", title="H at each run's frequency")
+    a_h.legend(fontsize=6)
+    for ax, name, unit, label in ((a_k, "stiffness", "N_per_m", "K (kN/m)"), (a_c, "damping", "N_s_per_m", "C (kN s/m)")):
+        y = col(f"{name}_{unit}") / 1e3
+        lo, hi = col(f"{name}_ci95_low_{unit}") / 1e3, col(f"{name}_ci95_high_{unit}") / 1e3
+        err = np.vstack([np.where(np.isfinite(lo), y - lo, 0), np.where(np.isfinite(hi), hi - y, 0)])
+        ax.errorbar(f[ok], y[ok], yerr=err[:, ok], fmt="o", ms=4, lw=0.8, label="QC passed (95 %)")
+        if (~ok).any():
+            ax.plot(f[~ok], y[~ok], "o", ms=4, mfc="none", color="0.5", label="QC flagged")
+        ax.set(xlabel="excitation frequency (Hz)", ylabel=label)
+        ax.legend(fontsize=6)
+    a_k.set_title("stiffness K(f)")
+    a_c.set_title("damping C(f)")
+    a_coh.plot(f, col("coherence"), "o", color="C2")
+    a_coh.axhline(0.9, ls="--", color="0.5", lw=0.8)
+    a_coh.set(xlabel="excitation frequency (Hz)", ylabel="coherence", ylim=(0, 1.05), title="coherence force/acceleration")
+    return to_svg(fig)
+
+
 @dataclass(frozen=True)
 class MethodsPage(Page):
     """``rig-methods.html``: per tyre, the broadband runs' H(f), K(f), C(f) and a direction section."""
@@ -109,7 +149,18 @@ class MethodsPage(Page):
             fit = {k: (row.get(k) if pd.notna(row.get(k)) else np.nan) for k in
                    ("model", "stiffness_N_per_m", "damping_N_s_per_m", "series_damping_N_s_per_m")}
             out.append((("frf", row["run_id"]), site.function_task("methods_page.frf_figure", (rows, fit))))
+        for (tyre, d), g in (self._stepped(runs).groupby(["tyre_id", "direction"], sort=True) if len(runs) else []):
+            out.append((("stepped", tyre, d), site.function_task("methods_page.stepped_figure",
+                                                                 (g.reset_index(drop=True),))))
         return out
+
+    @staticmethod
+    def _stepped(runs: pd.DataFrame) -> pd.DataFrame:
+        """The lateral and longitudinal stepped-sine runs (a vertical one is the thesis' chapters')."""
+        if runs.empty:
+            return runs
+        return runs.loc[(runs["method"].fillna("stepped_sine") == "stepped_sine")
+                        & (runs["direction"].fillna("vertical") != "vertical")]
 
     def render(self, site):
         runs = self._runs(site)
@@ -122,7 +173,9 @@ class MethodsPage(Page):
                           f"{r['speed_km_h']:g} km/h, {r['pressure_bar']:g} bar, {r['load_kN']:g} kN",
                           "figure": site.figs[("frf", r["run_id"])]}
                          for _, r in g.loc[g["method"].isin(BROADBAND)].iterrows()]
-            directions = [{"direction": d, "table": tables.plain_table(shown.loc[shown["direction"] == d], cols, 60)}
+            stepped = self._stepped(g)
+            directions = [{"direction": d, "table": tables.plain_table(shown.loc[shown["direction"] == d], cols, 60),
+                           "figure": site.figs[("stepped", tyre, d)] if (stepped["direction"] == d).any() else None}
                           for d in ("lateral", "longitudinal") if (g["direction"] == d).any()]
             tyres.append({"tyre_id": tyre, "runs": tables.plain_table(shown, cols, 60), "broadband": broadband,
                           "directions": directions})

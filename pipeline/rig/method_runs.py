@@ -5,7 +5,9 @@ carriage and inertial mass, linkage to the tractor) recorded the way a lab recor
 
 * ``random`` — the vibrator driven with band-limited random force (flat over the band,
   random phases; the thesis' calibration runs, §3.2.9, and its "narrow band random
-  vibration", §3.2.5);
+  vibration", §3.2.5); a rolling tyre also rides the ground's roughness, run-out and lugs
+  (:func:`~tyrelab.rig.instrument.ground_profile` of the run's surface, issue 44), a second input
+  the drive does not control;
 * ``swept_sine`` — a linear sweep over the band;
 * ``free_vibration`` — a few seconds of sine drive near the system's natural frequency,
   then the release (no drive after it) and the free decay;
@@ -33,7 +35,7 @@ from scipy import signal
 
 from ..measurement.broadband import maxwell_impedance
 from . import truth
-from .instrument import G, RigConfig, RunSignals, carriage_mass_kg, record
+from .instrument import G, RigConfig, RunSignals, carriage_mass_kg, ground_profile, record
 
 __all__ = ["LATERAL_STIFFNESS_RATIO", "LONGITUDINAL_STIFFNESS_RATIO", "LATERAL_PRESSURE_SLOPE_PER_BAR",
            "HORIZONTAL_DAMPING_N_S_PER_M", "SERIES_DAMPING_AT_10_KM_H", "METHOD_DURATION_S", "METHOD_DISPLACEMENT_M",
@@ -100,24 +102,33 @@ def _impedance(omega, k, c, c2):
 def method_signals(method: str, direction: str, stiffness_N_per_m: float, damping_N_s_per_m: float,
                    series_damping_N_s_per_m: float, load_kN: float, rng: np.random.Generator,
                    cfg: RigConfig = RigConfig(), *, band_Hz=(1.0, 8.0), duration_s: float | None = None,
-                   displacement_m: float | None = None) -> tuple[RunSignals, np.ndarray | None]:
+                   displacement_m: float | None = None, road: dict | None = None) -> tuple[RunSignals, np.ndarray | None]:
     """Physical signals of one run (and the tyre deflection of a load-deflection run, m); the axle
     motion ``displacement_m`` (rms of a broadband run, peak of a decay; default
-    :data:`METHOD_DISPLACEMENT_M`)."""
+    :data:`METHOD_DISPLACEMENT_M`).
+
+    ``road``: the keyword arguments of :func:`~tyrelab.rig.instrument.ground_profile` but ``rng``
+    and ``t`` (``speed_km_h``, ``surface``, ``circumference_m``, ``lug_height_mm``, ``traction``):
+    a broadband run on a rolling tyre then has the ground's height under the tyre as a second input
+    (issue 44), drawn after the drive; the drive alone sets the scale to ``displacement_m``."""
     fs = cfg.sample_rate_Hz
     dur = duration_s or METHOD_DURATION_S[method]
     M_a, M_c = cfg.axle_mass_kg, carriage_mass_kg(load_kN, cfg)
     if method == "load_deflection":
-        from .experiments import load_ramp
+        from .experiments import load_ramp, load_ramp_clean
 
+        # the recorded deflection (with the ramp's measurement noise; its draws keep every later run's
+        # random stream), and the tyre's force from the deflection itself: differentiating the noisy
+        # channel would turn its noise into force (issue 44: 62 % of the loop's "damping" was that)
         ramp = load_ramp(stiffness_N_per_m, load_kN * 1e3, ramp_s=dur / 2, sample_rate_Hz=fs, rng=rng)
+        clean = load_ramp_clean(stiffness_N_per_m, load_kN * 1e3, ramp_s=dur / 2, sample_rate_Hz=fs)
         n = ramp.time_s.size
         # quasi-static: the axle barely accelerates; the beams carry the applied load onto the tyre
-        d = ramp.displacement_m
-        f_t = ramp.force_N + damping_N_s_per_m * np.gradient(d, ramp.time_s)  # compression force on the tyre
+        d = clean.displacement_m
+        f_t = clean.force_N + damping_N_s_per_m * np.gradient(d, clean.time_s)  # compression force on the tyre
         weight = G * M_a if direction == "vertical" else 0.0
         sig = RunSignals(ramp.time_s, -d, np.zeros(n), np.zeros(n), f_t, weight - f_t)
-        return sig, d
+        return sig, ramp.displacement_m
     n_keep = int(round(dur * fs))
     pad = int(round(6.0 * fs))
     n = n_keep + 2 * pad
@@ -155,9 +166,15 @@ def method_signals(method: str, direction: str, stiffness_N_per_m: float, dampin
     scale = target / float(np.std(x[pad:pad + n_keep])) if method != "free_vibration" else \
         target / float(np.max(np.abs(x)))
     X *= scale
+    G_road = 0.0
+    if road is not None and method in ("random", "swept_sine") and road.get("speed_km_h", 0.0) > 0:
+        # the ground's height under the tyre, tapered into the quiet pads (the solve is periodic)
+        taper = signal.windows.tukey(n, min(1.0, 2 * pad / n))
+        G_road = sfft.rfft(ground_profile(rng, t, cfg=cfg, **road) * taper)
+        X = X + a22 * z * G_road / det  # the tyre pushes the axle by Z (ground − axle)
     x = sfft.irfft(X, n)
     xdd = sfft.irfft(-(omega**2) * X, n)
-    f_dyn = sfft.irfft(-z * X, n)  # tyre force on the axle about the static load
+    f_dyn = sfft.irfft(-z * (X - G_road), n)  # tyre force on the axle about the static load
     f_b = M_a * xdd - f_dyn + (G * M_a - load_kN * 1e3 if direction == "vertical" else 0.0)
     f_t = f_dyn + (load_kN * 1e3 if direction == "vertical" else 0.0)
     sl = slice(pad, pad + n_keep)
@@ -180,8 +197,10 @@ def simulate_method_run(row, rng: np.random.Generator, day, cfg: RigConfig = Rig
     k, c, c2 = directional_truth(tyre, direction, p, v, load, **extra)
     lo, hi = get("band_low_Hz", None), get("band_high_Hz", None)
     band_Hz = (float(lo), float(hi)) if lo is not None and pd.notna(lo) else (1.0, 8.0)
+    road = ({"speed_km_h": v, "surface": str(get("surface", None) or "concrete"), "circumference_m": tyre.circumference_m,
+             "lug_height_mm": tyre.lug_height_mm, "traction": tyre.traction} if v > 0 else None)
     sig, deflection = method_signals(method, direction, k, c, c2, load, rng, cfg, band_Hz=band_Hz,
-                                     duration_s=float(get("plan_duration_s", 0.0) or 0.0) or None)
+                                     duration_s=float(get("plan_duration_s", 0.0) or 0.0) or None, road=road)
     run = record(sig, day, rng, cfg, gravity_m_s2=G if direction == "vertical" else 0.0)
     if deflection is not None:
         run["deflection_m"] = (deflection + 2e-5 * rng.standard_normal(deflection.size)).astype(np.float32)

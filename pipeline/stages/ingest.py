@@ -212,7 +212,8 @@ def convert_run(task: dict) -> dict:
         problem = channel_problem(task["run_id"], task.get("method", "stepped_sine"), df.columns)
         if problem:
             raise RunFileError(problem)
-        ri = check_run(df, task["excitation_frequency_Hz"], task["sample_rate_Hz"])
+        ri = check_run(df, task["excitation_frequency_Hz"], task["sample_rate_Hz"],
+                       method=task.get("method", "stepped_sine"))
         with io.atomic_path(out) as tmp:
             table = _run_table(df, task["run_id"], ri.channels)
             pq.write_table(table, tmp, **run_file_options(table.column_names))

@@ -54,6 +54,7 @@ import numpy as np
 import pandas as pd
 
 from .. import published, resources
+from .._hold import hold
 from ..executor import map_batches
 from ..tyre.models import THESIS_TABLES, thesis_stiffness_model
 from ..vehicle import bounce_pitch, ride, studies
@@ -365,9 +366,16 @@ def start_studies_ahead(ctx: Context) -> list[str]:
         return []
     pool = worker_pool(len(todo))
     for name in todo:
-        _AHEAD[keys[name]] = (pool, pool.submit(_task, (name, _payload(name, inputs[name], case_keys, cache))))
+        _AHEAD[keys[name]] = (pool, pool.submit(_ahead_task, (name, _payload(name, inputs[name], case_keys, cache))))
     ctx.log.info("simulate: %s started ahead, on %d worker(s)", " and ".join(todo), len(todo))
     return todo
+
+
+def _ahead_task(item: tuple):
+    """:func:`_task` of a study started ahead, in its worker (the hold point ``ahead`` of the tests:
+    :mod:`tyrelab._hold`)."""
+    hold("ahead")
+    return _task(item)
 
 
 def start_ahead(ctx: Context) -> list[str]:

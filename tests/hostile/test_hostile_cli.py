@@ -13,6 +13,7 @@ from pathlib import Path
 
 import pytest
 
+from tests.holds import HANG_GUARD_S, Holds
 from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 from tyrelab.cli import main
 from tyrelab.warehouse import query
@@ -23,6 +24,13 @@ GOOD = spring_damper_recording(duration_s=20.0)
 #: ``tyrelab`` with ``run`` restricted to the stages these tests need (the others take minutes).
 PY = [sys.executable, "-c", "import sys, tyrelab.stages as s; s.ORDER[:] = ['ingest', 'analyse', 'calibrate', 'warehouse']\n"
       "from tyrelab.cli import main; sys.exit(main(sys.argv[1:]))"]
+#: Lines that start the worker server and wait for its imports before ``main``: then the stages' pools
+#: (and the work started ahead) start at once, whatever the machine's speed, instead of only when the
+#: server is ready before this process has done the work alone.
+READY_SERVER = ("from tyrelab import executor; import time; executor.start_worker_server()\n"
+                "while executor.worker_server_state() == 'starting': time.sleep(0.01)\n")
+#: :data:`PY` with the worker server ready first.
+PY_READY = [PY[0], PY[1], PY[2].replace("from tyrelab.cli", READY_SERVER + "from tyrelab.cli")]
 
 
 # -- 10. analyze-run ---------------------------------------------------------------------------------
@@ -145,17 +153,17 @@ def test_sigterm_leaves_no_temporary_folders(tmp_path):
     raw = write_campaign(tmp_path / "raw", [(manifest_row(f"r{i}", f"r{i}.parquet", pressure_bar=1 + i / 10),
                                              spring_damper_recording(duration_s=60.0, seed=i)) for i in range(40)])
     tmp = Path(tempfile.mkdtemp(prefix="t11"))  # short: the forkserver's socket path must fit AF_UNIX's 108 bytes
-    env = {**os.environ, "TMPDIR": str(tmp)}
-    proc = subprocess.Popen([*PY, "run", "--raw", str(raw), "--build", str(tmp_path / "b"), "--jobs", "2"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
-    deadline = time.monotonic() + 120
-    while not list(tmp.glob("pymp-*")):
-        assert time.monotonic() < deadline and proc.poll() is None, proc.stderr.read() if proc.poll() else ""
-        time.sleep(0.05)
-    time.sleep(0.5)  # workers started (a worker still being spawned may print the stdlib's own traceback)
+    holds = Holds(tmp_path / "holds")
+    holds.hold("worker")  # every pool worker holds once started: the signal lands while they exist
+    proc = subprocess.Popen([*PY_READY, "run", "--raw", str(raw), "--build", str(tmp_path / "b"), "--jobs", "2"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env={**holds.env, "TMPDIR": str(tmp)})
+    assert holds.wait("worker", proc) != proc.pid
+    assert list(tmp.glob("pymp-*"))
     proc.send_signal(signal.SIGTERM)
-    _, err = proc.communicate(timeout=120)
+    _, err = proc.communicate(timeout=HANG_GUARD_S)
     assert proc.returncode == 130 and "Traceback" not in err, err
+    assert not holds.passed("worker")  # the signal landed while the work was held
     left = list(tmp.iterdir())
     shutil.rmtree(tmp)
     assert not left
@@ -170,19 +178,17 @@ def test_ctrl_c_to_the_whole_process_group_prints_one_line(tmp_path):
     raw = write_campaign(tmp_path / "raw", [(manifest_row(f"r{i}", f"r{i}.parquet", pressure_bar=1 + i / 10),
                                              spring_damper_recording(duration_s=60.0, seed=i)) for i in range(40)])
     tmp = Path(tempfile.mkdtemp(prefix="t11"))
-    env = {**os.environ, "TMPDIR": str(tmp)}
-    proc = subprocess.Popen([*PY, "run", "--raw", str(raw), "--build", str(tmp_path / "b"), "--jobs", "2"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
-                            start_new_session=True)
-    deadline = time.monotonic() + 120
-    while not list(tmp.glob("pymp-*")):
-        assert time.monotonic() < deadline and proc.poll() is None, proc.stderr.read() if proc.poll() else ""
-        time.sleep(0.05)
-    time.sleep(1.0)
+    holds = Holds(tmp_path / "holds")
+    holds.hold("worker")
+    proc = subprocess.Popen([*PY_READY, "run", "--raw", str(raw), "--build", str(tmp_path / "b"), "--jobs", "2"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env={**holds.env, "TMPDIR": str(tmp)}, start_new_session=True)
+    assert holds.wait("worker", proc) != proc.pid  # a worker is running (SIGINT ignored), held
     os.killpg(proc.pid, signal.SIGINT)
-    _, err = proc.communicate(timeout=120)
+    _, err = proc.communicate(timeout=HANG_GUARD_S)
     shutil.rmtree(tmp, ignore_errors=True)
     assert proc.returncode == 130, err
+    assert not holds.passed("worker")
     assert "Traceback" not in err and "KeyboardInterrupt" not in err, err
     assert err.strip().splitlines()[-1].endswith("interrupted")
 
@@ -193,33 +199,34 @@ def test_ctrl_c_while_the_studies_run_ahead_prints_one_line(tmp_path):
     raw = write_campaign(tmp_path / "raw", [(manifest_row(f"r{i}", f"r{i}.parquet", pressure_bar=1 + i / 10),
                                              spring_damper_recording(duration_s=30.0, seed=i)) for i in range(24)])
     tmp = Path(tempfile.mkdtemp(prefix="t15"))
+    holds = Holds(tmp_path / "holds")
+    holds.hold("ahead")  # the study started ahead holds in its worker
+    # the worker server ready before the run starts: the studies are started ahead after analyse
+    # whatever the machine's speed (run_pipeline starts them only on a ready server)
     code = ("import sys, tyrelab.stages as s; s.ORDER[:] = ['ingest', 'analyse', 'calibrate', 'regress', 'simulate']\n"
+            + READY_SERVER +
             "from tyrelab.cli import main; sys.exit(main(sys.argv[1:]))")
     proc = subprocess.Popen([sys.executable, "-c", code, "run", "--raw", str(raw), "--build", str(tmp_path / "b"),
                              "--jobs", "2"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                            env={**os.environ, "TMPDIR": str(tmp)}, start_new_session=True)
-    lines = []
-    for line in proc.stderr:
-        lines.append(line)
-        if "started ahead" in line:
-            break
-    assert any("started ahead" in x for x in lines), "".join(lines)
-    time.sleep(0.5)
+                            env={**holds.env, "TMPDIR": str(tmp)}, start_new_session=True)
+    worker = holds.wait("ahead", proc)
+    assert worker != proc.pid
     os.killpg(proc.pid, signal.SIGINT)
-    _, rest = proc.communicate(timeout=120)
-    err = "".join(lines) + rest
+    _, err = proc.communicate(timeout=HANG_GUARD_S)
     assert proc.returncode == 130, err
-    assert "Traceback" not in err and "KeyboardInterrupt" not in err, err
+    assert not holds.passed("ahead")
+    assert "started ahead" in err and "Traceback" not in err and "KeyboardInterrupt" not in err, err
     assert err.strip().splitlines()[-1].endswith("interrupted")
-    deadline = time.monotonic() + 3  # no worker of the studies outlives the command
-    while time.monotonic() < deadline:
+    with pytest.raises(ProcessLookupError):  # the command ended (and reaped) the study's worker before it exited
+        os.kill(worker, 0)
+    deadline = time.monotonic() + HANG_GUARD_S  # the worker server follows its parent (it reads its end of a pipe)
+    while True:
         try:
             os.killpg(proc.pid, 0)
         except ProcessLookupError:
             break
+        assert time.monotonic() < deadline, "processes of the interrupted run are still alive"
         time.sleep(0.05)
-    else:
-        raise AssertionError("processes of the interrupted run are still alive")
     left = list(tmp.iterdir())
     shutil.rmtree(tmp, ignore_errors=True)
     assert not left

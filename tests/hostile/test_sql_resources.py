@@ -4,11 +4,11 @@ import os
 import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
 
+from tests.holds import HANG_GUARD_S, Holds
 from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
 from tyrelab.cli import main
 from tyrelab.stages import Context, run_stage
@@ -119,15 +119,18 @@ def test_bad_limits_are_usage_errors(build, capsys, args):
     assert args[0] in err and "Traceback" not in err
 
 
-def test_ctrl_c_exits_130(build):
+def test_ctrl_c_exits_130(build, tmp_path):
     tyrelab = Path(sys.executable).with_name("tyrelab")
+    holds = Holds(tmp_path / "holds")
+    holds.hold("sql-statement")  # the command says when DuckDB runs the statement (it runs for minutes)
     proc = subprocess.Popen([str(tyrelab), "sql", "--build", str(build), LONG], stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
-    time.sleep(3)  # the statement is running (it runs for minutes)
-    proc.send_signal(signal.SIGINT)
+                            stderr=subprocess.PIPE, text=True, env=holds.env)
     try:
-        out, err = proc.communicate(timeout=60)
+        holds.wait("sql-statement", proc)
+        proc.send_signal(signal.SIGINT)
+        out, err = proc.communicate(timeout=HANG_GUARD_S)
     finally:
         proc.kill()
     assert proc.returncode == 130, err
+    assert not holds.passed("sql-statement")
     assert err.strip().splitlines()[-1] == "tyrelab sql: interrupted" and "Traceback" not in err

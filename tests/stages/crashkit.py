@@ -16,12 +16,14 @@ def campaign(folder, n=24):
          spring_damper_recording(duration_s=30.0 + 10 * (i % 2), force_noise_N=50, seed=i)) for i in range(n)])
 
 
-def start_run(raw, build, *extra, stages=STAGES, repeat=1):
-    """Start ``tyrelab run`` (restricted to ``stages``) in a subprocess, ``repeat`` times in a row."""
+def start_run(raw, build, *extra, stages=STAGES, repeat=1, env=None):
+    """Start ``tyrelab run`` (restricted to ``stages``) in a subprocess, ``repeat`` times in a row
+    (``env``: its environment, e.g. :attr:`tests.holds.Holds.env`)."""
     code = (
         "import sys, tyrelab.stages as s; s.ORDER[:] = %r\n"
         "from tyrelab.cli import main\n"
         "for _ in range(%d): rc = main(['run', '--raw', %r, '--build', %r, '--jobs', '1', *%r])\n"
         "sys.exit(rc)" % (list(stages), repeat, str(raw), str(build), list(extra))
     )
-    return subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    return subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                            env=env)

@@ -5,10 +5,10 @@ import os
 import signal
 import subprocess
 import sys
-import time
 
 import pytest
 
+from tests.holds import HANG_GUARD_S, Holds
 from tests.stages.crashkit import campaign, start_run
 from tyrelab.buildlock import LOCK_NAME, BuildLock, BuildLocked
 from tyrelab.cli import main
@@ -51,32 +51,38 @@ def test_two_writers_the_second_refused_the_first_unaffected(raw, tmp_path):
     build = tmp_path / "b"
     assert start_run(raw, build).wait() == 0
     expected = query(build / "warehouse.duckdb", QUERY)
-    first = start_run(raw, build, "--force")
-    deadline = time.monotonic() + 60
-    while not (build / LOCK_NAME).read_text().strip() or json.loads((build / LOCK_NAME).read_text())["pid"] != first.pid:
-        assert time.monotonic() < deadline and first.poll() is None
-        time.sleep(0.02)
+    holds = Holds(tmp_path / "holds")
+    holds.hold("stage-analyse")  # the first writer holds the lock, inside its run, until released
+    first = start_run(raw, build, "--force", env=holds.env)
+    assert holds.wait("stage-analyse", first) == first.pid
+    assert json.loads((build / LOCK_NAME).read_text())["pid"] == first.pid
     assert len(query(build / "warehouse.duckdb", QUERY)) == len(expected)  # a reader is not blocked
     second = start_run(raw, build, "--force")
-    out, err = second.communicate(timeout=120)
+    out, err = second.communicate(timeout=HANG_GUARD_S)
     assert second.returncode == 2 and f"pid {first.pid}" in err, err
-    assert first.wait(timeout=300) == 0, first.stderr.read()
+    assert not holds.passed("stage-analyse")  # the second ran while the first was inside its run
+    holds.release("stage-analyse")
+    assert first.wait(timeout=HANG_GUARD_S) == 0, first.stderr.read()
+    assert holds.passed("stage-analyse")
     assert query(build / "warehouse.duckdb", QUERY).equals(expected)
 
 
-def test_sigint_ends_without_a_traceback(raw, tmp_path):
+@pytest.mark.parametrize("point", ["stage-analyse", "replace"])
+def test_sigint_ends_without_a_traceback(raw, tmp_path, point):
+    """Ctrl-C while the run is held at a stage's start, or with a file written but not yet renamed
+    over its target: one line, exit 130, the lock released, no temporary file left."""
     build = tmp_path / "b"
-    proc = start_run(raw, build, "--force")
-    deadline = time.monotonic() + 60
-    while not (build / LOCK_NAME).exists() or not (build / LOCK_NAME).read_text().strip():
-        assert time.monotonic() < deadline and proc.poll() is None
-        time.sleep(0.02)
-    time.sleep(0.5)
+    holds = Holds(tmp_path / "holds")
+    holds.hold(point)
+    proc = start_run(raw, build, "--force", env=holds.env)
+    holds.wait(point, proc)
     proc.send_signal(signal.SIGINT)
-    out, err = proc.communicate(timeout=120)
+    out, err = proc.communicate(timeout=HANG_GUARD_S)
     assert proc.returncode == 130, err
+    assert not holds.passed(point)  # the signal landed inside the run
     assert "Traceback" not in err and "interrupted" in err.splitlines()[-1]
     assert (build / LOCK_NAME).read_text() == ""
+    assert not [p for p in build.rglob("*") if p.name.endswith(".tmp")]
 
 
 def test_build_that_is_a_file_is_one_line(raw, tmp_path, capsys):

@@ -7,6 +7,7 @@ from types import SimpleNamespace
 
 import pytest
 
+from tests.holds import HANG_GUARD_S
 from tyrelab.executor import map_alongside, map_batches, map_in_background, worker_server_state
 from tyrelab.stages import Context, run_pipeline
 from tests.synthetic import manifest_row, spring_damper_recording, write_campaign
@@ -147,14 +148,9 @@ def _wait_for_server():
     assert worker_server_state() == "ready"
 
 
-def _sleep_and_square(x):
-    time.sleep(x[1])
-    return x[0] * x[0], os.getpid()
-
-
 def _square_once_released(x):
-    """x[0] squared once the file x[1] exists (None after 60 s without it)."""
-    deadline = time.monotonic() + 60
+    """x[0] squared once the file x[1] exists (None after HANG_GUARD_S without it: a hang)."""
+    deadline = time.monotonic() + HANG_GUARD_S
     while not os.path.exists(x[1]):
         if time.monotonic() > deadline:
             return None, os.getpid()
@@ -178,15 +174,26 @@ def test_map_in_background_returns_at_once_and_keeps_the_order(tmp_path):
     assert os.getpid() not in {p for _, p in out} and len({p for _, p in out}) == 2
 
 
-def test_map_in_background_abandon_ends_the_workers():
+def _announce_and_wait(x):
+    """Say it runs (a file named after this worker's pid in folder x[0]), then wait for the file x[1]."""
+    open(os.path.join(x[0], f"running-{os.getpid()}"), "w").close()
+    while not os.path.exists(x[1]):
+        time.sleep(0.01)
+    return os.getpid()
+
+
+def test_map_in_background_abandon_ends_the_workers(tmp_path):
     _wait_for_server()
-    bg = map_in_background(_sleep_and_square, [(i, 30.0) for i in range(2)], jobs=2)
-    time.sleep(0.5)
+    never = tmp_path / "never-released"
+    bg = map_in_background(_announce_and_wait, [(str(tmp_path), str(never)) for _ in range(2)], jobs=2)
     procs = list(bg._pool._processes.values())
-    assert procs and all(p.is_alive() for p in procs)
-    t0 = time.monotonic()
-    bg.abandon()
-    assert time.monotonic() - t0 < 10 and not any(p.is_alive() for p in procs)
+    deadline = time.monotonic() + HANG_GUARD_S  # until both workers say they run their batch
+    while len(list(tmp_path.glob("running-*"))) < 2:
+        assert time.monotonic() < deadline and all(p.is_alive() for p in procs)
+        time.sleep(0.01)
+    assert {p.pid for p in procs} == {int(f.name.split("-")[1]) for f in tmp_path.glob("running-*")}
+    bg.abandon()  # terminates and joins them: none is left, and no batch finished
+    assert not any(p.is_alive() for p in procs)
 
 
 def test_command_gc_in_a_command_process():

@@ -1,7 +1,6 @@
 """Make-style runs: nothing changed -> nothing recomputed; one run changed -> only what depends on it."""
 
 import logging
-import time
 
 import pandas as pd
 import pytest
@@ -34,14 +33,12 @@ def campaign(tmp_path):
 def test_noop_rerun_recomputes_nothing(campaign, caplog):
     _, ctx = campaign
     run(ctx, caplog)
-    t0 = time.perf_counter()
     res, text = run(ctx, caplog)
     assert all(r.skipped for r in res.values())
     for s in STAGES:
         assert f"{s}: up to date: inputs unchanged" in text
     assert "recomputed: nothing" in text
-    assert res["ingest"].n_ok == 4  # counts survive a skip
-    assert time.perf_counter() - t0 < 10  # generous; the benchmark records the real figure
+    assert res["ingest"].n_ok == 4  # counts survive a skip (how fast: bench/, not a test)
 
 
 def test_touch_without_content_change_stops_at_ingest(campaign, caplog):

@@ -183,7 +183,7 @@ def _content(kind):
 
 
 @settings(max_examples=20, deadline=None, phases=[Phase.explicit, Phase.reuse, Phase.generate],
-          suppress_health_check=[HealthCheck.function_scoped_fixture])
+          suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow])
 @given(st.lists(rows, min_size=0, max_size=5))
 def test_random_manifests_never_crash_or_leave_partial_files(tmp_path_factory, manifest):
     raw = tmp_path_factory.mktemp("raw")

@@ -1,15 +1,17 @@
-"""SIGKILL at random points of `tyrelab run --force`, then `tyrelab run`: the build converges to the
+"""SIGKILL at random points of `tyrelab run --force` (random ones of the moments it replaces a file, held
+there: tests/holds.py), then `tyrelab run`: the build converges to the
 bytes of a clean build (issue 11). The default run kills a short pipeline; the slow test every stage."""
 
 import hashlib
 import random
+import shutil
 import signal
 import sys
-import time
 from pathlib import Path
 
 import pytest
 
+from tests.holds import Holds
 from tests.stages.crashkit import start_run
 from tyrelab.buildlock import LOCK_NAME
 from tyrelab.warehouse import query
@@ -36,16 +38,27 @@ def fingerprint(build: Path) -> dict:
     return out
 
 
-def converges(raw, build, stages, kills, seed):
-    t0 = time.monotonic()
+def converges(raw, build, stages, kills, seed, holds: Holds):
+    """A clean build, then ``kills`` times: SIGKILL a forced run at a random one of the moments it
+    replaces a file (written in full, not yet renamed over its target), run again, compare."""
     assert start_run(raw, build, stages=stages).wait() == 0
-    clean, duration = fingerprint(build), time.monotonic() - t0
+    clean = fingerprint(build)
+    copy = build.with_name(build.name + "-count")  # count them in a forced run of a copy (no hold)
+    shutil.copytree(build, copy)
+    holds.hold("replace", 0)
+    assert start_run(raw, copy, "--force", stages=stages, env=holds.env).wait() == 0
+    replaces = holds.count("replace")
+    shutil.rmtree(copy)
+    assert replaces > 0
     rng = random.Random(seed)
     for _ in range(kills):
-        proc = start_run(raw, build, "--force", stages=stages)
-        time.sleep(rng.uniform(0.05, 1.0) * duration)
+        holds.hold("replace", rng.randint(1, replaces))
+        proc = start_run(raw, build, "--force", stages=stages, env=holds.env)
+        holds.wait("replace", proc)
         proc.send_signal(signal.SIGKILL)
         proc.wait()
+        assert proc.returncode == -signal.SIGKILL and not holds.passed("replace")
+        holds.release("replace")
         rerun = start_run(raw, build, stages=stages)
         assert rerun.wait() == 0, rerun.stderr.read()
         now = fingerprint(build)
@@ -56,7 +69,7 @@ def converges(raw, build, stages, kills, seed):
 @pytest.mark.slow  # 57 s on 2 busy cores; runs in `make test-all`, not in the default run
 def test_random_kills_converge_to_the_clean_bytes(tmp_path):
     raw = calibrated_campaign(tmp_path / "raw" / "c", per_day=2)
-    converges(raw, tmp_path / "build", SHORT, kills=2, seed=11)
+    converges(raw, tmp_path / "build", SHORT, kills=2, seed=11, holds=Holds(tmp_path / "holds"))
 
 
 @pytest.mark.slow
@@ -65,4 +78,4 @@ def test_random_kills_across_every_stage_converge(tmp_path, monkeypatch):
     # reproducible build) so that the pages of the clean build and of the re-run can be compared.
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "631152000")
     raw = calibrated_campaign(tmp_path / "raw" / "c", per_day=4)
-    converges(raw, tmp_path / "build", ALL, kills=8, seed=1991)
+    converges(raw, tmp_path / "build", ALL, kills=8, seed=1991, holds=Holds(tmp_path / "holds"))

@@ -8,6 +8,11 @@ script on the code before a change to store them::
 
     .venv/bin/python tests/vehicle/golden_vehicle.py          # quick set (the default test)
     .venv/bin/python tests/vehicle/golden_vehicle.py --full   # everything (the slow test)
+    .venv/bin/python -m tests.vehicle.golden_vehicle --bits   # which quantities today's code gives to the bit
+
+``--bits`` stores nothing but ``golden_vehicle_quick_bits.json``: the quantities today's code gives
+bit for bit on this platform (:func:`platform`: the locked numpy/scipy and the CPU kernels they
+dispatch to), which the test then requires bit for bit wherever the platform is the same.
 
 ``tests/vehicle/test_parts_unchanged.py`` compares today's numbers to the stored ones.
 """
@@ -167,8 +172,48 @@ def path(full: bool) -> Path:
     return HERE / f"golden_vehicle_{'full' if full else 'quick'}.npz"
 
 
+def bits_path(full: bool) -> Path:
+    return HERE / f"golden_vehicle_{'full' if full else 'quick'}_bits.json"
+
+
+def platform() -> dict:
+    """What decides the last bits of these numbers besides the code: numpy's and scipy's versions,
+    the CPU kernels numpy dispatches to (its SIMD targets found on this CPU, after any
+    ``NPY_DISABLE_CPU_FEATURES``) and OpenBLAS's choice (``OPENBLAS_CORETYPE``, else from the
+    same CPU flags)."""
+    import os
+    import platform as _platform
+
+    import scipy
+
+    try:
+        from numpy._core import _multiarray_umath as um
+    except ImportError:  # numpy 1.x
+        from numpy.core import _multiarray_umath as um
+    return {"numpy": np.__version__, "scipy": scipy.__version__, "machine": _platform.machine(),
+            "simd": [f for f in um.__cpu_dispatch__ if um.__cpu_features__.get(f)],
+            "openblas_coretype": os.environ.get("OPENBLAS_CORETYPE")}
+
+
+def same_bits(full: bool, values: dict) -> list[str]:
+    """The stored quantities ``values`` reproduce bit for bit."""
+    stored = np.load(path(full))
+    return [k for k in stored.files if k in values and np.array_equal(stored[k], values[k], equal_nan=True)]
+
+
 if __name__ == "__main__":
+    import json
+
     full = "--full" in sys.argv
+    if "--bits" in sys.argv:
+        from tests.vehicle.test_parts_unchanged import before_issue_33_parts
+
+        with before_issue_33_parts():
+            values = compute(full)
+        bits = {"platform": platform(), "bit_identical": same_bits(full, values)}
+        bits_path(full).write_text(json.dumps(bits, indent=1) + "\n")
+        print(len(bits["bit_identical"]), "of", len(values), "bit for bit ->", bits_path(full))
+        sys.exit(0)
     values = compute(full)
     HERE.mkdir(exist_ok=True)
     np.savez_compressed(path(full), **values)

@@ -136,24 +136,13 @@ def _schema_descriptions() -> tuple[dict[str, dict[str, str]], dict[str, str]]:
     return published, raw
 
 
-def column_meaning(table: str, column: str, published: dict, raw: dict) -> str:
-    """What a column means, from the schemas and the warehouse's naming rules."""
-    own = published.get(table, {})
-    if column in own:
-        return own[column]
-    if column.startswith("thesis_") and column[7:] in own:
-        return "The thesis' printed value: " + own[column[7:]]
-    if column.endswith("_difference"):
-        base = column[: -len("_difference")]
-        return f"Ours − thesis of {base}" + (f" ({own[base]})" if base in own else "") + "."
-    if column.startswith("thesis_"):
-        return f"The thesis' printed value of {column[7:]}."
-    for cols in published.values():  # the same column of the thesis table it reproduces
-        if column in cols and column != "__title__":
-            return cols[column]
-    if column in raw:
-        return raw[column]
-    return ""
+def column_meaning(table: str, column: str, published: dict | None = None, raw: dict | None = None) -> str:
+    """What a column means: :func:`tyrelab.legend.meaning` (the legend, the published tables' and
+    the raw formats' schemas, the warehouse's naming rules; ``published`` and ``raw`` are kept for
+    callers of the former signature and not needed)."""
+    from tyrelab import legend
+
+    return legend.meaning(table, column)
 
 
 def table_nodes(build: str | None, warn) -> list:
@@ -166,7 +155,7 @@ def table_nodes(build: str | None, warn) -> list:
     import duckdb
     from docutils import nodes
 
-    from tyrelab.report.render import UNITS
+    from tyrelab import legend
 
     published, raw = _schema_descriptions()
     con = duckdb.connect(str(db), read_only=True)
@@ -183,10 +172,11 @@ def table_nodes(build: str | None, warn) -> list:
             cols = con.execute(f'DESCRIBE "{name}"').fetchall()
             key = name.removeprefix("published_")
             rows = []
-            for col, typ, *_ in cols:
-                unit = next((u.strip(" ()") for s, u in UNITS.items() if col.endswith(s)), "")
-                rows.append([col, typ.lower(), unit or "–", column_meaning(key, col, published, raw) or "–"])
-            intro = f"Written by {stage}." + (f" {published[key]['__title__']}." if key in published else "")
+            for (col, unit, text), (_, typ, *_) in zip(legend.describe(name, [c[0] for c in cols]), cols):
+                rows.append([col, typ.lower(), unit, text or "–"])
+            about = legend.legend().get("tables", {}).get(name, {}).get("description", "")
+            intro = (f"Written by {stage}." + (f" {published[key]['__title__']}." if key in published else "")
+                     + (f" {about}" if about else ""))
             out.append(_section("table", name, nodes.paragraph(text=intro),
                                 _table(["column", "type", "unit", "meaning"], rows, [18, 8, 8, 50])))
         return out
