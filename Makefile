@@ -48,6 +48,7 @@ run: data compile
 	@echo "report: $(BUILD)/reports/index.html — query: $(BIN)/tyrelab sql \"SELECT * FROM table_iii\""
 
 test: install compile
+	$(BIN)/lint-imports --no-cache
 	$(BIN)/python -m pytest -q -m "not slow" -n auto
 
 # The default suite STEADY_ROUNDS times under -n auto and -n 1, with STEADY_LOAD busy processes beside

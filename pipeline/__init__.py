@@ -8,6 +8,8 @@ Agricultural Tractor Tyres", PhD thesis, Cranfield/Silsoe).
 
    analyse_recording -- K, C and QC of one tyre-rig recording (``analyze_recording``: the same).
    ride              -- seat vibration and daily exposure of a tractor scenario.
+   ride_sweep        -- the same for every variant of a sweep (pressures, swept keys).
+   road_class        -- the ISO 8608 class of each track of a road profile or OpenCRG road.
    exposure          -- a driver's daily exposure from seat recordings.
 
 .. rubric:: Packages, by thesis chapter
@@ -44,7 +46,7 @@ __getattr__, __dir__ = attach(
     submodules=["api", "measurement", "tyre", "vehicle", "rig", "rawformat", "report", "stages", "resources", "watch",
                 "warehouse", "export", "exposure"],
     attrs={
-        "api": ["analyse_recording", "analyze_recording", "ride", "vehicle_frf"],
+        "api": ["analyse_recording", "analyze_recording", "ride", "ride_sweep", "road_class", "vehicle_frf"],
         "measurement.recording": ["RecordingResult", "WelchEstimate", "analyse_frame"],
         "measurement.apparent_mass": ["tyre_force", "stiffness_damping"],
         "rawformat": ["CHANNELS", "RunFileError", "read_run_file", "check_run"],

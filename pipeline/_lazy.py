@@ -21,14 +21,19 @@ from __future__ import annotations
 import ast
 import importlib
 import pkgutil
+import sys
 from importlib.util import find_spec
 from pathlib import Path
 
-__all__ = ["attach", "module_all", "submodule_names", "collisions"]
+__all__ = ["attach", "module_all", "moved_to", "submodule_names", "collisions"]
 
 
 def module_all(module: str) -> list[str]:
-    """The literal ``__all__`` of a module's source (``[]`` if it has none), without importing it."""
+    """The literal ``__all__`` of a module's source (``[]`` if it has none), without importing it.
+
+    A module moved elsewhere whose old file only aliases the new one (:func:`moved_to`) has the
+    new module's ``__all__``.
+    """
     spec = find_spec(module)
     if spec is None or spec.origin is None:
         raise ModuleNotFoundError(f"no module named {module!r}")
@@ -38,7 +43,44 @@ def module_all(module: str) -> list[str]:
         targets = node.targets if isinstance(node, ast.Assign) else [node.target] if isinstance(node, ast.AnnAssign) else []
         if any(isinstance(t, ast.Name) and t.id == "__all__" for t in targets) and node.value is not None:
             return list(ast.literal_eval(node.value))
-    return []
+    target = moved_to(module, tree)
+    return module_all(target) if target else []
+
+
+def moved_to(module: str, tree: ast.Module | None = None) -> str | None:
+    """The module an old import path aliases, or None.
+
+    A module moved to a new home keeps its old path as a file that imports the new module and
+    puts it in its own place (``from .terrain import profiles as _moved`` then
+    ``sys.modules[__name__] = _moved``): ``import`` of the old path gives the same module object.
+
+    Examples
+    --------
+    >>> moved_to("tyrelab._lazy") is None
+    True
+    """
+    if tree is None:
+        known = sys.modules.get(module)
+        if known is not None:  # imported: an alias is the module of another name
+            return known.__name__ if known.__name__ != module else None
+        spec = find_spec(module)
+        if spec is None or spec.origin is None:
+            raise ModuleNotFoundError(f"no module named {module!r}")
+        tree = ast.parse(Path(spec.origin).read_text(encoding="utf-8"), spec.origin)
+    imported: dict[str, str] = {}
+    package = module.rpartition(".")[0]
+    for node in tree.body:
+        if isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                parts = package.split(".")
+                base = ".".join(parts[: len(parts) - node.level + 1] + ([base] if base else []))
+            for alias in node.names:
+                imported[alias.asname or alias.name] = f"{base}.{alias.name}"
+        elif (isinstance(node, ast.Assign) and len(node.targets) == 1 and isinstance(node.value, ast.Name)
+              and ast.unparse(node.targets[0]) == "sys.modules[__name__]" and node.value.id in imported):
+            return imported[node.value.id]
+    return None
 
 
 def submodule_names(package: str) -> list[str]:

@@ -3,6 +3,8 @@
 - :func:`analyse_recording` -- K, C and QC of one tyre-rig recording (``tyrelab analyse-run``);
   ``analyze_recording`` is the same function.
 - :func:`ride` -- seat vibration and daily exposure of a tractor scenario (``tyrelab ride``).
+- :func:`ride_sweep` -- the same for every variant of a sweep (``tyrelab ride`` with pressures, ``--set``).
+- :func:`road_class` -- the ISO 8608 class of each track of a profile or an OpenCRG road (``tyrelab road``).
 - :func:`exposure` -- a driver's daily exposure from seat recordings (``tyrelab exposure``).
 - :func:`vehicle_frf` -- a vehicle's transfer functions and modes from a recording with wheel
   inputs (``tyrelab frf``; thesis ch. 2, issue 43).
@@ -36,7 +38,7 @@ from .exposure import exposure
 from .measurement.recording import RecordingResult, analyse_frame
 from .rawformat import read_run_file
 
-__all__ = ["analyse_recording", "analyze_recording", "ride", "exposure", "vehicle_frf"]
+__all__ = ["analyse_recording", "analyze_recording", "ride", "ride_sweep", "road_class", "exposure", "vehicle_frf"]
 
 
 def analyse_recording(
@@ -212,12 +214,7 @@ def ride(
                                     max_samples=limits.MAX_SAMPLES if max_samples is None else max_samples)
     if too_much:  # before any work, as tyrelab ride refuses it
         raise ValueError("; ".join(p.replace("--max-samples N", "max_samples=N") for p in too_much))
-    tyres = None
-    if build is not None:
-        from .stages.simulate import WarehouseTyres
-
-        tyres = WarehouseTyres(build)
-    return ride_module.ride(sc, tyres, with_spectra=bool(with_spectra))
+    return ride_module.ride(sc, _tyre_data(build), with_spectra=bool(with_spectra))
 
 
 def _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spectra, max_samples):
@@ -258,6 +255,160 @@ def _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spe
     if problems:
         raise ValueError("; ".join(problems))
     return speeds, front, rear
+
+
+def _tyre_data(build):
+    """The tyre data a ride reads: a build's warehouse (:class:`tyrelab.tyredata.WarehouseTyres`), else
+    the shipped tables (None)."""
+    if build is None:
+        return None
+    from .tyredata import WarehouseTyres
+
+    return WarehouseTyres(build)
+
+
+def ride_sweep(
+    scenario,
+    *,
+    front_pressures_bar: list[float] | None = None,
+    rear_pressures_bar: list[float] | None = None,
+    speeds_km_h: list[float] | None = None,
+    sets=None,
+    build: str | os.PathLike | None = None,
+    method: str | None = None,
+    with_spectra: bool | str = False,
+    max_variants: int | None = None,
+    max_samples: int | None = None,
+    map_fn=None,
+):
+    """Every variant of a scenario's sweep: what ``tyrelab ride`` computes with pressures or ``--set``.
+
+    Parameters
+    ----------
+    scenario : path, str, dict or Scenario
+        As :func:`ride`.
+    front_pressures_bar, rear_pressures_bar : list of float, optional
+        Pressures to sweep, bar (default: the scenario's ``[sweep]``, else its tyres' pressures).
+    speeds_km_h : list of float, optional
+        Speeds instead of ``[exposure] speeds_km_h``, km/h.
+    sets : dict or list of str, optional
+        Numeric scenario keys to sweep: ``{"implement.mass_kg": [0, 500]}`` or ``--set``'s text
+        ``["implement.mass_kg=0,500"]`` (:func:`tyrelab.vehicle.scenario.parse_sets`).
+    build : path, optional
+        As :func:`ride`.
+    method : {"auto", "time", "spectral"}, optional
+        How the rows are computed (default the scenario's ``[simulation] method``).
+    with_spectra : bool or "nominal"
+        Figure data of every variant, of none, or of the nominal variant alone.
+    max_variants, max_samples : int, optional
+        Bounds of the work (refused before any work, with the estimate).
+    map_fn : callable, optional
+        ``map_fn(task, items)``: the caller's executor (:func:`tyrelab.executor.map_batches`); default
+        in-process.
+
+    Returns
+    -------
+    list of tyrelab.vehicle.ride.RideResult
+        One per variant (:func:`tyrelab.vehicle.ride.ride_sweep`); :func:`tyrelab.vehicle.ride.result_json`
+        of the list is the command's JSON.
+
+    Raises
+    ------
+    tyrelab.vehicle.scenario.ScenarioError
+        The scenario's problems, or swept keys the model does not use, every one at once.
+    ValueError
+        A bad argument or too much work, naming it.
+
+    Examples
+    --------
+    >>> import tyrelab
+    >>> rs = tyrelab.ride_sweep(tyrelab.resources.scenarios_dir() / "modern_tractor.toml",
+    ...                         front_pressures_bar=[1.2, 1.6], speeds_km_h=[8], method="spectral")
+    >>> [(r.tyres["front"].pressure_bar, r.speeds.iloc[0]["method"]) for r in rs]
+    [(1.2, 'spectral'), (1.6, 'spectral')]
+    """
+    from .vehicle import ride as ride_module
+    from .vehicle.scenario import parse_sets
+
+    if sets is None:
+        sets = {}
+    elif not hasattr(sets, "items"):
+        sets = parse_sets(list(sets))
+    else:
+        sets = {str(k): tuple(float(x) for x in (v if hasattr(v, "__iter__") else [v])) for k, v in sets.items()}
+    return ride_module.ride_sweep(_scenario(scenario), front_pressures_bar, rear_pressures_bar, speeds_km_h,
+                                  _tyre_data(build), map_fn, with_spectra=with_spectra, sets=sets,
+                                  max_variants=max_variants, max_samples=max_samples, method=method)
+
+
+def road_class(file: str | os.PathLike, *, track_width_m: float = 1.8, lateral_offset_m: float = 0.0,
+               start_m: float = 0.0, length_m: float | None = None, fill_missing: bool = False) -> dict:
+    """The ISO 8608 class, fitted ``G_d(n0)``, r.m.s. and length of each track of a road: what
+    ``tyrelab road`` prints.
+
+    Parameters
+    ----------
+    file : path
+        A profile CSV (``distance_m`` and ``height_m``, or ``left_m``/``right_m``) or an OpenCRG
+        road (``.crg``).
+    track_width_m, lateral_offset_m : float
+        An OpenCRG road's wheel tracks: their distance apart and the centre line's offset left of
+        the road's reference line, m.
+    start_m, length_m : float
+        The stretch of an OpenCRG road read, m (default: all of it).
+    fill_missing : bool
+        An OpenCRG road's missing heights taken from their neighbours instead of refused.
+
+    Returns
+    -------
+    dict
+        ``file``, ``tracks`` (name -> ``class``, ``g0_m3``, ``rms_m``, ``length_m``,
+        ``band_cycles_per_m``: :func:`tyrelab.vehicle.road_class.road_class`) and, for a CRG road,
+        ``lateral_position_m`` of each track.
+
+    Raises
+    ------
+    ValueError
+        The file cannot be read or is no road the model takes, naming the file (and a CRG road's
+        scenario key: ``surface.start_m``, ...).
+    OSError
+        The file cannot be opened.
+    """
+    from .scenario_io import read_crg, read_profile_csv
+    from .vehicle import road_class as rc
+
+    path = Path(file)
+    pos = None
+    if path.suffix.lower() == ".crg":
+        from .vehicle.crg import wheel_tracks
+
+        positive("track_width_m", track_width_m)
+        data = read_crg(path)
+        half = 0.5 * track_width_m
+        pos = {"left": lateral_offset_m + half, "right": lateral_offset_m - half}
+        x, tracks = wheel_tracks(data, pos, start_m, length_m, fill_missing)
+        dx = data.u_inc_m
+    else:
+        from .vehicle.profiles import uniform_grid
+        from .vehicle.scenario.limits import profile_problems
+
+        x, left, right = read_profile_csv(path)
+        problems = profile_problems(x, left, right)
+        if problems:
+            raise ValueError("; ".join(p.replace("surface.profile: ", "") for p in problems))
+        grid, (left_u, right_u) = uniform_grid(x, left, right)
+        dx = float(grid[1] - grid[0])
+        tracks = {"track": left_u} if (left == right).all() else {"left": left_u, "right": right_u}
+    doc = {"file": str(path), "tracks": {}}
+    for name, h in tracks.items():
+        c = rc.road_class(h, dx)
+        doc["tracks"][name] = {"class": c["class"], "g0_m3": None if c["g0_m3"] is None else float(f"{c['g0_m3']:.6g}"),
+                               "rms_m": round(c["rms_m"], 6), "length_m": round(c["length_m"], 6),
+                               "band_cycles_per_m": None if c["band_cycles_per_m"] is None
+                               else [round(b, 6) for b in c["band_cycles_per_m"]]}
+    if pos is not None:
+        doc["lateral_position_m"] = {k: round(v, 6) for k, v in pos.items()}
+    return doc
 
 
 class _FrameRecording:

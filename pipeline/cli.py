@@ -518,8 +518,9 @@ def cmd_export_tyre(args) -> int:
 def cmd_ride(args) -> int:
     from types import SimpleNamespace
 
+    from .api import ride_sweep
     from .report.ride_page import dumps, format_table, write_outputs
-    from .vehicle.ride import result_json, ride_sweep
+    from .vehicle.ride import result_json
     from .scenario_io import ScenarioError, load_scenario
 
     try:
@@ -529,17 +530,13 @@ def cmd_ride(args) -> int:
             print(f"tyrelab ride: {printable(exc.path)}: {printable(problem)}", file=sys.stderr)
         return EXIT_USAGE
     from .executor import map_batches
-    from .stages.simulate import WarehouseTyres
-
-    from .vehicle.scenario import parse_sets
 
     ctx = SimpleNamespace(executor=args.executor, jobs=args.jobs, scheduler=args.scheduler)
     try:
-        sets = parse_sets(args.set or [])
-        results = ride_sweep(scenario, args.front_pressure, args.rear_pressure, args.speeds,
-                             WarehouseTyres(args.build) if args.build else None,
-                             lambda task, items: map_batches(task, items, ctx),
-                             with_spectra="nominal" if args.out else False, sets=sets,
+        results = ride_sweep(scenario, front_pressures_bar=args.front_pressure, rear_pressures_bar=args.rear_pressure,
+                             speeds_km_h=args.speeds, sets=args.set or [], build=args.build,
+                             map_fn=lambda task, items: map_batches(task, items, ctx),
+                             with_spectra="nominal" if args.out else False,
                              max_variants=args.max_variants, max_samples=args.max_samples, method=args.method)
     except ScenarioError as exc:  # a swept value the scenario refuses: every problem, one line each
         for problem in exc.problems:
@@ -630,56 +627,25 @@ def frf_table(r, max_Hz: float = 20.0) -> str:
 
 def cmd_road(args) -> int:
     """``tyrelab road FILE``: the ISO 8608 class, r.m.s. and length of each track of a profile CSV
-    or an OpenCRG road."""
-    from .scenario_io import read_crg, read_profile_csv
-    from .vehicle import road_class as rc
+    or an OpenCRG road (:func:`tyrelab.api.road_class`)."""
+    from .api import road_class
 
     path = Path(args.file)
     if _refused("tyrelab road", _option_problems(args, ("track_width_m", "lateral_offset_m", "start_m", "length_m"))):
         return EXIT_USAGE
     try:
-        if path.suffix.lower() == ".crg":
-            from .vehicle.crg import wheel_tracks
-
-            data = read_crg(path)
-            half = 0.5 * args.track_width_m
-            pos = {"left": args.lateral_offset_m + half, "right": args.lateral_offset_m - half}
-            try:
-                x, tracks = wheel_tracks(data, pos, args.start_m, args.length_m, args.fill_missing)
-            except ValueError as exc:  # the scenario's keys are this verb's options
-                text = str(exc)
-                for key, option in (("surface.lateral_offset_m", "--lateral-offset-m"), ("surface.start_m", "--start-m"),
-                                    ("surface.length_m", "--length-m"), ("surface.file: ", ""),
-                                    ("fill_missing = true", "--fill-missing"),
-                                    ("the track widths and the offset", "--track-width-m and --lateral-offset-m")):
-                    text = text.replace(key, option)
-                raise ValueError(text) from None
-            dx = data.u_inc_m
-        else:
-            from .vehicle.scenario_limits import _profile_problems
-
-            x, left, right = read_profile_csv(path)
-            problems = _profile_problems(x, left, right)
-            if problems:
-                raise ValueError("; ".join(p.replace("surface.profile: ", "") for p in problems))
-            from .vehicle.profiles import uniform_grid
-
-            grid, (left_u, right_u) = uniform_grid(x, left, right)
-            dx = float(grid[1] - grid[0])
-            tracks = {"track": left_u} if (left == right).all() else {"left": left_u, "right": right_u}
+        doc = road_class(path, track_width_m=args.track_width_m, lateral_offset_m=args.lateral_offset_m,
+                         start_m=args.start_m, length_m=args.length_m, fill_missing=args.fill_missing)
     except ValueError as exc:
         text = str(exc)
+        if path.suffix.lower() == ".crg":  # the scenario's keys are this verb's options
+            for key, option in (("surface.lateral_offset_m", "--lateral-offset-m"), ("surface.start_m", "--start-m"),
+                                ("surface.length_m", "--length-m"), ("surface.file: ", ""),
+                                ("fill_missing = true", "--fill-missing"),
+                                ("the track widths and the offset", "--track-width-m and --lateral-offset-m")):
+                text = text.replace(key, option)
         print(f"tyrelab road: {text if text.startswith(str(path)) else f'{path}: {text}'}", file=sys.stderr)
         return EXIT_USAGE
-    doc = {"file": str(path), "tracks": {}}
-    for name, h in tracks.items():
-        c = rc.road_class(h, dx)
-        doc["tracks"][name] = {"class": c["class"], "g0_m3": None if c["g0_m3"] is None else float(f"{c['g0_m3']:.6g}"),
-                               "rms_m": round(c["rms_m"], 6), "length_m": round(c["length_m"], 6),
-                               "band_cycles_per_m": None if c["band_cycles_per_m"] is None
-                               else [round(b, 6) for b in c["band_cycles_per_m"]]}
-    if path.suffix.lower() == ".crg":
-        doc["lateral_position_m"] = {k: round(v, 6) for k, v in pos.items()}
     if args.format == "json":
         sys.stdout.write(json.dumps(doc, indent=2) + "\n")
     else:

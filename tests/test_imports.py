@@ -200,3 +200,34 @@ def test_the_checks_can_fail():
     assert cycles(g) == {frozenset({"a.x", "a.y", "a.z"})}
     assert cycles(layer_graph({"t.a.x": {"t.b.y"}, "t.b.y": {"t.a.z"}, "t.a.z": set()})) == {
         frozenset({"t.a", "t.b"})}
+
+
+# --------------------------------------------------------------------------- the layers contract
+def _lint_imports(*args: str):
+    import shutil
+    import subprocess
+    import sys
+    from pathlib import Path as _Path
+
+    exe = _Path(sys.executable).with_name("lint-imports")
+    exe = str(exe) if exe.exists() else shutil.which("lint-imports")
+    assert exe, "lint-imports (PyPI import-linter, the dev extra) is not installed"
+    root = _Path(__file__).resolve().parents[1]
+    return subprocess.run([exe, "--no-cache", *args], cwd=root, capture_output=True, text=True, timeout=300)
+
+
+def test_the_layers_contracts_are_kept():
+    """pyproject.toml's [tool.importlinter] contracts (issue 45): tyrelab's layers, and in
+    tyrelab.vehicle the thesis' studies above the engine (``make test`` runs it too)."""
+    run = _lint_imports()
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-2000:]
+    assert "BROKEN" not in run.stdout and "Contracts: 2 kept" in run.stdout, run.stdout[-2000:]
+
+
+def test_the_layers_contract_can_fail(tmp_path):
+    # the engine's model imports the units: the reverse order is a broken contract
+    config = tmp_path / "importlinter.ini"
+    config.write_text("[importlinter]\nroot_package = tyrelab\n\n[importlinter:contract:reversed]\n"
+                      "name = reversed\ntype = layers\nlayers =\n    tyrelab.vehicle.units\n    tyrelab.vehicle.model\n")
+    run = _lint_imports("--config", str(config))
+    assert run.returncode != 0 and "BROKEN" in run.stdout, run.stdout[-2000:]

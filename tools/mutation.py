@@ -63,6 +63,11 @@ MODULES: dict[str, list[str]] = {
     "vehicle/carriage.py": ["tests/vehicle/test_carriage.py"],
     "vehicle/tractor.py": ["tests/vehicle/test_metrics_tractor.py"],
     "vehicle/ride.py": ["tests/vehicle/test_ride.py"],
+    # issue 45: the ride's layers (ride.py runs a scenario or a sweep with them)
+    "vehicle/tyres.py": ["tests/vehicle/test_tyres.py", "tests/vehicle/test_ride.py"],
+    "vehicle/run/spectral.py": ["tests/vehicle/test_ride.py", "tests/vehicle/test_spectral_ride.py"],
+    "vehicle/run/time.py": ["tests/vehicle/test_ride.py", "tests/vehicle/test_ride_batch.py"],
+    "vehicle/run/track.py": ["tests/vehicle/test_run_layers.py", "tests/vehicle/test_ride.py"],
 }
 
 #: Operators kept (cosmic-ray operator names). One mutant per site and kind, in the spirit

@@ -45,12 +45,31 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import PurePosixPath
 
-__all__ = ["Stage", "STAGES", "ORDER", "RAW_SOURCES", "table", "ANALYSED", "RIDE_TABLES", "RIDES_TABLES", "FIT_TABLES",
+__all__ = ["Item", "Stage", "STAGES", "ORDER", "RAW_SOURCES", "table", "ANALYSED", "RIDE_TABLES", "RIDES_TABLES", "FIT_TABLES",
            "SIMULATE_TABLES", "REGRESS_TABLES", "may_read", "QUARANTINE_PARTS", "quarantine_part", "expand", "writer", "upstream", "check", "topological_order",
            "graph_text"]
 
 #: The raw-side sources a stage may read (see the module docstring); prefixes ``param:``, ``code:``.
 RAW_SOURCES = ("raw", "raw-extras", "published", "scenarios")
+
+
+@dataclass(frozen=True)
+class Item:
+    """One kind of item a stage keeps apart (:class:`tyrelab.itemcache.ItemCache`): its name and what
+    it is computed again from (issue 45: data, not a line of prose). ``str(item)`` is the line
+    ``--explain`` prints, ``"<name> <- <reads, comma-separated>"``.
+
+    Examples
+    --------
+    >>> str(Item("day", ("its runs' results", "its transfer function")))
+    "day <- its runs' results, its transfer function"
+    """
+
+    name: str
+    reads: tuple[str, ...]
+
+    def __str__(self) -> str:
+        return f"{self.name} <- {', '.join(self.reads)}"
 
 
 @dataclass(frozen=True)
@@ -70,9 +89,9 @@ class Stage:
     pools : bool
         It spreads per-run work over worker pools, which would share the cores with work started
         ahead: :func:`tyrelab.stages.run_pipeline` starts that work after such stages.
-    items : tuple of str
-        The items the stage keeps apart (:class:`tyrelab.itemcache.ItemCache`), each ``"<item> <- what it
-        reads"``: within a stage that runs, an item is computed again only when what it reads changed
+    items : tuple of Item
+        The items the stage keeps apart (:class:`tyrelab.itemcache.ItemCache`), each an :class:`Item`
+        (its name and what it reads): within a stage that runs, an item is computed again only when what it reads changed
         (the stage's log counts them, ``--explain`` lists them under a stage that will run).
     ahead : bool
         Its module has ``start_ahead(ctx)`` (start, on workers, the part of its work whose inputs
@@ -86,7 +105,7 @@ class Stage:
     doc: str = ""
     pools: bool = False
     ahead: bool = False
-    items: tuple[str, ...] = ()
+    items: tuple[Item, ...] = ()
 
     @property
     def module(self) -> str:
@@ -169,38 +188,39 @@ def quarantine_part(stage: str) -> str:
 STAGES: dict[str, Stage] = {s.name: s for s in (
     Stage("ingest", reads=("raw",),
           writes=("parquet/runs/", *_tables("manifest", "tyres"), quarantine_part("ingest")), pools=True,
-          items=("run <- its raw file (by content) and manifest row",),
+          items=(Item("run", ("its raw file (by content) and manifest row",)),),
           doc="validate raw campaigns against schemas/, convert each run to Parquet"),
     Stage("analyse", reads=(*_tables("manifest", "tyres"), "parquet/runs/"),
           writes=(table(ANALYSED), table("frf"), quarantine_part("analyse")), pools=True,
-          items=("run <- its Parquet file and manifest row (a broadband run's frf rows with it)",),
+          items=(Item("run", ("its Parquet file and manifest row (a broadband run's frf rows with it)",)),),
           doc="per run and method: apparent mass (H(f) of broadband runs: frf), K, C, amplitude, coherence, QC"),
     Stage("calibrate", reads=(*_tables("manifest", ANALYSED), "parquet/runs/", "param:calibration_correct"),
           writes=_tables("calibration", "calibration_tf", "results"),
-          items=("check <- its calibration run (by content)", "day <- its runs' results, its transfer function"),
+          items=(Item("check", ("its calibration run (by content)",)),
+                 Item("day", ("its runs' results", "its transfer function")),),
           doc="force-plate check per day; results = analysed runs with their day's flags and uncertainty"),
     Stage("methods", reads=("published", table("results")), writes=(table("table_i"),),
-          items=("Table I from recordings <- the results of several methods on one tyre and condition",
-                 "Table I from virtual experiments <- the published tables it reads"),
+          items=(Item("Table I from recordings", ("the results of several methods on one tyre and condition",)),
+                 Item("Table I from virtual experiments", ("the published tables it reads",)),),
           doc="Table I: the measurement methods of §3.4, from recordings of several methods or virtual experiments"),
     Stage("regress", reads=(*_tables("results", "tyres"), "published"),
           writes=_tables(*REGRESS_TABLES),
-          items=("per-tyre fits <- that tyre's results and catalogue row",
-                 "formula fit of a source <- its points (the published source's: the printed Table III)",
-                 "published-only parts <- the published tables they read"),
+          items=(Item("per-tyre fits", ("that tyre's results and catalogue row",)),
+                 Item("formula fit of a source", ("its points (the published source's: the printed Table III)",)),
+                 Item("published-only parts", ("the published tables they read",)),),
           doc="Tables III-X, size regressions, formula accuracy, spoke model"),
     Stage("simulate", reads=("raw", "published", "scenarios", *_tables(*FIT_TABLES, "recordings")),
           writes=(*_tables(*SIMULATE_TABLES), quarantine_part("simulate")), ahead=True,
-          items=("study, case <- its published rows (a carriage case: its recording, by content)",
-                 "ride scenario <- its file, the fit rows of its tyres (measured_tyre_id; formula = \"build\")",
-                 "Table XX <- Tables XIX, XX and the formula's tables",
-                 "the tables <- every item's inputs (none changed: the last run's tables)"),
+          items=(Item("study, case", ("its published rows (a carriage case: its recording, by content)",)),
+                 Item("ride scenario", ("its file", "the fit rows of its tyres (measured_tyre_id; formula = \"build\")")),
+                 Item("Table XX", ("Tables XIX, XX and the formula's tables",)),
+                 Item("the tables", ("every item's inputs (none changed: the last run's tables)",)),),
           doc="profiles, carriage and tractor studies (against the recordings), Table XX, ISO 2631, ride scenarios"),
     Stage("rides", reads=("raw", *_tables(*FIT_TABLES)),
           writes=(*_tables(*RIDES_TABLES), quarantine_part("rides")),
-          items=("recording <- its file (by content; an unchanged file is not read again)",
-                 "validation <- its recording's analysis, its scenario, the fit rows of its tyres",
-                 "frf <- its recording (with input channels), speed and the scenario's tyres"),
+          items=(Item("recording", ("its file (by content; an unchanged file is not read again)",)),
+                 Item("validation", ("its recording's analysis", "its scenario", "the fit rows of its tyres")),
+                 Item("frf", ("its recording (with input channels)", "speed and the scenario's tyres")),),
           doc="vehicle recordings (rides.csv): whole-body vibration, daily exposure, predictions checked, "
               "transfer functions and modes"),
     Stage("warehouse", reads=("parquet/*.parquet", *(quarantine_part(s) for s in QUARANTINE_PARTS), "parquet/runs/",
@@ -209,7 +229,8 @@ STAGES: dict[str, Stage] = {s.name: s for s in (
           doc="publish the thesis tables and the quarantine; build warehouse.duckdb"),
     Stage("report", reads=("warehouse.duckdb", "parquet/runs/", "raw-extras", "code:tyrelab.templates", "code:tyrelab.docs"),
           writes=("reports/",),
-          items=("table <- its spec and the frames it shapes", "figure <- its function and the data it draws"),
+          items=(Item("table", ("its spec and the frames it shapes",)),
+                 Item("figure", ("its function and the data it draws",)),),
           doc="render the static site from the warehouse"),
 )}
 

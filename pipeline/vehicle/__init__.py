@@ -4,6 +4,12 @@ Every public name of the submodules below (their ``__all__``) is importable from
 is imported on first use (:mod:`tyrelab._lazy`). The entry points a user needs first are
 :func:`tyrelab.ride` and :func:`tyrelab.exposure`.
 
+The modules live in layers (issue 45; docs/architecture.md): ``units``; ``model`` and ``elements``;
+the sub-packages ``terrain`` (ground input), ``comfort`` (exposure and its standards), ``solvers``
+(LTI, modes, the beam) and ``validation``; the scenario run; the thesis' studies on top. A module
+moved into a sub-package keeps its old name here (``tyrelab.vehicle.profiles`` is
+``tyrelab.vehicle.terrain.profiles``).
+
 .. rubric:: Ride prediction
 
 .. autosummary::

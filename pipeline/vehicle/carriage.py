@@ -33,10 +33,12 @@ from scipy import integrate, interpolate
 
 from .. import _validate
 from .._validate import positive
-from . import lti
+from .solvers import lti
+from .terrain.wheel_inputs import ground_input, half_step_input
 
 __all__ = [
     "GRAVITY_M_S2",
+    "THESIS_GRAVITY_M_S2",
     "PARASITIC_DAMPING_N_S_PER_M",
     "Carriage",
     "ground_input",
@@ -50,7 +52,12 @@ __all__ = [
     "damped_natural_frequency",
 ]
 
-GRAVITY_M_S2 = 9.81
+#: Gravity of the thesis' studies, m/s² (chapters 6 and 7 computed with 9.81): the carriage and the
+#: ch. 7 tractor study use it to reproduce the printed Tables; everything else uses the standard
+#: gravity :data:`tyrelab.vehicle.units.STANDARD_GRAVITY_M_S2`.
+THESIS_GRAVITY_M_S2 = 9.81
+#: The carriage's gravity (the thesis' 9.81; the name kept for callers of issue 35).
+GRAVITY_M_S2 = THESIS_GRAVITY_M_S2
 #: Linkage damping estimated by the thesis from free decay on coil springs (§6.3).
 PARASITIC_DAMPING_N_S_PER_M = 1000.0
 
@@ -99,80 +106,6 @@ def damped_natural_frequency(carriage: Carriage) -> float:
     _validate.instance("carriage", carriage, Carriage)
     z = carriage.damping_ratio
     return carriage.natural_frequency_Hz * math.sqrt(max(1 - z * z, 0.0))
-
-
-def ground_input(
-    x_m, elevation_m, speed_m_s: float, dt_s: float, x_start_m: float, x_end_m: float
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Time histories of ground elevation and its rate under a wheel at constant speed.
-
-    The profile is interpolated with a cubic spline (thesis §6.3), so ``u`` and
-    ``u' = v dh/dx`` are smooth between survey points.
-
-    Parameters
-    ----------
-    x_m, elevation_m : array_like
-        Profile, m.
-    speed_m_s : float
-        Rolling speed v, m/s.
-    dt_s : float
-        Time step, s.
-    x_start_m, x_end_m : float
-        Stretch of profile travelled, m.
-
-    Returns
-    -------
-    t_s, u_m, u_dot_m_s : ndarray
-    """
-    speed_m_s, dt_s = positive("speed_m_s", speed_m_s), positive("dt_s", dt_s)
-    if not float(x_end_m) > float(x_start_m):
-        raise ValueError(f"x_end_m must lie beyond x_start_m, got {x_start_m!r} to {x_end_m!r}")
-    spline = interpolate.CubicSpline(np.asarray(x_m, float), np.asarray(elevation_m, float))
-    n = int(math.floor((x_end_m - x_start_m) / (speed_m_s * dt_s))) + 1
-    t = np.arange(n) * dt_s
-    x = x_start_m + speed_m_s * t
-    return t, spline(x), speed_m_s * spline(x, 1)
-
-
-def half_step_input(x_m, elevation_m, speed_m_s: float, n_steps: int, x_start_m: float = 0.0,
-                    dt_s: float = 1e-3, half_steps: bool = True) -> tuple[np.ndarray, np.ndarray]:
-    """Ground elevation and rate under a wheel at ``dt/2`` over ``n_steps`` steps of ``dt``
-    (:func:`ground_input`; the profile continued level beyond its end): the input of the
-    vehicles' RK4, whose stages read the half steps.
-
-    With ``half_steps=False`` only the full steps (``t = k dt``), the same numbers as every other
-    sample of the half-step input, at half the cost (the exact linear path reads no more).
-
-    Returns
-    -------
-    u_m, u_dot_m_s : ndarray, shape (2 n_steps - 1,) (``n_steps`` without half steps)
-
-    Examples
-    --------
-    >>> u, ud = half_step_input([0.0, 1.0, 2.0, 3.0], [0.0, 0.0, 0.0, 0.0], 1.0, 3)
-    >>> u.shape, float(abs(u).max())
-    ((5,), 0.0)
-    >>> full, _ = half_step_input([0.0, 1.0, 2.0, 3.0], [0.0, 1.0, 0.0, 1.0], 1.0, 3, dt_s=0.5, half_steps=False)
-    >>> bool(np.array_equal(full, half_step_input([0.0, 1.0, 2.0, 3.0], [0.0, 1.0, 0.0, 1.0], 1.0, 3, dt_s=0.5)[0][::2]))
-    True
-    """
-    dt_s = positive("dt_s", dt_s)
-    speed_m_s = positive("speed_m_s", speed_m_s)
-    dt = dt_s / 2
-    t_end = (2 * n_steps - 2) * dt
-    x_end = x_start_m + speed_m_s * t_end
-    xx = np.asarray(x_m, float)
-    hh = np.asarray(elevation_m, float)
-    if x_end > xx[-1]:
-        extra = np.arange(xx[-1] + (xx[1] - xx[0]), x_end + 1.0, xx[1] - xx[0])
-        xx = np.concatenate([xx, extra])
-        hh = np.concatenate([hh, np.full(extra.size, hh[-1])])
-    if not half_steps:  # t = (2k) dt/2 = k dt exactly: the even samples of the half-step input
-        spline = interpolate.CubicSpline(xx, hh)
-        x = x_start_m + speed_m_s * (np.arange(n_steps) * dt_s)
-        return spline(x), speed_m_s * spline(x, 1)
-    _, u, ud = ground_input(xx, hh, speed_m_s, dt, x_start_m, x_start_m + speed_m_s * t_end + 1e-9)
-    return u[: 2 * n_steps - 1], ud[: 2 * n_steps - 1]
 
 
 def state_space(c: Carriage) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
@@ -236,7 +169,7 @@ def simulate_nonlinear(
     dt_s: float = 1e-3,
     lift_off: bool = True,
     friction_velocity_m_s: float = 0.005,
-    gravity_m_s2: float = GRAVITY_M_S2,
+    gravity_m_s2: float = THESIS_GRAVITY_M_S2,
     n_steps=None,
 ) -> dict[str, np.ndarray]:
     """Fixed-step RK4 carriage with tyre lift-off and Coulomb linkage friction.
@@ -399,7 +332,7 @@ def simulate_ivp(
     u0 = float(spline(x_start_m))
     m, k, c = carriage.mass_kg, carriage.stiffness_N_per_m, carriage.damping_N_s_per_m
     cp, fc = carriage.parasitic_damping_N_s_per_m, carriage.coulomb_friction_N
-    floor = -m * GRAVITY_M_S2 if lift_off else -np.inf
+    floor = -m * THESIS_GRAVITY_M_S2 if lift_off else -np.inf
 
     def accel(t, z, v):
         x = x_start_m + speed_m_s * t

@@ -77,8 +77,9 @@ import numpy as np
 from scipy import signal
 
 from .. import _validate
-from .carriage import GRAVITY_M_S2
 from .elements import Element, Maxwell, SpringDamper, StateLayout, StaticLoadMoment, Tyre, element
+from .units import STANDARD_GRAVITY_M_S2
+from .units import STANDARD_GRAVITY_M_S2 as GRAVITY_M_S2  # noqa: F401  (the name of issue 35)
 
 __all__ = ["Chassis", "Axle", "Cab", "Implement", "Ballast", "SeatPoint", "SeatSuspension", "Parts", "Part",
            "Builder", "Element", "Assembly", "LinearModel", "assemble", "coordinate_output", "AXLE_MOUNTS",
@@ -738,8 +739,12 @@ class Assembly:
     Built by :func:`assemble`; every solution path reads it (see the module docstring).
     """
 
-    def __init__(self, coordinates, mass, elements, outputs, parts, weight, output_filters=None):
+    def __init__(self, coordinates, mass, elements, outputs, parts, weight, output_filters=None,
+                 gravity_m_s2: float = STANDARD_GRAVITY_M_S2):
         self.coordinates = tuple(coordinates)
+        #: Gravity the assembly was assembled under, m/s²: its static tyre loads (the lift-off
+        #: floors), the ``*_tilt`` readings of :meth:`linear` and of the time-domain solver.
+        self.gravity_m_s2 = float(gravity_m_s2)
         self.mass = mass
         self.elements = list(elements)
         self.kinematic_outputs = outputs  # name -> (row over q'' , row over q) (acceleration, gravity tilt)
@@ -798,25 +803,27 @@ class Assembly:
         return list(self.layout.states)
 
     # ----------------------------------------------------------------- statics
-    def static_tyre_loads_N(self, gravity_m_s2: float = GRAVITY_M_S2) -> dict[str, float]:
+    def static_tyre_loads_N(self, gravity_m_s2: float | None = None) -> dict[str, float]:
         """Static load of every tyre element (N): ``K q_s = -g Σ m J_z`` (tyres and suspension
-        springs), a tyre's load its compression force ``k g·q_s``."""
+        springs), a tyre's load its compression force ``k g·q_s``; ``g`` the assembly's
+        :attr:`gravity_m_s2` unless given."""
         k = self.stiffness_matrix(tyres_only=True)
-        grav = -gravity_m_s2 * self._weight_row
+        grav = -(self.gravity_m_s2 if gravity_m_s2 is None else gravity_m_s2) * self._weight_row
         keep = np.flatnonzero(np.diag(k) != 0)
         q = np.zeros(len(self.coordinates))
         q[keep] = np.linalg.solve(k[np.ix_(keep, keep)], grav[keep])
         return {e.name: float(e.stiffness * (e.g @ q)) for e in self.elements if e.input is not None}
 
     # ----------------------------------------------------------------- linear
-    def linear(self, outputs=None, gravity_m_s2: float = GRAVITY_M_S2) -> LinearModel:
+    def linear(self, outputs=None, gravity_m_s2: float | None = None) -> LinearModel:
         """The model in contact as a :class:`LinearModel`, on :attr:`layout`.
 
         Outputs (all by default, else the names given): every kinematic output
         (:func:`assemble`: chassis and seat accelerations, ``*_tilt`` readings), the dynamic
         force of every tyre element (``<tyre>_force_N``) and of each axle
         (``front_force_N``/``rear_force_N``), and every coordinate a spring sees
-        (``<coordinate>_m`` / ``_rad`` as :func:`coordinate_output`).
+        (``<coordinate>_m`` / ``_rad`` as :func:`coordinate_output`). The ``*_tilt`` readings
+        take gravity ``gravity_m_s2``, by default the assembly's :attr:`gravity_m_s2`.
         """
         lay = self.layout
         names, n, nq = lay.states, lay.n, len(self.coordinates)
@@ -836,7 +843,7 @@ class Assembly:
             for s, r in e.derivative_rows(lay).items():
                 rows[lay.index[s]] = r
         out_rows = {}
-        g = gravity_m_s2
+        g = self.gravity_m_s2 if gravity_m_s2 is None else gravity_m_s2
         for name, (r_acc, r_tilt) in self.kinematic_outputs.items():
             out_rows[name] = r_acc @ acc + (g * lay.row(r_tilt, np.zeros(nq)) if r_tilt is not None else 0.0)
         for t in self.tyres:
@@ -949,9 +956,11 @@ def _solve_mass(mass: np.ndarray, rhs: np.ndarray) -> np.ndarray:
 
 
 # --------------------------------------------------------------------------- assembly
-def assemble(parts: Parts) -> Assembly:
+def assemble(parts: Parts, gravity_m_s2: float | None = None) -> Assembly:
     """Coordinates, mass matrix, force elements and kinematic outputs of ``parts``: every part
     declares its coordinates, then contributes (:class:`Builder`); the tyres' static loads
+    under ``gravity_m_s2`` (m/s²; default the standard gravity
+    :data:`~tyrelab.vehicle.units.STANDARD_GRAVITY_M_S2`, a thesis study passes the thesis' 9.81)
     set their lift-off floors.
 
     Examples
@@ -970,6 +979,7 @@ def assemble(parts: Parts) -> Assembly:
     True
     """
     _validate.instance("parts", parts, Parts)
+    gravity_m_s2 = STANDARD_GRAVITY_M_S2 if gravity_m_s2 is None else _validate.positive("gravity_m_s2", gravity_m_s2)
     problems = parts.problems()
     if problems:
         raise ValueError("; ".join(problems))
@@ -980,7 +990,7 @@ def assemble(parts: Parts) -> Assembly:
     b._fix()
     for part in members:
         part.contribute(b)
-    asm = Assembly(b.coordinates, b.mass, b.elements, b.outputs, parts, b.weight, b.output_filters)
+    asm = Assembly(b.coordinates, b.mass, b.elements, b.outputs, parts, b.weight, b.output_filters, gravity_m_s2)
     loads = asm.static_tyre_loads_N()
     asm.elements = [dataclasses.replace(e, floor_N=-loads[e.name]) if e.name in loads else e for e in asm.elements]
     count: dict = {}

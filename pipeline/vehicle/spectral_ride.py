@@ -24,7 +24,7 @@ spectrum ``h S h^H`` over the ground input's (cross-)spectrum ``S`` and its vari
 
 Every row carries ``method`` (``"time"`` or ``"spectral"``). :func:`tyrelab.vehicle.ride.ride_sweep`
 chooses per variant (``[simulation] method`` or ``tyrelab ride --method``;
-:func:`~tyrelab.vehicle.scenario_limits.uses_spectral`):
+:func:`~tyrelab.vehicle.scenario.limits.uses_spectral`):
 
 ``time``
     Every variant simulated (today's rows: simulated and expected side by side).
@@ -62,6 +62,7 @@ from scipy import special
 
 from .. import _validate
 from . import iso2631
+from .run.rows import SpeedRow, tyre_columns
 from .scenario import Scenario
 
 __all__ = ["at_own_values", "LIFT_OFF_PROBABILITY_LIMIT", "EVDV_FACTOR", "SPECTRAL_SIMULATION", "SPECTRAL_CHUNK",
@@ -148,18 +149,11 @@ def nominal_index(scenario: Scenario, variants: list[tuple[Scenario, dict]]) -> 
 
 
 # --------------------------------------------------------------------------- spectral rows
-def tyre_columns(tyres: dict, i: int) -> dict:
-    """The tyre columns of a speed row (time and spectral rows alike): each axle's pressure (bar),
-    and its stiffness (kN/m) and damping (kN s/m) at speed index ``i``."""
-    return {f"{axle}_{q}": v for q in ("pressure_bar", "stiffness_kN_per_m", "damping_kN_s_per_m")
-            for axle in ("front", "rear")
-            for v in [tyres[axle].pressure_bar if q == "pressure_bar" else float(getattr(tyres[axle], q)[i])]}
-
-
 def spectral_row(speed_km_h: float, tyres: dict, i: int, aw_m_s2: dict, axes, hours_per_day: float,
                  duration_s: float, force_sd_N: dict, static_load_N: dict, tyres_per_element: int,
-                 exposure: dict) -> dict:
-    """One spectral speed row (module docstring) from the frequency domain's numbers.
+                 exposure: dict) -> SpeedRow:
+    """One spectral speed row (module docstring; a :class:`~tyrelab.vehicle.run.rows.SpeedRow`) from the
+    frequency domain's numbers.
 
     Parameters
     ----------
@@ -184,33 +178,15 @@ def spectral_row(speed_km_h: float, tyres: dict, i: int, aw_m_s2: dict, axes, ho
         mine = [t for t in force_sd_N if t.split("_")[0] == axle]
         sd[axle] = max(force_sd_N[t] for t in mine) / tyres_per_element
         prob[axle] = max(float(lift_off_probability(static_load_N[t], force_sd_N[t])) for t in mine)
-    return {
-        "speed_km_h": float(speed_km_h),
-        **tyre_columns(tyres, i),
-        "a_wz_m_s2": aw["z"],
-        "a_wx_m_s2": aw["x"],
-        "a_wy_m_s2": aw["y"],
-        "expected_a_wz_m_s2": aw["z"],
-        "expected_a_wx_m_s2": aw["x"],
-        "expected_a_wy_m_s2": aw["y"],
-        "vdv_m_s1_75": None,
-        "vdv_daily_m_s1_75": None,
-        "evdv_m_s1_75": EVDV_FACTOR * highest * duration_s ** 0.25,
-        "evdv_daily_m_s1_75": EVDV_FACTOR * highest * (hours_per_day * 3600.0) ** 0.25,
-        "crest_factor": None,
-        "mtvv_m_s2": None,
-        "lift_off_fraction_front": None,
-        "lift_off_fraction_rear": None,
-        "front_tyre_force_sd_N": sd["front"],
-        "rear_tyre_force_sd_N": sd["rear"],
-        "lift_off_probability_front": prob["front"],
-        "lift_off_probability_rear": prob["rear"],
-        **exposure,
-        "hours_per_day": hours_per_day,
-        "duration_s": duration_s,
-        "simulation": SPECTRAL_SIMULATION,
-        "method": "spectral",
-    }
+    return SpeedRow(
+        float(speed_km_h), **tyre_columns(tyres, i), a_wz_m_s2=aw["z"], a_wx_m_s2=aw["x"], a_wy_m_s2=aw["y"],
+        expected_a_wz_m_s2=aw["z"], expected_a_wx_m_s2=aw["x"], expected_a_wy_m_s2=aw["y"], vdv_m_s1_75=None,
+        vdv_daily_m_s1_75=None, evdv_m_s1_75=EVDV_FACTOR * highest * duration_s ** 0.25,
+        evdv_daily_m_s1_75=EVDV_FACTOR * highest * (hours_per_day * 3600.0) ** 0.25, crest_factor=None,
+        mtvv_m_s2=None, lift_off_fraction_front=None, lift_off_fraction_rear=None, front_tyre_force_sd_N=sd["front"],
+        rear_tyre_force_sd_N=sd["rear"], lift_off_probability_front=prob["front"],
+        lift_off_probability_rear=prob["rear"], **exposure, hours_per_day=hours_per_day, duration_s=duration_s,
+        simulation=SPECTRAL_SIMULATION, method="spectral")
 
 
 def lifting_speeds(rows: pd.DataFrame) -> list[float]:

@@ -32,13 +32,13 @@ import pandas as pd
 
 from .. import _validate
 from . import carriage as cm
-from . import enveloping as ev
-from . import iso2631
-from . import metrics as mt
-from . import profiles as pr
+from .terrain import enveloping as ev
+from .comfort import iso2631
+from .comfort import metrics as mt
+from .terrain import profiles as pr
 from . import published_layouts as layouts
 from .tractor import PARAMETERS, Tractor, simulate_tractor
-from .units import KILO, from_kilo, to_kilo
+from .units import KILO, from_kilo, km_h_to_m_s, to_kilo
 
 __all__ = [
     "T4_ROLLING_RADIUS_M",
@@ -151,7 +151,7 @@ def _footprints(table_xii: pd.DataFrame, surface_stiffness_factor: float) -> dic
     out = {}
     for load, g in table_xii.groupby("load_condition", sort=False):
         k_mean = surface_stiffness_factor * KILO * g["stiffness_kN_per_m"].mean()
-        deflection = float(g["load_kg"].iloc[0]) * cm.GRAVITY_M_S2 / k_mean
+        deflection = float(g["load_kg"].iloc[0]) * cm.THESIS_GRAVITY_M_S2 / k_mean
         out[load] = ev.contact_length(T4_ROLLING_RADIUS_M, deflection)
     return out
 
@@ -751,12 +751,12 @@ def with_tractor_recordings(study: dict, recordings: dict | None) -> dict:
 
 def _tractor_runs(group: list, duration_s: float) -> list[dict]:
     """The result rows of the tractor runs ``group`` (specs of :func:`tractor_study`), simulated in one batch."""
-    n_steps = int(round(duration_s / DT_S)) + 1 + int(round(LEAD_IN_M / (10 / 3.6 * DT_S)))
+    n_steps = int(round(duration_s / DT_S)) + 1 + int(round(LEAD_IN_M / (km_h_to_m_s(10) * DT_S)))
     results = []
     input_cache: dict = {}
     input_keys = []
     for label, kw, prof, farm in group:
-        v = label["speed_km_h"] / 3.6
+        v = km_h_to_m_s(label["speed_km_h"])
         wb = kw["front_distance_m"] + kw["rear_distance_m"]
         key = (id(prof), v, wb)
         if key not in input_cache:
@@ -767,7 +767,8 @@ def _tractor_runs(group: list, duration_s: float) -> list[dict]:
     del input_cache
     params = {k: np.array([g[1].get(k, 0.0) for g in group], float) for k in PARAMETERS}
     models = np.array([g[1].get("longitudinal_model", "none") for g in group], dtype=object)
-    sim = simulate_tractor(Tractor(**params, longitudinal_model=models), *arrs, DT_S)
+    sim = simulate_tractor(Tractor(**params, longitudinal_model=models), *arrs, DT_S,
+                           gravity_m_s2=cm.THESIS_GRAVITY_M_S2)
     del arrs
     for i, (label, kw, prof, farm) in enumerate(group):
         wb = kw["front_distance_m"] + kw["rear_distance_m"]
@@ -791,7 +792,7 @@ def tractor_record_window(label: dict, wheelbase_m: float, track_length_m: float
     """``(start, stop)`` samples of a tractor run's record (at :data:`FS_HZ`, from the start of
     the lead-in): from when the front axle reaches the track, ``duration_s`` long (on SBT at
     most the track's length)."""
-    v = label["speed_km_h"] / 3.6
+    v = km_h_to_m_s(label["speed_km_h"])
     start = int(math.ceil((LEAD_IN_M - wheelbase_m) / (v * DT_S))) if LEAD_IN_M > wheelbase_m else 0
     length = min(duration_s, (track_length_m - 2 * LEAD_IN_M) / v) if label["track"] == "SBT" else duration_s
     return start, start + int(round(length / DT_S))

@@ -42,7 +42,7 @@ from . import carriage as cm
 from . import published_layouts as layouts
 from . import studies
 from .tractor import PARAMETERS, Tractor, simulate_tractor
-from .units import KILO, from_kilo
+from .units import KILO, from_kilo, km_h_to_m_s
 
 __all__ = ["TRACK_SEED", "CARRIAGE_COULOMB_FRICTION_N", "TRACTOR_LONGITUDINAL", "NOISE_M_S2",
            "PITCH_NOISE_RAD_S2", "carriage_recordings", "tractor_recordings", "study_recordings"]
@@ -128,7 +128,7 @@ def tractor_recordings(table_xv: pd.DataFrame, table_xvi: pd.DataFrame, seed: in
     rolling = table_xvi[table_xvi["characteristics"] == "rolling"].reset_index(drop=True)
     xv = table_xv.set_index(table_xv["load_condition"].astype(int))
     kx, cx = TRACTOR_LONGITUDINAL
-    n_steps = int(round(duration_s / studies.DT_S)) + 1 + int(round(studies.LEAD_IN_M / (10 / 3.6 * studies.DT_S)))
+    n_steps = int(round(duration_s / studies.DT_S)) + 1 + int(round(studies.LEAD_IN_M / (km_h_to_m_s(10) * studies.DT_S)))
     runs, inputs = [], []
     for r in rolling.to_dict("records"):
         g = xv.loc[int(r["load_condition"])]
@@ -142,13 +142,13 @@ def tractor_recordings(table_xv: pd.DataFrame, table_xvi: pd.DataFrame, seed: in
         radii = {"front": 0.0 if farm else studies.FRONT_7_50_18_RADIUS_M,
                  "rear": 0.0 if farm else studies.T4_ROLLING_RADIUS_M}
         wb = kw["front_distance_m"] + kw["rear_distance_m"]
-        inputs.append(studies.tractor_inputs(prof, radii, {"front": 0.25, "rear": 0.45}, float(r["speed_km_h"]) / 3.6,
+        inputs.append(studies.tractor_inputs(prof, radii, {"front": 0.25, "rear": 0.45}, km_h_to_m_s(float(r["speed_km_h"])),
                                              wb, n_steps))
         runs.append((r, kw, prof, wb))
     arrs = [np.array([inp[j] for inp in inputs]) for j in range(4)]
     params = {k: np.array([kw.get(k, 0.0) for _, kw, _, _ in runs], float) for k in PARAMETERS}
     sim = simulate_tractor(Tractor(**params, longitudinal_model=np.array(["maxwell"] * len(runs), dtype=object)),
-                           *arrs, studies.DT_S)
+                           *arrs, studies.DT_S, gravity_m_s2=cm.THESIS_GRAVITY_M_S2)
     out = {}
     for i, (r, kw, prof, wb) in enumerate(runs):
         start, stop = studies.tractor_record_window({"speed_km_h": float(r["speed_km_h"]), "track": r["track"]}, wb,
@@ -219,7 +219,7 @@ def study_recordings(pub: dict, seed: int) -> tuple[pd.DataFrame, dict, pd.DataF
             slatted if track == "SBT" else "ISO 8608 class D", TRACTOR_DAY, "tractor", lc, track,
             {"floor_z_m_s2": r["vertical_m_s2"], "pitch_rad_s2": r["pitch_rad_s2"],
              "floor_x_m_s2": r["longitudinal_m_s2"]})
-    from .profiles import slatted_track
+    from .terrain.profiles import slatted_track
 
     t = slatted_track(seed=TRACK_SEED)
     return pd.DataFrame(rows), frames, pd.DataFrame({"x_m": t.x_m, "left_m": t.left_m, "right_m": t.right_m})

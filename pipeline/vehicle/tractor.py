@@ -42,9 +42,9 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from .. import _validate
-from . import lti
-from .carriage import GRAVITY_M_S2
+from .solvers import lti
 from .model import Assembly, Axle, Chassis, Parts, SeatPoint, assemble, coordinate_output
+from .units import STANDARD_GRAVITY_M_S2 as GRAVITY_M_S2  # noqa: F401  (the name of issue 35)
 
 __all__ = ["Tractor", "tractor_parts", "simulate", "simulate_tractor", "linear_response", "LONGITUDINAL_MODELS",
            "METHODS", "CALM_STEPS", "PARAMETERS", "TRACTOR_OUTPUTS"]
@@ -223,7 +223,7 @@ class _Batch:
     own, then those with (a Maxwell element's extension); each element's rows are its kind's
     (:mod:`tyrelab.vehicle.elements`), the same the linear model is built from."""
 
-    def __init__(self, assemblies: list[Assembly], record: tuple[str, ...], lift_off: bool, gravity_m_s2: float):
+    def __init__(self, assemblies: list[Assembly], record: tuple[str, ...], lift_off: bool):
         runs = len(assemblies)
         first = assemblies[0]
         lay = first.layout
@@ -270,7 +270,7 @@ class _Batch:
                     r_acc, r_tilt = asm.kinematic_outputs[name]
                     self.r_acc[o, :, r] = r_acc
                     if r_tilt is not None:
-                        self.r_q[o, :, r] = alay.row(gravity_m_s2 * r_tilt, np.zeros(nq))[:n]
+                        self.r_q[o, :, r] = alay.row(asm.gravity_m_s2 * r_tilt, np.zeros(nq))[:n]
                 elif name.endswith("_force_N"):
                     tyre = name[:-len("_force_N")]
                     self.r_f[o, :, r] = [1.0 if (t == tyre or (t.startswith(tyre) and tyre in ("front", "rear")))
@@ -458,7 +458,7 @@ def simulate(
     du_half,
     dt_s: float = 1e-3,
     lift_off: bool = True,
-    gravity_m_s2: float = GRAVITY_M_S2,
+    gravity_m_s2: float | None = None,
     method: str = "auto",
     record: tuple[str, ...] = TRACTOR_OUTPUTS,
 ) -> dict[str, np.ndarray]:
@@ -482,6 +482,9 @@ def simulate(
         Step, s.
     lift_off : bool
         Let tyres leave the ground.
+    gravity_m_s2 : float, optional
+        Each assembly's own (:func:`~tyrelab.vehicle.model.assemble` sets it: the lift-off floors
+        and the ``*_tilt`` readings); a value given must be theirs.
     method : str
         One of :data:`METHODS`.
     record : tuple of str
@@ -505,6 +508,9 @@ def simulate(
         raise ValueError(f"u_half, du_half: expected shape ({runs}, tyres, 2N-1), got {u.shape} and {du.shape}")
     if u.shape[2] % 2 == 0:
         raise ValueError("u_half: inputs must be sampled at dt/2 (odd length)")
+    if gravity_m_s2 is not None and any(asm.gravity_m_s2 != gravity_m_s2 for asm in assemblies):
+        raise ValueError(f"gravity_m_s2 {gravity_m_s2!r}: the assemblies were assembled under "
+                         f"{sorted({asm.gravity_m_s2 for asm in assemblies})} (assemble(parts, gravity_m_s2=...))")
     tyres = tuple(assemblies[0].tyres) if runs else ()
     if any(tuple(asm.tyres) != tyres for asm in assemblies):
         raise ValueError(f"assemblies: every run must have the same tyres (the first has {', '.join(tyres)})")
@@ -519,8 +525,8 @@ def simulate(
         rows = np.array(members)
         part = {k: np.empty((rows.size, n)) for k in record}
         part_off = np.zeros_like(off[:, rows])
-        used[rows] = _simulate_group([assemblies[i] for i in members], u[rows], du[rows], dt_s, lift_off, gravity_m_s2,
-                                     method, tuple(record), part, part_off)
+        used[rows] = _simulate_group([assemblies[i] for i in members], u[rows], du[rows], dt_s, lift_off, method,
+                                     tuple(record), part, part_off)
         for k in record:
             out[k][rows] = part[k]
         off[:, rows] = part_off
@@ -538,11 +544,11 @@ def _structure(asm: Assembly) -> tuple:
             tuple((e.name, type(e).__name__, e.states()) for e in asm.elements))
 
 
-def _simulate_group(assemblies, u, du, dt_s, lift_off, gravity_m_s2, method, record, out, off) -> np.ndarray:
+def _simulate_group(assemblies, u, du, dt_s, lift_off, method, record, out, off) -> np.ndarray:
     """:func:`simulate` of runs of one structure (:func:`_structure`) into ``out``/``off``; the
     method used per run."""
     runs, n = len(assemblies), (u.shape[2] + 1) // 2
-    batch = _Batch(assemblies, record, lift_off, gravity_m_s2)
+    batch = _Batch(assemblies, record, lift_off)
     used = np.array(["exact"] * runs, dtype=object)
     switched = []  # (run, exact path or None, sample where RK4 takes over, RK4 state there)
     if method == "rk4":
@@ -672,7 +678,7 @@ def simulate_tractor(
     rear_rate_half,
     dt_s: float = 1e-3,
     lift_off: bool = True,
-    gravity_m_s2: float = GRAVITY_M_S2,
+    gravity_m_s2: float | None = None,
     method: str = "auto",
 ) -> dict[str, np.ndarray]:
     """Simulate the pitch-plane tractor (:func:`simulate` on :func:`tractor_parts`).
@@ -689,6 +695,9 @@ def simulate_tractor(
         Step, s.
     lift_off : bool
         Let tyres leave the ground.
+    gravity_m_s2 : float, optional
+        Gravity, m/s² (the static tyre loads: the lift-off floors); default the standard gravity
+        (:func:`~tyrelab.vehicle.model.assemble`), the ch. 7 study passes the thesis' 9.81.
     method : str
         One of :data:`METHODS`.
 
@@ -717,7 +726,7 @@ def simulate_tractor(
         raise ValueError("inputs must be sampled at dt/2 (odd length)")
     runs = uf.shape[0]
     p, models = _params(tractor, runs), _models(tractor, runs)
-    assemblies = [assemble(tractor_parts(_scalar(p, models, i))) for i in range(runs)]
+    assemblies = [assemble(tractor_parts(_scalar(p, models, i)), gravity_m_s2) for i in range(runs)]
     out = simulate(assemblies, np.stack([uf, ur], axis=1), np.stack([udf, udr], axis=1), dt_s, lift_off,
-                   gravity_m_s2, method, TRACTOR_OUTPUTS)
+                   method=method, record=TRACTOR_OUTPUTS)
     return {k: v[0] for k, v in out.items()} if squeeze else out

@@ -34,8 +34,8 @@ from .scenario import Scenario
 from .tractor import Tractor
 from .units import from_kilo
 
-__all__ = ["AxleTyres", "ShippedTyres", "per_speed", "resolve_tyres", "static_tyre_loads", "build_parts",
-           "build_tractor"]
+__all__ = ["AxleTyres", "ShippedTyres", "FitTyres", "MEASURED_TABLES", "BUILD_FORMULA_TABLES", "FIT_TABLES",
+           "scenario_fits", "per_speed", "resolve_tyres", "static_tyre_loads", "build_parts", "build_tractor"]
 
 
 @dataclass(frozen=True)
@@ -110,8 +110,9 @@ def per_speed(values, list_speeds_km_h, speeds_km_h) -> np.ndarray:
 class ShippedTyres:
     """Where :func:`resolve_tyres` finds tyre data without a build: the thesis' stiffness formula
     (published Tables II, III, VI); a measured tyre or ``formula = "build"`` is refused. A caller
-    with a warehouse passes an object with the same two methods
-    (:class:`tyrelab.stages.simulate.WarehouseTyres`): this package reads no warehouse."""
+    with a build hands in a :class:`FitTyres` of its fit tables (a stage: this run's Parquet; the
+    command line and the library: :class:`tyrelab.tyredata.WarehouseTyres`): this package reads no
+    warehouse."""
 
     def measured(self, table: str, tyre_id: str, pressure_bar: float) -> tuple[np.ndarray, np.ndarray]:
         """(speeds km/h, value at ``pressure_bar``) of a measured tyre's per-speed pressure fits."""
@@ -135,6 +136,137 @@ class ShippedTyres:
 def _thesis_stiffness_model():
     """The shipped thesis stiffness model (built once per process: a sweep asks for it per variant)."""
     return published.thesis_stiffness_model()
+
+
+# --------------------------------------------------------------------------- a build's fits
+#: Per-speed pressure fits of the measured tyres (``measured_tyre_id``).
+MEASURED_TABLES = ("stiffness_pressure_by_speed", "damping_pressure_by_speed")
+#: The build's stiffness formula and damping model (``formula = "build"``).
+BUILD_FORMULA_TABLES = ("formula_fit", "damping_fit")
+#: Every table a scenario's tyres may read.
+FIT_TABLES = MEASURED_TABLES + BUILD_FORMULA_TABLES
+
+
+def _measured_rows(table, tyre_id: str):
+    """The fitted rows of ``tyre_id`` in a per-speed fit table, by speed (as the warehouse query)."""
+    rows = table.loc[table["intercept"].notna() & table["slope"].notna() & table["speed_km_h"].notna(),
+                     ["tyre_id", "speed_km_h", "intercept", "slope"]]
+    rows = rows.loc[rows["tyre_id"].astype(str) == str(tyre_id)]
+    return rows.sort_values("speed_km_h", kind="stable").reset_index(drop=True)
+
+
+def _ours(table):
+    """The ``ours`` rows of ``formula_fit``/``damping_fit`` (the build's own fit)."""
+    return table.loc[table["source"].astype(str) == "ours"].reset_index(drop=True)
+
+
+class FitTyres(ShippedTyres):
+    """Tyre data of :func:`resolve_tyres` from a build's fit tables handed in (a stage's Parquet, a
+    warehouse read by :class:`tyrelab.tyredata.WarehouseTyres`): this package reads no file.
+
+    Parameters
+    ----------
+    tables : dict
+        Table name (:data:`FIT_TABLES`) -> DataFrame, or None where the build has no such table.
+        Only the rows the scenario reads are needed (:func:`scenario_fits`).
+    source : str
+        Where the tables came from, for the error messages (``build/parquet``).
+    """
+
+    def __init__(self, tables: dict, source: str):
+        self.tables = dict(tables)
+        self.source = str(source)
+
+    def _table(self, name: str, why: str):
+        table = self.tables.get(name)
+        if table is None:
+            raise ValueError(f"{why}: no table {name} in {self.source}")
+        return table
+
+    def measured(self, table: str, tyre_id: str, pressure_bar: float):
+        """(speeds km/h, value at ``pressure_bar``) of a measured tyre's per-speed pressure fits (``table``)."""
+        why = f"measured_tyre_id {tyre_id!r}"
+        try:
+            rows = _measured_rows(self._table(table, why), tyre_id)
+        except KeyError as exc:
+            raise ValueError(f"{why}: {table} of {self.source} lacks column {exc}") from None
+        if rows.empty:
+            raise ValueError(f"{why}: no fitted rows in {table} of {self.source}")
+        return rows["speed_km_h"].to_numpy(float), (rows["intercept"] + rows["slope"] * pressure_bar).to_numpy(float)
+
+    def stiffness_model(self, formula: str):
+        """The thesis' stiffness formula, or the build's fit (table ``formula_fit``) for ``"build"``."""
+        from ..tyre.models import build_stiffness_model
+
+        thesis = _thesis_stiffness_model()
+        if formula != "build":
+            return thesis
+        return self._build_fit("formula_fit", lambda table: build_stiffness_model(table, thesis))
+
+    def damping_model(self, formula: str):
+        """The Table VII damping model, or the build's own fit (table ``damping_fit``, source
+        ``ours``) for ``"build"``: an unmeasured tyre's damping follows the same choice as its stiffness."""
+        from ..tyre.damping_fit import DampingFit
+
+        if formula != "build":
+            return super().damping_model(formula)
+
+        def ours(table):
+            rows = _ours(table)
+            if rows.empty:
+                raise ValueError("damping_fit has no 'ours' row (fewer than 5 measured traction tyres?)")
+            return DampingFit.from_row(rows.iloc[0].to_dict())
+
+        return self._build_fit("damping_fit", ours)
+
+    def _build_fit(self, name: str, make):
+        """``make(table)`` of table ``name`` (a fit of ``formula = "build"``); a missing table, or one
+        ``make`` refuses, is one line naming where it was read."""
+        table = self._table(name, 'formula = "build"')
+        try:
+            return make(table)
+        except (ValueError, KeyError) as exc:
+            raise ValueError(f'formula = "build": {name} of {self.source}: {exc}') from None
+
+
+def scenario_fits(scenario, tables: dict) -> dict:
+    """The rows of the fit ``tables`` (name -> DataFrame or None) that ``scenario`` reads.
+
+    Per axle: its measured tyre's rows of :data:`MEASURED_TABLES` (``measured_tyre_id``), the
+    ``ours`` rows of :data:`BUILD_FORMULA_TABLES` (``formula = "build"``). A table the build
+    lacks stays None (the scenario then fails naming it). Returns name -> DataFrame or None,
+    only the tables read: the item key of the scenario and what :class:`FitTyres` is given.
+    """
+    _validate.instance("scenario", scenario, Scenario)
+    out: dict = {}
+    for spec in (scenario.front, scenario.rear):
+        tyre_id = getattr(spec, "measured_tyre_id", None)
+        if tyre_id:
+            for name in MEASURED_TABLES:
+                t = tables.get(name)
+                part = None if t is None else _safe(lambda: _measured_rows(t, tyre_id), t)
+                out[name] = part if name not in out or out[name] is None or part is None else \
+                    _concat(out[name], part)
+        if getattr(spec, "formula", "thesis") == "build":
+            for name in BUILD_FORMULA_TABLES:
+                t = tables.get(name)
+                out[name] = None if t is None else _safe(lambda: _ours(t), t)
+    return out
+
+
+def _safe(pick, table):
+    """``pick()``, or the whole ``table`` when it lacks the columns to pick by (the ride then names them)."""
+    try:
+        return pick()
+    except KeyError:
+        return table
+
+
+def _concat(a, b):
+    import pandas as pd
+
+    return pd.concat([a, b], ignore_index=True).drop_duplicates(ignore_index=True)
+
 
 
 def _formula_stiffness(spec, tyre_data=None) -> tuple[float, str, list[str], float]:
@@ -249,7 +381,7 @@ def static_tyre_loads(asm) -> dict[str, float]:
     >>> from tyrelab.vehicle.tractor import Tractor, tractor_parts
     >>> asm = assemble(tractor_parts(Tractor(1000, 250, 1.0, 1.5, 0.5, 1e5, 1e5, 0.0, 0.0)))
     >>> {k: round(v, 3) for k, v in static_tyre_loads(asm).items()}  # m g b / L / 2, m g a / L / 2
-    {'front': 2943.0, 'rear': 1962.0}
+    {'front': 2941.995, 'rear': 1961.33}
     """
     _validate.instance("asm", asm, Assembly)
     per = asm.static_tyre_loads_N()

@@ -1,4 +1,4 @@
-"""The one unit conversion of the vehicle model: kilo (issue 35).
+"""The units of the vehicle model, each written once: kilo, km/h and standard gravity (issues 35, 45).
 
 The model is SI inside (N/m, N s/m, N m/rad, per tyre or per element). The thesis' tables,
 the scenario file's keys and the tyre formula give stiffness and damping in kN/m, kN s/m and
@@ -7,14 +7,24 @@ scenario's parts), :mod:`tyrelab.vehicle.published_layouts` (the thesis' tables)
 :class:`tyrelab.vehicle.ride.AxleTyres` (a tyre's looked-up numbers) — and go back to kN where
 they are written out (tables, JSON), with these two functions; no other module of
 ``tyrelab.vehicle`` writes a factor of 1e3 (``tests/vehicle/test_units_tree.py`` checks it).
+
+Speeds are given in km/h (scenario files, the thesis' tables) and are m/s inside: :func:`km_h_to_m_s`
+is the one conversion (no ``/ 3.6`` elsewhere in ``tyrelab.vehicle``). Gravity is the standard
+gravity :data:`STANDARD_GRAVITY_M_S2` (ISO 80000-3, CGPM 1901), the value the raw format, the rig
+and the measurement methods use too; a thesis study that needs the thesis' 9.81 m/s² to reproduce
+its printed numbers names it itself (:data:`tyrelab.vehicle.carriage.THESIS_GRAVITY_M_S2`).
 """
 
 from __future__ import annotations
 
-__all__ = ["KILO", "from_kilo", "to_kilo"]
+__all__ = ["KILO", "from_kilo", "to_kilo", "KM_H_PER_M_S", "km_h_to_m_s", "STANDARD_GRAVITY_M_S2"]
 
 #: kN -> N (and kN s/m -> N s/m, kN m/rad -> N m/rad).
 KILO = 1e3
+#: km/h in one m/s (3600 s / 1000 m).
+KM_H_PER_M_S = 3.6
+#: Standard acceleration of gravity, m/s² (3rd CGPM 1901; ISO 80000-3).
+STANDARD_GRAVITY_M_S2 = 9.80665
 
 
 def from_kilo(value):
@@ -37,3 +47,17 @@ def to_kilo(value):
     455.0
     """
     return value / KILO
+
+
+def km_h_to_m_s(speed_km_h):
+    """A speed in km/h (scalar or array) in m/s: ``speed_km_h / 3.6`` (the division, so the
+    numbers are those of the ``/ 3.6`` it replaced, to the bit).
+
+    Examples
+    --------
+    >>> km_h_to_m_s(36.0)
+    10.0
+    >>> km_h_to_m_s(7.0) == 7.0 / 3.6
+    True
+    """
+    return speed_km_h / KM_H_PER_M_S

@@ -26,6 +26,7 @@ import numpy as np
 import pandas as pd
 
 from .. import _validate
+from .units import STANDARD_GRAVITY_M_S2
 
 __all__ = ["RIDE_PLAN", "RECORDING_FS_HZ", "SENSOR_NOISE_M_S2", "ride_plan", "virtual_recordings"]
 
@@ -33,7 +34,8 @@ __all__ = ["RIDE_PLAN", "RECORDING_FS_HZ", "SENSOR_NOISE_M_S2", "ride_plan", "vi
 RECORDING_FS_HZ = 500.0
 #: Accelerometer noise, r.m.s., m/s².
 SENSOR_NOISE_M_S2 = 0.02
-GRAVITY_M_S2 = 9.80665
+#: What a DC-coupled vertical accelerometer reads at rest (the standard gravity).
+GRAVITY_M_S2 = STANDARD_GRAVITY_M_S2
 #: (scenario file, vehicle, task, hours per day, recorded_on): the demo's recordings, one per speed.
 RIDE_PLAN = (
     ("mf698t.toml", "MF698T (virtual, thesis ch. 7)", "farm track", 2.0, "1991-06-12"),

@@ -291,16 +291,18 @@ def test_the_ride_plan_never_stops_on_one_file(tmp_path, monkeypatch, error):
     good, bad = tmp_path / "good.toml", tmp_path / "bad.toml"
     good.write_text(text(name="good"))
     bad.write_text(text(name="bad"))
-    real = simulate_stage.load_scenario
+    from tyrelab.stages import ride_scenarios  # the simulate stage's ride scenarios (issue 45)
+
+    real = ride_scenarios.load_scenario
 
     def loading(path, *a, **k):
         if str(path).endswith("bad.toml"):
             raise error
         return real(path, *a, **k)
 
-    monkeypatch.setattr(simulate_stage, "load_scenario", loading)
-    monkeypatch.setattr(simulate_stage, "read_fit_tables", lambda ctx: {})
-    monkeypatch.setattr(simulate_stage, "scenario_fits", lambda sc, tables: {})
+    monkeypatch.setattr(ride_scenarios, "load_scenario", loading)
+    monkeypatch.setattr(ride_scenarios, "read_fit_tables", lambda ctx: {})
+    monkeypatch.setattr(ride_scenarios, "scenario_fits", lambda sc, tables: {})
 
     class Ctx:
         parquet = tmp_path / "parquet"

@@ -115,7 +115,7 @@ def test_a_profile_with_a_tiny_step_is_refused_before_allocating(tmp_path, capsy
     pd.DataFrame({"distance_m": x, "height_m": 0.0}).to_csv(tmp_path / "tiny.csv", index=False)
     path = tmp_path / "s.toml"
     path.write_text(text(surface='kind = "profile"\nprofile = "tiny.csv"'))
-    monkeypatch.setattr(ride, "build_profile", lambda *a: pytest.fail("work started"))
+    monkeypatch.setattr("tyrelab.vehicle.run.records.build_profile", lambda *a: pytest.fail("work started"))
     assert main(["ride", str(path)]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "tiny.csv" in err and "step of 1e-09 m" in err and "0.001 m" in err

@@ -157,17 +157,21 @@ def test_ride_tables_hold_every_shipped_scenario(ctx):
 
 
 def test_mf698t_scenario_reproduces_the_chapter_7_runs(ctx):
-    """The shipped MF698T scenario is the ch. 7 study's rolling HH runs of load condition 1: same numbers."""
+    """The shipped MF698T scenario is the ch. 7 study's rolling HH runs of load condition 1: the same numbers
+    but for gravity: the scenario runs on the standard 9.80665 m/s², the study on the thesis' 9.81 (its
+    printed tables), which moves the lift-off floors by 0.035 % and a_w, VDV, A(8) by at most 3.6e-4
+    (issue 45; the same runs to 1e-9 under one gravity: tests/vehicle/test_spectral_ride.py's rows)."""
     res = ctx.read_table("ride_results")
     mf = res[res["scenario"].str.startswith("MF698T")].set_index("speed_km_h").sort_index()
     runs = ctx.read_table("tractor_runs")
     st = runs[(runs["characteristics"] == "rolling") & (runs["track"] == "HH") & (runs["load_condition"] == 1)
               & ~runs["sweep"].astype(bool)].set_index("speed_km_h").sort_index()
     assert list(mf.index) == list(st.index) == [10.0, 12.5, 15.0, 17.5, 20.0]
-    np.testing.assert_allclose(mf["a_wz_m_s2"], st["iso_vertical_weighted_rms_m_s2"], rtol=1e-9)
-    np.testing.assert_allclose(mf["vdv_m_s1_75"], st["iso_vertical_vdv_m_s1_75"], rtol=1e-9)
-    np.testing.assert_allclose(mf["crest_factor"], st["iso_vertical_crest_factor"], rtol=1e-9)
-    np.testing.assert_allclose(mf["a8_m_s2"], st["iso_a8_m_s2"], rtol=1e-9)
+    gravity = 5e-4  # the two gravities' effect (above); a different run would be percents apart
+    np.testing.assert_allclose(mf["a_wz_m_s2"], st["iso_vertical_weighted_rms_m_s2"], rtol=gravity)
+    np.testing.assert_allclose(mf["vdv_m_s1_75"], st["iso_vertical_vdv_m_s1_75"], rtol=gravity)
+    np.testing.assert_allclose(mf["crest_factor"], st["iso_vertical_crest_factor"], rtol=gravity)
+    np.testing.assert_allclose(mf["a8_m_s2"], st["iso_a8_m_s2"], rtol=gravity)
     np.testing.assert_allclose(mf["rear_stiffness_kN_per_m"], st["rear_stiffness_kN_per_m"])
     # lift-off in the same runs (the study counts over its fixed 31.8 s, the ride over the record)
     assert ((mf["lift_off_fraction_front"] > 0) == (st["lift_off_fraction_front"] > 0)).all()

@@ -168,6 +168,17 @@ def compute(full: bool = False) -> dict[str, np.ndarray]:
     return out
 
 
+def use_thesis_gravity(monkeypatch) -> None:
+    """The vehicle model's default gravity set back to the thesis' 9.81 m/s², as before issue 45 made
+    it the standard 9.80665: the numbers stored before then are compared under it."""
+    from tyrelab.vehicle import ride
+    from tyrelab.vehicle.carriage import THESIS_GRAVITY_M_S2
+    from tyrelab.vehicle.model import assemble
+
+    monkeypatch.setattr(sys.modules[assemble.__module__], "STANDARD_GRAVITY_M_S2", THESIS_GRAVITY_M_S2)
+    monkeypatch.setattr(ride, "GRAVITY_M_S2", THESIS_GRAVITY_M_S2, raising=False)  # the footprints' loads
+
+
 def path(full: bool) -> Path:
     return HERE / f"golden_vehicle_{'full' if full else 'quick'}.npz"
 

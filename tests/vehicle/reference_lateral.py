@@ -65,7 +65,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-G = 9.81
+G = 9.80665  # the standard gravity, the model's since issue 45
 
 
 @dataclass(frozen=True)

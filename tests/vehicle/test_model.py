@@ -43,8 +43,8 @@ def test_pitch_plane_assembly_is_the_beam_on_two_springs_of_thesis_8_2():
     assert f == pytest.approx(bounce_pitch.natural_frequencies(M, I_PITCH, A, B, kf, kr), rel=1e-12)
     # static tyre loads: the axle loads of a beam on two supports
     loads = asm.static_tyre_loads_N()
-    assert loads["front"] == pytest.approx(M * 9.81 * B / (A + B), rel=1e-12)
-    assert loads["rear"] == pytest.approx(M * 9.81 * A / (A + B), rel=1e-12)
+    assert loads["front"] == pytest.approx(M * 9.80665 * B / (A + B), rel=1e-12)
+    assert loads["rear"] == pytest.approx(M * 9.80665 * A / (A + B), rel=1e-12)
 
 
 def test_roll_frequency_is_that_of_the_tyres_roll_stiffness():
@@ -65,7 +65,7 @@ def test_a_pivoting_front_axle_passes_no_roll_moment():
     assert f["front_axle_roll"] == pytest.approx(math.sqrt(KF * TF**2 / 2 / i_axle) / (2 * math.pi), abs=0.01)
     # static loads: a pivot axle carries the same axle load as a rigid one, split evenly
     loads = assemble(_three_d("pivot", roll_inertia_kg_m2=i_axle)).static_tyre_loads_N()
-    assert loads["front_left"] == pytest.approx(M * 9.81 * B / (A + B) / 2, rel=1e-9)
+    assert loads["front_left"] == pytest.approx(M * 9.80665 * B / (A + B) / 2, rel=1e-9)
     assert loads["front_right"] == pytest.approx(loads["front_left"], rel=1e-12)
 
 

@@ -15,6 +15,7 @@ from tyrelab.stages import simulate as simulate_stage
 from tyrelab.vehicle import iso2631, ride
 from tyrelab.vehicle import profiles as pr
 from tyrelab.scenario_io import ScenarioError, load_scenario, parse_scenario
+from tyrelab.vehicle.model import SeatSuspension
 from tyrelab.vehicle.tractor import Tractor, simulate_tractor
 
 
@@ -380,7 +381,7 @@ def test_tyre_footprint_is_the_chord_at_the_static_deflection(tmp_path):
     own load, W = m g b / (a + b) / 2 on a front tyre (m g a / (a + b) / 2 on a rear one)."""
     sc = load_scenario(write(tmp_path, scenario_text('kind = "iso8608"\nclass = "A"\nlength_m = 10', "[10]")))
     tyres = ride.resolve_tyres(sc)
-    m, a, b, g = TRACTOR["mass_kg"], TRACTOR["front_distance_m"], TRACTOR["rear_distance_m"], 9.81  # the model's g
+    m, a, b, g = TRACTOR["mass_kg"], TRACTOR["front_distance_m"], TRACTOR["rear_distance_m"], 9.80665  # the model's g (the standard gravity)
     for axle, arm in (("front", b), ("rear", a)):
         t = tyres[axle]
         d = m * g * arm / (a + b) / 2 / (1e3 * t.stiffness_kN_per_m[0])
@@ -437,7 +438,7 @@ def test_one_axle_lifting_off_sends_the_run_to_the_nonlinear_model(tmp_path, wav
     u = ride.axle_inputs(track.profile, "none", (0.3, 0.3), (0.7, 0.9), v, t.wheelbase_m, stop)
     y = ride.simulate_state_space(*ride.state_space(t), np.vstack([w[::2] for w in u]))
     forces = dict(zip(ride.OUTPUTS, y))
-    static = dict(zip(("front", "rear"), t.mass_kg * 9.81 * np.array([t.rear_distance_m, t.front_distance_m])
+    static = dict(zip(("front", "rear"), t.mass_kg * 9.80665 * np.array([t.rear_distance_m, t.front_distance_m])
                       / t.wheelbase_m))
     other = "rear" if lifted == "front" else "front"
     assert forces[f"{lifted}_force_N"].min() < -static[lifted]
@@ -510,12 +511,12 @@ def test_natural_frequency_intervals_with_one_tyre_given_and_one_from_the_formul
         assert ci[mode] == pytest.approx([nat[mode] - 1.96 * u, nat[mode] + 1.96 * u], rel=1e-4)
 
 
-def test_seat_filter_is_the_base_excited_transmissibility():
+def test_the_seat_part_is_the_base_excited_transmissibility():
     """|T| of a seat on a spring and damper: 1 far below its frequency, sqrt(1 + (2 zeta)^2) / (2 zeta) at
     it (1.84 for zeta = 0.3), and 2 zeta f_n / f (plus the spring's (f_n/f)^2) far above."""
     fn, z = 1.8, 0.3
     f = np.array([0.01, fn, 40.0])
-    t = ride.frequency_response(*ride.seat_filter(fn, z), f)[0, 0]
+    t = ride.frequency_response(*SeatSuspension(fn, z).linear().abcd, f)[0, 0]
     r = f / fn
     exact = np.abs((1 + 2j * z * r) / (1 - r**2 + 2j * z * r))
     np.testing.assert_allclose(np.abs(t), exact, rtol=1e-9)

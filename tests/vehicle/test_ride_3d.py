@@ -16,7 +16,7 @@ M, I_PITCH, I_ROLL, A, B, H = 4700.0, 5500.0, 2400.0, 1.56, 0.95, 0.95
 TF, TR = 1.90, 1.80
 SEAT = dict(ahead=-0.4, left=0.35, height=1.0)
 K_TYRE, C_TYRE = {"front": 500.0, "rear": 600.0}, {"front": 1.5, "rear": 2.0}  # kN/m, kN s/m per tyre
-G = 9.81
+G = 9.80665  # the standard gravity, the model's since issue 45
 
 
 def text(surface: str, speeds="[9]", front_axle="", extra="", tilt=False, roll=True, lateral="none") -> str:

@@ -77,7 +77,7 @@ def test_restarted_exact_solution_continues_the_same_trajectory():
     np.testing.assert_allclose(second, whole[:, 2000:], rtol=0, atol=1e-12 * np.abs(whole).max())
 
 
-def _textbook_rk4(p, models, uf, udf, ur, udr, h, g=9.81):
+def _textbook_rk4(p, models, uf, udf, ur, udr, h, g=9.80665):
     """RK4 of the module docstring's equations written out plainly (whole-batch arrays, from rest)."""
     m, inertia, a, b, hc, kf, kr, cf, cr, kx, cx = p
     kv, mw = models == "kelvin_voigt", models == "maxwell"

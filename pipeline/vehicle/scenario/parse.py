@@ -1,4 +1,4 @@
-"""Ride scenario files: a tractor, its tyres, a track and speeds, in TOML (issue 13).
+"""Ride scenario files, parsed and checked: a tractor, its tyres, a track and speeds, in TOML (issue 13).
 
 A scenario's text is parsed with the standard library's :mod:`tomllib` and checked
 against ``schemas/scenario.json`` (every key, its type, unit and bounds are
@@ -37,368 +37,20 @@ import math
 import tomllib
 from collections.abc import Mapping
 import unicodedata
-from dataclasses import dataclass, field, replace
 from functools import cache
 from pathlib import Path
 
-import numpy as np
 import pandas as pd
 
-from .. import _validate as _checks
-from ..schema import load_schema
-from ..tyre.sizes import TyreSizeError, parse_tyre_size
-from .model import (Axle, Ballast, Cab, Chassis, Implement, Parts, SeatPoint, SeatSuspension, cab_mount_problems, needs,
-                    pivot_problem, scenario_key)
-from .units import from_kilo
-from .scenario_limits import LIMITS, scenario_problems
+from ... import _validate as _checks
+from ...schema import load_schema
+from ...tyre.sizes import TyreSizeError, parse_tyre_size
+from ..model import cab_mount_problems, needs, pivot_problem, scenario_key
+from .limits import LIMITS, scenario_problems
+from .specs import (AxleSpec, BallastSpec, CabSpec, ExposureSpec, ImplementSpec, Scenario, ScenarioError, SeatSpec,
+                    SimulationSpec, SurfaceSpec, SweepSpec, TractorSpec, TyreSpec)
 
-__all__ = [
-    "Scenario",
-    "TractorSpec",
-    "SeatSpec",
-    "TyreSpec",
-    "SurfaceSpec",
-    "ExposureSpec",
-    "SimulationSpec",
-    "SweepSpec",
-    "AxleSpec",
-    "CabSpec",
-    "ImplementSpec",
-    "BallastSpec",
-    "ScenarioError",
-    "parse_scenario",
-    "scenario_from_dict",
-    "key_table",
-    "with_overrides",
-    "with_values",
-    "numeric_key",
-    "parse_sets",
-]
-
-
-class ScenarioError(ValueError):
-    """A scenario file is wrong; ``problems`` lists every problem (one line each)."""
-
-    def __init__(self, path: str | Path, problems: list[str]):
-        self.path = str(path)
-        self.problems = list(problems)
-        super().__init__("\n".join(f"{self.path}: {p}" for p in self.problems))
-
-
-@dataclass(frozen=True)
-class TractorSpec:
-    """``[tractor]``: SI units as in the key names; longitudinal values per rear tyre."""
-
-    mass_kg: float
-    pitch_inertia_kg_m2: float
-    front_distance_m: float
-    rear_distance_m: float
-    cg_height_m: float
-    longitudinal_model: str = "none"
-    longitudinal_stiffness_kN_per_m: float = 455.0
-    longitudinal_damping_kN_s_per_m: float = 3.0
-    roll_inertia_kg_m2: float | None = None
-    front_track_m: float | None = None
-    rear_track_m: float | None = None
-    #: Each tyre's lateral element (issue 33): ``kelvin_voigt`` by default with roll, ``maxwell``,
-    #: or ``none`` (the body rolls about its CG); see :func:`parse_scenario`.
-    lateral_model: str = "none"
-    yaw_inertia_kg_m2: float | None = None
-
-    @property
-    def three_d(self) -> bool:
-        """Roll modelled (``roll_inertia_kg_m2`` given): left and right tyres on their own tracks."""
-        return self.roll_inertia_kg_m2 is not None
-
-    @property
-    def wheelbase_m(self) -> float:
-        """Front distance + rear distance, m."""
-        return self.front_distance_m + self.rear_distance_m
-
-
-@dataclass(frozen=True)
-class SeatSpec:
-    """``[seat]``: reference point relative to the CG (m) and its suspension."""
-
-    ahead_of_cg_m: float = 0.0
-    height_above_cg_m: float = 0.0
-    suspension: str = "rigid"
-    natural_frequency_Hz: float | None = None
-    damping_ratio: float | None = None
-    left_of_cg_m: float = 0.0
-    gravity_tilt: bool = False
-
-    def part(self) -> SeatPoint:
-        """The seat as a model part: its point and its suspension
-        (:class:`~tyrelab.vehicle.model.SeatSuspension`, None for a rigid seat)."""
-        suspension = (SeatSuspension(self.natural_frequency_Hz, self.damping_ratio) if self.suspension == "linear"
-                      else None)
-        return SeatPoint(self.ahead_of_cg_m, self.left_of_cg_m, self.height_above_cg_m, suspension)
-
-
-@dataclass(frozen=True)
-class AxleSpec:
-    """``[front_axle]`` / ``[rear_axle]``: how the axle is carried (kN, kg, m as the key names)."""
-
-    mount: str = "rigid"
-    roll_inertia_kg_m2: float | None = None
-    mass_kg: float | None = None
-    height_m: float | None = None
-    suspension_stiffness_kN_per_m: float | None = None
-    suspension_damping_kN_s_per_m: float = 0.0
-
-
-@dataclass(frozen=True)
-class CabSpec:
-    """``[cab]``: rigid (part of the body) or suspended on four mounts."""
-
-    mount: str = "rigid"
-    mass_kg: float | None = None
-    pitch_inertia_kg_m2: float | None = None
-    roll_inertia_kg_m2: float | None = None
-    ahead_of_cg_m: float = 0.0
-    height_above_cg_m: float = 0.0
-    front_mount_ahead_of_cg_m: float | None = None
-    rear_mount_ahead_of_cg_m: float | None = None
-    mount_track_m: float | None = None
-    mount_stiffness_kN_per_m: float | None = None
-    mount_damping_kN_s_per_m: float = 0.0
-
-
-@dataclass(frozen=True)
-class ImplementSpec:
-    """``[implement]``: a mounted implement on the rear hitch."""
-
-    mass_kg: float
-    behind_rear_axle_m: float
-    height_m: float
-    pitch_inertia_kg_m2: float = 0.0
-    roll_inertia_kg_m2: float = 0.0
-    mount: str = "rigid"
-    hitch_behind_rear_axle_m: float = 0.0
-    hitch_height_m: float = 0.0
-    hitch_stiffness_kN_m_per_rad: float | None = None
-    hitch_damping_kN_m_s_per_rad: float = 0.0
-
-
-#: ``[ballast]``: a front ballast mass. Its keys are the model part's fields in the model's units
-#: (kg, m, kg m²), so the scenario holds the part itself (:class:`tyrelab.vehicle.model.Ballast`).
-BallastSpec = Ballast
-
-
-@dataclass(frozen=True)
-class TyreSpec:
-    """``[tyres.front]`` / ``[tyres.rear]``: one tyre of the axle.
-
-    ``stiffness_kN_per_m`` / ``damping_kN_s_per_m`` are None, a float or a tuple
-    (one per scenario speed).
-    """
-
-    size: str
-    pressure_bar: float
-    traction: bool
-    stiffness_kN_per_m: float | tuple | None = None
-    damping_kN_s_per_m: float | tuple | None = None
-    measured_tyre_id: str | None = None
-    water_ballast: bool = False
-    age_years: float = 1.0
-    radius_m: float | None = None
-    footprint_m: float | None = None
-    formula: str = "thesis"
-    lateral_stiffness_kN_per_m: float | None = None
-    lateral_damping_kN_s_per_m: float | None = None
-
-
-@dataclass(frozen=True)
-class SurfaceSpec:
-    """``[surface]``; ``profile`` is an absolute path once loaded."""
-
-    kind: str
-    road_class: str | None = None
-    length_m: float = 400.0
-    seed: int = 1
-    dx_m: float = 0.05
-    profile: Path | None = None
-    spectrum_g0_m3: float | None = None
-    spectrum_waviness: float = 2.0
-    spectrum_correlated: bool | None = None
-    enveloping: str = "tapered"
-    lead_in_m: float = 5.0
-    tracks: str = "independent"
-    #: ``(distance_m, left_m, right_m)`` of ``profile`` as read (:func:`parse_scenario`'s reader).
-    profile_data: tuple | None = field(default=None, compare=False, repr=False)
-    #: ``kind = "crg"``: the OpenCRG file (absolute once loaded), the tractor's centre line left of
-    #: the road's reference line (m), where the driven part starts (m), NaN filled as OpenCRG does.
-    file: Path | None = None
-    lateral_offset_m: float = 0.0
-    start_m: float = 0.0
-    fill_missing: bool = False
-    #: The road of ``file`` as read (:class:`tyrelab.vehicle.crg.CrgData`, :func:`parse_scenario`'s reader).
-    crg_data: object | None = field(default=None, compare=False, repr=False)
-
-    def wheel_positions(self, tractor: "TractorSpec") -> dict:
-        """``kind = "crg"``: ``v`` (m) of each wheel's line on the road (:func:`tyrelab.vehicle.crg.wheel_positions`)."""
-        from .crg import wheel_positions
-
-        three_d = tractor.three_d
-        return wheel_positions(self.lateral_offset_m, tractor.front_track_m if three_d else None,
-                               tractor.rear_track_m if three_d else None)
-
-
-@dataclass(frozen=True)
-class ExposureSpec:
-    """``[exposure]``: speeds (km/h) and daily exposure time (h).
-
-    ``list_speeds_km_h`` are the file's own speeds, which per-speed tyre values
-    refer to (they stay when ``speeds_km_h`` is overridden on the command line).
-    """
-
-    speeds_km_h: tuple[float, ...]
-    hours_per_day: float = 8.0
-    list_speeds_km_h: tuple[float, ...] = ()
-    #: ``working_speed_km_h`` as given (None: the middle speed; :attr:`working_speed`).
-    working_speed_km_h: float | None = None
-
-    def __post_init__(self):
-        if not self.list_speeds_km_h:
-            object.__setattr__(self, "list_speeds_km_h", tuple(self.speeds_km_h))
-
-    @property
-    def working_speed(self) -> float:
-        """The speed the tractor works at, km/h: ``working_speed_km_h`` when it is one of the speeds
-        run, else the middle one of the sorted speeds (the lower middle for an even count)."""
-        speeds = sorted(self.speeds_km_h)
-        if self.working_speed_km_h is not None and self.working_speed_km_h in speeds:
-            return float(self.working_speed_km_h)
-        return float(speeds[(len(speeds) - 1) // 2])
-
-    @property
-    def working_speed_source(self) -> str:
-        """Why :attr:`working_speed` is what it is (said on the pages)."""
-        if self.working_speed_km_h is not None and self.working_speed_km_h in self.speeds_km_h:
-            return "[exposure] working_speed_km_h"
-        if self.working_speed_km_h is not None:
-            return (f"the middle speed ([exposure] working_speed_km_h = {self.working_speed_km_h:g} km/h is not "
-                    "among the speeds run)")
-        return "the middle speed (no [exposure] working_speed_km_h)"
-
-
-@dataclass(frozen=True)
-class SimulationSpec:
-    """``[simulation]``: record-length cap (s), tyre lift-off and how the rows are computed
-    (``method``: ``"auto"``, ``"time"`` or ``"spectral"``; :mod:`tyrelab.vehicle.spectral_ride`)."""
-
-    duration_s: float | None = None
-    lift_off: bool = True
-    method: str = "auto"
-
-
-@dataclass(frozen=True)
-class SweepSpec:
-    """``[sweep]``: front and rear pressures (bar) to run every pair of; empty = the tyres' own."""
-
-    front_pressures_bar: tuple[float, ...] = ()
-    rear_pressures_bar: tuple[float, ...] = ()
-    #: Any numeric scenario key (``"section.key"``) -> the values to run (every combination).
-    keys: dict = field(default_factory=dict)
-
-
-@dataclass(frozen=True)
-class Scenario:
-    """A whole scenario file.
-
-    Attributes
-    ----------
-    name : str
-    tractor : TractorSpec
-    seat : SeatSpec
-    front, rear : TyreSpec
-    front_axle, rear_axle : AxleSpec
-    cab : CabSpec
-    implement : ImplementSpec or None
-    ballast : BallastSpec or None
-    surface : SurfaceSpec
-    exposure : ExposureSpec
-    simulation : SimulationSpec
-    sweep : SweepSpec
-    path : Path or None
-        The file read (None when built in memory).
-    description : str
-    """
-
-    name: str
-    tractor: TractorSpec
-    front: TyreSpec
-    rear: TyreSpec
-    surface: SurfaceSpec
-    exposure: ExposureSpec
-    seat: SeatSpec = field(default_factory=SeatSpec)
-    simulation: SimulationSpec = field(default_factory=SimulationSpec)
-    sweep: SweepSpec = field(default_factory=SweepSpec)
-    path: Path | None = None
-    description: str = ""
-    front_axle: AxleSpec = field(default_factory=AxleSpec)
-    rear_axle: AxleSpec = field(default_factory=AxleSpec)
-    cab: CabSpec = field(default_factory=CabSpec)
-    implement: ImplementSpec | None = None
-    ballast: BallastSpec | None = None
-    #: The parsed TOML and the folder its paths are relative to (for :func:`with_values`).
-    doc: dict = field(default_factory=dict, repr=False, compare=False)
-    base_dir: Path | None = field(default=None, repr=False, compare=False)
-
-    def parts(self, tyres: dict[str, dict]) -> Parts:
-        """The scenario's tractor as model parts in SI: the one place its kN, kN s and kN m values
-        become N, N s and N m (:func:`tyrelab.vehicle.units.from_kilo`).
-
-        ``tyres``: ``front``/``rear`` -> one tyre's ``stiffness_N_per_m``, ``damping_N_s_per_m``,
-        ``radius_m`` and, with lateral elements (issue 33), ``lateral_stiffness_N_per_m``,
-        ``lateral_damping_N_s_per_m`` (:func:`tyrelab.vehicle.ride.build_parts` gives them at a
-        speed). The rear tyres carry the longitudinal element; without
-        ``tractor.roll_inertia_kg_m2`` the parts are the pitch-plane tractor's.
-        """
-        t = self.tractor
-        lon = t.longitudinal_model
-        kx = from_kilo(t.longitudinal_stiffness_kN_per_m) if lon != "none" else 0.0
-        cx = from_kilo(t.longitudinal_damping_kN_s_per_m) if lon != "none" else 0.0
-        if lon == "maxwell" and not (kx > 0 and cx > 0):
-            lon = "none"  # a Maxwell element without spring or damper carries no force
-
-        def axle(name: str, ahead: float, spec: AxleSpec, track_m, **extra) -> Axle:
-            ty = tyres[name]
-            kw = {}
-            if spec.mount != "rigid":
-                kw["roll_inertia_kg_m2"] = spec.roll_inertia_kg_m2 or 0.0
-            if ty.get("lateral_stiffness_N_per_m") is not None:  # issue 33: the tyres' lateral elements
-                kw.update(lateral_model=t.lateral_model, lateral_stiffness_N_per_m=ty["lateral_stiffness_N_per_m"],
-                          lateral_damping_N_s_per_m=ty["lateral_damping_N_s_per_m"])
-                if spec.mount == "pivot":  # the pivot at the axle centre, a rolling radius above the ground
-                    kw["height_m"] = spec.height_m if spec.height_m is not None else ty["radius_m"]
-            if spec.mount == "suspended":
-                kw.update(mass_kg=spec.mass_kg, height_m=spec.height_m if spec.height_m is not None else ty["radius_m"],
-                          suspension_stiffness_N_per_m=from_kilo(spec.suspension_stiffness_kN_per_m),
-                          suspension_damping_N_s_per_m=from_kilo(spec.suspension_damping_kN_s_per_m))
-            return Axle(name, ahead, ty["stiffness_N_per_m"], ty["damping_N_s_per_m"], track_m=track_m or 0.0,
-                        mount=spec.mount, **kw, **extra)
-
-        cab = None
-        if self.cab.mount == "suspended":
-            c = self.cab
-            cab = Cab(c.mass_kg, c.pitch_inertia_kg_m2, c.roll_inertia_kg_m2 or 0.0, c.ahead_of_cg_m,
-                      c.height_above_cg_m, c.front_mount_ahead_of_cg_m, c.rear_mount_ahead_of_cg_m, c.mount_track_m,
-                      from_kilo(c.mount_stiffness_kN_per_m), from_kilo(c.mount_damping_kN_s_per_m))
-        imp = None
-        if self.implement is not None:
-            m = self.implement
-            imp = Implement(m.mass_kg, m.pitch_inertia_kg_m2, m.roll_inertia_kg_m2, m.behind_rear_axle_m, m.height_m,
-                            m.mount, m.hitch_behind_rear_axle_m, m.hitch_height_m,
-                            from_kilo(m.hitch_stiffness_kN_m_per_rad or 0.0),
-                            from_kilo(m.hitch_damping_kN_m_s_per_rad))
-        return Parts(
-            Chassis(t.mass_kg, t.pitch_inertia_kg_m2, t.cg_height_m, t.roll_inertia_kg_m2, t.yaw_inertia_kg_m2),
-            axle("front", t.front_distance_m, self.front_axle, t.front_track_m),
-            axle("rear", -t.rear_distance_m, self.rear_axle, t.rear_track_m, longitudinal_model=lon,
-                 longitudinal_stiffness_N_per_m=kx, longitudinal_damping_N_s_per_m=cx),
-            self.seat.part(), cab, imp, self.ballast, static_load_moment=True)
+__all__ = ["parse_scenario", "scenario_from_dict", "key_table", "numeric_key"]
 
 
 @cache
@@ -608,110 +260,10 @@ def _crg_problems(doc: dict, surf: dict, base_dir: Path, confine: bool, read_crg
     tracks = [tractor.get(k) if three_d else None for k in ("front_track_m", "rear_track_m")]
     if any(t is not None and not _is_number(t) for t in tracks):
         return gap_problem
-    from .crg import crg_problems, wheel_positions
+    from ..crg import crg_problems, wheel_positions
 
     return gap_problem + crg_problems(data, wheel_positions(numbers["lateral_offset_m"], *tracks), float(numbers["start_m"]),
                         None if length is None else float(length), bool(surf.get("fill_missing", False)))
-
-
-def numeric_key(key: str) -> dict | None:
-    """The schema field of a numeric scenario key ``"section.key"`` (``"tyres.front.pressure_bar"``),
-    or None when it is not one."""
-    _checks.instance("key", key, str)
-    section, _, name = key.rpartition(".")
-    f = _sections().get(section, {}).get("fields", {}).get(name)
-    return f if f is not None and f["type"] in ("number", "number_or_numbers") else None
-
-
-def _sweep_key_problems(key: str, values) -> list[str]:
-    """Problems of a ``[sweep]`` entry ``"section.key" = [values]``."""
-    f = numeric_key(key)
-    if f is None:
-        return [f"sweep.{key!r}: not a numeric scenario key (a quoted \"section.key\", e.g. \"implement.mass_kg\")"]
-    if not isinstance(values, list) or not values or not all(_is_number(v) for v in values):
-        return [f"sweep.{key!r}: expected a list of numbers, got {values!r}"]
-    return [p for v in values for p in _check_value(f"sweep.{key!r}", {**f, "type": "number"}, v, None)][:1]
-
-
-#: Most variants one sweep may ask for (``--set`` and ``[sweep]`` combinations times pressure pairs).
-MAX_VARIANTS = 10_000
-
-
-def parse_sets(items) -> dict:
-    """``["KEY=V1,V2", ...]`` (``tyrelab ride --set``) -> ``{"KEY": (V1, V2)}``, every problem at once.
-
-    Examples
-    --------
-    >>> parse_sets(["implement.mass_kg=500,1000", "tyres.rear.pressure_bar=1.2"])
-    {'implement.mass_kg': (500.0, 1000.0), 'tyres.rear.pressure_bar': (1.2,)}
-    """
-    _checks.instances("items", items, str)
-    out, problems = {}, []
-    for item in items:
-        key, sep, text = str(item).partition("=")
-        key = key.strip()
-        try:
-            values = tuple(float(v) for v in text.split(",")) if sep and text.strip() else ()
-        except ValueError:
-            values = ()
-        if numeric_key(key) is None:
-            problems.append(f"--set {item!r}: {key!r} is not a numeric scenario key (e.g. implement.mass_kg)")
-        elif not values or not all(math.isfinite(v) for v in values):
-            problems.append(f"--set {item!r}: expected KEY=V1,V2,... with numbers")
-        else:
-            bad = [p for v in values for p in _check_value(f"--set {key}", {**numeric_key(key), "type": "number"}, v, None)]
-            problems += bad[:1]
-            out[key] = values
-    n = math.prod(len(v) for v in out.values()) if out else 1
-    if n > MAX_VARIANTS:
-        problems.append(f"--set: {n} combinations (at most {MAX_VARIANTS})")
-    if problems:
-        raise ValueError("; ".join(problems))
-    return out
-
-
-def with_values(scenario: Scenario, values: dict) -> Scenario:
-    """A copy of ``scenario`` with numeric keys replaced, ``{"section.key": value}``, checked as the
-    file is (every problem at once, :class:`ScenarioError`); the ``[sweep]`` table is dropped.
-
-    Examples
-    --------
-    >>> from tyrelab.resources import scenarios_dir
-    >>> from tyrelab.scenario_io import load_scenario
-    >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
-    >>> with_values(s, {"tractor.mass_kg": 5000, "tyres.rear.pressure_bar": 1.4}).tractor.mass_kg
-    5000.0
-    """
-    _checks.instance("scenario", scenario, Scenario)
-    if not scenario.doc:
-        raise ValueError("scenario: built in memory, not from TOML (with_values needs the parsed file)")
-    doc = {k: (dict(v) if isinstance(v, dict) else v) for k, v in scenario.doc.items()}
-    doc["tyres"] = {k: dict(v) for k, v in doc.get("tyres", {}).items()}
-    doc.pop("sweep", None)
-    for key, value in values.items():
-        if numeric_key(key) is None:
-            raise ScenarioError(scenario.path or "<scenario>", [f"{key!r}: not a numeric scenario key"])
-        parts = key.split(".")
-        node = doc
-        for part in parts[:-1]:
-            node = node.setdefault(part, {})
-        node[parts[-1]] = float(value)
-    where = str(scenario.path) if scenario.path is not None else "<scenario>"
-    base = scenario.base_dir or Path(".")
-    data = scenario.surface.profile_data  # the profile cannot be swept: its data as read
-    road = scenario.surface.crg_data  # nor the CRG road (its window and the wheels' lines can)
-    profiles: dict = {}
-    # the profile path was checked when the scenario was read
-    problems = _validate(doc, base, False, (lambda _path: data) if data is not None else None, profiles,
-                         (lambda _path: road) if road is not None else None)
-    if problems:
-        raise ScenarioError(where, problems)
-    out = _build(doc, scenario.path, base, False, profiles)
-    problems = scenario_problems(out)  # what the model can represent (scenario_limits.LIMITS)
-    if problems:
-        raise ScenarioError(where, problems)
-    return replace(out, exposure=replace(out.exposure, speeds_km_h=scenario.exposure.speeds_km_h,
-                                         list_speeds_km_h=scenario.exposure.list_speeds_km_h))
 
 
 def _given(table: dict | None, key: str) -> bool:
@@ -1044,35 +596,26 @@ def _from_document(doc: dict, where: str, base_dir, path, confine: bool, read_pr
     if problems:
         raise ScenarioError(where, problems)
     scenario = _build(doc, Path(path) if path is not None else None, base, confine, profiles)
-    problems = scenario_problems(scenario)  # what the model can represent (scenario_limits.LIMITS)
+    problems = scenario_problems(scenario)  # what the model can represent (limits.LIMITS)
     if problems:
         raise ScenarioError(where, problems)
     return scenario
 
 
-def with_overrides(
-    scenario: Scenario,
-    speeds_km_h: list[float] | None = None,
-    front_pressure_bar: float | None = None,
-    rear_pressure_bar: float | None = None,
-) -> Scenario:
-    """A copy with other speeds and/or pressures (command-line overrides).
+def numeric_key(key: str) -> dict | None:
+    """The schema field of a numeric scenario key ``"section.key"`` (``"tyres.front.pressure_bar"``),
+    or None when it is not one."""
+    _checks.instance("key", key, str)
+    section, _, name = key.rpartition(".")
+    f = _sections().get(section, {}).get("fields", {}).get(name)
+    return f if f is not None and f["type"] in ("number", "number_or_numbers") else None
 
-    Per-speed stiffness/damping lists keep applying to the scenario's own speeds
-    (:func:`tyrelab.vehicle.ride.per_speed` interpolates them); pressures replace
-    the tyre's pressure only.
-    """
-    s = scenario
-    if speeds_km_h:
-        if any(not (v > 0) for v in speeds_km_h):
-            raise ValueError("speeds_km_h must be positive")
-        s = replace(s, exposure=replace(s.exposure, speeds_km_h=tuple(float(v) for v in speeds_km_h)))
-    if front_pressure_bar is not None:
-        if not front_pressure_bar > 0:
-            raise ValueError("front_pressure_bar must be positive")
-        s = replace(s, front=replace(s.front, pressure_bar=float(front_pressure_bar)))
-    if rear_pressure_bar is not None:
-        if not rear_pressure_bar > 0:
-            raise ValueError("rear_pressure_bar must be positive")
-        s = replace(s, rear=replace(s.rear, pressure_bar=float(rear_pressure_bar)))
-    return s
+
+def _sweep_key_problems(key: str, values) -> list[str]:
+    """Problems of a ``[sweep]`` entry ``"section.key" = [values]``."""
+    f = numeric_key(key)
+    if f is None:
+        return [f"sweep.{key!r}: not a numeric scenario key (a quoted \"section.key\", e.g. \"implement.mass_kg\")"]
+    if not isinstance(values, list) or not values or not all(_is_number(v) for v in values):
+        return [f"sweep.{key!r}: expected a list of numbers, got {values!r}"]
+    return [p for v in values for p in _check_value(f"sweep.{key!r}", {**f, "type": "number"}, v, None)][:1]

@@ -1,0 +1,425 @@
+"""What a ride scenario may ask of the model: each number's range, and the work a sweep may create.
+
+The schema (``schemas/scenario.json``) checks types and signs; the model needs more. A
+length of 1 mm, a step of 1 km or a speed of 1e300 km/h divide by zero or leave no sample,
+a track of 1e9 m or 0.001 km/h asks for terabytes, a mass of 1e-300 kg or a pressure of
+1e6 bar gives infinities in the state matrices. :data:`LIMITS` is the range of every
+number the model is built for (documented choices, generous around agricultural
+tractors: the thesis' tractors weigh 2.5-8 t, run 2-30 km/h on tracks of 100-400 m), and
+:func:`scenario_problems` names each key outside it with its bound, all at once.
+
+The work is bounded before it starts: :func:`work_estimate` counts the simulated samples
+(1 kHz, :data:`tyrelab.vehicle.ride.DT_S`) of every speed of every pressure pair, and
+:func:`work_problems` refuses more than :data:`MAX_VARIANTS` pairs or
+:data:`MAX_SAMPLES` samples with the estimate (memory and time, from the issue-25
+measurement: 0.05 km/h on 100 m, 7.2 million samples, took 2.2 GB and 18 s, i.e. about
+300 bytes and 2.5 µs per sample) and the option that lifts the bound.
+
+Examples
+--------
+>>> LIMITS["exposure.speeds_km_h"]
+(0.5, 80.0, 'km/h')
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+
+from ..units import km_h_to_m_s
+from ... import _validate
+
+__all__ = ["LIMITS", "METHODS", "uses_spectral", "MAX_VARIANTS", "MAX_SPECTRAL_VARIANTS", "MAX_SAMPLES", "MIN_VERDICT_DURATION_S",
+           "BYTES_PER_SAMPLE", "SECONDS_PER_SAMPLE", "SECONDS_PER_SPECTRAL_ROW", "scenario_problems", "profile_problems", "override_problems", "work_estimate", "work_problems"]
+
+#: key -> (lowest, highest, unit) of every number of a scenario the model is built for.
+LIMITS: dict[str, tuple[float, float, str]] = {
+    "tractor.mass_kg": (200.0, 50_000.0, "kg"),
+    "tractor.pitch_inertia_kg_m2": (10.0, 500_000.0, "kg m²"),
+    "tractor.front_distance_m": (0.05, 10.0, "m"),
+    "tractor.rear_distance_m": (0.05, 10.0, "m"),
+    "tractor.cg_height_m": (0.0, 5.0, "m"),
+    "tractor.longitudinal_stiffness_kN_per_m": (1.0, 100_000.0, "kN/m"),
+    "tractor.longitudinal_damping_kN_s_per_m": (0.01, 1_000.0, "kN s/m"),
+    "seat.ahead_of_cg_m": (-10.0, 10.0, "m"),
+    "seat.height_above_cg_m": (-10.0, 10.0, "m"),
+    "seat.natural_frequency_Hz": (0.3, 30.0, "Hz"),
+    "seat.damping_ratio": (0.01, 5.0, ""),
+    "pressure_bar": (0.1, 10.0, "bar"),
+    "stiffness_kN_per_m": (10.0, 100_000.0, "kN/m"),
+    "damping_kN_s_per_m": (0.01, 1_000.0, "kN s/m"),
+    "age_years": (0.0, 60.0, "years"),
+    "lateral_stiffness_kN_per_m": (1.0, 100_000.0, "kN/m"),
+    "lateral_damping_kN_s_per_m": (0.01, 1_000.0, "kN s/m"),
+    "tractor.yaw_inertia_kg_m2": (10.0, 500_000.0, "kg m²"),
+    "radius_m": (0.1, 2.0, "m"),
+    "footprint_m": (0.01, 2.0, "m"),
+    "surface.length_m": (10.0, 100_000.0, "m"),
+    "surface.dx_m": (0.001, 1.0, "m"),
+    "surface.lead_in_m": (0.0, 1_000.0, "m"),
+    "surface.spectrum_g0_m3": (1e-9, 1.0, "m³"),
+    "surface.start_m": (0.0, 100_000.0, "m"),
+    "surface.lateral_offset_m": (-50.0, 50.0, "m"),
+    "surface.spectrum_waviness": (0.5, 5.0, ""),
+    "exposure.speeds_km_h": (0.5, 80.0, "km/h"),
+    "exposure.hours_per_day": (0.01, 24.0, "h"),
+    "exposure.working_speed_km_h": (0.5, 80.0, "km/h"),  # one of the speeds (checked when parsed)
+    "simulation.duration_s": (1.0, 3_600.0, "s"),
+    "profile.height_m": (-2.0, 2.0, "m"),
+    "profile.gap_m": (0.0, 10.0, "m"),
+    # the 3-D model and the tractor's parts (issue 23; bounds issue 37): roll inertias as the pitch
+    # inertias' scale, tracks and offsets within a tractor's width, parts' masses below the
+    # heaviest tractor's, stiffnesses as the tyres'
+    "tractor.roll_inertia_kg_m2": (10.0, 500_000.0, "kg m²"),
+    "tractor.front_track_m": (0.5, 5.0, "m"),
+    "tractor.rear_track_m": (0.5, 5.0, "m"),
+    "seat.left_of_cg_m": (-2.5, 2.5, "m"),
+    "axle.roll_inertia_kg_m2": (1.0, 20_000.0, "kg m²"),
+    "axle.mass_kg": (10.0, 10_000.0, "kg"),
+    "axle.height_m": (0.0, 3.0, "m"),
+    "axle.suspension_stiffness_kN_per_m": (1.0, 100_000.0, "kN/m"),
+    "axle.suspension_damping_kN_s_per_m": (0.0, 1_000.0, "kN s/m"),
+    "cab.mass_kg": (10.0, 10_000.0, "kg"),
+    "cab.pitch_inertia_kg_m2": (1.0, 100_000.0, "kg m²"),
+    "cab.roll_inertia_kg_m2": (1.0, 100_000.0, "kg m²"),
+    "cab.ahead_of_cg_m": (-10.0, 10.0, "m"),
+    "cab.height_above_cg_m": (-10.0, 10.0, "m"),
+    "cab.front_mount_ahead_of_cg_m": (-10.0, 10.0, "m"),
+    "cab.rear_mount_ahead_of_cg_m": (-10.0, 10.0, "m"),
+    "cab.mount_track_m": (0.1, 5.0, "m"),
+    "cab.mount_stiffness_kN_per_m": (1.0, 100_000.0, "kN/m"),
+    "cab.mount_damping_kN_s_per_m": (0.0, 1_000.0, "kN s/m"),
+    "implement.mass_kg": (1.0, 20_000.0, "kg"),
+    "implement.pitch_inertia_kg_m2": (0.0, 200_000.0, "kg m²"),
+    "implement.roll_inertia_kg_m2": (0.0, 200_000.0, "kg m²"),
+    "implement.behind_rear_axle_m": (0.0, 10.0, "m"),
+    "implement.height_m": (0.0, 5.0, "m"),
+    "implement.hitch_behind_rear_axle_m": (0.0, 10.0, "m"),
+    "implement.hitch_height_m": (0.0, 5.0, "m"),
+    "implement.hitch_stiffness_kN_m_per_rad": (1.0, 1_000_000.0, "kN m/rad"),
+    "implement.hitch_damping_kN_m_s_per_rad": (0.0, 100_000.0, "kN m s/rad"),
+    "ballast.mass_kg": (1.0, 10_000.0, "kg"),
+    "ballast.ahead_of_front_axle_m": (0.0, 5.0, "m"),
+    "ballast.height_m": (0.0, 5.0, "m"),
+    "ballast.pitch_inertia_kg_m2": (0.0, 100_000.0, "kg m²"),
+    "ballast.roll_inertia_kg_m2": (0.0, 100_000.0, "kg m²"),
+}
+#: Most variants one scenario may sweep in the time domain (``tyrelab ride --max-variants`` lifts it).
+MAX_VARIANTS = 400
+#: Most variants of a sweep computed in the frequency domain (``--method auto`` or ``spectral``;
+#: ``--max-variants`` lifts it): 100 x 100 pressures and a swept key of two values, about 4 min.
+MAX_SPECTRAL_VARIANTS = 20_000
+#: Time of one spectral speed row (variant x speed), s: the 10 x 10 x 8 grid of bench/bench_ride.py
+#: took about 1.2 ms a row (tyres, assembly, expectation on 4,000 frequencies, modes; issue 36).
+SECONDS_PER_SPECTRAL_ROW = 1.5e-3
+#: Most samples (1 kHz) one command may simulate over all speeds and pairs (``--max-samples``).
+MAX_SAMPLES = 10_000_000
+#: Memory and time per simulated sample (measured: 2.2 GB and 18 s for 7.2 million samples).
+BYTES_PER_SAMPLE = 300.0
+SECONDS_PER_SAMPLE = 2.5e-6
+#: Shortest seat record that gets a verdict against the EU limits, s: four periods of 0.4 Hz, the
+#: lower band limit of the ISO 2631-1 weightings (a documented choice; shorter records get their
+#: exposure numbers, a warning and `verdict` "no verdict: ...").
+MIN_VERDICT_DURATION_S = 10.0
+
+
+def _limit(key: str) -> tuple[float, float, str]:
+    """The :data:`LIMITS` entry of a scenario key (a tyre's by its name, an axle's as ``axle.``)."""
+    if key.startswith(("tyres.", "sweep.")):
+        return LIMITS[key.rsplit(".", 1)[-1]]
+    if key.startswith(("front_axle.", "rear_axle.")):
+        return LIMITS["axle." + key.split(".", 1)[1]]
+    return LIMITS[key]
+
+
+def _known(key: str) -> bool:
+    try:
+        _limit(key)
+    except KeyError:
+        return False
+    return True
+
+
+def _out(key: str, value: float) -> str | None:
+    low, high, unit = _limit(key)
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)) or not math.isfinite(value):
+        return f"{key}: {value!r} is not a finite number"
+    if not low <= value <= high:
+        u = f" {unit}" if unit else ""
+        return f"{key}: {value:g}{u} is outside {low:g} to {high:g}{u}, what the ride model is built for"
+    return None
+
+
+def scenario_problems(scenario) -> list[str]:
+    """Every number of ``scenario`` outside :data:`LIMITS`, one line each naming key and bound.
+
+    Also: a step ``dx_m`` longer than a sixteenth of the track, and a profile CSV whose heights
+    or gaps between points are out of range.
+    """
+    s = scenario
+    checks: list[tuple[str, object]] = []
+    for name in ("mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_m", "cg_height_m",
+                 "longitudinal_stiffness_kN_per_m", "longitudinal_damping_kN_s_per_m"):
+        checks.append((f"tractor.{name}", getattr(s.tractor, name)))
+    if s.tractor.yaw_inertia_kg_m2 is not None:
+        checks.append(("tractor.yaw_inertia_kg_m2", s.tractor.yaw_inertia_kg_m2))
+    for name in ("ahead_of_cg_m", "height_above_cg_m", "natural_frequency_Hz", "damping_ratio"):
+        if getattr(s.seat, name) is not None:
+            checks.append((f"seat.{name}", getattr(s.seat, name)))
+    checks += [(f"tractor.{name}", getattr(s.tractor, name)) for name in ("roll_inertia_kg_m2", "front_track_m",
+                                                                         "rear_track_m")
+               if getattr(s.tractor, name) is not None] + [("seat.left_of_cg_m", s.seat.left_of_cg_m)]
+    for section in ("front_axle", "rear_axle", "cab", "implement", "ballast"):  # the tractor's parts
+        part = getattr(s, section, None)
+        if part is not None:
+            checks += [(f"{section}.{f.name}", getattr(part, f.name)) for f in dataclasses.fields(part)
+                       if _known(f"{section}.{f.name}")
+                       if getattr(part, f.name) is not None and not isinstance(getattr(part, f.name), str)]
+    for axle, t in (("front", s.front), ("rear", s.rear)):
+        checks.append((f"tyres.{axle}.pressure_bar", t.pressure_bar))
+        checks.append((f"tyres.{axle}.age_years", t.age_years))
+        for name in ("stiffness_kN_per_m", "damping_kN_s_per_m", "radius_m", "footprint_m",
+                     "lateral_stiffness_kN_per_m", "lateral_damping_kN_s_per_m"):
+            v = getattr(t, name)
+            for x in (v if isinstance(v, tuple) else () if v is None else (v,)):
+                checks.append((f"tyres.{axle}.{name}", x))
+    surf = s.surface
+    for name in ("length_m", "dx_m", "lead_in_m", "spectrum_waviness"):
+        checks.append((f"surface.{name}", getattr(surf, name)))
+    if surf.spectrum_g0_m3 is not None:
+        checks.append(("surface.spectrum_g0_m3", surf.spectrum_g0_m3))
+    if surf.kind == "crg":  # issue 33: where on the road the tractor drives
+        checks += [("surface.start_m", surf.start_m), ("surface.lateral_offset_m", surf.lateral_offset_m)]
+    checks += [("exposure.speeds_km_h", v) for v in s.exposure.speeds_km_h]
+    checks.append(("exposure.hours_per_day", s.exposure.hours_per_day))
+    if s.exposure.working_speed_km_h is not None:
+        checks.append(("exposure.working_speed_km_h", s.exposure.working_speed_km_h))
+    if s.simulation.duration_s is not None:
+        checks.append(("simulation.duration_s", s.simulation.duration_s))
+    checks += [("sweep.front_pressures_bar", v) for v in s.sweep.front_pressures_bar]
+    checks += [("sweep.rear_pressures_bar", v) for v in s.sweep.rear_pressures_bar]
+    problems = []
+    for key, value in checks:
+        line = _out(key.replace("_pressures_bar", ".pressure_bar") if key.startswith("sweep.") else key, value)
+        if line:
+            problems.append(line.replace("sweep.front.pressure_bar", "sweep.front_pressures_bar")
+                            .replace("sweep.rear.pressure_bar", "sweep.rear_pressures_bar"))
+    if not problems and surf.dx_m > surf.length_m / 16:
+        problems.append(f"surface.dx_m: {surf.dx_m:g} m is longer than surface.length_m / 16 "
+                        f"({surf.length_m / 16:g} m): the track needs at least 16 points")
+    if surf.kind == "profile" and surf.profile_data is not None:
+        problems += profile_problems(*surf.profile_data, surf.profile)
+    if isinstance(surf.seed, int) and surf.seed < 0:
+        problems.append(f"surface.seed: {surf.seed} is negative (a seed is a whole number from 0)")
+    if not problems:
+        problems += _held_parts_problems(s)
+    return problems
+
+
+def _held_parts_problems(scenario) -> list[str]:
+    """A suspended cab and suspended axles are part of ``tractor.mass_kg`` and its inertias and are
+    taken out of the body (:func:`tyrelab.vehicle.model.assemble`): what is left of the body (mass,
+    pitch and roll inertia about the tractor's CG, with the parts' offsets) must be positive
+    definite. An implement on a hitch spring must have an inertia about its hitch."""
+    t = scenario.tractor
+    three_d = t.roll_inertia_kg_m2 is not None
+    n = 3 if three_d else 2
+    left = np.diag([t.mass_kg, t.pitch_inertia_kg_m2, t.roll_inertia_kg_m2 or 0.0][:n])
+    held = []
+
+    def take(mass, pitch_inertia, roll_inertia, ahead_m, above_m):
+        z = np.array([1.0, ahead_m, 0.0][:n])
+        x = np.array([0.0, -above_m, 0.0][:n])
+        y = np.array([0.0, 0.0, -above_m][:n])
+        left[...] -= mass * (np.outer(z, z) + np.outer(x, x) + np.outer(y, y))
+        left[1, 1] -= pitch_inertia
+        if three_d:
+            left[2, 2] -= roll_inertia
+
+    cab = scenario.cab
+    if cab.mount == "suspended" and cab.mass_kg is not None:
+        take(cab.mass_kg, cab.pitch_inertia_kg_m2 or 0.0, cab.roll_inertia_kg_m2 or 0.0, cab.ahead_of_cg_m,
+             cab.height_above_cg_m)
+        held.append("cab.mass_kg, its inertias and place")
+    for axle, ahead in (("front", t.front_distance_m), ("rear", -t.rear_distance_m)):
+        spec = getattr(scenario, f"{axle}_axle")
+        if spec.mount == "suspended" and spec.mass_kg is not None:
+            height = spec.height_m if spec.height_m is not None else _tyre_radius_m(getattr(scenario, axle))
+            take(spec.mass_kg, 0.0, 0.0, ahead, height - t.cg_height_m)
+            held.append(f"{axle}_axle.mass_kg")
+    problems = []
+    if held and np.linalg.eigvalsh(left).min() <= 0:
+        keys = "tractor.mass_kg, tractor.pitch_inertia_kg_m2" + (", tractor.roll_inertia_kg_m2" if three_d else "")
+        problems.append(f"{keys}: the whole tractor's mass and inertias hold {' and '.join(held)}, and are smaller "
+                        f"than those parts' own about the tractor's CG (nothing, or less than nothing, is left of the "
+                        f"body: mass {left[0, 0]:.4g} kg)")
+    imp = scenario.implement
+    if imp is not None and imp.mount == "hitch_spring" and imp.pitch_inertia_kg_m2 + imp.mass_kg * (
+            (imp.behind_rear_axle_m - imp.hitch_behind_rear_axle_m) ** 2 + (imp.height_m - imp.hitch_height_m) ** 2) <= 0:
+        problems.append("implement.pitch_inertia_kg_m2, behind_rear_axle_m, height_m, hitch_behind_rear_axle_m, "
+                        "hitch_height_m: the implement has no inertia about its hitch (its CG at the hitch and no "
+                        "pitch inertia)")
+    return problems
+
+
+def _tyre_radius_m(tyre) -> float:
+    """A tyre's rolling radius, m: given, or from its size (as :func:`tyrelab.vehicle.ride.resolve_tyres`)."""
+    from ...tyre.sizes import parse_tyre_size, rolling_circumference_m
+
+    return tyre.radius_m or rolling_circumference_m(parse_tyre_size(tyre.size)) / (2 * math.pi)
+
+
+def profile_problems(x, left, right, path=None) -> list[str]:
+    """What the model cannot take of a profile's data (distance, left and right heights, m; read
+    from ``path``, named in each line): not finite, gaps or a length out of range, a step (the
+    median spacing, the track's grid) finer than ``surface.dx_m``'s bound (it sets the samples
+    the track is resampled to, before any is allocated), heights out of range."""
+    where = f"surface.profile {str(path)!r}" if path is not None else "surface.profile"
+    problems = []
+    if not np.isfinite(x).all():
+        problems.append(f"{where}: distance_m has values that are not finite")
+    elif len(x) > 1:
+        gap = float(np.max(np.diff(x)))
+        low, high, _ = LIMITS["profile.gap_m"]
+        if gap > high:
+            problems.append(f"{where}: a gap of {gap:g} m between points is above {high:g} m")
+        if x[-1] - x[0] > LIMITS["surface.length_m"][1]:
+            problems.append(f"{where}: {x[-1] - x[0]:g} m long, above {LIMITS['surface.length_m'][1]:g} m")
+        step = float(np.median(np.diff(x)))
+        low = LIMITS["surface.dx_m"][0]
+        if step < low:
+            problems.append(f"{where}: a step of {step:g} m between points (the median) is below {low:g} m: "
+                            f"the track would hold {(x[-1] - x[0]) / step:.3g} points")
+    low, high, _ = LIMITS["profile.height_m"]
+    h = np.concatenate([left, right])
+    if not (np.isfinite(h).all() and h.min() >= low and h.max() <= high):
+        finite = h[np.isfinite(h)]
+        found = f"{finite.min():g} to {finite.max():g} m" if finite.size else "no finite value"
+        bad = int((~np.isfinite(h)).sum())
+        problems.append(f"{where}: heights must be finite and within {low:g} to {high:g} m (found {found}"
+                        + (f", and {bad} values that are not finite" if bad else "") + ")")
+    return problems
+
+
+#: The old (private) name of :func:`profile_problems`.
+_profile_problems = profile_problems
+
+
+def override_problems(speeds_km_h=None, front_pressures_bar=None, rear_pressures_bar=None) -> list[str]:
+    """Speeds and pressures given beside a scenario (``tyrelab ride --speeds`` ...) outside :data:`LIMITS`.
+
+    Examples
+    --------
+    >>> override_problems(speeds_km_h=[8, 1e300])
+    ['speeds_km_h: 1e+300 km/h is outside 0.5 to 80 km/h, what the ride model is built for']
+    """
+    problems = []
+    for key, limit, values in (("speeds_km_h", "exposure.speeds_km_h", speeds_km_h),
+                               ("front_pressures_bar", "pressure_bar", front_pressures_bar),
+                               ("rear_pressures_bar", "pressure_bar", rear_pressures_bar)):
+        for v in values or ():
+            line = _out(limit, v)
+            if line:
+                problems.append(key + line[len(limit):])
+    return problems
+
+
+#: How a ride's rows are computed (``[simulation] method``; :mod:`tyrelab.vehicle.spectral_ride`).
+METHODS = ("auto", "time", "spectral")
+
+
+def uses_spectral(scenario, method: str, n_variants: int) -> bool:
+    """Whether ``method`` computes spectral rows for a sweep of ``n_variants`` of ``scenario``:
+    ``spectral``; ``auto`` for more than one variant on an ISO 8608 surface (a profile or any other
+    deterministic road is simulated).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as NS
+    >>> s = NS(surface=NS(kind="iso8608"))
+    >>> uses_spectral(s, "auto", 1), uses_spectral(s, "auto", 2), uses_spectral(s, "time", 2)
+    (False, True, False)
+    """
+    _validate.choice("method", method, METHODS)
+    if method == "auto":
+        return n_variants > 1 and scenario.surface.kind == "iso8608"
+    return method == "spectral"
+
+
+def work_estimate(scenario, n_variants: int, speeds_km_h=None, method: str = "time") -> dict:
+    """Samples, memory and time of ``n_variants`` variants at every speed (an estimate) under
+    ``method`` (:mod:`tyrelab.vehicle.spectral_ride`): ``time`` simulates every variant; spectral
+    rows (``spectral``, or ``auto`` for a sweep on an ISO 8608 surface) simulate nothing
+    (``spectral_rows``: variant x speed rows, :data:`SECONDS_PER_SPECTRAL_ROW` each), ``auto``
+    the nominal variant besides (the speeds that may lift a tyre are bounded when known, by
+    ``max_samples``).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as NS
+    >>> s = NS(surface=NS(length_m=100.0, lead_in_m=5.0), tractor=NS(front_distance_m=1.5, rear_distance_m=1.0),
+    ...        exposure=NS(speeds_km_h=(0.05,)), simulation=NS(duration_s=None))
+    >>> e = work_estimate(s, 1)
+    >>> e["samples"], round(e["memory_GB"], 1), round(e["seconds"])
+    (7740000, 2.3, 19)
+    """
+    _validate.positive_int("n_variants", n_variants)
+    spectral = uses_spectral(scenario, method, n_variants)
+    speeds = list(speeds_km_h or scenario.exposure.speeds_km_h)
+    span_m = scenario.surface.length_m + scenario.surface.lead_in_m + \
+        scenario.tractor.front_distance_m + scenario.tractor.rear_distance_m
+    samples = 0.0
+    for v in speeds:
+        seconds = span_m / km_h_to_m_s(v)
+        if scenario.simulation.duration_s is not None:
+            seconds = min(seconds, scenario.simulation.duration_s + span_m - scenario.surface.length_m)
+        samples += seconds * 1000.0
+    simulated = 0 if method == "spectral" and spectral else 1 if spectral else n_variants
+    rows = n_variants * len(speeds) if spectral else 0
+    total = samples * simulated
+    return {"variants": n_variants, "speeds": len(speeds), "samples": int(round(total)),
+            "largest_run_samples": int(round(samples)) if simulated else 0,
+            "memory_GB": samples * BYTES_PER_SAMPLE / 1e9 if simulated else 0.0,
+            "seconds": total * SECONDS_PER_SAMPLE + rows * SECONDS_PER_SPECTRAL_ROW,
+            "spectral_rows": rows, "simulated_variants": simulated}
+
+
+def work_problems(scenario, n_variants: int, speeds_km_h=None, *, max_variants: int | None = None,
+                  max_samples: int = MAX_SAMPLES, method: str = "time") -> list[str]:
+    """Refusals, each with the estimate and the option that lifts the bound (empty: go ahead).
+
+    ``max_variants`` default: :data:`MAX_SPECTRAL_VARIANTS` where ``method`` computes spectral rows
+    (:func:`work_estimate`), else :data:`MAX_VARIANTS`.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as NS
+    >>> s = NS(surface=NS(length_m=400.0, lead_in_m=5.0, kind="iso8608"),
+    ...        tractor=NS(front_distance_m=1.5, rear_distance_m=1.0),
+    ...        exposure=NS(speeds_km_h=tuple(range(4, 20, 2))), simulation=NS(duration_s=None))
+    >>> work_problems(s, 100 * 100, method="spectral"), work_problems(s, 100 * 100, method="auto")
+    ([], [])
+    >>> print(work_problems(s, 100 * 100, method="time")[0])
+    10000 variants (pressure pairs x swept values) is more than 400 in the time domain (about 33539 s of simulation); --max-variants N lifts the bound, --method auto or spectral computes them in the frequency domain (about 120 s)
+    """
+    e = work_estimate(scenario, n_variants, speeds_km_h, method)
+    problems = []
+    spectral = e["spectral_rows"] > 0
+    limit = max_variants or (MAX_SPECTRAL_VARIANTS if spectral else MAX_VARIANTS)
+    if n_variants > limit:
+        if spectral:
+            problems.append(f"{n_variants} variants (pressure pairs x swept values) is more than {limit} (about {e['seconds']:.0f} s in the frequency "
+                            "domain); --max-variants N lifts the bound")
+        else:
+            rows = n_variants * e["speeds"] * SECONDS_PER_SPECTRAL_ROW
+            problems.append(f"{n_variants} variants (pressure pairs x swept values) is more than {limit} in the time domain (about {e['seconds']:.0f} s "
+                            "of simulation); --max-variants N lifts the bound"
+                            + (f", --method auto or spectral computes them in the frequency domain (about {rows:.0f} s)"
+                               if scenario.surface.kind == "iso8608" else ""))
+    if e["samples"] > max_samples:
+        problems.append(f"{e['simulated_variants']} variant(s) x {e['speeds']} speed(s) simulate {e['samples']:,} samples "
+                        f"(about {e['memory_GB']:.1f} GB for the longest run and {e['seconds']:.0f} s), more than "
+                        f"{max_samples:,}; --max-samples N lifts the bound (or raise the speed, shorten the track)")
+    return problems
