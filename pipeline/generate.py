@@ -13,7 +13,7 @@ recordings of the thesis' carriage and MF698T made by virtual vehicles
 (:mod:`tyrelab.vehicle.study_recordings`; ``study`` rows of ``rides.csv``, the slatted
 track's slat tops in ``rides/slatted_track.csv``), which the ``simulate`` stage compares its
 chapter 6-7 predictions with; and a four-post stand campaign and a one-wheel track run of a 3-D
-tractor (:mod:`tyrelab.rig.stand`, ``rides/stand/``; thesis ch. 2, issue 43), whose transfer
+tractor (:mod:`tyrelab.stand`, ``rides/stand/``; thesis ch. 2, issue 43), whose transfer
 functions and modes the rides stage estimates. Output is byte-for-byte reproducible for the same (scale, seed): each
 run's generator is seeded from (seed, run_id), Parquet is written by pyarrow
 without timestamps, the manifest with fixed float formatting.
@@ -69,8 +69,8 @@ def write_study_recordings(out: Path, seed: int) -> pd.DataFrame:
 
 def write_stand_recordings(out: Path, seed: int) -> pd.DataFrame:
     """Write the virtual four-post stand and track recordings and their 3-D tractor's scenario
-    (:mod:`tyrelab.rig.stand`, ``rides/stand/``); returns their ``rides.csv`` rows."""
-    from .rig import stand
+    (:mod:`tyrelab.stand`, ``rides/stand/``); returns their ``rides.csv`` rows."""
+    from . import stand
 
     plan = stand.stand_plan()
     (out / "rides" / "stand").mkdir(parents=True, exist_ok=True)

@@ -27,7 +27,7 @@ transfer functions and modes (:func:`tyrelab.measurement.frf.recording_frf`): ``
 (per recording, input, output and bin) and ``vehicle_modes`` (per recording, output and mode). The
 rotation and lug-passing bins of a rolling row naming a scenario are masked from its tyres; such a
 row's measured modes and FRFs are compared with the scenario's model at the row's speed
-(``vehicle_frf_validation``, :func:`tyrelab.rig.stand.frf_validation_rows`).
+(``vehicle_frf_validation``, :func:`tyrelab.stand.frf_validation_rows`).
 """
 
 from __future__ import annotations
@@ -200,7 +200,7 @@ def _frf(path: Path, channel_map, speed_km_h: float, wheels, scenario=None) -> d
         return {"error": printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)}
     out = {"frf": pd.DataFrame(r.frf_rows()), "modes": r.mode_rows(), "validation": []}
     if scenario is not None:
-        from ..rig.stand import frf_validation_rows
+        from ..stand import frf_validation_rows
 
         try:
             out["validation"] = frf_validation_rows(r, scenario, speed_km_h)

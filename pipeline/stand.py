@@ -45,7 +45,7 @@ import zlib
 import numpy as np
 import pandas as pd
 
-from .. import _validate
+from . import _validate
 
 __all__ = ["STAND_SCENARIO_FILE", "STAND_SCENARIO_TEXT", "STAND_FS_HZ", "DURATION_S", "INPUT_RMS_M_S2",
            "SENSOR_NOISE_M_S2", "SENSOR_NOISE_RAD_S2", "HEIGHT_NOISE_M", "STATIONARY_STIFFNESS_FACTOR",
@@ -126,7 +126,7 @@ def stand_scenario():
     """The stand's tractor (:data:`STAND_SCENARIO_TEXT`) as a scenario."""
     from pathlib import Path
 
-    from ..scenario_io import parse_scenario
+    from .scenario_io import parse_scenario
 
     return parse_scenario(STAND_SCENARIO_TEXT, Path("."))
 
@@ -134,7 +134,7 @@ def stand_scenario():
 def condition_scenario(scenario, speed_km_h: float):
     """``scenario`` at one speed: its tyres rolling at ``speed_km_h`` > 0; at 0, stationary tyres
     (stiffness × :data:`STATIONARY_STIFFNESS_FACTOR`, the rolling values of its first speed)."""
-    from ..vehicle.ride import resolve_tyres
+    from .vehicle.ride import resolve_tyres
 
     speed = _validate.non_negative("speed_km_h", speed_km_h)
     exp = scenario.exposure
@@ -174,8 +174,8 @@ def wheel_frf(scenario, speed_km_h: float, frequency_Hz, outputs=tuple(MODEL_OUT
     ndarray, shape (F, outputs, 4)
         Output unit per m/s² at the wheel (NaN at 0 Hz), wheels in :data:`WHEELS` order.
     """
-    from ..vehicle.model import assemble
-    from ..vehicle.ride import build_parts, frequency_response, resolve_tyres
+    from .vehicle.model import assemble
+    from .vehicle.ride import build_parts, frequency_response, resolve_tyres
 
     sc = condition_scenario(scenario, speed_km_h)
     asm = assemble(build_parts(sc, resolve_tyres(sc), 0))
@@ -195,8 +195,8 @@ def wheel_frf(scenario, speed_km_h: float, frequency_Hz, outputs=tuple(MODEL_OUT
 def model_modes(scenario, speed_km_h: float) -> list[tuple[float, float]]:
     """The model's modes at a speed: ``(damped frequency Hz, damping ratio)`` of each complex
     eigenvalue pair of its state matrix (``Im λ / 2π``, ``-Re λ / |λ|``), by frequency."""
-    from ..vehicle.model import assemble
-    from ..vehicle.ride import build_parts, resolve_tyres
+    from .vehicle.model import assemble
+    from .vehicle.ride import build_parts, resolve_tyres
 
     sc = condition_scenario(scenario, speed_km_h)
     a = assemble(build_parts(sc, resolve_tyres(sc), 0)).linear([MODEL_OUTPUTS["floor_z_m_s2"]]).abcd[0]
@@ -294,8 +294,8 @@ def _band_noise(rng, n: int, fs: float, rms: float) -> np.ndarray:
 def stand_recording(scenario, row: dict, seed: int, duration_s: float = DURATION_S,
                     fs_Hz: float = STAND_FS_HZ) -> pd.DataFrame:
     """One recording of :func:`stand_plan`'s ``row`` (a dict): ``time_s``, the input channels, the outputs."""
-    from ..measurement.frf import scenario_wheel_geometry
-    from .instrument import RigConfig, ground_profile
+    from .measurement.frf import scenario_wheel_geometry
+    from .rig.instrument import RigConfig, ground_profile
 
     _validate.positive_int("seed", seed, minimum=0)
     rng = _rng(seed, row["ride_id"])
@@ -307,7 +307,7 @@ def stand_recording(scenario, row: dict, seed: int, duration_s: float = DURATION
     ground = np.zeros((4, n))  # ground (pad) vertical acceleration under each wheel, m/s²
     recorded: dict = {}
     if track:  # §2.3: one wheel on a rough profile (class D), the others on concrete
-        from ..vehicle import profiles as pr
+        from .vehicle import profiles as pr
 
         v = speed / 3.6
         prof = pr.iso8608_track("D", seed=int(rng.integers(2 ** 31)), length_m=v * duration_s + 10.0, dx_m=0.05)

@@ -1,4 +1,4 @@
-"""Issue 43: the virtual four-post stand and track run (tyrelab.rig.stand) through the estimator.
+"""Issue 43: the virtual four-post stand and track run (tyrelab.stand) through the estimator.
 
 The stand records today's 3-D model; the FRFs estimated from its recordings must give back the
 model's own FRFs and modes (its complex eigenvalues), the correlated case too, and the track
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from tyrelab.api import vehicle_frf
-from tyrelab.rig import stand
+from tyrelab import stand
 
 
 @pytest.fixture(scope="module")
