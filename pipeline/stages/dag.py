@@ -163,7 +163,7 @@ SIMULATE_TABLES = (
 )
 #: Tables the rides stage writes (vehicle recordings; :mod:`tyrelab.stages.rides`).
 RIDES_TABLES = ("recordings", "recording_axes", "recording_spectra", "exposure_days", "ride_validation",
-                "ride_validation_statistics", "vehicle_frf", "vehicle_modes")
+                "ride_validation_statistics", "vehicle_frf", "vehicle_modes", "vehicle_frf_validation")
 #: The fits a ride scenario's tyres may read (:mod:`tyrelab.stages.tyredata`): a measured tyre's
 #: per-speed pressure fits (``measured_tyre_id``; its lateral and longitudinal ones, series damper and
 #: catalogue row: issue 42) and the build's formula (``formula = "build"``).
