@@ -101,6 +101,10 @@ def per_speed(values, list_speeds_km_h, speeds_km_h) -> np.ndarray:
         The speeds the list refers to, and the speeds wanted (linear
         interpolation, held constant outside).
 
+    See Also
+    --------
+    resolve_tyres : where the scenario's per-speed values are read.
+
     Examples
     --------
     >>> per_speed([1.0, 2.0], [10, 20], [5, 15, 25]).tolist()
@@ -388,6 +392,20 @@ def resolve_tyres(scenario: Scenario, tyre_data=None, memo: dict | None = None) 
     ------
     ValueError
         When a measured tyre cannot be found.
+
+    See Also
+    --------
+    build_parts : the parts at one speed from these numbers.
+    tyrelab.tyre.directional.rolling_coefficients : a rolling tyre's lateral and longitudinal numbers.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.vehicle import parse_scenario
+    >>> sc = parse_scenario((scenarios_dir() / "mf698t.toml").read_text())
+    >>> tyres = resolve_tyres(sc)
+    >>> sorted(tyres), float(tyres["rear"].stiffness_kN_per_m[0])
+    (['front', 'rear'], 364.0)
     """
     return _resolve(scenario, tyre_data, memo)[0]
 
@@ -534,7 +552,21 @@ def _longitudinal_series(given: tuple, spec, speeds: np.ndarray, tyre_data=None)
 
 
 def build_tractor(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Tractor:
-    """The :class:`~tyrelab.vehicle.tractor.Tractor` at speed index ``i`` (axle = two tyres, SI)."""
+    """The :class:`~tyrelab.vehicle.tractor.Tractor` at speed index ``i`` (axle = two tyres, SI).
+
+    See Also
+    --------
+    build_parts : the parts of the same numbers (any model, 3-D included).
+    resolve_tyres : the tyre numbers per speed it takes.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.vehicle import parse_scenario
+    >>> sc = parse_scenario((scenarios_dir() / "mf698t.toml").read_text())
+    >>> build_tractor(sc, resolve_tyres(sc), 0).mass_kg
+    5120.0
+    """
     _validate.instance("scenario", scenario, Scenario)
     _validate.positive_int("i", i, minimum=0)
     return Tractor.of_parts(build_parts(scenario, tyres, i))
@@ -547,6 +579,21 @@ def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Part
     (:meth:`tyrelab.vehicle.scenario.Scenario.parts`, where its kN values become SI). Without
     ``tractor.roll_inertia_kg_m2`` the parts are those of the pitch-plane
     :class:`~tyrelab.vehicle.tractor.Tractor` of :func:`build_tractor`.
+
+    See Also
+    --------
+    resolve_tyres : the tyre numbers per speed it takes.
+    build_tractor : the pitch-plane tractor of the same numbers.
+    tyrelab.vehicle.model.assemble : the assembly of the parts.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.vehicle import parse_scenario
+    >>> sc = parse_scenario((scenarios_dir() / "mf698t.toml").read_text())
+    >>> parts = build_parts(sc, resolve_tyres(sc), 0)
+    >>> parts.chassis.mass_kg
+    5120.0
     """
     _validate.instance("scenario", scenario, Scenario)
     _validate.positive_int("i", i, minimum=0)

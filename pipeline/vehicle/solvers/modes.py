@@ -416,6 +416,11 @@ def damped_modes(asm: Assembly, gravity_m_s2: float | None = None, reference: Mo
     dict
         ``{name: DampedMode}`` in the reference's order.
 
+    See Also
+    --------
+    mode_set : the undamped modes whose shapes name the damped ones.
+    follow_damped : the same modes followed into a perturbed model.
+
     Examples
     --------
     A mass on a Kelvin-Voigt spring: ``ζ = c / (2 √(k m))``.
@@ -489,6 +494,11 @@ def follow_damped(reference: dict, other: dict, threshold: float = FOLLOW_MAC) -
     (mass-weighted MAC of the complex shapes over the coordinates they share, the reference's mass);
     None below ``threshold`` (the mode cannot be followed). Names then stay the reference's across a
     scenario's intervals, speeds and a sweep.
+
+    See Also
+    --------
+    damped_modes : the damped modes it follows.
+    follow_names : the undamped modes' following.
 
     Examples
     --------
