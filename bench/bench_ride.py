@@ -10,7 +10,7 @@ the shortest one, against the linear path of ``ride`` on the same run (inputs
 built once for both). Prints wall times, ratios and the largest relative
 difference of the seat vertical acceleration between the two paths.
 
-    .venv/bin/python bench/bench_ride.py [--skip-sweep] [--targets] [--lateral] [--methods]
+    .venv/bin/python bench/bench_ride.py [--skip-sweep] [--targets] [--lateral] [--rolling] [--methods]
 
 ``--targets`` also measures issue 23's sweep targets as ratios to u = one 4-speed scenario
 (``one_scenario_cpu_s``) in this process, all in CPU seconds: the whole 10 x 10 pressure grid x 8
@@ -22,8 +22,14 @@ the floor of the grid's exact computation, the ISO 2631-1 weighting alone of its
 (``grid_weighting_alone_over_u``: one variant's records at the grid's lengths, x 100). u is the
 median of three runs.
 
-``--lateral`` (issue 33): a 3-D scenario with the tyres' lateral elements against the same with
-``lateral_model = "none"`` in this process (``lateral_over_none``, target <= 1.5).
+``--lateral`` (issue 33): a 3-D scenario with the tyres' lateral elements (the 3-D default: since
+issue 42 the rolling element) against the same with ``lateral_model = "none"`` in this process
+(``lateral_over_none``, target <= 1.5).
+
+``--rolling`` (issue 42): the same 3-D scenario with the rolling tyre (``lateral_model = "rolling"``,
+the default: each speed its own series damper c2 = a / v, the contact points' states, the damped modes
+per speed and their intervals across the stand-ins) against ``lateral_model = "kelvin_voigt"`` in this
+process (``rolling_over_kelvin_voigt``, target <= 1.5).
 
 ``--methods`` measures issue 36 in this process, in CPU seconds: the 10 x 10 pressure grid x 8
 speeds (4-18 km/h) of ``ride_sweep`` under ``--method auto`` (spectral rows for every variant, the
@@ -74,6 +80,8 @@ def main(argv=None) -> int:
     p.add_argument("--targets", action="store_true", help="also the issue-23 sweep targets (minutes of CPU)")
     p.add_argument("--lateral", action="store_true",
                    help="also issue 33's cost: a 3-D scenario with lateral tyre elements against lateral_model = none")
+    p.add_argument("--rolling", action="store_true",
+                   help="also issue 42's cost: the 3-D scenario with the rolling tyre against kelvin_voigt")
     p.add_argument("--methods", action="store_true", help="only issue 36: the grid and the command, auto against time")
     args = p.parse_args(argv)
     if args.methods:
@@ -128,31 +136,54 @@ def main(argv=None) -> int:
         out.update(_targets(sc, cpu_one))
     if args.lateral:
         out.update(_lateral())
+    if args.rolling:
+        out.update(_rolling())
     print(json.dumps(out, indent=2))
     return 0
 
 
-def _lateral() -> dict:
-    """Issue 33: the shipped modern tractor made 3-D (roll, isotropic tracks, a pivoting front axle) with
-    the tyres' lateral elements (kelvin_voigt, the default: lateral and yaw freedoms, the static loads'
-    moment) against the same scenario with ``lateral_model = "none"``, in this process, CPU seconds, the
-    median of three runs each (target <= 1.5x)."""
+def _three_d_text() -> str:
+    """The shipped modern tractor made 3-D: roll, isotropic tracks, a pivoting front axle."""
     text = (scenarios_dir() / "modern_tractor.toml").read_text()
     text = text.replace("[tractor]\n", "[tractor]\nroll_inertia_kg_m2 = 2400\nfront_track_m = 1.9\nrear_track_m = 1.8\n")
     text = text.replace("[surface]\n", "[surface]\ntracks = \"isotropic\"\n")
-    text += "\n[front_axle]\nmount = \"pivot\"\nroll_inertia_kg_m2 = 160\n"
-    lateral = parse_scenario(text, scenarios_dir())
-    none = parse_scenario(text.replace("[tractor]\n", "[tractor]\nlateral_model = \"none\"\n"), scenarios_dir())
-    ride.ride(with_overrides(lateral, [16.0]), with_spectra=False)  # warm-up
-    cpu = {}
-    for name, s in (("lateral", lateral), ("none", none), ("lateral", lateral), ("none", none), ("lateral", lateral),
-                    ("none", none)):
+    return text + "\n[front_axle]\nmount = \"pivot\"\nroll_inertia_kg_m2 = 160\n"
+
+
+def _against(first: tuple, second: tuple) -> tuple[float, float]:
+    """Median CPU seconds of three ``ride`` runs of each ``(name, scenario)``, interleaved, after a warm-up."""
+    ride.ride(with_overrides(first[1], [16.0]), with_spectra=False)  # warm-up
+    cpu: dict = {}
+    for name, s in (first, second) * 3:
         CPU.pop("ride", None)
         _timed(ride.ride, s, with_spectra=False)
         cpu.setdefault(name, []).append(CPU.pop("ride"))
-    lat, non = sorted(cpu["lateral"])[1], sorted(cpu["none"])[1]
+    return sorted(cpu[first[0]])[1], sorted(cpu[second[0]])[1]
+
+
+def _lateral() -> dict:
+    """Issue 33: the shipped modern tractor made 3-D with the tyres' lateral elements (the default: the
+    rolling element since issue 42; lateral and yaw freedoms, the static loads' moment) against the same
+    scenario with ``lateral_model = "none"``, in this process, CPU seconds, the median of three runs each
+    (target <= 1.5x)."""
+    text = _three_d_text()
+    lateral = parse_scenario(text, scenarios_dir())
+    none = parse_scenario(text.replace("[tractor]\n", "[tractor]\nlateral_model = \"none\"\n"), scenarios_dir())
+    lat, non = _against(("lateral", lateral), ("none", none))
     return {"lateral_cpu_s": round(lat, 3), "lateral_none_cpu_s": round(non, 3),
             "lateral_over_none": round(lat / non, 2)}
+
+
+def _rolling() -> dict:
+    """Issue 42: the 3-D modern tractor with the rolling tyre (the default) against ``kelvin_voigt``, in this
+    process, CPU seconds, the median of three runs each (target <= 1.5x)."""
+    text = _three_d_text()
+    rolling = parse_scenario(text, scenarios_dir())
+    kv = parse_scenario(text.replace("[tractor]\n", "[tractor]\nlateral_model = \"kelvin_voigt\"\n"), scenarios_dir())
+    assert rolling.tractor.lateral_model == "rolling"
+    rol, kel = _against(("rolling", rolling), ("kelvin_voigt", kv))
+    return {"rolling_cpu_s": round(rol, 3), "kelvin_voigt_cpu_s": round(kel, 3),
+            "rolling_over_kelvin_voigt": round(rol / kel, 2)}
 
 
 def _targets(sc, u_s: float) -> dict:

@@ -319,6 +319,11 @@ def ride_sweep(
     ValueError
         A bad argument or too much work, naming it.
 
+    See Also
+    --------
+    ride : one variant.
+    tyrelab.vehicle.ride.ride_sweep : the same on a parsed scenario, with the tyre data handed in.
+
     Examples
     --------
     >>> import tyrelab
@@ -339,6 +344,23 @@ def ride_sweep(
     return ride_module.ride_sweep(_scenario(scenario), front_pressures_bar, rear_pressures_bar, speeds_km_h,
                                   _tyre_data(build), map_fn, with_spectra=with_spectra, sets=sets,
                                   max_variants=max_variants, max_samples=max_samples, method=method)
+
+
+def _road_grid_problems(x) -> list[str]:
+    """The grid ``tyrelab road`` resamples a profile CSV on (its median step from its first distance
+    to its last, :func:`tyrelab.vehicle.profiles.uniform_grid`) bounded before it is built: at most
+    :data:`tyrelab.vehicle.scenario_limits.MAX_SAMPLES` points (a 108 kB file of 30 km at 1 mm asked
+    for 30 million points, 1.8 GB)."""
+    import numpy as np
+
+    from .vehicle.scenario_limits import MAX_SAMPLES
+
+    step = float(np.median(np.diff(x))) if len(x) > 1 else 0.0
+    points = (float(x[-1]) - float(x[0])) / step + 1 if step > 0 else float("inf")
+    if points > MAX_SAMPLES:
+        return [f"its median step of {step:g} m over {float(x[-1]) - float(x[0]):g} m makes {points:,.0f} points, "
+                f"more than the {MAX_SAMPLES:,} tyrelab road (road_class) resamples (a coarser profile, or a part of it)"]
+    return []
 
 
 def road_class(file: str | os.PathLike, *, track_width_m: float = 1.8, lateral_offset_m: float = 0.0,
@@ -373,6 +395,22 @@ def road_class(file: str | os.PathLike, *, track_width_m: float = 1.8, lateral_o
         scenario key: ``surface.start_m``, ...).
     OSError
         The file cannot be opened.
+
+    See Also
+    --------
+    tyrelab.vehicle.road_class.road_class : the class of one track's heights.
+
+    Examples
+    --------
+    >>> import numpy as np, pandas as pd, tempfile, os
+    >>> x = np.arange(0.0, 200.0, 0.05)
+    >>> h = 2e-3 * np.sin(2 * np.pi * x / 3.0)  # one wavelength of 3 m, 2 mm
+    >>> with tempfile.TemporaryDirectory() as d:
+    ...     path = os.path.join(d, "road.csv")
+    ...     pd.DataFrame({"distance_m": x, "height_m": h}).to_csv(path, index=False)
+    ...     doc = road_class(path)
+    >>> list(doc["tracks"]), round(doc["tracks"]["track"]["rms_m"] * 1e3, 2)  # 2 mm / sqrt(2)
+    (['track'], 1.41)
     """
     from .scenario_io import read_crg, read_profile_csv
     from .vehicle import road_class as rc
@@ -393,7 +431,7 @@ def road_class(file: str | os.PathLike, *, track_width_m: float = 1.8, lateral_o
         from .vehicle.scenario.limits import profile_problems
 
         x, left, right = read_profile_csv(path)
-        problems = profile_problems(x, left, right)
+        problems = profile_problems(x, left, right) or _road_grid_problems(x)
         if problems:
             raise ValueError("; ".join(p.replace("surface.profile: ", "") for p in problems))
         grid, (left_u, right_u) = uniform_grid(x, left, right)

@@ -38,7 +38,7 @@ import sys
 from pathlib import Path
 
 from . import __version__
-from .io import MissingExtra, os_error_line, printable  # noqa: F401 - also this module's, for the commands' error lines
+from .io import TEXT_WIDTH, MissingExtra, fit_lines, os_error_line, printable  # noqa: F401 - also this module's, for the commands' error lines
 
 __all__ = ["EXIT_CODES_HELP", "STAGE_HELP", "ALIASES", "cmd_completion", "cmd_generate", "cmd_run", "cmd_watch", "cmd_stage", "cmd_sql", "cmd_analyze_run", "cmd_estimate_stiffness",
     "cmd_natural_frequencies", "cmd_road", "build_parser", "main"]
@@ -139,9 +139,9 @@ def _writing(args, label: str, work) -> int:
             io.remove_stale_temporaries(args.build)  # left by a killed writer: we are the only one now
             return work()
     except (BuildLocked, PublishedTableError) as exc:  # a thesis table in <raw>/published that does not fit
-        print(f"tyrelab {label}: {str(exc).splitlines()[0]}", file=sys.stderr)
+        print(f"tyrelab {label}: {printable(str(exc).splitlines()[0])}", file=sys.stderr)
     except OSError as exc:
-        print(f"tyrelab {label}: {os_error_line(exc)}", file=sys.stderr)
+        print(f"tyrelab {label}: {printable(os_error_line(exc))}", file=sys.stderr)
     return EXIT_USAGE
 
 
@@ -150,7 +150,7 @@ def cmd_run(args) -> int:
 
     problem = _check_raw(args, need_campaign=True)
     if problem:
-        print(f"tyrelab run: {problem}", file=sys.stderr)
+        print(f"tyrelab run: {printable(problem)}", file=sys.stderr)
         return EXIT_USAGE
     if getattr(args, "explain", False):  # read-only: no lock, nothing written
         from .stages import explain
@@ -193,7 +193,7 @@ def cmd_stage(args) -> int:
 
     problem = _check_raw(args, need_campaign=args.stage == "ingest")
     if problem:
-        print(f"tyrelab {args.stage}: {problem}", file=sys.stderr)
+        print(f"tyrelab {args.stage}: {printable(problem)}", file=sys.stderr)
         return EXIT_USAGE
 
     def work() -> int:
@@ -208,15 +208,21 @@ def cmd_stage(args) -> int:
 TABLE_SHARE = 0.25
 
 
-def _print_result(fmt: str, names: list, frames, first: bool, table_bytes: int) -> None:
+def _print_result(fmt: str, names: list, frames, first: bool, table_bytes: int, width: int | None = None) -> None:
     """One statement's result on stdout, batch after batch (csv, json) or aligned (table, at most
     ``table_bytes`` of result)."""
     import pandas as pd
 
     if fmt == "json":  # one JSON array per statement, on one line
+        keys = unique_keys(names)
+        if keys != list(names):
+            print("tyrelab sql: warning: the result has columns of the same name; their JSON keys are "
+                  + ", ".join(printable(str(k)) for k in keys), file=sys.stderr)
         _out("[")
         sep = ""
         for df in frames:
+            if keys != list(names):
+                df = df.set_axis(keys, axis=1)
             if len(df):
                 _out(sep + df.to_json(orient="records", date_format="iso", double_precision=15)[1:-1])
                 sep = ","
@@ -243,7 +249,30 @@ def _print_result(fmt: str, names: list, frames, first: bool, table_bytes: int) 
     if df.empty:  # not pandas' "Empty DataFrame / Columns: [...] / Index: []"
         _out(f"no rows (columns: {', '.join(map(str, df.columns))})\n" if len(df.columns) else "no rows\n")
     else:
-        _out(df.to_string(index=False) + "\n")
+        _out(df.to_string(index=False, line_width=width) + "\n")  # wider than width: blocks of columns
+
+
+def unique_keys(names) -> list[str]:
+    """Column names as JSON keys: a repeated name gets ``_2``, ``_3``, … (a name not taken).
+
+    Examples
+    --------
+    >>> unique_keys(["a", "a", "a_2", "b"])
+    ['a', 'a_3', 'a_2', 'b']
+    """
+    names = [str(n) for n in names]
+    taken, out = set(names), []
+    seen = set()
+    for n in names:
+        if n in seen:
+            k = 2
+            while f"{n}_{k}" in taken:
+                k += 1
+            taken.add(f"{n}_{k}")
+            n = f"{n}_{k}"
+        seen.add(n)
+        out.append(n)
+    return out
 
 
 class _ResultTooLarge(Exception):
@@ -253,7 +282,7 @@ class _ResultTooLarge(Exception):
 def cmd_sql(args) -> int:
     import duckdb
 
-    from .warehouse import QueryLimits, QueryTimeout, WriteRefused, iter_query, memory_bound
+    from .warehouse import QueryLimits, QueryTimeout, WriteRefused, error_line, iter_query, memory_bound
 
     try:
         limits = QueryLimits(args.memory_limit, args.max_spill, args.timeout or None)
@@ -262,7 +291,7 @@ def cmd_sql(args) -> int:
         for field_name, option in (("memory_limit_bytes", "--memory-limit"), ("spill_limit_bytes", "--max-spill"),
                                    ("timeout_s", "--timeout")):
             text = text.replace(field_name, option)
-        print(f"tyrelab sql: {text}", file=sys.stderr)
+        print(f"tyrelab sql: {printable(text)}", file=sys.stderr)
         return EXIT_USAGE
     if (args.query is None) == (args.describe is None):
         print("tyrelab sql: give a query or --describe TABLE (one of them)", file=sys.stderr)
@@ -276,12 +305,13 @@ def cmd_sql(args) -> int:
     try:
         with memory_bound(limits.memory_limit_bytes):
             for i, (names, frames) in enumerate(iter_query(Path(args.build) / "warehouse.duckdb", args.query, limits)):
-                _print_result(args.format, names, frames, i == 0, int(TABLE_SHARE * limits.memory_limit_bytes))
+                _print_result(args.format, names, frames, i == 0, int(TABLE_SHARE * limits.memory_limit_bytes),
+                              None if args.wide else TEXT_WIDTH)
     except (WriteRefused, FileNotFoundError) as exc:
-        print(f"tyrelab sql: {exc}", file=sys.stderr)
+        print(f"tyrelab sql: {printable(exc)}", file=sys.stderr)
         return EXIT_USAGE
     except QueryTimeout as exc:
-        print(f"tyrelab sql: {exc}; --timeout SECONDS changes it (0: none)", file=sys.stderr)
+        print(f"tyrelab sql: {printable(f'{exc}; --timeout SECONDS changes it (0: none)')}", file=sys.stderr)
         return EXIT_USAGE
     except _ResultTooLarge as exc:
         print(f"tyrelab sql: the result is larger than --format table holds within --memory-limit "
@@ -295,8 +325,11 @@ def cmd_sql(args) -> int:
         return EXIT_USAGE
     except (BrokenPipeError, OutputError):
         raise
+    except duckdb.Error as exc:  # the user's query errors: a misspelt name gets the closest the warehouse has
+        print(f"tyrelab sql: {type(exc).__name__}: {error_line(Path(args.build), exc)}", file=sys.stderr)
+        return EXIT_USAGE
     except Exception as exc:  # noqa: BLE001 - DuckDB errors are the user's query errors
-        print(f"tyrelab sql: {type(exc).__name__}: {str(exc).splitlines()[0]}", file=sys.stderr)
+        print(f"tyrelab sql: {printable(f'{type(exc).__name__}: {str(exc).splitlines()[0]}')}", file=sys.stderr)
         return EXIT_USAGE
     return EXIT_OK
 
@@ -363,7 +396,7 @@ def cmd_analyze_run(args) -> int:
 def _warn(prog: str, warnings) -> None:
     """Print range warnings on stderr, one line each (the result still goes to stdout)."""
     for w in warnings:
-        print(f"{prog}: warning: {w}", file=sys.stderr)
+        print(f"{prog}: {printable(f'warning: {w}')}", file=sys.stderr)
 
 
 #: Option ranges of the verbs that take a tractor's or a tyre's numbers: the ``dest`` of each option
@@ -377,6 +410,7 @@ OPTION_LIMITS = {
     "front_stiffness_u": "stiffness_u_kN_per_m", "rear_stiffness_u": "stiffness_u_kN_per_m",
     "axle_mass": "axle.mass_kg", "track_width_m": "tractor.front_track_m",
     "lateral_offset_m": "surface.lateral_offset_m", "start_m": "surface.start_m", "length_m": "surface.length_m",
+    "speed": "frf_speed_km_h", "max_frequency": "frf_max_Hz",
 }
 
 
@@ -386,7 +420,12 @@ def _option_problems(args, dests) -> list[str]:
     from . import _validate
     from .vehicle.scenario_limits import LIMITS
 
-    limits = {**LIMITS, "stiffness_u_kN_per_m": (0.0, LIMITS["stiffness_kN_per_m"][1], "kN/m")}
+    from .rawformat import SAMPLE_RATE_RANGE_Hz
+
+    limits = {**LIMITS, "stiffness_u_kN_per_m": (0.0, LIMITS["stiffness_kN_per_m"][1], "kN/m"),
+              # frf: a standing vehicle (0) to the ride model's fastest; up to the Nyquist frequency of raw format v1
+              "frf_speed_km_h": (0.0, LIMITS["exposure.speeds_km_h"][1], "km/h"),
+              "frf_max_Hz": (0.0, SAMPLE_RATE_RANGE_Hz[1] / 2, "Hz")}
     problems = []
     for dest in dests:
         value = getattr(args, dest, None)
@@ -443,10 +482,10 @@ def cmd_estimate_stiffness(args) -> int:
             model=model,
         )
     except (TyreSizeError, ValueError) as exc:
-        print(f"{prog}: {exc}", file=sys.stderr)
+        print(f"{prog}: {printable(exc)}", file=sys.stderr)
         return EXIT_USAGE
     if not math.isfinite(est.stiffness_kN_per_m):
-        print(f"{prog}: --pressure {args.pressure:g} bar (with --size {args.size}): the formula gives no finite "
+        print(f"{prog}: --pressure {args.pressure:g} bar (with --size {printable(args.size)}): the formula gives no finite "
               "stiffness", file=sys.stderr)
         return EXIT_USAGE
     _warn(prog, est.warnings)
@@ -482,7 +521,7 @@ def cmd_natural_frequencies(args) -> int:
             stiffness_model=_stiffness_model(prog, getattr(args, "build", None)),
         )
     except (TyreSizeError, ValueError) as exc:
-        print(f"{prog}: {exc}", file=sys.stderr)
+        print(f"{prog}: {printable(exc)}", file=sys.stderr)
         return EXIT_USAGE
     _warn(prog, out.get("warnings", ()))
     from .io import json_safe
@@ -501,18 +540,38 @@ def cmd_export_tyre(args) -> int:
     try:
         export, written = export_tyre(Path(args.build) / "warehouse.duckdb", args.tyre_id, args.pressure, args.out)
     except (LookupError, TyreSizeError, ValueError) as exc:
-        print(f"{prog}: {str(exc).splitlines()[0]}", file=sys.stderr)
+        print(f"{prog}: {printable(str(exc).splitlines()[0])}", file=sys.stderr)
         return EXIT_USAGE
     except OSError as exc:
         if isinstance(exc, FileNotFoundError) and not exc.filename:  # no warehouse yet
-            print(f"{prog}: {exc}", file=sys.stderr)
+            print(f"{prog}: {printable(exc)}", file=sys.stderr)
         else:  # a folder in the way, a full disk, ulimit -f: no file of the set was replaced
-            print(f"{prog}: {os_error_line(exc)} (nothing written)", file=sys.stderr)
+            print(f"{prog}: {printable(f'{os_error_line(exc)} (nothing written)')}", file=sys.stderr)
         return EXIT_USAGE
     _warn(prog, export.warnings)
     for path in written:
-        _out(f"{path}\n")
+        _out(f"{printable(path)}\n")
     return EXIT_OK
+
+
+def _key_suggestion(problem: str) -> str:
+    """A scenario problem naming a key that does not exist (``--set``, a TOML key), with the closest
+    scenario keys: ``…; did you mean 'seat.damping_ratio'?``; any other problem as it is."""
+    import re
+
+    from .vehicle.scenario import key_table
+    from .warehouse import did_you_mean
+
+    m = (re.search(r"'([\w.]+)' is not a numeric scenario key", problem)
+         or re.search(r"unknown key '([\w.]+)'", problem))
+    if not m:
+        return problem
+    table = key_table()
+    if "numeric scenario key" in problem:
+        table = table[table["type"].astype(str).str.contains("number|integer")]
+    keys = [f"{sec}.{key}" if sec else key for sec, key in table[["section", "key"]].itertuples(index=False)]
+    close = did_you_mean(m.group(1), keys)
+    return problem + ("; did you mean " + " or ".join(f"'{c}'" for c in close) + "?" if close else "")
 
 
 def cmd_ride(args) -> int:
@@ -527,36 +586,46 @@ def cmd_ride(args) -> int:
         scenario = load_scenario(args.scenario, confine=False)  # the user's own file: any profile path
     except ScenarioError as exc:
         for problem in exc.problems:
-            print(f"tyrelab ride: {printable(exc.path)}: {printable(problem)}", file=sys.stderr)
+            print(f"tyrelab ride: {printable(exc.path)}: {printable(_key_suggestion(problem))}", file=sys.stderr)
         return EXIT_USAGE
     from .executor import map_batches
 
     ctx = SimpleNamespace(executor=args.executor, jobs=args.jobs, scheduler=args.scheduler)
+    used = []
+
+    def mapped(task, items):
+        used.append(len(items))
+        return map_batches(task, items, ctx)
+
     try:
         results = ride_sweep(scenario, front_pressures_bar=args.front_pressure, rear_pressures_bar=args.rear_pressure,
                              speeds_km_h=args.speeds, sets=args.set or [], build=args.build,
-                             map_fn=lambda task, items: map_batches(task, items, ctx),
+                             map_fn=mapped,
                              with_spectra="nominal" if args.out else False,
                              max_variants=args.max_variants, max_samples=args.max_samples, method=args.method)
     except ScenarioError as exc:  # a swept value the scenario refuses: every problem, one line each
         for problem in exc.problems:
-            print(f"tyrelab ride: {printable(exc.path)}: {printable(problem)}", file=sys.stderr)
+            print(f"tyrelab ride: {printable(exc.path)}: {printable(_key_suggestion(problem))}", file=sys.stderr)
         return EXIT_USAGE
     except ValueError as exc:
-        print(f"tyrelab ride: {printable(args.scenario)}: {printable(exc)}", file=sys.stderr)
+        print(f"tyrelab ride: {printable(args.scenario)}: {printable(_key_suggestion(str(exc)))}", file=sys.stderr)
         return EXIT_USAGE
     except OSError as exc:  # e.g. --scheduler unreachable
-        print(f"tyrelab ride: {os_error_line(exc)}", file=sys.stderr)
+        print(f"tyrelab ride: {printable(os_error_line(exc))}", file=sys.stderr)
         return EXIT_USAGE
+    if not used and (args.executor != "local" or args.scheduler):  # said, not silently ignored
+        what = f"--executor {args.executor}" + (f" --scheduler {printable(args.scheduler)}" if args.scheduler else "")
+        print(f"tyrelab ride: note: {what} was not used: every variant ran in this process (one variant, or "
+              "the frequency domain's rows)", file=sys.stderr)
     doc = result_json(results)
     if args.out:
         try:
             paths = write_outputs(results, args.out)
         except OSError as exc:  # neither file replaced (write_outputs writes them as one set)
-            print(f"tyrelab ride: --out {args.out}: {os_error_line(exc)} (nothing written)", file=sys.stderr)
+            print(f"tyrelab ride: {printable(f'--out {args.out}: {os_error_line(exc)} (nothing written)')}", file=sys.stderr)
             return EXIT_USAGE
         log.info("ride: wrote %s and %s", paths["json"], paths["html"])
-    _out(dumps(doc) if args.format == "json" else format_table(doc))
+    _out(dumps(doc) if args.format == "json" else format_table(doc, None if args.wide else TEXT_WIDTH))
     return EXIT_OK
 
 
@@ -569,6 +638,8 @@ def cmd_frf(args) -> int:
     from .scenario_io import ScenarioError
 
     prog = "tyrelab frf"
+    if _refused(prog, _option_problems(args, ("speed", "max_frequency"))):
+        return EXIT_USAGE
     try:
         r = vehicle_frf(Path(args.file), speed_km_h=args.speed, scenario=args.scenario)
     except ScenarioError as exc:
@@ -581,7 +652,8 @@ def cmd_frf(args) -> int:
     if args.format == "json":
         _out(json.dumps(json_safe(r.to_json(args.max_frequency)), indent=2) + "\n")
     else:
-        _out(frf_table(r, args.max_frequency))
+        _out("\n".join(fit_lines(frf_table(r, args.max_frequency).splitlines(), None if args.wide else TEXT_WIDTH))
+             + "\n")
     e = r.estimate
     band = (e.frequency_Hz >= 0.5) & (e.frequency_Hz <= 12.0)
     if band.any() and e.ill_conditioned[band].all():
@@ -644,18 +716,19 @@ def cmd_road(args) -> int:
                                 ("fill_missing = true", "--fill-missing"),
                                 ("the track widths and the offset", "--track-width-m and --lateral-offset-m")):
                 text = text.replace(key, option)
-        print(f"tyrelab road: {text if text.startswith(str(path)) else f'{path}: {text}'}", file=sys.stderr)
+        text = text if text.startswith((str(path), printable(path))) else f"{path}: {text}"
+        print(f"tyrelab road: {printable(text)}", file=sys.stderr)  # a name's control characters escaped
         return EXIT_USAGE
     if args.format == "json":
-        sys.stdout.write(json.dumps(doc, indent=2) + "\n")
+        _out(json.dumps(doc, indent=2) + "\n")
     else:
-        lines = [f"{path}: ISO 8608 class from G_d(n0) fitted with waviness 2"]
+        lines = [f"{printable(path)}: ISO 8608 class from G_d(n0) fitted with waviness 2"]
         for name, c in doc["tracks"].items():
             where = f" (v = {doc['lateral_position_m'][name]:g} m)" if "lateral_position_m" in doc else ""
             g0 = f"G_d(n0) = {c['g0_m3']:.3g} m³" if c["g0_m3"] else "G_d(n0) not resolved (too short or coarse)"
             lines.append(f"  {name}{where}: class {c['class'] or '-'}, {g0}, r.m.s. {c['rms_m'] * 1000:.2f} mm, "
                          f"length {c['length_m']:g} m")
-        sys.stdout.write("\n".join(lines) + "\n")
+        _out("\n".join(fit_lines(lines, None if args.wide else TEXT_WIDTH)) + "\n")
     return EXIT_OK
 
 
@@ -692,19 +765,20 @@ def cmd_exposure(args) -> int:
         problems.append(f"the tasks add up to {total:g} h, more than a day ({MAX_HOURS_PER_DAY:g} h)")
     if problems:
         for line in problems:
-            print(f"{prog}: {line}", file=sys.stderr)
+            print(f"{prog}: {printable(line)}", file=sys.stderr)
         return EXIT_USAGE
     try:
         doc = json_safe(assess(tasks))
     except RecordingProblem as exc:
         for line in exc.lines:
-            print(f"{prog}: {line}", file=sys.stderr)
+            print(f"{prog}: {printable(line)}", file=sys.stderr)
         return EXIT_USAGE if exc.usage else EXIT_QUARANTINE
     except ValueError as exc:  # a value the analysis refuses: one line, never a traceback
         print(f"{prog}: {printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)}", file=sys.stderr)
         return EXIT_QUARANTINE
     _warn(prog, doc["warnings"])
-    _out(json.dumps(doc, indent=2, ensure_ascii=False) + "\n" if args.format == "json" else format_table(doc))
+    _out(json.dumps(doc, indent=2, ensure_ascii=False) + "\n" if args.format == "json"
+         else format_table(doc, None if args.wide else TEXT_WIDTH))
     return EXIT_QUARANTINE if str(doc.get("verdict", "")).startswith("no verdict") else EXIT_OK
 
 
@@ -935,6 +1009,9 @@ def build_parser() -> argparse.ArgumentParser:
     q.add_argument("--format", choices=["table", "csv", "json"], default="table",
                    help="table: aligned text, 'no rows' for an empty result (default); csv; json: one array per "
                         "statement")
+    q.add_argument("--wide", action="store_true",
+                    help="with --format table: every column on one line per row, however wide (default: lines of at "
+                         "most 100 characters; a wide table splits into blocks of columns)")
     q.add_argument("--memory-limit", type=_size, default="2GiB", metavar="SIZE",
                    help="DuckDB memory limit, e.g. 512MB, 8GiB (default 2GiB); the command's memory is bounded by "
                         "it too: results stream to the output (a --format table result may take a quarter of it)")
@@ -1019,6 +1096,9 @@ def build_parser() -> argparse.ArgumentParser:
     rd.add_argument("--out", default=None, help="folder to write ride.json and ride.html into")
     rd.add_argument("--format", choices=["json", "table"], default="json",
                     help="json: the ride document (default); table: a text summary per speed")
+    rd.add_argument("--wide", action="store_true",
+                    help="with --format table: every column on one line per row, however wide (default: lines of at "
+                         "most 100 characters; a wide table splits into blocks of columns)")
     rd.add_argument("--front-pressure", type=_positive, nargs="+", default=None, metavar="BAR",
                     help="front pressures to sweep, bar (default: the scenario's)")
     rd.add_argument("--rear-pressure", type=_positive, nargs="+", default=None, metavar="BAR",
@@ -1060,6 +1140,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help=".crg: fill missing heights (NaN) as OpenCRG does (default: refuse them)")
     ro.add_argument("--format", choices=["json", "table"], default="table",
                     help="table: one line per track (default); json: the numbers")
+    ro.add_argument("--wide", action="store_true",
+                    help="with --format table: every column on one line per row, however wide (default: lines of at "
+                         "most 100 characters; a wide table splits into blocks of columns)")
     ro.set_defaults(func=cmd_road)
 
     fr = sub.add_parser("frf", help="a vehicle's transfer functions from each wheel input to each output, and its modes "
@@ -1077,6 +1160,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="highest bin printed, Hz (default 20)")
     fr.add_argument("--format", choices=["json", "table"], default="json",
                     help="json: inputs, outputs, modes and every bin (default); table: a text summary")
+    fr.add_argument("--wide", action="store_true",
+                    help="with --format table: every column on one line per row, however wide (default: lines of at "
+                         "most 100 characters)")
     fr.set_defaults(func=cmd_frf)
 
     ex = sub.add_parser("exposure", help="a driver's daily whole-body vibration exposure from seat recordings "
@@ -1092,6 +1178,9 @@ def build_parser() -> argparse.ArgumentParser:
                     help="a task of the day: its name, recording and daily hours (repeat for each task)")
     ex.add_argument("--format", choices=["json", "table"], default="json",
                     help="json: the exposure document (default); table: a text summary per task")
+    ex.add_argument("--wide", action="store_true",
+                    help="with --format table: every column on one line per row, however wide (default: lines of at "
+                         "most 100 characters; a wide table splits into blocks of columns)")
     ex.set_defaults(func=cmd_exposure)
 
     c = sub.add_parser("completion", help="print the shell code that completes tyrelab's verbs and options",
@@ -1186,6 +1275,11 @@ def main(argv: list[str] | None = None) -> int:
     _configure_output(args)
     import signal
     import threading
+    import warnings
+
+    from .progress import say_library_warnings_once
+
+    shown_before = say_library_warnings_once()  # no library's RuntimeWarning on stderr: ours, once each
 
     if threading.current_thread() is threading.main_thread():
         previous = signal.signal(signal.SIGTERM, _terminate)
@@ -1221,6 +1315,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"tyrelab {args.command}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
     finally:
+        warnings.showwarning = shown_before
         if previous is not None:
             signal.signal(signal.SIGTERM, previous)
 

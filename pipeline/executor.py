@@ -264,6 +264,9 @@ def _leave_interrupts_to_the_parent() -> None:
     from ._hold import hold
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    from .progress import say_library_warnings_once
+
+    say_library_warnings_once()  # a worker's library warnings in our words, once each, as the parent's
     hold("worker")  # a test's Ctrl-C to the process group lands here: a worker started, SIGINT ignored
 
 

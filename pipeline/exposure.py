@@ -216,8 +216,12 @@ def _f(v, fmt: str = ".3f") -> str:
     return "–" if v is None or (isinstance(v, float) and not math.isfinite(v)) else format(v, fmt)
 
 
-def format_table(doc: dict) -> str:
-    """The JSON of :func:`assess` as a short text report."""
+def format_table(doc: dict, width: int | None = None) -> str:
+    """The JSON of :func:`assess` as a short text report, its lines at most ``width`` characters
+    (``tyrelab exposure --format table``: 100; ``None``: as long as they are; :func:`tyrelab.io.fit_lines`)."""
+    from .io import fit_lines
+    from .vehicle.iso2631 import EU_ACTION_VDV, EU_LIMIT_VDV
+
     lines = []
     single = "axes" in doc
     for task in doc["tasks"]:
@@ -238,9 +242,12 @@ def format_table(doc: dict) -> str:
     lines.append(f"day: A(8) {_f(doc['a8_m_s2'])} m/s² ({doc['a8_axis']} axis), {printable(doc['verdict'])}; "
                  f"{_f(doc['exposure_points'], '.0f')} HSE points")
     lines.append(f"     hours to EAV {_f(doc['hours_to_eav'], '.1f')}, to ELV {_f(doc['hours_to_elv'], '.1f')} "
-                 f"(at this mix of tasks); daily VDV {_f(doc['vdv_daily_m_s1_75'], '.2f')} m/s^1.75 "
-                 f"({doc['vdv_daily_axis']}), D_zd {_f(doc['dzd_m_s2'], '.2f')} m/s²")
-    return "\n".join(lines) + "\n"
+                 f"(at this mix of tasks); D_zd {_f(doc['dzd_m_s2'], '.2f')} m/s²")
+    # the Directive's second measure: the daily VDV against its own action and limit values
+    lines.append(f"     VDV {_f(doc['vdv_daily_m_s1_75'], '.2f')} m/s^1.75 ({doc['vdv_daily_axis']} axis), "
+                 f"{printable(doc.get('vdv_verdict', '–'))} (its action value {EU_ACTION_VDV:g}, limit value "
+                 f"{EU_LIMIT_VDV:g} m/s^1.75)")
+    return "\n".join(fit_lines(lines, width)) + "\n"
 
 
 def exposure(recording, hours: float = 8.0, *, channel_map: dict | None = None) -> ExposureResult:

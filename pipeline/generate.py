@@ -12,7 +12,9 @@ virtual tractors (:mod:`tyrelab.vehicle.virtual_rides`): ``rides.csv``,
 recordings of the thesis' carriage and MF698T made by virtual vehicles
 (:mod:`tyrelab.vehicle.study_recordings`; ``study`` rows of ``rides.csv``, the slatted
 track's slat tops in ``rides/slatted_track.csv``), which the ``simulate`` stage compares its
-chapter 6-7 predictions with. Output is byte-for-byte reproducible for the same (scale, seed): each
+chapter 6-7 predictions with; and a four-post stand campaign and a one-wheel track run of a 3-D
+tractor (:mod:`tyrelab.stand`, ``rides/stand/``; thesis ch. 2, issue 43), whose transfer
+functions and modes the rides stage estimates. Output is byte-for-byte reproducible for the same (scale, seed): each
 run's generator is seeded from (seed, run_id), Parquet is written by pyarrow
 without timestamps, the manifest with fixed float formatting.
 """
@@ -32,7 +34,8 @@ from . import __version__, io
 from .rig.campaigns import MANIFEST_COLUMNS, campaign_plan, population_plan, simulate_run
 from .rig.instrument import NO_SCATTER, RigConfig
 
-__all__ = ["write_run", "write_rides", "write_study_recordings", "generate_campaign", "MAX_SEED"]
+__all__ = ["write_run", "write_rides", "write_study_recordings", "write_stand_recordings", "generate_campaign",
+           "MAX_SEED"]
 
 #: Largest campaign seed: what an int64 column (``generator.json`` read back by pandas, DuckDB) holds
 #: exactly (a documented choice; numpy's generators take any non-negative integer).
@@ -64,12 +67,28 @@ def write_study_recordings(out: Path, seed: int) -> pd.DataFrame:
     return rows
 
 
-def write_rides(out: Path, seed: int, tractors: bool = True, studies: bool = True) -> int:
+def write_stand_recordings(out: Path, seed: int) -> pd.DataFrame:
+    """Write the virtual four-post stand and track recordings and their 3-D tractor's scenario
+    (:mod:`tyrelab.stand`, ``rides/stand/``); returns their ``rides.csv`` rows."""
+    from . import stand
+
+    plan = stand.stand_plan()
+    (out / "rides" / "stand").mkdir(parents=True, exist_ok=True)
+    io.write_text_atomic(stand.STAND_SCENARIO_TEXT, out / "rides" / "stand" / stand.STAND_SCENARIO_FILE)
+    scenario = stand.stand_scenario()
+    for row in plan.to_dict("records"):
+        write_run(stand.stand_recording(scenario, row, seed), out / row["file"])
+    return plan
+
+
+def write_rides(out: Path, seed: int, tractors: bool = True, studies: bool = True, stands: bool = False) -> int:
     """Write ``rides.csv`` and its recordings; returns the count.
 
     ``tractors``: the virtual tractors' seat and cab-floor recordings and the scenarios they
     name (:mod:`tyrelab.vehicle.virtual_rides`). ``studies``: the chapter 6-7 recordings
     (:func:`write_study_recordings`), which the simulate stage compares its predictions with.
+    ``stands``: the four-post stand and track recordings with wheel inputs
+    (:func:`write_stand_recordings`).
     """
     from .resources import scenarios_dir
     from .scenario_io import load_scenario
@@ -89,6 +108,8 @@ def write_rides(out: Path, seed: int, tractors: bool = True, studies: bool = Tru
         parts.append(plan)
     if studies:
         parts.append(write_study_recordings(out, seed))
+    if stands:
+        parts.append(write_stand_recordings(out, seed))
     if not parts:
         return 0
     plan = pd.concat(parts, ignore_index=True)
@@ -170,7 +191,7 @@ def generate_campaign(out: Path, scale: str = "small", seed: int = 1991, scatter
             "tyres": [{"tyre_id": m.params.tyre_id, "size": m.params.size, "age_years": m.params.age_years,
                        "deviation": round(m.deviation, 6), "carcass_stiffness_kN_per_m": round(m.params.k_rolling[0], 6),
                        "pressure_dependence_kN_per_m_bar": round(m.params.k_rolling[1], 6)} for m in population]}
-    n_rides = write_rides(out, seed) if rides else 0
+    n_rides = write_rides(out, seed, stands=True) if rides else 0
     if rides:
         meta["rides"] = n_rides
     io.write_text_atomic(json.dumps(meta, indent=2, sort_keys=True) + "\n", out / "generator.json")

@@ -27,7 +27,10 @@ if TYPE_CHECKING:  # pandas/pyarrow are imported where used: a no-op run never n
 
 __all__ = ["atomic_path", "write_parquet_atomic", "write_text_atomic", "write_texts_atomic", "file_sha256",
            "discover_campaigns", "os_error_line", "make_folder", "safe_name", "walk", "json_safe",
-           "raw_problem", "printable", "MissingExtra", "MAX_HEADER_BYTES", "head_lines"]
+           "raw_problem", "printable", "MissingExtra", "MAX_HEADER_BYTES", "head_lines", "TEXT_WIDTH", "fit_lines"]
+
+#: Widest line of a command's ``--format table`` by default (``--wide``: no limit), characters.
+TEXT_WIDTH = 100
 
 #: Longest header line of a CSV the pipeline reads in pieces (a vehicle recording, a track profile),
 #: bytes: it is read first, bounded, so that a file without line ends is refused instead of being read
@@ -80,6 +83,57 @@ def printable(text) -> str:
     if not _CONTROL.search(text):
         return text
     return _CONTROL.sub(lambda m: m.group().encode("unicode_escape").decode("ascii"), text)
+
+
+def _break_at(text: str, room: int) -> int:
+    """Where to break ``text`` so that its first part fits ``room``: after the last ``"; "`` or
+    ``", "``, or before the last ``" ("``, that leaves a first part of at least half the room, else
+    at the last space; -1 when there is no space to break at within the room."""
+    best = -1
+    for sep, keep in (("; ", 1), (", ", 1), (" (", 0)):
+        i = text.rfind(sep, 0, room - keep + 1)
+        if i >= 0 and i + keep >= room // 2:
+            best = max(best, i + keep)
+    if best < 0:
+        best = text.rfind(" ", 0, room + 1)
+    return best
+
+
+def fit_lines(lines, width: int | None = TEXT_WIDTH) -> list[str]:
+    """Lines of text no wider than ``width``: a longer line is broken after a ``;`` or ``,`` or
+    before a ``(`` where it can (else at a space), its continuation indented four spaces past its
+    own indent (a word longer than the room, e.g. a path, stays whole); ``width=None`` leaves every
+    line as it is (``--wide``).
+
+    See Also
+    --------
+    tyrelab.report.ride_page.format_table : a table that splits into blocks of columns instead.
+
+    Examples
+    --------
+    >>> for line in fit_lines(["  hours to EAV 2.2, to ELV 11.4 (at this mix of tasks); daily VDV 15.03 m/s^1.75"], 60):
+    ...     print(line)
+      hours to EAV 2.2, to ELV 11.4 (at this mix of tasks);
+          daily VDV 15.03 m/s^1.75
+    >>> fit_lines(["short"], None), fit_lines(["x" * 50], 10) == ["x" * 50]
+    (['short'], True)
+    """
+    if width is None:
+        return list(lines)
+    out = []
+    for line in lines:
+        indent = line[:len(line) - len(line.lstrip(" "))]
+        text, lead = line.strip(" "), indent
+        while len(lead) + len(text) > width:
+            cut = _break_at(text, width - len(lead))
+            if cut <= 0:  # a word longer than the room: whole, up to the next space
+                cut = text.find(" ", width - len(lead))
+                if cut < 0:
+                    break
+            out.append((lead + text[:cut]).rstrip())
+            text, lead = text[cut:].lstrip(" "), indent + "    "
+        out.append(lead + text)
+    return out
 
 
 def os_error_line(exc: OSError) -> str:

@@ -23,7 +23,8 @@ import logging
 import sys
 import time
 
-__all__ = ["configure", "bars_enabled", "Progress", "StderrHandler", "close_all"]
+__all__ = ["configure", "bars_enabled", "Progress", "StderrHandler", "close_all", "say_library_warnings_once",
+           "in_our_words"]
 
 log = logging.getLogger("tyrelab")
 
@@ -150,3 +151,50 @@ def close_all() -> None:
     """Remove every bar still shown (a step that ended early, by an error or Ctrl-C)."""
     for p in list(_open):
         p.close()
+
+
+#: A library warning's text (its start) -> what it means for our numbers, said once per command.
+OUR_WORDS = {
+    "All-NaN slice encountered": "a statistic over values that are all missing (NaN) is left NaN",
+    "Degrees of freedom <= 0": "a spread of fewer than two values is left NaN",
+    "Mean of empty slice": "a mean of no values is left NaN",
+    "invalid value encountered": "a computation met a value it cannot use (NaN or infinity); its result is NaN",
+    "divide by zero encountered": "a computation divided by zero; its result is infinite or NaN",
+    "overflow encountered": "a computation exceeded the range of floating point numbers; its result is infinite",
+    "underflow encountered": "a computation fell below the smallest floating point number; its result is 0",
+}
+
+
+def in_our_words(message: str) -> str:
+    """What a numpy/scipy/pandas warning means, in one line of ours (the library's words in brackets).
+
+    Examples
+    --------
+    >>> in_our_words("All-NaN slice encountered")
+    'a statistic over values that are all missing (NaN) is left NaN (All-NaN slice encountered)'
+    """
+    text = " ".join(str(message).split())
+    ours = next((v for k, v in OUR_WORDS.items() if text.startswith(k) or k in text), None)
+    return f"{ours} ({text})" if ours else f"a library warned: {text}"
+
+
+def say_library_warnings_once(logger: logging.Logger | None = None):
+    """From now on, say each different warning (``RuntimeWarning: All-NaN slice encountered`` and the
+    like) once, as one log line of ours at WARNING level (:func:`in_our_words`), instead of the
+    library's two lines with a source line on stderr. Returns the previous ``warnings.showwarning``
+    (to put back).
+    """
+    import warnings
+
+    logger = logger or log
+    said: set = set()
+    previous = warnings.showwarning
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        key = (getattr(category, "__name__", str(category)), str(message))
+        if key not in said:
+            said.add(key)
+            logger.warning("note: %s", in_our_words(str(message)))
+
+    warnings.showwarning = show
+    return previous

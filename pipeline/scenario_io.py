@@ -21,7 +21,7 @@ from .vehicle.scenario import parse_scenario as _parse_text
 from .vehicle.scenario import scenario_from_dict as _from_dict
 
 __all__ = ["MAX_CRG_BYTES", "MAX_PROFILE_BYTES", "MAX_SCENARIO_BYTES", "ScenarioError", "load_scenario", "parse_scenario", "read_crg", "scenario_from_dict",
-           "read_profile_csv", "huge_number_problems"]
+           "read_profile_csv", "huge_number_problems", "crg_files"]
 
 #: Largest OpenCRG file read, bytes (a text CRG holds about 20 bytes per height: 10 million heights).
 MAX_CRG_BYTES = 200_000_000
@@ -30,10 +30,14 @@ MAX_CRG_BYTES = 200_000_000
 MAX_PROFILE_BYTES = 200_000_000
 
 
-def read_crg(path: str | Path):
+def read_crg(path: str | Path, *, confine_to: str | Path | None = None):
     """Read an OpenCRG road with ``pyopencrg`` (checked as it reads: a short binary section or a bad
     header is refused), bounded before the grid is loaded (:data:`MAX_CRG_BYTES`,
     :data:`tyrelab.vehicle.crg.MAX_GRID_VALUES`).
+
+    With ``confine_to`` (a campaign's scenario folder, when the pipeline reads it), the data file a
+    ``$ROAD_CRG_FILE`` block references must lie inside that folder after symlinks (and environment
+    variables, which pyopencrg expands) are resolved: a campaign reads no file the build does not track.
 
     Returns
     -------
@@ -42,7 +46,8 @@ def read_crg(path: str | Path):
     Raises
     ------
     ValueError
-        One line naming the file and its problem (missing, too large, not a readable OpenCRG file).
+        One line naming the file and its problem (missing, too large, not a readable OpenCRG file,
+        a data file outside ``confine_to``).
     """
     import warnings
 
@@ -57,6 +62,18 @@ def read_crg(path: str | Path):
     size = path.stat().st_size
     if size > MAX_CRG_BYTES:
         raise ValueError(f"{path}: {size} bytes, above the {MAX_CRG_BYTES} bytes a CRG road may have")
+    problem = _crg_header_problem(path)  # what the data would take, from the header alone, before pyopencrg reads it
+    if confine_to is not None and not problem:
+        data = _crg_data_file(path)
+        try:
+            inside = data is None or data.is_relative_to(Path(confine_to).resolve())
+        except OSError:
+            inside = False
+        if not inside:
+            problem = (f"its data file {printable(data)} ($ROAD_CRG_FILE) is outside the campaign's folder "
+                       f"{printable(Path(confine_to).resolve())}: a campaign's road reads only its own files")
+    if problem:
+        raise ValueError(f"{path}: {problem}")
     try:
         with warnings.catch_warnings():  # minor remarks of pyopencrg's checks are not the user's problem
             warnings.simplefilter("ignore")
@@ -72,6 +89,82 @@ def read_crg(path: str | Path):
         text = "; ".join(lines) or type(exc).__name__
         raise ValueError(f"{path}: not a readable OpenCRG file ({text})") from None
     return CrgData.of(road, path.name)
+
+
+#: Bytes of one value in an OpenCRG data section, by format (binary float32/float64; ASCII fields of
+#: 10 and 20 characters on lines of 80, plus their line ends: an upper bound on the value count).
+_CRG_VALUE_BYTES = {"KRBI": 4, "KDBI": 8, "LRFI": 10, "LDFI": 20}
+
+
+def crg_files(path: str | Path) -> list[Path]:
+    """The files an OpenCRG road reads: the file, and the data file its ``$ROAD_CRG_FILE`` block
+    references (resolved, symlinks included; the header alone is read). What a cache key of a
+    result that read the road must hold (editing either re-runs it).
+
+    Examples
+    --------
+    >>> crg_files("no-such.crg")
+    [PosixPath('no-such.crg')]
+    """
+    path = Path(path)
+    data = _crg_data_file(path)
+    return [path] + ([data] if data is not None and data.resolve() != path.resolve() else [])
+
+
+def _crg_data_file(path: Path) -> Path | None:
+    """The data file of an OpenCRG road (the file itself, or the one its ``$ROAD_CRG_FILE`` block
+    names), resolved; None where the header cannot be read (the reader says why)."""
+    import warnings
+
+    try:
+        from pyopencrg import io as crg_io
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            _, ipl, _ = crg_io._decode_crg(str(path))
+    except Exception:  # noqa: BLE001 - a damaged header (or another pyopencrg)
+        return None
+    data = Path(ipl.filename)
+    return (data if data.is_absolute() or data.exists() else path.parent / data).resolve()
+
+
+def _crg_header_problem(path: Path) -> str | None:
+    """Why an OpenCRG file must be refused from its header alone (None: read it): its data file (a
+    ``$ROAD_CRG_FILE`` reference, else the file itself) above :data:`MAX_CRG_BYTES`, or more heights
+    than :data:`tyrelab.vehicle.crg.MAX_GRID_VALUES` by the data section's size (a sparse file of
+    holes included): about what reading the header costs, never the data."""
+    import warnings
+
+    from .vehicle.crg import MAX_GRID_VALUES
+
+    try:
+        from pyopencrg import io as crg_io
+
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            _, ipl, layout = crg_io._decode_crg(str(path))  # header and channel layout; no data read
+        data = Path(ipl.filename)
+        if not data.is_absolute():
+            data = path.parent / data if not data.exists() else data
+        size = data.stat().st_size
+    except Exception:  # noqa: BLE001 - a damaged header (or another pyopencrg): the reader below says what is wrong
+        return None
+    if data.resolve() != path.resolve() and size > MAX_CRG_BYTES:
+        return (f"its data file {printable(data.name)} ($ROAD_CRG_FILE) has {size} bytes, above the {MAX_CRG_BYTES} "
+                "bytes a CRG road may have")
+    width = _CRG_VALUE_BYTES.get(str(ipl.fmt))
+    channels = len(getattr(ipl, "kd_def", ()) or ())
+    heights = len(layout.get("z_cols", ()) or ()) if isinstance(layout, dict) else 0
+    if not width or not channels or not heights:
+        return None
+    values = max(0, size - int(ipl.data_offset)) // width
+    if width >= 10:  # ASCII: a line end per 80 characters
+        values = values * 80 // 81
+    grid = values // channels * heights
+    if grid > MAX_GRID_VALUES:
+        return (f"its data section of {size - int(ipl.data_offset)} bytes ({ipl.fmt}, {channels} channels) holds about "
+                f"{grid} heights, above the {MAX_GRID_VALUES} a CRG road may have")
+    return None
 
 
 def read_profile_csv(path: str | Path) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -152,7 +245,15 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
     except (tomllib.TOMLDecodeError, RecursionError):
         doc = None  # the parser below says what is wrong with the text
     _refuse_huge(doc, path, base_dir, confine)
-    return _parse_text(text, base_dir, path, confine=confine, read_profile=read_profile_csv, read_crg=read_crg)
+    return _parse_text(text, base_dir, path, confine=confine, read_profile=read_profile_csv,
+                       read_crg=_crg_reader(base_dir, confine))
+
+
+def _crg_reader(base_dir, confine: bool):
+    """:func:`read_crg` as a scenario reads it: confined to ``base_dir`` when ``confine`` is."""
+    import functools
+
+    return functools.partial(read_crg, confine_to=base_dir) if confine else read_crg
 
 
 def huge_number_problems(doc, prefix: str = "", depth: int = 0) -> list[str]:
@@ -227,7 +328,8 @@ def scenario_from_dict(doc, base_dir: str | Path = ".", path: str | Path | None 
 
     if isinstance(doc, Mapping):
         _refuse_huge(dict(doc), path, base_dir, confine)
-    return _from_dict(doc, base_dir, path, confine=confine, read_profile=read_profile_csv, read_crg=read_crg)
+    return _from_dict(doc, base_dir, path, confine=confine, read_profile=read_profile_csv,
+                      read_crg=_crg_reader(base_dir, confine))
 
 
 #: Largest scenario file read, bytes (the shipped ones are ~2 kB).

@@ -55,7 +55,8 @@ from . import io
 from ._hold import hold
 
 __all__ = ["READ_ONLY_STATEMENTS", "SANDBOX_SETTINGS", "SPILL_FOLDER", "QueryLimits", "QueryTimeout", "WriteRefused",
-    "view_name", "build_warehouse", "warehouse_path", "connect_read_only", "check_read_only", "query", "query_all", "parse_size", "iter_query", "memory_bound", "BATCH_ROWS"]
+    "view_name", "build_warehouse", "warehouse_path", "connect_read_only", "check_read_only", "query", "query_all", "parse_size", "iter_query", "memory_bound", "BATCH_ROWS",
+    "did_you_mean", "error_line"]
 
 log = logging.getLogger("tyrelab")
 
@@ -268,7 +269,7 @@ def build_warehouse(db_path: Path, parquet_dir: Path, published: dict[str, Path]
     sources: dict[str, Path] = {}
     for p in sorted(parquet_dir.glob("*.parquet")):
         if not pq.read_schema(p).names:
-            log.warning("warehouse: %s has no columns; no table made", p)
+            log.debug("warehouse: %s has no columns; no table made", p)  # legitimately empty: said with -v only
             continue
         sources[view_name(p.stem)] = p
     for name, path in (published or {}).items():
@@ -357,6 +358,28 @@ def connect_read_only(db_path: Path, limits: QueryLimits | None = None) -> duckd
     ``limits.spill_limit_bytes`` (4 GiB without ``limits``), or nowhere when the build folder
     is read-only; ``limits`` also bounds the memory (DuckDB's default, 80 % of the machine's,
     without). The statement timeout is :func:`query_all`'s.
+
+    See Also
+    --------
+    query : one query's result as a DataFrame.
+    iter_query : results streamed in batches (what ``tyrelab sql`` prints).
+
+    Examples
+    --------
+    >>> import tempfile, pandas as pd
+    >>> from tyrelab import io
+    >>> build = Path(tempfile.mkdtemp())
+    >>> _ = io.write_parquet_atomic(pd.DataFrame({"k": [1, 2]}), build / "parquet" / "t.parquet")
+    >>> _ = build_warehouse(build / "warehouse.duckdb", build / "parquet")
+    >>> con = connect_read_only(build)
+    >>> con.execute("SELECT count(*) FROM t").fetchone()[0]
+    2
+    >>> try:
+    ...     con.execute("CREATE TABLE x AS SELECT 1")
+    ... except duckdb.Error as exc:
+    ...     print(type(exc).__name__)
+    InvalidInputException
+    >>> con.close()
     """
     db_path = warehouse_path(db_path)
     if not db_path.is_file():
@@ -468,7 +491,13 @@ def _pandas(batch) -> pd.DataFrame:
                               (pa.int64(), pd.Int64Dtype()), (pa.uint8(), pd.UInt8Dtype()),
                               (pa.uint16(), pd.UInt16Dtype()), (pa.uint32(), pd.UInt32Dtype()),
                               (pa.uint64(), pd.UInt64Dtype()))}
-    df = batch.to_pandas(types_mapper=ints.get)
+    names = list(batch.schema.names)
+    if len(set(names)) < len(names):  # SELECT 1 AS a, 'x' AS a: pyarrow mixes up columns of one name
+        df = pa.Table.from_batches([batch]).rename_columns([f"c{i}" for i in range(len(names))]).to_pandas(
+            types_mapper=ints.get)
+        df.columns = names
+    else:
+        df = batch.to_pandas(types_mapper=ints.get)
     for i, field in enumerate(batch.schema):  # text as DuckDB gives it: objects, a NULL as None (not NaN)
         if pa.types.is_string(field.type) or pa.types.is_large_string(field.type):
             col = df.iloc[:, i].astype(object)
@@ -621,5 +650,133 @@ def query_all(db_path: Path, sql: str, limits: QueryLimits | None = None) -> lis
 
 def query(db_path: Path, sql: str, limits: QueryLimits | None = None) -> pd.DataFrame:
     """Run a read-only query against the warehouse (the file, or the build folder holding it) and
-    return a DataFrame (of the last statement)."""
+    return a DataFrame (of the last statement).
+
+    See Also
+    --------
+    query_all : every statement's result.
+    error_line : one line, with the closest names, for a query DuckDB refuses.
+
+    Examples
+    --------
+    >>> import tempfile, pandas as pd
+    >>> from tyrelab import io
+    >>> build = Path(tempfile.mkdtemp())
+    >>> _ = io.write_parquet_atomic(pd.DataFrame({"tyre_id": ["T1", "T2"], "k": [300.0, 350.0]}),
+    ...                             build / "parquet" / "tyres.parquet")
+    >>> _ = build_warehouse(build / "warehouse.duckdb", build / "parquet")
+    >>> query(build, "SELECT tyre_id, k FROM tyres WHERE k > 320")
+      tyre_id      k
+    0      T2  350.0
+    """
     return query_all(db_path, sql, limits)[-1]
+
+
+#: DuckDB's messages for a name it does not know: (pattern of the unknown name, what it is).
+_UNKNOWN_NAME = (
+    (re.compile(r'Referenced column "([^"]+)" not found'), "column"),
+    (re.compile(r'does not have a column named "([^"]+)"'), "column"),
+    (re.compile(r'Table "[^"]+" does not have a column with name "([^"]+)"'), "column"),
+    (re.compile(r'Table with name ([^ ]+) does not exist'), "table"),
+)
+
+
+def did_you_mean(name: str, candidates) -> list[str]:
+    """The candidates closest to a misspelt ``name`` (at most three, best first; case ignored).
+
+    Parameters
+    ----------
+    name : str
+        The name as the user wrote it.
+    candidates : iterable of str
+        The names that exist.
+
+    Returns
+    -------
+    list of str
+        Close candidates by :func:`difflib.get_close_matches` (ratio at least 0.6), ``[]`` if none.
+
+    See Also
+    --------
+    error_line : the one line ``tyrelab sql`` prints for a query DuckDB refuses.
+
+    Examples
+    --------
+    >>> did_you_mean("tyre_idd", ["tyre_id", "pressure_bar", "tyre_size"])
+    ['tyre_id', 'tyre_size']
+    >>> did_you_mean("PRESSURE", ["pressure_bar"])
+    ['pressure_bar']
+    >>> did_you_mean("zzz", ["tyre_id"])
+    []
+    """
+    import difflib
+
+    names = {str(c).lower(): str(c) for c in candidates}
+    return [names[m] for m in difflib.get_close_matches(str(name).lower(), list(names), n=3, cutoff=0.6)]
+
+
+def error_line(db_path: Path, exc: BaseException) -> str:
+    """One line for a query DuckDB refused: the first line of its message and, where it names a
+    column or table the warehouse does not have, the closest names that it has ("did you mean").
+
+    DuckDB's own candidate list (a binder error's second line) ranks every column of the query's
+    tables; this one ranks the names of the whole warehouse by spelling (:func:`did_you_mean`).
+
+    See Also
+    --------
+    did_you_mean : the ranking.
+
+    Examples
+    --------
+    >>> import tempfile, pandas as pd
+    >>> from tyrelab import io
+    >>> tmp = Path(tempfile.mkdtemp())
+    >>> _ = io.write_parquet_atomic(pd.DataFrame({"tyre_id": ["T1"], "pressure_bar": [1.2]}), tmp / "parquet" / "tyres.parquet")
+    >>> _ = build_warehouse(tmp / "warehouse.duckdb", tmp / "parquet")
+    >>> try:
+    ...     query(tmp, "SELECT tyre_idd FROM tyres")
+    ... except duckdb.Error as exc:
+    ...     print(error_line(tmp, exc))
+    Binder Error: Referenced column "tyre_idd" not found in FROM clause; did you mean "tyre_id"?
+    >>> try:
+    ...     query(tmp, "SELECT * FROM tyre")
+    ... except duckdb.Error as exc:
+    ...     print(error_line(tmp, exc))
+    Catalog Error: Table with name tyre does not exist; did you mean "tyres"?
+    """
+    text = str(exc)
+    first = text.splitlines()[0] if text else type(exc).__name__
+    for pattern, kind in _UNKNOWN_NAME:
+        m = pattern.search(text)
+        if not m:
+            continue
+        try:
+            con = connect_read_only(db_path)
+        except (OSError, duckdb.Error):
+            return first
+        try:
+            if kind == "table":
+                names = [r[0] for r in con.execute(
+                    "SELECT table_name FROM duckdb_tables() WHERE database_name = 'warehouse' UNION "
+                    "SELECT view_name FROM duckdb_views() WHERE database_name = 'warehouse' AND NOT internal").fetchall()]
+            else:
+                names = [r[0] for r in con.execute(
+                    "SELECT DISTINCT column_name FROM duckdb_columns() WHERE database_name = 'warehouse'").fetchall()]
+                if any(r[0] == "runs" for r in con.execute("SELECT view_name FROM duckdb_views() "
+                                                            "WHERE database_name = 'warehouse' AND NOT internal").fetchall()):
+                    try:
+                        names += [r[0] for r in con.execute("DESCRIBE runs").fetchall()]
+                    except duckdb.Error:
+                        pass
+        except duckdb.Error:
+            return first
+        finally:
+            con.close()
+        bindings = re.search(r"Candidate bindings: (.*)", text)  # the columns of the query's own tables
+        close = did_you_mean(m.group(1), re.findall(r'"([^"]+)"', bindings.group(1))) if bindings else []
+        close = close or did_you_mean(m.group(1), names)
+        if close:
+            return f"{first.rstrip().rstrip('!')}; did you mean " + " or ".join(f'"{c}"' for c in close) + "?"
+        return first
+    return first
+

@@ -272,7 +272,7 @@ def test_ride_table_one_number_format_per_quantity_under_the_reports_names():
     from tyrelab.report.render import column_label
 
     doc = _ride_doc()
-    text = format_table(doc)
+    text = format_table(doc, width=None)  # --wide: every column of a row on one line
     lines = text.splitlines()
     first = next(i for i, line in enumerate(lines) if line.split()[:1] == ["speed"])
     rows = [line.split() for line in lines[first:] if re.match(r"\s*\d", line)]
@@ -293,6 +293,23 @@ def test_ride_table_one_number_format_per_quantity_under_the_reports_names():
     assert column_label("a_wz_m_s2") == "a_wz (m/s²)"
 
 
+def test_ride_table_fits_100_columns_and_keeps_every_number():
+    """Issue 47: the ride table was 230-480 characters wide. By default every line fits 100 columns: the
+    prose wraps and the per-speed table splits into blocks that repeat the speed; ``--wide`` has it whole."""
+    from tyrelab.report.ride_page import format_table
+
+    doc = _ride_doc()
+    doc["warnings"] = ["tyres.rear: W·R = 718.1 in² is above the thesis' data (traction tyres of Tables II-III: "
+                       "326.4-699.2 in²) by 18.9 in² (2.7 %) " * 2]
+    narrow, wide = format_table(doc), format_table(doc, width=None)
+    assert max(map(len, narrow.splitlines())) <= 100 < max(map(len, wide.splitlines()))
+    assert sorted(narrow.split()) != sorted(wide.split())  # wrapped and split, but
+    numbers = lambda text: sorted(w for w in text.split() if w[:1].isdigit() and w not in ("4", "8", "12"))
+    assert numbers(narrow) == numbers(wide)  # every number is there, once (the speeds repeat per block)
+    blocks = narrow.split("\n\n")
+    assert len(blocks) > 1 and all("speed" in b for b in blocks)
+
+
 def test_progress_iterate_counts_an_item_when_the_body_is_done_with_it(caplog):
     p = progress.Progress("rides: c1", 3, logger=logging.getLogger("tyrelab"), unit="recordings")
     seen = []
@@ -303,3 +320,16 @@ def test_progress_iterate_counts_an_item_when_the_body_is_done_with_it(caplog):
                 continue  # a refused row is counted too
     assert seen == [("a", 0), ("b", 1), ("c", 2)] and p.done == 3
     assert "rides: c1: 3/3 recordings" in caplog.text
+
+
+def test_a_misspelt_scenario_key_gets_did_you_mean(tmp_path, capsys):
+    """Issue 47: ``--set seat.dampingratio=0.2`` said "not a numeric scenario key" and no more."""
+    from tests.scenarios import scenario_text, write
+
+    path = write(tmp_path, scenario_text(speeds="[8]"))
+    assert cli.main(["-q", "ride", str(path), "--set", "tractor.mas_kg=4000,4500"]) == 2
+    assert "did you mean 'tractor.mass_kg'" in capsys.readouterr().err
+    bad = tmp_path / "bad.toml"
+    bad.write_text(path.read_text().replace("[tractor]", "[tractor]\nmas_kg = 1", 1))
+    assert cli.main(["-q", "ride", str(bad)]) == 2
+    assert "did you mean 'tractor.mass_kg'" in capsys.readouterr().err

@@ -5,7 +5,8 @@ Markdown, as ``docs/*.md`` that the report ships), sphinx-argparse (the command 
 :func:`tyrelab.cli.build_parser`), sphinxcontrib-programoutput (the commands of the tutorials run
 while the pages are built, their output shown) and sphinx.ext.doctest (the Python examples run by
 ``sphinx-build -b doctest``). ``_ext/tyrelab_reference.py`` writes the scenario-key and warehouse
-references from the schemas and the stages' declarations.
+references from the schemas and the stages' declarations; ``_ext/tyrelab_outputs.py`` checks that
+every output shown in the README and ``docs/*.md`` is what its command prints.
 """
 
 import os
@@ -30,6 +31,7 @@ extensions = [
     "sphinxarg.ext",
     "sphinxcontrib.programoutput",
     "tyrelab_reference",
+    "tyrelab_outputs",
 ]
 source_suffix = {".md": "markdown", ".rst": "restructuredtext"}
 exclude_patterns = ["_build", "_ext"]

@@ -621,6 +621,10 @@ def _all_modes(x, w, h, wt, lb, ub) -> bool:
     at_bound = (x <= lb + 1e-3 * (ub - lb)) | (x >= ub - 1e-3 * (ub - lb))
     if at_bound.any():
         return False
+    fd = np.sort(x[:r])
+    df = float(np.median(np.diff(w))) / (2 * np.pi) if w.size > 1 else 0.0
+    if r > 1 and np.min(np.diff(fd)) < 2 * df:
+        return False  # two poles within two bins: one peak split, not two modes the bins can resolve
     phi = _basis(w, x[:r], x[r:])
     peak = np.zeros(r)
     for j in range(h.shape[1]):

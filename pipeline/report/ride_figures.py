@@ -236,7 +236,21 @@ def aw_against_speed(speeds: pd.DataFrame, hours_per_day: float = 8.0) -> str | 
     axes = axes[0]
     top = max(exposure_levels(hours_per_day)["ELV"], 0.0)
     for ax, (col, k_axis, title) in zip(axes, axes_cols):
+        # a variant whose model has no motion on this axis (MF698T: no fore-aft element) gives 0
+        # throughout: not a measured zero, so not drawn; said in the panel
+        still = [str(name) for name, g in groups if not (g[col].fillna(0.0) != 0).any()]
+        if len(still) == len(groups):  # the ticks stay: the panels share their y axis
+            ax.text(0.5, 0.5, "zero throughout\n(no motion on this axis\nin this model)", ha="center", va="center",
+                    transform=ax.transAxes, fontsize=8, color="0.35")
+            ax.set_title(title, fontsize=8)
+            ax.set_xlabel("speed, km/h")
+            continue
+        if still and key:
+            ax.text(0.02, 0.98, "not drawn, no motion on this axis in its model:\n" + ", ".join(still),
+                    transform=ax.transAxes, ha="left", va="top", fontsize=6, color="0.35")
         for k, (name, g) in enumerate(groups):
+            if key and str(name) in still:
+                continue
             ax.plot(g["speed_km_h"], k_axis * g[col], marker=MARKERS[k % len(MARKERS)], lw=0.9,
                     label=str(name) if name is not None else "simulated")
             top = max(top, float(np.nanmax(k_axis * g[col].to_numpy(float))))

@@ -20,7 +20,7 @@ from .ride_sections import (AXIS_WORDS, PRESSURE_COLUMNS, answer, scenario_figur
 from .render import column_label, environment, format_number
 from .tables import significant_decimals, uncertainty_decimals
 
-__all__ = ["SPEED_COLUMNS", "QUANTITIES", "method_words", "number_formats", "format_table", "figures", "psd_edge_note", "render_page", "write_outputs", "dumps", "variants",
+__all__ = ["SPEED_COLUMNS", "QUANTITIES", "method_words", "number_formats", "below_precision", "format_table", "figures", "psd_edge_note", "render_page", "write_outputs", "dumps", "variants",
            "variant_label", "swept_keys"]
 
 #: Columns of the per-speed table (text and HTML), in order; those no row has are left out. A
@@ -50,6 +50,11 @@ QUANTITIES = {
 }
 #: Decimals of a fraction of the record (lift-off): one sample in a thousand.
 FRACTION_DECIMALS = 3
+#: Decimals of a probability (a spectral row's lift-off probability); one below it is "< 1e-4".
+PROBABILITY_DECIMALS = 4
+#: Quantities whose value between 0 and the printed precision is shown as ``< 1e-N``, not as 0
+#: (:func:`below_precision`): a tyre that left the ground for 2e-5 of the record did leave it.
+SMALL_SHOWN_AS_BOUND = ("lift-off fraction", "lift-off probability")
 #: Columns whose empty value (JSON null) is "never reached" (inf), not "no value".
 INFINITE_WHEN_EMPTY = ("hours_to_eav", "hours_to_elv")
 #: Columns shown as given (the scenario's speeds and pressures).
@@ -95,7 +100,7 @@ def _rows(doc: dict) -> list[dict]:
     blocks = doc.get("sweep") or [doc]
     out = []
     for b in blocks:
-        named = {"variant": ", ".join(f"{k.rpartition('.')[2]}={v:g}" for k, v in b["variant"].items())} \
+        named = {"variant": ", ".join(f"{k}={v:g}" for k, v in b["variant"].items())} \
             if b.get("variant") else {}
         time_rows = {t["speed_km_h"]: t for t in b.get("time_domain", [])}
         out += [{**_beside(row, time_rows), **named} for row in b["speeds"]]
@@ -184,7 +189,8 @@ def number_formats(doc: dict) -> dict:
     for quantity, cols in QUANTITIES.items():
         values = [r[c] for r in rows for c in cols if c in r and isinstance(r[c], (int, float))]
         for c in cols:  # a fraction of the record: to 0.001 always (a 0 is a measured none, "0.000")
-            columns[c] = FRACTION_DECIMALS if quantity == "lift-off fraction" else significant_decimals(values)
+            columns[c] = (FRACTION_DECIMALS if quantity == "lift-off fraction" else PROBABILITY_DECIMALS
+                          if quantity == "lift-off probability" else significant_decimals(values))
     tyres = [b["tyres"][axle] for b in blocks for axle in ("front", "rear")]
     u = [COVERAGE_95 * t.get("stiffness_u_kN_per_m", 0.0) for t in tyres if t.get("stiffness_u_kN_per_m")]
     stiffness = uncertainty_decimals(u) if u else significant_decimals([t["stiffness_kN_per_m"] for t in tyres])
@@ -198,41 +204,150 @@ def number_formats(doc: dict) -> dict:
             "nodal": significant_decimals(nodal)}
 
 
+_BOUNDED_COLUMNS = {c for q in SMALL_SHOWN_AS_BOUND for c in QUANTITIES[q]}
+
+
+def below_precision(value, decimals: int | None, column: str) -> str | None:
+    """``"< 1e-N"`` for a lift-off fraction or probability above 0 that ``N`` decimals would print
+    as 0 (a probability of 2.2e-5 is not "0.0000"); ``None`` for any other value or column.
+
+    Examples
+    --------
+    >>> below_precision(2.2e-5, 4, "lift_off_probability_rear"), below_precision(0.0, 3, "lift_off_fraction_front")
+    ('< 1e-4', None)
+    >>> below_precision(0.0004, 3, "lift_off_fraction_front"), below_precision(2e-5, 3, "a_wz_m_s2")
+    ('< 1e-3', None)
+
+    See Also
+    --------
+    number_formats : the decimals of each column.
+    """
+    if column not in _BOUNDED_COLUMNS or decimals is None or not isinstance(value, (int, float)):
+        return None
+    return f"< 1e-{decimals}" if 0 < value < 0.5 * 10.0 ** -decimals else None
+
+
 def _cell(value, decimals: int | None, column: str = "") -> str:
     if value is None:  # hours to a value the vibration never reaches; else no value (a spectral row's MTVV)
         return "inf" if column in INFINITE_WHEN_EMPTY else "–"
     if isinstance(value, str):
         return value
+    bound = below_precision(value, decimals, column)
+    if bound:
+        return bound
     return f"{value:g}" if decimals is None else format_number(float(value), decimals=decimals)
 
 
-def _text_table(header: list[str], cells: list[list[str]], numeric: list[bool]) -> list[str]:
+def _html_cell(value, decimals: int | None, column: str) -> str:
+    """A per-speed cell of the page: as ``format_number`` (the report's), a lift-off value below
+    the printed precision as ``< 1e-N`` (:func:`below_precision`)."""
+    return below_precision(value, decimals, column) or format_number(value, decimals=decimals)
+
+
+def _text_table(header: list[str], cells: list[list[str]], numeric: list[bool], keys: int = 0,
+                width: int | None = None) -> list[str]:
     """Lines of a plain-text table; each header is the report's column label wrapped over lines
-    (its unit on the last) to the width of the column's values or longest word."""
+    (its unit on the last) to the width of the column's values or longest word.
+
+    A table wider than ``width`` is split into blocks of columns, one under the other (a blank line
+    between), each repeating the first ``keys`` columns (the speed, the variant) so that every row
+    can be read across; ``width=None``: one block.
+    """
     wrapped = []
     for h, col in zip(header, zip(*cells) if cells else [()] * len(header)):
         name, _, unit = h.partition(" (")
         words = name.split()
-        width = max([len(v) for v in col] + [len(w) for w in words] + [len(unit) + 1 if unit else 0, MIN_HEADER_WIDTH])
-        lines = textwrap.wrap(name, width=width, break_long_words=False) + ([f"({unit}"] if unit else [])
-        wrapped.append((width, lines))
-    depth = max(len(lines) for _, lines in wrapped)
+        size = max([len(v) for v in col] + [len(w) for w in words] + [len(unit) + 1 if unit else 0, MIN_HEADER_WIDTH])
+        lines = textwrap.wrap(name, width=size, break_long_words=False) + ([f"({unit}"] if unit else [])
+        wrapped.append((size, lines))
+
+    def block(index: list[int]) -> list[str]:
+        depth = max(len(wrapped[i][1]) for i in index)
+        out = []
+        for d in range(depth):
+            parts = []
+            for i in index:
+                size, lines = wrapped[i]
+                text = lines[d] if d < len(lines) else ""
+                parts.append(text.rjust(size) if numeric[i] else text.ljust(size))
+            out.append("  ".join(parts).rstrip())
+        for row in cells:
+            out.append("  ".join(row[i].rjust(wrapped[i][0]) if numeric[i] else row[i].ljust(wrapped[i][0])
+                                 for i in index).rstrip())
+        return out
+
+    if not wrapped:
+        return []
+    lead = list(range(min(keys, len(wrapped))))
+    blocks, current = [], list(lead)
+    used = sum(wrapped[i][0] + 2 for i in lead)
+    for i in range(len(lead), len(wrapped)):
+        need = wrapped[i][0] + 2
+        if width is not None and len(current) > len(lead) and used + need - 2 > width:
+            blocks.append(current)
+            current, used = list(lead), sum(wrapped[j][0] + 2 for j in lead)
+        current.append(i)
+        used += need
+    blocks.append(current)
     out = []
-    for i in range(depth):
-        parts = []
-        for (width, lines), num in zip(wrapped, numeric):
-            text = lines[i] if i < len(lines) else ""
-            parts.append(text.rjust(width) if num else text.ljust(width))
-        out.append("  ".join(parts).rstrip())
-    for row in cells:
-        out.append("  ".join(v.rjust(w) if num else v.ljust(w) for v, (w, _), num in zip(row, wrapped, numeric)).rstrip())
+    for n, index in enumerate(blocks):
+        out += ([""] if n else []) + block(index)
     return out
 
 
-def format_table(doc: dict) -> str:
+#: A variant name longer than this is a number in the table, with the names listed above it.
+VARIANT_WIDTH = 24
+
+
+def _narrow(doc: dict, rows: list[dict]) -> tuple[list[str], list[dict], list[tuple[str, str]]]:
+    """The per-speed columns and rows as a narrow table shows them (``--format table``, the page): a
+    tyre pressure every row shares is left out (the tyre lines above give it), and variant names
+    longer than :data:`VARIANT_WIDTH` become numbers, with ``(number, name)`` of each in the legend."""
+    cols = [c for c in _columns(doc, rows) if c not in ("front_pressure_bar", "rear_pressure_bar")
+            or len({r.get(c) for r in rows}) > 1]
+    names = list(dict.fromkeys(r["variant"] for r in rows if r.get("variant")))
+    if not names or max(map(len, names)) <= VARIANT_WIDTH:
+        return cols, rows, []
+    number = {name: str(i) for i, name in enumerate(names, start=1)}
+    return cols, [{**r, "variant": number[r["variant"]]} if r.get("variant") else r for r in rows], \
+        [(number[name], name) for name in names]
+
+
+def format_table(doc: dict, width: int | None = io.TEXT_WIDTH) -> str:
     """A plain-text summary of a ride document (what ``--format table`` prints): the JSON's
     quantities under the report's names (``a_wz (m/s²)``), one number format per quantity
-    (:func:`number_formats`)."""
+    (:func:`number_formats`).
+
+    No line is wider than ``width`` (``--format table``'s 100 characters; ``None``, ``--wide``: one
+    line per row of every column): the text wraps, the per-speed table splits into blocks of
+    columns that repeat the speed and variant (:func:`_text_table`), and variant names longer than
+    :data:`VARIANT_WIDTH` are numbered in the table and listed above it.
+
+    See Also
+    --------
+    number_formats : the decimals of each quantity.
+    render_page : the same as an HTML page.
+
+    Examples
+    --------
+    >>> doc = {"name": "demo", "track": "a track", "hours_per_day": 8, "natural_frequencies_Hz": {"bounce": 2.5},
+    ...        "nodal_points_m": {}, "tyres": {a: {"size": "13.6R38", "pressure_bar": 1.2, "stiffness_kN_per_m": 350.0,
+    ...        "stiffness_source": "given", "damping_kN_s_per_m": 1.0, "damping_source": "given"} for a in ("front", "rear")},
+    ...        "speeds": [{"speed_km_h": 8.0, "a_wz_m_s2": 0.61, "a8_m_s2": 0.61, "a8_axis": "z", "hours_to_eav": 5.4,
+    ...                    "hours_to_elv": 28.4, "verdict": "above action value", "simulation": "linear"}]}
+    >>> print(format_table(doc).split("  a_wz: W_k")[0])
+    demo
+      track: a track; daily exposure 8 h
+      front 13.6R38 at 1.2 bar: K = 350 kN/m (given), C = 1 kN s/m (given)
+      rear  13.6R38 at 1.2 bar: K = 350 kN/m (given), C = 1 kN s/m (given)
+      bounce 2.50 Hz
+       speed      a_wz        a8  a8 axis   hours to  hours to  verdict             simulation
+      (km/h)    (m/s²)    (m/s²)                 eav       elv
+           8     0.610     0.610  z              5.4      28.4  above action value  linear
+    <BLANKLINE>
+    >>> max(len(line) for line in format_table(doc, width=60).splitlines()) <= 60
+    True
+    """
     fmt = number_formats(doc)
     lines = [f"{doc['name']}", f"  track: {doc['track']}; daily exposure {doc['hours_per_day']:g} h"]
     if doc.get("road_class"):
@@ -266,6 +381,10 @@ def format_table(doc: dict) -> str:
         if nf[mode] is None:
             continue
         text = f"{mode} {format_number(nf[mode], decimals=fmt['frequency'])} Hz"
+        if mode in doc.get("damping_ratio", {}):  # issue 42: the modes with their damping
+            z = doc["damping_ratio"][mode]
+            text = (f"{mode} overdamped (real root at {format_number(nf[mode], decimals=fmt['frequency'])} Hz)"
+                    if z is None else text + f" ζ {format_number(z, decimals=2)}")
         lo, hi = ci.get(mode) or (None, None)
         if lo is not None and hi is not None and hi > lo:
             text += (f" [{format_number(lo, decimals=fmt['frequency'])}, "
@@ -277,19 +396,27 @@ def format_table(doc: dict) -> str:
             text += f" (node {format_number(abs(nodal[mode]), decimals=fmt['nodal'])} m {where} the CG)"
         parts.append(text)
     lines.append("  " + ", ".join(parts))
+    for entry in (doc.get("modes_by_speed") or [])[1:]:  # issue 42: each speed its own series dampers
+        lines.append(f"  modes at {entry['speed_km_h']:g} km/h: " + ", ".join(
+            f"{m} overdamped ({format_number(d['natural_frequency_Hz'], decimals=fmt['frequency'])} Hz)"
+            if d["overdamped"] else f"{m} {format_number(d['natural_frequency_Hz'], decimals=fmt['frequency'])} Hz "
+            f"ζ {format_number(d['damping_ratio'], decimals=2)}" for m, d in entry["modes"].items() if d is not None))
     if fmt["frequency_intervals"]:
         lines.append("  [ ]: 95 % interval from the tyre stiffness uncertainty; K ± the 95 % half-width")
     for w in doc.get("warnings", []):
         lines.append(f"  warning: {w}")
     rows = _rows(doc)
-    cols = _columns(doc, rows)
+    cols, rows, legend = _narrow(doc, rows) if width is not None else (_columns(doc, rows), rows, [])
+    lines += [f"  variant {n}: {name}" for n, name in legend]
     cells = [[_cell(r.get(c), fmt["columns"].get(c), c) for c in cols] for r in rows]
     numeric = [c not in TEXT_COLUMNS for c in cols]
-    lines += _text_table([column_label(c) for c in cols], cells, numeric)
-    lines.append("  a_wz: W_k-weighted, a_wx and a_wy: W_d-weighted r.m.s. (ISO 2631-1); expected: the "
-                 "frequency-domain expectation; a_v: vector sum; a8 = A(8) = max(1.4 a_wx, 1.4 a_wy, a_wz) "
-                 "sqrt(T/8 h); vdv: vibration dose value; inf: never reached")
-    lines += ["  " + line for line in textwrap.wrap(method_words(rows), 110)]
+    keys = next((i for i, c in enumerate(cols) if c not in (*KEY_COLUMNS, "variant")), len(cols))
+    lines = io.fit_lines(lines, width)
+    lines += _text_table([column_label(c) for c in cols], cells, numeric, keys, width)
+    lines += io.fit_lines(["  a_wz: W_k-weighted, a_wx and a_wy: W_d-weighted r.m.s. (ISO 2631-1); expected: the "
+                           "frequency-domain expectation; a_v: vector sum; a8 = A(8) = max(1.4 a_wx, 1.4 a_wy, a_wz) "
+                           "sqrt(T/8 h); vdv: vibration dose value; inf: never reached"], width)
+    lines += ["  " + line for line in textwrap.wrap(method_words(rows), min(110, (width or 112) - 2))]
     return "\n".join(lines) + "\n"
 
 
@@ -341,12 +468,20 @@ def render_page(results: list[RideResult], doc: dict | None = None) -> str:
     doc = doc or result_json(results)
     rows = _rows(doc)
     fmt = number_formats(doc)  # one number format per quantity, as --format table
-    return environment().get_template("ride.html.j2").render(
-        r=doc, description=results[0].scenario.description, columns=_columns(doc, rows), rows=rows,
+    columns, shown, legend = _narrow(doc, rows)  # fits a 1400 px window: long variant names numbered
+    # the Tyres and Natural frequencies sections: the variant at the scenario's own values, as the
+    # verdict and the spectra (said), not whichever variant came first
+    nominal = nominal_result(results)
+    blocks = doc.get("sweep") or []
+    n = blocks[results.index(nominal)] if len(blocks) == len(results) > 1 else doc
+    shown_words = (f"the scenario's own values ({variant_label(nominal)})" if nominal.nominal else
+                   f"the first variant ({variant_label(nominal)}: the sweep does not hold the scenario's own values)")
+    return environment().get_template("ride.html.j2").render(n=n, shown_words=shown_words,
+        r=doc, description=results[0].scenario.description, columns=columns, rows=shown, legend=legend,
         method_note=method_words(rows),
         figures=figures(results), variants=variants(results), three_d=results[0].scenario.tractor.three_d,
         version=__version__, decimals=fmt["columns"], fmt=fmt, answer=answer(results_table(results)),
-        axis_words=AXIS_WORDS, warning_groups=warning_groups(doc.get("warnings", [])),
+        axis_words=AXIS_WORDS, warning_groups=warning_groups(doc.get("warnings", [])), cell=_html_cell,
         working_source=results[0].scenario.exposure.working_speed_source)
 
 

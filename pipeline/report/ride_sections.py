@@ -26,9 +26,10 @@ __all__ = ["PRESSURE_COLUMNS", "VERDICT_ORDER", "AXIS_WORDS", "answer", "split_w
 
 
 def variant_name(front_bar: float, rear_bar: float, swept: dict) -> str:
-    """A variant's name: its tyre pressures and swept values (``"1.6/1.2 bar, mass_kg=500"``)."""
+    """A variant's name: its tyre pressures and swept values, each by its whole key
+    (``"1.6/1.2 bar, tractor.mass_kg=500"``: ``tyres.front.…`` and ``tyres.rear.…`` differ)."""
     parts = [f"{front_bar:g}/{rear_bar:g} bar"]
-    parts += [f"{k.rpartition('.')[2]}={v:g}" for k, v in swept.items()]
+    parts += [f"{k}={v:g}" for k, v in swept.items()]
     return ", ".join(parts)
 
 

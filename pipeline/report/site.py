@@ -127,18 +127,25 @@ class Missing:
         What is missing, as the start of a sentence (``"Our table_xiii"``).
     empty : bool
         The table exists but has no rows (else it was not produced yet).
+    nothing_to_draw : bool
+        A figure whose input table exists (its stage ran) but holds none of what it draws.
 
     Examples
     --------
     >>> str(Missing("simulate", "Table table_xiii"))
     'Table table_xiii not produced yet by stage simulate.'
+    >>> str(Missing("analyse", "Fig. 21 (results)", empty=True, nothing_to_draw=True))
+    'Fig. 21 (results): stage analyse ran, but its table holds nothing this figure draws.'
     """
 
     stage: str
     subject: str
     empty: bool = False
+    nothing_to_draw: bool = False
 
     def __str__(self) -> str:
+        if self.nothing_to_draw:
+            return f"{self.subject}: stage {self.stage} ran, but its table holds nothing this figure draws."
         if self.empty:
             return f"{self.subject} is empty (stage {self.stage})."
         return f"{self.subject} not produced yet by stage {self.stage}."
@@ -339,7 +346,13 @@ def resolve_figure(wh: Warehouse, spec: FigureSpec, figs: FigureSet | None = Non
     """
     svg = figs[("spec", id(spec))] if figs is not None else draw(figure_task(wh, spec))
     label = f"Fig. {spec.number}" if spec.number else "the figure"
-    missing = None if svg else Missing(spec.stage, f"The data of {label} ({spec.inputs[0]}) are")
+    if svg:
+        missing = None
+    elif all(name in wh for name in spec.inputs):  # the stage ran: nothing of what the figure draws
+        missing = Missing(spec.stage, f"{label[:1].upper()}{label[1:]} ({spec.inputs[0]})", empty=True,
+                          nothing_to_draw=True)
+    else:
+        missing = Missing(spec.stage, f"The data of {label} ({spec.inputs[0]}) are")
     return {"kind": "figure", "spec": spec, "svg": svg, "note": str(missing or ""), "missing": missing}
 
 
@@ -352,10 +365,22 @@ def chapter_items(wh: Warehouse, chapter: Chapter, figs: FigureSet | None = None
             else resolve_figure(wh, it, figs) for it in chapter.items]
 
 
+def _run_file(wh: Warehouse | None, row: pd.Series) -> Path | None:
+    """The converted file of a run (``manifest.run_path``: relative to the build, the warehouse's
+    folder; an absolute one of an older build as it is), or None where there is none."""
+    path = row.get("run_path")
+    if not isinstance(path, str) or not path:
+        return None
+    p = Path(path)
+    if not p.is_absolute() and wh is not None and getattr(wh, "db", None):
+        p = Path(wh.db).parent / p
+    return p if p.exists() else None
+
+
 def read_signals(wh: Warehouse, row: pd.Series) -> pd.DataFrame:
     """One run's signals from its Parquet file (``manifest.run_path``), else from the ``runs`` view."""
-    path = row.get("run_path")
-    if isinstance(path, str) and Path(path).exists():
+    path = _run_file(wh, row)
+    if path is not None:
         return pd.read_parquet(path)
     if wh is not None and "runs" in wh:
         rid = str(row["run_id"]).replace("'", "''")
@@ -380,8 +405,8 @@ def run_figure(wh: Warehouse | None, row: pd.Series) -> str | None:
 
 def run_task(wh: Warehouse, row: pd.Series) -> FigureTask:
     """The :class:`FigureTask` of a run's drill-down: its row and the digest of its signal file."""
-    path = row.get("run_path")
-    source = io.file_sha256(path) if isinstance(path, str) and Path(path).exists() else f"warehouse:{wh.db}:{id(wh)}"
+    path = _run_file(wh, row)
+    source = io.file_sha256(path) if path is not None else f"warehouse:{wh.db}:{id(wh)}"
     return FigureTask("run", "run_drilldown", (row, wh.db), {}, (row.to_dict(), source))
 
 

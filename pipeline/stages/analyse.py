@@ -238,6 +238,7 @@ def run(ctx: Context) -> StageResult:
         res.seconds = time.perf_counter() - t0
         return res
     runs = manifest[manifest["kind"].fillna("measurement") == "measurement"].copy()
+    runs["run_path"] = [str(ctx.build_file(p)) for p in runs["run_path"]]  # relative to the build in the table
     for name, default in (("direction", "vertical"), ("method", "stepped_sine")):
         runs[name] = runs[name].fillna(default) if name in runs else default
     code = code_fingerprint(__name__)

@@ -100,6 +100,55 @@ class Context:
                                    f"{rel!r} to its reads in tyrelab.stages.dag.STAGES")
         return self.build / rel
 
+    def raw_relative(self, path) -> str:
+        """``path`` as a table holds it: relative to the raw folder (``.`` for the raw folder itself,
+        ``campaign_a/manifest.csv``), never this machine's absolute path (a moved raw folder keeps
+        its tables); a path outside the raw folder by its name alone.
+
+        Examples
+        --------
+        >>> ctx = Context(raw=Path("/data/raw"), build=Path("/data/build"))
+        >>> ctx.raw_relative(Path("/data/raw/c1/runs/r1.csv")), ctx.raw_relative(Path("/data/raw"))
+        ('c1/runs/r1.csv', '.')
+        """
+        try:
+            return Path(path).resolve().relative_to(self.raw).as_posix()
+        except ValueError:
+            return Path(path).name
+
+    def build_relative(self, path) -> str:
+        """``path`` (inside the build) as a table holds it: relative to the build folder
+        (``manifest.run_path``: ``parquet/runs/tyre_id=T1/r1.parquet``), so that a moved build works.
+
+        Examples
+        --------
+        >>> Context(build=Path("/b")).build_relative(Path("/b/parquet/runs/r1.parquet"))
+        'parquet/runs/r1.parquet'
+        """
+        try:
+            return Path(path).resolve().relative_to(self.build).as_posix()
+        except ValueError:
+            return str(path)
+
+    def build_file(self, path) -> Path:
+        """A build path a table holds (:meth:`build_relative`) as a path to open: below this build;
+        an absolute one (a table written before paths were relative) as it is if it exists, else by
+        its part below ``parquet/`` in this build (the build was moved)."""
+        p = Path(str(path))
+        if not p.is_absolute():
+            return self.build / p
+        if p.exists() or "parquet" not in p.parts:
+            return p
+        parts = p.parts
+        return self.build.joinpath(*parts[len(parts) - 1 - parts[::-1].index("parquet"):])
+
+    def raw_file(self, campaign, name=None) -> Path:
+        """A campaign folder (and a file of it) a table holds (:meth:`raw_relative`) as a path below
+        the raw folder; an absolute one (an older table) as it is."""
+        p = Path(str(campaign))
+        p = p if p.is_absolute() else self.raw / p
+        return p if name is None else p / str(name)
+
     def has_table(self, name: str) -> bool:
         """Whether table ``name`` exists (``quarantine``: whether any stage wrote its part)."""
         if name == "quarantine":

@@ -206,12 +206,25 @@ def day_uncertainty(results: pd.DataFrame, tfs: pd.DataFrame, checks: pd.DataFra
     return gathered()
 
 
+def _day_notes(cal_runs: pd.DataFrame, day: str) -> str:
+    """`` (manifest notes: …)`` of the calibration runs recorded on ``day`` that have notes, else ``""``
+    (the demo campaign's deliberately miscalibrated day says so in its notes)."""
+    if "notes" not in cal_runs or "recorded_on" not in cal_runs:
+        return ""
+    notes = [str(n).strip() for n in cal_runs.loc[cal_runs["recorded_on"].astype(str) == day, "notes"]
+             if isinstance(n, str) and n.strip()]
+    return f" (manifest notes: {'; '.join(dict.fromkeys(notes))})" if notes else ""
+
+
 def run(ctx: Context) -> StageResult:
     """Check every calibration run; flag results of failed days; write the tables."""
     t0 = time.perf_counter()
     res = StageResult("calibrate")
     manifest = ctx.read_table("manifest") if ctx.has_table("manifest") else pd.DataFrame()
+    if "run_path" in manifest:  # relative to the build in the table (a moved build works)
+        manifest = manifest.assign(run_path=[str(ctx.build_file(p)) for p in manifest["run_path"]])
     rows, tfs, averages = [], [], {}
+    cal_runs = pd.DataFrame()
     # each check is kept under the digest of the converted run file it read, its axle mass and
     # sample rate (ItemCache): an added measurement run re-checks no calibration run
     cache = ItemCache(ctx, "calibrate")
@@ -266,7 +279,7 @@ def run(ctx: Context) -> StageResult:
     cache.prune()
     res.message = (f"{len(days)} days, {len(failed_days)} failed" + (f" ({', '.join(failed_days)})" if failed_days else "")
                    + (f"; {n_flagged} runs flagged" if n_flagged else ""))
-    for d in failed_days:
-        ctx.log.warning("calibrate: calibration failed on %s: runs of that day flagged", d)
+    for d in failed_days:  # with the manifest's notes of the day's calibration runs: they may say why
+        ctx.log.warning("calibrate: calibration failed on %s: runs of that day flagged%s", d, _day_notes(cal_runs, d))
     res.seconds = time.perf_counter() - t0
     return res

@@ -163,10 +163,15 @@ SIMULATE_TABLES = (
 )
 #: Tables the rides stage writes (vehicle recordings; :mod:`tyrelab.stages.rides`).
 RIDES_TABLES = ("recordings", "recording_axes", "recording_spectra", "exposure_days", "ride_validation",
-                "ride_validation_statistics", "vehicle_frf", "vehicle_modes")
+                "ride_validation_statistics", "vehicle_frf", "vehicle_modes", "vehicle_frf_validation")
 #: The fits a ride scenario's tyres may read (:mod:`tyrelab.stages.tyredata`): a measured tyre's
-#: per-speed pressure fits (``measured_tyre_id``) and the build's formula (``formula = "build"``).
-FIT_TABLES = ("stiffness_pressure_by_speed", "damping_pressure_by_speed", "formula_fit", "damping_fit")
+#: per-speed pressure fits (``measured_tyre_id``; its lateral and longitudinal ones, series damper and
+#: catalogue row: issue 42) and the build's formula (``formula = "build"``).
+FIT_TABLES = ("stiffness_pressure_by_speed", "damping_pressure_by_speed", "formula_fit", "damping_fit",
+              # issue 42: a measured tyre's lateral and longitudinal fits and catalogue row (the rolling element)
+              *(f"{d}_{q}" for d in ("lateral", "longitudinal")
+                for q in ("stiffness_pressure_by_speed", "damping_pressure_by_speed")),
+              "series_damping_speed", "tyres")
 #: Stages whose rows make up the ``quarantine`` table, each in its own part
 #: (:func:`quarantine_part`); the warehouse stage publishes their union, in this order.
 QUARANTINE_PARTS = ("ingest", "analyse", "simulate", "rides")

@@ -268,8 +268,9 @@ class _Plan:
 def _quarantine_entry(ctx: Context, campaign: Path, run_id, file, reason: str, plan: _Plan) -> None:
     where = campaign / file if isinstance(file, str) and file else campaign / "manifest.csv"
     ctx.log.error("%s: %s", where, reason)
-    plan.quarantine.append(
-        {"campaign": str(campaign), "run_id": run_id, "file": str(where), "stage": "ingest", "reason": reason}
+    plan.quarantine.append(  # paths relative to the raw folder: a moved raw folder keeps its table
+        {"campaign": ctx.raw_relative(campaign), "run_id": run_id, "file": ctx.raw_relative(where), "stage": "ingest",
+         "reason": reason}
     )
 
 
@@ -389,7 +390,8 @@ def run(ctx: Context) -> StageResult:
 
     # a run converted by other code is converted again: its file must be what this code writes
     code = code_fingerprint(__name__)
-    state = {} if ctx.force else {k: v for k, v in _load_run_state(ctx).items() if v.get("code") == code}
+    state = {} if ctx.force else {k: {**v, "out": str(ctx.build_file(v["out"]))}  # kept relative to the build
+                                  for k, v in _load_run_state(ctx).items() if v.get("code") == code}
     runs_dir = ctx.path("parquet/runs/")
     tasks, rows = [], {}
     for campaign, row in plan.todo:
@@ -430,17 +432,18 @@ def run(ctx: Context) -> StageResult:
             _quarantine_entry(ctx, campaign, t["run_id"], row["file"], d["reason"], plan)
             continue
         new_state[t["run_id"]] = {"size": st.st_size, "mtime_ns": st.st_mtime_ns, "sha256": d["sha256"],
-                                  "row": row_hash, "out": str(out), "info": d["info"], "code": code,
+                                  "row": row_hash, "out": ctx.build_relative(out), "info": d["info"], "code": code,
                                   "out_stat": _out_stat(out)}
         rec = {c: row.get(c) for c in manifest_columns(schema, row)}
-        rec.update(campaign=str(campaign), sha256=d["sha256"], row_hash=row_hash, run_path=str(out))
+        rec.update(campaign=ctx.raw_relative(campaign), sha256=d["sha256"], row_hash=row_hash,
+                   run_path=ctx.build_relative(out))  # relative: a moved raw or build folder keeps its tables
         rec.update((k, d["info"][k]) for k in INFO_KEYS)  # fixed order: same bytes however info was obtained
         records.append(rec)
 
     ctx.write_table("manifest", _manifest_table(records, numeric))
     ctx.write_table("tyres", catalogue.drop(columns=["catalogue_file"]))
     write_quarantine(ctx, "ingest", plan.quarantine)
-    _sweep(runs_dir, {s["out"] for s in new_state.values()})
+    _sweep(runs_dir, {str(ctx.build_file(s["out"])) for s in new_state.values()})
     io.write_text_atomic(json.dumps(new_state, sort_keys=True), _run_state_path(ctx))  # after the outputs
 
     result.n_ok = len(records)

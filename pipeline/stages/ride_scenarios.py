@@ -12,7 +12,7 @@ import pandas as pd
 
 from .. import resources
 from ..executor import map_batches
-from ..scenario_io import ScenarioError, load_scenario
+from ..scenario_io import ScenarioError, crg_files, load_scenario
 from ..tyredata import WarehouseTyres
 from ..vehicle import ride
 from ..vehicle.model import assemble
@@ -40,6 +40,8 @@ def _ride_plan(ctx: Context, files: list[tuple[str, str]], cache: ItemCache) -> 
         try:
             sc = load_scenario(path)
             fits, profile = scenario_fits(sc, tables), sc.surface.profile_data  # a profile CSV's data, as read
+            if sc.surface.kind == "crg" and sc.surface.file is not None:  # a CRG road and its data file, by content
+                profile = [cache.file_digest(f) for f in crg_files(sc.surface.file)]
         except Exception:  # noqa: BLE001 - any failure of one file: its task refuses it (one quarantine line)
             fits, profile = {}, None  # its task refuses the file, reading the same bytes
         keys.append(cache.key("ride", path, source, text, fits, profile))

@@ -25,7 +25,9 @@ Recordings with wheel input channels (issue 43, thesis ch. 2: a four-post stand 
 measured profile; ``track = "inputs"`` says the inputs are the excitation) also give their
 transfer functions and modes (:func:`tyrelab.measurement.frf.recording_frf`): ``vehicle_frf``
 (per recording, input, output and bin) and ``vehicle_modes`` (per recording, output and mode). The
-rotation and lug-passing bins of a rolling row naming a scenario are masked from its tyres.
+rotation and lug-passing bins of a rolling row naming a scenario are masked from its tyres; such a
+row's measured modes and FRFs are compared with the scenario's model at the row's speed
+(``vehicle_frf_validation``, :func:`tyrelab.stand.frf_validation_rows`).
 """
 
 from __future__ import annotations
@@ -72,6 +74,12 @@ EMPTY_COLUMNS = {
                     "random_error", "condition_number", "input_coherence", "ill_conditioned", "masked"],
     "vehicle_modes": ["ride_id", "output", "mode", "frequency_Hz", "damping_ratio", "frequency_ci95_low_Hz",
                       "frequency_ci95_high_Hz", "damping_ci95_low", "damping_ci95_high", "inputs"],
+    "vehicle_frf_validation": ["ride_id", "speed_km_h", "scenario", "output", "frf_magnitude_error", "model", "mode",
+                               "measured_frequency_Hz", "measured_frequency_ci95_low_Hz",
+                               "measured_frequency_ci95_high_Hz", "predicted_frequency_Hz", "frequency_ratio",
+                               "frequency_in_interval", "measured_damping_ratio", "measured_damping_ci95_low",
+                               "measured_damping_ci95_high", "predicted_damping_ratio", "damping_ratio_ratio",
+                               "damping_in_interval"],
     "ride_validation": ["ride_id", "campaign", "file", "vehicle", "speed_km_h", "track", "recorded_on", "scenario", "task",
                         "axis", "measured_a_w_m_s2", "predicted_a_w_m_s2", "ratio_a_w", "measured_peak_frequency_Hz",
                         "predicted_peak_frequency_Hz", "measured_half_power_width_Hz", "predicted_half_power_width_Hz",
@@ -180,8 +188,9 @@ def _validate(path: Path, channel_map, scenario_path: Path, speed_km_h: float, t
 INPUTS_TRACK = "inputs"
 
 
-def _frf(path: Path, channel_map, speed_km_h: float, wheels) -> dict:
-    """``vehicle_frf`` and ``vehicle_modes`` rows of one recording with inputs, or ``{"error": reason}``."""
+def _frf(path: Path, channel_map, speed_km_h: float, wheels, scenario=None) -> dict:
+    """``vehicle_frf``, ``vehicle_modes`` (and with a scenario ``vehicle_frf_validation``) rows of one
+    recording with inputs, or ``{"error": reason}``."""
     from ..measurement.frf import recording_frf
     from ..rawformat.rides import open_recording
 
@@ -189,7 +198,15 @@ def _frf(path: Path, channel_map, speed_km_h: float, wheels) -> dict:
         r = recording_frf(open_recording(path, channel_map), speed_km_h, wheels)
     except (ValueError, ArithmeticError) as exc:
         return {"error": printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)}
-    return {"frf": pd.DataFrame(r.frf_rows()), "modes": r.mode_rows()}
+    out = {"frf": pd.DataFrame(r.frf_rows()), "modes": r.mode_rows(), "validation": []}
+    if scenario is not None:
+        from ..stand import frf_validation_rows
+
+        try:
+            out["validation"] = frf_validation_rows(r, scenario, speed_km_h)
+        except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
+            return {"error": f"prediction: {printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)}"}
+    return out
 
 
 def _plain(row: dict) -> dict:
@@ -210,7 +227,7 @@ def run(ctx: Context) -> StageResult:
     cache = ItemCache(ctx, "rides")
     quarantine: list[dict] = []
     recordings, axes, spectra, validation, tasks = [], [], [], [], []
-    frf_parts, mode_rows = [], []
+    frf_parts, mode_rows, frf_validation = [], [], []
     seen: dict[str, str] = {}
     n_in = n_rejected = 0
     fit_tables = read_fit_tables(ctx)
@@ -310,8 +327,9 @@ def run(ctx: Context) -> StageResult:
             frf = None
             if has_inputs:
                 wheels = scenario_wheel_geometry(scenario) if scenario is not None and speed > 0 else None
-                fkey = cache.key("frf", digest, str(path.suffix), channel_map, speed, wheels)
-                frf = cache.get_or_compute(fkey, lambda: _frf(path, channel_map, speed, wheels))
+                fkey = cache.key("frf", digest, str(path.suffix), channel_map, speed, wheels,
+                                 cache.file_digest(scenario_path) if scenario_path is not None else None, fits)
+                frf = cache.get_or_compute(fkey, lambda: _frf(path, channel_map, speed, wheels, scenario))
                 if "error" in frf:
                     refuse(campaign, ride_id, file, f"transfer functions: {frf['error']}")
                     continue
@@ -340,6 +358,8 @@ def run(ctx: Context) -> StageResult:
                 if len(frf["frf"]):
                     frf_parts.append(frf["frf"].assign(ride_id=ride_id))
                 mode_rows.extend({"ride_id": ride_id, **m} for m in frf["modes"])
+                frf_validation.extend({"ride_id": ride_id, "speed_km_h": speed, "scenario": ident["scenario"], **v}
+                                      for v in frf.get("validation", []))
             axes.extend({"ride_id": ride_id, **a} for a in result["axes"])
             for s in result["spectra"]:
                 spectra.append(pd.DataFrame({"ride_id": ride_id, "source": "measured", "channel": s["channel"],
@@ -398,6 +418,7 @@ def run(ctx: Context) -> StageResult:
         frf_frame = frf_frame[["ride_id", *[c for c in frf_frame.columns if c != "ride_id"]]]
     ctx.write_table("vehicle_frf", _frame("vehicle_frf", frf_frame))
     ctx.write_table("vehicle_modes", _frame("vehicle_modes", mode_rows))
+    ctx.write_table("vehicle_frf_validation", _frame("vehicle_frf_validation", frf_validation))
     ctx.write_table("ride_validation_statistics", rv.validation_statistics(val_frame))
     write_quarantine(ctx, "rides", quarantine)
     cache.prune()

@@ -480,7 +480,8 @@ def _compute(ctx: Context, pub: dict, sources: pd.DataFrame, cache: ItemCache, f
     for name, df in ride_tables.items():  # the warehouse holds no path of this machine (a build is portable)
         if "file" in df:
             ride_tables[name] = df.assign(file=df["file"].map(lambda f: portable.get(f, f)))
-    bad = [{**b, "file": portable.get(b["file"], b["file"])} for b in bad]
+    bad = [{**b, "file": portable.get(b["file"], b["file"]),  # nor in a reason (a ScenarioError names its file)
+            "reason": str(b["reason"]).replace(b["file"], portable.get(b["file"], b["file"]))} for b in bad]
     tables.update(ride_tables)
     quarantine = [{"campaign": None, "run_id": None, "file": b["file"], "stage": "simulate", "reason": b["reason"]}
                   for b in bad] + rec_problems
@@ -508,8 +509,9 @@ def _study_recording_inputs(ctx: Context, cache: ItemCache):
         except OSError as exc:
             return f"unreadable: {exc}"
 
-    files = [content(Path(str(c)) / str(f)) for c, f in zip(rows["campaign"], rows["file"])]
-    maps = {str(c): content(Path(str(c)) / "channel_map.json") for c in sorted(set(map(str, rows["campaign"])))}
+    # the campaign is relative to the raw folder (as read_study_recordings reads it), not to this process's folder
+    files = [content(ctx.raw_file(c, f)) for c, f in zip(rows["campaign"], rows["file"])]
+    maps = {str(c): content(ctx.raw_file(c, "channel_map.json")) for c in sorted(set(map(str, rows["campaign"])))}
     return [rows, files, maps]
 
 

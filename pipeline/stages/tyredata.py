@@ -14,10 +14,10 @@ leaves its key alone.
 from __future__ import annotations
 
 from ..tyredata import WarehouseTyres
-from ..vehicle.tyres import (BUILD_FORMULA_TABLES, FIT_TABLES, MEASURED_TABLES, FitTyres, _concat, _measured_rows,  # noqa: F401
+from ..vehicle.tyres import (BUILD_FORMULA_TABLES, DIRECTIONAL_TABLES, FIT_TABLES, MEASURED_TABLES, FitTyres, _concat, _measured_rows,  # noqa: F401
                              _ours, _safe, scenario_fits)
 
-__all__ = ["MEASURED_TABLES", "BUILD_FORMULA_TABLES", "FIT_TABLES", "FitTyres", "WarehouseTyres", "scenario_fits",
+__all__ = ["MEASURED_TABLES", "BUILD_FORMULA_TABLES", "DIRECTIONAL_TABLES", "FIT_TABLES", "FitTyres", "WarehouseTyres", "scenario_fits",
            "read_fit_tables"]
 
 

@@ -214,9 +214,15 @@ def measured_tyre(
     if stiffness is None:  # the catalogue's measured coefficients
         stiffness = PressureLine(_num(cat.get("carcass_stiffness_kN_per_m")), _num(cat.get("pressure_dependence_kN_per_m_bar")))
         if not (math.isfinite(stiffness.intercept) and math.isfinite(stiffness.slope)):
+            stationary = table_iii is not None and not table_iii.empty and bool(
+                ((table_iii["tyre_id"].astype(str) == tyre_id) & (table_iii["condition"] != "rolling")).any())
             raise ValueError(
-                f"tyre {tyre_id!r} has no rolling stiffness fit in the warehouse and no measured "
-                "carcass_stiffness_kN_per_m / pressure_dependence_kN_per_m_bar in the catalogue"
+                f"tyre {tyre_id!r} has no rolling stiffness fit in the warehouse"
+                + (" (its runs are stationary only: an MF-Tyre file describes a rolling tyre)" if stationary else "")
+                + " and no measured carcass_stiffness_kN_per_m / pressure_dependence_kN_per_m_bar in the catalogue: "
+                "record rolling runs of it (manifest speed_km_h > 0) at two or more pressures and run the pipeline "
+                "again, or give those two columns (and carcass_damping_kN_s_per_m, "
+                "pressure_dependence_kN_s_per_m_bar) in its tyres.csv row"
             )
         c = PressureLine(_num(cat.get("carcass_damping_kN_s_per_m")), _num(cat.get("pressure_dependence_kN_s_per_m_bar")))
         damping = c if math.isfinite(c.intercept) and math.isfinite(c.slope) else None

@@ -35,7 +35,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Element", "SpringDamper", "Tyre", "Maxwell", "StaticLoadMoment", "StateLayout", "element"]
+__all__ = ["Element", "SpringDamper", "Tyre", "Maxwell", "Rolling", "StaticLoadMoment", "StateLayout", "element",
+           "RESEAT_S"]
 
 
 class StateLayout:
@@ -126,6 +127,11 @@ class Element:
         """Time derivatives of :meth:`states` as rows over ``[states, inputs]``."""
         return {}
 
+    def free_rows(self, layout: StateLayout) -> dict[str, np.ndarray]:
+        """Time derivatives of :meth:`states` while the element's tyres are off the ground (its gate
+        closed): by default the same as in contact (:meth:`derivative_rows`)."""
+        return self.derivative_rows(layout)
+
 
 @dataclass(frozen=True)
 class SpringDamper(Element):
@@ -188,6 +194,92 @@ class Maxwell(Element):
         return {q: r}
 
 
+#: The shortest time a lifted rolling element takes to re-seat, s: its unit's own ``c/k`` where longer
+#: (a few ms for a tractor tyre); a floor so that the time-domain solver's step (0.5 ms, RK4 stable below
+#: ``2.8/dt``) follows it.
+RESEAT_S = 5e-3
+
+
+@dataclass(frozen=True)
+class Rolling(Element):
+    """A rolling tyre's horizontal element (issue 42, thesis §2.5): a Kelvin-Voigt unit (``k``,
+    ``c``) from the patch point to the contact point, in series with a damper ``c₂`` from the
+    contact point to the ground (``c₂ = a / v``: the contact point's velocity over the ground,
+    the single-point slip model). Its state is the unit's deflection ``e = δ - s`` (``s`` the
+    contact point's displacement; massless: ``c₂ s' = F``), so
+
+        F = k e + c e',   e' = (c₂ δ' - k e) / (c + c₂)
+          = k c₂/(c + c₂) e + c c₂/(c + c₂) g·q'.
+
+    ``series_damping = inf`` (a stationary tyre) locks the contact point: the Kelvin-Voigt
+    element, no state. ``c = 0``: the Maxwell element. :meth:`contact_row` is the contact
+    point's displacement ``s = g·q - e`` as a row (the static load acts there)."""
+
+    series_damping: float = np.inf
+    model = "rolling"
+
+    @property
+    def locked(self) -> bool:
+        """The series damper is rigid (``inf``): the unit alone."""
+        return not np.isfinite(self.series_damping)
+
+    @property
+    def active(self) -> bool:
+        """The element carries force: a unit (spring or damper) and a series damper that is not free."""
+        return (self.stiffness > 0 or self.damping > 0) and self.series_damping > 0
+
+    @property
+    def static_stiffness(self) -> float:
+        return self.stiffness if self.locked else 0.0  # a series damper passes no static force
+
+    def states(self) -> tuple[str, ...]:
+        return (f"q_{self.name}",) if self.active and not self.locked else ()
+
+    def _series(self) -> tuple[float, float]:
+        """``(c₂/(c + c₂), 1/(c + c₂))``."""
+        total = self.damping + self.series_damping
+        return self.series_damping / total, 1.0 / total
+
+    def force_row(self, layout: StateLayout) -> np.ndarray:
+        if self.locked:
+            return layout.row(self.stiffness * self.g, self.damping * self.g)
+        if not self.states():
+            return np.zeros(layout.width)
+        share, _ = self._series()
+        r = layout.row(np.zeros(layout.nq), self.damping * share * self.g)
+        r[layout.index[f"q_{self.name}"]] += self.stiffness * share
+        return r
+
+    def derivative_rows(self, layout: StateLayout) -> dict[str, np.ndarray]:
+        if not self.states():
+            return {}
+        q = f"q_{self.name}"
+        share, inv = self._series()
+        r = layout.row(np.zeros(layout.nq), share * self.g)
+        r[layout.index[q]] = -self.stiffness * inv
+        return {q: r}
+
+    def free_rows(self, layout: StateLayout) -> dict[str, np.ndarray]:
+        """Off the ground the contact point is free (no ground to hold it, ``c₂ = 0``): the unit relaxes,
+        ``e' = -e / τ`` with ``τ = max(c / k, RESEAT_S)``, and the tyre touches down with its contact
+        point under the patch again (it re-seats; issue 42)."""
+        if not self.states():
+            return {}
+        q = f"q_{self.name}"
+        tau = max(self.damping / self.stiffness if self.stiffness > 0 else RESEAT_S, RESEAT_S)
+        return {q: layout.at(q, -1.0 / tau)}
+
+    def contact_row(self, layout: StateLayout) -> np.ndarray:
+        """The contact point's displacement over the ground ``s = g·q - e`` over ``[states, inputs]``:
+        0 where the series damper is locked (the patch holds), ``g·q`` where it is free (``c₂ = 0``)."""
+        if self.locked:
+            return np.zeros(layout.width)
+        r = layout.row(self.g, np.zeros(layout.nq))
+        if self.states():
+            r[layout.index[f"q_{self.name}"]] -= 1.0
+        return r
+
+
 @dataclass(frozen=True)
 class StaticLoadMoment(Element):
     """The moment of a tyre's static load about the part that carries the tyre (issue 33).
@@ -200,6 +292,10 @@ class StaticLoadMoment(Element):
     stiffness, no damping); gated by its tyre (a tyre off the ground carries no load)."""
 
     d: np.ndarray | None = None
+    #: A rolling element whose contact point the load acts at (issue 42): ``f = F (d·q - s)``,
+    #: ``s`` its contact point's displacement (:meth:`Rolling.contact_row`); None: the patch is
+    #: ground-fixed.
+    contact: "Rolling | None" = None
     model = "static_load"
 
     @property
@@ -207,14 +303,19 @@ class StaticLoadMoment(Element):
         return 0.0
 
     def force_row(self, layout: StateLayout) -> np.ndarray:
-        return layout.row(self.stiffness * np.asarray(self.d, float), np.zeros(layout.nq))
+        r = layout.row(self.stiffness * np.asarray(self.d, float), np.zeros(layout.nq))
+        if self.contact is not None:
+            r -= self.stiffness * self.contact.contact_row(layout)
+        return r
 
 
-_KINDS = {"kelvin_voigt": SpringDamper, "maxwell": Maxwell}
+_KINDS = {"kelvin_voigt": SpringDamper, "maxwell": Maxwell, "rolling": Rolling}
 
 
-def element(name: str, g, stiffness: float, damping: float, model: str = "kelvin_voigt", gate=()) -> Element:
-    """An element of the longitudinal ``model`` (``"kelvin_voigt"`` or ``"maxwell"``).
+def element(name: str, g, stiffness: float, damping: float, model: str = "kelvin_voigt", gate=(),
+            series_damping: float = np.inf) -> Element:
+    """An element of the horizontal ``model`` (``"kelvin_voigt"``, ``"maxwell"`` or ``"rolling"``
+    with its ``series_damping`` in N s/m, ``inf``: locked).
 
     Examples
     --------
@@ -224,4 +325,7 @@ def element(name: str, g, stiffness: float, damping: float, model: str = "kelvin
     """
     if model not in _KINDS:
         raise ValueError(f"model {model!r}: expected one of {tuple(_KINDS)}")
+    if model == "rolling":
+        return Rolling(name, np.asarray(g, float), float(stiffness), float(damping), tuple(gate),
+                       series_damping=float(series_damping))
     return _KINDS[model](name, np.asarray(g, float), float(stiffness), float(damping), tuple(gate))

@@ -71,13 +71,14 @@ passes through, :attr:`Assembly.output_filters`, which the time and frequency do
 from __future__ import annotations
 
 import dataclasses
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 from scipy import signal
 
 from .. import _validate
-from .elements import Element, Maxwell, SpringDamper, StateLayout, StaticLoadMoment, Tyre, element
+from .elements import Element, Maxwell, Rolling, SpringDamper, StateLayout, StaticLoadMoment, Tyre, element
 from .units import STANDARD_GRAVITY_M_S2
 from .units import STANDARD_GRAVITY_M_S2 as GRAVITY_M_S2  # noqa: F401  (the name of issue 35)
 
@@ -88,10 +89,11 @@ __all__ = ["Chassis", "Axle", "Cab", "Implement", "Ballast", "SeatPoint", "SeatS
 
 #: How an axle is carried (:class:`Axle`).
 AXLE_MOUNTS = ("rigid", "pivot", "suspended")
-#: Longitudinal element of an axle's tyres: none, Kelvin-Voigt (parallel), Maxwell (series).
-LONGITUDINAL_MODELS = ("none", "kelvin_voigt", "maxwell")
-#: Lateral element of a tyre at its contact patch (issue 33): none, Kelvin-Voigt, Maxwell.
-LATERAL_MODELS = ("none", "kelvin_voigt", "maxwell")
+#: Longitudinal element of an axle's tyres: none, Kelvin-Voigt (parallel), Maxwell (series), the
+#: rolling tyre (a Kelvin-Voigt unit in series with ``c₂ = a / v``, issue 42).
+LONGITUDINAL_MODELS = ("none", "kelvin_voigt", "maxwell", "rolling")
+#: Lateral element of a tyre at its contact patch (issue 33): none, Kelvin-Voigt, Maxwell, rolling (issue 42).
+LATERAL_MODELS = ("none", "kelvin_voigt", "maxwell", "rolling")
 #: The chassis' freedoms, in the order they are coordinates (those some part asks for): lateral
 #: ``y`` and yaw ``psi`` (nose left) with lateral tyre elements (issue 33).
 CHASSIS_FREEDOMS = ("z", "th", "x", "phi", "y", "psi")
@@ -274,6 +276,9 @@ class Axle(Part):
         (``height_m`` above the ground) passes it to the chassis.
     lateral_stiffness_N_per_m, lateral_damping_N_s_per_m : float
         Per tyre.
+    lateral_series_damping_N_s_per_m, longitudinal_series_damping_N_s_per_m : float
+        The rolling element's series damper ``c₂`` per tyre at the speed, N s/m (``inf``: locked, a
+        stationary tyre; :class:`~tyrelab.vehicle.elements.Rolling`).
     """
 
     name: str
@@ -293,6 +298,8 @@ class Axle(Part):
     lateral_model: str = "none"
     lateral_stiffness_N_per_m: float = 0.0
     lateral_damping_N_s_per_m: float = 0.0
+    lateral_series_damping_N_s_per_m: float = math.inf
+    longitudinal_series_damping_N_s_per_m: float = math.inf
 
     def check(self, three_d: bool) -> list[str]:
         ax, out = self, []
@@ -309,6 +316,12 @@ class Axle(Part):
             out += _positive(f"{ax.name}_axle.lateral_stiffness_N_per_m", ax.lateral_stiffness_N_per_m)
             if ax.lateral_model == "maxwell":
                 out += _positive(f"{ax.name}_axle.lateral_damping_N_s_per_m", ax.lateral_damping_N_s_per_m)
+            if ax.lateral_model == "rolling":
+                out += _series_problems(f"{ax.name}_axle.lateral_series_damping_N_s_per_m",
+                                        ax.lateral_series_damping_N_s_per_m)
+        if ax.longitudinal_model == "rolling":
+            out += _series_problems(f"{ax.name}_axle.longitudinal_series_damping_N_s_per_m",
+                                    ax.longitudinal_series_damping_N_s_per_m)
         out += _needed_problems(f"{ax.name}_axle", ax, "axle", ax.mount, three_d)
         if ax.mount == "pivot" and not three_d:
             out.append(pivot_problem(f"{ax.name}_axle"))
@@ -363,9 +376,11 @@ class Axle(Part):
             per = 2.0
             b.element(element(f"{ax.name}_longitudinal", b.chassis_point(a, 0.0, -h)["x"],
                               per * float(ax.longitudinal_stiffness_N_per_m),
-                              per * float(ax.longitudinal_damping_N_s_per_m), ax.longitudinal_model, tuple(names)))
-            for name in names:  # the static loads' pitch moment, -F x (issue 33)
-                b.static_load_moment(name, b.pitch_row, b.row({"x": 1.0}))
+                              per * float(ax.longitudinal_damping_N_s_per_m), ax.longitudinal_model, tuple(names),
+                              series_damping=per * float(ax.longitudinal_series_damping_N_s_per_m)))
+            rolling = f"{ax.name}_longitudinal" if ax.longitudinal_model == "rolling" else None
+            for name in names:  # the static loads' pitch moment, -F x (issue 33); at the contact point (issue 42)
+                b.static_load_moment(name, b.pitch_row, b.row({"x": 1.0}), contact=rolling)
 
     def _lateral(self, b: "Builder", name: str, a: float, py: float, ax_h: float) -> None:
         """The lateral element of tyre ``name`` at its contact patch and its static load's roll moment.
@@ -383,11 +398,14 @@ class Axle(Part):
             centre = b.chassis_point(a, 0.0, ax_h)["y"]
             jy = centre + float(ax.height_m) * row({f"{ax.name}_axle_roll": 1.0})
         b.element(element(f"{name}_lateral", jy, float(ax.lateral_stiffness_N_per_m),
-                          float(ax.lateral_damping_N_s_per_m), ax.lateral_model, (name,)))
+                          float(ax.lateral_damping_N_s_per_m), ax.lateral_model, (name,),
+                          series_damping=float(ax.lateral_series_damping_N_s_per_m)))
+        # the rolling tyre's static load acts at its contact point, which moves (issue 42): -F (y - s)
+        rolling = f"{name}_lateral" if ax.lateral_model == "rolling" else None
         if ax.mount == "rigid":
-            b.static_load_moment(name, b.roll_row, row({"y": 1.0}))
+            b.static_load_moment(name, b.roll_row, row({"y": 1.0}), contact=rolling)
         else:
-            b.static_load_moment(name, row({f"{ax.name}_axle_roll": 1.0}), centre)
+            b.static_load_moment(name, row({f"{ax.name}_axle_roll": 1.0}), centre, contact=rolling)
             b.static_load_moment(name, b.roll_row, row({"y": 1.0}) - centre)
 
 
@@ -605,6 +623,15 @@ class Parts:
         return [m for p in self.members() for m in p.check(self.three_d)]
 
 
+def _series_problems(name: str, value) -> list[str]:
+    """A series damper ``c₂``: positive, ``inf`` allowed (locked)."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        return [f"{name} must be a number, got {value!r}"]
+    return [] if v == math.inf else _positive(name, v)
+
+
 def _positive(name: str, value) -> list[str]:
     try:
         _validate.positive(name, value)
@@ -719,12 +746,15 @@ class Builder:
             raise ValueError(f"element {e.name!r} added twice")
         self.elements.append(e)
 
-    def static_load_moment(self, tyre: str, freedom_row: np.ndarray, displacement_row: np.ndarray) -> None:
+    def static_load_moment(self, tyre: str, freedom_row: np.ndarray, displacement_row: np.ndarray,
+                           contact: str | None = None) -> None:
         """The static load of ``tyre`` turns the part of ``freedom_row`` by minus the load times
         ``displacement_row · q`` (:class:`~tyrelab.vehicle.elements.StaticLoadMoment`; added by
-        :func:`assemble` once the static loads are known, when ``Parts.static_load_moment``)."""
+        :func:`assemble` once the static loads are known, when ``Parts.static_load_moment``), less
+        the contact point's displacement of the rolling element ``contact`` (issue 42)."""
         if self.parts.static_load_moment:
-            self.static_moments.append((tyre, np.asarray(freedom_row, float), np.asarray(displacement_row, float)))
+            self.static_moments.append((tyre, np.asarray(freedom_row, float), np.asarray(displacement_row, float),
+                                        contact))
 
     def output(self, name: str, acceleration_row: np.ndarray, tilt_row: np.ndarray | None = None) -> None:
         """A kinematic output: ``acceleration_row · q''`` plus ``g · tilt_row · q`` (what a
@@ -768,9 +798,11 @@ class Assembly:
         key = tuple((id(e), e.stiffness) for e in self.elements)
         if getattr(self, "_layout_key", None) != key:
             seen = np.any(self.stiffness_matrix() != 0, axis=0)
-            for e in self.elements:  # positions a static load's moment reads (issue 33)
+            for e in self.elements:  # positions a static load's moment reads (issue 33), its contact's (42)
                 if isinstance(e, StaticLoadMoment):
                     seen |= np.asarray(e.d) != 0
+                    if e.contact is not None and not e.contact.locked:
+                        seen |= np.asarray(e.contact.g) != 0
             own = [s for e in self.elements for s in e.states()]
             self._layout, self._layout_key = StateLayout(self.coordinates, seen, own, self.inputs), key
         return self._layout
@@ -794,7 +826,7 @@ class Assembly:
         n = len(self.coordinates)
         k = np.zeros((n, n))
         for e in self.elements:
-            if e.model == "kelvin_voigt" and not (tyres_only and e.gate):
+            if e.model in ("kelvin_voigt", "rolling") and not (tyres_only and e.gate):
                 k += e.static_stiffness * np.outer(e.g, e.g)
         return k
 
@@ -994,7 +1026,9 @@ def assemble(parts: Parts, gravity_m_s2: float | None = None) -> Assembly:
     loads = asm.static_tyre_loads_N()
     asm.elements = [dataclasses.replace(e, floor_N=-loads[e.name]) if e.name in loads else e for e in asm.elements]
     count: dict = {}
-    for tyre, g, d in b.static_moments:
+    by_name = {e.name: e for e in asm.elements}
+    for tyre, g, d, contact in b.static_moments:
         count[tyre] = count.get(tyre, 0) + 1
-        asm.elements.append(StaticLoadMoment(f"{tyre}_static_moment_{count[tyre]}", g, loads[tyre], 0.0, (tyre,), d=d))
+        asm.elements.append(StaticLoadMoment(f"{tyre}_static_moment_{count[tyre]}", g, loads[tyre], 0.0, (tyre,), d=d,
+                                             contact=by_name[contact] if contact else None))
     return asm

@@ -240,6 +240,10 @@ class _Batch:
         cols[:n] = np.arange(n)
         cols[n::2], cols[n + 1::2] = n + np.arange(nt), n + nt + np.arange(nt)
         self.a = np.zeros((n_el + ns, width, runs))
+        # own states while their element's tyres are off the ground (Element.free_rows: a rolling
+        # tyre's contact point re-seats, issue 42) and the gated slot each own state follows
+        self.a_free = np.zeros((ns, width, runs))
+        self.own_slot = np.zeros(ns, dtype=np.intp)
         self.g = np.zeros((n_el, nq, runs))
         self.floor, self.static = np.zeros((2, nt, runs))
         self.gate_w = np.zeros((n_el - nt, nt, runs))
@@ -265,6 +269,9 @@ class _Batch:
                     self.gate_on[j - nt, r] = 0.0 if e.gate else 1.0
                 for s, row in e.derivative_rows(alay).items():
                     self.a[n_el + state_rows[alay.index[s]], cols, r] = row
+                for s, row in e.free_rows(alay).items():
+                    self.a_free[state_rows[alay.index[s]], cols, r] = row
+                    self.own_slot[state_rows[alay.index[s]]] = j - nt
             for o, name in enumerate(record):
                 if name in asm.kinematic_outputs:
                     r_acc, r_tilt = asm.kinematic_outputs[name]
@@ -281,6 +288,8 @@ class _Batch:
                         raise ValueError(f"record: unknown output {name!r}")
                     self.r_q[o, alay.pos_cols[asm.coordinates.index(match[0])], r] = 1.0
         self.gated = bool(np.any(self.gate_w))
+        # own states whose derivative off the ground differs from that in contact
+        self.reseat = bool(ns) and self.gated and not np.array_equal(self.a_free, self.a[n_el:])
 
     @property
     def size(self) -> int:
@@ -338,6 +347,10 @@ class _Kernel:
         self.gated = b.gated
         if b.gated:  # gate factor of every non-tyre element: [gate weights per tyre, gate_on]
             self.gw = np.concatenate([take(b.gate_w), take(b.gate_on)[:, :, None]], axis=2)  # (runs, N - nt, nt + 1)
+        self.reseat = b.reseat
+        if b.reseat:  # a lifted element's own states: blended by its gate factor with their free rows
+            self.a_free = np.ascontiguousarray(take(b.a_free))
+            self.own_slot = b.own_slot
         self.seen = None if len(b.seen) == nq else np.array(b.seen, dtype=np.intp)
         self.nq, self.nt, self.ns, self.n_pos, self.size, self.width, self.n_el = nq, nt, ns, b.n_pos, n, width, n_el
         self.count, self.no = count, no
@@ -365,6 +378,9 @@ class _Kernel:
         if seen is not None and np.array_equal(seen, np.arange(seen[0], seen[0] + seen.size)):
             velocity, seen = velocity[:, seen[0]:seen[0] + seen.size], None  # contiguous: a view, no gather
         has_s, gated, count_nonzero = self.ns > 0, self.gated, np.count_nonzero
+        reseat = self.reseat
+        if reseat:
+            a_free, own_slot = self.a_free, self.own_slot
         # with every tyre on the ground the clamp is max(f, floor) = f and every gate factor is
         # exactly 1 (weights 1/len(gate) that sum to 1 in floating point): both may be skipped, to the bit
         contact_is_identity = not gated or bool(np.all(np.matmul(self.gw, np.ones((self.count, nt + 1, 1))) == 1.0))
@@ -386,6 +402,10 @@ class _Kernel:
                     greater(f_tyre, floor, out=tyres_contact)
                     matmul(gw, contact3, out=factor3)
                     multiply(f_gated, factor, out=f_gated)
+                    if reseat:  # k_s = g d_own + (1 - g) free, g the gate factor of each own state's element
+                        g_own = factor[:, own_slot]
+                        free = matmul(a_free, e_in)[:, :, 0]
+                        k_s[:] = g_own * d_own + (1.0 - g_own) * free
             matmul(p, f3, out=k_acc)
             if seen is None:
                 copyto(k_q, velocity)

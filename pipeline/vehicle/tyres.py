@@ -24,7 +24,8 @@ import numpy as np
 
 from .. import _validate
 from .. import published
-from ..tyre.lateral import estimate_lateral_stiffness
+from ..tyre.directional import rolling_coefficients
+from ..tyre.rolling import series_damping_N_s_per_m
 from ..tyre.sizes import parse_tyre_size, rolling_circumference_m
 from ..tyre.speed_dependence import at_speeds
 from ..tyre.stiffness import estimate_stiffness
@@ -34,7 +35,7 @@ from .scenario import Scenario
 from .tractor import Tractor
 from .units import from_kilo
 
-__all__ = ["AxleTyres", "ShippedTyres", "FitTyres", "MEASURED_TABLES", "BUILD_FORMULA_TABLES", "FIT_TABLES",
+__all__ = ["AxleTyres", "ShippedTyres", "FitTyres", "MEASURED_TABLES", "BUILD_FORMULA_TABLES", "DIRECTIONAL_TABLES", "FIT_TABLES",
            "scenario_fits", "per_speed", "resolve_tyres", "static_tyre_loads", "build_parts", "build_tractor"]
 
 
@@ -78,6 +79,15 @@ class AxleTyres:
     lateral_damping_kN_s_per_m: np.ndarray | None = None
     lateral_source: str = ""
     lateral_ci95_kN_per_m: tuple | None = None
+    #: The rolling element (issue 42): ``a`` of the series damper ``c₂ = a / v`` (kN s/m × km/h), its
+    #: 95 % interval where it is the stand-in, and per coefficient where it came from
+    #: (``{"stiffness_kN_per_m": "measured", ...}``: :data:`tyrelab.tyre.directional.SOURCE_KINDS`).
+    lateral_series_damping_kN_s_per_m_km_h: float | None = None
+    lateral_series_ci95_kN_s_per_m_km_h: tuple | None = None
+    lateral_sources: dict = dataclasses.field(default_factory=dict)
+    #: The rear tyres' longitudinal rolling element's ``a`` and its source (``longitudinal_model = "rolling"``).
+    longitudinal_series_damping_kN_s_per_m_km_h: float | None = None
+    longitudinal_series_source: str = ""
 
 
 def per_speed(values, list_speeds_km_h, speeds_km_h) -> np.ndarray:
@@ -90,6 +100,10 @@ def per_speed(values, list_speeds_km_h, speeds_km_h) -> np.ndarray:
     list_speeds_km_h, speeds_km_h : sequence of float
         The speeds the list refers to, and the speeds wanted (linear
         interpolation, held constant outside).
+
+    See Also
+    --------
+    resolve_tyres : where the scenario's per-speed values are read.
 
     Examples
     --------
@@ -143,8 +157,12 @@ def _thesis_stiffness_model():
 MEASURED_TABLES = ("stiffness_pressure_by_speed", "damping_pressure_by_speed")
 #: The build's stiffness formula and damping model (``formula = "build"``).
 BUILD_FORMULA_TABLES = ("formula_fit", "damping_fit")
+#: A measured tyre's lateral and longitudinal per-speed fits, series damper and catalogue row (issue 42).
+DIRECTIONAL_TABLES = tuple(f"{d}_{q}" for d in ("lateral", "longitudinal")
+                           for q in ("stiffness_pressure_by_speed", "damping_pressure_by_speed")) + (
+    "series_damping_speed", "tyres")
 #: Every table a scenario's tyres may read.
-FIT_TABLES = MEASURED_TABLES + BUILD_FORMULA_TABLES
+FIT_TABLES = MEASURED_TABLES + BUILD_FORMULA_TABLES + DIRECTIONAL_TABLES
 
 
 def _measured_rows(table, tyre_id: str):
@@ -194,6 +212,27 @@ class FitTyres(ShippedTyres):
             raise ValueError(f"{why}: no fitted rows in {table} of {self.source}")
         return rows["speed_km_h"].to_numpy(float), (rows["intercept"] + rows["slope"] * pressure_bar).to_numpy(float)
 
+    def directional(self, tyre_id: str, direction: str) -> dict:
+        """The tables of ``tyre_id`` in ``direction`` as :func:`tyrelab.tyre.directional.rolling_coefficients`
+        takes them (``stiffness_lines``, ``damping_lines``, ``series_damping``, ``catalogue_row``); a table the
+        build lacks (one from before issue 34) is left out: those coefficients fall to the catalogue or the
+        stand-in, whose source the ride names."""
+        out = {}
+        for key, name in (("stiffness_lines", f"{direction}_stiffness_pressure_by_speed"),
+                          ("damping_lines", f"{direction}_damping_pressure_by_speed"),
+                          ("series_damping", "series_damping_speed"), ("catalogue_row", "tyres")):
+            try:
+                table = self._table(name, f"measured_tyre_id {tyre_id!r}")
+            except ValueError:
+                continue
+            if key == "catalogue_row":
+                rows = table.loc[table["tyre_id"].astype(str) == str(tyre_id)] if "tyre_id" in table else table.iloc[:0]
+                if len(rows):
+                    out[key] = rows.iloc[0].to_dict()
+            elif key == "series_damping" or {"tyre_id", "speed_km_h", "intercept", "slope"} <= set(table.columns):
+                out[key] = table
+        return out
+
     def stiffness_model(self, formula: str):
         """The thesis' stiffness formula, or the build's fit (table ``formula_fit``) for ``"build"``."""
         from ..tyre.models import build_stiffness_model
@@ -236,12 +275,31 @@ def scenario_fits(scenario, tables: dict) -> dict:
     ``ours`` rows of :data:`BUILD_FORMULA_TABLES` (``formula = "build"``). A table the build
     lacks stays None (the scenario then fails naming it). Returns name -> DataFrame or None,
     only the tables read: the item key of the scenario and what :class:`FitTyres` is given.
+
+    See Also
+    --------
+    FitTyres : the tyre data these rows make.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> sc = load_scenario(scenarios_dir() / "modern_tractor.toml")  # formula tyres: no fit read
+    >>> scenario_fits(sc, {"formula_fit": pd.DataFrame({"source": ["ours"]})})
+    {}
     """
     _validate.instance("scenario", scenario, Scenario)
     out: dict = {}
     for spec in (scenario.front, scenario.rear):
         tyre_id = getattr(spec, "measured_tyre_id", None)
         if tyre_id:
+            for name in DIRECTIONAL_TABLES:  # issue 42: the rolling element's fits and catalogue row
+                t = tables.get(name)
+                if t is None:
+                    continue
+                part = _safe(lambda: t.loc[t["tyre_id"].astype(str) == str(tyre_id)].reset_index(drop=True), t)
+                out[name] = part if out.get(name) is None else _concat(out[name], part)
             for name in MEASURED_TABLES:
                 t = tables.get(name)
                 part = None if t is None else _safe(lambda: _measured_rows(t, tyre_id), t)
@@ -334,6 +392,20 @@ def resolve_tyres(scenario: Scenario, tyre_data=None, memo: dict | None = None) 
     ------
     ValueError
         When a measured tyre cannot be found.
+
+    See Also
+    --------
+    build_parts : the parts at one speed from these numbers.
+    tyrelab.tyre.directional.rolling_coefficients : a rolling tyre's lateral and longitudinal numbers.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.vehicle import parse_scenario
+    >>> sc = parse_scenario((scenarios_dir() / "mf698t.toml").read_text())
+    >>> tyres = resolve_tyres(sc)
+    >>> sorted(tyres), float(tyres["rear"].stiffness_kN_per_m[0])
+    (['front', 'rear'], 364.0)
     """
     return _resolve(scenario, tyre_data, memo)[0]
 
@@ -347,13 +419,17 @@ def _resolve(scenario: Scenario, tyre_data=None, memo: dict | None = None) -> tu
     speeds = np.asarray(scenario.exposure.speeds_km_h, float)
     lists = scenario.exposure.list_speeds_km_h
     lateral_too = scenario.tractor.three_d and scenario.tractor.lateral_model != "none"
+    t = scenario.tractor  # issue 42: the rear tyres' longitudinal rolling element
+    rolling_lon = (t.longitudinal_stiffness_kN_per_m, t.longitudinal_damping_kN_s_per_m,
+                   t.longitudinal_series_damping_kN_s_per_m_km_h) if t.longitudinal_model == "rolling" else None
     out = {}
     for axle, spec in (("front", scenario.front), ("rear", scenario.rear)):
-        key = (axle, spec, tuple(speeds), tuple(lists), lateral_too, source)
+        lon = rolling_lon if axle == "rear" else None
+        key = (axle, spec, tuple(speeds), tuple(lists), lateral_too, lon, source)
         if memo is not None and key in memo:
             out[axle] = memo[key]
             continue
-        out[axle] = _axle_tyres(axle, spec, speeds, lists, lateral_too, tyre_data)
+        out[axle] = _axle_tyres(axle, spec, speeds, lists, lateral_too, tyre_data, lon)
         if memo is not None:
             memo[key] = out[axle]
     if scenario.front.footprint_m is not None and scenario.rear.footprint_m is not None:
@@ -392,9 +468,11 @@ def static_tyre_loads(asm) -> dict[str, float]:
     return out
 
 
-def _axle_tyres(axle: str, spec, speeds: np.ndarray, lists, lateral_too: bool, tyre_data) -> AxleTyres:
+def _axle_tyres(axle: str, spec, speeds: np.ndarray, lists, lateral_too: bool, tyre_data,
+                longitudinal: tuple | None = None) -> AxleTyres:
     """One axle's tyre numbers per speed (:func:`resolve_tyres`), the footprint a given one or NaN
-    (the contact length needs the vehicle's static loads: :func:`_resolve`)."""
+    (the contact length needs the vehicle's static loads: :func:`_resolve`); ``longitudinal``: the
+    ``[tractor]`` K, C and ``a`` of a rolling longitudinal element on this axle's tyres (issue 42)."""
     warnings: list[str] = []
     k_u = 0.0
     if spec.stiffness_kN_per_m is not None:
@@ -420,33 +498,75 @@ def _axle_tyres(axle: str, spec, speeds: np.ndarray, lists, lateral_too: bool, t
     size = parse_tyre_size(spec.size)
     radius = spec.radius_m or rolling_circumference_m(size) / (2 * math.pi)
     fp = np.full(speeds.shape, math.nan if spec.footprint_m is None else float(spec.footprint_m))
-    lateral = _lateral_tyre(spec, k, np.maximum(c, 0.0)) if lateral_too else {}
+    lateral = _lateral_tyre(spec, k, np.maximum(c, 0.0), speeds, tyre_data) if lateral_too else {}
+    if longitudinal is not None:
+        lateral.update(_longitudinal_series(longitudinal, spec, speeds, tyre_data))
     return AxleTyres(spec.size, spec.pressure_bar, k, np.maximum(c, 0.0), k_src, c_src, float(radius), fp,
                      tuple(warnings), float(k_u), **lateral)
 
 
-def _lateral_tyre(spec, k: np.ndarray, c: np.ndarray) -> dict:
-    """One tyre's lateral element per speed: the scenario's, else the stand-in from its vertical
-    stiffness (:mod:`tyrelab.tyre.lateral`) and its vertical damping."""
-    if spec.lateral_stiffness_kN_per_m is not None:
-        ky, src, ci = np.full(k.shape, float(spec.lateral_stiffness_kN_per_m)), "override (scenario)", None
-    else:
-        est = [estimate_lateral_stiffness(float(x)) for x in k]
-        ky = np.array([e["lateral_stiffness_kN_per_m"] for e in est])
-        src, ci = est[0]["source"], (np.array([e["ci95_kN_per_m"][0] for e in est]),
-                                     np.array([e["ci95_kN_per_m"][1] for e in est]))
-    if spec.lateral_damping_kN_s_per_m is not None:
-        cy = np.full(k.shape, float(spec.lateral_damping_kN_s_per_m))
-        src += "; damping: override (scenario)"
-    else:
-        cy = np.where(c > 0, c, 1e-3)  # a Maxwell element needs a damper: 1 N s/m at least
-        src += "; damping: the tyre's vertical damping (stand-in)"
-    return {"lateral_stiffness_kN_per_m": ky, "lateral_damping_kN_s_per_m": cy, "lateral_source": src,
-            "lateral_ci95_kN_per_m": ci}
+def _directional_tables(tyre_data, spec, direction: str) -> dict:
+    """The build's tables of ``spec``'s measured tyre in ``direction`` and its catalogue row, as
+    :func:`tyrelab.tyre.directional.rolling_coefficients` takes them (none without a measured tyre or
+    a reader that has them: ``tyre_data.directional``)."""
+    if not spec.measured_tyre_id or not hasattr(tyre_data, "directional"):
+        return {}
+    return tyre_data.directional(spec.measured_tyre_id, direction)
+
+
+def _lateral_tyre(spec, k: np.ndarray, c: np.ndarray, speeds: np.ndarray | None = None, tyre_data=None) -> dict:
+    """One tyre's lateral element per speed (issues 33, 42): K, C and the rolling element's ``a``, each
+    from the scenario, the measured tyre's build, the catalogue or the stand-in (from the tyre's vertical
+    stiffness, :mod:`tyrelab.tyre.lateral`; its vertical damping; :mod:`tyrelab.tyre.rolling`):
+    :func:`tyrelab.tyre.directional.rolling_coefficients`. ``speeds``: the scenario's (default: one per
+    value of ``k``, at rest)."""
+    speeds = np.zeros(np.shape(k)) if speeds is None else speeds
+    r = rolling_coefficients("lateral", spec.pressure_bar, speeds, tyre_id=spec.measured_tyre_id or None,
+                             vertical_stiffness_kN_per_m=k, vertical_damping_kN_s_per_m=c,
+                             given={"stiffness_kN_per_m": spec.lateral_stiffness_kN_per_m,
+                                    "damping_kN_s_per_m": spec.lateral_damping_kN_s_per_m,
+                                    "series_damping_kN_s_per_m_km_h": spec.lateral_series_damping_kN_s_per_m_km_h},
+                             **_directional_tables(tyre_data, spec, "lateral"))
+    texts = r.source_text
+    src = (texts["stiffness_kN_per_m"] + "; damping: " + texts["damping_kN_s_per_m"]
+           + "; series damper a: " + texts["series_damping_kN_s_per_m_km_h"])
+    cy = np.where(r.damping_kN_s_per_m > 0, r.damping_kN_s_per_m, 1e-3)  # a Maxwell element needs a damper: 1 N s/m
+    return {"lateral_stiffness_kN_per_m": r.stiffness_kN_per_m, "lateral_damping_kN_s_per_m": cy,
+            "lateral_source": src, "lateral_ci95_kN_per_m": r.ci95.get("stiffness_kN_per_m"),
+            "lateral_series_damping_kN_s_per_m_km_h": r.series_damping_kN_s_per_m_km_h,
+            "lateral_series_ci95_kN_s_per_m_km_h": r.ci95.get("series_damping_kN_s_per_m_km_h"),
+            "lateral_sources": dict(r.sources)}
+
+
+def _longitudinal_series(given: tuple, spec, speeds: np.ndarray, tyre_data=None) -> dict:
+    """``a`` of the rear tyres' longitudinal rolling element (issue 42): ``[tractor]``'s, the measured
+    tyre's, the catalogue's or the stand-in (``given``: ``[tractor]``'s K, C and ``a``; the element's K
+    and C are ``[tractor]``'s)."""
+    k, c, a = given
+    r = rolling_coefficients("longitudinal", spec.pressure_bar, speeds, tyre_id=spec.measured_tyre_id or None,
+                             given={"stiffness_kN_per_m": k, "damping_kN_s_per_m": c,
+                                    "series_damping_kN_s_per_m_km_h": a},
+                             **_directional_tables(tyre_data, spec, "longitudinal"))
+    return {"longitudinal_series_damping_kN_s_per_m_km_h": r.series_damping_kN_s_per_m_km_h,
+            "longitudinal_series_source": r.source_text["series_damping_kN_s_per_m_km_h"]}
 
 
 def build_tractor(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Tractor:
-    """The :class:`~tyrelab.vehicle.tractor.Tractor` at speed index ``i`` (axle = two tyres, SI)."""
+    """The :class:`~tyrelab.vehicle.tractor.Tractor` at speed index ``i`` (axle = two tyres, SI).
+
+    See Also
+    --------
+    build_parts : the parts of the same numbers (any model, 3-D included).
+    resolve_tyres : the tyre numbers per speed it takes.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.vehicle import parse_scenario
+    >>> sc = parse_scenario((scenarios_dir() / "mf698t.toml").read_text())
+    >>> build_tractor(sc, resolve_tyres(sc), 0).mass_kg
+    5120.0
+    """
     _validate.instance("scenario", scenario, Scenario)
     _validate.positive_int("i", i, minimum=0)
     return Tractor.of_parts(build_parts(scenario, tyres, i))
@@ -459,6 +579,21 @@ def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Part
     (:meth:`tyrelab.vehicle.scenario.Scenario.parts`, where its kN values become SI). Without
     ``tractor.roll_inertia_kg_m2`` the parts are those of the pitch-plane
     :class:`~tyrelab.vehicle.tractor.Tractor` of :func:`build_tractor`.
+
+    See Also
+    --------
+    resolve_tyres : the tyre numbers per speed it takes.
+    build_tractor : the pitch-plane tractor of the same numbers.
+    tyrelab.vehicle.model.assemble : the assembly of the parts.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.vehicle import parse_scenario
+    >>> sc = parse_scenario((scenarios_dir() / "mf698t.toml").read_text())
+    >>> parts = build_parts(sc, resolve_tyres(sc), 0)
+    >>> parts.chassis.mass_kg
+    5120.0
     """
     _validate.instance("scenario", scenario, Scenario)
     _validate.positive_int("i", i, minimum=0)
@@ -469,4 +604,11 @@ def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Part
         if ty.lateral_stiffness_kN_per_m is not None:
             si[axle].update(lateral_stiffness_N_per_m=from_kilo(float(ty.lateral_stiffness_kN_per_m[i])),
                             lateral_damping_N_s_per_m=from_kilo(float(ty.lateral_damping_kN_s_per_m[i])))
+        speed = float(scenario.exposure.speeds_km_h[i])  # issue 42: each speed its own c2 = a / v
+        if ty.lateral_series_damping_kN_s_per_m_km_h is not None:
+            si[axle]["lateral_series_damping_N_s_per_m"] = series_damping_N_s_per_m(
+                ty.lateral_series_damping_kN_s_per_m_km_h, speed)
+        if ty.longitudinal_series_damping_kN_s_per_m_km_h is not None:
+            si[axle]["longitudinal_series_damping_N_s_per_m"] = series_damping_N_s_per_m(
+                ty.longitudinal_series_damping_kN_s_per_m_km_h, speed)
     return scenario.parts(si)

@@ -53,6 +53,10 @@ def km_h_to_m_s(speed_km_h):
     """A speed in km/h (scalar or array) in m/s: ``speed_km_h / 3.6`` (the division, so the
     numbers are those of the ``/ 3.6`` it replaced, to the bit).
 
+    See Also
+    --------
+    from_kilo, to_kilo : the kilo factor, the other unit conversion of the vehicle package.
+
     Examples
     --------
     >>> km_h_to_m_s(36.0)

@@ -74,3 +74,31 @@ def test_a_3d_ride_page_leads_with_the_answer(browser, page_path, width):  # noq
     assert r["overflowingHeaders"] == []
     assert min(r["figureWidths"]) > 0.9
     page.close()
+
+
+#: What a reader cannot see: an element whose content is cut by ``overflow: hidden``/``clip``, or that
+#: reaches past the window with no scrolling container around it (issue 47; a table that scrolls
+#: inside its own box is fine).
+CLIPPED_JS = """() => {
+  const out = [], win = document.documentElement.clientWidth;
+  if (document.documentElement.scrollWidth > win + 1) out.push('the page is wider than the window');
+  for (const e of document.querySelectorAll('body *')) {
+    const cs = getComputedStyle(e);
+    if (e.clientWidth > 0 && e.scrollWidth > e.clientWidth + 1 && (cs.overflowX === 'hidden' || cs.overflowX === 'clip'))
+      out.push('cut: ' + e.tagName + ' ' + (e.innerText || '').slice(0, 40));
+    if (e.getBoundingClientRect().right > win + 1) {
+      let p = e.parentElement, scrolls = false;
+      for (; p; p = p.parentElement) { const o = getComputedStyle(p).overflowX; if (o === 'auto' || o === 'scroll') { scrolls = true; break; } }
+      if (!scrolls) out.push('past the window: ' + e.tagName + ' ' + (e.innerText || '').slice(0, 40));
+    }
+  }
+  return out;
+}"""
+
+
+@pytest.mark.parametrize("width", [1400, 800])
+def test_nothing_on_a_sweeps_ride_page_is_cut(browser, page_path, width):  # noqa: F811
+    page = browser.new_page(viewport={"width": width, "height": 900})
+    page.goto(page_path.as_uri())
+    assert page.evaluate(CLIPPED_JS) == []
+    page.close()

@@ -185,14 +185,15 @@ def test_mathtext_in_a_tyre_id_is_plain_text_in_figures():
 
 def test_results_name_the_current_campaign(tmp_path):
     a = write_campaign(tmp_path / "a" / "camp", [(manifest_row("s1", "s1.parquet"), GOOD)])
-    b = tmp_path / "b" / "camp"
+    b = tmp_path / "b" / "other"
     shutil.copytree(a, b)
-    ctx = Context(raw=a, build=tmp_path / "build", jobs=1)
+    ctx = Context(raw=a.parent, build=tmp_path / "build", jobs=1)
     run_pipeline(ctx, STAGES)
-    ctx = Context(raw=b, build=tmp_path / "build", jobs=1)
+    ctx = Context(raw=b.parent, build=tmp_path / "build", jobs=1)
     run_pipeline(ctx, STAGES)
-    assert ctx.read_table("results")["campaign"].tolist() == [str(b.resolve())]
-    assert query(ctx.build / "warehouse.duckdb", "SELECT campaign FROM results")["campaign"].tolist() == [str(b.resolve())]
+    # relative to the raw folder (issue 46: no table holds a path of this machine)
+    assert ctx.read_table("results")["campaign"].tolist() == ["other"]
+    assert query(ctx.build / "warehouse.duckdb", "SELECT campaign FROM results")["campaign"].tolist() == ["other"]
 
 
 def test_a_copied_build_reads_only_itself(tmp_path):

@@ -80,3 +80,12 @@ def test_every_statement_is_printed(build, capsys):
     rc, out, _ = sql(build, "SELECT 1 AS a; SELECT 2 AS b;", capsys, fmt="json")
     assert rc == 0 and [json.loads(line) for line in out.splitlines()] == [[{"a": 1}], [{"b": 2}]]
     assert [len(df) for df in query_all(build / "warehouse.duckdb", "SELECT 1; SELECT 2 UNION ALL SELECT 3")] == [1, 2]
+
+
+def test_a_misspelt_column_or_table_gets_the_closest_names(build, capsys):
+    rc, out, err = sql(build, "SELECT run_idd FROM results", capsys)
+    assert rc == 2 and out == "" and 'did you mean "run_id"' in err and err.count("\n") == 1
+    rc, out, err = sql(build, "SELECT * FROM result", capsys)
+    assert rc == 2 and 'did you mean "results"' in err
+    rc, out, err = sql(build, "SELECT zzzzqqq FROM results", capsys)  # nothing close: DuckDB's line alone
+    assert rc == 2 and "did you mean" not in err and "zzzzqqq" in err

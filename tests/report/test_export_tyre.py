@@ -128,8 +128,14 @@ def test_measured_tyre_from_catalogue_coefficients_alone():
         for key, _, comment in items:
             assert key in ("LENGTH", "FORCE", "ANGLE", "MASS", "TIME") or re.match(
                 r"(measured|placeholder|from the size|inch size|inflation|nominal|Magic)", comment), key
-    with pytest.raises(ValueError, match="no rolling stiffness fit"):
+    with pytest.raises(ValueError, match="no rolling stiffness fit") as refused:
         measured_tyre("MY1", tyres.drop(columns=["carcass_stiffness_kN_per_m"]))
+    assert "record rolling runs" in str(refused.value) and "stationary only" not in str(refused.value)
+    stationary = pd.DataFrame({"tyre_id": ["MY1"], "condition": ["stationary"], "carcass_stiffness_kN_per_m": [300.0],
+                               "pressure_dependence_kN_per_m_bar": [100.0]})
+    with pytest.raises(ValueError, match="stationary only") as refused:  # issue 47: what to measure or pass
+        measured_tyre("MY1", tyres.drop(columns=["carcass_stiffness_kN_per_m"]), stationary)
+    assert "speed_km_h > 0" in str(refused.value) and "tyres.csv" in str(refused.value)
     with pytest.raises(ValueError, match="pressure_bar"):
         tir_parameters(t, 0)
     assert math.isnan(t.stiffness.intercept_se)

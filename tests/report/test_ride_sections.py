@@ -123,12 +123,16 @@ def test_a_sweep_of_scenario_keys_names_the_variant_of_every_speed_row(tmp_path)
     """Without it the rows of ``--set tractor.mass_kg=4500,5000`` read the same pressures twice."""
     path = _write(tmp_path, "keys", scenario_text(ISO_A, "[8]", name="keys"))
     results = ride.ride_sweep(load_scenario(path), sets={"tractor.mass_kg": [4500, 5000]}, with_spectra=False)
-    text = ride_page.format_table(ride.result_json(results))
+    text = ride_page.format_table(ride.result_json(results), width=None)  # --wide: one line per row
     rows = [line for line in text.splitlines() if "mass_kg=" in line]
-    assert len(rows) == 2 and "mass_kg=4500" in rows[0] and "mass_kg=5000" in rows[1]
+    assert len(rows) == 2 and "tractor.mass_kg=4500" in rows[0] and "tractor.mass_kg=5000" in rows[1]
+    text = ride_page.format_table(ride.result_json(results))  # 100 columns: blocks that repeat the variant
+    rows = [line for line in text.splitlines() if "mass_kg=" in line]
+    assert len(rows) >= 4 and all("=4500" in r for r in rows[0::2]) and all("=5000" in r for r in rows[1::2])
+    assert max(map(len, text.splitlines())) <= 100
     html = ride_page.render_page(results)
     table = re.search(r"<h2>Seat vibration per speed</h2>.*?</table>", html, re.S).group(0)
-    assert "<th>variant</th>" in table and '<td class="text">mass_kg=5000</td>' in table
+    assert "<th>variant</th>" in table and '<td class="text">tractor.mass_kg=5000</td>' in table
 
 
 def test_a_legend_too_long_to_fit_says_how_many_lines_it_leaves_out():
@@ -140,3 +144,17 @@ def test_a_legend_too_long_to_fit_says_how_many_lines_it_leaves_out():
             for i in range(20) for v in (4.0, 8.0)]
     svg = ride_figures.aw_against_speed(pd.DataFrame(rows), 8.0)
     assert "9 more lines (see the table)" in svg and "variant 10" in svg and "variant 11" not in svg
+
+
+def test_a_model_without_fore_aft_motion_is_not_drawn_as_measured_zeros():
+    """Issue 47: the Ride page drew MF698T's 1.4 a_wx (no fore-aft element: 0 throughout) as a line of zeros."""
+    import pandas as pd
+
+    from tyrelab.report import ride_figures
+
+    rows = [{"speed_km_h": v, "a_wz_m_s2": 0.1 * v, "a_wx_m_s2": 0.05 * v if name == "modern" else 0.0, "variant": name}
+            for name in ("modern", "MF698T") for v in (4.0, 8.0)]
+    svg = ride_figures.aw_against_speed(pd.DataFrame(rows), 8.0)
+    assert "not drawn, no motion on this axis in its model" in svg and svg.count("MF698T") >= 2  # legend and note
+    alone = ride_figures.aw_against_speed(pd.DataFrame([r for r in rows if r["variant"] == "MF698T"]), 8.0)
+    assert "zero throughout" in alone

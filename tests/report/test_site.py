@@ -75,6 +75,25 @@ def test_missing_tables_say_which_stage(small_report):
     assert "not produced yet" not in html  # the full build has them
 
 
+def test_a_figure_whose_stage_ran_but_drew_nothing_is_not_not_produced_yet(small_report, monkeypatch):
+    """Issue 47: a user's campaign without Fig. 21's runs read "not produced yet by stage analyse"
+    although analyse ran. Its table exists: the note says the stage ran, and the build does not list it."""
+    import pandas as pd
+
+    from tyrelab.report import chapters, site
+
+    wh = site.Warehouse(small_report.build / "warehouse.duckdb")
+    spec = next(f for c in chapters.CHAPTERS for f in c.items
+                if isinstance(f, chapters.FigureSpec) and f.inputs and f.inputs[0] == "results")
+    real = wh.table
+    monkeypatch.setattr(wh, "table", lambda name: real(name).iloc[0:0] if name == "results" else real(name))
+    item = site.resolve_figure(wh, spec)
+    assert item["svg"] is None and "not produced yet" not in item["note"]
+    assert f"stage {spec.stage} ran" in item["note"] and item["missing"].empty
+    wh.names -= {"results"}  # the stage has not run: that is "not produced yet"
+    assert "not produced yet by stage" in site.resolve_figure(wh, spec)["note"]
+
+
 def _server_ready():
     import time
 

@@ -55,6 +55,15 @@ def test_failed_day_flags_its_runs(tmp_path):
     assert "1 failed" in res.message
 
 
+def test_the_warning_of_a_failed_day_gives_its_calibration_runs_notes(tmp_path, caplog):
+    ctx, good, bad = _context_with_days(tmp_path)
+    calibrate.run(ctx)
+    said = [r.getMessage() for r in caplog.records if "calibration failed on" in r.getMessage()]
+    assert len(said) == 1 and bad["recorded_on"] in said[0]
+    assert bad["notes"] and f"(manifest notes: {bad['notes']})" in said[0]  # the demo's: "deliberately miscalibrated"
+    assert "deliberately miscalibrated" in said[0]
+
+
 
 def unc_columns():
     from tyrelab.measurement.uncertainty import UNCERTAINTY_COLUMNS

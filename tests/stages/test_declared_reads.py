@@ -17,6 +17,8 @@ import shutil
 
 import pandas as pd
 import pytest
+
+from tyrelab.resources import scenarios_dir
 from tests.scenarios import scenario_text, write
 
 from tyrelab.stages import Context, run_stage, simulate
@@ -95,7 +97,8 @@ def test_a_measured_tyre_scenario_reads_this_runs_fits_and_equals_tyrelab_ride(f
     from tyrelab.cli import main
 
     ctx, paths, result = fresh
-    assert "ride scenarios 2 reused, 3 computed" in result.message, result.message  # the shipped two were cached
+    shipped = len(list(scenarios_dir().glob("*.toml")))
+    assert f"ride scenarios {shipped} reused, 3 computed" in result.message, result.message  # the shipped were cached
     assert ctx.read_table("stages/quarantine_simulate").empty
     rows = ctx.read_table("ride_results")
     ours = rows[rows["file"] == simulate.portable_path(str(paths["measured"]), ctx.raw)].reset_index(drop=True)
@@ -129,7 +132,8 @@ def test_an_edited_build_formula_re_runs_exactly_the_scenarios_that_use_it(fresh
     table.to_parquet(path)  # a regress run whose formula fit changed (its inputs edited)
 
     result = run_stage("simulate", ctx)
-    assert "ride scenarios 4 reused, 1 computed" in result.message, result.message
+    shipped = len(list(scenarios_dir().glob("*.toml")))
+    assert f"ride scenarios {shipped + 2} reused, 1 computed" in result.message, result.message
     after = ctx.read_table("ride_results")
     file = simulate.portable_path(str(paths["build"]), ctx.raw)  # as the warehouse holds it: no machine's path
     mine = after["file"] == file
@@ -160,7 +164,8 @@ def test_new_fits_of_a_tyre_re_run_only_the_scenarios_naming_it(fresh):
     table.loc[~other, "intercept"] += 5.0
     table.to_parquet(path)
     result = run_stage("simulate", ctx)
-    assert "ride scenarios 4 reused, 1 computed" in result.message and "Table XX 1 reused, 0 computed" in \
+    shipped = len(list(scenarios_dir().glob("*.toml")))
+    assert f"ride scenarios {shipped + 2} reused, 1 computed" in result.message and "Table XX 1 reused, 0 computed" in \
         result.message, result.message
     after = ctx.read_table("ride_results")
     mine = after["file"] == simulate.portable_path(str(paths["measured"]), ctx.raw)
@@ -178,7 +183,8 @@ def test_explain_lists_the_items_of_a_stage_that_runs(tmp_path):
     assert "item validation <- its recording's analysis, its scenario, the fit rows of its tyres" in rides
     simulate_part = text.split("\nsimulate ", 1)[1].split("\nwarehouse ", 1)[0]
     # nothing built yet; on the inputs as they are now, before the stages it reads from run
-    assert "now, before ingest, analyse, calibrate, regress, rides run: ride scenarios: 0 kept, 2 to run; " \
+    shipped = len(list(scenarios_dir().glob("*.toml")))
+    assert f"now, before ingest, analyse, calibrate, regress, rides run: ride scenarios: 0 kept, {shipped} to run; " \
         "Table XX: to run" in simulate_part, simulate_part
 
 

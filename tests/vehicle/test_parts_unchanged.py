@@ -83,9 +83,19 @@ def before_issue_33_parts(thesis_gravity: bool = True):
         m_g = p.chassis.mass_kg * GRAVITY_M_S2
         return {"front": m_g * b / (a + b) / 2, "rear": m_g * a / (a + b) / 2}
 
+    seat_axes = plan.seat_axes
+
+    def inertial(scenario):  # issue 42 made body-fixed seat axes the 3-D default; before it they were inertial
+        given = "gravity_tilt" in (scenario.doc.get("seat") or {})
+        return seat_axes(scenario if given else dataclasses.replace(
+            scenario, seat=dataclasses.replace(scenario.seat, gravity_tilt=False)))
+
     for m in holders:
         m.build_parts = old_parts
     tyres.static_tyre_loads = tractor_alone
+    axes_holders = (ride, plan, sweep)
+    for m in axes_holders:
+        m.seat_axes = inertial
     if thesis_gravity:
         model.STANDARD_GRAVITY_M_S2 = THESIS_GRAVITY_M_S2
     try:
@@ -94,6 +104,8 @@ def before_issue_33_parts(thesis_gravity: bool = True):
         for m, f in zip(holders, kept[0]):
             m.build_parts = f
         tyres.static_tyre_loads = kept[1]
+        for m in axes_holders:
+            m.seat_axes = seat_axes
         model.STANDARD_GRAVITY_M_S2 = gravity
 
 

@@ -125,12 +125,13 @@ def test_reference_agrees_with_the_projects_second_system(tmp_path, lateral, piv
     t = tractor(pivot_front=pivot, lateral=lateral, yaw_inertia_kg_m2=I_YAW, pivot_height_m=0.6,
                 ky_front=1e3 * KY["front"], ky_rear=1e3 * KY["rear"], cy_front=1e3 * CY["front"],
                 cy_rear=1e3 * CY["rear"])
-    freqs = ref.natural_frequencies_Hz(t)
-    assert len(res.natural_frequencies_Hz) == len(freqs)
+    # issue 42: the modes are the roots of the damped model (a Maxwell element's too: no mode the roots do not have)
+    freqs = np.abs(ref.complex_roots(t)[0]) / (2 * math.pi)
+    assert len(res.natural_frequencies_Hz) >= 5
     for name, f in res.natural_frequencies_Hz.items():
         assert np.min(np.abs(freqs - f)) / f < 0.01, (name, f, freqs)
-    assert {"lateral_roll", "yaw", "roll"} <= set(res.natural_frequencies_Hz) or \
-        {"lateral", "yaw", "roll"} <= set(res.natural_frequencies_Hz)
+    assert {"yaw", "roll"} <= set(res.natural_frequencies_Hz) and \
+        ({"lateral_roll", "lateral"} & set(res.natural_frequencies_Hz))
     v = 9 / 3.6
     f = v / 2.0
     amps = {"front_left": left, "rear_left": left, "front_right": right, "rear_right": right}

@@ -367,16 +367,21 @@ def test_bad_lateral_keys_all_listed_exit_2(tmp_path, capsys):
 
 
 def test_a_3d_scenario_defaults_to_lateral_tyre_elements(tmp_path):
-    """Issue 33: without lateral_model a 3-D scenario gets Kelvin-Voigt lateral tyres (stand-in stiffness
-    k_y = 0.57 k_z, its interval in ride.json) and a low coupled lateral-roll mode; "none" keeps the body
-    rolling about its CG and says a_wy is indicative."""
+    """Issues 33, 42: without lateral_model a 3-D scenario gets rolling lateral tyres (stand-in stiffness
+    k_y = 0.57 k_z and series damper a = 100 kN s/m km/h, their intervals in ride.json) and a low coupled
+    lateral-roll mode with its damping; "none" keeps the body rolling about its CG and says a_wy is
+    indicative."""
     res = ride.ride(load_scenario(_write(tmp_path, text('kind = "iso8608"\nclass = "B"\nlength_m = 40',
                                                          lateral=None))), with_spectra=False)
     t = res.tyres["front"]
     assert t.lateral_stiffness_kN_per_m[0] == pytest.approx(0.5657 * K_TYRE["front"], rel=1e-3)
     doc = ride.result_json([res])
-    assert doc["lateral_model"] == "kelvin_voigt" and "stand-in" in doc["lateral_note"]
+    assert doc["lateral_model"] == "rolling" and "stand-in" in doc["lateral_note"]
     assert doc["tyres"]["front"]["lateral_stiffness_ci95_kN_per_m"][0] < t.lateral_stiffness_kN_per_m[0]
+    assert doc["tyres"]["front"]["lateral_series_damping_kN_s_per_m_km_h"] == 100.0
+    assert doc["tyres"]["front"]["lateral_series_damping_ci95_kN_s_per_m_km_h"] == [50.0, 200.0]
+    assert doc["tyres"]["front"]["lateral_sources"]["series_damping_kN_s_per_m_km_h"] == "stand-in"
+    assert set(doc["damping_ratio"]) == set(doc["natural_frequencies_Hz"])
     roll_cg = math.sqrt(1e3 * (K_TYRE["front"] * TF**2 + K_TYRE["rear"] * TR**2) / 2 / I_ROLL) / (2 * math.pi)
     low = min(v for k, v in res.natural_frequencies_Hz.items() if k in ("lateral_roll", "lateral"))
     assert low < 0.75 * roll_cg and "yaw" in res.natural_frequencies_Hz

@@ -70,6 +70,23 @@ class RideResult:
     a8_lateral_ci95_m_s2: dict = field(default_factory=dict)
     #: The undamped modes (:class:`~tyrelab.vehicle.modes.ModeSet`) the natural frequencies name.
     modes: ModeSet | None = field(default=None, repr=False)
+    #: 3-D with horizontal tyre elements (issue 42): the modes with their damping from the complex roots
+    #: (:func:`~tyrelab.vehicle.modes.damped_modes`), per speed (each speed its own series dampers), the
+    #: names the first speed's followed by shape; ``natural_frequencies_Hz`` is then ``|λ| / 2π`` of the
+    #: first speed's. Empty otherwise (the undamped modes of the pitch plane, thesis §8.2).
+    modes_by_speed: dict = field(default_factory=dict, repr=False)
+    #: mode -> [low, high] of the first speed's damping ratio across the same perturbations as the
+    #: frequencies' intervals (issue 42).
+    damping_ratio_intervals: dict = field(default_factory=dict)
+
+    @property
+    def damping_ratios(self) -> dict:
+        """``{mode: ζ}`` at the first speed (None: overdamped); empty without :attr:`modes_by_speed`."""
+        if not self.modes_by_speed:
+            return {}
+        first = next(iter(self.modes_by_speed.values()))
+        return {n: (None if d is None or d.overdamped else d.damping_ratio) for n, d in first.items()}
+
     #: The variant at the scenario's own values (its tyre pressures and the file's value of every swept
     #: key; :func:`~tyrelab.vehicle.ride.ride_sweep`): the one whose spectra the pages show.
     nominal: bool = True
@@ -82,14 +99,20 @@ class RideResult:
     def mode_table(self) -> pd.DataFrame:
         """The natural frequencies as a table, one row per mode (:attr:`modes` holds the shapes): ``mode``, ``frequency_Hz``, ``low_Hz``/``high_Hz`` (its 95 %
         interval from the tyre stiffness uncertainty; NaN without one) and ``nodal_point_m``
-        (ahead of the CG; NaN for a mode that does not pitch)."""
+        (ahead of the CG; NaN for a mode that does not pitch); with the damped modes (3-D, issue 42) also
+        ``damping_ratio`` (NaN: overdamped) and ``overdamped``, at the first speed."""
         rows = []
+        zeta = self.damping_ratios
         for mode, f in self.natural_frequencies_Hz.items():
             lo, hi = self.natural_frequency_intervals_Hz.get(mode) or (None, None)  # None: no interval
             rows.append({"mode": mode, "frequency_Hz": float(f), "low_Hz": math.nan if lo is None else float(lo),
                          "high_Hz": math.nan if hi is None else float(hi),
                          "nodal_point_m": float(self.nodal_points_m.get(mode, math.nan))})
-        return pd.DataFrame(rows, columns=["mode", "frequency_Hz", "low_Hz", "high_Hz", "nodal_point_m"])
+            if zeta:
+                rows[-1].update(damping_ratio=math.nan if zeta.get(mode) is None else float(zeta[mode]),
+                                overdamped=zeta.get(mode) is None)
+        cols = ["mode", "frequency_Hz", "low_Hz", "high_Hz", "nodal_point_m"]
+        return pd.DataFrame(rows, columns=cols + (["damping_ratio", "overdamped"] if zeta else []))
 
     def to_dict(self) -> dict:
         """The JSON document of ``tyrelab ride`` for this result (:func:`~tyrelab.vehicle.ride.result_json`)."""
@@ -146,9 +169,38 @@ def _tyre_json(t: AxleTyres) -> dict:
             "lateral_damping_kN_s_per_m": _clean(t.lateral_damping_kN_s_per_m[0]),
             "lateral_source": t.lateral_source,
             "lateral_stiffness_ci95_kN_per_m": None if t.lateral_ci95_kN_per_m is None
-            else [_clean(t.lateral_ci95_kN_per_m[0][0]), _clean(t.lateral_ci95_kN_per_m[1][0])]}
+            else [_clean(t.lateral_ci95_kN_per_m[0][0]), _clean(t.lateral_ci95_kN_per_m[1][0])],
+            "lateral_series_damping_kN_s_per_m_km_h": _clean(t.lateral_series_damping_kN_s_per_m_km_h),
+            "lateral_series_damping_ci95_kN_s_per_m_km_h": None if t.lateral_series_ci95_kN_s_per_m_km_h is None
+            else [_clean(x) for x in t.lateral_series_ci95_kN_s_per_m_km_h],
+            "lateral_sources": dict(t.lateral_sources)}
            if t.lateral_stiffness_kN_per_m is not None else {}),
+        **({"longitudinal_series_damping_kN_s_per_m_km_h": _clean(t.longitudinal_series_damping_kN_s_per_m_km_h),
+            "longitudinal_series_source": t.longitudinal_series_source}
+           if t.longitudinal_series_damping_kN_s_per_m_km_h is not None else {}),
     }
+
+
+def _damped_json(r: RideResult) -> dict:
+    """The modes with their damping (issue 42): ``damping_ratio`` beside ``natural_frequencies_Hz`` (null:
+    overdamped), ``damped_frequencies_Hz`` (``Im λ / 2π``; null: overdamped), ``overdamped_modes``,
+    ``damping_ratio_ci95`` and, per speed, ``modes_by_speed``."""
+    first = next(iter(r.modes_by_speed.values()))
+
+    def one(d):
+        return None if d is None else {"natural_frequency_Hz": _clean(d.undamped_Hz),
+                                       "damped_frequency_Hz": None if d.overdamped else _clean(d.damped_Hz),
+                                       "damping_ratio": None if d.overdamped else _clean(d.damping_ratio),
+                                       "overdamped": bool(d.overdamped)}
+
+    return {"damping_ratio": {k: _clean(v) for k, v in r.damping_ratios.items()},
+            "damped_frequencies_Hz": {k: None if d is None or d.overdamped else _clean(d.damped_Hz)
+                                      for k, d in first.items()},
+            "overdamped_modes": [k for k, d in first.items() if d is not None and d.overdamped],
+            "damping_ratio_ci95": {k: None if v is None else [_clean(x) for x in v]
+                                   for k, v in r.damping_ratio_intervals.items()},
+            "modes_by_speed": [{"speed_km_h": v, "modes": {k: one(d) for k, d in ms.items()}}
+                               for v, ms in r.modes_by_speed.items()]}
 
 
 def result_json(results: list[RideResult]) -> dict:
@@ -189,6 +241,7 @@ def result_json(results: list[RideResult]) -> dict:
             "natural_frequencies_Hz": {k: _clean(v) for k, v in r.natural_frequencies_Hz.items()},
             "natural_frequencies_Hz_ci95": {k: None if v is None else [_clean(x) for x in v]
                                             for k, v in r.natural_frequency_intervals_Hz.items()},
+            **(_damped_json(r) if r.modes_by_speed else {}),
             "nodal_points_m": {k: _clean(v) for k, v in r.nodal_points_m.items()},
             "speeds": [{k: _clean(v) for k, v in row.items()} for row in r.speeds.to_dict(orient="records")],
             **({"time_domain": [{k: _clean(v) for k, v in row.items()} for row in r.time_rows.to_dict(orient="records")]}
@@ -237,6 +290,12 @@ def results_table(results: list[RideResult], scenario_id: str | None = None) -> 
             df[f"{mode}_Hz"] = f
         df["modes_Hz"] = "; ".join(f"{k} {v:.3f}" if math.isfinite(v) else f"{k} not followed"
                                    for k, v in r.natural_frequencies_Hz.items())
+        if r.modes_by_speed:  # issue 42: each speed's modes with their damping (its own series dampers)
+            df["modes_damping"] = [
+                "; ".join(f"{k} overdamped ({d.undamped_Hz:.3f} Hz)" if d.overdamped else
+                          f"{k} {d.undamped_Hz:.3f} Hz ζ {d.damping_ratio:.3f}"
+                          for k, d in r.modes_by_speed.get(float(v), {}).items() if d is not None)
+                for v in df["speed_km_h"]]
         df["front_stiffness_source"] = r.tyres["front"].stiffness_source
         df["rear_stiffness_source"] = r.tyres["rear"].stiffness_source
         df["working_speed_km_h"] = r.scenario.exposure.working_speed  # the heatmap's speed ([exposure])

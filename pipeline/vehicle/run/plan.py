@@ -11,10 +11,10 @@ import math
 import numpy as np
 import pandas as pd
 
-from ..units import km_h_to_m_s
+from ..units import from_kilo, km_h_to_m_s
 from ... import _validate
 from ..model import Assembly, assemble
-from ..modes import frequency_intervals, mode_set
+from ..modes import ModeSet, damped_modes, follow_damped, frequency_intervals, mode_set
 from ..scenario import Scenario
 from ..tyres import _resolve, build_parts
 from .output import RideResult
@@ -102,8 +102,17 @@ def finish(p: VariantPlan) -> RideResult:
     first = p.runs[0].asm
     shapes = mode_set(first)
     nat, nodal = shapes.frequencies(), shapes.nodal()
-    nat_ci, notes = frequency_intervals(first, tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
+    by_speed, zeta_ci = {}, {}
+    if any(e.name.endswith("_lateral") for e in first.elements):  # the 3-D lateral system: its damping matters
+        by_speed = _damped_by_speed(p, shapes)  # issue 42: the complex roots, per speed
+        d0 = next(iter(by_speed.values()))
+        nat = {n: d.undamped_Hz for n, d in d0.items() if d is not None}
+        nodal = {n: x for n, x in nodal.items() if n in nat}
+        nat_ci, zeta_ci, notes = _damped_intervals(p, d0, shapes)
+    else:
+        nat_ci, notes = frequency_intervals(first, tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
     warnings += [f"natural frequencies: {n}" for n in notes]
+
     cols = ["speed_km_h", "frequency_Hz"]
     return RideResult(
         scenario=sc, tyres=tyres, natural_frequencies_Hz=nat, nodal_points_m=nodal,
@@ -113,8 +122,83 @@ def finish(p: VariantPlan) -> RideResult:
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
         warnings=warnings, natural_frequency_intervals_Hz=nat_ci, signals=signals, road_classes=track.road_classes,
         a8_lateral_ci95_m_s2=_lateral_interval(p, rows),
-        modes=shapes,
+        modes=shapes, modes_by_speed=by_speed, damping_ratio_intervals=zeta_ci,
     )
+
+
+def _damped_by_speed(p: VariantPlan, shapes: ModeSet) -> dict:
+    """Speed (km/h) -> ``{mode: DampedMode}`` (issue 42): each speed's assembly's damped modes (its own
+    series dampers), each named by its own shape (:func:`~tyrelab.vehicle.modes.damped_modes`: a mode
+    that changes its character with speed changes its name)."""
+    return {float(speed): damped_modes(p.runs[i].asm, reference=shapes) for i, speed in enumerate(p.speeds_km_h)}
+
+
+def _damped_intervals(p: VariantPlan, nominal: dict, shapes: ModeSet) -> tuple[dict, dict, list]:
+    """95 % intervals of the first speed's damped modes (issue 42): first order in each axle's vertical
+    tyre stiffness uncertainty (GUM 5.1.2, ±1 %, as :func:`~tyrelab.vehicle.modes.frequency_intervals`),
+    widened to hold every stand-in's spread: the lateral stiffness, lateral damping and series damper
+    ``a`` at both ends of their 95 % intervals (x/÷ 2) where they are stand-ins. Every perturbed model's
+    modes are followed from the nominal ones by shape. Returns the frequencies' and the damping ratios'
+    intervals and a note per mode that cannot be followed."""
+    sc, tyres = p.scenario, p.tyres
+    base = build_parts(sc, tyres, 0)
+    nat = {n: d for n, d in nominal.items() if d is not None}
+
+    def modes_of(parts):
+        return follow_damped(nat, damped_modes(assemble(parts), reference=shapes))
+
+    def scaled(parts, axle, **factors):
+        part = getattr(parts, axle)
+        return dataclasses.replace(parts, **{axle: dataclasses.replace(part, **{
+            k: f * getattr(part, k) for k, f in factors.items()})})
+
+    var_f, var_z, lost = dict.fromkeys(nat, 0.0), dict.fromkeys(nat, 0.0), {}
+    for axle in ("front", "rear"):
+        u = tyres[axle].stiffness_u_kN_per_m
+        if not u > 0:
+            continue
+        k = getattr(base, axle).tyre_stiffness_N_per_m
+        up = modes_of(scaled(base, axle, tyre_stiffness_N_per_m=1.01))
+        down = modes_of(scaled(base, axle, tyre_stiffness_N_per_m=0.99))
+        for n in nat:
+            if up[n] is None or down[n] is None:
+                lost[n] = axle
+                continue
+            var_f[n] += ((up[n].undamped_Hz - down[n].undamped_Hz) / (0.02 * k) * from_kilo(u)) ** 2
+            var_z[n] += ((up[n].damping_ratio - down[n].damping_ratio) / (0.02 * k) * from_kilo(u)) ** 2
+    f_ci = {n: [d.undamped_Hz - 1.96 * math.sqrt(var_f[n]), d.undamped_Hz + 1.96 * math.sqrt(var_f[n])]
+            for n, d in nat.items()}
+    z_ci = {n: [d.damping_ratio - 1.96 * math.sqrt(var_z[n]), d.damping_ratio + 1.96 * math.sqrt(var_z[n])]
+            for n, d in nat.items()}
+    spreads = []
+    for axle in ("front", "rear"):
+        t = tyres[axle]
+        sources = t.lateral_sources or {}
+        for key, field_ in (("stiffness_kN_per_m", "lateral_stiffness_N_per_m"),
+                            ("damping_kN_s_per_m", "lateral_damping_N_s_per_m"),
+                            ("series_damping_kN_s_per_m_km_h", "lateral_series_damping_N_s_per_m")):
+            if sources.get(key) == "stand-in" and math.isfinite(getattr(base, axle).__dict__.get(field_, 0.0) or 0.0):
+                spreads += [scaled(base, axle, **{field_: f}) for f in (0.5, 2.0)]
+    for parts in spreads:
+        other = modes_of(parts)
+        for n, d in other.items():
+            if d is None:
+                lost.setdefault(n, "stand-in")
+                continue
+            f_ci[n] = [min(f_ci[n][0], d.undamped_Hz), max(f_ci[n][1], d.undamped_Hz)]
+            z_ci[n] = [min(z_ci[n][0], d.damping_ratio), max(z_ci[n][1], d.damping_ratio)]
+    notes = []
+    for n, why in lost.items():
+        f_ci[n] = z_ci[n] = None
+        notes.append(f"{n}: no 95 % interval: the mode cannot be followed by its shape when the "
+                     + (f"{why} tyre stiffness changes by 1 %" if why != "stand-in" else
+                        "stand-ins move across their 95 % intervals") + " (it trades places with another mode)")
+    for n, ci in f_ci.items():
+        if ci is not None and ci[0] < 0:
+            f_ci[n] = None
+            notes.append(f"{n}: no 95 % interval: the first-order interval would reach below 0 Hz")
+    z_ci = {n: (None if ci is None else [max(ci[0], 0.0), min(ci[1], 1.0)]) for n, ci in z_ci.items()}
+    return f_ci, z_ci, notes
 
 
 def _lateral_interval(p: VariantPlan, rows: list) -> dict:

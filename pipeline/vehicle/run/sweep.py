@@ -120,7 +120,8 @@ def _follow_modes(results: list[RideResult]) -> None:
             continue
         mapping, notes = follow_names(ref, r.modes)
         back = {new: own for own, new in mapping.items()}
-        r.natural_frequencies_Hz = {n: r.natural_frequencies_Hz[back[n]] if n in back else math.nan for n in ref.names}
+        r.natural_frequencies_Hz = {n: r.natural_frequencies_Hz.get(back[n], math.nan) if n in back else math.nan  # a damped
+                                    for n in ref.names}  # model may leave out a mode it cannot follow (issue 42)
         r.natural_frequency_intervals_Hz = {n: r.natural_frequency_intervals_Hz.get(back[n]) if n in back else None
                                             for n in ref.names}
         r.nodal_points_m = {n: r.modes.nodal_points_m[r.modes.names.index(back[n])] if n in back else math.nan

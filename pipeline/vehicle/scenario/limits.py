@@ -53,6 +53,8 @@ LIMITS: dict[str, tuple[float, float, str]] = {
     "age_years": (0.0, 60.0, "years"),
     "lateral_stiffness_kN_per_m": (1.0, 100_000.0, "kN/m"),
     "lateral_damping_kN_s_per_m": (0.01, 1_000.0, "kN s/m"),
+    "lateral_series_damping_kN_s_per_m_km_h": (1.0, 10_000.0, "kN s/m km/h"),
+    "tractor.longitudinal_series_damping_kN_s_per_m_km_h": (1.0, 10_000.0, "kN s/m km/h"),
     "tractor.yaw_inertia_kg_m2": (10.0, 500_000.0, "kg m²"),
     "radius_m": (0.1, 2.0, "m"),
     "footprint_m": (0.01, 2.0, "m"),
@@ -163,8 +165,9 @@ def scenario_problems(scenario) -> list[str]:
     for name in ("mass_kg", "pitch_inertia_kg_m2", "front_distance_m", "rear_distance_m", "cg_height_m",
                  "longitudinal_stiffness_kN_per_m", "longitudinal_damping_kN_s_per_m"):
         checks.append((f"tractor.{name}", getattr(s.tractor, name)))
-    if s.tractor.yaw_inertia_kg_m2 is not None:
-        checks.append(("tractor.yaw_inertia_kg_m2", s.tractor.yaw_inertia_kg_m2))
+    for name in ("yaw_inertia_kg_m2", "longitudinal_series_damping_kN_s_per_m_km_h"):
+        if getattr(s.tractor, name) is not None:
+            checks.append((f"tractor.{name}", getattr(s.tractor, name)))
     for name in ("ahead_of_cg_m", "height_above_cg_m", "natural_frequency_Hz", "damping_ratio"):
         if getattr(s.seat, name) is not None:
             checks.append((f"seat.{name}", getattr(s.seat, name)))
@@ -181,7 +184,8 @@ def scenario_problems(scenario) -> list[str]:
         checks.append((f"tyres.{axle}.pressure_bar", t.pressure_bar))
         checks.append((f"tyres.{axle}.age_years", t.age_years))
         for name in ("stiffness_kN_per_m", "damping_kN_s_per_m", "radius_m", "footprint_m",
-                     "lateral_stiffness_kN_per_m", "lateral_damping_kN_s_per_m"):
+                     "lateral_stiffness_kN_per_m", "lateral_damping_kN_s_per_m",
+                     "lateral_series_damping_kN_s_per_m_km_h"):
             v = getattr(t, name)
             for x in (v if isinstance(v, tuple) else () if v is None else (v,)):
                 checks.append((f"tyres.{axle}.{name}", x))
@@ -275,7 +279,20 @@ def profile_problems(x, left, right, path=None) -> list[str]:
     """What the model cannot take of a profile's data (distance, left and right heights, m; read
     from ``path``, named in each line): not finite, gaps or a length out of range, a step (the
     median spacing, the track's grid) finer than ``surface.dx_m``'s bound (it sets the samples
-    the track is resampled to, before any is allocated), heights out of range."""
+    the track is resampled to, before any is allocated), heights out of range.
+
+    See Also
+    --------
+    scenario_problems : the same for a whole scenario (its profile's data among them).
+
+    Examples
+    --------
+    >>> x = np.arange(0.0, 10.0, 0.05)
+    >>> profile_problems(x, np.zeros_like(x), np.zeros_like(x))
+    []
+    >>> profile_problems(x, np.full_like(x, 5.0), np.zeros_like(x), "road.csv")[0][:60]
+    "surface.profile 'road.csv': heights must be finite and withi"
+    """
     where = f"surface.profile {str(path)!r}" if path is not None else "surface.profile"
     problems = []
     if not np.isfinite(x).all():

@@ -290,12 +290,26 @@ def _parts_problems(doc: dict) -> list[str]:
             key = "lateral_model" if tractor.get("lateral_model", "none") != "none" else "yaw_inertia_kg_m2"
             problems.append(f"tractor.{key} needs tractor.roll_inertia_kg_m2 (the 3-D model: lateral tyre "
                             "elements move the body sideways, in roll and in yaw)")
+        if tractor.get("longitudinal_model") == "rolling":
+            problems.append("tractor.longitudinal_model = \"rolling\" needs tractor.roll_inertia_kg_m2 (the 3-D "
+                            "model; the pitch plane keeps the thesis' elements of §7.3 and §7.5)")
         for axle in ("front", "rear"):
             ty, _ = _section_values(doc, f"tyres.{axle}")
-            for k in ("lateral_stiffness_kN_per_m", "lateral_damping_kN_s_per_m"):
+            for k in ("lateral_stiffness_kN_per_m", "lateral_damping_kN_s_per_m",
+                      "lateral_series_damping_kN_s_per_m_km_h"):
                 if ty and k in ty:
                     problems.append(f"tyres.{axle}.{k} needs the 3-D model (tractor.roll_inertia_kg_m2 and the "
                                     "track widths)")
+    if three_d:  # issue 42: a series damper's a applies to the rolling element only
+        lateral = tractor.get("lateral_model", "rolling")
+        for axle in ("front", "rear"):
+            ty, _ = _section_values(doc, f"tyres.{axle}")
+            if ty and "lateral_series_damping_kN_s_per_m_km_h" in ty and lateral != "rolling":
+                problems.append(f"tyres.{axle}.lateral_series_damping_kN_s_per_m_km_h applies to "
+                                f"tractor.lateral_model = \"rolling\", not {lateral!r}")
+    if "longitudinal_series_damping_kN_s_per_m_km_h" in tractor and tractor.get("longitudinal_model") != "rolling":
+        problems.append("tractor.longitudinal_series_damping_kN_s_per_m_km_h applies to longitudinal_model = "
+                        f"\"rolling\", not {tractor.get('longitudinal_model', 'none')!r}")
     for axle in ("front_axle", "rear_axle"):
         t, _ = _section_values(doc, axle)
         if not t:
@@ -411,11 +425,15 @@ def _build(doc: dict, path: Path | None, base_dir: Path, confine: bool = True, p
             formula=str(d.get("formula", "thesis")),
             lateral_stiffness_kN_per_m=_float_or_none(d.get("lateral_stiffness_kN_per_m")),
             lateral_damping_kN_s_per_m=_float_or_none(d.get("lateral_damping_kN_s_per_m")),
+            lateral_series_damping_kN_s_per_m_km_h=_float_or_none(d.get("lateral_series_damping_kN_s_per_m_km_h")),
         )
 
     t = dict(t)
-    if "roll_inertia_kg_m2" in t and "lateral_model" not in t:
-        t["lateral_model"] = "kelvin_voigt"  # issue 33: a 3-D scenario's tyres have lateral elements
+    three_d = "roll_inertia_kg_m2" in t
+    if three_d and "lateral_model" not in t:
+        t["lateral_model"] = "rolling"  # issues 33, 42: a 3-D scenario's tyres have rolling lateral elements
+    s = dict(s)
+    s.setdefault("gravity_tilt", three_d)  # issue 42: ISO 2631-1's seat pad is body-fixed (3-D)
 
     profile = _resolve_inside(base_dir, surf["profile"], confine)[0] if "profile" in surf else None
     crg_file = _resolve_inside(base_dir, surf["file"], confine, "surface.file")[0] \

@@ -7,6 +7,7 @@ and builds them.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -41,10 +42,13 @@ class TractorSpec:
     roll_inertia_kg_m2: float | None = None
     front_track_m: float | None = None
     rear_track_m: float | None = None
-    #: Each tyre's lateral element (issue 33): ``kelvin_voigt`` by default with roll, ``maxwell``,
-    #: or ``none`` (the body rolls about its CG); see :func:`parse_scenario`.
+    #: Each tyre's lateral element (issues 33, 42): ``rolling`` by default with roll, ``kelvin_voigt``,
+    #: ``maxwell``, or ``none`` (the body rolls about its CG); see :func:`parse_scenario`.
     lateral_model: str = "none"
     yaw_inertia_kg_m2: float | None = None
+    #: ``longitudinal_model = "rolling"``: ``a`` of the rear tyres' series damper ``c₂ = a / v`` (issue 42);
+    #: None: the measured tyre's, the catalogue's or the stand-in (:func:`tyrelab.tyre.directional.rolling_coefficients`).
+    longitudinal_series_damping_kN_s_per_m_km_h: float | None = None
 
     @property
     def three_d(self) -> bool:
@@ -148,6 +152,8 @@ class TyreSpec:
     formula: str = "thesis"
     lateral_stiffness_kN_per_m: float | None = None
     lateral_damping_kN_s_per_m: float | None = None
+    #: ``a`` of the rolling lateral element's series damper ``c₂ = a / v``, kN s/m × km/h (issue 42).
+    lateral_series_damping_kN_s_per_m_km_h: float | None = None
 
 
 @dataclass(frozen=True)
@@ -303,6 +309,7 @@ class Scenario:
         cx = from_kilo(t.longitudinal_damping_kN_s_per_m) if lon != "none" else 0.0
         if lon == "maxwell" and not (kx > 0 and cx > 0):
             lon = "none"  # a Maxwell element without spring or damper carries no force
+        lon_c2 = tyres["rear"].get("longitudinal_series_damping_N_s_per_m", math.inf) if lon == "rolling" else math.inf
 
         def axle(name: str, ahead: float, spec: AxleSpec, track_m, **extra) -> Axle:
             ty = tyres[name]
@@ -311,7 +318,8 @@ class Scenario:
                 kw["roll_inertia_kg_m2"] = spec.roll_inertia_kg_m2 or 0.0
             if ty.get("lateral_stiffness_N_per_m") is not None:  # issue 33: the tyres' lateral elements
                 kw.update(lateral_model=t.lateral_model, lateral_stiffness_N_per_m=ty["lateral_stiffness_N_per_m"],
-                          lateral_damping_N_s_per_m=ty["lateral_damping_N_s_per_m"])
+                          lateral_damping_N_s_per_m=ty["lateral_damping_N_s_per_m"],
+                          lateral_series_damping_N_s_per_m=ty.get("lateral_series_damping_N_s_per_m", math.inf))
                 if spec.mount == "pivot":  # the pivot at the axle centre, a rolling radius above the ground
                     kw["height_m"] = spec.height_m if spec.height_m is not None else ty["radius_m"]
             if spec.mount == "suspended":
@@ -338,5 +346,6 @@ class Scenario:
             Chassis(t.mass_kg, t.pitch_inertia_kg_m2, t.cg_height_m, t.roll_inertia_kg_m2, t.yaw_inertia_kg_m2),
             axle("front", t.front_distance_m, self.front_axle, t.front_track_m),
             axle("rear", -t.rear_distance_m, self.rear_axle, t.rear_track_m, longitudinal_model=lon,
-                 longitudinal_stiffness_N_per_m=kx, longitudinal_damping_N_s_per_m=cx),
+                 longitudinal_stiffness_N_per_m=kx, longitudinal_damping_N_s_per_m=cx,
+                 longitudinal_series_damping_N_s_per_m=lon_c2),
             self.seat.part(), cab, imp, self.ballast, static_load_moment=True)

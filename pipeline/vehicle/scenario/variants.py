@@ -345,6 +345,10 @@ def sweep_variants(scenario: Scenario, front_pressures_bar=None, rear_pressures_
         A pressure given by option and swept key both, values out of range, too much work
         (:func:`tyrelab.vehicle.scenario.limits.work_problems`).
 
+    See Also
+    --------
+    tyrelab.vehicle.ride.ride_sweep : runs them.
+
     Examples
     --------
     >>> from tyrelab.resources import scenarios_dir

@@ -42,10 +42,12 @@ from scipy import linalg, optimize
 
 from ... import _validate
 from . import beam
+from ..elements import Maxwell, Rolling, StaticLoadMoment
 from ..model import Assembly, assemble
 from ..units import from_kilo, to_kilo
 
-__all__ = ["MODE_NAMES", "LATERAL_ROLL_SHARE", "FOLLOW_MAC", "ModeSet", "mode_set", "mac_matrix", "frequency_intervals", "follow_names"]
+__all__ = ["MODE_NAMES", "LATERAL_ROLL_SHARE", "FOLLOW_MAC", "ZERO_ROOT", "ModeSet", "mode_set", "mac_matrix",
+           "frequency_intervals", "follow_names", "DampedMode", "damped_modes", "follow_damped", "FOLLOW_STEPS"]
 
 #: Mode names by the coordinate that moves most (the body's ``z`` and ``th`` by thesis §8.2's rule;
 #: ``y`` and ``psi``: the body's lateral and yaw freedoms of issue 33's lateral tyre elements).
@@ -140,6 +142,45 @@ def _is_beam(asm: Assembly) -> bool:
     return asm.undamped()[2] == ("z", "th")
 
 
+def _shape_names(shares, coords, one_to_one: bool = False) -> list[str]:
+    """Names of modes (ascending in frequency) from their kinetic-energy shares over ``coords``
+    (:func:`mode_set`'s rules: what moves most, :data:`MODE_NAMES`; the lowest mode led by the body's
+    lateral or roll motion with both in it ``lateral_roll``; of the modes led by ``z`` or ``θ`` the
+    larger ``|z|/|θ|`` share is bounce, the other pitch, thesis §8.2; a second of a name ``_2``).
+    ``one_to_one``: each mode leads by a coordinate of its own, the assignment of modes to coordinates
+    with the largest total share (:func:`scipy.optimize.linear_sum_assignment`; the damped modes of
+    issue 42, where a heavily damped pair can share its leader)."""
+    coords = list(coords)
+    iz, ith = coords.index("z"), coords.index("th")
+    dominant = [coords[int(np.argmax(np.abs(sh)))] for sh in shares]
+    if one_to_one and len(shares) <= len(coords):
+        rows, cols = optimize.linear_sum_assignment(-np.abs(np.array(shares, float)))
+        for i, j in zip(rows, cols):
+            dominant[int(i)] = coords[int(j)]
+    if "y" in coords:  # issue 33: the lowest mode led by the body's lateral or roll motion, with both in it,
+        iy, iphi = coords.index("y"), coords.index("phi")  # is the coupled lateral-roll mode
+        for i, sh in enumerate(shares):
+            ey, ephi, total = abs(sh[iy]), abs(sh[iphi]), float(np.sum(np.abs(sh)))
+            if dominant[i] in ("y", "phi"):
+                if min(ey, ephi) >= LATERAL_ROLL_SHARE * total:
+                    dominant[i] = "lateral_roll"
+                break
+    label = {i: MODE_NAMES.get(dominant[i], dominant[i]) for i in range(len(shares))}
+    # the body's bounce and pitch (modes led by z or θ): by thesis §8.2's rule, the larger
+    # |z|/(r |θ|) is bounce (a tie to the lower frequency), the other pitch
+    body = [i for i in range(len(shares)) if dominant[i] in ("z", "th")]
+    ranked = sorted(body, key=lambda i: -abs(shares[i][iz]) / max(abs(shares[i][ith]), 1e-300))
+    for j, i in enumerate(ranked[:2]):
+        label[i] = ("bounce", "pitch")[j] if len(ranked) > 1 else MODE_NAMES[dominant[i]]
+    names: list[str] = []
+    for i in range(len(shares)):
+        name = label[i]
+        while name in names:
+            name = f"{name}_2" if not name[-1].isdigit() else f"{name[:-1]}{int(name[-1]) + 1}"
+        names.append(name)
+    return names
+
+
 def mode_set(asm: Assembly) -> ModeSet:
     """The undamped modes of an assembled tractor, named.
 
@@ -160,16 +201,6 @@ def mode_set(asm: Assembly) -> ModeSet:
     freqs = [math.sqrt(max(float(x), 0.0)) / (2 * math.pi) for x in w2]
     iz, ith = coords.index("z"), coords.index("th")
     shares = [vecs[:, i] * (m @ vecs[:, i]) for i in range(len(w2))]
-    dominant = [coords[int(np.argmax(np.abs(sh)))] for sh in shares]
-    if "y" in coords:  # issue 33: the lowest mode led by the body's lateral or roll motion, with both in it,
-        iy, iphi = coords.index("y"), coords.index("phi")  # is the coupled lateral-roll mode
-        for i, sh in enumerate(shares):
-            ey, ephi, total = abs(sh[iy]), abs(sh[iphi]), float(np.sum(np.abs(sh)))
-            if dominant[i] in ("y", "phi"):
-                if min(ey, ephi) >= LATERAL_ROLL_SHARE * total:
-                    dominant[i] = "lateral_roll"
-                break
-    label = {i: MODE_NAMES.get(dominant[i], dominant[i]) for i in range(len(w2))}
     if _is_beam(asm):
         p = asm.parts
         ms = beam.mode_shapes(p.chassis.mass_kg, p.chassis.pitch_inertia_kg_m2, p.front.ahead_of_cg_m,
@@ -177,21 +208,12 @@ def mode_set(asm: Assembly) -> ModeSet:
                                       2 * p.rear.tyre_stiffness_N_per_m)
         # thesis §8.2's names and frequencies; each to the eigenvector of the nearer frequency
         order = sorted(("bounce", "pitch"), key=lambda n: ms[n]["frequency_Hz"])
-        label = dict(enumerate(order))
+        names = order
         freqs = [ms[n]["frequency_Hz"] for n in order]
     else:
-        # the body's bounce and pitch (modes led by z or θ): by thesis §8.2's rule, the larger
-        # |z|/(r |θ|) is bounce (a tie to the lower frequency), the other pitch
-        body = [i for i in range(len(w2)) if dominant[i] in ("z", "th")]
-        ranked = sorted(body, key=lambda i: -abs(shares[i][iz]) / max(abs(shares[i][ith]), 1e-300))
-        for j, i in enumerate(ranked[:2]):
-            label[i] = ("bounce", "pitch")[j] if len(ranked) > 1 else MODE_NAMES[dominant[i]]
-    names, nodal = [], []
+        names = _shape_names(shares, coords)
+    nodal = []
     for i in range(len(w2)):
-        name = label[i]
-        while name in names:
-            name = f"{name}_2" if not name[-1].isdigit() else f"{name[:-1]}{int(name[-1]) + 1}"
-        names.append(name)
         z, th = vecs[iz, i], vecs[ith, i]
         nodal.append(float(-z / th) + 0.0 if abs(th) > 1e-12 * abs(z) else math.inf)
     return ModeSet(tuple(names), tuple(freqs), tuple(coords), vecs, m, tuple(nodal))
@@ -284,3 +306,226 @@ def follow_names(reference: ModeSet, other: ModeSet) -> tuple[dict, list]:
         else:
             mapping[other.names[j]] = name
     return mapping, notes
+
+
+#: A root ``λ`` with ``|λ|`` below this share of the largest is a zero root (a series damper's drift:
+#: the body and its contact points moving sideways together feel nothing), left out. The roots of
+#: the linear model come from a nonsymmetric eigenproblem whose rounding is ~1e-13 of the largest.
+ZERO_ROOT = 1e-9
+
+
+@dataclass(frozen=True)
+class DampedMode:
+    """One mode of the damped model (issue 42): the root ``λ`` (rad/s) of the linear model followed
+    from the undamped mode of the same name by its shape.
+
+    ``undamped_Hz = |λ| / 2π``, ``damped_Hz = Im λ / 2π`` and ``damping_ratio = -Re λ / |λ|`` of an
+    oscillating mode (a complex pair); an overdamped mode is a real root: ``overdamped`` True,
+    ``damped_Hz`` 0 and ``damping_ratio`` 1 (``-Re λ/|λ|`` of a real root; its frequency ``|λ|/2π`` is
+    the decay rate's, not an oscillation's). ``mac``: the shape's match to the undamped mode."""
+
+    name: str
+    root: complex
+    undamped_Hz: float
+    damped_Hz: float
+    damping_ratio: float
+    overdamped: bool
+    mac: float
+    #: The shape over ``coordinates`` (complex, the velocity part of the eigenvector) and the mass matrix
+    #: over them (:func:`follow_damped`).
+    shape: np.ndarray | None = dataclasses.field(default=None, repr=False, compare=False)
+    coordinates: tuple = dataclasses.field(default=(), repr=False, compare=False)
+    mass: np.ndarray | None = dataclasses.field(default=None, repr=False, compare=False)
+
+
+#: The series dampers are released along ``1/c₂ = share / c₂`` with ``share`` from 0 (locked) through
+#: :data:`FOLLOW_STEPS` steps, equal in ``log share`` from :data:`FOLLOW_FROM` to 1 (a Maxwell element
+#: with a small damper goes through its change near ``share`` ~ its ``c``/``k``-time's, far below 1);
+#: a step whose best match is below :data:`FOLLOW_SURE` is halved (in ``log share``), up to
+#: :data:`FOLLOW_SPLITS` times.
+FOLLOW_STEPS = 8
+FOLLOW_FROM = 1e-4
+FOLLOW_SURE = 0.9
+FOLLOW_SPLITS = 6
+
+
+def _released_by(asm: Assembly) -> bool:
+    """Whether ``asm`` has a series damper that is not locked (a rolling or a Maxwell element)."""
+    return any((isinstance(e, Rolling) and not e.locked) or (isinstance(e, Maxwell) and e.active) for e in asm.elements)
+
+
+def _released(asm: Assembly, share: float) -> Assembly:
+    """``asm`` with every series damper's ``1/c₂`` times ``share`` (0: locked, the Kelvin-Voigt unit): a
+    rolling element's, and a Maxwell element's (a rolling element without the unit's damper)."""
+    import copy
+
+    if not _released_by(asm):
+        return asm
+    new = {}
+    for e in asm.elements:
+        if isinstance(e, Maxwell) and e.active:  # a spring in series with a damper: the unit without damper
+            e = Rolling(e.name, e.g, e.stiffness, 0.0, e.gate, e.floor_N, series_damping=e.damping)
+        if isinstance(e, Rolling):
+            new[e.name] = dataclasses.replace(e, series_damping=e.series_damping / share if share > 0 else math.inf)
+    other = copy.copy(asm)
+    other.elements = [new.get(e.name, e) if not isinstance(e, StaticLoadMoment) or e.contact is None
+                      else dataclasses.replace(e, contact=new[e.contact.name]) for e in asm.elements]
+    return other
+
+
+def _roots(asm: Assembly, gravity_m_s2: float | None, coordinates) -> tuple[np.ndarray, np.ndarray]:
+    """The non-zero roots of the upper half plane (and the real ones) and their shapes over ``coordinates``
+    (the velocity part of the eigenvector, ``λ q``)."""
+    lm = asm.linear(list(asm.kinematic_outputs)[:1], gravity_m_s2=gravity_m_s2)
+    lay = asm.layout
+    roots, vecs = linalg.eig(lm.a)
+    scale = float(np.max(np.abs(roots))) if roots.size else 0.0
+    keep = (np.abs(roots) > ZERO_ROOT * scale) & (roots.imag >= -ZERO_ROOT * np.abs(roots))
+    idx = [lay.vel_cols[asm.coordinates.index(c)] for c in coordinates]
+    return roots[keep], vecs[np.ix_(idx, np.flatnonzero(keep))]
+
+
+def _complex_mac(m: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Mass-weighted MAC of the columns of ``a`` (rows) with those of ``b`` (columns), complex shapes."""
+    cross = np.abs(a.conj().T @ m @ b) ** 2
+    na = np.real(np.einsum("ij,ik,kj->j", a.conj(), m, a))
+    nb = np.real(np.einsum("ij,ik,kj->j", b.conj(), m, b))
+    den = np.outer(na, nb)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(den > 0, cross / np.where(den > 0, den, 1.0), 0.0)
+
+
+def damped_modes(asm: Assembly, gravity_m_s2: float | None = None, reference: ModeSet | None = None,
+                 steps: int = FOLLOW_STEPS) -> dict:
+    """The damped modes of an assembled tractor from the complex roots of its linear model (issue 42).
+
+    The roots are the eigenvalues of the model in contact (:meth:`~tyrelab.vehicle.model.Assembly.linear`:
+    every element kind's own states, a rolling tyre's contact points among them); zero roots
+    (:data:`ZERO_ROOT`: a series damper's drift) are left out. Names follow the shapes: with the
+    rolling elements' series dampers locked (the model of :func:`mode_set`'s undamped modes,
+    ``reference``, damped), each undamped mode takes the root whose shape over the coordinates (the
+    velocity part of the eigenvector) it resembles most by the mass-weighted MAC, one to one
+    (:func:`scipy.optimize.linear_sum_assignment`); then the series dampers are released to their
+    values in ``steps`` equal steps of ``1/c₂`` (of speed; a Maxwell element's damper likewise) and each mode is followed from step to
+    step by its shape (the reference model's own following, ``tests/vehicle/reference_lateral.py``).
+    A mode that stops oscillating is a real root (``overdamped``); a mode whose shape no root
+    resembles (MAC below :data:`FOLLOW_MAC`) is left out.
+
+    Returns
+    -------
+    dict
+        ``{name: DampedMode}`` in the reference's order.
+
+    See Also
+    --------
+    mode_set : the undamped modes whose shapes name the damped ones.
+    follow_damped : the same modes followed into a perturbed model.
+
+    Examples
+    --------
+    A mass on a Kelvin-Voigt spring: ``ζ = c / (2 √(k m))``.
+
+    >>> from tyrelab.vehicle.model import assemble
+    >>> from tyrelab.vehicle.tractor import Tractor, tractor_parts
+    >>> asm = assemble(tractor_parts(Tractor(1000, 250, 1.0, 1.0, 0.5, 1e5, 1e5, 2e3, 2e3)))
+    >>> d = damped_modes(asm)
+    >>> round(d["bounce"].damping_ratio, 4), round(4e3 / (2 * math.sqrt(2e5 * 1000)), 4)
+    (0.1414, 0.1414)
+    """
+    _validate.instance("asm", asm, Assembly)
+    steps = _validate.positive_int("steps", steps)
+    ref = reference if reference is not None else mode_set(_released(asm, 0.0))
+    _validate.instance("reference", ref, ModeSet)
+    m = ref.mass
+    roots, shapes = _roots(_released(asm, 0.0), gravity_m_s2, ref.coordinates)
+    mac = _complex_mac(m, ref.shapes.astype(complex), shapes)
+    rows, cols = optimize.linear_sum_assignment(-mac)
+    current = {int(i): int(j) for i, j in zip(rows, cols) if mac[i, j] >= FOLLOW_MAC}
+    quality = {i: float(mac[i, j]) for i, j in current.items()}
+    state = {"current": current, "roots": roots, "shapes": shapes}
+    if _released_by(asm):
+
+        def advance(share: float) -> list:
+            """The step to ``share``: the followed modes' MAC, the new state (not yet taken)."""
+            new_roots, new_shapes = _roots(_released(asm, share), gravity_m_s2, ref.coordinates)
+            order = sorted(state["current"])
+            mac = _complex_mac(m, state["shapes"][:, [state["current"][i] for i in order]], new_shapes)
+            rows, cols = optimize.linear_sum_assignment(-mac)
+            return [(order[r], int(c), float(mac[r, c])) for r, c in zip(rows, cols)], new_roots, new_shapes
+
+        def go(lo: float, hi: float, depth: int) -> None:
+            pairs, new_roots, new_shapes = advance(hi)
+            if depth < FOLLOW_SPLITS and pairs and min(q for _, _, q in pairs) < FOLLOW_SURE:
+                mid = math.sqrt(lo * hi) if lo > 0 else hi * FOLLOW_FROM
+                go(lo, mid, depth + 1)
+                go(mid, hi, depth + 1)
+                return
+            nxt = {}
+            for i, c, q in pairs:
+                if q >= FOLLOW_MAC:
+                    nxt[i] = c
+                    quality[i] = min(quality[i], q)
+            state.update(current=nxt, roots=new_roots, shapes=new_shapes)
+
+        grid = np.concatenate([[0.0], np.geomspace(FOLLOW_FROM, 1.0, steps + 1)])
+        for lo, hi in zip(grid[:-1], grid[1:]):
+            go(float(lo), float(hi), 0)
+        current, roots = state["current"], state["roots"]
+    # the roots followed are the modes; each named by its own shape (the rules of mode_set): a mode
+    # followed through a veering takes the name of what it has become
+    chosen = sorted(current.values(), key=lambda j: abs(roots[j]))
+    quality_of = {j: quality[i] for i, j in current.items()}
+    final = state["shapes"]
+    shares = [np.real(final[:, j].conj() * (m @ final[:, j])) for j in chosen]
+    out = {}
+    for name, j in zip(_shape_names(shares, ref.coordinates, one_to_one=True), chosen):
+        lam = complex(roots[j])
+        size = abs(lam)
+        overdamped = abs(lam.imag) <= 1e-9 * size
+        out[name] = DampedMode(name, lam, size / (2 * math.pi), 0.0 if overdamped else lam.imag / (2 * math.pi),
+                               1.0 if overdamped else -lam.real / size, bool(overdamped), quality_of[j],
+                               final[:, j], tuple(ref.coordinates), m)
+    return out
+
+
+def follow_damped(reference: dict, other: dict, threshold: float = FOLLOW_MAC) -> dict:
+    """``{reference name: other's DampedMode, or None}``: each damped mode of ``reference``
+    (:func:`damped_modes`) paired one to one with the mode of ``other`` whose shape it resembles most
+    (mass-weighted MAC of the complex shapes over the coordinates they share, the reference's mass);
+    None below ``threshold`` (the mode cannot be followed). Names then stay the reference's across a
+    scenario's intervals, speeds and a sweep.
+
+    See Also
+    --------
+    damped_modes : the damped modes it follows.
+    follow_names : the undamped modes' following.
+
+    Examples
+    --------
+    >>> from tyrelab.vehicle.model import assemble
+    >>> from tyrelab.vehicle.tractor import Tractor, tractor_parts
+    >>> d = damped_modes(assemble(tractor_parts(Tractor(1000, 250, 1.0, 1.0, 0.5, 1e5, 1e5, 2e3, 2e3))))
+    >>> {k: v.name for k, v in follow_damped(d, d).items()}
+    {'bounce': 'bounce', 'pitch': 'pitch'}
+    """
+    if not isinstance(reference, dict) or not isinstance(other, dict):
+        raise ValueError("reference, other: dicts of DampedMode (damped_modes)")
+    out = dict.fromkeys(reference)
+    if not reference or not other:
+        return out
+    first = next(iter(reference.values()))
+    names_o = list(other)
+    o0 = other[names_o[0]]
+    common = [c for c in first.coordinates if c in o0.coordinates]
+    ia = [first.coordinates.index(c) for c in common]
+    ib = [o0.coordinates.index(c) for c in common]
+    m = first.mass[np.ix_(ia, ia)]
+    a = np.stack([d.shape[ia] for d in reference.values()], axis=1)
+    b = np.stack([other[n].shape[ib] for n in names_o], axis=1)
+    mac = _complex_mac(m, a, b)
+    rows, cols = optimize.linear_sum_assignment(-mac)
+    names_r = list(reference)
+    for i, j in zip(rows, cols):
+        if mac[i, j] >= threshold:
+            out[names_r[i]] = other[names_o[j]]
+    return out
