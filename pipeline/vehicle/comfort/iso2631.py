@@ -438,11 +438,11 @@ def method_check(a_w_m_s2: float, crest: float, mtvv_m_s2: float, vdv_m_s1_75: f
     vdv_ratio = vdv_m_s1_75 / (a_w_m_s2 * duration_s**0.25) if a_w_m_s2 > 0 and duration_s > 0 else math.nan
     reasons = []
     if crest > CREST_FACTOR_LIMIT:
-        reasons.append(f"crest factor {crest:.3g} > {CREST_FACTOR_LIMIT:g}")
+        reasons.append(f"crest factor {_validate.compared(crest, '>', CREST_FACTOR_LIMIT)}")
     if mtvv_ratio > MTVV_RATIO_LIMIT:
-        reasons.append(f"MTVV/a_w {mtvv_ratio:.3g} > {MTVV_RATIO_LIMIT:g}")
+        reasons.append(f"MTVV/a_w {_validate.compared(mtvv_ratio, '>', MTVV_RATIO_LIMIT)}")
     if vdv_ratio > VDV_RATIO_LIMIT:
-        reasons.append(f"VDV/(a_w T^1/4) {vdv_ratio:.3g} > {VDV_RATIO_LIMIT:g}")
+        reasons.append(f"VDV/(a_w T^1/4) {_validate.compared(vdv_ratio, '>', VDV_RATIO_LIMIT)}")
     return {"rms_method_sufficient": not reasons, "mtvv_ratio": float(mtvv_ratio), "vdv_ratio": float(vdv_ratio),
             "reasons": reasons}
 
