@@ -81,6 +81,10 @@ def wheel_positions(lateral_offset_m: float, front_track_m: float | None, rear_t
     """``v`` (m, left positive) of each wheel's line: ``front_left``, ``front_right``, ``rear_left``,
     ``rear_right``; all on ``lateral_offset_m`` without track widths (the pitch-plane model).
 
+    See Also
+    --------
+    wheel_tracks : the heights along those lines.
+
     Examples
     --------
     >>> wheel_positions(0.1, 1.8, 2.0)
@@ -105,7 +109,12 @@ def _window(data: CrgData, start_m: float, length_m: float | None) -> tuple[int,
 def crg_problems(data: CrgData, positions: dict, start_m: float, length_m: float | None,
                  fill_missing: bool = False) -> list[str]:
     """Every problem of driving the wheels ``positions`` (:func:`wheel_positions`) over ``data`` from
-    ``start_m`` for ``length_m`` (None: to the end), one line each naming the key."""
+    ``start_m`` for ``length_m`` (None: to the end), one line each naming the key.
+
+    See Also
+    --------
+    wheel_tracks : reads the road when there is none.
+    """
     _validate.instance("data", data, CrgData)
     _validate.instance("positions", positions, dict)
     problems = []
@@ -160,6 +169,11 @@ def wheel_tracks(data: CrgData, positions: dict, start_m: float = 0.0, length_m:
         0, ``u_inc``, ... along the window.
     heights : dict
         Wheel -> heights, m (grid plus banking times ``v``; no reference-line elevation).
+
+    See Also
+    --------
+    wheel_positions : the lines' lateral positions.
+    crg_problems : what stops the wheels from driving the road.
     """
     _validate.instance("data", data, CrgData)
     problems = crg_problems(data, positions, start_m, length_m, fill_missing)
