@@ -89,8 +89,8 @@ def carriage_rolling(xii: pd.DataFrame) -> pd.DataFrame:
     --------
     >>> from tyrelab.published import read_published
     >>> r = carriage_rolling(read_published("table_xii"))
-    >>> len(r), r[["tyre_id", "speed_km_h", "load_kg", "stiffness_kN_per_m"]].iloc[0].tolist()
-    (12, ['T4', 17.5, 1860, 380])
+    >>> len(r), r[["tyre_id", "speed_km_h", "load_kg", "stiffness_kN_per_m"]].to_dict("records")[0]
+    (12, {'tyre_id': 'T4', 'speed_km_h': 17.5, 'load_kg': 1860, 'stiffness_kN_per_m': 380})
     """
     _validate.frame("xii", xii, ["characteristics", "nominal_speed_km_h"])
     rolling = xii[xii["characteristics"] == "rolling"].rename(columns={"nominal_speed_km_h": "speed_km_h"})

@@ -53,7 +53,7 @@ def frequency_response(a, b, c, d, frequency_Hz) -> np.ndarray:
     >>> a = np.array([[0.0, 1.0], [-k / m, -c / m]]); b = np.array([[0.0], [1.0 / m]])
     >>> h = frequency_response(a, b, np.array([[1.0, 0.0]]), np.zeros((1, 1)), [0.0, 10.0])   # 1/k; ≈ 1/(m ω²) above
     >>> h.shape, round(float(abs(h[0, 0, 0]) * k), 9), round(float(abs(h[0, 0, 1]) * m * (2 * np.pi * 10) ** 2), 3)
-    ((1, 1, 2), 1.0, 1.067)
+    ((1, 1, 2), 1.0, 1.066)
     """
     _validate.non_negative_array("frequency_Hz", frequency_Hz)
     a, b, c, d = (np.atleast_2d(np.asarray(v, float)) for v in (a, b, c, d))

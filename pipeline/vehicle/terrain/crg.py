@@ -114,6 +114,16 @@ def crg_problems(data: CrgData, positions: dict, start_m: float, length_m: float
     See Also
     --------
     wheel_tracks : reads the road when there is none.
+
+    Examples
+    --------
+    >>> import pyopencrg
+    >>> u, v = np.arange(0, 20.01, 0.05), np.arange(-1.5, 1.51, 0.1)
+    >>> d = CrgData.of(pyopencrg.CrgRoad(np.outer(np.sin(u), np.ones(v.size)) * 0.01, u_inc=0.05, v=v))
+    >>> crg_problems(d, wheel_positions(0.0, 1.9, 1.9), 0.0, 10.0)
+    []
+    >>> [p.split(":")[0] for p in crg_problems(d, wheel_positions(0.0, 4.0, 4.0), 0.0, 30.0)][3:]  # off it, past its end
+    ['surface.lateral_offset_m', 'surface.length_m']
     """
     _validate.instance("data", data, CrgData)
     _validate.instance("positions", positions, dict)
@@ -174,6 +184,15 @@ def wheel_tracks(data: CrgData, positions: dict, start_m: float = 0.0, length_m:
     --------
     wheel_positions : the lines' lateral positions.
     crg_problems : what stops the wheels from driving the road.
+
+    Examples
+    --------
+    >>> import pyopencrg
+    >>> u, v = np.arange(0, 20.01, 0.05), np.arange(-1.5, 1.51, 0.1)
+    >>> d = CrgData.of(pyopencrg.CrgRoad(np.outer(np.sin(u), np.ones(v.size)) * 0.01, u_inc=0.05, v=v))
+    >>> x, tracks = wheel_tracks(d, wheel_positions(0.0, 1.9, 1.9), start_m=2.0, length_m=10.0)
+    >>> float(x[-1]), sorted(tracks), round(float(tracks["rear_right"][0]), 6) == round(float(0.01 * np.sin(2.0)), 6)
+    (10.0, ['front_left', 'front_right', 'rear_left', 'rear_right'], True)
     """
     _validate.instance("data", data, CrgData)
     problems = crg_problems(data, positions, start_m, length_m, fill_missing)

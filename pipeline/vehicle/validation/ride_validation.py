@@ -167,6 +167,14 @@ def validation_rows(measured: RecordingAnalysis, predicted_signals: dict, predic
     --------
     predicted_seat : the predicted record.
     validation_statistics : the statistics over the rows.
+
+    Examples
+    --------
+    >>> from tyrelab.vehicle.comfort.measured_ride import analyse_signals
+    >>> fs = 200.0; t = np.arange(0, 60, 1 / fs); z = np.sin(2 * np.pi * 4 * t)
+    >>> rows = validation_rows(analyse_signals({"seat_z_m_s2": z}, fs), {"seat_z_m_s2": 1.1 * z}, fs, known_profile=False)
+    >>> round(rows[0]["ratio_a_w"], 4), rows[0]["measured_peak_frequency_Hz"]        # measured / predicted
+    (0.9091, 4.0)
     """
     _validate.instance("measured", measured, RecordingAnalysis)
     _validate.positive("predicted_fs_Hz", predicted_fs_Hz)
@@ -213,6 +221,15 @@ def validation_statistics(rows: pd.DataFrame) -> pd.DataFrame:
     --------
     validation_rows : the rows it summarises.
     tyrelab.vehicle.metrics.ratio_error_statistics : the thesis' statistics.
+
+    Examples
+    --------
+    >>> from tyrelab.vehicle.comfort.measured_ride import analyse_signals
+    >>> fs = 200.0; t = np.arange(0, 60, 1 / fs); z = np.sin(2 * np.pi * 4 * t)
+    >>> rows = validation_rows(analyse_signals({"seat_z_m_s2": z}, fs), {"seat_z_m_s2": 1.1 * z}, fs, known_profile=False)
+    >>> s = validation_statistics(pd.DataFrame(rows * 3))
+    >>> s.loc[s["quantity"] == "a_w", ["axis", "n", "mean"]].round(4).to_dict("records")    # predicted / measured
+    [{'axis': 'z', 'n': 3, 'mean': 1.1}]
     """
     if rows is not None:
         _validate.frame("rows", rows)
