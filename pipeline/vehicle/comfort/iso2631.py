@@ -43,6 +43,7 @@ __all__ = [
     "EU_ACTION_VDV",
     "EU_LIMIT_VDV",
     "AXIS_FACTOR",
+    "AXIS_WEIGHTING",
     "RUNNING_RMS_TAU_S",
     "CREST_FACTOR_LIMIT",
     "running_rms",
@@ -68,6 +69,10 @@ EU_LIMIT_VDV = 21.0
 
 #: Multiplying factors k for the seat point (ISO 2631-1 §8.2.3): x, y 1.4; z 1.0.
 AXIS_FACTOR = {"x": 1.4, "y": 1.4, "z": 1.0}
+#: The frequency weighting of each axis of a seated person (ISO 2631-1 §8.2.3, Table 1; health):
+#: W_d horizontal, W_k vertical. The one home (issue 45) the spectral ride, the measured recordings
+#: and :func:`evaluate` read.
+AXIS_WEIGHTING = {"x": "Wd", "y": "Wd", "z": "Wk"}
 
 #: Integration time of the running r.m.s. (ISO 2631-1 §6.3.1, linear integration), s.
 RUNNING_RMS_TAU_S = 1.0
@@ -369,7 +374,7 @@ def evaluate(
     """
     _validate.choice("axis", axis, tuple(AXIS_FACTOR))
     _validate.non_negative("exposure_hours", exposure_hours)
-    name = "Wk" if axis == "z" else "Wd"
+    name = AXIS_WEIGHTING[axis]
     k = AXIS_FACTOR[axis]
     a = np.asarray(acceleration_m_s2, dtype=float)
     aw = k * weighted_signal(a, fs_Hz, name)
