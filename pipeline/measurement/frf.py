@@ -879,6 +879,24 @@ def recording_frf(recording, speed_km_h: float = 0.0, wheels_geometry=None, outp
     cross_spectra : the spectra it accumulates.
     fit_vehicle_modes : the modes of each output.
     tyrelab.vehicle_frf : the same from a file path.
+
+    Examples
+    --------
+    Four wheel inputs of random motion, a seat that follows the front left and rear left wheels by
+    0.5 and 0.3 (and noise), recorded to a file:
+
+    >>> import pandas as pd, tempfile
+    >>> from pathlib import Path
+    >>> from tyrelab.rawformat.rides import open_recording
+    >>> fs, n = 100.0, 100 * 120
+    >>> x = np.random.default_rng(1).normal(size=(5, n))
+    >>> wheels = ["front_left", "front_right", "rear_left", "rear_right"]
+    >>> path = Path(tempfile.mkdtemp()) / "stand.csv"
+    >>> pd.DataFrame({"time_s": np.arange(n) / fs, **{f"input_{w}_z_m_s2": x[i] for i, w in enumerate(wheels)},
+    ...               "seat_z_m_s2": 0.5 * x[0] + 0.3 * x[2] + 0.05 * x[4]}).to_csv(path, index=False)
+    >>> r = recording_frf(open_recording(path))
+    >>> r.wheels, r.outputs, r.duration_s
+    (('front_left', 'front_right', 'rear_left', 'rear_right'), ('seat_z_m_s2',), 120.0)
     """
     names = tuple(recording.channels)
     inputs = [c for c in names if input_channel_wheel(c)]

@@ -64,6 +64,10 @@ def longitudinal_grid(table_xviii: pd.DataFrame | None = None) -> dict[str, list
     kN s/m: Kelvin-Voigt at the thesis' predicted rows, in their order; Maxwell (§7.5's proposal,
     our addition) at those of them with both a spring and a damper.
 
+    See Also
+    --------
+    tractor_study : sweeps these elements.
+
     Examples
     --------
     >>> g = longitudinal_grid()
@@ -96,6 +100,10 @@ def tractor_case_inputs(
     everything (the tracks are seeded). A cache keyed on these (the simulate stage's)
     recomputes only the cases whose inputs changed. The sweep's case also reads the
     longitudinal elements of ``table_xviii`` (:func:`longitudinal_grid`, default the shipped one).
+
+    See Also
+    --------
+    tractor_study : the study of these cases.
     """
     _validate.frame("table_xv", table_xv)
     _validate.frame("table_xvi", table_xvi)
@@ -171,6 +179,11 @@ def tractor_study(
         ``runs`` (per run: rms 0.5-10 Hz, peaks, ISO 2631), ``table_xvii`` (ours),
         ``table_xviii`` (ours), ``spectra`` (farm track profiles); ``cases`` (list, per
         rolling row: its runs, for a later call's ``cases``).
+
+    See Also
+    --------
+    tractor_case_inputs : what each case reads.
+    with_tractor_recordings : compares it with recordings.
     """
     _validate.frame("table_xv", table_xv)
     _validate.frame("table_xvi", table_xvi)
@@ -265,6 +278,10 @@ def tractor_tracks(seed: int = 5007, farm_class: str = "D") -> dict:
 def tractor_key(row: dict) -> tuple[int, str, float]:
     """The key of a tractor run (a Table XVI row or a recording): ``(load_condition, track, speed_km_h)``.
 
+    See Also
+    --------
+    tractor_study : keys its runs and recordings by it.
+
     Examples
     --------
     >>> tractor_key({"load_condition": "1", "track": "SBT", "speed_km_h": 10})
@@ -292,6 +309,11 @@ def with_tractor_recordings(study: dict, recordings: dict | None) -> dict:
         "longitudinal_m_s2": arrays at FS_HZ}`` (any missing channel NaN-valued). Their
         rows (``characteristics`` ``reference``) are measured by the same
         :func:`run_metrics` as the predictions. Without any, Table XVII has no values.
+
+    See Also
+    --------
+    tractor_study : the study it completes.
+    tyrelab.vehicle.study_recordings.tractor_recordings : the virtual recordings.
     """
     if not isinstance(study, dict) or not {"runs", "spectra"} <= set(study):
         raise ValueError("study: expected tractor_study's result (a dict with runs and spectra)")
@@ -365,7 +387,20 @@ def run_metrics(label: dict, profile: str, vertical_m_s2, pitch_rad_s2, longitud
     """The chapter 7 measures of one tractor record, predicted or recorded alike (thesis §7.4):
     r.m.s. 0.5-10 Hz of the vertical and pitch accelerations from their 0.1 Hz PSDs, the two
     and three highest peaks of the vertical PSD, ISO 2631-1 values (W_k on the vertical, W_d on
-    the longitudinal). A channel given as None is NaN in the row."""
+    the longitudinal). A channel given as None is NaN in the row.
+
+    See Also
+    --------
+    tyrelab.vehicle.metrics.spectral_peaks : the peaks it reads.
+
+    Examples
+    --------
+    >>> t = np.arange(0, 60, 1 / FS_HZ)
+    >>> m = run_metrics({"speed_km_h": 10.0}, "SBT", np.sin(2 * np.pi * 2 * t) + 0.5 * np.sin(2 * np.pi * 3.5 * t),
+    ...                 0.1 * np.sin(2 * np.pi * 3.5 * t), None)
+    >>> round(m["vertical_rms_m_s2"], 4), m["first_peak_Hz"], m["second_peak_Hz"], m["iso_longitudinal_weighted_rms_m_s2"]
+    (0.7906, 2.0, 3.5, nan)
+    """
     nan = float("nan")
     n = int(10 * FS_HZ)  # the 0.1 Hz PSD needs 10 s
     vert = _validate.finite_array("vertical_m_s2", vertical_m_s2, min_samples=n)
