@@ -101,6 +101,14 @@ def tractor_case_inputs(
     See Also
     --------
     tractor_study : the study of these cases.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> from tyrelab.vehicle.published_layouts import tractor_mass, tractor_tyres
+    >>> cases = tractor_case_inputs(tractor_mass(read_published("table_xv")), tractor_tyres(read_published("table_xvi")))
+    >>> len(cases), tractor_key(cases[0]["row"]), cases[0]["farm_class"], cases[0]["duration_s"]
+    (28, (1, 'SBT', 10.0), 'D', 30.0)
     """
     _validate.frame("table_xv", table_xv)
     _validate.frame("table_xvi", table_xvi)
