@@ -17,6 +17,7 @@ from ..comfort import metrics as mt
 from ..terrain import enveloping as ev
 from ..terrain import profiles as pr
 from ..tractor import PARAMETERS, Tractor, simulate_tractor
+from ..run.track import wheel_inputs
 from ..units import from_kilo, km_h_to_m_s, to_kilo
 from .shared import (DT_S, FRONT_7_50_18_RADIUS_M, FS_HZ, LEAD_IN_M, SURVEY_ERROR_M, T4_ROLLING_RADIUS_M,
                      _by_condition, _given_cases, _plain, _refuse)
@@ -29,19 +30,21 @@ __all__ = ["tractor_case_inputs", "longitudinal_grid", "tractor_study", "tractor
 
 
 def tractor_inputs(profile: pr.Profile, radii, footprints, speed, wheelbase, n_steps):
-    """Axle inputs (mean of left/right enveloped tracks), rear delayed by wheelbase/speed."""
+    """Axle inputs (mean of left/right enveloped tracks), rear delayed by wheelbase/speed: the ride's
+    one construction of wheel inputs (:func:`tyrelab.vehicle.run.track.wheel_inputs`, the pitch
+    plane) with the study's enveloping, the rigid tread band (``radii``, 0: none) then the tapered
+    moving average over the footprint (§7.3)."""
     dx = profile.dx_m
-    out = []
-    for axle, offset in (("front", wheelbase), ("rear", 0.0)):
-        tracks = [
-            ev.tapered_moving_average(ev.rigid_tread_band(profile.track(s), dx, radii[axle]) if radii[axle] else profile.track(s), dx, footprints[axle])
-            for s in ("left", "right")
-        ]
-        h = 0.5 * (tracks[0] + tracks[1])
-        out.append(cm.half_step_input(profile.x_m, h, speed, n_steps, x_start_m=offset, dt_s=DT_S))
-    (uf, udf), (ur, udr) = out
-    u0 = 0.5 * (uf[0] + ur[0])
-    return uf - u0, udf, ur - u0, udr
+
+    def enveloped(side, axle, footprint_m, radius_m):  # the axle mean of the two enveloped tracks
+        tracks = [ev.tapered_moving_average(ev.rigid_tread_band(profile.track(s), dx, radius_m) if radius_m
+                                            else profile.track(s), dx, footprint_m) for s in ("left", "right")]
+        return 0.5 * (tracks[0] + tracks[1])
+
+    (uf, ur), (udf, udr) = wheel_inputs(("front", "rear"), False, profile, "tapered",
+                                        (footprints["front"], footprints["rear"]), (radii["front"], radii["rear"]),
+                                        speed, wheelbase, n_steps, enveloped=enveloped)
+    return uf, udf, ur, udr
 
 
 def _tractor_conditions(table_xv: pd.DataFrame, table_xvi: pd.DataFrame, rolling: pd.DataFrame):
