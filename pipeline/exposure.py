@@ -216,7 +216,7 @@ def assess(tasks, channel_map: dict | None = None) -> dict:
 
 #: How the text report states a recording's ISO 2631-5 regime (:mod:`tyrelab.vehicle.iso2631_5`).
 REGIME_NOTE = {"loss_of_contact": "loss of seat contact: ISO 2631-5 clause 5",
-               "seated": "seated throughout: ISO 2631-5 assigns its Annex A model, not computed"}
+               "seated": "seated: ISO 2631-5 Annex A, not computed"}
 
 
 def _f(v, fmt: str = ".3f") -> str:
