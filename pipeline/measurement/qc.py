@@ -19,6 +19,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from .. import _validate
 from .._validate import positive_int
 from . import apparent_mass as am
 
@@ -170,7 +171,7 @@ def qc_reasons(
             reasons.append(f"wheel excitation at {fi:.2f} Hz within {interference_tolerance_Hz:g} Hz of the excitation")
             break
     if not np.isfinite(coherence) or coherence < min_coherence:
-        reasons.append(f"coherence {coherence:.2f} < {min_coherence:g} at the excitation frequency")
+        reasons.append(f"coherence {_validate.compared(coherence, '<', min_coherence, 2)} at the excitation frequency")
     if blocks is None:
         fs = 1.0 / float(np.median(np.diff(time_s)))
         d = am.apparent_mass_demodulation(force_N, accel_m_s2, fs, f0)

@@ -43,6 +43,7 @@ __all__ = [
     "EU_ACTION_VDV",
     "EU_LIMIT_VDV",
     "AXIS_FACTOR",
+    "AXIS_WEIGHTING",
     "RUNNING_RMS_TAU_S",
     "CREST_FACTOR_LIMIT",
     "running_rms",
@@ -68,6 +69,10 @@ EU_LIMIT_VDV = 21.0
 
 #: Multiplying factors k for the seat point (ISO 2631-1 §8.2.3): x, y 1.4; z 1.0.
 AXIS_FACTOR = {"x": 1.4, "y": 1.4, "z": 1.0}
+#: The frequency weighting of each axis of a seated person (ISO 2631-1 §8.2.3, Table 1; health):
+#: W_d horizontal, W_k vertical. The one home (issue 45) the spectral ride, the measured recordings
+#: and :func:`evaluate` read.
+AXIS_WEIGHTING = {"x": "Wd", "y": "Wd", "z": "Wk"}
 
 #: Integration time of the running r.m.s. (ISO 2631-1 §6.3.1, linear integration), s.
 RUNNING_RMS_TAU_S = 1.0
@@ -325,7 +330,7 @@ def evaluate(
     """
     _validate.choice("axis", axis, tuple(AXIS_FACTOR))
     _validate.non_negative("exposure_hours", exposure_hours)
-    name = "Wk" if axis == "z" else "Wd"
+    name = AXIS_WEIGHTING[axis]
     k = AXIS_FACTOR[axis]
     a = np.asarray(acceleration_m_s2, dtype=float)
     aw = k * weighted_signal(a, fs_Hz, name)
@@ -438,11 +443,11 @@ def method_check(a_w_m_s2: float, crest: float, mtvv_m_s2: float, vdv_m_s1_75: f
     vdv_ratio = vdv_m_s1_75 / (a_w_m_s2 * duration_s**0.25) if a_w_m_s2 > 0 and duration_s > 0 else math.nan
     reasons = []
     if crest > CREST_FACTOR_LIMIT:
-        reasons.append(f"crest factor {crest:.3g} > {CREST_FACTOR_LIMIT:g}")
+        reasons.append(f"crest factor {_validate.compared(crest, '>', CREST_FACTOR_LIMIT)}")
     if mtvv_ratio > MTVV_RATIO_LIMIT:
-        reasons.append(f"MTVV/a_w {mtvv_ratio:.3g} > {MTVV_RATIO_LIMIT:g}")
+        reasons.append(f"MTVV/a_w {_validate.compared(mtvv_ratio, '>', MTVV_RATIO_LIMIT)}")
     if vdv_ratio > VDV_RATIO_LIMIT:
-        reasons.append(f"VDV/(a_w T^1/4) {vdv_ratio:.3g} > {VDV_RATIO_LIMIT:g}")
+        reasons.append(f"VDV/(a_w T^1/4) {_validate.compared(vdv_ratio, '>', VDV_RATIO_LIMIT)}")
     return {"rms_method_sufficient": not reasons, "mtvv_ratio": float(mtvv_ratio), "vdv_ratio": float(vdv_ratio),
             "reasons": reasons}
 

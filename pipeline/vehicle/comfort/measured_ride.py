@@ -55,11 +55,9 @@ from . import metrics as mt
 __all__ = ["WEIGHTING_OF", "ChannelResult", "ChannelAnalyser", "RecordingAnalysis", "analyse_recording",
            "analyse_signals", "WEIGHTING_RING_S", "PSD_BANDWIDTH_HZ", "PEAK_BAND_HZ"]
 
-#: Channel -> (ISO 2631-1 weighting, axis) for the channels weighted (seat and cab floor).
-WEIGHTING_OF = {
-    "seat_x_m_s2": ("Wd", "x"), "seat_y_m_s2": ("Wd", "y"), "seat_z_m_s2": ("Wk", "z"),
-    "floor_x_m_s2": ("Wd", "x"), "floor_y_m_s2": ("Wd", "y"), "floor_z_m_s2": ("Wk", "z"),
-}
+#: Channel -> (ISO 2631-1 weighting, axis) for the channels weighted (seat and cab floor):
+#: ``seat_x_m_s2`` ... ``floor_z_m_s2``, each axis's weighting :data:`~tyrelab.vehicle.comfort.iso2631.AXIS_WEIGHTING`.
+WEIGHTING_OF = {f"{place}_{ax}_m_s2": (iso2631.AXIS_WEIGHTING[ax], ax) for place in ("seat", "floor") for ax in "xyz"}
 #: Length after which the weightings' impulse responses have rung down (the 0.4 Hz
 #: band-limiting high-pass decays as exp(-1.78 t): 1e-6 of its peak after 10 s), s.
 WEIGHTING_RING_S = 20.0

@@ -30,8 +30,8 @@ from .track import FS_HZ, Track
 __all__ = ["frequency_response", "enveloping_response", "input_cross_spectra", "expected_weighted_rms", "AXIS_WEIGHTING"]
 
 #: The ISO 2631-1 frequency weighting of each seat axis (W_k vertical, W_d horizontal; any other
-#: output, e.g. a tyre force, unweighted).
-AXIS_WEIGHTING = {"x": "Wd", "y": "Wd", "z": "Wk"}
+#: output, e.g. a tyre force, unweighted): :data:`tyrelab.vehicle.comfort.iso2631.AXIS_WEIGHTING`, the one table.
+AXIS_WEIGHTING = iso2631.AXIS_WEIGHTING
 
 
 def frequency_response(a, b, c, d, frequency_Hz) -> np.ndarray:
@@ -62,14 +62,9 @@ def enveloping_response(kind: str, footprint_m: float, dx_m: float, n_cycles_per
     _validate.non_negative("footprint_m", footprint_m)
     positive("dx_m", dx_m)
     n = np.asarray(n_cycles_per_m, float)
-    if kind == "fixed":
-        taps = np.ones(max(1, int(round(footprint_m / dx_m)) | 1))
-    elif kind == "tapered":
-        total = footprint_m * 1.25
-        taps = ev.tapered_window(max(1, int(round(total / dx_m)) | 1), 0.5)
-    else:
+    if kind not in ("fixed", "tapered"):
         return np.ones_like(n)
-    taps = taps / taps.sum()
+    taps = ev.window(kind, footprint_m, dx_m)  # the filter's own taps (terrain/enveloping.py: one home)
     k = np.arange(taps.size) - taps.size // 2
     return np.cos(2 * math.pi * np.outer(n, k * dx_m)) @ taps
 

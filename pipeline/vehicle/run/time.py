@@ -21,7 +21,7 @@ from .. import lti
 from .. import metrics as mt
 from ..scenario import Scenario
 from ..scenario.limits import MIN_VERDICT_DURATION_S
-from ..tractor import simulate
+from ..solvers.time_domain import LIFT_OFF_RTOL, off_ground, simulate  # noqa: F401  (LIFT_OFF_RTOL: a name of this module)
 from .plan import axle_flags, finish, prepare, record_window, speed_run
 from .output import RideResult
 from .records import AXIS_WORDS, FIGURE_BAND_HZ, RideCache, VariantPlan
@@ -30,24 +30,6 @@ from .spectral import AXIS_WEIGHTING, _expected_batch, _transmissibility
 from .track import DT_S, FS_HZ, tyre_inputs, wheel_inputs
 
 __all__ = ["ride_variants", "LIFT_OFF_RTOL"]
-
-#: A tyre is off the ground where its dynamic force reaches minus its static load: to this relative
-#: rounding (the nonlinear model clamps the force at exactly that; the linear model's force that
-#: would pull is tested the same way).
-LIFT_OFF_RTOL = 1e-6
-
-
-def off_ground(force_N, static_N: float) -> np.ndarray:
-    """Where a tyre is off the ground (or would pull, in the linear model): its dynamic force at or
-    below minus its static load, to :data:`LIFT_OFF_RTOL`.
-
-    Examples
-    --------
-    >>> off_ground(np.array([-50.0, -99.99999999, -120.0]), 100.0).tolist()
-    [False, True, True]
-    """
-    return np.asarray(force_N) <= -static_N * (1 - LIFT_OFF_RTOL)
-
 
 def ride_variants(scenarios, tyre_data=None, with_spectra: bool = True, with_signals: bool = False,
                   cache: RideCache | None = None) -> list[RideResult]:

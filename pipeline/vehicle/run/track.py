@@ -15,7 +15,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
-from scipy import signal
 
 from ... import _validate
 from ..._validate import positive
@@ -109,13 +108,9 @@ def build_profile(scenario: Scenario) -> Track:
             n, g = np.geomspace(n_w[1], n_w[-1], 4000), np.zeros(4000)
         spectrum, source = (n, g), "the track's own Welch spectrum (axle mean)"
     if side is None and scenario.tractor.three_d:  # the tracks' own spectra and cross-spectrum (Welch)
-        seg = min(51.2, prof.x_m[-1] / 4)
-        nper = max(8, int(round(seg / prof.dx_m)))
-        n_w, g_ll = signal.welch(prof.left_m, 1.0 / prof.dx_m, nperseg=nper)
-        _, g_rr = signal.welch(prof.right_m, 1.0 / prof.dx_m, nperseg=nper)
-        # the model's S_LR is E[L R*] (the output spectrum is h S h^H); scipy.signal.csd(x, y)
-        # averages conj(X) Y, i.e. E[L* R]: hence csd(right, left) (field notes)
-        _, g_lr = signal.csd(prof.right_m, prof.left_m, 1.0 / prof.dx_m, nperseg=nper)
+        # segments of at least 8 samples; each segment's mean taken out (profiles.side_spectra)
+        seg = max(min(51.2, prof.x_m[-1] / 4), 8 * prof.dx_m)
+        n_w, g_ll, g_rr, g_lr = pr.side_spectra(prof.left_m, prof.right_m, prof.dx_m, seg)
         keep = n_w > 0
         side = (n_w[keep], g_ll[keep], g_rr[keep], g_lr[keep])
         source = "the tracks' own Welch spectra and cross-spectrum"

@@ -284,7 +284,7 @@ def frequency_intervals(asm: Assembly, u_front_tyre_kN_per_m: float, u_rear_tyre
             axle, mac = lost[n]
             out[n] = None
             notes.append(f"{n}: no 95 % interval: the mode cannot be followed when the {axle} tyre stiffness "
-                         f"changes by 1 % (its shape's MAC {mac:.2f} < {FOLLOW_MAC:g}: it trades places with another mode)")
+                         f"changes by 1 % (its shape's MAC {_validate.compared(mac, '<', FOLLOW_MAC, 2)}: it trades places with another mode)")
         elif raw[n][0] < 0:
             out[n] = None
             notes.append(f"{n}: no 95 % interval: the first-order interval would reach below 0 Hz "
@@ -302,7 +302,7 @@ def follow_names(reference: ModeSet, other: ModeSet) -> tuple[dict, list]:
     mapping, notes = {}, []
     for name, (j, mac) in reference.follow(other).items():
         if j is None:
-            notes.append(f"{name}: not followed from the first variant (best MAC {mac:.2f} < {FOLLOW_MAC:g}): no number")
+            notes.append(f"{name}: not followed from the first variant (best MAC {_validate.compared(mac, '<', FOLLOW_MAC, 2)}): no number")
         else:
             mapping[other.names[j]] = name
     return mapping, notes

@@ -31,8 +31,14 @@ __all__ = [
     "fixed_footprint",
     "tapered_moving_average",
     "tapered_window",
+    "window",
     "rigid_tread_band",
+    "TAPER_FRACTION",
 ]
+
+#: Tukey taper fraction of the tapered moving average (§6.3; an approximation of Nguyen and Lines'
+#: coefficients, see the module's text): its window spans ``1 + TAPER_FRACTION / 2`` contact lengths.
+TAPER_FRACTION = 0.5
 
 
 def contact_length(radius_m: float, deflection_m: float) -> float:
@@ -59,9 +65,9 @@ def _fraction(name: str, value) -> float:
     return v
 
 
-def _moving(heights, window: np.ndarray) -> np.ndarray:
+def _moving(heights, w: np.ndarray) -> np.ndarray:
+    """``heights`` averaged by the centred taps ``w`` (:func:`window`), the ends padded with the end values."""
     h = np.asarray(heights, dtype=float)
-    w = window / window.sum()
     k = w.size // 2
     padded = np.concatenate([np.full(k, h[0]), h, np.full(w.size - 1 - k, h[-1])])
     return signal.fftconvolve(padded, w[::-1], mode="valid") if h.size > 2000 else np.convolve(padded, w[::-1], mode="valid")
@@ -84,10 +90,7 @@ def fixed_footprint(heights_m, dx_m: float, footprint_m: float) -> np.ndarray:
     ndarray
         Enveloped elevations, same length (ends padded with the end values).
     """
-    dx_m = _validate.positive("dx_m", dx_m)
-    footprint_m = _validate.non_negative("footprint_m", footprint_m)
-    n = max(1, int(round(footprint_m / dx_m)) | 1)  # odd, so it is centred
-    return _moving(heights_m, np.ones(n))
+    return _moving(heights_m, window("fixed", footprint_m, dx_m))
 
 
 def tapered_window(n_samples: int, taper_fraction: float = 0.5) -> np.ndarray:
@@ -100,7 +103,53 @@ def tapered_window(n_samples: int, taper_fraction: float = 0.5) -> np.ndarray:
     return w / w.sum()
 
 
-def tapered_moving_average(heights_m, dx_m: float, footprint_m: float, taper_fraction: float = 0.5) -> np.ndarray:
+def window(kind: str, footprint_m: float, dx_m: float, taper_fraction: float = TAPER_FRACTION) -> np.ndarray:
+    """The taps of a linear enveloping filter, centred (odd length) and summing to 1: the one
+    home of the windows :func:`fixed_footprint` and :func:`tapered_moving_average` average with and
+    the spectral ride's transfer function of the filter reads (issue 45).
+
+    Parameters
+    ----------
+    kind : str
+        ``fixed`` (rectangular over the contact length) or ``tapered`` (a Tukey window of total
+        length ``footprint_m * (1 + taper_fraction / 2)``, :func:`tapered_window`).
+    footprint_m : float
+        Contact-patch length, m.
+    dx_m : float
+        Spacing of the profile, m.
+    taper_fraction : float
+        Tukey alpha of ``tapered``.
+
+    Returns
+    -------
+    ndarray
+        The taps (dimensionless), ``max(1, round(length / dx_m) | 1)`` of them.
+
+    See Also
+    --------
+    tyrelab.vehicle.run.spectral.enveloping_response : the transfer function of these taps.
+
+    Examples
+    --------
+    >>> window("fixed", 0.3, 0.1).tolist() == [1 / 3] * 3
+    True
+    >>> w = window("tapered", 0.4, 0.1)
+    >>> w.size, float(round(w.sum(), 12)), bool(w[0] < w[2])
+    (5, 1.0, True)
+    """
+    _validate.choice("kind", kind, ("fixed", "tapered"))
+    dx_m = _validate.positive("dx_m", dx_m)
+    footprint_m = _validate.non_negative("footprint_m", footprint_m)
+    taper_fraction = _fraction("taper_fraction", taper_fraction)
+    if kind == "fixed":
+        taps = np.ones(max(1, int(round(footprint_m / dx_m)) | 1))  # odd, so it is centred
+    else:
+        total = footprint_m * (1.0 + taper_fraction / 2.0)
+        taps = tapered_window(max(1, int(round(total / dx_m)) | 1), taper_fraction)
+    return taps / taps.sum()
+
+
+def tapered_moving_average(heights_m, dx_m: float, footprint_m: float, taper_fraction: float = TAPER_FRACTION) -> np.ndarray:
     """Tapered moving-average enveloping filter (Nguyen and Lines 1988; thesis §1.5, §6.3).
 
     A centred Tukey window of total length ``footprint_m * (1 + taper_fraction/2)``:
@@ -124,12 +173,7 @@ def tapered_moving_average(heights_m, dx_m: float, footprint_m: float, taper_fra
     ndarray
         Enveloped elevations, m.
     """
-    dx_m = _validate.positive("dx_m", dx_m)
-    footprint_m = _validate.non_negative("footprint_m", footprint_m)
-    taper_fraction = _fraction("taper_fraction", taper_fraction)
-    total = footprint_m * (1.0 + taper_fraction / 2.0)
-    n = max(1, int(round(total / dx_m)) | 1)
-    return _moving(heights_m, tapered_window(n, taper_fraction))
+    return _moving(heights_m, window("tapered", footprint_m, dx_m, taper_fraction))
 
 
 def rigid_tread_band(heights_m, dx_m: float, radius_m: float) -> np.ndarray:

@@ -37,6 +37,7 @@ __all__ = [
     "isotropic_coherence",
     "TRACK_MODELS",
     "profile_spectrum",
+    "side_spectra",
     "add_lead_in",
     "uniform_grid",
 ]
@@ -384,7 +385,8 @@ def add_lead_in(profile: Profile, lead_in_m: float = 5.0) -> Profile:
                    pad(profile.rear_left_m), pad(profile.rear_right_m))
 
 
-def profile_spectrum(elevation_m, dx_m: float, segment_m: float = 12.8) -> tuple[np.ndarray, np.ndarray]:
+def profile_spectrum(elevation_m, dx_m: float, segment_m: float = 12.8,
+                     detrend: str = "linear") -> tuple[np.ndarray, np.ndarray]:
     """One-sided displacement PSD of a profile by Welch's method (thesis Fig. 51).
 
     Parameters
@@ -395,6 +397,9 @@ def profile_spectrum(elevation_m, dx_m: float, segment_m: float = 12.8) -> tuple
         Spacing, m.
     segment_m : float
         Welch segment length, m (resolution 1/segment cycles/m), Hann, 50 % overlap.
+    detrend : str
+        Each segment's trend taken out: ``linear`` (the profiles' spectra, Fig. 51) or ``constant``
+        (its mean: the 3-D ride's side spectra, :func:`side_spectra`).
 
     Returns
     -------
@@ -404,9 +409,56 @@ def profile_spectrum(elevation_m, dx_m: float, segment_m: float = 12.8) -> tuple
     _validate.finite_array("elevation_m", elevation_m, min_samples=2)
     dx_m = _validate.positive("dx_m", dx_m)
     segment_m = _validate.positive("segment_m", segment_m)
+    _validate.choice("detrend", detrend, ("linear", "constant"))
     h = np.asarray(elevation_m, dtype=float)
     nper = min(h.size, int(round(segment_m / dx_m)))
-    return signal.welch(h, fs=1.0 / dx_m, window="hann", nperseg=nper, noverlap=nper // 2, detrend="linear")
+    return signal.welch(h, fs=1.0 / dx_m, window="hann", nperseg=nper, noverlap=nper // 2, detrend=detrend)
+
+
+def side_spectra(left_m, right_m, dx_m: float, segment_m: float,
+                 detrend: str = "constant") -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The two wheel tracks' spectra and their cross-spectrum by Welch's method, as
+    :func:`profile_spectrum` (Hann, 50 % overlap; each segment's mean taken out by default): the
+    side spectra of a 3-D ride over a measured road (issue 45: one Welch for the profiles).
+
+    Parameters
+    ----------
+    left_m, right_m : array_like
+        Elevations of the left and right tracks, m, on the same grid of spacing ``dx_m``.
+    dx_m, segment_m : float
+        Spacing and Welch segment length, m.
+    detrend : str
+        As :func:`profile_spectrum`.
+
+    Returns
+    -------
+    n_cycles_per_m, g_ll, g_rr, g_lr : ndarray
+        Spatial frequency (cycles/m), the tracks' PSDs and their cross-spectrum, m^2/(cycles/m).
+        ``g_lr`` is ``E[L R*]`` (the model's ``S_LR``: the output spectrum is ``h S hᴴ``);
+        :func:`scipy.signal.csd` ``(x, y)`` averages ``conj(X) Y``, hence ``csd(right, left)``.
+
+    See Also
+    --------
+    profile_spectrum : one track's spectrum, the same Welch.
+
+    Examples
+    --------
+    Two tracks half a wavelength apart: opposite phase, the cross-spectrum minus the spectrum.
+
+    >>> x = np.arange(4096) * 0.05
+    >>> n, g_ll, g_rr, g_lr = side_spectra(np.sin(2 * np.pi * x), -np.sin(2 * np.pi * x), 0.05, 12.8)
+    >>> k = int(np.argmax(g_ll))
+    >>> float(n[k]), bool(np.isclose(g_lr[k].real, -g_ll[k])), bool(np.isclose(g_rr[k], g_ll[k]))
+    (1.015625, True, True)
+    """
+    n, g_ll = profile_spectrum(left_m, dx_m, segment_m, detrend)
+    _, g_rr = profile_spectrum(right_m, dx_m, segment_m, detrend)
+    h_l, h_r = np.asarray(left_m, dtype=float), np.asarray(right_m, dtype=float)
+    if h_l.shape != h_r.shape:
+        raise ValueError(f"right_m: {h_r.size} samples, left_m has {h_l.size}")
+    nper = min(h_l.size, int(round(segment_m / dx_m)))
+    _, g_lr = signal.csd(h_r, h_l, fs=1.0 / dx_m, window="hann", nperseg=nper, noverlap=nper // 2, detrend=detrend)
+    return n, g_ll, g_rr, g_lr
 
 
 def spectra_table(profiles: dict[str, np.ndarray], dx_m: float, segment_m: float = 12.8) -> pd.DataFrame:
