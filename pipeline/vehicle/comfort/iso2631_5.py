@@ -159,6 +159,11 @@ def spinal_acceleration(seat_z_m_s2, fs_Hz: float) -> np.ndarray:
     (:class:`HighPass`, from rest). Streams use :class:`tyrelab.vehicle.iso2631.ResponseFilter`
     with the same response (:func:`spine_and_lowpass`), then the same high-pass.
 
+    See Also
+    --------
+    acceleration_dose : D_z from it.
+    spine_and_lowpass : the response applied.
+
     Examples
     --------
     >>> fs = 256.0
@@ -178,6 +183,11 @@ def lowpass_response(frequency_Hz) -> np.ndarray:
     """The band's upper edge: a second-order Butterworth low-pass at ``BAND_HZ[1]`` (80 Hz), its
     analog response (applied exactly, as the transfer function is, at any sampling rate).
 
+    See Also
+    --------
+    band_response : with the 0.01 Hz high-pass.
+    spine_and_lowpass : times the transfer function.
+
     Examples
     --------
     >>> round(float(abs(lowpass_response(80.0))), 4), round(float(abs(lowpass_response(4.0))), 6)
@@ -191,6 +201,11 @@ def lowpass_response(frequency_Hz) -> np.ndarray:
 def band_response(frequency_Hz) -> np.ndarray:
     """The band :data:`BAND_HZ` as analog second-order Butterworth high- and low-pass (the
     reference :func:`highpass_sos` realises below the low-pass).
+
+    See Also
+    --------
+    lowpass_response : the upper edge alone.
+    highpass_sos : the lower edge as a digital filter.
 
     Examples
     --------
@@ -206,6 +221,11 @@ def highpass_sos(fs_Hz: float) -> np.ndarray:
     """Second-order sections of the band's 0.01 Hz high-pass at ``fs_Hz`` (Butterworth, bilinear:
     at 0.01 Hz, 1/1600 of the lowest accepted rate's Nyquist frequency, the digital filter is the
     analog one to within 1e-4 above 0.1 Hz).
+
+    See Also
+    --------
+    HighPass : runs it, chunk after chunk.
+    regime_band_sos : with a digital 80 Hz low-pass.
 
     Examples
     --------
@@ -223,6 +243,10 @@ def regime_band_sos(fs_Hz: float) -> np.ndarray:
     the 0.01 Hz high-pass and, where 80 Hz is below the Nyquist frequency, the 80 Hz low-pass, both
     bilinear Butterworth (a threshold decision; a recursive filter streams exactly, where the analog
     low-pass's impulse response, not small at Nyquist, would have to be cut).
+
+    See Also
+    --------
+    contact_regime : the decision it serves.
 
     Examples
     --------
@@ -274,6 +298,10 @@ def band_limited(seat_z_m_s2, fs_Hz: float) -> np.ndarray:
     """The seat acceleration with its mean removed and the band applied as the regime decision
     applies it (:func:`regime_band_sos`), m/s².
 
+    See Also
+    --------
+    contact_regime : the regime decided from it.
+
     Examples
     --------
     >>> fs = 256.0
@@ -290,6 +318,10 @@ def band_limited(seat_z_m_s2, fs_Hz: float) -> np.ndarray:
 
 def spine_and_lowpass(frequency_Hz) -> np.ndarray:
     """The transfer function times the band's low-pass (:func:`spine_response` × :func:`lowpass_response`).
+
+    See Also
+    --------
+    spinal_acceleration : applies it, then the high-pass.
 
     Examples
     --------
@@ -423,6 +455,11 @@ def acceleration_dose(seat_z_m_s2, fs_Hz: float) -> float:
 
     Whether it is the standard's assessment of the record is its regime's question
     (:func:`contact_regime`).
+
+    See Also
+    --------
+    contact_regime : whether D_z applies.
+    daily_dose : the day from the doses.
 
     Examples
     --------
