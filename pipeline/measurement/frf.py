@@ -100,6 +100,10 @@ MASK_HALF_WIDTH = 0.10
 def segment_samples(sample_rate_Hz: float, min_segment_s: float = MIN_SEGMENT_S) -> int:
     """Welch segment length, samples: the power of two at least ``min_segment_s`` long.
 
+    See Also
+    --------
+    cross_spectra : its default segment length.
+
     Examples
     --------
     >>> segment_samples(500.0), segment_samples(100.0)
@@ -266,6 +270,20 @@ def cross_spectra(inputs, outputs, sample_rate_Hz: float, nperseg: int | None = 
     """:class:`CrossSpectra` of whole arrays: ``inputs`` (q, n), ``outputs`` (p, n).
 
     ``nperseg`` defaults to :func:`segment_samples`; ``heights`` as for :class:`CrossSpectraAccumulator`.
+
+    See Also
+    --------
+    mimo_frf : the FRFs from these spectra.
+    segment_samples : the default segment length.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(1)
+    >>> x = rng.standard_normal((2, 4096)); y = 2.0 * x[:1] - x[1:]
+    >>> s = cross_spectra(x, y, 100.0, 256)
+    >>> e = mimo_frf(s)
+    >>> np.round(np.abs(e.h[10, 0]), 6).tolist()       # output 0 from inputs 0 and 1
+    [2.0, 1.0]
     """
     x = np.atleast_2d(np.asarray(inputs, dtype=float))
     y = np.asarray(outputs, dtype=float)
@@ -279,6 +297,10 @@ def cross_spectra(inputs, outputs, sample_rate_Hz: float, nperseg: int | None = 
 def second_difference_correction(frequency_Hz, sample_rate_Hz: float) -> np.ndarray:
     """Factor turning the spectrum of a second difference ``(h[n+1] - 2 h[n] + h[n-1]) fs²`` into
     that of the second derivative: ``(2πf)² / (4 fs² sin²(πf/fs))`` (1 at 0 Hz).
+
+    See Also
+    --------
+    recording_frf : corrects a height input's differentiation with it.
 
     Examples
     --------
@@ -339,6 +361,11 @@ def mimo_frf(spectra: CrossSpectra, max_input_coherence: float = MAX_INPUT_COHER
 
     Bins without input power (DC, after a height's differentiation) or whose ``S_xx`` is
     singular give NaN and are flagged.
+
+    See Also
+    --------
+    cross_spectra : the spectra it takes.
+    fit_vehicle_modes : the modes of its FRFs.
 
     Examples
     --------
@@ -433,6 +460,11 @@ def wheel_excitation_mask(frequency_Hz, speed_km_h: float, wheels, harmonics: in
     ndarray of bool
         True where masked (§2.4.5).
 
+    See Also
+    --------
+    scenario_wheel_geometry : a scenario's wheels.
+    recording_frf : masks a rolling recording's bins with it.
+
     Examples
     --------
     >>> import numpy as np
@@ -521,6 +553,11 @@ def fit_vehicle_modes(frequency_Hz, h, sigma, usable=None, max_modes: int = MAX_
     -------
     list of VehicleMode
         By frequency; empty when too few bins are usable.
+
+    See Also
+    --------
+    recording_frf : the FRFs and modes of a recording.
+    mimo_frf : the FRFs it fits.
 
     Examples
     --------
@@ -665,6 +702,10 @@ STORED_MAX_Hz = 20.0
 def input_channel_wheel(channel: str) -> tuple[str, bool] | None:
     """``(wheel, is_height)`` of an input channel name (``input_<wheel>_z_m_s2`` or ``_z_m``), else None.
 
+    See Also
+    --------
+    recording_frf : reads a recording's inputs by it.
+
     Examples
     --------
     >>> input_channel_wheel("input_rear_left_z_m"), input_channel_wheel("input_front_right_z_m_s2")
@@ -681,7 +722,17 @@ def input_channel_wheel(channel: str) -> tuple[str, bool] | None:
 
 
 def frf_unit(output: str) -> str:
-    """Unit of an FRF to ``output`` per m/s² of input (heights enter differentiated)."""
+    """Unit of an FRF to ``output`` per m/s² of input (heights enter differentiated).
+
+    See Also
+    --------
+    recording_frf : the FRFs it names.
+
+    Examples
+    --------
+    >>> frf_unit("seat_z_m_s2"), frf_unit("body_roll_rad_s2")
+    ('(m/s²)/(m/s²)', '(rad/s²)/(m/s²)')
+    """
     return "(rad/s²)/(m/s²)" if output.endswith("rad_s2") else "(m/s²)/(m/s²)"
 
 
@@ -769,6 +820,10 @@ def scenario_wheel_geometry(scenario) -> list[tuple[float, int]]:
     circumference from its size; no lugs on a tyre without ``traction``
     (:func:`tyrelab.tyre.sizes.lugs_per_side`).
 
+    See Also
+    --------
+    wheel_excitation_mask : the mask it feeds.
+
     Examples
     --------
     >>> from types import SimpleNamespace as S
@@ -813,6 +868,12 @@ def recording_frf(recording, speed_km_h: float = 0.0, wheels_geometry=None, outp
     ValueError
         One line: no input channel, an input that is constant (no excitation), a recording
         shorter than the segments the random error needs.
+
+    See Also
+    --------
+    cross_spectra : the spectra it accumulates.
+    fit_vehicle_modes : the modes of each output.
+    tyrelab.vehicle_frf : the same from a file path.
     """
     names = tuple(recording.channels)
     inputs = [c for c in names if input_channel_wheel(c)]

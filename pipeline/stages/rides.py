@@ -69,7 +69,7 @@ EMPTY_COLUMNS = {
     "recording_spectra": ["ride_id", "source", "channel", "frequency_Hz", "psd_m2_s4_per_Hz"],
     "exposure_days": ["campaign", "vehicle", "recorded_on", "tasks", "hours_per_day", "a8_m_s2", "a8_axis",
                       "vdv_daily_m_s1_75", "vdv_daily_axis", "hours_to_eav", "hours_to_elv", "exposure_points", "verdict",
-                      "dzd_m_s2"],
+                      "dzd_m_s2", "vdv_verdict"],
     "vehicle_frf": ["ride_id", "input", "wheel", "output", "frequency_Hz", "h_magnitude", "h_phase_deg", "h_unit",
                     "h2_magnitude", "h2_phase_deg", "coherence", "partial_coherence", "multiple_coherence",
                     "random_error", "condition_number", "input_coherence", "ill_conditioned", "masked"],
@@ -406,7 +406,8 @@ def run(ctx: Context) -> StageResult:
                      **{f"a8_{k}_m_s2": v for k, v in d["a8_axes_m_s2"].items()},
                      "vdv_daily_m_s1_75": d["vdv_daily_m_s1_75"], "vdv_daily_axis": d["vdv_daily_axis"],
                      "hours_to_eav": d["hours_to_eav"], "hours_to_elv": d["hours_to_elv"],
-                     "exposure_points": d["exposure_points"], "verdict": d["verdict"], "dzd_m_s2": d["dzd_m_s2"]})
+                     "exposure_points": d["exposure_points"], "verdict": d["verdict"], "dzd_m_s2": d["dzd_m_s2"],
+                     "vdv_verdict": d["vdv_verdict"]})  # issue 47: the daily VDV's verdict beside A(8)'s
     val_frame = _frame("ride_validation", validation)
     ctx.write_table("recordings", _frame("recordings", recordings))
     ctx.write_table("recording_axes", _frame("recording_axes", axes))

@@ -187,6 +187,11 @@ def measured_tyre(
     ValueError
         If the tyre is not in the catalogue, or has neither a rolling stiffness fit
         nor measured catalogue coefficients; the message names the tyre.
+
+    See Also
+    --------
+    property_file : the ``.tir`` text of the tyre.
+    pressure_table : K(P) and C(P) per speed.
     """
     _validate.frame("tyres", tyres, ["tyre_id", "size"])
     damping_speed_km_h = _validate.positive("damping_speed_km_h", damping_speed_km_h)
@@ -252,6 +257,18 @@ def tir_parameters(tyre: MeasuredTyre, pressure_bar: float) -> dict[str, list[tu
     ------
     ValueError
         If ``pressure_bar`` is not positive or the stiffness there is not positive.
+
+    See Also
+    --------
+    property_file : the file's text from them.
+
+    Examples
+    --------
+    >>> t = MeasuredTyre("MY1", parse_tyre_size("480/70R38"), PressureLine(120.0, 230.0),
+    ...                  PressureLine(1.1, 0.4), 12.0, 25.0, (0.8, 1.6))
+    >>> p = tir_parameters(t, 1.2)
+    >>> dict((k, v) for k, v, _ in p["VERTICAL"] if k in ("VERTICAL_STIFFNESS", "VERTICAL_DAMPING"))
+    {'VERTICAL_STIFFNESS': 396000.0, 'VERTICAL_DAMPING': 1580.0}
     """
     _validate.instance("tyre", tyre, MeasuredTyre)
     p0 = _validate.positive("pressure_bar", pressure_bar)
@@ -310,6 +327,11 @@ def property_file(tyre: MeasuredTyre, pressure_bar: float, *, tool: str = "tyrel
 
     See the module docstring for which keys are measured and which are placeholders.
 
+    See Also
+    --------
+    tir_parameters : its sections.
+    measured_tyre : the tyre it describes.
+
     Examples
     --------
     >>> t = MeasuredTyre("MY1", parse_tyre_size("480/70R38"), PressureLine(120.0, 230.0),
@@ -365,6 +387,10 @@ def pressure_table(
         ``damping_kN_s_per_m``, plus ``n_stiffness``, ``n_damping``. The interval is
         ``t(1 - alpha/2, n - 2) x`` :meth:`PressureLine.se_bound` (conservative: the
         intercept-slope covariance is not stored).
+
+    See Also
+    --------
+    measured_tyre : the tyre's lines.
     """
     alpha = _validate.probability("alpha", alpha)
     p = np.unique(_validate.positive_array("pressures_bar", pressures_bar))

@@ -60,6 +60,10 @@ MIN_RECORD_S = 10.0
 def hours_problem(hours) -> str | None:
     """Why ``hours`` cannot be a task's daily hours (``None`` if it can).
 
+    See Also
+    --------
+    daily_exposure : refuses such hours.
+
     Examples
     --------
     >>> hours_problem(8.0) is None, hours_problem(30.0)
@@ -113,6 +117,10 @@ class TaskExposure:
 
 def verdict(a8_m_s2: float) -> str:
     """The Directive's verdict on a daily A(8).
+
+    See Also
+    --------
+    daily_exposure : the day's A(8) and its verdict.
 
     Examples
     --------

@@ -134,6 +134,10 @@ def spine_response(frequency_Hz) -> np.ndarray:
     -------
     ndarray of complex
 
+    See Also
+    --------
+    spinal_acceleration : applies it to a record.
+
     Examples
     --------
     >>> f_peak = 31.0 / (2 * math.pi)
@@ -425,6 +429,10 @@ def contact_regime(seat_z_m_s2, fs_Hz: float) -> ContactRegime:
 def positive_peaks(response_m_s2) -> np.ndarray:
     """The maximum of each run of positive samples (the peaks between zero crossings), m/s².
 
+    See Also
+    --------
+    dose_from_peaks : the dose of these peaks.
+
     Examples
     --------
     >>> positive_peaks(np.array([0.5, 2.0, -1.0, 3.0, 1.0, 0.0, -2.0, 0.1]))
@@ -439,6 +447,11 @@ def positive_peaks(response_m_s2) -> np.ndarray:
 
 def dose_from_peaks(peaks_m_s2) -> float:
     """``D_z = 1.07 (Σ A_i⁶)^(1/6)``, m/s² (Formula 3); 0 without peaks.
+
+    See Also
+    --------
+    positive_peaks : the peaks it takes.
+    acceleration_dose : the dose of a record.
 
     Examples
     --------
@@ -483,6 +496,10 @@ def daily_dose(doses_m_s2, exposure_s, measured_s) -> float:
         Daily exposure to each condition, s (any unit, the same as ``measured_s``).
     measured_s : float or array_like
         Duration of each condition's measurement.
+
+    See Also
+    --------
+    acceleration_dose : each task's dose.
 
     Examples
     --------

@@ -32,6 +32,10 @@ def state_names(tractor: Tractor) -> list[str]:
     ``x'`` ("vx", any longitudinal element) and ``q = d - s`` (Maxwell). A Maxwell element
     without spring or damper carries no force and adds no state.
 
+    See Also
+    --------
+    simulate_state_space : simulates those states.
+
     Examples
     --------
     >>> state_names(Tractor(1000, 250, 1.0, 1.0, 0.5, 1e5, 1e5, 0.0, 0.0, 1e5, 1e3, "maxwell"))
@@ -91,6 +95,11 @@ def simulate_state_space(a, b, c, d, w, dt_s: float = DT_S, outputs=None) -> np.
     -------
     ndarray, shape (p, N)
 
+    See Also
+    --------
+    tyrelab.vehicle.lti.discretise : the discretisation it uses.
+    ground_response : the same system in the frequency domain.
+
     Examples
     --------
     Unit step into ``x' = -x``, ``y = x``: ``1 - exp(-t)``.
@@ -121,6 +130,10 @@ def ground_response(h: np.ndarray, frequency_Hz, speed_m_s: float, wheelbase_m: 
     Returns
     -------
     ndarray, shape (p, n_f)
+
+    See Also
+    --------
+    simulate_state_space : the same system in time.
     """
     positive("speed_m_s", speed_m_s)
     _validate.non_negative("wheelbase_m", wheelbase_m)

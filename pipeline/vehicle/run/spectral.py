@@ -42,6 +42,18 @@ def frequency_response(a, b, c, d, frequency_Hz) -> np.ndarray:
     Returns
     -------
     ndarray, shape (p, m, n_f)
+
+    See Also
+    --------
+    expected_weighted_rms : the expected r.m.s. from these responses.
+
+    Examples
+    --------
+    >>> m, k, c = 1000.0, 250e3, 3000.0                        # a mass on a spring and damper
+    >>> a = np.array([[0.0, 1.0], [-k / m, -c / m]]); b = np.array([[0.0], [1.0 / m]])
+    >>> h = frequency_response(a, b, np.array([[1.0, 0.0]]), np.zeros((1, 1)), [0.0, 10.0])   # 1/k; ≈ 1/(m ω²) above
+    >>> h.shape, round(float(abs(h[0, 0, 0]) * k), 9), round(float(abs(h[0, 0, 1]) * m * (2 * np.pi * 10) ** 2), 3)
+    ((1, 1, 2), 1.0, 1.066)
     """
     _validate.non_negative_array("frequency_Hz", frequency_Hz)
     a, b, c, d = (np.atleast_2d(np.asarray(v, float)) for v in (a, b, c, d))
@@ -57,6 +69,16 @@ def enveloping_response(kind: str, footprint_m: float, dx_m: float, n_cycles_per
     """Spatial transfer function of the linear enveloping filters (real, symmetric windows).
 
     ``none`` and ``rigid_band`` (nonlinear; no transfer function) give 1.
+
+    See Also
+    --------
+    frequency_response : the vehicle's response it multiplies.
+    tyrelab.vehicle.enveloping.fixed_footprint : the filter in space.
+
+    Examples
+    --------
+    >>> np.round(enveloping_response("fixed", 0.2, 0.01, [0.0, 2.5, 5.0]), 3).tolist()   # 21 samples: 0.21 m
+    [1.0, 0.605, -0.048]
     """
     _validate.choice("kind", kind, ("none", "fixed", "tapered", "rigid_band"))
     _validate.non_negative("footprint_m", footprint_m)
@@ -72,7 +94,12 @@ def enveloping_response(kind: str, footprint_m: float, dx_m: float, n_cycles_per
 def input_cross_spectra(tyres: list[str], side_spectrum, f_Hz, v: float, wheelbase_m: float) -> np.ndarray:
     """The tyres' input cross-spectral matrix (tyres, tyres, f), m²/Hz: per pair the two tracks'
     spectrum or cross-spectrum (``G_LL``, ``G_RR``, ``G_LR`` at ``n = f/v``, per Hz ``/v``) times
-    ``exp(-jω (τ_i - τ_j))``, ``τ`` = 0 front, ``wheelbase/v`` rear (the front/rear delay)."""
+    ``exp(-jω (τ_i - τ_j))``, ``τ`` = 0 front, ``wheelbase/v`` rear (the front/rear delay).
+
+    See Also
+    --------
+    expected_weighted_rms : the expectation it feeds.
+    """
     positive("v", v)
     _validate.non_negative("wheelbase_m", wheelbase_m)
     n_s, g_ll, g_rr, g_lr = side_spectrum
@@ -177,6 +204,11 @@ def expected_weighted_rms(a, b, c, d, tyres, grid: dict, env: dict, seat_tf, axe
     -------
     dict
         Axis -> ndarray (V,), m/s².
+
+    See Also
+    --------
+    frequency_response : the responses it weights.
+    input_cross_spectra : the tyres' input spectra.
     """
     _validate.positive_int("chunk", chunk)
     a, b, c, d = (np.asarray(x, float) for x in (a, b, c, d))

@@ -36,7 +36,23 @@ def ride_variants(scenarios, tyre_data=None, with_spectra: bool = True, with_sig
     """:func:`~tyrelab.vehicle.ride.ride` for several scenarios (variants) at once, batched: the runs are taken speed by
     speed, so the wheel inputs of a speed are built once for every variant that shares its track,
     footprints and radii, and a run's record is reduced to its numbers as soon as it is simulated.
-    Each result is what :func:`~tyrelab.vehicle.ride.ride` gives for that scenario alone."""
+    Each result is what :func:`~tyrelab.vehicle.ride.ride` gives for that scenario alone.
+
+    See Also
+    --------
+    tyrelab.vehicle.run.frequency.spectral_variants : the same in the frequency domain.
+    tyrelab.vehicle.ride.ride_sweep : builds the variants and calls it.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
+    >>> from tyrelab.vehicle.scenario.variants import with_overrides
+    >>> r = ride_variants([with_overrides(s, speeds_km_h=[8.0])], with_spectra=False)
+    >>> r[0].speeds[["speed_km_h", "method"]].to_dict("records")
+    [{'speed_km_h': 8.0, 'method': 'time'}]
+    """
     for k, sc in enumerate(scenarios):
         _validate.instance(f"scenarios[{k}]", sc, Scenario)
     cache = cache or RideCache()

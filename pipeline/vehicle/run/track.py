@@ -51,7 +51,22 @@ class Track:
 
 
 def build_profile(scenario: Scenario) -> Track:
-    """Generate or read the scenario's track, add the lead-in, describe its spectrum."""
+    """Generate or read the scenario's track, add the lead-in, describe its spectrum.
+
+    See Also
+    --------
+    road_classes : the class of a profile or CRG road's tracks.
+    tyrelab.vehicle.profiles.iso8608_track : a generated track.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
+    >>> tr = build_profile(s)                            # class C, 400 m, seed 1, with its lead-in
+    >>> round(tr.length_m, 1), bool(tr.lead_in_m >= s.tractor.wheelbase_m), tr.spectrum is not None
+    (400.0, True, True)
+    """
     _validate.instance("scenario", scenario, Scenario)
     s = scenario.surface
     lead = max(s.lead_in_m, scenario.tractor.wheelbase_m + 1.0)
@@ -123,7 +138,18 @@ def build_profile(scenario: Scenario) -> Track:
 def road_classes(profile: pr.Profile) -> dict:
     """ISO 8608 class of each wheel track of ``profile`` (:func:`tyrelab.vehicle.road_class.road_class`):
     ``left``, ``right`` (one ``track`` when they are the same) and, where the rear wheels have their
-    own tracks, ``rear_left``, ``rear_right``."""
+    own tracks, ``rear_left``, ``rear_right``.
+
+    See Also
+    --------
+    tyrelab.vehicle.road_class.road_class : the class of one track.
+
+    Examples
+    --------
+    >>> from tyrelab.vehicle.profiles import iso8608_track
+    >>> {k: v["class"] for k, v in road_classes(iso8608_track("C", seed=1, length_m=400.0)).items()}
+    {'left': 'C', 'right': 'C'}
+    """
     _validate.instance("profile", profile, pr.Profile)
     tracks = {"left": profile.left_m, "right": profile.right_m}
     if np.array_equal(profile.left_m, profile.right_m):
@@ -136,7 +162,13 @@ def road_classes(profile: pr.Profile) -> dict:
 def crg_profile(scenario: Scenario) -> pr.Profile:
     """The wheels' tracks on the scenario's CRG road (:mod:`tyrelab.vehicle.crg`): the front wheels'
     lines as the profile's left and right, the rear wheels' as its rear tracks (3-D, when their
-    track width differs from the front's)."""
+    track width differs from the front's).
+
+    See Also
+    --------
+    build_profile : reads it for a ``kind = "crg"`` surface.
+    tyrelab.vehicle.crg.wheel_tracks : the wheel lines of a CRG road.
+    """
     _validate.instance("scenario", scenario, Scenario)
     s = scenario.surface
     if s.crg_data is None:
@@ -247,6 +279,11 @@ def axle_inputs(track: pr.Profile, kind: str, footprints: tuple[float, float], r
     Returns
     -------
     uf, udf, ur, udr : ndarray, shape (2 n_steps - 1,)
+
+    See Also
+    --------
+    tyre_inputs : the same under each tyre element of an assembly.
+    build_profile : the track it reads.
     """
     u, du = wheel_inputs(("front", "rear"), False, track, kind, footprints, radii, speed_m_s, wheelbase_m, n_steps)
     return u[0], du[0], u[1], du[1]
@@ -255,6 +292,11 @@ def axle_inputs(track: pr.Profile, kind: str, footprints: tuple[float, float], r
 def tyre_inputs(asm, track: pr.Profile, kind: str, footprints: tuple[float, float], radii: tuple[float, float],
                 speed_m_s: float, wheelbase_m: float, n_steps: int) -> tuple[np.ndarray, np.ndarray]:
     """Ground elevation and rate under each tyre element of ``asm`` at ``dt/2``, shape
-    ``(tyres, 2 n_steps - 1)``: :func:`wheel_inputs` for an assembly."""
+    ``(tyres, 2 n_steps - 1)``: :func:`wheel_inputs` for an assembly.
+
+    See Also
+    --------
+    axle_inputs : the pitch plane's two axles.
+    """
     _validate.instance("asm", asm, Assembly)
     return wheel_inputs(asm.tyres, asm.parts.three_d, track, kind, footprints, radii, speed_m_s, wheelbase_m, n_steps)

@@ -161,6 +161,18 @@ def scenario_problems(scenario) -> list[str]:
 
     Also: a step ``dx_m`` longer than a sixteenth of the track, and a profile CSV whose heights
     or gaps between points are out of range.
+
+    See Also
+    --------
+    override_problems : numbers given beside a scenario.
+    work_problems : the work a sweep asks for.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> scenario_problems(load_scenario(scenarios_dir() / "modern_tractor.toml"))
+    []
     """
     s = scenario
     checks: list[tuple[str, object]] = []
@@ -329,6 +341,10 @@ _profile_problems = profile_problems
 def override_problems(speeds_km_h=None, front_pressures_bar=None, rear_pressures_bar=None) -> list[str]:
     """Speeds and pressures given beside a scenario (``tyrelab ride --speeds`` ...) outside :data:`LIMITS`.
 
+    See Also
+    --------
+    scenario_problems : the scenario's own numbers.
+
     Examples
     --------
     >>> override_problems(speeds_km_h=[8, 1e300])
@@ -354,6 +370,10 @@ def uses_spectral(scenario, method: str, n_variants: int) -> bool:
     ``spectral``; ``auto`` for more than one variant on an ISO 8608 surface (a profile or any other
     deterministic road is simulated).
 
+    See Also
+    --------
+    work_estimate : the work under each method.
+
     Examples
     --------
     >>> from types import SimpleNamespace as NS
@@ -374,6 +394,10 @@ def work_estimate(scenario, n_variants: int, speeds_km_h=None, method: str = "ti
     (``spectral_rows``: variant x speed rows, :data:`SECONDS_PER_SPECTRAL_ROW` each), ``auto``
     the nominal variant besides (the speeds that may lift a tyre are bounded when known, by
     ``max_samples``).
+
+    See Also
+    --------
+    work_problems : the refusals from it.
 
     Examples
     --------
@@ -411,6 +435,10 @@ def work_problems(scenario, n_variants: int, speeds_km_h=None, *, max_variants: 
 
     ``max_variants`` default: :data:`MAX_SPECTRAL_VARIANTS` where ``method`` computes spectral rows
     (:func:`work_estimate`), else :data:`MAX_VARIANTS`.
+
+    See Also
+    --------
+    work_estimate : the estimate it checks.
 
     Examples
     --------

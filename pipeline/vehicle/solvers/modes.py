@@ -115,6 +115,10 @@ def mac_matrix(reference: ModeSet, other: ModeSet) -> np.ndarray:
     """Mass-weighted MAC of every mode of ``reference`` (rows) with every mode of ``other``
     (columns), over their common coordinates with the reference's mass matrix.
 
+    See Also
+    --------
+    follow_names : names modes by it.
+
     Examples
     --------
     >>> from tyrelab.vehicle.model import assemble
@@ -189,6 +193,11 @@ def mode_set(asm: Assembly) -> ModeSet:
     the larger ``|z|/|θ|`` share is bounce, the other pitch (thesis §8.2). The pitch-plane tractor on
     rigid axles is thesis §8.2's beam on two springs: its frequencies are
     :func:`tyrelab.vehicle.solvers.beam.mode_shapes`' (the same eigenproblem).
+
+    See Also
+    --------
+    follow_names : follows them into a variant.
+    frequency_intervals : their 95 % intervals.
     """
     _validate.instance("asm", asm, Assembly)
     k, m, coords = asm.undamped()
@@ -241,6 +250,10 @@ def frequency_intervals(asm: Assembly, u_front_tyre_kN_per_m: float, u_rear_tyre
         through the perturbation or the first-order interval would reach below 0 Hz.
     notes : list of str
         Why each None.
+
+    See Also
+    --------
+    mode_set : the modes whose frequencies it brackets.
 
     Examples
     --------
@@ -296,7 +309,13 @@ def frequency_intervals(asm: Assembly, u_front_tyre_kN_per_m: float, u_rear_tyre
 
 def follow_names(reference: ModeSet, other: ModeSet) -> tuple[dict, list]:
     """``other``'s modes under ``reference``'s names: ``{other's name: reference's name}`` for every
-    mode followed (:meth:`ModeSet.follow`), and a note per reference mode that cannot be followed."""
+    mode followed (:meth:`ModeSet.follow`), and a note per reference mode that cannot be followed.
+
+    See Also
+    --------
+    mac_matrix : the MAC it follows modes by.
+    mode_set : the modes it names.
+    """
     _validate.instance("reference", reference, ModeSet)
     _validate.instance("other", other, ModeSet)
     mapping, notes = {}, []

@@ -47,6 +47,10 @@ def contact_length(radius_m: float, deflection_m: float) -> float:
     Chord of a circle of radius ``R`` cut at depth ``d`` (``≈ 2 sqrt(2 R d)``
     for small ``d``).
 
+    See Also
+    --------
+    fixed_footprint, tapered_moving_average : filters of this length.
+
     Examples
     --------
     >>> round(contact_length(0.742, 0.05), 3)
@@ -89,12 +93,35 @@ def fixed_footprint(heights_m, dx_m: float, footprint_m: float) -> np.ndarray:
     -------
     ndarray
         Enveloped elevations, same length (ends padded with the end values).
+
+    See Also
+    --------
+    tapered_moving_average : the tapered filter of the same length.
+    rigid_tread_band : a rigid disc instead.
+
+    Examples
+    --------
+    >>> h = np.r_[np.zeros(50), np.full(50, 0.1)]           # a 100 mm step, 1 cm spacing
+    >>> e = fixed_footprint(h, 0.01, 0.21)                      # a 21 cm footprint
+    >>> round(float(e[50 - 15]), 6), round(float(e[49]), 3), round(float(e[50 + 15]), 6)
+    (0.0, 0.048, 0.1)
     """
     return _moving(heights_m, window("fixed", footprint_m, dx_m))
 
 
 def tapered_window(n_samples: int, taper_fraction: float = 0.5) -> np.ndarray:
-    """Normalised Tukey window used as the tapered moving average (sums to 1)."""
+    """Normalised Tukey window used as the tapered moving average (sums to 1).
+
+    See Also
+    --------
+    tapered_moving_average : the filter it weights.
+
+    Examples
+    --------
+    >>> w = tapered_window(9)
+    >>> round(float(w.sum()), 12), bool(w[0] < w[4])
+    (1.0, True)
+    """
     n_samples = _validate.positive_int("n_samples", n_samples)
     taper_fraction = _fraction("taper_fraction", taper_fraction)
     w = signal.windows.tukey(max(int(n_samples), 1), alpha=taper_fraction, sym=True)
@@ -172,6 +199,18 @@ def tapered_moving_average(heights_m, dx_m: float, footprint_m: float, taper_fra
     -------
     ndarray
         Enveloped elevations, m.
+
+    See Also
+    --------
+    tapered_window : its window.
+    fixed_footprint : the rectangular filter.
+
+    Examples
+    --------
+    >>> x = np.arange(2000) * 0.01
+    >>> e = tapered_moving_average(np.sin(2 * np.pi * x / 0.2), 0.01, 0.4)   # 20 cm waves, 40 cm footprint
+    >>> bool(np.abs(e[200:-200]).max() < 0.1), round(float(tapered_moving_average(np.full(100, 0.03), 0.01, 0.4)[50]), 6)
+    (True, 0.03)
     """
     return _moving(heights_m, window("tapered", footprint_m, dx_m, taper_fraction))
 
@@ -195,6 +234,16 @@ def rigid_tread_band(heights_m, dx_m: float, radius_m: float) -> np.ndarray:
     -------
     ndarray
         Enveloped elevations, m.
+
+    See Also
+    --------
+    fixed_footprint : a flexible footprint instead.
+
+    Examples
+    --------
+    >>> h = np.zeros(200); h[100:102] = -0.05                   # a 2 cm wide, 5 cm deep gap
+    >>> round(float(rigid_tread_band(h, 0.01, 0.75).min()) * 1e3, 3)   # mm: a 0.75 m wheel bridges it
+    -0.067
     """
     dx_m = _validate.positive("dx_m", dx_m)
     radius_m = _validate.positive("radius_m", radius_m)
