@@ -73,6 +73,7 @@ import numpy as np
 
 from ... import _validate
 from ..._validate import positive
+from ..units import STANDARD_GRAVITY_M_S2
 
 __all__ = [
     "SPINE_ZERO",
@@ -115,7 +116,7 @@ SPINE_RING_S = 5.0
 BAND_HZ = (0.01, 80.0)
 #: Downward seat acceleration beyond which the occupant leaves the seat (free fall: the standard
 #: gravity g), m/s²; the 2018 edition's 1 g delineation of its regimes.
-LOSS_OF_CONTACT_M_S2 = 9.80665
+LOSS_OF_CONTACT_M_S2 = STANDARD_GRAVITY_M_S2
 #: A recording's regime: the occupant lost contact with the seat at some time, or stayed seated.
 REGIMES = ("loss_of_contact", "seated")
 #: Regime -> the model ISO 2631-5:2018 assigns to it (tyrelab computes clause 5's only).
