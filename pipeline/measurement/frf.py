@@ -33,8 +33,9 @@ outputs:
 * the bins near each wheel's rotation frequency and its harmonics, half the lug-passing and the
   lug-passing frequency masked (§2.4.5: the coherence drops there; :func:`wheel_excitation_mask`);
 * the modes per output: a pole–residue model with shared poles over every usable input's FRF
-  (each pole's ``f_d`` and ``ζ`` found by non-linear least squares, the residues and a complex
-  constant per input by linear least squares for given poles — variable projection, Golub &
+  (each pole's ``f_d`` and ``ζ`` found by non-linear least squares, the residues, a complex
+  constant and a complex lower residual ``1/s²`` per input (a body-fixed accelerometer's gravity
+  component has a double pole at 0 Hz) by linear least squares for given poles — variable projection, Golub &
   Pereyra 1973), each bin weighted by its random error; the number of modes by the Bayesian
   information criterion; 95 % intervals from the Jacobian of the projected residual on the
   fit's degrees of freedom (:func:`fit_vehicle_modes`).
@@ -504,8 +505,11 @@ class VehicleMode:
 
 
 def _basis(w: np.ndarray, fd: np.ndarray, zeta: np.ndarray) -> np.ndarray:
-    """Complex basis (n, 2R + 2) of the pole-residue model at ``s = jω``: per mode the real and
-    imaginary parts of a residue pair, then a complex constant."""
+    """Complex basis (n, 2R + 4) of the pole-residue model at ``s = jω``: per mode the real and
+    imaginary parts of a residue pair, then a complex constant (the upper residual) and a complex
+    ``1/s²`` (the lower residual: a body-fixed accelerometer's gravity component ``g φ`` or ``g θ``
+    per input acceleration is ``g (Φ/U) / s²``, a double pole at 0 Hz, since the static tilt per
+    ground height ``Φ/U`` is finite; without it the poles bend to fit it)."""
     wd = 2 * np.pi * fd
     wn = wd / np.sqrt(1 - zeta ** 2)
     pole = -zeta * wn + 1j * wd
@@ -513,7 +517,8 @@ def _basis(w: np.ndarray, fd: np.ndarray, zeta: np.ndarray) -> np.ndarray:
     a = 1.0 / (s - pole[None, :])
     b = 1.0 / (s - np.conj(pole)[None, :])
     cols = [a + b, 1j * (a - b)]
-    return np.concatenate([*cols, np.ones((w.size, 1)), 1j * np.ones((w.size, 1))], axis=1)
+    low = 1.0 / s[:, :1] ** 2
+    return np.concatenate([*cols, np.ones((w.size, 1)), 1j * np.ones((w.size, 1)), low, 1j * low], axis=1)
 
 
 def _projected(params: np.ndarray, w, h, wt) -> np.ndarray:
@@ -591,7 +596,7 @@ def fit_vehicle_modes(frequency_Hz, h, sigma, usable=None, max_modes: int = MAX_
     best = None  # (bic, params, least-squares result, parameters)
     prev = np.empty(0)
     for r in range(1, max_modes + 1):
-        n_par = 2 * r + len(cols) * (2 * r + 2)
+        n_par = 2 * r + len(cols) * (2 * r + 4)
         if n_par >= n_obs - 2:
             break
         resid = _projected(prev, w, h0, wt) if prev.size else None
@@ -874,6 +879,24 @@ def recording_frf(recording, speed_km_h: float = 0.0, wheels_geometry=None, outp
     cross_spectra : the spectra it accumulates.
     fit_vehicle_modes : the modes of each output.
     tyrelab.vehicle_frf : the same from a file path.
+
+    Examples
+    --------
+    Four wheel inputs of random motion, a seat that follows the front left and rear left wheels by
+    0.5 and 0.3 (and noise), recorded to a file:
+
+    >>> import pandas as pd, tempfile
+    >>> from pathlib import Path
+    >>> from tyrelab.rawformat.rides import open_recording
+    >>> fs, n = 100.0, 100 * 120
+    >>> x = np.random.default_rng(1).normal(size=(5, n))
+    >>> wheels = ["front_left", "front_right", "rear_left", "rear_right"]
+    >>> path = Path(tempfile.mkdtemp()) / "stand.csv"
+    >>> pd.DataFrame({"time_s": np.arange(n) / fs, **{f"input_{w}_z_m_s2": x[i] for i, w in enumerate(wheels)},
+    ...               "seat_z_m_s2": 0.5 * x[0] + 0.3 * x[2] + 0.05 * x[4]}).to_csv(path, index=False)
+    >>> r = recording_frf(open_recording(path))
+    >>> r.wheels, r.outputs, r.duration_s
+    (('front_left', 'front_right', 'rear_left', 'rear_right'), ('seat_z_m_s2',), 120.0)
     """
     names = tuple(recording.channels)
     inputs = [c for c in names if input_channel_wheel(c)]

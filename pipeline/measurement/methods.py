@@ -188,6 +188,17 @@ def half_power(force_N: np.ndarray, accel_m_s2: np.ndarray, sample_rate_Hz: floa
     --------
     free_vibration : the free-decay method.
     tyrelab.measurement.apparent_mass.h1_spectrum : the H1 it reads.
+
+    Examples
+    --------
+    >>> fs, n = 100.0, 100 * 600                                   # 10 min of random force
+    >>> f = np.fft.rfftfreq(n, 1 / fs); w = 2 * np.pi * f
+    >>> F = np.array([1, 1j]) @ np.random.default_rng(1).normal(size=(2, f.size)); F[0] = 0
+    >>> m, k, c = 1000.0, 250e3, 2000.0                              # a 2.52 Hz mode, 6.3 % damped
+    >>> a = np.fft.irfft(-w**2 * F / (k - m * w**2 + 1j * w * c), n)
+    >>> r = half_power(np.fft.irfft(F, n), a, fs, m)
+    >>> round(float(r["stiffness_N_per_m"]), -3), round(float(r["natural_frequency_Hz"]), 2), round(float(r["damping_N_s_per_m"]), -2)
+    (251000.0, 2.52, 2000.0)
     """
     sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
     mass_kg = positive("mass_kg", mass_kg)

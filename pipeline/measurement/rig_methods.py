@@ -380,6 +380,20 @@ def analyse_method_run(method: str, direction: str, time_s, accel_m_s2, beams_N,
     free_vibration_run, load_deflection_run : the methods it dispatches to.
     tyrelab.measurement.broadband.analyse_broadband : the broadband runs'.
     channel_problem : whether the run's channels fit its method.
+
+    Examples
+    --------
+    A free-vibration run of a 1000 kg axle on 400 kN/m and 4 kN s/m released from 10 mm (the load
+    beams carry nothing: the tyre force is the axle's ``M_a a``):
+
+    >>> fs, m, k, c = 256.0, 1000.0, 4e5, 4e3
+    >>> t = np.arange(int(10 * fs)) / fs
+    >>> s = c / (2 * m); wd = np.sqrt(k / m - s**2)
+    >>> x = 0.01 * np.exp(-s * t) * (np.cos(wd * t) + s / wd * np.sin(wd * t))
+    >>> a = -(k * x + c * np.gradient(x, t)) / m
+    >>> fields, frf = analyse_method_run("free_vibration", "vertical", t, np.stack([a, a]), np.zeros((4, t.size)), m)
+    >>> round(fields["stiffness_N_per_m"] / 1e3), round(fields["damping_N_s_per_m"] / 1e3, 2), fields["reasons"], len(frf)
+    (400, 4.0, [], 0)
     """
     from .apparent_mass import EXCITATION_BAND_Hz, tyre_force
 

@@ -76,7 +76,7 @@ EMPTY_COLUMNS = {
     "vehicle_modes": ["ride_id", "output", "mode", "frequency_Hz", "damping_ratio", "frequency_ci95_low_Hz",
                       "frequency_ci95_high_Hz", "damping_ci95_low", "damping_ci95_high", "inputs"],
     "vehicle_frf_validation": ["ride_id", "speed_km_h", "scenario", "output", "frf_magnitude_error", "model", "mode",
-                               "measured_frequency_Hz", "measured_frequency_ci95_low_Hz",
+                               "predicted_mode", "measured_frequency_Hz", "measured_frequency_ci95_low_Hz",
                                "measured_frequency_ci95_high_Hz", "predicted_frequency_Hz", "frequency_ratio",
                                "frequency_in_interval", "measured_damping_ratio", "measured_damping_ci95_low",
                                "measured_damping_ci95_high", "predicted_damping_ratio", "damping_ratio_ratio",

@@ -198,6 +198,19 @@ def predictions_from_recordings(results: pd.DataFrame, our_table_iii: pd.DataFra
     --------
     predictions_from_table : the same from published lines.
     accuracy_summary : summarises either.
+
+    Examples
+    --------
+    >>> from tyrelab.tyre.regressions import DAMPING, pressure_regressions, table_iii
+    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
+    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0, "load_kN": 18.3,
+    ...                      "speed_km_h": [0.0] * 3 + [12.0] * 3, "pressure_bar": [1.0, 1.4, 1.8] * 2,
+    ...                      "stiffness_kN_per_m": [400.0, 440.0, 480.0, 380.0, 420.0, 460.0],
+    ...                      "damping_kN_s_per_m": [3.0, 2.8, 2.6, 1.5, 1.4, 1.3]})
+    >>> p = predictions_from_recordings(runs, table_iii(pressure_regressions(runs), None),
+    ...                                 pd.DataFrame({"tyre_id": ["T1"], "size": ["13.6R38"]}))
+    >>> p[["pressure_bar", "measured_kN_per_m", "stationary_kN_per_m", "stationary_error_percent"]].round(2).to_dict("records")[0]
+    {'pressure_bar': 1.0, 'measured_kN_per_m': 380.0, 'stationary_kN_per_m': 400.0, 'stationary_error_percent': 5.26}
     """
     _validate.frame("results", results)
     _validate.frame("our_table_iii", our_table_iii, _LINE_COLUMNS)

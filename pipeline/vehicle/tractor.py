@@ -124,6 +124,11 @@ def tractor_parts(tractor: Tractor, seat: SeatPoint | None = None) -> Parts:
 
     A Maxwell element without spring or damper carries no force (the model ``"none"``).
 
+    See Also
+    --------
+    simulate_tractor : simulates them.
+    tyrelab.vehicle.model.assemble : assembles them.
+
     Examples
     --------
     >>> p = tractor_parts(Tractor(1000, 250, 1.0, 1.0, 0.5, 1e5, 1e5, 0.0, 0.0, 1e5, 1e3, "maxwell"))
@@ -204,6 +209,11 @@ def simulate_tractor(
         ``vertical_m_s2`` (CG), ``pitch_rad_s2``, ``longitudinal_m_s2`` (CG), ``z_m``,
         ``theta_rad`` per sample, ``lift_off_fraction_front``/``_rear`` (fraction of the
         samples at which the axle is off the ground) and ``method_used`` per run.
+
+    See Also
+    --------
+    tractor_parts : the parts it simulates.
+    tyrelab.vehicle.solvers.time_domain.simulate : the solver.
 
     Examples
     --------

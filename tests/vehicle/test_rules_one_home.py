@@ -138,3 +138,29 @@ def test_the_scenario_s_limits_read_the_daily_exposure_s():
     low, high, _ = limits.LIMITS["exposure.hours_per_day"]
     assert (low, high) == (de.MIN_HOURS_PER_DAY, de.MAX_HOURS_PER_DAY)
     assert limits.MIN_VERDICT_DURATION_S == de.MIN_RECORD_S
+
+
+def test_the_ch7_study_builds_its_wheel_inputs_with_the_ride_s_one_construction():
+    """The study's axle inputs are :func:`~tyrelab.vehicle.run.track.wheel_inputs` (pitch plane) with
+    the study's enveloping, at the ride's time step; checked against the construction by hand (the
+    axle mean of the enveloped tracks under each axle, the front a wheelbase ahead, the start's
+    offset removed)."""
+    from tyrelab.vehicle import studies
+    from tyrelab.vehicle.run import track
+    from tyrelab.vehicle.terrain import profiles as pr
+    from tyrelab.vehicle.terrain.wheel_inputs import half_step_input
+
+    assert studies.DT_S == track.DT_S
+    prof = pr.iso8608_track("C", seed=3, length_m=60.0, dx_m=0.05)
+    radii, footprints, v, wb, n = {"front": 0.4, "rear": 0.0}, {"front": 0.25, "rear": 0.45}, 3.0, 2.4, 4001
+    got = studies.tractor_inputs(prof, radii, footprints, v, wb, n)
+    dx = prof.dx_m
+    by_hand = []
+    for axle, offset in (("front", wb), ("rear", 0.0)):
+        sides = [ev.tapered_moving_average(ev.rigid_tread_band(prof.track(s), dx, radii[axle]) if radii[axle]
+                                           else prof.track(s), dx, footprints[axle]) for s in ("left", "right")]
+        by_hand.append(half_step_input(prof.x_m, 0.5 * (sides[0] + sides[1]), v, n, x_start_m=offset, dt_s=1e-3))
+    (uf, udf), (ur, udr) = by_hand
+    u0 = 0.5 * (uf[0] + ur[0])
+    for a, b in zip(got, (uf - u0, udf, ur - u0, udr)):
+        np.testing.assert_array_equal(a, b)

@@ -324,7 +324,17 @@ def _weighted(e: Element, row: np.ndarray) -> np.ndarray:
 
 
 def coordinate_output(name: str) -> str:
-    """Output name of a coordinate: ``z`` -> ``z_m``, ``th`` -> ``theta_rad``, an angle ``_rad``."""
+    """Output name of a coordinate: ``z`` -> ``z_m``, ``th`` -> ``theta_rad``, an angle ``_rad``.
+
+    See Also
+    --------
+    assemble : the assembly whose coordinates these name.
+
+    Examples
+    --------
+    >>> [coordinate_output(n) for n in ("z", "th", "front_axle_roll", "cab_z")]
+    ['z_m', 'theta_rad', 'front_axle_roll_rad', 'cab_z_m']
+    """
     if not isinstance(name, str) or not name:
         raise ValueError(f"name must be a coordinate name (text), got {name!r}")
     special = {"z": "z_m", "th": "theta_rad", "x": "x_m", "phi": "phi_rad"}
@@ -347,6 +357,11 @@ def assemble(parts: Parts, gravity_m_s2: float | None = None) -> Assembly:
     under ``gravity_m_s2`` (m/s²; default the standard gravity
     :data:`~tyrelab.vehicle.units.STANDARD_GRAVITY_M_S2`, a thesis study passes the thesis' 9.81)
     set their lift-off floors.
+
+    See Also
+    --------
+    tyrelab.vehicle.solvers.time_domain.simulate : simulates assemblies.
+    tyrelab.vehicle.solvers.modes.mode_set : their modes.
 
     Examples
     --------

@@ -41,6 +41,10 @@ def needs(part: str, mount: str = "rigid", three_d: bool = False) -> tuple[str, 
     scenario file refuses a missing key (:mod:`tyrelab.vehicle.scenario`, its keys
     :func:`scenario_key`).
 
+    See Also
+    --------
+    scenario_key : the scenario key of each field.
+
     Examples
     --------
     >>> needs("axle", "suspended", three_d=True)
@@ -70,6 +74,10 @@ def needs(part: str, mount: str = "rigid", three_d: bool = False) -> tuple[str, 
 def scenario_key(field_name: str) -> str:
     """A part field's key in a scenario file: stiffness and damping in kN (``_N_`` -> ``_kN_``).
 
+    See Also
+    --------
+    needs : the fields a part needs.
+
     Examples
     --------
     >>> scenario_key("hitch_stiffness_N_m_per_rad"), scenario_key("mass_kg")
@@ -81,13 +89,35 @@ def scenario_key(field_name: str) -> str:
 
 
 def pivot_problem(section: str) -> str:
-    """Why a pivot axle needs the 3-D model (the model and the scenario file say it so)."""
+    """Why a pivot axle needs the 3-D model (the model and the scenario file say it so).
+
+    See Also
+    --------
+    cab_mount_problems : the cab's mount check.
+
+    Examples
+    --------
+    >>> pivot_problem("front_axle")
+    'front_axle.mount = "pivot" needs the roll model (tractor.roll_inertia_kg_m2): a pivot axle only differs from a rigid one in roll'
+    """
     return (f"{section}.mount = \"pivot\" needs the roll model (tractor.roll_inertia_kg_m2): a pivot axle only "
             "differs from a rigid one in roll")
 
 
 def cab_mount_problems(front_mount_ahead_of_cg_m: float, rear_mount_ahead_of_cg_m: float) -> list[str]:
-    """A suspended cab's front mounts must be ahead of its rear mounts (m ahead of the CG)."""
+    """A suspended cab's front mounts must be ahead of its rear mounts (m ahead of the CG).
+
+    See Also
+    --------
+    pivot_problem : the pivot axle's check.
+
+    Examples
+    --------
+    >>> cab_mount_problems(0.4, -1.0)
+    []
+    >>> cab_mount_problems(-1.0, 0.4)
+    ['cab.front_mount_ahead_of_cg_m (-1.0 m) must be ahead of cab.rear_mount_ahead_of_cg_m (0.4 m)']
+    """
     if front_mount_ahead_of_cg_m > rear_mount_ahead_of_cg_m:
         return []
     return [f"cab.front_mount_ahead_of_cg_m ({front_mount_ahead_of_cg_m} m) must be ahead of "

@@ -134,6 +134,17 @@ def ground_response(h: np.ndarray, frequency_Hz, speed_m_s: float, wheelbase_m: 
     See Also
     --------
     simulate_state_space : the same system in time.
+
+    Examples
+    --------
+    An output that adds the front and rear ground displacements (bounce at the CG of a symmetric
+    tractor, per unit): the wheelbase filter cancels it where the rear is half a period behind,
+    ``f = v / (2 L)``:
+
+    >>> f = np.array([0.0, 0.5, 1.0]); h = np.zeros((1, 4, f.size), complex)
+    >>> h[:, 0] = h[:, 2] = 1.0                                 # to front and rear displacement; no rate terms
+    >>> np.round(np.abs(ground_response(h, f, speed_m_s=2.5, wheelbase_m=2.5)), 9).tolist()
+    [[2.0, 0.0, 2.0]]
     """
     positive("speed_m_s", speed_m_s)
     _validate.non_negative("wheelbase_m", wheelbase_m)

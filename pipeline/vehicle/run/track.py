@@ -168,6 +168,24 @@ def crg_profile(scenario: Scenario) -> pr.Profile:
     --------
     build_profile : reads it for a ``kind = "crg"`` surface.
     tyrelab.vehicle.crg.wheel_tracks : the wheel lines of a CRG road.
+
+    Examples
+    --------
+    A 60 m road with a 1 % cross-fall, ridden by the shipped 3-D tractor (tracks 1.95 m front, 1.90 m
+    rear): each wheel on its own line.
+
+    >>> import tempfile, pyopencrg
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> tmp = Path(tempfile.mkdtemp())
+    >>> u, v = np.arange(0, 60.01, 0.05), np.arange(-1.5, 1.51, 0.1)
+    >>> pyopencrg.CrgRoad(np.outer(np.ones(u.size), 0.01 * v), u_inc=0.05, v=v).save(str(tmp / "road.crg"), fmt="KRBI")
+    >>> head, rest = (scenarios_dir() / "modern_3d_tractor.toml").read_text().split("[surface]")
+    >>> surface = ["[surface]", 'kind = "crg"', 'file = "road.crg"', "", rest[rest.index("[exposure]"):]]
+    >>> _ = (tmp / "tractor.toml").write_text(head + chr(10).join(surface))
+    >>> p = crg_profile(load_scenario(tmp / "tractor.toml"))
+    >>> float(p.x_m[-1]), [round(float(h[100]) * 1e3, 3) for h in (p.left_m, p.right_m, p.rear_left_m, p.rear_right_m)]
+    (60.0, [9.75, -9.75, 9.5, -9.5])
     """
     _validate.instance("scenario", scenario, Scenario)
     s = scenario.surface
@@ -284,6 +302,13 @@ def axle_inputs(track: pr.Profile, kind: str, footprints: tuple[float, float], r
     --------
     tyre_inputs : the same under each tyre element of an assembly.
     build_profile : the track it reads.
+
+    Examples
+    --------
+    >>> p = pr.add_lead_in(pr.iso8608_track("C", seed=1, length_m=50.0), 5.0)
+    >>> uf, udf, ur, udr = axle_inputs(p, "fixed", (0.3, 0.3), (0.7, 0.7), speed_m_s=2.0, wheelbase_m=2.5, n_steps=4001)
+    >>> uf.shape, bool(np.allclose(ur[2500:], uf[:-2500]))     # the rear follows 1.25 s (2500 half steps) later
+    ((8001,), True)
     """
     u, du = wheel_inputs(("front", "rear"), False, track, kind, footprints, radii, speed_m_s, wheelbase_m, n_steps)
     return u[0], du[0], u[1], du[1]
@@ -297,6 +322,16 @@ def tyre_inputs(asm, track: pr.Profile, kind: str, footprints: tuple[float, floa
     See Also
     --------
     axle_inputs : the pitch plane's two axles.
+
+    Examples
+    --------
+    >>> from tyrelab.vehicle.model import Axle, Chassis, Parts, assemble
+    >>> asm = assemble(Parts(Chassis(5120.0, 6210.0, 0.838), Axle("front", 1.54, 4.25e5, 1.5e3),
+    ...                      Axle("rear", -0.896, 3.3e5, 1e3)))            # the pitch plane: one element per axle
+    >>> p = pr.add_lead_in(pr.iso8608_track("C", seed=1, length_m=50.0), 5.0)
+    >>> u, du = tyre_inputs(asm, p, "fixed", (0.3, 0.3), (0.7, 0.7), 2.0, 2.5, 4001)
+    >>> u.shape, bool(np.allclose(u, axle_inputs(p, "fixed", (0.3, 0.3), (0.7, 0.7), 2.0, 2.5, 4001)[::2]))
+    ((2, 8001), True)
     """
     _validate.instance("asm", asm, Assembly)
     return wheel_inputs(asm.tyres, asm.parts.three_d, track, kind, footprints, radii, speed_m_s, wheelbase_m, n_steps)

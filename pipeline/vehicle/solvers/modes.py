@@ -198,6 +198,15 @@ def mode_set(asm: Assembly) -> ModeSet:
     --------
     follow_names : follows them into a variant.
     frequency_intervals : their 95 % intervals.
+
+    Examples
+    --------
+    >>> from tyrelab.vehicle.model import Axle, Chassis, Parts, assemble
+    >>> asm = assemble(Parts(Chassis(5120.0, 6210.0, 0.838), Axle("front", 1.54, 4.25e5, 1.5e3),
+    ...                      Axle("rear", -0.896, 3.3e5, 1e3)))
+    >>> m = mode_set(asm)
+    >>> m.names, [round(f, 3) for f in m.frequencies_Hz]
+    (('bounce', 'pitch'), [2.322, 3.531])
     """
     _validate.instance("asm", asm, Assembly)
     k, m, coords = asm.undamped()
@@ -315,6 +324,16 @@ def follow_names(reference: ModeSet, other: ModeSet) -> tuple[dict, list]:
     --------
     mac_matrix : the MAC it follows modes by.
     mode_set : the modes it names.
+
+    Examples
+    --------
+    >>> from tyrelab.vehicle.model import Axle, Chassis, Parts, assemble
+    >>> asm = assemble(Parts(Chassis(5120.0, 6210.0, 0.838), Axle("front", 1.54, 4.25e5, 1.5e3),
+    ...                      Axle("rear", -0.896, 3.3e5, 1e3)))
+    >>> stiffer = assemble(Parts(Chassis(5120.0, 6210.0, 0.838), Axle("front", 1.54, 5e5, 1.5e3),
+    ...                          Axle("rear", -0.896, 3.3e5, 1e3)))
+    >>> follow_names(mode_set(asm), mode_set(stiffer))
+    ({'bounce': 'bounce', 'pitch': 'pitch'}, [])
     """
     _validate.instance("reference", reference, ModeSet)
     _validate.instance("other", other, ModeSet)

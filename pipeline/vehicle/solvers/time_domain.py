@@ -376,6 +376,24 @@ def simulate(
     dict
         Each ``record`` name (runs, N); ``lift_off_fraction_<tyre>`` (runs) the fraction of the
         samples at which the tyre is off the ground; ``method_used`` per run.
+
+    See Also
+    --------
+    tyrelab.vehicle.model.assemble : the assemblies it takes.
+    tyrelab.vehicle.tractor.simulate_tractor : the pitch-plane tractor through it.
+
+    Examples
+    --------
+    >>> from tyrelab.vehicle.model import Axle, Chassis, Parts, assemble
+    >>> asm = assemble(Parts(Chassis(5120.0, 6210.0, 0.838), Axle("front", 1.54, 4.25e5, 1.5e3),
+    ...                      Axle("rear", -0.896, 3.3e5, 1e3)))
+    >>> u = np.full((1, 2, 6001), 0.01); du = np.zeros_like(u)          # 6 s on ground raised by 10 mm
+    >>> r = simulate([asm], u, du, record=("z_m",))
+    >>> r["z_m"].shape, list(r["method_used"]), round(float(r["z_m"][0].max()), 4)  # overshoots, tyres in contact
+    ((1, 3001), ['exact'], 0.0175)
+    >>> u[:, :, 100:] = 0.3                                               # a 300 mm step: the tyres leave the ground
+    >>> list(simulate([asm], u - 0.01, du, record=("z_m",))["method_used"])
+    ['exact+rk4']
     """
     if method not in METHODS:
         raise ValueError(f"method {method!r}: expected one of {METHODS}")

@@ -91,6 +91,10 @@ def carriage_case_inputs(
     everything. A cache keyed on these (the simulate stage's) recomputes only the
     cases whose inputs changed.
 
+    See Also
+    --------
+    carriage_study : the study of these cases.
+
     Examples
     --------
     >>> import pandas as pd
@@ -156,6 +160,10 @@ def carriage_steps(speeds_m_s, track_end_m: float) -> tuple[np.ndarray, np.ndarr
 
 def carriage_key(row: dict) -> tuple[float, str]:
     """The key of a carriage run (a Table XII row or a recording): ``(speed_km_h, load_condition)``.
+
+    See Also
+    --------
+    carriage_study : keys its runs and recordings by it.
 
     Examples
     --------
@@ -227,6 +235,11 @@ def carriage_study(
         ``table_xiv`` (ours, layout of the thesis), ``spectra`` (profile spectra);
         ``cases`` (list, per row of ``table_xii``: its runs, comparisons and example
         records, for a later call's ``cases``).
+
+    See Also
+    --------
+    carriage_case_inputs : what each case reads.
+    tyrelab.vehicle.study_recordings.carriage_recordings : the virtual recordings it is compared with.
     """
     _validate.frame("table_xii", table_xii)
     _validate.frame("stationary", stationary)

@@ -17,6 +17,7 @@ from ..comfort import metrics as mt
 from ..terrain import enveloping as ev
 from ..terrain import profiles as pr
 from ..tractor import PARAMETERS, Tractor, simulate_tractor
+from ..run.track import wheel_inputs
 from ..units import from_kilo, km_h_to_m_s, to_kilo
 from .shared import (DT_S, FRONT_7_50_18_RADIUS_M, FS_HZ, LEAD_IN_M, SURVEY_ERROR_M, T4_ROLLING_RADIUS_M,
                      _by_condition, _given_cases, _plain, _refuse)
@@ -29,19 +30,21 @@ __all__ = ["tractor_case_inputs", "longitudinal_grid", "tractor_study", "tractor
 
 
 def tractor_inputs(profile: pr.Profile, radii, footprints, speed, wheelbase, n_steps):
-    """Axle inputs (mean of left/right enveloped tracks), rear delayed by wheelbase/speed."""
+    """Axle inputs (mean of left/right enveloped tracks), rear delayed by wheelbase/speed: the ride's
+    one construction of wheel inputs (:func:`tyrelab.vehicle.run.track.wheel_inputs`, the pitch
+    plane) with the study's enveloping, the rigid tread band (``radii``, 0: none) then the tapered
+    moving average over the footprint (§7.3)."""
     dx = profile.dx_m
-    out = []
-    for axle, offset in (("front", wheelbase), ("rear", 0.0)):
-        tracks = [
-            ev.tapered_moving_average(ev.rigid_tread_band(profile.track(s), dx, radii[axle]) if radii[axle] else profile.track(s), dx, footprints[axle])
-            for s in ("left", "right")
-        ]
-        h = 0.5 * (tracks[0] + tracks[1])
-        out.append(cm.half_step_input(profile.x_m, h, speed, n_steps, x_start_m=offset, dt_s=DT_S))
-    (uf, udf), (ur, udr) = out
-    u0 = 0.5 * (uf[0] + ur[0])
-    return uf - u0, udf, ur - u0, udr
+
+    def enveloped(side, axle, footprint_m, radius_m):  # the axle mean of the two enveloped tracks
+        tracks = [ev.tapered_moving_average(ev.rigid_tread_band(profile.track(s), dx, radius_m) if radius_m
+                                            else profile.track(s), dx, footprint_m) for s in ("left", "right")]
+        return 0.5 * (tracks[0] + tracks[1])
+
+    (uf, ur), (udf, udr) = wheel_inputs(("front", "rear"), False, profile, "tapered",
+                                        (footprints["front"], footprints["rear"]), (radii["front"], radii["rear"]),
+                                        speed, wheelbase, n_steps, enveloped=enveloped)
+    return uf, udf, ur, udr
 
 
 def _tractor_conditions(table_xv: pd.DataFrame, table_xvi: pd.DataFrame, rolling: pd.DataFrame):
@@ -60,6 +63,10 @@ def longitudinal_grid(table_xviii: pd.DataFrame | None = None) -> dict[str, list
     """The Table XVIII sweep's rear longitudinal elements per model, (k, c) per tyre in kN/m and
     kN s/m: Kelvin-Voigt at the thesis' predicted rows, in their order; Maxwell (§7.5's proposal,
     our addition) at those of them with both a spring and a damper.
+
+    See Also
+    --------
+    tractor_study : sweeps these elements.
 
     Examples
     --------
@@ -93,6 +100,10 @@ def tractor_case_inputs(
     everything (the tracks are seeded). A cache keyed on these (the simulate stage's)
     recomputes only the cases whose inputs changed. The sweep's case also reads the
     longitudinal elements of ``table_xviii`` (:func:`longitudinal_grid`, default the shipped one).
+
+    See Also
+    --------
+    tractor_study : the study of these cases.
     """
     _validate.frame("table_xv", table_xv)
     _validate.frame("table_xvi", table_xvi)
@@ -168,6 +179,11 @@ def tractor_study(
         ``runs`` (per run: rms 0.5-10 Hz, peaks, ISO 2631), ``table_xvii`` (ours),
         ``table_xviii`` (ours), ``spectra`` (farm track profiles); ``cases`` (list, per
         rolling row: its runs, for a later call's ``cases``).
+
+    See Also
+    --------
+    tractor_case_inputs : what each case reads.
+    with_tractor_recordings : compares it with recordings.
     """
     _validate.frame("table_xv", table_xv)
     _validate.frame("table_xvi", table_xvi)
@@ -262,6 +278,10 @@ def tractor_tracks(seed: int = 5007, farm_class: str = "D") -> dict:
 def tractor_key(row: dict) -> tuple[int, str, float]:
     """The key of a tractor run (a Table XVI row or a recording): ``(load_condition, track, speed_km_h)``.
 
+    See Also
+    --------
+    tractor_study : keys its runs and recordings by it.
+
     Examples
     --------
     >>> tractor_key({"load_condition": "1", "track": "SBT", "speed_km_h": 10})
@@ -289,6 +309,11 @@ def with_tractor_recordings(study: dict, recordings: dict | None) -> dict:
         "longitudinal_m_s2": arrays at FS_HZ}`` (any missing channel NaN-valued). Their
         rows (``characteristics`` ``reference``) are measured by the same
         :func:`run_metrics` as the predictions. Without any, Table XVII has no values.
+
+    See Also
+    --------
+    tractor_study : the study it completes.
+    tyrelab.vehicle.study_recordings.tractor_recordings : the virtual recordings.
     """
     if not isinstance(study, dict) or not {"runs", "spectra"} <= set(study):
         raise ValueError("study: expected tractor_study's result (a dict with runs and spectra)")
@@ -362,7 +387,20 @@ def run_metrics(label: dict, profile: str, vertical_m_s2, pitch_rad_s2, longitud
     """The chapter 7 measures of one tractor record, predicted or recorded alike (thesis §7.4):
     r.m.s. 0.5-10 Hz of the vertical and pitch accelerations from their 0.1 Hz PSDs, the two
     and three highest peaks of the vertical PSD, ISO 2631-1 values (W_k on the vertical, W_d on
-    the longitudinal). A channel given as None is NaN in the row."""
+    the longitudinal). A channel given as None is NaN in the row.
+
+    See Also
+    --------
+    tyrelab.vehicle.metrics.spectral_peaks : the peaks it reads.
+
+    Examples
+    --------
+    >>> t = np.arange(0, 60, 1 / FS_HZ)
+    >>> m = run_metrics({"speed_km_h": 10.0}, "SBT", np.sin(2 * np.pi * 2 * t) + 0.5 * np.sin(2 * np.pi * 3.5 * t),
+    ...                 0.1 * np.sin(2 * np.pi * 3.5 * t), None)
+    >>> round(m["vertical_rms_m_s2"], 4), m["first_peak_Hz"], m["second_peak_Hz"], m["iso_longitudinal_weighted_rms_m_s2"]
+    (0.7906, 2.0, 3.5, nan)
+    """
     nan = float("nan")
     n = int(10 * FS_HZ)  # the 0.1 Hz PSD needs 10 s
     vert = _validate.finite_array("vertical_m_s2", vertical_m_s2, min_samples=n)
