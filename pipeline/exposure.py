@@ -7,8 +7,10 @@ and its daily hours. Every recording is analysed once, streamed
 
 JSON (:func:`assess`): with one recording, its ``axes`` (``x``/``y``/``z``: ``a_w_m_s2``,
 ``vdv_m_s1_75``, ``mtvv_m_s2``, ``crest_factor``, ``duration_s``, …), ``a_v_m_s2``,
-``dz_m_s2`` and ``seat_factor`` (when floor channels exist) at the top; with several, each
-task carries its own. The day: ``tasks`` (each with ``partial_a8_m_s2`` per axis), ``a8_m_s2``
+``dz_m_s2`` with its ISO 2631-5 regime (``dz_regime`` ``loss_of_contact``/``seated``, ``dz_model``,
+``dz_applies``, ``seat_z_down_peak_m_s2``, ``loss_of_contact_s``:
+:meth:`tyrelab.vehicle.measured_ride.RecordingAnalysis.regime_json`) and ``seat_factor`` (when
+floor channels exist) at the top; with several, each task carries its own. The day: ``tasks`` (each with ``partial_a8_m_s2`` per axis), ``a8_m_s2``
 (the Directive's, highest axis), ``a8_axis``, ``vdv_daily_m_s1_75``, ``hours_to_eav``,
 ``hours_to_elv``, ``exposure_points``, ``verdict``, ``dzd_m_s2``. The command prints infinite
 hours (no vibration) and NaN as ``null``.
@@ -212,6 +214,11 @@ def assess(tasks, channel_map: dict | None = None) -> dict:
     return out
 
 
+#: How the text report states a recording's ISO 2631-5 regime (:mod:`tyrelab.vehicle.iso2631_5`).
+REGIME_NOTE = {"loss_of_contact": "loss of seat contact: ISO 2631-5 clause 5",
+               "seated": "seated: ISO 2631-5 Annex A, not computed"}
+
+
 def _f(v, fmt: str = ".3f") -> str:
     return "–" if v is None or (isinstance(v, float) and not math.isfinite(v)) else format(v, fmt)
 
@@ -238,6 +245,7 @@ def format_table(doc: dict, width: int | None = None) -> str:
         extra = doc if single else task
         seat = extra.get("seat_factor")
         lines.append(f"  a_v {_f(extra['a_v_m_s2'])} m/s², D_z {_f(extra['dz_m_s2'], '.2f')} m/s²"
+                     + (f" ({REGIME_NOTE[extra['dz_regime']]})" if extra.get("dz_regime") in REGIME_NOTE else "")
                      + (", SEAT " + ", ".join(f"{a} {_f(s, '.2f')}" for a, s in seat.items()) if seat else ""))
     lines.append(f"day: A(8) {_f(doc['a8_m_s2'])} m/s² ({doc['a8_axis']} axis), {printable(doc['verdict'])}; "
                  f"{_f(doc['exposure_points'], '.0f')} HSE points")

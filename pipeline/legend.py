@@ -3,8 +3,10 @@
 ``schemas/warehouse_legend.json`` holds the meanings; this module reads it, with the raw and
 published schemas (:mod:`tyrelab.resources`), and answers for any table and column:
 
-* **unit** — from the column's name (:data:`UNIT_SUFFIXES`, the longest suffix that matches:
-  ``stiffness_kN_per_m`` is kN/m), else the legend's own ``unit`` for the column, else ``–`` (none);
+* **unit** — the legend's own ``unit`` for the column, else from the column's name
+  (:data:`UNIT_SUFFIXES`, the longest suffix that matches: ``stiffness_kN_per_m`` is kN/m), else
+  that of the column it ends (``<x>_difference``, ``<x>_se``, ``<x>_ci_low``/``_high``,
+  ``<x>_min``/``_max``: ``speed_km_h_min`` is km/h), else ``–`` (none);
 * **meaning** — the table's own entry in the legend, else the published table's schema (a
   digitised thesis table, or the table of ours that reproduces it), else the legend's meaning of the
   column's name (one column name means one thing in every table unless the table says otherwise),
@@ -14,8 +16,7 @@ published schemas (:mod:`tyrelab.resources`), and answers for any table and colu
 
 The docs' warehouse reference (``docs/site/_ext/tyrelab_reference.py``) and ``tyrelab sql
 --describe TABLE`` read :func:`describe`; ``tests/test_legend.py`` fails when a declared table has a
-column without a meaning (the legend's ``gaps`` list the columns still to be explained: it may only
-shrink).
+column without a meaning (no column is exempt: the legend keeps no list of known gaps).
 
 Examples
 --------
@@ -51,6 +52,8 @@ UNIT_SUFFIXES = {
 #: The legend file (in the package's schemas).
 LEGEND_FILE = "warehouse_legend.json"
 
+#: Endings of a column in the unit of the column it ends (``speed_km_h_min``, ``carcass_stiffness_kN_per_m_se``).
+_SAME_UNIT_ENDINGS = ("_difference", "_se", "_ci_low", "_ci_high", "_min", "_max")
 _CI = re.compile(r"^(?P<x>.+)_ci95_(?P<end>low|high)_(?P<u>.+)$")
 _CI_PLAIN = re.compile(r"^(?P<x>.+)_ci(?:95)?_(?P<end>low|high)$")
 _U = re.compile(r"^(?P<x>.+?)_u(?:_(?P<part>a|b|stat))?_(?P<u>(?:k?N|Hz|kg|m)\w*)$")
@@ -60,8 +63,8 @@ _COV = re.compile(r"^(?P<kind>ext_|jk_)?cov_(?P<a>intercept|age|pressure|speed|r
 
 @functools.lru_cache(maxsize=1)
 def legend() -> dict:
-    """The legend file as a dict: ``columns`` (name -> meaning or {meaning, unit}), ``tables``
-    (table -> {description, columns}), ``gaps`` (table -> columns still without a meaning)."""
+    """The legend file as a dict: ``columns`` (name -> meaning or {meaning, unit}) and ``tables``
+    (table -> {description, columns}: a table's own meanings, before the names' common ones)."""
     from .resources import schemas_dir
 
     return json.loads((Path(schemas_dir()) / LEGEND_FILE).read_text(encoding="utf-8"))
@@ -125,6 +128,9 @@ def unit(table: str, column: str) -> str:
     for suffix in sorted(UNIT_SUFFIXES, key=len, reverse=True):
         if column.endswith(suffix) and len(column) > len(suffix):
             return UNIT_SUFFIXES[suffix]
+    for end in _SAME_UNIT_ENDINGS:  # a difference, standard error, interval end or range end: its base's unit
+        if column.endswith(end) and len(column) > len(end):
+            return unit(table, column[: -len(end)])
     return "–"
 
 
@@ -187,12 +193,16 @@ def describe(table: str, columns: list[str]) -> list[tuple[str, str, str]]:
 
 
 def undocumented(tables: dict[str, list[str]]) -> dict[str, list[str]]:
-    """Of ``tables`` (table -> its columns), the columns without a meaning and not among the known
-    gaps (``gaps`` of the legend file)."""
-    gaps = legend().get("gaps", {})
+    """Of ``tables`` (table -> its columns), the columns without a meaning (every column needs one).
+
+    Examples
+    --------
+    >>> undocumented({"results": ["stiffness_kN_per_m", "a_column_nobody_explained"]})
+    {'results': ['a_column_nobody_explained']}
+    """
     out = {}
     for t, cols in tables.items():
-        missing = [c for c in cols if not meaning(t, c) and c not in gaps.get(t, [])]
+        missing = [c for c in cols if not meaning(t, c)]
         if missing:
             out[t] = missing
     return out

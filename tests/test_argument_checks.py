@@ -324,6 +324,13 @@ ROWS = [
     (f"{VE}.iso2631_5.dose_from_peaks", dict(peaks_m_s2=[1.0, -1.0]), "peaks_m_s2"),
     (f"{VE}.iso2631_5.acceleration_dose", dict(seat_z_m_s2=SINE, fs_Hz=-FS), "fs_Hz"),
     (f"{VE}.iso2631_5.daily_dose", dict(doses_m_s2=2.0, exposure_s=8 * 3600, measured_s=0.0), "measured_s"),
+    (f"{VE}.iso2631_5.lowpass_response", dict(frequency_Hz=[-1.0]), "frequency_Hz"),
+    (f"{VE}.iso2631_5.band_response", dict(frequency_Hz=[NAN]), "frequency_Hz"),
+    (f"{VE}.iso2631_5.spine_and_lowpass", dict(frequency_Hz=[NAN]), "frequency_Hz"),
+    (f"{VE}.iso2631_5.highpass_sos", dict(fs_Hz=0.0), "fs_Hz"),
+    (f"{VE}.iso2631_5.regime_band_sos", dict(fs_Hz=-FS), "fs_Hz"),
+    (f"{VE}.iso2631_5.band_limited", dict(seat_z_m_s2=[1.0, NAN], fs_Hz=FS), "seat_z_m_s2"),
+    (f"{VE}.iso2631_5.contact_regime", dict(seat_z_m_s2=SINE, fs_Hz=0.0), "fs_Hz"),
     # vehicle/lti.py
     (f"{VE}.lti.discretise", dict(a=-np.eye(1), b=np.eye(1), c=np.eye(1), d=np.zeros((1, 1)), dt_s=0.0), "dt_s"),
     # vehicle/measured_ride.py

@@ -61,7 +61,8 @@ SPECTRA_MAX_HZ = 20.0
 #: Columns of each table when it has no row (so the warehouse still has the table, with its columns).
 EMPTY_COLUMNS = {
     "recordings": ["ride_id", "campaign", "file", "vehicle", "speed_km_h", "track", "recorded_on", "scenario", "task",
-                   "hours_per_day", "sample_rate_Hz", "duration_s", "a_v_m_s2", "dz_m_s2", "channels", "warnings",
+                   "hours_per_day", "sample_rate_Hz", "duration_s", "a_v_m_s2", "dz_m_s2", "dz_regime", "dz_model",
+                   "dz_applies", "seat_z_down_peak_m_s2", "loss_of_contact_s", "channels", "warnings",
                    "study", "load_condition", "study_track", "file_sha256", "method"],
     "recording_axes": ["ride_id", "channel", "axis", "weighting", "a_w_m_s2", "vdv_m_s1_75", "mtvv_m_s2", "crest_factor",
                        "rms_method_sufficient", "method_reasons", "unweighted_rms", "peak_frequency_Hz",
@@ -127,7 +128,7 @@ def _analyse(path: Path, channel_map) -> dict:
             spectra.append({"channel": c, "frequency_Hz": r.frequency_Hz[keep], "psd": r.psd[keep]})
     ax = a.axes()
     summary = {"sample_rate_Hz": a.sample_rate_Hz, "duration_s": a.duration_s, "a_v_m_s2": a.a_v(),
-               "dz_m_s2": a.dz_m_s2, "channels": ",".join(a.channels),
+               "dz_m_s2": a.dz_m_s2, **a.regime_json(), "channels": ",".join(a.channels),
                **{f"seat_factor_{k}": v for k, v in a.seat_factor().items()},
                **{f"a_w_{k}_m_s2": ax[k]["a_w_m_s2"] for k in ax},
                **{f"vdv_{k}_m_s1_75": ax[k]["vdv_m_s1_75"] for k in ax},

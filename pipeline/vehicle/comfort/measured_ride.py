@@ -12,7 +12,10 @@ chunks and bounded memory:
   axle and rotational channels are not weighted (ISO 2631-1 weights only where the
   body is supported; their r.m.s. and spectrum are reported);
 - the seat's vertical acceleration also goes through the ISO 2631-5:2018 seat-to-spine
-  model (:mod:`tyrelab.vehicle.iso2631_5`): D_z;
+  model (:mod:`tyrelab.vehicle.iso2631_5`), then the standard's 0.01–80 Hz band (whose
+  high-pass keeps a residual offset out of the peaks): D_z; and, band-limited, it decides the
+  recording's ISO 2631-5 regime (the seat going down faster than free fall: loss of seat
+  contact, clause 5 applies; else seated, the edition's Annex A model, which tyrelab lacks);
 - the unweighted PSD (Welch, Hann, 50 % overlap, 0.1 Hz as thesis §7.4; the same segments
   as :func:`tyrelab.vehicle.metrics.acceleration_psd`), its dominant peak frequency and
   half-power width (thesis §6.4.2, :func:`tyrelab.vehicle.metrics.spectral_peak`).
@@ -69,7 +72,9 @@ class ChannelResult:
     """The analysis of one channel (SI; NaN where a value does not apply).
 
     ``a_w_m_s2``, ``vdv_m_s1_75``, ``mtvv_m_s2`` are *without* the axis factor k;
-    ``crest_factor`` is that of the weighted signal; ``dz_m_s2`` only for the seat's z.
+    ``crest_factor`` is that of the weighted signal; ``dz_m_s2`` and the ISO 2631-5 regime
+    (``dz_regime``, ``down_peak_m_s2``, ``loss_of_contact_s``:
+    :class:`~tyrelab.vehicle.iso2631_5.ContactRegime`) only for the seat's z.
     """
 
     channel: str
@@ -82,6 +87,9 @@ class ChannelResult:
     mtvv_m_s2: float = math.nan
     crest_factor: float = math.nan
     dz_m_s2: float = math.nan
+    dz_regime: str = ""
+    down_peak_m_s2: float = math.nan
+    loss_of_contact_s: float = math.nan
     peak_frequency_Hz: float = math.nan
     half_power_width_Hz: float = math.nan
     width_over_frequency: float = math.nan
@@ -198,10 +206,16 @@ class ChannelAnalyser:
             w = self.weighting
             responses.append(iso2631.impulse_response(lambda f: iso2631.weighting_response(f, w), self.fs,
                                                       WEIGHTING_RING_S))
-        if self.spine:  # same length as the weighting's taps, so one FFT of each chunk serves both
-            responses.append(iso2631.impulse_response(iso2631_5.spine_response, self.fs, WEIGHTING_RING_S))
+        if self.spine:  # same length as the weighting's taps, so one FFT of each chunk serves them all
+            # the spine response with the ISO 2631-5 band's low-pass (D_z)
+            responses.append(iso2631.impulse_response(iso2631_5.spine_and_lowpass, self.fs, WEIGHTING_RING_S))
         self._filter = iso2631.ResponseFilter(responses) if responses else None
         self._dose = iso2631_5.PeakDose() if self.spine else None
+        # the band's high-pass after it (its impulse response is minutes long: a recursive filter); the
+        # band on the seat's own signal for the regime
+        self._spine_band = iso2631_5.HighPass(self.fs) if self.spine else None
+        self._seat_band = iso2631_5.HighPass(self.fs, regime=True) if self.spine else None
+        self._contact = iso2631_5.ContactWatch(self.fs) if self.spine else None
         self._welch = _Welch(self.fs, max(1, int(round(self.fs / PSD_BANDWIDTH_HZ))))
         self._window = k = max(1, int(round(iso2631.RUNNING_RMS_TAU_S * self.fs)))
         if self.weighting:
@@ -236,6 +250,8 @@ class ChannelAnalyser:
         self._sum += float(x.sum())
         self._sum2 += float(np.einsum("i,i->", x, x))  # not np.dot: BLAS threads stall on a busy machine
         self._welch.process()
+        if self._contact is not None:
+            self._contact.process(self._seat_band.filter(x))
 
     def _filtered(self, x: np.ndarray) -> None:
         for outputs in self._filter.blocks(x):
@@ -259,7 +275,7 @@ class ChannelAnalyser:
                 self._window_max = max(self._window_max, float(window.max()))
                 sq[:k] = sq[m:m + k].copy()
             if self._dose is not None:
-                self._dose.process(outputs[-1][i:i + _SUB_BLOCK])
+                self._dose.process(self._spine_band.filter(outputs[-1][i:i + _SUB_BLOCK]))
 
     def finish(self) -> ChannelResult:
         if self._filter is not None:
@@ -284,6 +300,9 @@ class ChannelAnalyser:
             res.method = iso2631.method_check(res.a_w_m_s2, res.crest_factor, res.mtvv_m_s2, res.vdv_m_s1_75, duration)
         if self._dose is not None:
             res.dz_m_s2 = self._dose.finish()
+            contact = self._contact.finish()
+            res.dz_regime, res.down_peak_m_s2, res.loss_of_contact_s = (contact.regime, contact.down_peak_m_s2,
+                                                                          contact.loss_of_contact_s)
         return res
 
 
@@ -337,9 +356,28 @@ class RecordingAnalysis:
         r = self.channels.get("seat_z_m_s2")
         return r.dz_m_s2 if r is not None else math.nan
 
+    @property
+    def contact(self) -> iso2631_5.ContactRegime | None:
+        """The ISO 2631-5 regime of the recording (from the seat's z; None without it)."""
+        r = self.channels.get("seat_z_m_s2")
+        return None if r is None or not r.dz_regime else iso2631_5.ContactRegime(
+            r.dz_regime, r.down_peak_m_s2, r.loss_of_contact_s)
+
+    def regime_json(self) -> dict:
+        """``dz_regime`` (``loss_of_contact``/``seated``), ``dz_model`` (the model ISO 2631-5:2018
+        assigns to it: ``clause 5``/``Annex A``), ``dz_applies`` (D_z, clause 5's, is the standard's
+        assessment), ``seat_z_down_peak_m_s2``, ``loss_of_contact_s``; None/NaN without a seat z."""
+        c = self.contact
+        if c is None:
+            return {"dz_regime": None, "dz_model": None, "dz_applies": None, "seat_z_down_peak_m_s2": math.nan,
+                    "loss_of_contact_s": math.nan}
+        return {"dz_regime": c.regime, "dz_model": c.model, "dz_applies": c.dz_applies,
+                "seat_z_down_peak_m_s2": c.down_peak_m_s2, "loss_of_contact_s": c.loss_of_contact_s}
+
     def to_json(self) -> dict:
-        """``axes``, ``a_v_m_s2``, ``dz_m_s2``, ``seat_factor`` (when floor channels exist), others."""
-        out = {"axes": self.axes(), "a_v_m_s2": self.a_v(), "dz_m_s2": self.dz_m_s2,
+        """``axes``, ``a_v_m_s2``, ``dz_m_s2`` and its regime (:meth:`regime_json`), ``seat_factor``
+        (when floor channels exist), others."""
+        out = {"axes": self.axes(), "a_v_m_s2": self.a_v(), "dz_m_s2": self.dz_m_s2, **self.regime_json(),
                "duration_s": self.duration_s, "sample_rate_Hz": self.sample_rate_Hz}
         seat = self.seat_factor()
         if seat:
