@@ -220,6 +220,23 @@ def expected_weighted_rms(a, b, c, d, tyres, grid: dict, env: dict, seat_tf, axe
     --------
     frequency_response : the responses it weights.
     input_cross_spectra : the tyres' input spectra.
+
+    Examples
+    --------
+    Two outputs without dynamics (one decoupled state), on a flat input spectrum ``S_u`` = 1 m²/Hz
+    from 0 to 1 Hz, in the pitch plane (inputs ``u, u'`` per tyre, the rear 1 s behind): the front
+    tyre's ground rate, whose r.m.s. is ``sqrt(∫ ω² df)`` = ``2π/√3``, and the sum of the front and
+    rear displacements, ``sqrt(∫ |1 + e^(-jω)|² df)`` = ``√2``; both unweighted (their names are not
+    seat axes):
+
+    >>> f = np.linspace(0.0, 1.0, 1001)
+    >>> grid = {"f": f, "s_u": np.ones(f.size), "wb": 2.5, "v": 2.5}
+    >>> a, b, c = np.array([[[-1.0]]]), np.zeros((1, 1, 4)), np.zeros((1, 2, 1))
+    >>> d = np.array([[[0.0, 1.0, 0.0, 0.0], [1.0, 0.0, 1.0, 0.0]]])       # rows: outputs; columns: u, u' per tyre
+    >>> env = {"front": np.ones(f.size), "rear": np.ones(f.size)}
+    >>> r = expected_weighted_rms(a, b, c, d, ["front", "rear"], grid, env, None, ["rate", "sum"])
+    >>> round(float(r["rate"][0]), 4), round(float(2 * np.pi / np.sqrt(3)), 4), round(float(r["sum"][0]), 6)
+    (3.6276, 3.6276, 1.414214)
     """
     _validate.positive_int("chunk", chunk)
     a, b, c, d = (np.asarray(x, float) for x in (a, b, c, d))
