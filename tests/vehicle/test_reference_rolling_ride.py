@@ -208,7 +208,7 @@ def test_the_project_s_ride_damps_the_lateral_roll_mode_as_the_thesis_measured(n
     """Issue 42's check in the project's own ride (the reference's is ``test_reference_rolling``): both
     shipped tractors made 3-D (their tyres' stand-ins, no lateral key: the rolling tyre and the stand-in
     ``a``), rigid and pivoting front axles: the lateral–roll mode damped 20–100 % of critical at 6, 8 and
-    11 km/h (thesis §2.4.3), oscillating, rising with speed; its name the same at every speed."""
+    11 km/h (thesis §2.4.3), oscillating, rising with speed."""
     from tyrelab.resources import scenarios_dir
     from tyrelab.scenario_io import parse_scenario
     from tyrelab.vehicle.scenario import with_overrides

@@ -14,7 +14,7 @@ import pandas as pd
 from ..units import from_kilo, km_h_to_m_s
 from ... import _validate
 from ..model import Assembly, assemble
-from ..modes import ModeSet, damped_modes, follow_damped, follow_renamed, frequency_intervals, mode_set
+from ..modes import ModeSet, damped_modes, follow_damped, frequency_intervals, mode_set
 from ..scenario import Scenario
 from ..tyres import _resolve, build_parts
 from .output import RideResult
@@ -128,14 +128,12 @@ def finish(p: VariantPlan) -> RideResult:
 
 def _damped_by_speed(p: VariantPlan, shapes: ModeSet) -> dict:
     """Speed (km/h) -> ``{mode: DampedMode}`` (issue 42): each speed's assembly's damped modes (its own
-    series dampers); the first speed's named by their shapes (:func:`~tyrelab.vehicle.modes.damped_modes`),
-    each further speed's followed by shape from the speed before (:func:`~tyrelab.vehicle.modes.follow_renamed`):
-    a mode keeps its name as its character changes with speed, as its damping rises."""
-    out, before = {}, None
-    for i, speed in enumerate(p.speeds_km_h):
-        own = damped_modes(p.runs[i].asm, reference=shapes)
-        out[float(speed)] = before = own if before is None else follow_renamed(before, own)[0]
-    return out
+    series dampers), each followed by shape from the undamped modes and named by its own shape
+    (:func:`~tyrelab.vehicle.modes.damped_modes`): the names say what moves at that speed, so a mode
+    whose character changes with speed (two modes veering as the series dampers soften) changes its
+    name. Across a sweep's variants the names are followed at each speed
+    (:func:`~tyrelab.vehicle.modes.follow_renamed`, :mod:`~tyrelab.vehicle.run.sweep`)."""
+    return {float(speed): damped_modes(p.runs[i].asm, reference=shapes) for i, speed in enumerate(p.speeds_km_h)}
 
 
 def _damped_intervals(p: VariantPlan, nominal: dict, shapes: ModeSet) -> tuple[dict, dict, list]:

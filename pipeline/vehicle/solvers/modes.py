@@ -572,10 +572,10 @@ def follow_damped(reference: dict, other: dict, threshold: float = FOLLOW_MAC) -
 def follow_renamed(reference: dict, other: dict, threshold: float = FOLLOW_MAC) -> tuple[dict, dict]:
     """``other``'s damped modes under ``reference``'s names (issue 42): each mode of ``other`` that one of
     ``reference`` follows by shape (:func:`follow_damped`) takes that mode's name; the others keep their
-    own name (``_2``, ``_3``, ... where the reference's names took it), so no root is dropped. How the
-    next speed's modes are named from the previous speed's, and a sweep's variants' from its first
-    variant's at the same speed: a mode keeps its name as its character changes with speed or pressure
-    (a ``lateral_roll`` that turns into mostly ``lateral`` motion stays ``lateral_roll``).
+    own name (``_2``, ``_3``, ... where the reference's names took it), so no root is dropped. How a
+    sweep's variants' modes are named from its first variant's at the same speed: a mode keeps its
+    name across the sweep's pressures as its character changes (a ``lateral_roll`` that turns into
+    mostly ``lateral`` motion stays ``lateral_roll``).
 
     Returns
     -------
