@@ -11,6 +11,7 @@ built once for both). Prints wall times, ratios and the largest relative
 difference of the seat vertical acceleration between the two paths.
 
     .venv/bin/python bench/bench_ride.py [--skip-sweep] [--targets] [--lateral] [--rolling] [--methods]
+                                         [--rolling-grid]
 
 ``--targets`` also measures issue 23's sweep targets as ratios to u = one 4-speed scenario
 (``one_scenario_cpu_s``) in this process, all in CPU seconds: the whole 10 x 10 pressure grid x 8
@@ -30,6 +31,14 @@ issue 42 the rolling element) against the same with ``lateral_model = "none"`` i
 the default: each speed its own series damper c2 = a / v, the contact points' states, the damped modes
 per speed and their intervals across the stand-ins) against ``lateral_model = "kelvin_voigt"`` in this
 process (``rolling_over_kelvin_voigt``, target <= 1.5).
+
+``--rolling-grid`` (issue 42, Deliver 7): the 10 x 10 pressure grid x 8 speeds (4-18 km/h) of the same
+3-D scenario with the rolling tyre, whose every variant has damped modes per speed (the complex roots of
+each speed's assembly, its own series dampers) and their intervals (the modes of the tyre-stiffness
+and stand-in perturbations), under ``--method auto`` against ``--method time`` (``rolling_grid_time_over_auto``,
+target >= 30), in CPU seconds of this process; and what the damped modes cost a variant
+(``damped_modes_cpu_ms_per_variant``: the per-speed roots and their intervals, timed inside the grid's
+auto run, and their share of it).
 
 ``--methods`` measures issue 36 in this process, in CPU seconds: the 10 x 10 pressure grid x 8
 speeds (4-18 km/h) of ``ride_sweep`` under ``--method auto`` (spectral rows for every variant, the
@@ -83,9 +92,14 @@ def main(argv=None) -> int:
     p.add_argument("--rolling", action="store_true",
                    help="also issue 42's cost: the 3-D scenario with the rolling tyre against kelvin_voigt")
     p.add_argument("--methods", action="store_true", help="only issue 36: the grid and the command, auto against time")
+    p.add_argument("--rolling-grid", action="store_true",
+                   help="only issue 42: the 3-D rolling-tyre grid, auto against time, and the damped modes' cost")
     args = p.parse_args(argv)
     if args.methods:
         print(json.dumps(_methods(), indent=2))
+        return 0
+    if args.rolling_grid:
+        print(json.dumps(_rolling_grid(), indent=2))
         return 0
     sc = load_scenario(scenarios_dir() / "modern_tractor.toml")
     ride.ride(with_overrides(sc, [16.0]), with_spectra=False)  # warm-up: imports, caches
@@ -184,6 +198,55 @@ def _rolling() -> dict:
     rol, kel = _against(("rolling", rolling), ("kelvin_voigt", kv))
     return {"rolling_cpu_s": round(rol, 3), "kelvin_voigt_cpu_s": round(kel, 3),
             "rolling_over_kelvin_voigt": round(rol / kel, 2)}
+
+
+def _rolling_grid() -> dict:
+    """Issue 42: the 10 x 10 x 8 grid of the 3-D rolling-tyre scenario under auto and time, and the damped
+    modes' CPU per variant inside the auto run (module docstring)."""
+    from tyrelab.vehicle.run import plan
+
+    sc = parse_scenario(_three_d_text(), scenarios_dir())
+    assert sc.tractor.lateral_model == "rolling"
+    speeds8 = [2.0 * k for k in range(2, 10)]
+    fronts = [round(0.8 + 0.15 * i, 4) for i in range(10)]
+    rears = [round(0.6 + 0.12 * i, 4) for i in range(10)]
+    ride.ride_sweep(sc, fronts[:2], rears[:1], [16.0], with_spectra=False)  # warm-up: imports, caches
+    spent = {"by_speed": 0.0, "intervals": 0.0, "variants": 0}
+    originals = {"by_speed": plan._damped_by_speed, "intervals": plan._damped_intervals}
+
+    def timed(key):
+        def run(*a, **kw):
+            c0 = time.process_time()
+            try:
+                return originals[key](*a, **kw)
+            finally:
+                spent[key] += time.process_time() - c0
+                spent["variants"] += key == "by_speed"
+        return run
+
+    out: dict = {"scenario": sc.name, "load_average_1min_start": round(os.getloadavg()[0], 1)}
+    tables = {}
+    for method in ("auto", "time"):
+        plan._damped_by_speed, plan._damped_intervals = timed("by_speed"), timed("intervals")
+        try:
+            spent.update(by_speed=0.0, intervals=0.0, variants=0)
+            c0 = _cpu()
+            res = ride.ride_sweep(sc, fronts, rears, speeds8, with_spectra=False, method=method, max_samples=10**9)
+            out[f"rolling_grid_{method}_cpu_s"] = round(_cpu() - c0, 2)
+        finally:
+            plan._damped_by_speed, plan._damped_intervals = originals["by_speed"], originals["intervals"]
+        tables[method] = ride.results_table(res)
+        n = max(spent["variants"], 1)
+        out[f"damped_modes_{method}"] = {
+            "variants": spent["variants"], "per_speed_roots_cpu_ms_per_variant": round(1e3 * spent["by_speed"] / n, 1),
+            "intervals_cpu_ms_per_variant": round(1e3 * spent["intervals"] / n, 1),
+            "share_of_grid": round((spent["by_speed"] + spent["intervals"]) / out[f"rolling_grid_{method}_cpu_s"], 3)}
+    out["rolling_grid_time_over_auto"] = round(out["rolling_grid_time_cpu_s"] / out["rolling_grid_auto_cpu_s"], 1)
+    out["damped_modes_cpu_ms_per_variant"] = round(
+        out["damped_modes_auto"]["per_speed_roots_cpu_ms_per_variant"] + out["damped_modes_auto"]["intervals_cpu_ms_per_variant"], 1)
+    out["rolling_grid_rows"] = {m: t["method"].value_counts().to_dict() for m, t in tables.items()}
+    out["load_average_1min_end"] = round(os.getloadavg()[0], 1)
+    return out
 
 
 def _targets(sc, u_s: float) -> dict:

@@ -459,6 +459,7 @@ ROWS = [
     (f"{VE}.modes.follow_names", dict(reference=None, other=None), "reference"),
     (f"{VE}.modes.damped_modes", dict(asm="tractor"), "asm"),
     (f"{VE}.modes.follow_damped", dict(reference=None, other={}), "reference"),
+    (f"{VE}.modes.follow_renamed", dict(reference=None, other={}), "reference"),
     # vehicle/sweeps.py
     (f"{VE}.scenario.variants.pressure_axes", dict(scenario="modern.toml", front_pressures_bar=None, rear_pressures_bar=None, keys={}), "scenario"),
     (f"{VE}.scenario.variants.unused_key_problems", dict(scenario=None, keys=[]), "scenario"),

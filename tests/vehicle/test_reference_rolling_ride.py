@@ -21,11 +21,13 @@ KY, CY, A_SERIES = {"front": 200.0, "rear": 300.0}, {"front": 2.0, "rear": 3.0},
 I_YAW = 6000.0
 
 
-def _scenario(tmp_path, left, right, pivot, speeds, keys: dict):
+def _scenario(tmp_path, left, right, pivot, speeds, keys: dict, lateral=None):
     """The tractor of ``test_ride_3d`` on sinusoidal tracks with the rolling tyre (no lateral_model key and
-    no gravity_tilt key: the 3-D defaults) and the tyres' ``keys`` (per axle: key -> value)."""
+    no gravity_tilt key: the 3-D defaults; or the ``lateral`` model named) and the tyres' ``keys`` (per
+    axle: key -> value)."""
     front_axle = f'[front_axle]\nmount = "pivot"\nroll_inertia_kg_m2 = {I_AXLE}\nheight_m = 0.6' if pivot else ""
-    body = text(sine_tracks(tmp_path, left, right), f"[{', '.join(str(v) for v in speeds)}]", front_axle, lateral=None)
+    body = text(sine_tracks(tmp_path, left, right), f"[{', '.join(str(v) for v in speeds)}]", front_axle,
+                lateral=lateral)
     body = body.replace("gravity_tilt = false\n", "")
     body = body.replace("front_track_m", f"yaw_inertia_kg_m2 = {I_YAW}\nfront_track_m")
     for axle in ("front", "rear"):
@@ -169,3 +171,61 @@ def test_bad_rolling_keys_are_refused_all_at_once_with_exit_2(tmp_path, capsys):
         assert cli.main(["ride", str(path)]) == 2
         err = capsys.readouterr().err
         assert "Traceback" not in err and all(e in err for e in expected), err
+
+
+@pytest.mark.parametrize("pivot", [False, True])
+def test_a_maxwell_scenario_prints_no_mode_the_roots_do_not_have(tmp_path, pivot):
+    """Issue 42's check: ``lateral_model = "maxwell"`` (a spring in series with a small damper, the tyres'
+    own lateral damping: the lateral and yaw roots are real) prints only roots of the independent
+    reference's Maxwell tractor: each mode's |λ| within 1 % and ζ within 0.03 of a root, a real root said
+    overdamped (never an oscillation), and every oscillating root of the body printed."""
+    keys = {"lateral_stiffness_kN_per_m": KY, "lateral_damping_kN_s_per_m": CY}
+    res = ride.ride(_scenario(tmp_path, 0.01, 0.0, pivot, (6, 14), keys, lateral="maxwell"), with_spectra=False)
+    assert res.scenario.tractor.lateral_model == "maxwell"
+    t = tractor(pivot_front=pivot, lateral="maxwell", yaw_inertia_kg_m2=I_YAW, pivot_height_m=0.6, tilt=True,
+                ky_front=1e3 * KY["front"], ky_rear=1e3 * KY["rear"], cy_front=1e3 * CY["front"], cy_rear=1e3 * CY["rear"])
+    roots = ref.complex_roots(t)[0]
+    for speed, modes in res.modes_by_speed.items():
+        printed = []
+        for name, md in modes.items():
+            j = int(np.argmin(np.abs(roots - md.root)))
+            lam = roots[j]
+            assert abs(abs(lam) - abs(md.root)) / abs(lam) < 0.01, (speed, name, md.root, lam)
+            assert abs(-lam.real / abs(lam) - md.damping_ratio) < 0.03, (speed, name, md.damping_ratio, lam)
+            assert md.overdamped == (abs(lam.imag) < 1e-9 * abs(lam)), (speed, name, lam)
+            printed.append(j)
+        real = [abs(r) / (2 * math.pi) for r in roots if abs(r.imag) < 1e-9 * abs(r)]
+        assert any(modes[n].overdamped for n in ("lateral", "yaw") if n in modes), (speed, modes, real)
+        oscillating = [j for j, r in enumerate(roots) if r.imag > 1e-9 * abs(r) and abs(r) / (2 * math.pi) < 20.0]
+        assert set(oscillating) <= set(printed), (speed, [roots[j] for j in oscillating], printed)
+    for name, f in res.natural_frequencies_Hz.items():  # the table's frequencies are |λ| / 2π of roots
+        assert np.min(np.abs(np.abs(roots) / (2 * math.pi) - f)) < 0.01 * f, (name, f)
+
+
+@pytest.mark.parametrize("pivot", [False, True])
+@pytest.mark.parametrize("name", ["modern_tractor", "mf698t"])
+def test_the_project_s_ride_damps_the_lateral_roll_mode_as_the_thesis_measured(name, pivot):
+    """Issue 42's check in the project's own ride (the reference's is ``test_reference_rolling``): both
+    shipped tractors made 3-D (their tyres' stand-ins, no lateral key: the rolling tyre and the stand-in
+    ``a``), rigid and pivoting front axles: the lateral–roll mode damped 20–100 % of critical at 6, 8 and
+    11 km/h (thesis §2.4.3), oscillating, rising with speed."""
+    from tyrelab.resources import scenarios_dir
+    from tyrelab.scenario_io import parse_scenario
+    from tyrelab.vehicle.scenario import with_overrides
+
+    from .test_reference_rolling import MADE_3D
+
+    roll = MADE_3D[name]
+    body = (scenarios_dir() / f"{name}.toml").read_text().replace("[tractor]\n", "[tractor]\n" + "".join(
+        f"{k} = {v}\n" for k, v in roll.items()))
+    if pivot:
+        body += '\n[front_axle]\nmount = "pivot"\nroll_inertia_kg_m2 = 160\n'
+    sc = with_overrides(parse_scenario(body, scenarios_dir()), [6.0, 8.0, 11.0])
+    assert sc.tractor.lateral_model == "rolling"
+    (res,) = ride.ride_sweep(sc, with_spectra=False, method="spectral")  # the modes alone matter here
+    zetas = []
+    for speed, modes in res.modes_by_speed.items():
+        md = modes["lateral_roll"]
+        assert not md.overdamped and 0.2 <= md.damping_ratio <= 1.0, (name, pivot, speed, md)
+        zetas.append(md.damping_ratio)
+    assert zetas == sorted(zetas), zetas

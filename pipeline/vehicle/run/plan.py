@@ -128,8 +128,11 @@ def finish(p: VariantPlan) -> RideResult:
 
 def _damped_by_speed(p: VariantPlan, shapes: ModeSet) -> dict:
     """Speed (km/h) -> ``{mode: DampedMode}`` (issue 42): each speed's assembly's damped modes (its own
-    series dampers), each named by its own shape (:func:`~tyrelab.vehicle.modes.damped_modes`: a mode
-    that changes its character with speed changes its name)."""
+    series dampers), each followed by shape from the undamped modes and named by its own shape
+    (:func:`~tyrelab.vehicle.modes.damped_modes`): the names say what moves at that speed, so a mode
+    whose character changes with speed (two modes veering as the series dampers soften) changes its
+    name. Across a sweep's variants the names are followed at each speed
+    (:func:`~tyrelab.vehicle.modes.follow_renamed`, :mod:`~tyrelab.vehicle.run.sweep`)."""
     return {float(speed): damped_modes(p.runs[i].asm, reference=shapes) for i, speed in enumerate(p.speeds_km_h)}
 
 

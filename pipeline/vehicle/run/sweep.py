@@ -14,7 +14,7 @@ from ..units import km_h_to_m_s
 from ... import _validate
 from .. import spectral_ride as sr
 from ..model import assemble
-from ..modes import follow_names
+from ..modes import follow_names, follow_renamed
 from ..scenario import Scenario, limits, with_overrides
 from ..tyres import build_parts, resolve_tyres
 from ..units import from_kilo
@@ -120,13 +120,39 @@ def _follow_modes(results: list[RideResult]) -> None:
             continue
         mapping, notes = follow_names(ref, r.modes)
         back = {new: own for own, new in mapping.items()}
-        r.natural_frequencies_Hz = {n: r.natural_frequencies_Hz.get(back[n], math.nan) if n in back else math.nan  # a damped
-                                    for n in ref.names}  # model may leave out a mode it cannot follow (issue 42)
-        r.natural_frequency_intervals_Hz = {n: r.natural_frequency_intervals_Hz.get(back[n]) if n in back else None
-                                            for n in ref.names}
         r.nodal_points_m = {n: r.modes.nodal_points_m[r.modes.names.index(back[n])] if n in back else math.nan
                             for n in ref.nodal()}
+        if results[0].modes_by_speed and r.modes_by_speed:  # issue 42: the damped modes, by their own shapes
+            notes = _follow_damped_modes(results[0], r)
+        else:
+            r.natural_frequencies_Hz = {n: r.natural_frequencies_Hz.get(back[n], math.nan) if n in back else math.nan
+                                        for n in ref.names}
+            r.natural_frequency_intervals_Hz = {n: r.natural_frequency_intervals_Hz.get(back[n]) if n in back else None
+                                                for n in ref.names}
         r.warnings += [f"natural frequencies: {n}" for n in notes]
+
+
+def _follow_damped_modes(first: RideResult, r: RideResult) -> list[str]:
+    """``r``'s damped modes under ``first``'s names (issue 42), speed by speed (each speed's from the first
+    variant's at that speed, :func:`tyrelab.vehicle.modes.follow_renamed`), and its frequencies and their
+    intervals under them: a sweep's ``lateral_roll_Hz`` and its ``modes_damping`` name one mode in every
+    variant. A mode of the first variant no mode of ``r`` follows is NaN there, with a note."""
+    ref_first = next(iter(first.modes_by_speed.values()))
+    renamed_first = None
+    for speed, own in list(r.modes_by_speed.items()):
+        modes, renamed = follow_renamed(first.modes_by_speed.get(speed, ref_first), own)
+        r.modes_by_speed[speed] = modes
+        renamed_first = renamed if renamed_first is None else renamed_first
+    back = {new: old for old, new in renamed_first.items()}
+    d0 = next(iter(r.modes_by_speed.values()))
+    names = list(first.natural_frequencies_Hz)
+    r.natural_frequencies_Hz = {n: d0[n].undamped_Hz if n in d0 else math.nan for n in names}
+    r.natural_frequency_intervals_Hz = {n: r.natural_frequency_intervals_Hz.get(back[n]) if n in back else None
+                                        for n in names}
+    r.damping_ratio_intervals = {back_n: r.damping_ratio_intervals.get(old)
+                                 for old, back_n in renamed_first.items() if old in r.damping_ratio_intervals}
+    return [f"{n}: not followed from the first variant by its damped shape: no number"
+            for n in names if not math.isfinite(r.natural_frequencies_Hz[n])]
 
 
 def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, speeds_km_h=None,

@@ -47,7 +47,7 @@ from ..model import Assembly, assemble
 from ..units import from_kilo, to_kilo
 
 __all__ = ["MODE_NAMES", "LATERAL_ROLL_SHARE", "FOLLOW_MAC", "ZERO_ROOT", "ModeSet", "mode_set", "mac_matrix",
-           "frequency_intervals", "follow_names", "DampedMode", "damped_modes", "follow_damped", "FOLLOW_STEPS"]
+           "frequency_intervals", "follow_names", "DampedMode", "damped_modes", "follow_damped", "follow_renamed", "FOLLOW_STEPS"]
 
 #: Mode names by the coordinate that moves most (the body's ``z`` and ``th`` by thesis §8.2's rule;
 #: ``y`` and ``psi``: the body's lateral and yaw freedoms of issue 33's lateral tyre elements).
@@ -567,3 +567,56 @@ def follow_damped(reference: dict, other: dict, threshold: float = FOLLOW_MAC) -
         if mac[i, j] >= threshold:
             out[names_r[i]] = other[names_o[j]]
     return out
+
+
+def follow_renamed(reference: dict, other: dict, threshold: float = FOLLOW_MAC) -> tuple[dict, dict]:
+    """``other``'s damped modes under ``reference``'s names (issue 42): each mode of ``other`` that one of
+    ``reference`` follows by shape (:func:`follow_damped`) takes that mode's name; the others keep their
+    own name (``_2``, ``_3``, ... where the reference's names took it), so no root is dropped. How a
+    sweep's variants' modes are named from its first variant's at the same speed: a mode keeps its
+    name across the sweep's pressures as its character changes (a ``lateral_roll`` that turns into
+    mostly ``lateral`` motion stays ``lateral_roll``).
+
+    Returns
+    -------
+    modes : dict
+        ``{name: DampedMode}`` (its ``name`` the new one), in ascending undamped frequency.
+    renamed : dict
+        ``{other's name: its name here}`` for every mode of ``other``.
+
+    See Also
+    --------
+    follow_damped : the pairing by shape.
+
+    Examples
+    --------
+    >>> from tyrelab.vehicle.model import assemble
+    >>> from tyrelab.vehicle.tractor import Tractor, tractor_parts
+    >>> d = damped_modes(assemble(tractor_parts(Tractor(1000, 250, 1.0, 1.0, 0.5, 1e5, 1e5, 2e3, 2e3))))
+    >>> swapped = {"pitch": dataclasses.replace(d["bounce"], name="pitch"),
+    ...            "bounce": dataclasses.replace(d["pitch"], name="bounce")}
+    >>> modes, renamed = follow_renamed(d, swapped)
+    >>> renamed, [round(m.undamped_Hz, 3) for m in modes.values()]
+    ({'pitch': 'bounce', 'bounce': 'pitch'}, [2.251, 4.502])
+    """
+    if not isinstance(reference, dict) or not isinstance(other, dict):
+        raise ValueError("reference, other: dicts of DampedMode (damped_modes)")
+    ref = {n: d for n, d in reference.items() if d is not None}
+    own = {n: d for n, d in other.items() if d is not None}
+    followed = follow_damped(ref, own, threshold) if ref and own else {}
+    renamed = {}
+    for name, d in followed.items():
+        if d is not None:
+            renamed[next(n for n, o in own.items() if o is d)] = name
+    taken = set(renamed.values())
+    for n in own:
+        if n in renamed:
+            continue
+        new, k = n, 1
+        while new in taken:
+            k += 1
+            new = f"{n}_{k}"
+        renamed[n] = new
+        taken.add(new)
+    modes = {renamed[n]: dataclasses.replace(d, name=renamed[n]) for n, d in own.items()}
+    return dict(sorted(modes.items(), key=lambda kv: kv[1].undamped_Hz)), renamed
