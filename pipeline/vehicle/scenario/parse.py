@@ -97,7 +97,14 @@ def _control_characters(text: str, allowed: str = "") -> str:
 
 
 def _is_number(v) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+    """A finite real number: no bool, no NaN or infinity, no integer too large for a float (``1``
+    and 400 zeros, which TOML holds exactly: False, never an OverflowError)."""
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        return False
+    try:
+        return math.isfinite(v)
+    except OverflowError:
+        return False
 
 
 def _check_value(where: str, f: dict, value, n_speeds: int | None) -> list[str]:
@@ -126,10 +133,11 @@ def _check_value(where: str, f: dict, value, n_speeds: int | None) -> list[str]:
             if t == "number_or_numbers" and n_speeds is not None and len(value) != n_speeds:
                 return [f"{where}: {len(value)} values but exposure.speeds_km_h has {n_speeds} (give one per speed)"]
         else:
-            return [f"{where}: expected {'a number or ' if t == 'number_or_numbers' else ''}a list of numbers, got {value!r}"]
+            return [f"{where}: expected {'a number or ' if t == 'number_or_numbers' else ''}a list of numbers, got "
+                    f"{_checks.shown(value)}"]
     elif t == "number":
         if not _is_number(value):
-            return [f"{where}: expected a number, got {value!r}"]
+            return [f"{where}: expected a number, got {_checks.shown(value)}"]
         values = [value]
     else:  # pragma: no cover - schema typo
         raise ValueError(f"schema type {t!r}")
@@ -542,7 +550,45 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
         raise ScenarioError(where, [f"not valid TOML: {exc}"]) from None
     except RecursionError:  # arrays nested thousands deep
         raise ScenarioError(where, ["not valid TOML: nested too deeply"]) from None
+    except ValueError:  # an integer of more digits than Python converts (4300): tomllib's own ValueError
+        raise ScenarioError(where, long_integer_problems(text) or ["not valid TOML: a number too long to read"]) from None
     return _from_document(doc, where, base_dir, path, confine, read_profile, read_crg)
+
+
+def long_integer_problems(text: str) -> list[str]:
+    """Every integer of a scenario's TOML text too long for Python to read (more digits than
+    ``sys.get_int_max_str_digits()``, 4300: :mod:`tomllib` refuses the whole text with a ValueError
+    naming no key), one line each naming its key (``[table]`` and ``key =`` on its line; else the
+    line); the digits are counted, never converted.
+
+    See Also
+    --------
+    tyrelab.scenario_io.huge_number_problems : integers TOML reads that are too large for a float.
+
+    Examples
+    --------
+    >>> long_integer_problems("[tractor]\\nmass_kg = 1" + "0" * 5000 + "\\n")
+    ['tractor.mass_kg: an integer of 5001 digits is not a finite number']
+    """
+    import re
+    import sys
+
+    limit = sys.get_int_max_str_digits() or 4300
+    table, problems = "", []
+    for number, line in enumerate(text.splitlines(), 1):
+        header = re.match(r"\s*\[\[?\s*([^\]]*?)\s*\]\]?\s*(#.*)?$", line)
+        if header:
+            table = header.group(1).replace('"', "").replace("'", "").replace(" ", "")
+            continue
+        for run in re.finditer(r"(?<![\w.])[+-]?[0-9][0-9_]*", line):
+            digits = sum(c.isdigit() for c in run.group())
+            if digits <= limit:
+                continue
+            key = re.match(r"\s*([\w.\"' -]+?)\s*=", line)
+            name = key.group(1).replace('"', "").replace("'", "").replace(" ", "") if key else None
+            where = f"{table}.{name}" if table and name else name or f"line {number}"
+            problems.append(f"{where}: an integer of {digits} digits is not a finite number")
+    return problems
 
 
 def _plain(value, depth: int = 0):
