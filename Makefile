@@ -13,8 +13,11 @@ SEED   ?= 1991
 DEMO   ?= raw/demo
 RAW    ?= $(DEMO)
 BUILD  ?= build
-# One stamp per (scale, seed): changing SCALE or SEED regenerates the demo campaign.
-STAMP  := $(DEMO)/.generated-$(SCALE)-seed$(SEED)
+# The demo campaign is a product of the code that writes it (the virtual rig, vehicles and roads):
+# one stamp per (scale, seed, sources), so changing SCALE, SEED or any module of the package
+# regenerates it (a campaign written by an older generator is not silently reused).
+GEN_KEY := $(shell find pipeline -name '*.py' -not -path '*/__pycache__/*' | LC_ALL=C sort | xargs cat | sha256sum | cut -c1-12)
+STAMP  := $(DEMO)/.generated-$(SCALE)-seed$(SEED)-$(GEN_KEY)
 EXTRAS ?= dev,dask,formats,browser
 # Extra arguments of tools/mutation.py, e.g. MUTATION_ARGS="--sample 40 vehicle/iso2631.py".
 MUTATION_ARGS ?=
@@ -117,14 +120,20 @@ mutation: install
 DOCS_WORK := build/docs-work
 DOCS_ENV = PATH="$(abspath $(BIN)):$$PATH" TYRELAB_DOCS_WORK="$(abspath $(DOCS_WORK))" \
 	TYRELAB_DOCS_BUILD="$(abspath $(DOCS_WORK))/build" PYTHONHASHSEED=0
+# The docs' demo campaign, regenerated (and its build dropped) when the sources change, as $(STAMP).
+DOCS_STAMP := $(DOCS_WORK)/raw/demo/.generated-small-seed1991-$(GEN_KEY)
+
+$(DOCS_STAMP): | $(BIN)/tyrelab
+	rm -rf $(DOCS_WORK)/raw/demo $(DOCS_WORK)/build
+	$(BIN)/tyrelab generate --out $(DOCS_WORK)/raw/demo --scale small --seed 1991
+	touch $@
 
 # Sphinx and its extensions (the extra docs) are in the lock, installed with the rest: the stamp only
 # says so to the targets that name it.
 $(VENV)/.docs-extra: $(BIN)/tyrelab
 	@touch $@
 
-docs: $(VENV)/.docs-extra compile
-	@test -f $(DOCS_WORK)/raw/demo/manifest.csv || $(BIN)/tyrelab generate --out $(DOCS_WORK)/raw/demo --scale small --seed 1991
+docs: $(VENV)/.docs-extra compile $(DOCS_STAMP)
 	$(BIN)/tyrelab run -q --raw $(DOCS_WORK)/raw --build $(DOCS_WORK)/build
 	rm -rf $(BUILD)/docs $(BUILD)/docs-doctrees $(BUILD)/docs-doctest
 	$(DOCS_ENV) $(BIN)/sphinx-build -W --keep-going -q -b html -d $(BUILD)/docs-doctrees docs/site $(BUILD)/docs
@@ -133,8 +142,7 @@ docs: $(VENV)/.docs-extra compile
 
 # The outputs shown in README.md and docs/*.md, written from their commands (make docs checks them:
 # docs/site/_ext/tyrelab_outputs.py).
-docs-outputs: $(VENV)/.docs-extra compile
-	@test -f $(DOCS_WORK)/raw/demo/manifest.csv || $(BIN)/tyrelab generate --out $(DOCS_WORK)/raw/demo --scale small --seed 1991
+docs-outputs: $(VENV)/.docs-extra compile $(DOCS_STAMP)
 	$(BIN)/tyrelab run -q --raw $(DOCS_WORK)/raw --build $(DOCS_WORK)/build
 	$(DOCS_ENV) $(BIN)/python docs/site/_ext/tyrelab_outputs.py --update --work $(DOCS_WORK)
 

@@ -8,7 +8,7 @@ shared, wall times are not comparable between runs):
   - ``switched``: :func:`~tyrelab.vehicle.tractor.simulate_tractor` (``method="auto"``): exact
     while both axles are in contact, RK4 across the lift-off intervals, one batch;
   - ``old``: the path before issue 15's switching, one batch per longitudinal model, each run
-    solved exactly first (:func:`~tyrelab.vehicle.tractor.linear_response`) and the runs that
+    solved exactly first (:func:`linear_response`, the library's until issue 45) and the runs that
     lift a tyre off integrated again with RK4 over the whole record;
   - ``rk4``: RK4 over every run, one batch (the accuracy reference: largest difference of the
     switched runs' accelerations, relative to each run's r.m.s.);
@@ -46,6 +46,8 @@ import numpy as np  # noqa: E402
 from tyrelab import published  # noqa: E402
 from tyrelab.vehicle import carriage, studies, tractor  # noqa: E402
 from tyrelab.vehicle import published_layouts as layouts  # noqa: E402
+from tyrelab.vehicle.model import assemble  # noqa: E402
+from tyrelab.vehicle.solvers import lti  # noqa: E402
 
 _TRACTOR_ARRAYS = tractor.PARAMETERS
 
@@ -65,17 +67,18 @@ def _children_cpu() -> float:
 def _capture_batch(mass, tyres) -> tuple:
     """The (tractor, inputs) the ch. 7 study hands :func:`simulate_tractor` (and the study's CPU s)."""
     seen = []
-    real = studies.simulate_tractor
+    study = studies.chapter7  # the module of tractor_study (issue 45: the studies' package)
+    real = study.simulate_tractor
 
     def recorder(tr, *args, **kw):
         seen.append((tr, args))
         return real(tr, *args, **kw)
 
-    studies.simulate_tractor = recorder
+    study.simulate_tractor = recorder
     try:
         _, cpu = _cpu(studies.tractor_study, mass, tyres, seed=5007)
     finally:
-        studies.simulate_tractor = real
+        study.simulate_tractor = real
     (tr, args), = seen
     return tr, args[:4], cpu
 
@@ -141,6 +144,19 @@ def textbook_carriage(car: carriage.Carriage, u, ud, dt_s: float = 1e-3, lift_of
     return {"z_m": z_out, "v_m_s": v_out, "a_m_s2": a_out, "lift_off_fraction": off / n}
 
 
+def linear_response(tr: tractor.Tractor, inputs: np.ndarray, dt_s: float) -> dict[str, np.ndarray]:
+    """Exact response of one run (scalar ``tr``) in permanent contact, from rest: the outputs of
+    :data:`~tyrelab.vehicle.tractor.TRACTOR_OUTPUTS` and the dynamic axle forces per sample, for
+    ``inputs`` ``u_f, u_f', u_r, u_r'`` (shape (4, n), step ``dt_s``, linear in between). The old
+    path's exact solution (``tyrelab.vehicle.tractor.linear_response`` until issue 45 took it out
+    of the library: only this baseline used it)."""
+    names = tractor.TRACTOR_OUTPUTS + ("front_force_N", "rear_force_N")
+    lm = assemble(tractor.tractor_parts(tr)).linear(names)
+    y = lti.discretise(*lm.abcd, dt_s).run(inputs)
+    y[3:5, 0] = 0.0  # at rest at the first sample exactly (the modal transform leaves ~1e-22)
+    return dict(zip(names, y))
+
+
 def old_path(tr: tractor.Tractor, inputs, dt_s: float) -> dict:
     """Before the switching: per longitudinal model, exact for every run, RK4 again for the lifting ones."""
     uf, udf, ur, udr = inputs
@@ -154,7 +170,7 @@ def old_path(tr: tractor.Tractor, inputs, dt_s: float) -> dict:
             one = _subset(tr, [i])
             one = tractor.Tractor(**{k: float(np.asarray(getattr(one, k))[0]) for k in _TRACTOR_ARRAYS},
                                   longitudinal_model=model)
-            lin = tractor.linear_response(one, np.stack([uf[i], udf[i], ur[i], udr[i]]), dt_s / 2)
+            lin = linear_response(one, np.stack([uf[i], udf[i], ur[i], udr[i]]), dt_s / 2)
             w, wb = tractor.GRAVITY_M_S2 * one.mass_kg, float(one.wheelbase_m)
             if lin["front_force_N"].min() <= -w * one.rear_distance_m / wb or \
                     lin["rear_force_N"].min() <= -w * one.front_distance_m / wb:

@@ -26,7 +26,28 @@ import numpy as np
 
 __all__ = ["positive", "positive_array", "finite_array", "same_last_axis", "band", "non_negative", "probability",
            "positive_int", "frame", "choice", "instances", "instance", "non_negative_array", "finite", "in_range",
-           "shown"]
+           "shown", "compared"]
+
+
+def compared(value: float, op: str, limit: float, digits: int = 3) -> str:
+    """``"<value> <op> <limit>"`` for a message that a value is beyond a limit, the value with
+    ``digits`` significant digits or as many more as it takes to differ from the limit: never
+    ``"1.5 > 1.5"`` for 1.5036 (issue 47).
+
+    Examples
+    --------
+    >>> compared(1.5036, ">", 1.5), compared(1.83, ">", 1.5), compared(0.8996, "<", 0.9)
+    ('1.504 > 1.5', '1.83 > 1.5', '0.8996 < 0.9')
+    >>> compared(12.0, ">", 9)
+    '12 > 9'
+    """
+    limit_text = f"{limit:g}"
+    text = f"{value:.{digits}g}"
+    for d in range(digits, 18):
+        text = f"{value:.{d}g}"
+        if not math.isfinite(value) or float(text) != float(limit_text):
+            break
+    return f"{text} {op} {limit_text}"
 
 
 def shown(value, width: int = 40) -> str:

@@ -512,6 +512,26 @@ def vehicle_frf(
     ------
     tyrelab.rawformat.RunFileError, ValueError
         One line: an unreadable recording, no input channel, a constant input, too short.
+
+    See Also
+    --------
+    tyrelab.measurement.frf.recording_frf : the FRFs and modes of an opened recording.
+    tyrelab.measurement.frf.fit_vehicle_modes : the modes' fit.
+
+    Examples
+    --------
+    Four wheel inputs of random motion, a seat that follows the front left and rear left wheels by
+    0.5 and 0.3 (and noise):
+
+    >>> import numpy as np, pandas as pd, tyrelab
+    >>> fs, n = 100.0, 100 * 120
+    >>> x = np.random.default_rng(1).normal(size=(5, n))
+    >>> wheels = ["front_left", "front_right", "rear_left", "rear_right"]
+    >>> df = pd.DataFrame({"time_s": np.arange(n) / fs, **{f"input_{w}_z_m_s2": x[i] for i, w in enumerate(wheels)},
+    ...                    "seat_z_m_s2": 0.5 * x[0] + 0.3 * x[2] + 0.05 * x[4]})
+    >>> rows = pd.DataFrame(tyrelab.vehicle_frf(df).frf_rows())
+    >>> rows.groupby("wheel")["h_magnitude"].median().round(2).to_dict()
+    {'front_left': 0.5, 'front_right': 0.01, 'rear_left': 0.3, 'rear_right': 0.01}
     """
     from .measurement.frf import recording_frf
     from .rawformat.rides import open_recording

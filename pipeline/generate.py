@@ -118,7 +118,7 @@ def write_rides(out: Path, seed: int, tractors: bool = True, studies: bool = Tru
 
 
 def generate_campaign(out: Path, scale: str = "small", seed: int = 1991, scatter: bool = True,
-                      rides: bool = False, tyre_population: int = 0) -> dict:
+                      rides: bool = False, tyre_population: int = 0, runs=None) -> dict:
     """Simulate and write a virtual campaign folder.
 
     Parameters
@@ -142,6 +142,10 @@ def generate_campaign(out: Path, scale: str = "small", seed: int = 1991, scatter
         than the thesis' formula (:mod:`tyrelab.rig.population`; seeded from ``seed``); their
         catalogue goes to ``tyres.csv`` and the true coefficients, ages and deviations to
         ``generator.json`` (``population``), so a refit can be checked against the truth.
+    runs : callable, optional
+        ``runs(plan) -> bool Series``: only the plan's rows it selects are simulated and written
+        (a part of the campaign for a test; each run is the same as in the whole campaign: its
+        seed comes from its run id, its instrument state from its day). None: every run.
 
     Returns
     -------
@@ -165,6 +169,8 @@ def generate_campaign(out: Path, scale: str = "small", seed: int = 1991, scatter
         plan = population_plan(population, scale, cfg)
     else:
         plan = campaign_plan(scale, cfg)
+    if runs is not None:
+        plan = plan.loc[runs(plan)].reset_index(drop=True)
     (out / "runs").mkdir(parents=True, exist_ok=True)
     amplitudes = []
     for row in plan.to_dict("records"):

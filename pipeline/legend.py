@@ -21,8 +21,9 @@ Examples
 --------
 >>> describe_column("results", "stiffness_ci95_low_N_per_m")[0]
 'N/m'
->>> describe_column("results", "stiffness_kN_per_m")
-('kN/m', 'Vertical, lateral or longitudinal stiffness K of the tyre (the run's direction), kN/m.')
+>>> unit_, text = describe_column("results", "stiffness_kN_per_m")
+>>> unit_, text.startswith("Vertical, lateral or longitudinal stiffness K")
+('kN/m', True)
 """
 
 from __future__ import annotations
@@ -32,7 +33,8 @@ import json
 import re
 from pathlib import Path
 
-__all__ = ["UNIT_SUFFIXES", "LEGEND_FILE", "legend", "unit", "meaning", "describe_column", "describe", "undocumented"]
+__all__ = ["UNIT_SUFFIXES", "LEGEND_FILE", "legend", "schema_descriptions", "unit", "meaning", "describe_column", "describe",
+           "undocumented"]
 
 #: Unit of a column from the end of its name (longest first wins); the warehouse's naming rule.
 UNIT_SUFFIXES = {
@@ -66,20 +68,45 @@ def legend() -> dict:
 
 
 @functools.lru_cache(maxsize=1)
-def _schemas() -> tuple[dict, dict]:
-    """(published table -> column -> description), (column -> description of the raw schemas)."""
+def schema_descriptions() -> tuple[dict, dict, dict]:
+    """The column descriptions of the published tables' and the raw formats' schemas.
+
+    The one reader of those schemas for the legend (:func:`meaning`) and the docs' warehouse
+    reference (``docs/site/_ext/tyrelab_reference.py``).
+
+    Returns
+    -------
+    published : dict
+        Published table (``table_iii`` …) -> column -> description.
+    raw : dict
+        Column -> description, from the raw formats' schemas (``raw_manifest``, ``tyres``,
+        ``raw_rides``, ``raw_ride``, ``raw_run``; the first one describing a column wins).
+    titles : dict
+        Published table -> its schema's title.
+
+    See Also
+    --------
+    meaning : uses them where the legend itself says nothing.
+
+    Examples
+    --------
+    >>> published, raw, titles = schema_descriptions()
+    >>> "carcass_stiffness_kN_per_m" in published["table_iii"], bool(raw["axle_mass_kg"])
+    (True, True)
+    """
     from .resources import schemas_dir
 
-    published, raw = {}, {}
+    published, raw, titles = {}, {}, {}
     for p in sorted((Path(schemas_dir()) / "published").glob("*.json")):
         doc = json.loads(p.read_text(encoding="utf-8"))
         published[p.stem] = {f["name"]: f.get("description", "") for f in doc.get("fields", [])}
+        titles[p.stem] = doc.get("title", "")
     for name in ("raw_manifest", "tyres", "raw_rides", "raw_ride", "raw_run"):
         p = Path(schemas_dir()) / f"{name}.json"
         if p.exists():
             for f in json.loads(p.read_text(encoding="utf-8")).get("fields", []):
                 raw.setdefault(f["name"], f.get("description", ""))
-    return published, raw
+    return published, raw, titles
 
 
 def _entry(table: str, column: str):
@@ -106,7 +133,7 @@ def meaning(table: str, column: str) -> str:
     entry = _entry(table, column)
     if entry:
         return entry["meaning"] if isinstance(entry, dict) else entry
-    published, raw = _schemas()
+    published, raw, _ = schema_descriptions()
     key = table.removeprefix("published_")
     for source in (published.get(key, {}), *published.values()):
         if column in source and source[column]:

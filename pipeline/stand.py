@@ -5,15 +5,20 @@ transfer functions the rides stage estimates (:mod:`tyrelab.measurement.frf`).
 
 * **The tractor**: :data:`STAND_SCENARIO_TEXT`, the thesis' MF698T (Table XV: mass, pitch inertia,
   wheelbase, CG, track widths 1.41/1.64 m; Table XVI: rolling stiffness and damping of its
-  tyres, HH, 10 km/h) made 3-D with lateral tyre elements; its roll inertia is not in the thesis:
-  the mass times a radius of gyration of 0.6 m (1840 kg m², a documented choice; the modern
-  tractor of the project's 3-D tests has 2400 kg m² for 4.7 t). Its responses are today's model's
-  (:func:`tyrelab.vehicle.ride.build_parts`, :meth:`tyrelab.vehicle.model.Assembly.linear`): the
-  stand records the model, which the FRFs then measure.
+  tyres, HH, 10 km/h) made 3-D with the rolling tyre's lateral element (``lateral_model =
+  "rolling"``, thesis §2.5, issue 42: a Kelvin-Voigt unit in series with a damper ``c₂ = a / v``;
+  K, C and ``a`` the model's stand-ins, :mod:`tyrelab.tyre.rolling`); its roll inertia is not in
+  the thesis: the mass times a radius of gyration of 0.6 m (1840 kg m², a documented choice; the
+  modern tractor of the project's 3-D tests has 2400 kg m² for 4.7 t). Its responses are the
+  model's (:func:`tyrelab.vehicle.tyres.build_parts`, :meth:`tyrelab.vehicle.model.Assembly.linear`):
+  the stand records the model, which the FRFs then measure.
 * **Stationary and rolling** (§2.2: "wheels driven ... on rollers" at 6 and 11 km/h): rolling, the
-  scenario's tyres; stationary, their vertical and lateral stiffness times
-  :data:`STATIONARY_STIFFNESS_FACTOR` (§2.4.3: natural frequencies up to 30 % lower at the onset
-  of rolling; 1.5 gives 18 % lower, a documented choice).
+  scenario's tyres with the series damper of the speed (``c₂ = a / v``: 16.7 kN s/m per tyre at
+  6 km/h, 9.1 at 11 with the stand-in ``a`` = 100 kN s/m·km/h); stationary, the series damper
+  locked (``c₂ = ∞``: the Kelvin-Voigt unit alone, as the model has it at 0 km/h) and the vertical
+  and lateral stiffness times :data:`STATIONARY_STIFFNESS_FACTOR` (§2.4.3: natural frequencies up
+  to 30 % lower at the onset of rolling; 1.5 gives 18 % lower, a documented choice)
+  (:func:`condition_scenario`).
 * **Excitation** (§2.2): the measured wheel's pad driven with seeded Gaussian noise whose
   acceleration spectrum is flat from 0.5 to 12 Hz (:data:`INPUT_RMS_M_S2` r.m.s.); the other
   three pads either still (their channels not recorded: a single-input recording) or driven
@@ -41,6 +46,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import zlib
+from typing import NamedTuple
 
 import numpy as np
 import pandas as pd
@@ -50,12 +56,13 @@ from . import _validate
 __all__ = ["STAND_SCENARIO_FILE", "STAND_SCENARIO_TEXT", "STAND_FS_HZ", "DURATION_S", "INPUT_RMS_M_S2",
            "SENSOR_NOISE_M_S2", "SENSOR_NOISE_RAD_S2", "HEIGHT_NOISE_M", "STATIONARY_STIFFNESS_FACTOR",
            "LUG_HEIGHT_MM", "STAND_SPEEDS_KM_H", "MODEL_OUTPUTS", "WHEELS", "stand_scenario", "condition_scenario",
-           "wheel_frf", "model_modes", "frf_validation_rows", "VALIDATION_MODEL", "stand_plan", "stand_recording"]
+           "wheel_frf", "PredictedMode", "model_modes", "frf_validation_rows", "VALIDATION_MODEL", "stand_plan", "stand_recording"]
 
 STAND_SCENARIO_FILE = "stand_mf698t_3d.toml"
 STAND_SCENARIO_TEXT = """# The thesis' MF698T (Table XV heavy; Table XVI rolling tyres, HH, 10 km/h) made 3-D for the virtual
 # four-post stand of issue 43 (thesis ch. 2): track widths of Table XV; roll inertia = mass x (0.6 m)^2
-# (not in the thesis: a documented choice); lateral tyre elements with the model's stand-ins.
+# (not in the thesis: a documented choice); rolling lateral tyre elements (thesis 2.5, issue 42: a
+# Kelvin-Voigt unit in series with a damper c2 = a/v) with the model's stand-ins for K, C and a.
 name = "MF698T on a four-post stand (3-D, virtual)"
 description = "Thesis ch. 2 stand: MF698T of Table XV with Table XVI tyres, 3-D (issue 43)."
 
@@ -69,7 +76,7 @@ longitudinal_model = "none"
 roll_inertia_kg_m2 = 1840
 front_track_m = 1.41
 rear_track_m = 1.64
-lateral_model = "kelvin_voigt"
+lateral_model = "rolling"
 
 [tyres.front]
 size = "7.50-18"
@@ -132,9 +139,20 @@ def stand_scenario():
 
 
 def condition_scenario(scenario, speed_km_h: float):
-    """``scenario`` at one speed: its tyres rolling at ``speed_km_h`` > 0; at 0, stationary tyres
-    (stiffness × :data:`STATIONARY_STIFFNESS_FACTOR`, the rolling values of its first speed)."""
-    from .vehicle.ride import resolve_tyres
+    """``scenario`` at one speed: its tyres rolling at ``speed_km_h`` > 0 (a rolling lateral element's
+    series damper ``c₂ = a / v`` of that speed); at 0, stationary tyres: the rolling values of its
+    first speed with the vertical and lateral stiffness × :data:`STATIONARY_STIFFNESS_FACTOR`, run
+    at 0 km/h (a series damper locked: ``c₂ = ∞``).
+
+    Examples
+    --------
+    >>> sc = stand_scenario()
+    >>> condition_scenario(sc, 11.0).exposure.speeds_km_h, condition_scenario(sc, 0.0).exposure.speeds_km_h
+    ((11.0,), (0.0,))
+    >>> float(condition_scenario(sc, 0.0).rear.stiffness_kN_per_m[0])  # 364 x 1.5
+    546.0
+    """
+    from .vehicle.tyres import resolve_tyres
 
     speed = _validate.non_negative("speed_km_h", speed_km_h)
     exp = scenario.exposure
@@ -152,8 +170,11 @@ def condition_scenario(scenario, speed_km_h: float):
         if t.lateral_stiffness_kN_per_m is not None:
             kw["lateral_stiffness_kN_per_m"] = float(t.lateral_stiffness_kN_per_m[0]) * f
             kw["lateral_damping_kN_s_per_m"] = float(t.lateral_damping_kN_s_per_m[0])
+        if t.lateral_series_damping_kN_s_per_m_km_h is not None:
+            kw["lateral_series_damping_kN_s_per_m_km_h"] = float(t.lateral_series_damping_kN_s_per_m_km_h)
         axles[axle] = dataclasses.replace(spec, **kw)
-    return dataclasses.replace(sc, **axles)
+    # the rolling values fixed above; run at 0 km/h, where a series damper is rigid
+    return dataclasses.replace(sc, exposure=dataclasses.replace(sc.exposure, speeds_km_h=(0.0,)), **axles)
 
 
 def wheel_frf(scenario, speed_km_h: float, frequency_Hz, outputs=tuple(MODEL_OUTPUTS)) -> np.ndarray:
@@ -174,17 +195,16 @@ def wheel_frf(scenario, speed_km_h: float, frequency_Hz, outputs=tuple(MODEL_OUT
     ndarray, shape (F, outputs, 4)
         Output unit per m/s² at the wheel (NaN at 0 Hz), wheels in :data:`WHEELS` order.
     """
-    from .vehicle.model import assemble
-    from .vehicle.ride import build_parts, frequency_response, resolve_tyres
+    from .vehicle.run.spectral import frequency_response
 
-    sc = condition_scenario(scenario, speed_km_h)
-    asm = assemble(build_parts(sc, resolve_tyres(sc), 0))
+    asm = _assembly(scenario, speed_km_h)
     if tuple(asm.tyres) != WHEELS:
         raise ValueError(f"scenario: a four-wheel 3-D tractor is needed (roll_inertia_kg_m2, tracks), got tyres "
                          f"{asm.tyres}")
     lm = asm.linear([MODEL_OUTPUTS[o] for o in outputs])
     f = np.asarray(frequency_Hz, dtype=float)
-    h = frequency_response(*lm.abcd, f)  # (p, 8, F): per u (m) and du (m/s) of each tyre
+    with np.errstate(divide="ignore", invalid="ignore"):  # 0 Hz on a series damper's drift roots: NaN, dropped
+        h = frequency_response(*lm.abcd, f)  # (p, 8, F): per u (m) and du (m/s) of each tyre
     jw = 2j * math.pi * f
     with np.errstate(divide="ignore", invalid="ignore"):
         disp = np.stack([h[:, 2 * j] + jw * h[:, 2 * j + 1] for j in range(4)], axis=1)  # per m of ground
@@ -192,28 +212,85 @@ def wheel_frf(scenario, speed_km_h: float, frequency_Hz, outputs=tuple(MODEL_OUT
     return np.moveaxis(out, -1, 0)
 
 
-def model_modes(scenario, speed_km_h: float) -> list[tuple[float, float]]:
-    """The model's modes at a speed: ``(damped frequency Hz, damping ratio)`` of each complex
-    eigenvalue pair of its state matrix (``Im λ / 2π``, ``-Re λ / |λ|``), by frequency."""
+def _assembly(scenario, speed_km_h: float):
+    """The assembled model of ``scenario`` at one speed (:func:`condition_scenario`)."""
     from .vehicle.model import assemble
-    from .vehicle.ride import build_parts, resolve_tyres
+    from .vehicle.tyres import build_parts, resolve_tyres
 
     sc = condition_scenario(scenario, speed_km_h)
-    a = assemble(build_parts(sc, resolve_tyres(sc), 0)).linear([MODEL_OUTPUTS["floor_z_m_s2"]]).abcd[0]
-    lam = np.linalg.eigvals(a)
-    lam = lam[lam.imag > 1e-9]
-    return sorted((float(v.imag / (2 * math.pi)), float(-v.real / abs(v))) for v in lam)
+    return assemble(build_parts(sc, resolve_tyres(sc), 0))
 
 
-#: What the prediction of :func:`frf_validation_rows` is (until the rolling tyre's series damper
-#: c₂ = a/v of issue 42 is in the model, the rolling lateral damping is the model's stand-in).
-VALIDATION_MODEL = ("today's model: the scenario's tyres at the speed (stationary: stiffness x 1.5), "
-                    "lateral Kelvin-Voigt stand-ins; no rolling series damper (issue 42)")
+class PredictedMode(NamedTuple):
+    """One oscillating mode of the model (:func:`model_modes`)."""
+
+    name: str
+    #: ``Im λ / 2π``, Hz.
+    frequency_Hz: float
+    #: ``-Re λ / |λ|``.
+    damping_ratio: float
+    #: ``|λ| / 2π``, Hz.
+    undamped_Hz: float
+
+
+def model_modes(scenario, speed_km_h: float) -> list[PredictedMode]:
+    """The model's oscillating modes at a speed, by frequency: each complex root pair ``λ`` of its
+    linear model in contact (the rolling tyres' contact points among its states: issue 42's damped
+    modes), damped frequency ``Im λ / 2π`` and damping ratio ``-Re λ / |λ|`` (real roots, an
+    overdamped mode or a series damper's relaxation, are no resonance a stand can fit; left out).
+
+    Names are :func:`tyrelab.vehicle.solvers.modes.damped_modes`' (followed from the undamped modes
+    by their shapes); a pair that following leaves out or gives a real root instead (a heavily damped
+    yaw can lose its pair to a contact point's relaxation) is named by the coordinate that carries
+    most of its kinetic energy (:data:`tyrelab.vehicle.solvers.modes.MODE_NAMES`; ``_2`` where the
+    name is taken).
+
+    Examples
+    --------
+    >>> modes = model_modes(stand_scenario(), 6.0)
+    >>> [(m.name, round(m.frequency_Hz, 2), round(m.damping_ratio, 2)) for m in modes][:3]
+    [('lateral_roll', 1.36, 0.41), ('yaw', 2.15, 0.44), ('bounce', 2.44, 0.02)]
+    """
+    from scipy import linalg
+
+    from .vehicle.solvers.modes import MODE_NAMES, ZERO_ROOT, damped_modes
+
+    asm = _assembly(scenario, speed_km_h)
+    named = {m.root: m.name for m in damped_modes(asm).values() if not m.overdamped}
+    lay = asm.layout
+    lam, vecs = linalg.eig(asm.linear(list(asm.kinematic_outputs)[:1]).a)
+    scale = float(np.max(np.abs(lam))) if lam.size else 0.0
+    keep = np.flatnonzero((lam.imag > ZERO_ROOT * np.abs(lam)) & (np.abs(lam) > ZERO_ROOT * scale))
+    vel = vecs[np.ix_(lay.vel_cols, keep)]
+    out = []
+    for i, v in zip(keep, vel.T):
+        root = complex(lam[i])
+        name = next((n for r, n in named.items() if abs(r - root) <= 1e-6 * abs(root)), None)
+        if name is None:
+            energy = np.real(v.conj() * (asm.mass @ v))
+            coord = asm.coordinates[int(np.argmax(energy))]
+            name = MODE_NAMES.get(coord, coord)
+        out.append((name, root))
+    out.sort(key=lambda t: t[1].imag)
+    modes: list[PredictedMode] = []
+    for name, root in out:
+        while name in {m.name for m in modes}:
+            name = f"{name}_2"
+        size = abs(root)
+        modes.append(PredictedMode(name, root.imag / (2 * math.pi), -root.real / size, size / (2 * math.pi)))
+    return modes
+
+
+#: What the prediction of :func:`frf_validation_rows` is.
+VALIDATION_MODEL = ("the scenario's model at the recording's speed: its tyres (stationary at 0 km/h: "
+                    "stiffness x 1.5, series dampers locked; rolling: c2 = a/v of the speed), damped modes "
+                    "from the complex roots")
 
 
 def frf_validation_rows(result, scenario, speed_km_h: float) -> list[dict]:
     """``vehicle_frf_validation`` rows: per output and measured mode, the nearest predicted mode
-    (:func:`model_modes`): frequencies, damping ratios, their ratios and whether the prediction
+    (:func:`model_modes`; nearest root ``λ`` in the complex plane, so that a heavily damped mode is not
+    taken for a lightly damped one of similar frequency) and its name: frequencies, damping ratios, their ratios and whether the prediction
     lies in the measured 95 % interval; per output the median FRF magnitude error (predicted /
     measured - 1, :func:`wheel_frf`) over the coherent, separable, unmasked bins of 0.5-12 Hz
     (a 3-D four-wheel scenario only; NaN otherwise). An output without a fitted mode gets one row
@@ -246,8 +323,10 @@ def frf_validation_rows(result, scenario, speed_km_h: float) -> list[dict]:
         if not modes:
             rows.append({**base, "mode": None})
         for n, m in enumerate(modes, start=1):
-            fd, z = min(predicted, key=lambda t: abs(t[0] - m.frequency_Hz)) if predicted else (math.nan, math.nan)
-            rows.append({**base, "mode": n, "measured_frequency_Hz": m.frequency_Hz,
+            near = min(predicted, key=lambda p: abs(_pole(p.frequency_Hz, p.damping_ratio)
+                                                    - _pole(m.frequency_Hz, m.damping_ratio))) if predicted else None
+            name, fd, z = (near.name, near.frequency_Hz, near.damping_ratio) if near else (None, math.nan, math.nan)
+            rows.append({**base, "mode": n, "predicted_mode": name, "measured_frequency_Hz": m.frequency_Hz,
                          "measured_frequency_ci95_low_Hz": m.frequency_low_Hz,
                          "measured_frequency_ci95_high_Hz": m.frequency_high_Hz,
                          "predicted_frequency_Hz": fd, "frequency_ratio": fd / m.frequency_Hz,
@@ -257,6 +336,12 @@ def frf_validation_rows(result, scenario, speed_km_h: float) -> list[dict]:
                          "damping_ratio_ratio": z / m.damping_ratio if m.damping_ratio > 0 else math.nan,
                          "damping_in_interval": bool(m.damping_low <= z <= m.damping_high)})
     return rows
+
+
+def _pole(frequency_Hz: float, damping_ratio: float) -> complex:
+    """The root ``λ / 2π`` (Hz) of a mode of damped frequency ``frequency_Hz`` and damping ratio."""
+    z = min(float(damping_ratio), 0.999999)
+    return complex(-z * frequency_Hz / math.sqrt(1 - z * z), frequency_Hz)
 
 
 def stand_plan() -> pd.DataFrame:

@@ -6,22 +6,23 @@ from it into a new file renamed over the old one (readers that already opened
 the old file keep it); every query (``tyrelab sql``, the report) opens it
 read-only.
 
-Portability: the tables (``results``, ``table_iii``, ``published_*`` ...) are
-*stored in* the database file, so it answers from any working folder, with the
-stock ``duckdb`` client or ``duckdb.connect(path, read_only=True)``, and keeps
-answering after the build folder is moved or copied. DuckDB resolves a
-relative path in a view against the process' working folder (or the session's
-``file_search_path``, which a database cannot persist), so views over Parquet
-would need absolute paths, which break when the folder moves.
+Portability: every table (``results``, ``table_iii``, ``published_*`` ... and
+``runs``, every run's signals) is *stored in* the database file, so it answers
+from any working folder, with the stock ``duckdb`` client or
+``duckdb.connect(path, read_only=True)``, and keeps answering after the build
+folder is moved or copied. DuckDB resolves a relative path in a view against
+the process' working folder (or the session's ``file_search_path``, which a
+database cannot persist, and a view's path cannot be computed from the
+database's own location: a table function takes no subquery), so no view over
+Parquet can be both portable and path-free; the file holds no view and no path.
 
-The one exception is ``runs``, every run's signals (the bulk of a build):
-copying them would double the build's size, so ``runs`` stays a view over the
-hive dataset ``parquet/runs/`` with a path *relative to the database's
-folder*. :func:`connect_read_only` (used by ``tyrelab sql``, the report and
-the library) sets ``file_search_path`` to that folder, so ``runs`` works from
-anywhere through tyrelab; with the stock client it works when the working
-folder is the build folder, or after ``SET file_search_path = '<build>'``.
-Sizes and speeds of both layouts: ``docs/benchmarks.md`` (bench/bench_warehouse.py).
+The price is ``runs``: stored, it costs about 1.7 times its Parquet (DuckDB's
+lightweight compression against Parquet's zstd on noisy float32 signals), and
+the warehouse is rebuilt whole when a stage changes. ``store="runs_view"``
+keeps the former layout (``runs`` a view relative to the database's folder,
+which :func:`connect_read_only` resolves wherever the build is, a stock client
+only from the build folder or after ``SET file_search_path``), for the
+benchmark. Sizes and speeds of the layouts: ``docs/benchmarks.md`` (bench/bench_warehouse.py).
 
 Examples
 --------
@@ -60,10 +61,11 @@ __all__ = ["READ_ONLY_STATEMENTS", "SANDBOX_SETTINGS", "SPILL_FOLDER", "QueryLim
 
 log = logging.getLogger("tyrelab")
 
-#: How :func:`build_warehouse` can hold the tables: stored in the file (portable, the
-#: default) or as views over absolute Parquet paths (the former layout; smaller, not
-#: portable; kept for the benchmark).
-STORES = ("tables", "views")
+#: How :func:`build_warehouse` can hold the tables: every one stored in the file (portable,
+#: the default), stored but ``runs`` a view relative to the file's folder (issue 10's layout:
+#: smaller, ``runs`` not portable to a stock client), or views over absolute Parquet paths
+#: (the first layout; smallest, not portable). The last two are kept for the benchmark.
+STORES = ("tables", "runs_view", "views")
 #: Block size of the database file, bytes. DuckDB's default (256 KiB) gives every
 #: small table whole blocks: 16 KiB blocks make the file ten times smaller and
 #: faster to open (docs/benchmarks.md). Readable by DuckDB >= 1.2.
@@ -246,8 +248,9 @@ def build_warehouse(db_path: Path, parquet_dir: Path, published: dict[str, Path]
     published : dict, optional
         Table name -> Parquet path of the digitised thesis tables.
     store : {"tables", "views"}
-        ``"tables"``: every table stored in the file, ``runs`` a view relative
-        to the file's folder (portable). ``"views"``: views over absolute paths.
+        ``"tables"``: every table stored in the file, ``runs`` too (portable to
+        any client and working folder). ``"runs_view"``: the same but ``runs`` a
+        view relative to the file's folder. ``"views"``: views over absolute paths.
     block_size_bytes : int
         Block size of the file: a power of two from 16384 to 262144.
     on_table : callable, optional
@@ -274,15 +277,15 @@ def build_warehouse(db_path: Path, parquet_dir: Path, published: dict[str, Path]
         sources[view_name(p.stem)] = p
     for name, path in (published or {}).items():
         sources[name] = Path(path).resolve()
-    kind = "TABLE" if store == "tables" else "VIEW"
+    kind = "VIEW" if store == "views" else "TABLE"
     statements = [f'CREATE {kind} "{name}" AS SELECT * FROM read_parquet({_sql_path(p)})' for name, p in sources.items()]
     runs = parquet_dir / "runs"
     if any(runs.glob("*/*.parquet")):
-        pattern = Path(os.path.relpath(runs, home)) if store == "tables" else runs
+        pattern = Path(os.path.relpath(runs, home)) if store == "runs_view" else runs
         # Partition folders are percent-encoded tyre ids (tyrelab.stages.ingest.tyre_partition).
         statements.append(
-            'CREATE VIEW "runs" AS SELECT * REPLACE (url_decode(tyre_id) AS tyre_id) FROM read_parquet('
-            f"{_sql_path(pattern / '*' / '*.parquet')}, hive_partitioning = true, "
+            f'CREATE {"TABLE" if store == "tables" else "VIEW"} "runs" AS SELECT * REPLACE (url_decode(tyre_id) AS tyre_id) '
+            f"FROM read_parquet({_sql_path(pattern / '*' / '*.parquet')}, hive_partitioning = true, "
             "hive_types = {'tyre_id': VARCHAR}, union_by_name = true)"
         )
         sources["runs"] = runs
@@ -348,8 +351,8 @@ def connect_read_only(db_path: Path, limits: QueryLimits | None = None) -> duckd
     ``duckdb.connect(path)``, which shares one database instance per path
     within a process, this always sees the file as it is now, even while an
     earlier reader in the same process holds the file it replaced. Relative
-    paths (the ``runs`` view) resolve against the database's folder, whatever
-    the working folder. The session then may read files only below the
+    paths (the ``runs`` view of the ``runs_view`` layout) resolve against the
+    database's folder, whatever the working folder. The session then may read files only below the
     warehouse's ``parquet/`` folder (``allowed_directories`` with
     ``enable_external_access = false``), never installs or autoloads an
     extension, and its configuration is locked (:data:`SANDBOX_SETTINGS`).

@@ -1,8 +1,9 @@
 """Issue 43: the virtual four-post stand and track run (tyrelab.stand) through the estimator.
 
-The stand records today's 3-D model; the FRFs estimated from its recordings must give back the
-model's own FRFs and modes (its complex eigenvalues), the correlated case too, and the track
-run's height input the same as a pad's acceleration would.
+The stand records the 3-D model (rolling tyres: issue 42's element); the FRFs estimated from its
+recordings must give back the model's own FRFs and modes (its complex eigenvalues), the correlated
+case too, and the track run's height input the same as a pad's acceleration would. The model itself
+against an independent reference: tests/test_stand_rolling.py.
 """
 
 import numpy as np
@@ -37,10 +38,12 @@ def test_stand_recordings_give_back_the_models_frfs_and_modes(scenario, ride_id)
     found = 0
     for out in ("floor_z_m_s2", "roll_rad_s2", "pitch_rad_s2"):
         for m in r.modes[out]:
-            fd, z = min(truth, key=lambda t: abs(t[0] - m.frequency_Hz))
+            name, fd, z, _ = min(truth, key=lambda t: abs(t.frequency_Hz - m.frequency_Hz))
             if abs(fd - m.frequency_Hz) < 0.02 * fd:
                 found += 1
-                assert abs(z - m.damping_ratio) < 0.03, (out, m, fd, z)
+                # the lightly damped modes within 0.03; the rolling tyre's lateral-roll and yaw (41-44 %
+                # damped at 6 km/h, overlapping) within 0.05 (tests/test_stand_rolling.py)
+                assert abs(z - m.damping_ratio) < (0.03 if z < 0.3 else 0.05), (out, name, m, fd, z)
     assert found >= 4
 
 
@@ -88,8 +91,9 @@ def test_validation_rows_compare_the_model_with_its_own_recording(scenario):
     rows = stand.frf_validation_rows(r, scenario, 6.0)
     assert {x["output"] for x in rows} == set(r.outputs)
     fitted = [x for x in rows if x["mode"] is not None and abs(x["frequency_ratio"] - 1) < 0.02]
-    assert len(fitted) >= 4 and all(abs(x["predicted_damping_ratio"] - x["measured_damping_ratio"]) < 0.03
-                                    for x in fitted)
+    assert len(fitted) >= 4 and all(abs(x["predicted_damping_ratio"] - x["measured_damping_ratio"])
+                                    < (0.03 if x["predicted_damping_ratio"] < 0.3 else 0.05) for x in fitted)
+    assert {"bounce", "pitch"} <= {x["predicted_mode"] for x in fitted}
     errs = [x["frf_magnitude_error"] for x in rows if x["output"] in ("floor_z_m_s2", "pitch_rad_s2")]
     assert max(errs) < 0.05  # the model against recordings of itself
 

@@ -78,14 +78,35 @@ def test_moved_build_answers_from_another_folder(tmp_path, monkeypatch):
             assert con.execute("SELECT count(*) FROM published_table_ii").fetchone()[0] > 0
         finally:
             con.close()
-    # the runs view resolves against the database's folder through tyrelab ...
+    # runs too, through tyrelab and with the stock client from another folder (issue 47: the file
+    # holds no view and no path, so nothing resolves against the working folder)
     n_runs = query(f"{moved}/warehouse.duckdb", "SELECT count(DISTINCT run_id) AS n FROM runs")["n"].iloc[0]
     assert n_runs == 2
-    # ... and with the stock client from the build folder
-    monkeypatch.chdir(moved)
-    con = duckdb.connect("warehouse.duckdb", read_only=True)
+    for build in (copied, moved):
+        con = duckdb.connect(f"{build}/warehouse.duckdb", read_only=True)
+        try:
+            assert con.execute("SELECT count(*) FROM runs").fetchone()[0] == 2 * 12800
+            assert con.execute("SELECT count(*) FROM duckdb_views() WHERE NOT internal").fetchone()[0] == 0
+            assert con.execute("SELECT DISTINCT tyre_id FROM runs ORDER BY 1").fetchall() == [("T1",), ("T2",)]
+        finally:
+            con.close()
+
+
+def test_store_runs_view_is_the_former_layout(tmp_path, monkeypatch):
+    """``store="runs_view"``: ``runs`` a view relative to the file's folder (issue 10's layout, for the
+    benchmark): a stock client finds it from the build folder only."""
+    import duckdb
+    import pytest
+
+    pq_dir = tmp_path / "build" / "parquet"
+    io.write_parquet_atomic(pd.DataFrame({"run_id": ["a"], "x": [1.0]}), pq_dir / "runs" / "tyre_id=T1" / "a.parquet")
+    build_warehouse(tmp_path / "build" / "warehouse.duckdb", pq_dir, store="runs_view")
+    assert query(tmp_path / "build", "SELECT count(*) AS n FROM runs")["n"].iloc[0] == 1
+    monkeypatch.chdir(tmp_path)
+    con = duckdb.connect("build/warehouse.duckdb", read_only=True)
     try:
-        assert con.execute("SELECT count(*) FROM runs").fetchone()[0] == 2 * 12800
+        with pytest.raises(duckdb.IOException, match="No files found"):
+            con.execute("SELECT count(*) FROM runs")
     finally:
         con.close()
 

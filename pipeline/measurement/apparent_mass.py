@@ -75,6 +75,11 @@ def tyre_force(
     ValueError
         If ``axle_mass_kg`` is not finite and positive, or the shapes disagree.
 
+    See Also
+    --------
+    apparent_mass_demodulation : H from this force and the acceleration.
+    tyrelab.measurement.frame_tyre_force : the same from a run's DataFrame.
+
     Examples
     --------
     An axle of 600 kg accelerating at 1 m/s² upward while the beams carry 100 N:
@@ -110,6 +115,11 @@ def stiffness_damping(apparent_mass_kg: complex | np.ndarray, frequency_Hz: floa
     -------
     stiffness_N_per_m, damping_N_s_per_m : float or ndarray
 
+    See Also
+    --------
+    apparent_mass_from_kc : its inverse.
+    apparent_mass_demodulation : H of a run.
+
     Examples
     --------
     >>> k, c = stiffness_damping(-400 - 100j, 3.8)
@@ -125,6 +135,10 @@ def apparent_mass_from_kc(stiffness_N_per_m, damping_N_s_per_m, frequency_Hz):
     """Apparent mass (thesis convention) of a Kelvin-Voigt tyre: ``H = -(K + jωC)/ω²``.
 
     The inverse of :func:`stiffness_damping`; used for synthetic cases.
+
+    See Also
+    --------
+    stiffness_damping : its inverse.
 
     Examples
     --------
@@ -160,6 +174,10 @@ def excitation_frequency(
     -------
     ndarray, shape (...)
         Excitation frequency, Hz (NaN where the band is empty or the signal has no content in it).
+
+    See Also
+    --------
+    apparent_mass_demodulation : follows the frequency as it wanders.
 
     Examples
     --------
@@ -266,6 +284,17 @@ def analytic_band(x: np.ndarray, sample_rate_Hz: float, f0, half_band_Hz: float 
     Returns
     -------
     ndarray of complex, shape (..., n)
+
+    See Also
+    --------
+    apparent_mass_demodulation : demodulates with its phase.
+
+    Examples
+    --------
+    >>> fs = 256.0; t = np.arange(0, 20, 1 / fs)
+    >>> z = analytic_band(2.0 * np.sin(2 * np.pi * 4.0 * t) + 0.5 * np.sin(2 * np.pi * 9.0 * t), fs, 4.0)
+    >>> round(float(np.median(np.abs(z))), 2)              # the 4 Hz component's amplitude alone
+    2.0
     """
     sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
     half_band_Hz = positive("half_band_Hz", half_band_Hz)
@@ -404,6 +433,22 @@ def excitation_blocks(
     -------
     amplitude, frequency_Hz : ndarray, shape (..., n_blocks)
         Mean amplitude (units of the signal) and mean frequency (Hz) per block.
+
+    See Also
+    --------
+    apparent_mass_demodulation : the envelope and frequency it takes.
+    tyrelab.measurement.qc.qc_reasons : the limits it serves.
+
+    Examples
+    --------
+    >>> fs = 256.0; t = np.arange(0, 30, 1 / fs); w = 2 * np.pi * 3.8
+    >>> x = 0.005 * np.sin(w * t)                              # axle displacement, m
+    >>> a = -w**2 * x                                          # its acceleration, m/s²
+    >>> f = -(228e3 * x + 2.4e3 * 0.005 * w * np.cos(w * t))  # a Kelvin-Voigt tyre's force, N
+    >>> d = apparent_mass_demodulation(f, a, fs)
+    >>> amp, freq = excitation_blocks(d.envelope_m_s2, d.angular_frequency_rad_s, fs)
+    >>> len(amp), round(float(amp.mean()), 2), round(float(freq.mean()), 3)   # 5 s blocks of 24 s; ω² x₀
+    (4, 2.85, 3.8)
     """
     sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
     block_s = positive("block_s", block_s)
@@ -464,6 +509,21 @@ def apparent_mass_demodulation(
     ValueError
         Naming a non-positive rate, band or frequency, or force and
         acceleration of different lengths.
+
+    See Also
+    --------
+    apparent_mass_welch : the thesis' estimator, for comparison.
+    stiffness_damping : K and C from an apparent mass.
+
+    Examples
+    --------
+    >>> fs = 256.0; t = np.arange(0, 30, 1 / fs); w = 2 * np.pi * 3.8
+    >>> x = 0.005 * np.sin(w * t)                              # axle displacement, m
+    >>> a = -w**2 * x                                          # its acceleration, m/s²
+    >>> f = -(228e3 * x + 2.4e3 * 0.005 * w * np.cos(w * t))  # a Kelvin-Voigt tyre's force, N
+    >>> d = apparent_mass_demodulation(f, a, fs)
+    >>> round(float(d.frequency_Hz), 3), round(float(d.stiffness_N_per_m)), round(float(d.damping_N_s_per_m))
+    (3.8, 228000, 2400)
     """
     half_band_Hz = positive("half_band_Hz", half_band_Hz)
     f, a, excitation_frequency_Hz = _signals(force_N, accel_m_s2, sample_rate_Hz, excitation_frequency_Hz)
@@ -536,6 +596,21 @@ def welch_segments_at(x: np.ndarray, sample_rate_Hz: float, frequency_Hz, nperse
     Returns
     -------
     ndarray of complex, shape (..., n_segments)
+
+    See Also
+    --------
+    apparent_mass_welch : the thesis estimator it makes cheap.
+
+    Examples
+    --------
+    >>> from scipy import signal
+    >>> fs, n = 256.0, 256; x = np.random.default_rng(1).normal(size=2048)
+    >>> seg = welch_segments_at(x, fs, 4.0, n)
+    >>> f, p = signal.welch(x, fs, nperseg=n)
+    >>> k = int(np.argmin(np.abs(f - 4.0)))
+    >>> win = signal.get_window("hann", n)                 # Welch's density scaling, one-sided
+    >>> bool(np.isclose(2 * np.mean(np.abs(seg) ** 2) / (fs * np.sum(win**2)), p[k])), seg.shape
+    (True, (15,))
     """
     positive("sample_rate_Hz", sample_rate_Hz)
     if not (isinstance(nperseg, (int, np.integer)) and 2 <= nperseg <= np.shape(x)[-1]):
@@ -597,6 +672,11 @@ def apparent_mass_welch(
     ValueError
         Naming a non-positive rate, resolution or frequency, or force and
         acceleration of different lengths.
+
+    See Also
+    --------
+    apparent_mass_demodulation : tyrelab's estimator, without picket-fence error.
+    h1_spectrum : the full H1 spectrum.
 
     Notes
     -----
@@ -668,6 +748,11 @@ def h1_spectrum(x: np.ndarray, y: np.ndarray, sample_rate_Hz: float, nperseg: in
     ------
     ValueError
         Naming a non-positive rate, a bad ``nperseg`` or signals of different lengths.
+
+    See Also
+    --------
+    apparent_mass_welch : H1 read at the excitation bin.
+    welch_segments_at : one bin of the same segments.
 
     Examples
     --------

@@ -161,6 +161,11 @@ def frf_blocks(force_N, accel_m_s2, sample_rate_Hz: float, *, blocks: int = BLOC
         Naming the argument: a rate or resolution that is not positive, fewer than 3 blocks,
         signals of different lengths, or a recording too short for the blocks.
 
+    See Also
+    --------
+    analyse_broadband : the analysis of a run from these spectra.
+    ground_motion_ratio : the ground's share of the axle motion, from them.
+
     Examples
     --------
     A pure mass of 600 kg: H1 = 600 kg and coherence 1 at every bin.
@@ -253,6 +258,11 @@ def _block_spectra(f, a, sample_rate_Hz, blocks, resolution_Hz, displacement: bo
 def kelvin_voigt_impedance(omega_rad_s, stiffness_N_per_m: float, damping_N_s_per_m: float) -> np.ndarray:
     """Dynamic stiffness ``K + jωC`` of a Kelvin–Voigt tyre (N/m).
 
+    See Also
+    --------
+    maxwell_impedance : with a damper in series.
+    fit_model : fits either to measured bins.
+
     Examples
     --------
     >>> complex(kelvin_voigt_impedance(2.0, 1e5, 1e3))
@@ -267,6 +277,11 @@ def maxwell_impedance(omega_rad_s, stiffness_N_per_m: float, damping_N_s_per_m: 
     """Dynamic stiffness of a Kelvin–Voigt unit (K, C) in series with a damper c₂ (N/m):
     ``jωc₂ (K + jωC) / (K + jω(C + c₂))``; c₂ → ∞ gives the Kelvin–Voigt unit, C = 0 the
     spring and damper in series of the vehicle model (``maxwell``, thesis §2.5).
+
+    See Also
+    --------
+    kelvin_voigt_impedance : the unit without the series damper.
+    fit_model : fits either to measured bins.
 
     Examples
     --------
@@ -394,6 +409,11 @@ def fit_model(frequency_Hz, dynamic_stiffness_N_per_m, u_N_per_m, model: str = "
     ValueError
         Naming the argument: an unknown model, arrays of different lengths, too few bins.
 
+    See Also
+    --------
+    kelvin_voigt_impedance, maxwell_impedance : the models.
+    model_test : which of the two models the bins support.
+
     Examples
     --------
     >>> f = np.linspace(1.0, 8.0, 15)
@@ -422,6 +442,10 @@ def half_power_response(frequency_Hz, accel_psd, band_Hz) -> tuple[float, float]
     half-power points (|X|² at half the peak, linear interpolation), ``ζ = (f₂ − f₁)/(2 f_n)``
     (thesis §3.4 c, the forced-vibration method, for a drive flat over the band). NaN where the
     peak or a half-power point lies on the band's edge.
+
+    See Also
+    --------
+    response_mode : the same peak fitted by a single mode.
 
     Examples
     --------
@@ -464,6 +488,10 @@ def response_mode(accel_m_s2, sample_rate_Hz: float, band_Hz, resolution_Hz: flo
     tenths of a hertz wide) fitted near the peak found by :func:`half_power_response` (within six
     half-power widths) by a single mode ``A / ((ω_n² − ω²)² + (2 ζ ω_n ω)²)``, linear in its
     reciprocal. NaN where the peak lies on the band's edge.
+
+    See Also
+    --------
+    half_power_response : the half-power estimate it starts from.
 
     Examples
     --------
@@ -586,6 +614,26 @@ def ground_motion_ratio(est: FrfEstimate, band_Hz) -> float:
     input is uncorrelated with the drive and enters force and acceleration through a different
     relation, so it biases the apparent mass (C most); no channel records it. A ratio above
     :data:`GROUND_RATIO_LIMIT` flags the run (issue 44). NaN where the record holds no bins there.
+
+    See Also
+    --------
+    frf_blocks : the spectra it reads.
+    analyse_broadband : refuses a rolling run whose ratio is too high.
+
+    Examples
+    --------
+    >>> fs, n = 256.0, 256 * 120
+    >>> freq = np.fft.rfftfreq(n, 1 / fs); w = 2 * np.pi * freq
+    >>> rng = np.random.default_rng(3)
+    >>> X = np.where((freq > 1.5) & (freq < 7.5), rng.normal(size=freq.size) + 1j * rng.normal(size=freq.size), 0)
+    >>> a = np.fft.irfft(-w**2 * X, n)                            # axle acceleration driven over 1.5-7.5 Hz
+    >>> f = np.fft.irfft(-(250e3 + 1j * w * 2.0e3) * X, n)         # a Kelvin-Voigt tyre's force: K 250 kN/m, C 2 kNs/m
+    >>> est = frf_blocks(f, a, fs)
+    >>> float(f"{ground_motion_ratio(est, (1.5, 7.5)):.1g}")                 # the drive alone moves the axle
+    0.0001
+    >>> rough = a + np.fft.irfft(np.where(freq > 0.3, 300 * (rng.normal(size=freq.size) + 0j), 0), n)
+    >>> float(f"{ground_motion_ratio(frf_blocks(f, rough, fs), (1.5, 7.5)):.1g}")    # a ground input besides
+    0.03
     """
     lo, hi = band("band_Hz", band_Hz)
     f = est.frequency_Hz
@@ -605,6 +653,10 @@ def model_test(kelvin_voigt: ModelFit, maxwell: ModelFit) -> float:
     freedom, ν the series-damper fit's residual ones over the Hann window's neighbouring-bin
     correlation (:data:`tyrelab.measurement.uncertainty.HANN_BIN_CORRELATION`); the χ²'s common
     scale (the weights' level) cancels.
+
+    See Also
+    --------
+    fit_model : the two fits it compares.
 
     Examples
     --------
@@ -668,6 +720,24 @@ def analyse_broadband(force_N, accel_m_s2, sample_rate_Hz: float, band_Hz, *, ro
     -------
     BroadbandResult
         With ``fit`` None and ``reasons`` naming why where too few coherent bins remain.
+
+    See Also
+    --------
+    frf_blocks : the spectra it starts from.
+    fit_model : the model fitted to the coherent bins.
+    tyrelab.measurement.analyse_method_run : the methods' analysis of a run, which calls it.
+
+    Examples
+    --------
+    >>> fs, n = 256.0, 256 * 120
+    >>> freq = np.fft.rfftfreq(n, 1 / fs); w = 2 * np.pi * freq
+    >>> rng = np.random.default_rng(3)
+    >>> X = np.where((freq > 1.5) & (freq < 7.5), rng.normal(size=freq.size) + 1j * rng.normal(size=freq.size), 0)
+    >>> a = np.fft.irfft(-w**2 * X, n)                            # axle acceleration driven over 1.5-7.5 Hz
+    >>> f = np.fft.irfft(-(250e3 + 1j * w * 2.0e3) * X, n)         # a Kelvin-Voigt tyre's force: K 250 kN/m, C 2 kNs/m
+    >>> r = analyse_broadband(f, a, fs, (1.5, 7.5))
+    >>> r.reasons, r.fit.model, round(r.fit.stiffness_N_per_m / 1e3, 1), round(r.fit.damping_N_s_per_m / 1e3, 2)
+    ((), 'kelvin_voigt', 250.0, 2.0)
     """
     from .uncertainty import limits_budget
 

@@ -59,6 +59,19 @@ def calibration_transfer_function(force_plate_N: np.ndarray, derived_force_N: np
     DataFrame
         ``frequency_Hz``, ``gain`` (|H|), ``phase_deg`` (angle of H), ``coherence``
         (and ``inertial_ratio_re``, ``inertial_ratio_im`` with ``inertial_force_N``).
+
+    See Also
+    --------
+    check_calibration : the day's pass or fail from it.
+    correction_factor : the §3.6 correction from it.
+
+    Examples
+    --------
+    >>> fs = 256.0; t = np.arange(0, 60, 1 / fs)
+    >>> plate = np.random.default_rng(1).normal(size=t.size) * 1e3   # the force plate's force, N
+    >>> tf = calibration_transfer_function(plate, 1.02 * plate, fs)   # the derived force reads 2 % high
+    >>> round(float(tf["gain"].mean()), 4), round(float(tf["phase_deg"].abs().max()), 6)
+    (1.02, 0.0)
     """
     sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
     resolution_Hz = positive("resolution_Hz", resolution_Hz)
@@ -83,6 +96,22 @@ def check_calibration(tf: pd.DataFrame, band_Hz: tuple[float, float] = CHECK_BAN
     dict
         ``pass`` (bool), ``max_gain_error_pct``, ``max_phase_error_deg``,
         ``mean_gain``, ``mean_phase_deg`` over ``band_Hz``.
+
+    See Also
+    --------
+    calibration_transfer_function : the function it checks.
+    day_summary : the day's verdict over its checks.
+
+    Examples
+    --------
+    >>> fs = 256.0; t = np.arange(0, 60, 1 / fs)
+    >>> plate = np.random.default_rng(1).normal(size=t.size) * 1e3   # the force plate's force, N
+    >>> tf = calibration_transfer_function(plate, 1.02 * plate, fs)   # the derived force reads 2 % high
+    >>> c = check_calibration(tf)
+    >>> c["pass"], round(c["max_gain_error_pct"], 2)
+    (True, 2.0)
+    >>> check_calibration(calibration_transfer_function(plate, 1.05 * plate, fs))["pass"]
+    False
     """
     band_Hz = band("band_Hz", band_Hz)
     gain_tolerance = positive("gain_tolerance", gain_tolerance)
@@ -112,6 +141,17 @@ def day_summary(checks: pd.DataFrame, keys: tuple[str, ...] = ("day",)) -> pd.Da
     -------
     DataFrame
         ``keys``, ``day_pass``, ``n_calibration_runs``.
+
+    See Also
+    --------
+    check_calibration : each run's check.
+    flag_failed_days : flags the runs of a failed day.
+
+    Examples
+    --------
+    >>> checks = pd.DataFrame({"day": ["1989-05-03", "1989-05-03", "1989-05-04"], "pass": [True, False, True]})
+    >>> day_summary(checks).to_dict("records")
+    [{'day': '1989-05-03', 'day_pass': False, 'n_calibration_runs': 2}, {'day': '1989-05-04', 'day_pass': True, 'n_calibration_runs': 1}]
     """
     g = checks.groupby(list(keys), sort=True)["pass"]
     out = g.agg(day_pass="all", n_calibration_runs="size").reset_index()
@@ -139,6 +179,17 @@ def flag_failed_days(results: pd.DataFrame, days: pd.DataFrame, result_keys: tup
         :func:`day_summary` output with ``day_keys`` and ``day_pass``.
     result_keys, day_keys : tuple of str
         Matching columns; the last one is the date printed in the reason.
+
+    See Also
+    --------
+    day_summary : the days it reads.
+
+    Examples
+    --------
+    >>> runs = pd.DataFrame({"recorded_on": ["1989-05-03", "1989-05-04"], "qc_ok": [True, True], "qc_reasons": ["", ""]})
+    >>> days = pd.DataFrame({"day": ["1989-05-03", "1989-05-04"], "day_pass": [False, True]})
+    >>> flag_failed_days(runs, days)[["qc_ok", "qc_reasons"]].to_dict("records")
+    [{'qc_ok': False, 'qc_reasons': 'calibration failed on 1989-05-03'}, {'qc_ok': True, 'qc_reasons': ''}]
     """
     out = results.copy()
     if out.empty:
@@ -166,6 +217,19 @@ def correction_factor(tf: pd.DataFrame, frequency_Hz: float) -> complex:
 
     Correction of §3.6: divide a measured tyre force (or apparent mass, or
     ``K + jωC``) by this factor. Gain and phase are interpolated linearly.
+
+    See Also
+    --------
+    corrected_stiffness_damping : K and C corrected by it.
+
+    Examples
+    --------
+    >>> fs = 256.0; t = np.arange(0, 60, 1 / fs)
+    >>> plate = np.random.default_rng(1).normal(size=t.size) * 1e3   # the force plate's force, N
+    >>> tf = calibration_transfer_function(plate, 1.02 * plate, fs)   # the derived force reads 2 % high
+    >>> z = correction_factor(tf, 4.0)
+    >>> round(float(z.real), 4), bool(abs(z.imag) < 1e-9)
+    (1.02, True)
     """
     frequency_Hz = positive("frequency_Hz", frequency_Hz)
     if tf.empty:
@@ -177,7 +241,21 @@ def correction_factor(tf: pd.DataFrame, frequency_Hz: float) -> complex:
 
 def corrected_stiffness_damping(stiffness_N_per_m: float, damping_N_s_per_m: float, frequency_Hz: float,
                                 tf: pd.DataFrame) -> tuple[float, float]:
-    """K and C corrected by the day's calibration transfer function (§3.6 option)."""
+    """K and C corrected by the day's calibration transfer function (§3.6 option).
+
+    See Also
+    --------
+    correction_factor : the factor it divides by.
+
+    Examples
+    --------
+    >>> fs = 256.0; t = np.arange(0, 60, 1 / fs)
+    >>> plate = np.random.default_rng(1).normal(size=t.size) * 1e3   # the force plate's force, N
+    >>> tf = calibration_transfer_function(plate, 1.02 * plate, fs)   # the derived force reads 2 % high
+    >>> k, c = corrected_stiffness_damping(1.02 * 250e3, 1.02 * 2e3, 4.0, tf)
+    >>> round(k), round(c)
+    (250000, 2000)
+    """
     w = 2 * np.pi * frequency_Hz
     z = (stiffness_N_per_m + 1j * w * damping_N_s_per_m) / correction_factor(tf, frequency_Hz)
     return float(z.real), float(z.imag / w)

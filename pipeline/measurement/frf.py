@@ -33,8 +33,9 @@ outputs:
 * the bins near each wheel's rotation frequency and its harmonics, half the lug-passing and the
   lug-passing frequency masked (§2.4.5: the coherence drops there; :func:`wheel_excitation_mask`);
 * the modes per output: a pole–residue model with shared poles over every usable input's FRF
-  (each pole's ``f_d`` and ``ζ`` found by non-linear least squares, the residues and a complex
-  constant per input by linear least squares for given poles — variable projection, Golub &
+  (each pole's ``f_d`` and ``ζ`` found by non-linear least squares, the residues, a complex
+  constant and a complex lower residual ``1/s²`` per input (a body-fixed accelerometer's gravity
+  component has a double pole at 0 Hz) by linear least squares for given poles — variable projection, Golub &
   Pereyra 1973), each bin weighted by its random error; the number of modes by the Bayesian
   information criterion; 95 % intervals from the Jacobian of the projected residual on the
   fit's degrees of freedom (:func:`fit_vehicle_modes`).
@@ -99,6 +100,10 @@ MASK_HALF_WIDTH = 0.10
 
 def segment_samples(sample_rate_Hz: float, min_segment_s: float = MIN_SEGMENT_S) -> int:
     """Welch segment length, samples: the power of two at least ``min_segment_s`` long.
+
+    See Also
+    --------
+    cross_spectra : its default segment length.
 
     Examples
     --------
@@ -266,6 +271,20 @@ def cross_spectra(inputs, outputs, sample_rate_Hz: float, nperseg: int | None = 
     """:class:`CrossSpectra` of whole arrays: ``inputs`` (q, n), ``outputs`` (p, n).
 
     ``nperseg`` defaults to :func:`segment_samples`; ``heights`` as for :class:`CrossSpectraAccumulator`.
+
+    See Also
+    --------
+    mimo_frf : the FRFs from these spectra.
+    segment_samples : the default segment length.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(1)
+    >>> x = rng.standard_normal((2, 4096)); y = 2.0 * x[:1] - x[1:]
+    >>> s = cross_spectra(x, y, 100.0, 256)
+    >>> e = mimo_frf(s)
+    >>> np.round(np.abs(e.h[10, 0]), 6).tolist()       # output 0 from inputs 0 and 1
+    [2.0, 1.0]
     """
     x = np.atleast_2d(np.asarray(inputs, dtype=float))
     y = np.asarray(outputs, dtype=float)
@@ -279,6 +298,10 @@ def cross_spectra(inputs, outputs, sample_rate_Hz: float, nperseg: int | None = 
 def second_difference_correction(frequency_Hz, sample_rate_Hz: float) -> np.ndarray:
     """Factor turning the spectrum of a second difference ``(h[n+1] - 2 h[n] + h[n-1]) fs²`` into
     that of the second derivative: ``(2πf)² / (4 fs² sin²(πf/fs))`` (1 at 0 Hz).
+
+    See Also
+    --------
+    recording_frf : corrects a height input's differentiation with it.
 
     Examples
     --------
@@ -339,6 +362,11 @@ def mimo_frf(spectra: CrossSpectra, max_input_coherence: float = MAX_INPUT_COHER
 
     Bins without input power (DC, after a height's differentiation) or whose ``S_xx`` is
     singular give NaN and are flagged.
+
+    See Also
+    --------
+    cross_spectra : the spectra it takes.
+    fit_vehicle_modes : the modes of its FRFs.
 
     Examples
     --------
@@ -433,6 +461,11 @@ def wheel_excitation_mask(frequency_Hz, speed_km_h: float, wheels, harmonics: in
     ndarray of bool
         True where masked (§2.4.5).
 
+    See Also
+    --------
+    scenario_wheel_geometry : a scenario's wheels.
+    recording_frf : masks a rolling recording's bins with it.
+
     Examples
     --------
     >>> import numpy as np
@@ -472,8 +505,11 @@ class VehicleMode:
 
 
 def _basis(w: np.ndarray, fd: np.ndarray, zeta: np.ndarray) -> np.ndarray:
-    """Complex basis (n, 2R + 2) of the pole-residue model at ``s = jω``: per mode the real and
-    imaginary parts of a residue pair, then a complex constant."""
+    """Complex basis (n, 2R + 4) of the pole-residue model at ``s = jω``: per mode the real and
+    imaginary parts of a residue pair, then a complex constant (the upper residual) and a complex
+    ``1/s²`` (the lower residual: a body-fixed accelerometer's gravity component ``g φ`` or ``g θ``
+    per input acceleration is ``g (Φ/U) / s²``, a double pole at 0 Hz, since the static tilt per
+    ground height ``Φ/U`` is finite; without it the poles bend to fit it)."""
     wd = 2 * np.pi * fd
     wn = wd / np.sqrt(1 - zeta ** 2)
     pole = -zeta * wn + 1j * wd
@@ -481,7 +517,8 @@ def _basis(w: np.ndarray, fd: np.ndarray, zeta: np.ndarray) -> np.ndarray:
     a = 1.0 / (s - pole[None, :])
     b = 1.0 / (s - np.conj(pole)[None, :])
     cols = [a + b, 1j * (a - b)]
-    return np.concatenate([*cols, np.ones((w.size, 1)), 1j * np.ones((w.size, 1))], axis=1)
+    low = 1.0 / s[:, :1] ** 2
+    return np.concatenate([*cols, np.ones((w.size, 1)), 1j * np.ones((w.size, 1)), low, 1j * low], axis=1)
 
 
 def _projected(params: np.ndarray, w, h, wt) -> np.ndarray:
@@ -522,6 +559,11 @@ def fit_vehicle_modes(frequency_Hz, h, sigma, usable=None, max_modes: int = MAX_
     list of VehicleMode
         By frequency; empty when too few bins are usable.
 
+    See Also
+    --------
+    recording_frf : the FRFs and modes of a recording.
+    mimo_frf : the FRFs it fits.
+
     Examples
     --------
     >>> import numpy as np
@@ -554,7 +596,7 @@ def fit_vehicle_modes(frequency_Hz, h, sigma, usable=None, max_modes: int = MAX_
     best = None  # (bic, params, least-squares result, parameters)
     prev = np.empty(0)
     for r in range(1, max_modes + 1):
-        n_par = 2 * r + len(cols) * (2 * r + 2)
+        n_par = 2 * r + len(cols) * (2 * r + 4)
         if n_par >= n_obs - 2:
             break
         resid = _projected(prev, w, h0, wt) if prev.size else None
@@ -665,6 +707,10 @@ STORED_MAX_Hz = 20.0
 def input_channel_wheel(channel: str) -> tuple[str, bool] | None:
     """``(wheel, is_height)`` of an input channel name (``input_<wheel>_z_m_s2`` or ``_z_m``), else None.
 
+    See Also
+    --------
+    recording_frf : reads a recording's inputs by it.
+
     Examples
     --------
     >>> input_channel_wheel("input_rear_left_z_m"), input_channel_wheel("input_front_right_z_m_s2")
@@ -681,7 +727,17 @@ def input_channel_wheel(channel: str) -> tuple[str, bool] | None:
 
 
 def frf_unit(output: str) -> str:
-    """Unit of an FRF to ``output`` per m/s² of input (heights enter differentiated)."""
+    """Unit of an FRF to ``output`` per m/s² of input (heights enter differentiated).
+
+    See Also
+    --------
+    recording_frf : the FRFs it names.
+
+    Examples
+    --------
+    >>> frf_unit("seat_z_m_s2"), frf_unit("body_roll_rad_s2")
+    ('(m/s²)/(m/s²)', '(rad/s²)/(m/s²)')
+    """
     return "(rad/s²)/(m/s²)" if output.endswith("rad_s2") else "(m/s²)/(m/s²)"
 
 
@@ -769,6 +825,10 @@ def scenario_wheel_geometry(scenario) -> list[tuple[float, int]]:
     circumference from its size; no lugs on a tyre without ``traction``
     (:func:`tyrelab.tyre.sizes.lugs_per_side`).
 
+    See Also
+    --------
+    wheel_excitation_mask : the mask it feeds.
+
     Examples
     --------
     >>> from types import SimpleNamespace as S
@@ -813,6 +873,30 @@ def recording_frf(recording, speed_km_h: float = 0.0, wheels_geometry=None, outp
     ValueError
         One line: no input channel, an input that is constant (no excitation), a recording
         shorter than the segments the random error needs.
+
+    See Also
+    --------
+    cross_spectra : the spectra it accumulates.
+    fit_vehicle_modes : the modes of each output.
+    tyrelab.vehicle_frf : the same from a file path.
+
+    Examples
+    --------
+    Four wheel inputs of random motion, a seat that follows the front left and rear left wheels by
+    0.5 and 0.3 (and noise), recorded to a file:
+
+    >>> import pandas as pd, tempfile
+    >>> from pathlib import Path
+    >>> from tyrelab.rawformat.rides import open_recording
+    >>> fs, n = 100.0, 100 * 120
+    >>> x = np.random.default_rng(1).normal(size=(5, n))
+    >>> wheels = ["front_left", "front_right", "rear_left", "rear_right"]
+    >>> path = Path(tempfile.mkdtemp()) / "stand.csv"
+    >>> pd.DataFrame({"time_s": np.arange(n) / fs, **{f"input_{w}_z_m_s2": x[i] for i, w in enumerate(wheels)},
+    ...               "seat_z_m_s2": 0.5 * x[0] + 0.3 * x[2] + 0.05 * x[4]}).to_csv(path, index=False)
+    >>> r = recording_frf(open_recording(path))
+    >>> r.wheels, r.outputs, r.duration_s
+    (('front_left', 'front_right', 'rear_left', 'rear_right'), ('seat_z_m_s2',), 120.0)
     """
     names = tuple(recording.channels)
     inputs = [c for c in names if input_channel_wheel(c)]

@@ -45,6 +45,10 @@ def direction_runs(results: pd.DataFrame, direction: str) -> pd.DataFrame:
     """The rows of ``results`` of one ``direction`` (a row without one is vertical: a build from
     before issue 34); every column kept.
 
+    See Also
+    --------
+    thesis_runs : the vertical stepped-sine runs.
+
     Examples
     --------
     >>> r = pd.DataFrame({"run_id": ["a", "b", "c"], "direction": ["vertical", "lateral", None]})
@@ -62,6 +66,10 @@ def thesis_runs(results: pd.DataFrame) -> pd.DataFrame:
     """The runs the thesis' tables and figures rest on: vertical stepped-sine runs (issue 34; issue 44:
     a lateral or longitudinal run never enters a vertical table or figure). A build without the
     ``direction``/``method`` columns is all of them.
+
+    See Also
+    --------
+    direction_runs : the runs of one direction.
 
     Examples
     --------
@@ -83,6 +91,17 @@ def load_deflection_stiffness(force_N: np.ndarray, deflection_m: np.ndarray, fra
     Straight line of force on deflection over the loading branch between
     ``fraction`` of the maximum force (the unloading branch differs by the
     hysteresis, §3.4).
+
+    See Also
+    --------
+    free_vibration, half_power : the dynamic methods.
+
+    Examples
+    --------
+    >>> d = np.r_[np.linspace(0, 0.02, 50), np.linspace(0.02, 0, 50)]       # loading, then unloading
+    >>> F = np.r_[250e3 * d[:50], 250e3 * d[50:] - 800.0]                      # hysteresis on the way back
+    >>> round(load_deflection_stiffness(F, d))
+    250000
     """
     F = np.asarray(force_N, dtype=float)
     d = np.asarray(deflection_m, dtype=float)
@@ -106,6 +125,19 @@ def free_vibration(time_s: np.ndarray, response: np.ndarray, mass_kg: float, n_c
     -------
     dict
         ``stiffness_N_per_m``, ``damping_N_s_per_m``, ``natural_frequency_Hz``, ``damping_ratio``.
+
+    See Also
+    --------
+    half_power : the forced-vibration method.
+    table_i_from_results : the methods side by side.
+
+    Examples
+    --------
+    >>> m, k, zeta = 1000.0, 250e3, 0.1                  # a 2.52 Hz mode, 10 % damped
+    >>> wn = np.sqrt(k / m); wd = wn * np.sqrt(1 - zeta**2); t = np.arange(0, 4, 1 / 1000)
+    >>> r = free_vibration(t, np.exp(-zeta * wn * t) * np.cos(wd * t), m)
+    >>> round(float(r["stiffness_N_per_m"]), -3), round(float(r["damping_ratio"]), 3), round(float(r["natural_frequency_Hz"]), 2)
+    (250000.0, 0.1, 2.52)
     """
     mass_kg = positive("mass_kg", mass_kg)
     n_cycles = positive_int("n_cycles", n_cycles, minimum=2)  # a decrement needs two cycles
@@ -151,6 +183,22 @@ def half_power(force_N: np.ndarray, accel_m_s2: np.ndarray, sample_rate_Hz: floa
     ValueError
         Naming a non-positive rate, mass or resolution, a bad band, or force
         and acceleration of different lengths.
+
+    See Also
+    --------
+    free_vibration : the free-decay method.
+    tyrelab.measurement.apparent_mass.h1_spectrum : the H1 it reads.
+
+    Examples
+    --------
+    >>> fs, n = 100.0, 100 * 600                                   # 10 min of random force
+    >>> f = np.fft.rfftfreq(n, 1 / fs); w = 2 * np.pi * f
+    >>> F = np.array([1, 1j]) @ np.random.default_rng(1).normal(size=(2, f.size)); F[0] = 0
+    >>> m, k, c = 1000.0, 250e3, 2000.0                              # a 2.52 Hz mode, 6.3 % damped
+    >>> a = np.fft.irfft(-w**2 * F / (k - m * w**2 + 1j * w * c), n)
+    >>> r = half_power(np.fft.irfft(F, n), a, fs, m)
+    >>> round(float(r["stiffness_N_per_m"]), -3), round(float(r["natural_frequency_Hz"]), 2), round(float(r["damping_N_s_per_m"]), -2)
+    (251000.0, 2.52, 2000.0)
     """
     sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
     mass_kg = positive("mass_kg", mass_kg)
@@ -185,7 +233,19 @@ def half_power(force_N: np.ndarray, accel_m_s2: np.ndarray, sample_rate_Hz: floa
 def table_i_runs(results: pd.DataFrame) -> pd.DataFrame:
     """Vertical stationary runs grouped by tyre and condition, with the Table I method each gives
     (``table_i_method``; None where none): stepped sine → apparent mass, swept sine and random →
-    forced vibration, free vibration, load deflection. Only runs whose QC passed."""
+    forced vibration, free vibration, load deflection. Only runs whose QC passed.
+
+    See Also
+    --------
+    table_i_from_results : Table I from these runs.
+
+    Examples
+    --------
+    >>> r = pd.DataFrame({"tyre_id": "T1", "pressure_bar": 1.38, "load_kN": 18.3, "speed_km_h": [0.0, 0.0, 10.0],
+    ...                   "method": ["random", "free_vibration", "stepped_sine"], "direction": "vertical", "qc_ok": True})
+    >>> table_i_runs(r)["table_i_method"].tolist()     # the rolling run is not a Table I run
+    ['forced_vibration', 'free_vibration']
+    """
     need = {"tyre_id", "pressure_bar", "load_kN", "speed_km_h", "method", "direction", "qc_ok"}
     if results is None or results.empty or not need <= set(results.columns):
         return pd.DataFrame(columns=[*need, "table_i_method"])
@@ -212,6 +272,11 @@ def table_i_from_results(results: pd.DataFrame, thesis: pd.DataFrame) -> pd.Data
     load deflection the secant stiffness (no damping: "the viscous damping coefficient cannot
     be measured by this means", §3.4). Columns as :func:`tyrelab.rig.experiments.table_i`
     (``truth_*`` null) and ``source`` naming the case.
+
+    See Also
+    --------
+    table_i_runs : the runs it groups.
+    tyrelab.rig.experiments.table_i : the same from virtual experiments.
     """
     runs = table_i_runs(results)
     runs = runs.loc[runs["table_i_method"].notna()]

@@ -19,6 +19,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from .. import _validate
 from .._validate import positive_int
 from . import apparent_mass as am
 
@@ -48,6 +49,16 @@ def clipped(x: np.ndarray, full_scale=None, min_run: int = 3, min_count: int = 5
     Returns
     -------
     bool, or ndarray of bool of shape (channels,)
+
+    See Also
+    --------
+    qc_reasons : a clipped channel is one of its reasons.
+
+    Examples
+    --------
+    >>> s = np.sin(np.linspace(0, 20 * np.pi, 2000))
+    >>> clipped(s), clipped(np.clip(1.5 * s, -1.0, 1.0)), clipped(s, full_scale=1.0)   # flat tops; the rail
+    (False, True, True)
     """
     min_run, min_count = positive_int("min_run", min_run), positive_int("min_count", min_count)
     x = np.asarray(x)
@@ -79,6 +90,18 @@ def interference_frequencies_Hz(speed_km_h: float, circumference_m: float, lugs_
     Wheel rotation ``v/circumference`` and its first ``harmonics`` multiples;
     for traction tyres half the lug passing frequency (``lugs_per_side`` per
     revolution) and the lug passing frequency. Empty for a stationary tyre.
+
+    See Also
+    --------
+    qc_reasons : refuses an excitation near one of them.
+    tyrelab.tyre.sizes.lugs_per_side : a traction tyre's lugs.
+
+    Examples
+    --------
+    >>> [round(f, 3) for f in interference_frequencies_Hz(10.0, 4.66)]    # 13.6R38 at 10 km/h: rotation x 1, 2, 3
+    [0.596, 1.192, 1.788]
+    >>> [round(f, 2) for f in interference_frequencies_Hz(10.0, 4.66, lugs_per_side=23)][3:]   # and lug passing
+    [13.71, 27.42]
     """
     for name, value in (("speed_km_h", speed_km_h), ("circumference_m", circumference_m)):
         if not np.isfinite(value) or value < 0:
@@ -152,6 +175,19 @@ def qc_reasons(
         e.g. ``["coherence 0.62 < 0.9 at the excitation frequency",
         "amplitude drift 27.0 % > 20 %", "frequency drift 0.140 Hz > 0.1 Hz",
         "clipping in load_beam_2_N", "excitation not found"]``.
+
+    See Also
+    --------
+    plausibility_reasons : whether K and C can be a tyre's.
+    clipped : the clipping check.
+
+    Examples
+    --------
+    >>> fs = 256.0; t = np.arange(0, 30, 1 / fs); w = 2 * np.pi * 3.8
+    >>> x = 0.005 * np.sin(w * t); a = -w**2 * x               # 10 mm p-p at 3.8 Hz
+    >>> f = -(228e3 * x + 2.4e3 * 0.005 * w * np.cos(w * t))  # a Kelvin-Voigt tyre's force, N
+    >>> qc_reasons(t, a, f, 3.8, 0.99), qc_reasons(t, a, f, 3.8, 0.5)
+    ([], ['coherence 0.5 < 0.9 at the excitation frequency'])
     """
     reasons: list[str] = []
     chans = dict(channels) if channels is not None else {"accel": accel_m_s2, "force": force_N}
@@ -170,7 +206,7 @@ def qc_reasons(
             reasons.append(f"wheel excitation at {fi:.2f} Hz within {interference_tolerance_Hz:g} Hz of the excitation")
             break
     if not np.isfinite(coherence) or coherence < min_coherence:
-        reasons.append(f"coherence {coherence:.2f} < {min_coherence:g} at the excitation frequency")
+        reasons.append(f"coherence {_validate.compared(coherence, '<', min_coherence, 2)} at the excitation frequency")
     if blocks is None:
         fs = 1.0 / float(np.median(np.diff(time_s)))
         d = am.apparent_mass_demodulation(force_N, accel_m_s2, fs, f0)
@@ -201,6 +237,17 @@ def plausibility_reasons(stiffness_N_per_m: float, damping_N_s_per_m: float) -> 
     thesis' convention) instead of upward-positive as raw format v1 requires:
     the tyre force ``M_a a - Σ beams`` then changes too and K comes out
     plausible but wrong, while C changes sign.
+
+    See Also
+    --------
+    qc_reasons : the run's other checks.
+
+    Examples
+    --------
+    >>> plausibility_reasons(250e3, 2e3)
+    []
+    >>> plausibility_reasons(250e3, -2e3)
+    ['non-positive damping C = -2.00 kN s/m: are the accelerations upward positive (raw format v1)?']
     """
     reasons = []
     if np.isfinite(stiffness_N_per_m) and stiffness_N_per_m <= 0:

@@ -152,7 +152,20 @@ class RecordingResult:
 
 
 def recording_arrays(frame: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
-    """Accelerations ``(2, n)`` (m/s²) and load beams ``(4, n)`` (N) of a raw-format-v1 frame."""
+    """Accelerations ``(2, n)`` (m/s²) and load beams ``(4, n)`` (N) of a raw-format-v1 frame.
+
+    See Also
+    --------
+    frame_tyre_force : the tyre force of a frame.
+
+    Examples
+    --------
+    >>> frame = pd.DataFrame({"time_s": [0.0, 0.01], "accel_left_m_s2": [1.0, 2.0], "accel_right_m_s2": [3.0, 4.0],
+    ...                       **{f"load_beam_{i}_N": [10.0 * i, 0.0] for i in range(1, 5)}})
+    >>> accel, beams = recording_arrays(frame)
+    >>> accel.tolist(), beams[:, 0].tolist()
+    ([[1.0, 2.0], [3.0, 4.0]], [10.0, 20.0, 30.0, 40.0])
+    """
     missing = [c for c in CHANNELS if c not in frame.columns]
     if missing:
         raise ValueError(f"frame lacks channel(s) {', '.join(missing)}")
@@ -163,6 +176,11 @@ def recording_arrays(frame: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
 
 def frame_tyre_force(frame: pd.DataFrame, axle_mass_kg: float) -> np.ndarray:
     """Tyre force (N, upward positive) of a raw-format-v1 frame: :func:`~tyrelab.measurement.apparent_mass.tyre_force`.
+
+    See Also
+    --------
+    recording_arrays : the frame's arrays.
+    tyrelab.measurement.apparent_mass.tyre_force : the force from arrays.
 
     Examples
     --------
@@ -211,6 +229,21 @@ def analyse_batch(
     ------
     ValueError
         Naming the argument whose shape or value is wrong.
+
+    See Also
+    --------
+    analyse_frame : one recording given as a DataFrame.
+    recording_arrays : the arrays of a frame.
+
+    Examples
+    --------
+    >>> fs = 256.0; t = np.arange(0, 30, 1 / fs); w = 2 * np.pi * 3.8
+    >>> x = 0.005 * np.sin(w * t); a = -w**2 * x               # 10 mm p-p at 3.8 Hz
+    >>> f = -(228e3 * x + 2.4e3 * 0.005 * w * np.cos(w * t))  # a Kelvin-Voigt tyre's force, N
+    >>> beams = np.stack([(600.0 * a - f) / 4] * 4)            # what the load beams carry of it, M_a = 600 kg
+    >>> r = analyse_batch(np.stack([a, a])[None], beams[None], np.array([600.0]), fs)
+    >>> r[["stiffness_kN_per_m", "damping_kN_s_per_m", "qc_ok"]].round(3).to_dict("records")
+    [{'stiffness_kN_per_m': 228.0, 'damping_kN_s_per_m': 2.4, 'qc_ok': True}]
     """
     sample_rate_Hz = positive("sample_rate_Hz", sample_rate_Hz)
     accel, beams = np.asarray(accel), np.asarray(beams)
@@ -296,6 +329,10 @@ def dominant_frequency_Hz(accel_m_s2: np.ndarray, sample_rate_Hz: float, low_Hz:
     :func:`analyse_frame` uses it to refuse an excitation outside
     :data:`tyrelab.measurement.apparent_mass.EXCITATION_BAND_Hz`, whose own peak would then be noise.
 
+    See Also
+    --------
+    tyrelab.measurement.apparent_mass.excitation_frequency : the drive's frequency within its band.
+
     Examples
     --------
     >>> t = np.arange(4096) / 256.0
@@ -352,6 +389,11 @@ def analyse_frame(
     tyrelab.rawformat.RunFileError
         If the channels fail the raw-format checks (missing channel, NaN,
         irregular or out-of-range sampling, too short).
+
+    See Also
+    --------
+    analyse_batch : many runs of one length at once.
+    tyrelab.measurement.analyse_method_run : a run of the other methods.
 
     Examples
     --------

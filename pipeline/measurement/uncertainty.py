@@ -116,6 +116,11 @@ def limits_budget(axle_mass_kg: float = 600.0) -> InstrumentBudget:
     distributions (GUM 4.3.7: half-width/√3), plus the axle mass
     (:data:`AXLE_MASS_U_FRACTION`). The channel gains are inside the ±3 %.
 
+    See Also
+    --------
+    day_budget : the budget of a day whose check passed.
+    instrument_terms : K's and C's terms from a budget.
+
     Examples
     --------
     >>> b = limits_budget(600.0)
@@ -178,6 +183,11 @@ def day_budget(tf: pd.DataFrame, frequency_Hz: float, n_averages: float, correct
         :data:`BEAM_GAIN_U` (a passing check keeps their combination within
         3 %; it cannot tell the accelerometers, which also divide the force,
         from the beams). No axle-mass term (the check bounds it).
+
+    See Also
+    --------
+    limits_budget : the budget of a day without a check.
+    tyrelab.measurement.calibration.calibration_transfer_function : the check it reads.
 
     Examples
     --------
@@ -250,6 +260,11 @@ def residual_uncertainty(residual_probes_N: np.ndarray, denominator_m: np.ndarra
         Standard uncertainties and their degrees of freedom (two per probe,
         less the overlap of neighbouring Hann-weighted probes, correlation 1/6).
 
+    See Also
+    --------
+    run_uncertainty : with the type B terms.
+    tyrelab.measurement.apparent_mass.apparent_mass_demodulation : the probes and denominator it takes.
+
     Examples
     --------
     >>> rng = np.random.default_rng(0)
@@ -270,6 +285,10 @@ def residual_uncertainty(residual_probes_N: np.ndarray, denominator_m: np.ndarra
 
 def coverage_factor(dof, level: float = LEVEL):
     """Student t coverage factor for ``dof`` effective degrees of freedom (normal for infinite).
+
+    See Also
+    --------
+    combine : the effective degrees of freedom it takes.
 
     Examples
     --------
@@ -317,6 +336,20 @@ def instrument_terms(stiffness_N_per_m, damping_N_s_per_m, frequency_Hz, budget:
 
     Sensitivities (module docstring): force-path gain ``K``, ``C``; phase
     ``ωC``, ``K/ω``; channel gains ``|M_a ω² − K|``, ``C``; axle mass ``ω²``, 0.
+
+    See Also
+    --------
+    InstrumentBudget : the budget's terms.
+    combine : adds the type A terms.
+
+    Examples
+    --------
+    >>> uk, uc = instrument_terms(250e3, 2e3, 4.0, InstrumentBudget(force_gain=0.01, phase_rad=0.0))
+    >>> round(float(uk), 6), round(float(uc), 6)        # 1 % of K and of C
+    (2500.0, 20.0)
+    >>> uk, uc = instrument_terms(250e3, 2e3, 4.0, InstrumentBudget(force_gain=0.0, phase_rad=1e-3))
+    >>> round(float(uk), 2), round(float(uc), 2)        # ωC φ and K φ / ω
+    (50.27, 9.95)
     """
     k = np.asarray(stiffness_N_per_m, dtype=float)
     c = np.asarray(damping_N_s_per_m, dtype=float)
@@ -336,6 +369,20 @@ def combine(stiffness_N_per_m, damping_N_s_per_m, frequency_Hz, u_stat_k, u_stat
 
     ``budget`` is one :class:`InstrumentBudget` for all runs or one per run;
     ``axle_mass_kg`` (M_a, kg, scalar or per run) sets the channel gains' sensitivity.
+
+    See Also
+    --------
+    instrument_terms : the type B terms.
+    residual_uncertainty : the type A terms of a run.
+    run_uncertainty : both for a demodulated run.
+
+    Examples
+    --------
+    Type A alone (an empty budget): the interval is the t factor of its 20 degrees of freedom.
+
+    >>> u = combine(250e3, 2e3, 4.0, 1000.0, 10.0, 20, InstrumentBudget(0.0, 0.0))
+    >>> float(u.stiffness_u_N_per_m), float(u.dof), round(float(u.coverage_factor), 3), np.round(u.stiffness_ci95_N_per_m).tolist()
+    (1000.0, 20.0, 2.086, [247914.0, 252086.0])
     """
     k = np.asarray(stiffness_N_per_m, dtype=float)
     c = np.asarray(damping_N_s_per_m, dtype=float)
@@ -367,6 +414,22 @@ def run_uncertainty(demodulation, budget: InstrumentBudget | list[InstrumentBudg
     """Combined uncertainty of the K, C of a :class:`~tyrelab.measurement.apparent_mass.DemodulationResult`.
 
     Type A from its residual probes (:func:`residual_uncertainty`), type B from ``budget``.
+
+    See Also
+    --------
+    residual_uncertainty : its type A part.
+    combine : how the parts combine.
+
+    Examples
+    --------
+    >>> from tyrelab.measurement.apparent_mass import apparent_mass_demodulation
+    >>> fs = 256.0; t = np.arange(0, 30, 1 / fs); w = 2 * np.pi * 3.8
+    >>> x = 0.005 * np.sin(w * t); a = -w**2 * x
+    >>> f = -(228e3 * x + 2.4e3 * 0.005 * w * np.cos(w * t)) + np.random.default_rng(1).normal(0, 50.0, t.size)
+    >>> u = run_uncertainty(apparent_mass_demodulation(f, a, fs), limits_budget())
+    >>> lo, hi = u.stiffness_ci95_N_per_m
+    >>> bool(lo < 228e3 < hi), bool(u.stiffness_u_N_per_m > u.stiffness_u_stat_N_per_m > 0)
+    (True, True)
     """
     uk, uc, dof = residual_uncertainty(demodulation.residual_probes_N, demodulation.denominator_m,
                                        demodulation.frequency_Hz)

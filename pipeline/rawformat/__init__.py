@@ -97,6 +97,21 @@ def read_run_file(path: Path, columns: list[str] | None = None, channel_map: dic
     RunFileError
         With a one-line reason if the file is missing, too large, truncated,
         corrupt or of an unknown type.
+
+    See Also
+    --------
+    check_run : validates what it read.
+    load_channel_map : the map of an ``.mf4`` or ``.tdms`` file.
+
+    Examples
+    --------
+    >>> t = np.arange(0, 20, 1 / 256)
+    >>> run = pd.DataFrame({"time_s": t, **{c: np.sin(2 * np.pi * 4 * t) for c in CHANNELS}})
+    >>> import tempfile
+    >>> path = Path(tempfile.mkdtemp()) / "r1.csv"
+    >>> run.to_csv(path, index=False)
+    >>> list(read_run_file(path, columns=["time_s", "accel_left_m_s2"]).columns)
+    ['time_s', 'accel_left_m_s2']
     """
     path = Path(path)
     from .files import regular_file  # a folder, FIFO or device is named (a FIFO would block the read)
@@ -138,6 +153,22 @@ def check_run(df: pd.DataFrame, excitation_frequency_Hz: float, sample_rate_Hz: 
     ------
     RunFileError
         With a one-line reason.
+
+    See Also
+    --------
+    read_run_file : reads the file it checks.
+
+    Examples
+    --------
+    >>> t = np.arange(0, 20, 1 / 256)
+    >>> run = pd.DataFrame({"time_s": t, **{c: np.sin(2 * np.pi * 4 * t) for c in CHANNELS}})
+    >>> check_run(run, excitation_frequency_Hz=4.0)
+    RunInfo(sample_rate_Hz=256.0, n_samples=5120, duration_s=20.0, channels=('time_s', 'accel_left_m_s2', 'accel_right_m_s2', 'load_beam_1_N', 'load_beam_2_N', 'load_beam_3_N', 'load_beam_4_N'))
+    >>> try:
+    ...     check_run(run.iloc[:1000], excitation_frequency_Hz=4.0)
+    ... except RunFileError as exc:
+    ...     print(exc)
+    run is 3.9 s long, shorter than 10 s (truncated?)
     """
     # the manifest's numbers (excitation_frequency_Hz 0: not known, no cycle check; sample_rate_Hz None: not given)
     for name, value, least in (("excitation_frequency_Hz", excitation_frequency_Hz, 0.0), ("sample_rate_Hz", sample_rate_Hz, None)):

@@ -15,11 +15,11 @@ MEASURED_RIDE = Chapter(
     "scenario is compared with that scenario's prediction at its speed on its track, by the same analysis "
     "(thesis §6.4: a_w ratio, peak frequency and width, envelope similarity R on known tracks).",
     (
-        TableSpec("", "Daily exposure per vehicle and day (Directive 2002/44/EC; EAV 0.5, ELV 1.15 m/s²)",
+        TableSpec("", "Daily exposure per vehicle and day (Directive 2002/44/EC; A(8): EAV 0.5, ELV 1.15 m/s²; VDV: EAV 9.1, ELV 21 m/s^1.75)",
                   "exposure_days", "rides",
                   columns=("vehicle", "recorded_on", "tasks", "hours_per_day", "a8_m_s2", "a8_axis",
-                           "vdv_daily_m_s1_75", "hours_to_eav", "hours_to_elv", "exposure_points", "verdict",
-                           "dzd_m_s2")),
+                           "vdv_daily_m_s1_75", "vdv_verdict", "hours_to_eav", "hours_to_elv", "exposure_points",
+                           "verdict", "dzd_m_s2")),
         TableSpec("", "Recordings: seat values per recording (a_w without k)", "recordings", "rides",
                   # at least one seat axis' a_w (a column per axis recorded anywhere in the campaign; the
                   # null a_w_0_m_s2 keeps the pattern matching when none is)

@@ -15,13 +15,13 @@ import pandas as pd
 
 from .. import __version__, io
 from ..vehicle.ride import RideResult, nominal_result, result_json, results_table
-from .ride_sections import (AXIS_WORDS, PRESSURE_COLUMNS, answer, scenario_figures, surface_edge_note, swept_columns,
-                            variant_name, variant_rows, warning_groups)
+from .ride_sections import (AXIS_WORDS, answer, scenario_figures, surface_edge_note, variant_name, variant_rows,
+                            warning_groups)
 from .render import column_label, environment, format_number
 from .tables import significant_decimals, uncertainty_decimals
 
 __all__ = ["SPEED_COLUMNS", "QUANTITIES", "method_words", "number_formats", "below_precision", "format_table", "figures", "psd_edge_note", "render_page", "write_outputs", "dumps", "variants",
-           "variant_label", "swept_keys"]
+           "variant_label"]
 
 #: Columns of the per-speed table (text and HTML), in order; those no row has are left out. A
 #: spectral row (:mod:`tyrelab.vehicle.spectral_ride`) with a time row beside it shows the simulated
@@ -423,11 +423,6 @@ def format_table(doc: dict, width: int | None = io.TEXT_WIDTH) -> str:
 def variant_label(r: RideResult) -> str:
     """A variant's name: its tyre pressures and swept values."""
     return variant_name(r.tyres["front"].pressure_bar, r.tyres["rear"].pressure_bar, r.variant)
-
-
-def swept_keys(results: list[RideResult]) -> list[str]:
-    """The keys that take more than one value across the variants (pressures first), as scenario keys."""
-    return [PRESSURE_COLUMNS.get(c, c) for c in swept_columns(results_table(results))]
 
 
 def variants(results: list[RideResult]) -> list[dict]:

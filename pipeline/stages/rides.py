@@ -68,14 +68,14 @@ EMPTY_COLUMNS = {
     "recording_spectra": ["ride_id", "source", "channel", "frequency_Hz", "psd_m2_s4_per_Hz"],
     "exposure_days": ["campaign", "vehicle", "recorded_on", "tasks", "hours_per_day", "a8_m_s2", "a8_axis",
                       "vdv_daily_m_s1_75", "vdv_daily_axis", "hours_to_eav", "hours_to_elv", "exposure_points", "verdict",
-                      "dzd_m_s2"],
+                      "dzd_m_s2", "vdv_verdict"],
     "vehicle_frf": ["ride_id", "input", "wheel", "output", "frequency_Hz", "h_magnitude", "h_phase_deg", "h_unit",
                     "h2_magnitude", "h2_phase_deg", "coherence", "partial_coherence", "multiple_coherence",
                     "random_error", "condition_number", "input_coherence", "ill_conditioned", "masked"],
     "vehicle_modes": ["ride_id", "output", "mode", "frequency_Hz", "damping_ratio", "frequency_ci95_low_Hz",
                       "frequency_ci95_high_Hz", "damping_ci95_low", "damping_ci95_high", "inputs"],
     "vehicle_frf_validation": ["ride_id", "speed_km_h", "scenario", "output", "frf_magnitude_error", "model", "mode",
-                               "measured_frequency_Hz", "measured_frequency_ci95_low_Hz",
+                               "predicted_mode", "measured_frequency_Hz", "measured_frequency_ci95_low_Hz",
                                "measured_frequency_ci95_high_Hz", "predicted_frequency_Hz", "frequency_ratio",
                                "frequency_in_interval", "measured_damping_ratio", "measured_damping_ci95_low",
                                "measured_damping_ci95_high", "predicted_damping_ratio", "damping_ratio_ratio",
@@ -405,7 +405,8 @@ def run(ctx: Context) -> StageResult:
                      **{f"a8_{k}_m_s2": v for k, v in d["a8_axes_m_s2"].items()},
                      "vdv_daily_m_s1_75": d["vdv_daily_m_s1_75"], "vdv_daily_axis": d["vdv_daily_axis"],
                      "hours_to_eav": d["hours_to_eav"], "hours_to_elv": d["hours_to_elv"],
-                     "exposure_points": d["exposure_points"], "verdict": d["verdict"], "dzd_m_s2": d["dzd_m_s2"]})
+                     "exposure_points": d["exposure_points"], "verdict": d["verdict"], "dzd_m_s2": d["dzd_m_s2"],
+                     "vdv_verdict": d["vdv_verdict"]})  # issue 47: the daily VDV's verdict beside A(8)'s
     val_frame = _frame("ride_validation", validation)
     ctx.write_table("recordings", _frame("recordings", recordings))
     ctx.write_table("recording_axes", _frame("recording_axes", axes))

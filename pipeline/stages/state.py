@@ -37,7 +37,7 @@ from ..buildlock import LOCK_NAME
 from ..itemcache import ItemCache as _ItemCache
 from ..itemcache import digest
 
-__all__ = ["PACKAGE", "BUILTIN_RAW", "declarations", "code_fingerprint", "stage_fingerprint", "HashCache",
+__all__ = ["PACKAGE", "BUILTIN_RAW", "code_fingerprint", "stage_fingerprint", "HashCache",
     "stat_digest", "folder_digest", "raw_digest", "raw_extras", "state_path", "load", "input_digests",
     "output_digests", "why_stale", "record", "load_code_index", "save_code_index", "digest", "ItemCache"]
 
@@ -167,12 +167,6 @@ def save_code_index(build: Path) -> None:
         with open(tmp, "wb") as fh:
             pickle.dump(live, fh, protocol=pickle.HIGHEST_PROTOCOL)
     _PARSED_SAVED = len(_PARSED)
-
-
-def declarations(stage_module: str) -> dict:
-    """Module-level literals of a module (``__all__``, ...), read without importing it."""
-    path = _module_file(stage_module)
-    return _imports(path, stage_module)[1] if path else {}
 
 
 def code_fingerprint(stage_module: str, code_files=()) -> str:

@@ -100,7 +100,19 @@ def _numbers(name: str, values) -> np.ndarray:
 
 
 def with_columns(results: pd.DataFrame) -> pd.DataFrame:
-    """``results`` with any missing :data:`RESULTS_COLUMNS` added as nulls (e.g. an empty table)."""
+    """``results`` with any missing :data:`RESULTS_COLUMNS` added as nulls (e.g. an empty table).
+
+    See Also
+    --------
+    RESULTS_COLUMNS : the columns added.
+    usable : the first test every selection applies.
+
+    Examples
+    --------
+    >>> out = with_columns(pd.DataFrame({"tyre_id": ["T1"]}))
+    >>> all(c in out.columns for c in RESULTS_COLUMNS), bool(out["qc_ok"].isna().all())
+    (True, True)
+    """
     _validate.frame("results", results)
     missing = [c for c in RESULTS_COLUMNS if c not in results.columns]
     if not missing:
@@ -127,6 +139,20 @@ def usable(results: pd.DataFrame) -> pd.Series:
     Returns
     -------
     Series of bool, aligned with ``results``.
+
+    See Also
+    --------
+    nominal : usable and at every nominal condition.
+    with_columns : the columns a selection reads.
+
+    Examples
+    --------
+    >>> results = pd.DataFrame({"tyre_id": ["T1"] * 4, "kind": ["measurement"] * 3 + ["calibration"],
+    ...                         "qc_ok": [True, True, False, True], "speed_km_h": [0.0, 12.0, 12.0, 0.0],
+    ...                         "pressure_bar": [1.0, 1.4, 1.4, 1.0], "surface": ["concrete", "grass", None, None],
+    ...                         "excitation_frequency_Hz": [4.0, 4.0, 6.0, 4.0], "amplitude_mm_pp": [14.0, 14.0, 14.0, 30.0]})
+    >>> usable(results).tolist()
+    [True, True, False, False]
     """
     _validate.frame("results", results)
     kind = _col(results, "kind", "measurement").fillna("measurement").astype(str)
@@ -135,28 +161,72 @@ def usable(results: pd.DataFrame) -> pd.Series:
 
 
 def on_reference_surface(results: pd.DataFrame) -> pd.Series:
-    """Runs on concrete (case-insensitive); missing surface counts as concrete."""
+    """Runs on concrete (case-insensitive); missing surface counts as concrete.
+
+    See Also
+    --------
+    nominal : every nominal condition together.
+    REFERENCE_SURFACE : concrete.
+
+    Examples
+    --------
+    >>> on_reference_surface(pd.DataFrame({"surface": ["Concrete ", "grass", None]})).tolist()
+    [True, False, True]
+    """
     _validate.frame("results", results)
     s = _col(results, "surface", REFERENCE_SURFACE).fillna(REFERENCE_SURFACE).astype(str)
     return s.str.strip().str.lower() == REFERENCE_SURFACE
 
 
 def at_nominal_torque(results: pd.DataFrame) -> pd.Series:
-    """Runs without driving torque (missing torque counts as 0 kNm)."""
+    """Runs without driving torque (missing torque counts as 0 kNm).
+
+    See Also
+    --------
+    nominal : every nominal condition together.
+    NOMINAL_TORQUE_KNM : 0 kNm.
+
+    Examples
+    --------
+    >>> at_nominal_torque(pd.DataFrame({"torque_kNm": [0.0, 4.7, None]})).tolist()
+    [True, False, True]
+    """
     _validate.frame("results", results)
     t = pd.to_numeric(_col(results, "torque_kNm", 0.0), errors="coerce").fillna(0.0)
     return (t - NOMINAL_TORQUE_KNM).abs() < 1e-9
 
 
 def at_nominal_frequency(results: pd.DataFrame) -> pd.Series:
-    """Runs at nominal excitation 4 Hz ± 0.5 Hz (nominal, not measured, frequency)."""
+    """Runs at nominal excitation 4 Hz ± 0.5 Hz (nominal, not measured, frequency).
+
+    See Also
+    --------
+    nominal : every nominal condition together.
+    regressor : the frequency as a regressor (measured where present).
+
+    Examples
+    --------
+    >>> at_nominal_frequency(pd.DataFrame({"excitation_frequency_Hz": [4.0, 4.5, 6.0]})).tolist()
+    [True, True, False]
+    """
     _validate.frame("results", results)
     f = pd.to_numeric(_col(results, "excitation_frequency_Hz", np.nan), errors="coerce")
     return (f - NOMINAL_FREQUENCY_HZ).abs() <= FREQUENCY_TOLERANCE_HZ + 1e-9
 
 
 def at_nominal_amplitude(results: pd.DataFrame) -> pd.Series:
-    """Runs at nominal amplitude 10–18 mm peak-to-peak (nominal amplitude)."""
+    """Runs at nominal amplitude 10–18 mm peak-to-peak (nominal amplitude).
+
+    See Also
+    --------
+    nominal : every nominal condition together.
+    NOMINAL_AMPLITUDE_MM_PP : the window, mm peak-to-peak.
+
+    Examples
+    --------
+    >>> at_nominal_amplitude(pd.DataFrame({"amplitude_mm_pp": [10.0, 14.0, 30.0]})).tolist()
+    [True, True, False]
+    """
     _validate.frame("results", results)
     a = pd.to_numeric(_col(results, "amplitude_mm_pp", np.nan), errors="coerce")
     lo, hi = NOMINAL_AMPLITUDE_MM_PP
@@ -184,6 +254,23 @@ def nominal(results: pd.DataFrame, *, except_for: str | None = None) -> pd.Serie
     Returns
     -------
     Series of bool.
+
+    See Also
+    --------
+    usable : the runs that passed QC.
+    table_iii_runs : the nominal runs with their Table III condition.
+    factor_runs : the nominal runs of a one-factor regression.
+
+    Examples
+    --------
+    >>> results = pd.DataFrame({"tyre_id": ["T1"] * 4, "kind": ["measurement"] * 3 + ["calibration"],
+    ...                         "qc_ok": [True, True, False, True], "speed_km_h": [0.0, 12.0, 12.0, 0.0],
+    ...                         "pressure_bar": [1.0, 1.4, 1.4, 1.0], "surface": ["concrete", "grass", None, None],
+    ...                         "excitation_frequency_Hz": [4.0, 4.0, 6.0, 4.0], "amplitude_mm_pp": [14.0, 14.0, 14.0, 30.0]})
+    >>> nominal(results).tolist()
+    [True, False, False, False]
+    >>> nominal(results, except_for="surface").tolist()
+    [True, True, False, False]
     """
     _validate.frame("results", results)
     if except_for is not None and except_for not in _NOMINAL_TESTS and except_for not in FACTORS:
@@ -206,6 +293,16 @@ def speed_condition(speed_km_h) -> pd.Series:
     Returns
     -------
     Series of object (str or None).
+
+    See Also
+    --------
+    table_iii_runs : the nominal runs with this condition.
+    ROLLING_POOL_KM_H : the speeds pooled as rolling.
+
+    Examples
+    --------
+    >>> speed_condition([0.0, 5.0, 12.0, 15.0]).tolist()
+    ['stationary', None, 'rolling', 'rolling']
     """
     _validate.non_negative_array("speed_km_h", pd.to_numeric(pd.Series(speed_km_h, dtype=object), errors="coerce"),
                                 allow_nan=True)
@@ -221,6 +318,21 @@ def table_iii_runs(results: pd.DataFrame) -> pd.DataFrame:
     """Nominal runs with a Table III ``condition`` column (stationary / rolling), others dropped.
 
     Thesis §4.3.1, Table III. Returns a copy of the selected rows.
+
+    See Also
+    --------
+    nominal : the runs it keeps.
+    speed_condition : the condition of a speed.
+    tyrelab.tyre.regressions.table_iii : the pressure regression of these runs.
+
+    Examples
+    --------
+    >>> results = pd.DataFrame({"tyre_id": ["T1"] * 4, "kind": ["measurement"] * 3 + ["calibration"],
+    ...                         "qc_ok": [True, True, False, True], "speed_km_h": [0.0, 12.0, 12.0, 0.0],
+    ...                         "pressure_bar": [1.0, 1.4, 1.4, 1.0], "surface": ["concrete", "grass", None, None],
+    ...                         "excitation_frequency_Hz": [4.0, 4.0, 6.0, 4.0], "amplitude_mm_pp": [14.0, 14.0, 14.0, 30.0]})
+    >>> table_iii_runs(results)[["speed_km_h", "condition"]].to_dict("records")
+    [{'speed_km_h': 0.0, 'condition': 'stationary'}]
     """
     _validate.frame("results", results, ["speed_km_h"])
     sel = results.loc[nominal(results)].copy()
@@ -240,6 +352,17 @@ def regressor(results: pd.DataFrame, factor: str) -> pd.Series:
     Returns
     -------
     Series of float in the factor's unit (:data:`FACTORS`).
+
+    See Also
+    --------
+    factor_runs : the runs of a one-factor regression, with this as ``x``.
+    FACTORS : each factor's nominal and measured column.
+
+    Examples
+    --------
+    >>> runs = pd.DataFrame({"amplitude_mm_pp": [14.0, 14.0], "amplitude_measured_mm_pp": [13.2, None]})
+    >>> regressor(runs, "amplitude").tolist()
+    [13.2, 14.0]
     """
     _validate.frame("results", results)
     _validate.choice("factor", factor, tuple(FACTORS))
@@ -255,6 +378,19 @@ def factor_runs(results: pd.DataFrame, factor: str) -> pd.DataFrame:
     """Runs for a one-factor regression on ``factor`` (all other convention conditions nominal).
 
     Adds column ``x`` (the regressor, :func:`regressor`). Thesis §4.3.3–4.3.6, §5.3.3–5.3.6.
+
+    See Also
+    --------
+    regressor : the column ``x``.
+    nominal : the other conditions held nominal.
+    hold_constant : the held level of the free conditions.
+
+    Examples
+    --------
+    >>> runs = pd.DataFrame({"speed_km_h": [0.0] * 3, "pressure_bar": [1.0, 1.4, 1.8],
+    ...                      "excitation_frequency_Hz": [4.0, 4.0, 6.0], "amplitude_mm_pp": [14.0] * 3})
+    >>> factor_runs(runs, "pressure")["x"].tolist()
+    [1.0, 1.4]
     """
     _validate.frame("results", results)
     if factor not in FACTORS:
@@ -274,6 +410,10 @@ def hold_levels(runs: pd.DataFrame, cols: list[str]) -> np.ndarray:
     The keys by which :func:`hold_constant` groups runs: load to 0.1 kN, pressure to 0.01 bar,
     any other column to 3 decimals.
 
+    See Also
+    --------
+    hold_constant : groups runs by these keys.
+
     Examples
     --------
     >>> hold_levels(pd.DataFrame({"load_kN": [10.04, None]}), ["load_kN"]).ravel().tolist()
@@ -290,6 +430,10 @@ def hold_levels(runs: pd.DataFrame, cols: list[str]) -> np.ndarray:
 
 def n_distinct(values) -> int:
     """Number of distinct non-NaN values of a float array (as ``Series.nunique``).
+
+    See Also
+    --------
+    hold_level : counts the distinct regressor values of each level with it.
 
     Examples
     --------
@@ -324,6 +468,11 @@ def hold_level(x, keys: np.ndarray, cols: list[str], hold: list[str], prefer: di
         Held level per column of ``hold`` (None where pooled or absent).
     note : str
         Empty, or why the runs were pooled.
+
+    See Also
+    --------
+    hold_constant : the same on a DataFrame.
+    hold_levels : the keys it takes.
 
     Examples
     --------
@@ -390,6 +539,18 @@ def hold_constant(
         Held level per column (None where pooled).
     note : str
         Empty, or why the runs were pooled.
+
+    See Also
+    --------
+    hold_level : the same rule on arrays.
+    factor_runs : the runs it is applied to.
+
+    Examples
+    --------
+    >>> runs = pd.DataFrame({"pressure_bar": [1.0, 1.4, 1.8, 1.0], "load_kN": [18.3, 18.3, 18.3, 22.0]})
+    >>> kept, levels, note = hold_constant(runs, "pressure_bar", ["load_kN"])
+    >>> kept["pressure_bar"].tolist(), levels, note
+    ([1.0, 1.4, 1.8], {'load_kN': 18.3}, '')
     """
     _validate.frame("runs", runs)
     cols = [c for c in hold if c in runs.columns]

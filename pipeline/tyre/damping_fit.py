@@ -169,6 +169,17 @@ def damping_points(lines: pd.DataFrame, tyres: pd.DataFrame, source: str = "publ
     tyres : DataFrame
         ``tyre_id, size, age_years`` and ``group`` or ``position`` (ribbed fronts left out;
         a missing age is 0, as for Table II's new tyres).
+
+    See Also
+    --------
+    fit_damping : the fit of these points.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> points = damping_points(read_published("table_vii"), read_published("table_ii"))
+    >>> len(points), points["tyre_id"].nunique()          # Table VII's rolling traction tyres
+    (55, 5)
     """
     _validate.frame("lines", lines, ["tyre_id", "speed_km_h"])
     _validate.frame("tyres", tyres, ["tyre_id", "size", "age_years"])
@@ -200,6 +211,19 @@ def fit_damping(points: pd.DataFrame, source: str = "published") -> DampingFit:
     ------
     ValueError
         With fewer than 5 tyres or a design that cannot separate age, speed and pressure.
+
+    See Also
+    --------
+    damping_points : the points it fits.
+    damping_table : the warehouse table of the fits.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> points = damping_points(read_published("table_vii"), read_published("table_ii"))
+    >>> f = fit_damping(points)
+    >>> f.n_tyres, f.n_points, round(f.r_squared, 3)
+    (5, 55, 0.887)
     """
     _validate.frame("points", points, ["tyre_id", "size", "age_years", "speed_km_h", "pressure_bar", "damping_kN_s_per_m"])
     from statsmodels.regression.linear_model import OLS
@@ -226,7 +250,20 @@ def fit_damping(points: pd.DataFrame, source: str = "published") -> DampingFit:
 
 
 def damping_table(fits: list[DampingFit], reasons: dict[str, str] | None = None) -> pd.DataFrame:
-    """Table ``damping_fit``: one row per fitted source, plus a row with the reason for each that could not be."""
+    """Table ``damping_fit``: one row per fitted source, plus a row with the reason for each that could not be.
+
+    See Also
+    --------
+    fit_damping : the fits it lists.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> points = damping_points(read_published("table_vii"), read_published("table_ii"))
+    >>> t = damping_table([fit_damping(points)], {"ours": "too few tyres"})
+    >>> t["source"].tolist(), t["reason"].tolist()[1]
+    (['published', 'ours'], 'too few tyres')
+    """
     _validate.instances("fits", fits, DampingFit)
     rows = [f.row() for f in fits] + [{"source": s, "reason": r} for s, r in sorted((reasons or {}).items())]
     cols = ["source", "n_tyres", "n_points", "r_squared", "residual_sd_kN_s_per_m"]

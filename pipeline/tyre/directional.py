@@ -100,6 +100,11 @@ def directional_tyre(tyre_id: str, direction: str, pressure_bar: float, speed_km
     catalogue_row : mapping, optional
         The tyre's ``tyres`` row (columns :data:`CATALOGUE_COLUMNS`).
 
+    See Also
+    --------
+    rolling_coefficients : the coefficients at several speeds.
+    tyrelab.tyre.rolling.estimate_series_damping : the stand-in ``a``.
+
     Examples
     --------
     >>> t = directional_tyre("X1", "lateral", 1.2, 5.0, catalogue_row={
@@ -225,6 +230,11 @@ def rolling_coefficients(direction: str, pressure_bar: float, speeds_km_h, *, ty
     Returns
     -------
     RollingCoefficients
+
+    See Also
+    --------
+    directional_tyre : one pressure and speed.
+    tyrelab.tyre.speed_dependence.at_speeds : per-speed values at other speeds.
 
     Examples
     --------

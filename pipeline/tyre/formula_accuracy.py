@@ -52,7 +52,17 @@ PRED_COLUMNS = ["source", "tyre_id", "size", "position", "age_years", "age_assum
 
 def p_within(mean: float, sd: float, limit: float = 10.0) -> float:
     """P(|e| < limit) for e ~ N(mean, sd) (thesis §4.5.3, §6.4), via ``scipy.stats.norm``; NaN for a
-    non-finite moment or sd <= 0 (too few errors to have one)."""
+    non-finite moment or sd <= 0 (too few errors to have one).
+
+    See Also
+    --------
+    accuracy_summary : uses it per method.
+
+    Examples
+    --------
+    >>> round(p_within(0.0, 10.0), 4), round(p_within(4.6, 8.0), 3)     # ±1 sd; the formula's errors
+    (0.6827, 0.716)
+    """
     limit = _validate.positive("limit", limit)
     if not (np.isfinite(mean) and np.isfinite(sd)) or sd <= 0:
         return float("nan")
@@ -141,6 +151,19 @@ def predictions_from_table(table: pd.DataFrame, tyres: pd.DataFrame | None,
     -------
     DataFrame
         :data:`PRED_COLUMNS`, one row per traction tyre × grid pressure.
+
+    See Also
+    --------
+    predictions_from_recordings : the same from our runs.
+    accuracy_summary : their errors summarised.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> table_ii, table_iii = read_published("table_ii"), read_published("table_iii")
+    >>> p = predictions_from_table(table_iii, table_ii)
+    >>> len(p), p["tyre_id"].nunique(), round(float(p["formula_error_percent"].mean()), 2)
+    (80, 16, 4.62)
     """
     _validate.frame("table", table, _LINE_COLUMNS)
     if tyres is not None:
@@ -170,6 +193,24 @@ def predictions_from_recordings(results: pd.DataFrame, our_table_iii: pd.DataFra
     Measured = mean stiffness of the Table III rolling runs
     (:func:`conditions.table_iii_runs`) per tyre and measured pressure; the
     stationary prediction is our stationary Table III line at that pressure.
+
+    See Also
+    --------
+    predictions_from_table : the same from published lines.
+    accuracy_summary : summarises either.
+
+    Examples
+    --------
+    >>> from tyrelab.tyre.regressions import DAMPING, pressure_regressions, table_iii
+    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
+    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0, "load_kN": 18.3,
+    ...                      "speed_km_h": [0.0] * 3 + [12.0] * 3, "pressure_bar": [1.0, 1.4, 1.8] * 2,
+    ...                      "stiffness_kN_per_m": [400.0, 440.0, 480.0, 380.0, 420.0, 460.0],
+    ...                      "damping_kN_s_per_m": [3.0, 2.8, 2.6, 1.5, 1.4, 1.3]})
+    >>> p = predictions_from_recordings(runs, table_iii(pressure_regressions(runs), None),
+    ...                                 pd.DataFrame({"tyre_id": ["T1"], "size": ["13.6R38"]}))
+    >>> p[["pressure_bar", "measured_kN_per_m", "stationary_kN_per_m", "stationary_error_percent"]].round(2).to_dict("records")[0]
+    {'pressure_bar': 1.0, 'measured_kN_per_m': 380.0, 'stationary_kN_per_m': 400.0, 'stationary_error_percent': 5.26}
     """
     _validate.frame("results", results)
     _validate.frame("our_table_iii", our_table_iii, _LINE_COLUMNS)
@@ -204,6 +245,19 @@ def accuracy_summary(pred: pd.DataFrame, source: str) -> pd.DataFrame:
         ``source, method, n_tyres, n, mean_error_percent, sd_error_percent,
         within_10_percent_fraction, p_within_10_percent_normal`` and the printed
         ``thesis_*`` values with differences (thesis §4.5.3).
+
+    See Also
+    --------
+    predictions_from_table : the predictions it summarises.
+    p_within : the normal-theory share.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> table_ii, table_iii = read_published("table_ii"), read_published("table_iii")
+    >>> s = accuracy_summary(predictions_from_table(table_iii, table_ii), "published")
+    >>> s[["method", "n_tyres", "n", "mean_error_percent", "sd_error_percent"]].round(2).to_dict("records")
+    [{'method': 'formula', 'n_tyres': 16, 'n': 80, 'mean_error_percent': 4.62, 'sd_error_percent': 7.96}, {'method': 'stationary', 'n_tyres': 13, 'n': 65, 'mean_error_percent': 15.16, 'sd_error_percent': 25.27}]
     """
     _validate.frame("pred", pred)
     if len(pred):
@@ -280,7 +334,20 @@ class FormulaErrorModel:
 
 
 def formula_error_model(table: pd.DataFrame, tyres: pd.DataFrame | None) -> FormulaErrorModel:
-    """:class:`FormulaErrorModel` from a Table III-like table and a tyres table."""
+    """:class:`FormulaErrorModel` from a Table III-like table and a tyres table.
+
+    See Also
+    --------
+    predictions_from_table : the errors it models.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> table_ii, table_iii = read_published("table_ii"), read_published("table_iii")
+    >>> m = formula_error_model(table_iii, table_ii)
+    >>> round(m.mean_error_percent, 2), round(m.sd_error_percent, 2), m.n, m.n_tyres
+    (4.62, 7.96, 80, 16)
+    """
     _validate.frame("table", table, _LINE_COLUMNS)
     pred = predictions_from_table(table, tyres)
     e = pred["formula_error_percent"].to_numpy(float)

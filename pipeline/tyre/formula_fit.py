@@ -78,6 +78,11 @@ def _size(size) -> TyreSize:
 def design_matrix(sizes, age_years, pressure_bar) -> np.ndarray:
     """Rows ``[1, R, A, W R P]`` of the formula for sizes, ages (years) and pressures (bar).
 
+    See Also
+    --------
+    fit_formula : fits the formula on these rows.
+    extended_design_matrix : with W and P besides.
+
     Examples
     --------
     >>> design_matrix(["13.6R38"], [1.0], [1.2]).round(2).tolist()
@@ -96,6 +101,10 @@ def design_matrix(sizes, age_years, pressure_bar) -> np.ndarray:
 
 def extended_design_matrix(sizes, age_years, pressure_bar) -> np.ndarray:
     """Rows ``[1, R, A, W R P, W, P]`` (:data:`EXTENDED_TERMS`) for sizes, ages (years) and pressures (bar).
+
+    See Also
+    --------
+    design_matrix : the formula's own four terms.
 
     Examples
     --------
@@ -324,6 +333,22 @@ def fit_formula(points: pd.DataFrame, source: str = "published") -> FormulaFit:
     ValueError
         With fewer than 5 tyres (4 coefficients and a cluster-robust covariance need
         more tyres than coefficients) or a design that cannot separate the terms.
+
+    See Also
+    --------
+    design_matrix : its regressors.
+    leave_one_tyre_out : each tyre predicted by the others' fit.
+    fit_table : the fits beside the printed coefficients.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> from tyrelab.tyre.formula_accuracy import predictions_from_table
+    >>> table_ii, table_iii = read_published("table_ii"), read_published("table_iii")
+    >>> points = predictions_from_table(table_iii, table_ii)      # the published rolling lines, 16 tyres
+    >>> f = fit_formula(points)
+    >>> f.source, f.n_tyres, f.n_points, [round(c, 2) for c in f.coefficients]
+    ('published', 16, 80, [154.03, -1.05, 5.5, 0.31])
     """
     _validate.frame("points", points)
     from statsmodels.regression.linear_model import OLS, WLS
@@ -383,6 +408,20 @@ def leave_one_tyre_out(points: pd.DataFrame, source: str = "ours") -> pd.DataFra
         printed_kN_per_m, refit_error_percent, printed_error_percent`` (error =
         100 (predicted − measured)/measured). Tyres whose left-out fit cannot be made
         (fewer than 5 others) are skipped.
+
+    See Also
+    --------
+    fit_formula : the fit left out one tyre at a time.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> from tyrelab.tyre.formula_accuracy import predictions_from_table
+    >>> table_ii, table_iii = read_published("table_ii"), read_published("table_iii")
+    >>> points = predictions_from_table(table_iii, table_ii)      # the published rolling lines, 16 tyres
+    >>> loto = leave_one_tyre_out(points, "published")
+    >>> len(loto), round(float(loto["refit_covers"].mean()), 2)     # 90 % of the points inside their 95 % interval
+    (80, 0.9)
     """
     _validate.frame("points", points)
     p = _points(points)
@@ -463,6 +502,17 @@ def front_rule(table_iii: pd.DataFrame, table_ii: pd.DataFrame, front_id: str = 
     ------
     ValueError
         If ``front_id`` or fewer than 3 traction tyres have a rolling ΔK_p.
+
+    See Also
+    --------
+    tyrelab.tyre.stiffness.StiffnessModel : uses it for ribbed front tyres.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> r = front_rule(read_published("table_iii"), read_published("table_ii"))
+    >>> round(r.coefficient_kN_per_m_in2_bar, 4), r.n_tyres, round(r.relative_sd, 3)
+    (0.9926, 16, 0.101)
     """
     _validate.frame("table_iii", table_iii, ["tyre_id", "condition", "pressure_dependence_kN_per_m_bar", "size"])
     _validate.frame("table_ii", table_ii, ["tyre_id", "size"])
@@ -494,6 +544,20 @@ def fit_table(fits: list[FormulaFit]) -> pd.DataFrame:
     The first row (``source = "thesis_printed"``) carries the printed coefficients
     with null statistics; each fit adds a row (:meth:`FormulaFit.row`) with the printed
     value and the difference in standard errors, ``<term>_vs_printed_se``.
+
+    See Also
+    --------
+    fit_formula : the fits it lists.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> from tyrelab.tyre.formula_accuracy import predictions_from_table
+    >>> table_ii, table_iii = read_published("table_ii"), read_published("table_iii")
+    >>> points = predictions_from_table(table_iii, table_ii)      # the published rolling lines, 16 tyres
+    >>> t = fit_table([fit_formula(points)])
+    >>> t["source"].tolist(), "wrp_vs_printed_se" in t.columns
+    (['thesis_printed', 'published'], True)
     """
     _validate.instances("fits", fits, FormulaFit)
     printed = {"source": "thesis_printed", "method": "thesis §4.5.3: three separate regressions (Figs 26, 30, 31)",

@@ -54,6 +54,16 @@ def estimate_lateral_stiffness(vertical_stiffness_kN_per_m: float) -> dict:
     -------
     dict
         ``lateral_stiffness_kN_per_m``, ``ci95_kN_per_m`` ([low, high]), ``source``.
+
+    See Also
+    --------
+    tyrelab.tyre.rolling.estimate_series_damping : the lateral element's series damper.
+
+    Examples
+    --------
+    >>> e = estimate_lateral_stiffness(400.0)                 # k_y = 0.57 k_z, interval x/÷ 2
+    >>> round(e["lateral_stiffness_kN_per_m"], 1), [round(v, 1) for v in e["ci95_kN_per_m"]]
+    (226.3, [113.1, 452.5])
     """
     k = _validate.positive("vertical_stiffness_kN_per_m", vertical_stiffness_kN_per_m)
     return {"lateral_stiffness_kN_per_m": RATIO * k, "ci95_kN_per_m": [RATIO_95[0] * k, RATIO_95[1] * k],

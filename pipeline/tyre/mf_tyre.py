@@ -187,6 +187,21 @@ def measured_tyre(
     ValueError
         If the tyre is not in the catalogue, or has neither a rolling stiffness fit
         nor measured catalogue coefficients; the message names the tyre.
+
+    See Also
+    --------
+    property_file : the ``.tir`` text of the tyre.
+    pressure_table : K(P) and C(P) per speed.
+
+    Examples
+    --------
+    >>> tyres = pd.DataFrame([{"tyre_id": "MY1", "size": "480/70R38", "carcass_stiffness_kN_per_m": 120.0,
+    ...     "pressure_dependence_kN_per_m_bar": 230.0, "carcass_damping_kN_s_per_m": 1.1,
+    ...     "pressure_dependence_kN_s_per_m_bar": 0.4, "measured_speed_km_h": 12.0, "tested_load_kN": 25.0,
+    ...     "measured_pressure_min_bar": 0.8, "measured_pressure_max_bar": 1.6}])
+    >>> t = measured_tyre("MY1", tyres)                  # no warehouse tables: the catalogue's coefficients
+    >>> t.source, (t.stiffness.intercept, t.stiffness.slope), t.pressure_range_bar
+    ('catalogue tyres.csv', (120.0, 230.0), (0.8, 1.6))
     """
     _validate.frame("tyres", tyres, ["tyre_id", "size"])
     damping_speed_km_h = _validate.positive("damping_speed_km_h", damping_speed_km_h)
@@ -252,6 +267,18 @@ def tir_parameters(tyre: MeasuredTyre, pressure_bar: float) -> dict[str, list[tu
     ------
     ValueError
         If ``pressure_bar`` is not positive or the stiffness there is not positive.
+
+    See Also
+    --------
+    property_file : the file's text from them.
+
+    Examples
+    --------
+    >>> t = MeasuredTyre("MY1", parse_tyre_size("480/70R38"), PressureLine(120.0, 230.0),
+    ...                  PressureLine(1.1, 0.4), 12.0, 25.0, (0.8, 1.6))
+    >>> p = tir_parameters(t, 1.2)
+    >>> dict((k, v) for k, v, _ in p["VERTICAL"] if k in ("VERTICAL_STIFFNESS", "VERTICAL_DAMPING"))
+    {'VERTICAL_STIFFNESS': 396000.0, 'VERTICAL_DAMPING': 1580.0}
     """
     _validate.instance("tyre", tyre, MeasuredTyre)
     p0 = _validate.positive("pressure_bar", pressure_bar)
@@ -310,6 +337,11 @@ def property_file(tyre: MeasuredTyre, pressure_bar: float, *, tool: str = "tyrel
 
     See the module docstring for which keys are measured and which are placeholders.
 
+    See Also
+    --------
+    tir_parameters : its sections.
+    measured_tyre : the tyre it describes.
+
     Examples
     --------
     >>> t = MeasuredTyre("MY1", parse_tyre_size("480/70R38"), PressureLine(120.0, 230.0),
@@ -365,6 +397,22 @@ def pressure_table(
         ``damping_kN_s_per_m``, plus ``n_stiffness``, ``n_damping``. The interval is
         ``t(1 - alpha/2, n - 2) x`` :meth:`PressureLine.se_bound` (conservative: the
         intercept-slope covariance is not stored).
+
+    See Also
+    --------
+    measured_tyre : the tyre's lines.
+
+    Examples
+    --------
+    >>> from tyrelab.tyre.regressions import DAMPING, pressure_regressions, table_iii
+    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
+    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0, "load_kN": 18.3,
+    ...                      "speed_km_h": [0.0] * 3 + [12.0] * 3, "pressure_bar": [1.0, 1.4, 1.8] * 2,
+    ...                      "stiffness_kN_per_m": [400.0, 440.0, 480.0, 380.0, 420.0, 460.0],
+    ...                      "damping_kN_s_per_m": [3.0, 2.8, 2.6, 1.5, 1.4, 1.3]})
+    >>> t = pressure_table("T1", pressure_regressions(runs, by="speed"), pressure_regressions(runs, DAMPING, by="speed"), [1.6])
+    >>> t[["speed_km_h", "pressure_bar", "stiffness_kN_per_m", "damping_kN_s_per_m"]].round(3).to_dict("records")
+    [{'speed_km_h': 0.0, 'pressure_bar': 1.6, 'stiffness_kN_per_m': 460.0, 'damping_kN_s_per_m': 2.7}, {'speed_km_h': 12.0, 'pressure_bar': 1.6, 'stiffness_kN_per_m': 440.0, 'damping_kN_s_per_m': 1.35}]
     """
     alpha = _validate.probability("alpha", alpha)
     p = np.unique(_validate.positive_array("pressures_bar", pressures_bar))

@@ -30,19 +30,50 @@ def thesis_points(table_ii: pd.DataFrame, table_iii: pd.DataFrame) -> pd.DataFra
 
     :func:`tyrelab.tyre.formula_accuracy.predictions_from_table`: ``K_c + ΔK_p P`` on the
     rear/front pressure grids, sizes and ages from Table II (Berlin tyres new: 0 years).
+
+    See Also
+    --------
+    thesis_formula_fit : the fit of these points.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> table_ii, table_iii, table_vi = (read_published(t) for t in THESIS_TABLES)
+    >>> p = thesis_points(table_ii, table_iii)
+    >>> len(p), p["tyre_id"].nunique(), sorted(p["source"].unique())
+    (80, 16, ['published'])
     """
     _validate.frame("table_ii", table_ii, ["tyre_id", "size"])
     return fa.predictions_from_table(table_iii, table_ii)
 
 
 def thesis_formula_fit(table_ii: pd.DataFrame, table_iii: pd.DataFrame) -> FormulaFit:
-    """:func:`~tyrelab.tyre.formula_fit.fit_formula` of :func:`thesis_points` (``source = "published"``)."""
+    """:func:`~tyrelab.tyre.formula_fit.fit_formula` of :func:`thesis_points` (``source = "published"``).
+
+    See Also
+    --------
+    thesis_points : the points it fits.
+    tyrelab.tyre.formula_fit.fit_formula : the fit.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> table_ii, table_iii, table_vi = (read_published(t) for t in THESIS_TABLES)
+    >>> f = thesis_formula_fit(table_ii, table_iii)
+    >>> f.n_tyres, f.n_points, [round(c, 2) for c in f.coefficients]
+    (16, 80, [154.03, -1.05, 5.5, 0.31])
+    """
     _validate.frame("table_ii", table_ii, ["tyre_id", "size"])
     return fit_formula(thesis_points(table_ii, table_iii), "published")
 
 
 def thesis_stiffness_model(table_ii: pd.DataFrame, table_iii: pd.DataFrame, table_vi: pd.DataFrame) -> StiffnessModel:
     """The thesis' model: printed point estimate, the published refit's interval, F1's front rule.
+
+    See Also
+    --------
+    build_stiffness_model : a build's model.
+    thesis_formula_fit : its interval's fit.
 
     Examples
     --------
@@ -60,7 +91,20 @@ def fit_row(fit: FormulaFit) -> dict:
     """:meth:`FormulaFit.row` plus what :func:`fit_from_row` needs: the covariance
     (``cov_<term>_<term>``, upper triangle), the prediction's jackknife covariances
     (``jk_cov_<term>_<term>`` over :data:`TERMS`, ``ext_cov_<term>_<term>`` over
-    :data:`EXTENDED_TERMS`; null where not formed) and the data ranges (``<range>_min``/``_max``)."""
+    :data:`EXTENDED_TERMS`; null where not formed) and the data ranges (``<range>_min``/``_max``).
+
+    See Also
+    --------
+    fit_from_row : its inverse.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> table_ii, table_iii, table_vi = (read_published(t) for t in THESIS_TABLES)
+    >>> row = fit_row(thesis_formula_fit(table_ii, table_iii))
+    >>> row["source"], row["n_points"], "cov_intercept_age" in row
+    ('published', 80, True)
+    """
     _validate.instance("fit", fit, FormulaFit)
     row = fit.row()
     for prefix, terms, cov in (("cov", TERMS, fit.covariance), ("jk_cov", TERMS, fit.leverage_covariance),
@@ -82,6 +126,19 @@ def fit_from_row(row) -> FormulaFit:
     ------
     ValueError
         If the row lacks a coefficient or covariance column.
+
+    See Also
+    --------
+    fit_row : the row it reads.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> table_ii, table_iii, table_vi = (read_published(t) for t in THESIS_TABLES)
+    >>> fit = thesis_formula_fit(table_ii, table_iii)
+    >>> back = fit_from_row(fit_row(fit))
+    >>> back.coefficients == fit.coefficients, bool(np.allclose(back.covariance, fit.covariance))
+    (True, True)
     """
     get = row.get if isinstance(row, dict) else (lambda k, d=None: row[k] if k in row.index else d)
     try:
@@ -135,6 +192,21 @@ def build_stiffness_model(formula_fit_table: pd.DataFrame, thesis: StiffnessMode
     ------
     ValueError
         If the table has no usable row of ``source``.
+
+    See Also
+    --------
+    thesis_stiffness_model : the thesis' model, whose front rule it keeps.
+    fit_from_row : the fit of a ``formula_fit`` row.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> table_ii, table_iii, table_vi = (read_published(t) for t in THESIS_TABLES)
+    >>> thesis = thesis_stiffness_model(table_ii, table_iii, table_vi)
+    >>> table = pd.DataFrame([fit_row(thesis_formula_fit(table_ii, table_iii))])     # a build's formula_fit
+    >>> m = build_stiffness_model(table, thesis, source="published")
+    >>> m.formula.n_points, m.front == thesis.front
+    (80, True)
     """
     _validate.frame("formula_fit_table", formula_fit_table, ["source"])
     _validate.instance("thesis", thesis, StiffnessModel)

@@ -61,6 +61,10 @@ def between_run_variance(x, y, u) -> float:
 
     0 when the runs' own uncertainties already explain the residuals.
 
+    See Also
+    --------
+    fit_line : weighs by ``1/(u² + τ²)`` with it.
+
     Examples
     --------
     >>> x = np.array([1.0, 2, 3, 4]); y = np.array([1.0, 2.2, 2.8, 4.1])
@@ -117,6 +121,19 @@ def fit_line(x, y, *, alpha: float = 0.05, u=None) -> dict:
         Keys :data:`FIT_COLUMNS`. With fewer than two distinct x the estimates
         are NaN and ``reason`` says why; with two points the standard errors
         and intervals are NaN (no residual degrees of freedom).
+
+    See Also
+    --------
+    fit_mean : a mean with its interval.
+    pressure_regressions : a line per tyre and condition.
+
+    Examples
+    --------
+    >>> f = fit_line([1.0, 1.4, 1.8], [400.0, 441.0, 479.0])
+    >>> round(f["intercept"], 1), round(f["slope"], 1), f["n"], round(f["r_squared"], 4)
+    (301.8, 98.8, 3, 0.9995)
+    >>> fit_line([1.0, 1.0], [400.0, 410.0])["reason"] is not None
+    True
     """
     alpha = _validate.probability("alpha", alpha)
     x = np.asarray(x, dtype=float)
@@ -173,6 +190,17 @@ def fit_mean(y, *, alpha: float = 0.05) -> dict:
     -------
     dict
         ``n, mean, se, ci_low, ci_high, sd, reason``.
+
+    See Also
+    --------
+    fit_line : a line with its statistics.
+    surface_effects : the mean change over cells.
+
+    Examples
+    --------
+    >>> m = fit_mean([1.0, 2.0, 3.0])
+    >>> m["n"], m["mean"], m["sd"], round(m["ci_low"], 3), round(m["ci_high"], 3)
+    (3, 2.0, 1.0, -0.484, 4.484)
     """
     alpha = _validate.probability("alpha", alpha)
     y = np.asarray(y, dtype=float)
@@ -200,7 +228,17 @@ def _speed(s: pd.Series) -> pd.Series:
 
 
 def measured_tyres(results: pd.DataFrame) -> list[str]:
-    """Tyre ids with at least one measurement run, sorted (the tyres "in our data")."""
+    """Tyre ids with at least one measurement run, sorted (the tyres "in our data").
+
+    See Also
+    --------
+    pressure_regressions : reports these tyres by default.
+
+    Examples
+    --------
+    >>> measured_tyres(pd.DataFrame({"tyre_id": ["T2", "T1", "C"], "kind": ["measurement", "measurement", "calibration"]}))
+    ['T1', 'T2']
+    """
     _validate.frame("results", results)
     if results.empty or "tyre_id" not in results.columns:
         return []
@@ -310,6 +348,24 @@ def pressure_regressions(
         ``tyre_id``, ``condition`` or ``speed_km_h``, then :data:`FIT_COLUMNS`
         (intercept = carcass value, slope = pressure dependence per bar),
         ``held_load_kN``, ``note``.
+
+    See Also
+    --------
+    pressure_regressions_each : the same per tyre in one pass.
+    table_iii : Table III from its stiffness fit by condition.
+    table_vii : Table VII from its damping fit by speed.
+    tyrelab.tyre.conditions.nominal : the runs it fits.
+
+    Examples
+    --------
+    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
+    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0, "load_kN": 18.3,
+    ...                      "speed_km_h": [0.0] * 3 + [12.0] * 3, "pressure_bar": [1.0, 1.4, 1.8] * 2,
+    ...                      "stiffness_kN_per_m": [400.0, 440.0, 480.0, 380.0, 420.0, 460.0],
+    ...                      "damping_kN_s_per_m": [3.0, 2.8, 2.6, 1.5, 1.4, 1.3]})
+    >>> fit = pressure_regressions(runs)
+    >>> fit[["condition", "n", "intercept", "slope"]].round(6).to_dict("records")
+    [{'condition': 'stationary', 'n': 3, 'intercept': 300.0, 'slope': 100.0}, {'condition': 'rolling', 'n': 3, 'intercept': 280.0, 'slope': 100.0}]
     """
     _validate.frame("results", results)
     _validate.choice("response", response, (STIFFNESS, DAMPING))
@@ -356,6 +412,10 @@ def pressure_regressions_each(
     tyre_ids=[tyre])``: the runs are selected and grouped once and every fit reads its
     group's runs only.
 
+    See Also
+    --------
+    pressure_regressions : one tyre's (or every tyre's) fits.
+
     Examples
     --------
     >>> pressure_regressions_each(pd.DataFrame(), tyre_ids=["T1"])["T1"][STIFFNESS]["n"].tolist()
@@ -395,6 +455,23 @@ def factor_regressions(
     DataFrame
         ``tyre_id, speed_km_h, response, factor, factor_unit, rate_unit``, the fit
         (slope = rate), ``held_pressure_bar``, ``held_load_kN``, ``note``.
+
+    See Also
+    --------
+    factor_regressions_each : the same per tyre in one pass.
+    amplitude_table : Tables IV and VIII from the amplitude rates.
+    summary_rates : Tables VI and X from the rates.
+    tyrelab.tyre.conditions.factor_runs : the runs it fits.
+
+    Examples
+    --------
+    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
+    ...                      "speed_km_h": 12.0, "pressure_bar": 1.38, "load_kN": [14.0, 18.0, 22.0],
+    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0,
+    ...                      "stiffness_kN_per_m": [400.0, 420.0, 440.0], "damping_kN_s_per_m": [1.0, 1.8, 2.6]})
+    >>> r = factor_regressions(runs, "load")
+    >>> r[["response", "factor_unit", "n", "slope"]].round(6).to_dict("records")
+    [{'response': 'stiffness_kN_per_m', 'factor_unit': 'kN', 'n': 3, 'slope': 5.0}, {'response': 'damping_kN_s_per_m', 'factor_unit': 'kN', 'n': 3, 'slope': 0.2}]
     """
     _validate.frame("results", results)
     _validate.choice("factor", factor, tuple(cond.FACTORS))
@@ -456,6 +533,10 @@ def factor_regressions_each(
     ``out[tyre]`` equals ``factor_regressions(<results rows of tyre>, factor, responses)``:
     the runs are selected and grouped once and every fit reads its group's runs only.
 
+    See Also
+    --------
+    factor_regressions : one tyre's (or every tyre's) rates.
+
     Examples
     --------
     >>> len(factor_regressions_each(pd.DataFrame(), "load", tyre_ids=["T1"])["T1"])
@@ -487,6 +568,23 @@ def surface_effects(results: pd.DataFrame, response: str = STIFFNESS) -> tuple[p
     summary : DataFrame
         Per non-concrete surface: ``surface, n_cells, change_percent, se, ci_low, ci_high,
         sd, tyres, reason``.
+
+    See Also
+    --------
+    surface_table : Tables V and IX from the summary.
+    fit_mean : the mean over cells.
+
+    Examples
+    --------
+    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
+    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0, "load_kN": 18.3,
+    ...                      "speed_km_h": [0.0] * 3 + [12.0] * 3, "pressure_bar": [1.0, 1.4, 1.8] * 2,
+    ...                      "stiffness_kN_per_m": [400.0, 440.0, 480.0, 380.0, 420.0, 460.0],
+    ...                      "damping_kN_s_per_m": [3.0, 2.8, 2.6, 1.5, 1.4, 1.3]})
+    >>> grass = runs.assign(surface="grass", stiffness_kN_per_m=runs["stiffness_kN_per_m"] * 0.9)
+    >>> cells, summary = surface_effects(pd.concat([runs, grass], ignore_index=True))
+    >>> len(cells), summary[["surface", "n_cells"]].to_dict("records"), round(float(summary["change_percent"].iloc[0]), 6)
+    (6, [{'surface': 'grass', 'n_cells': 6}], -10.0)
     """
     _validate.frame("results", results)
     _validate.choice("response", response, (STIFFNESS, DAMPING))
@@ -555,6 +653,18 @@ def compare_with_thesis(
         Keys, then per value ``thesis_<col>``, ``<col>``, ``<col>_difference`` (ours − thesis),
         then the remaining columns of ``ours``; also a boolean ``in_thesis``. Rows
         of either side without a partner are kept (thesis columns null for new tyres).
+
+    See Also
+    --------
+    table_iii : Table III through it.
+    table_vii : Table VII through it.
+
+    Examples
+    --------
+    >>> ours = pd.DataFrame({"tyre_id": ["T1", "T9"], "k": [310.0, 200.0]})
+    >>> thesis = pd.DataFrame({"tyre_id": ["T1"], "k_pub": [300.0]})
+    >>> compare_with_thesis(ours, thesis, ["tyre_id"], {"k": "k_pub"})[["tyre_id", "thesis_k", "k", "k_difference", "in_thesis"]].to_dict("records")
+    [{'tyre_id': 'T1', 'thesis_k': 300.0, 'k': 310.0, 'k_difference': 10.0, 'in_thesis': True}, {'tyre_id': 'T9', 'thesis_k': nan, 'k': 200.0, 'k_difference': nan, 'in_thesis': False}]
     """
     _validate.frame("ours", ours, [*keys, *values])
     if thesis is not None:
@@ -614,6 +724,22 @@ def table_iii(fit: pd.DataFrame, published: pd.DataFrame | None) -> pd.DataFrame
     published : DataFrame or None
         ``raw/published/table_iii.csv`` (tyre_id, size, condition, carcass_stiffness_kN_per_m,
         pressure_dependence_kN_per_m_bar, r_squared, r_squared_qualifier).
+
+    See Also
+    --------
+    pressure_regressions : the fit it takes.
+    compare_with_thesis : the side-by-side join.
+
+    Examples
+    --------
+    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
+    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0, "load_kN": 18.3,
+    ...                      "speed_km_h": [0.0] * 3 + [12.0] * 3, "pressure_bar": [1.0, 1.4, 1.8] * 2,
+    ...                      "stiffness_kN_per_m": [400.0, 440.0, 480.0, 380.0, 420.0, 460.0],
+    ...                      "damping_kN_s_per_m": [3.0, 2.8, 2.6, 1.5, 1.4, 1.3]})
+    >>> t = table_iii(pressure_regressions(runs), None)
+    >>> t[["tyre_id", "condition", "carcass_stiffness_kN_per_m", "pressure_dependence_kN_per_m_bar"]].round(6).to_dict("records")[1]
+    {'tyre_id': 'T1', 'condition': 'stationary', 'carcass_stiffness_kN_per_m': 300.0, 'pressure_dependence_kN_per_m_bar': 100.0}
     """
     _validate.frame("fit", fit, ["tyre_id", "condition"])
     if published is not None:
@@ -633,6 +759,22 @@ def table_vii(fit: pd.DataFrame, published: pd.DataFrame | None) -> pd.DataFrame
     """Table VII side by side: carcass damping C_c, ΔC and r² per tyre × speed (thesis §5.3.1).
 
     ``fit`` is :func:`pressure_regressions` of damping by speed.
+
+    See Also
+    --------
+    pressure_regressions : the fit it takes (``by="speed"``).
+    table_iii : the same for stiffness.
+
+    Examples
+    --------
+    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
+    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0, "load_kN": 18.3,
+    ...                      "speed_km_h": [0.0] * 3 + [12.0] * 3, "pressure_bar": [1.0, 1.4, 1.8] * 2,
+    ...                      "stiffness_kN_per_m": [400.0, 440.0, 480.0, 380.0, 420.0, 460.0],
+    ...                      "damping_kN_s_per_m": [3.0, 2.8, 2.6, 1.5, 1.4, 1.3]})
+    >>> t = table_vii(pressure_regressions(runs, DAMPING, by="speed"), None)
+    >>> t[["speed_km_h", "carcass_damping_kN_s_per_m", "pressure_dependence_kN_s_per_m_bar"]].round(6).to_dict("records")
+    [{'speed_km_h': 0.0, 'carcass_damping_kN_s_per_m': 3.5, 'pressure_dependence_kN_s_per_m_bar': -0.5}, {'speed_km_h': 12.0, 'carcass_damping_kN_s_per_m': 1.75, 'pressure_dependence_kN_s_per_m_bar': -0.25}]
     """
     _validate.frame("fit", fit, ["tyre_id", "speed_km_h"])
     if published is not None:
@@ -659,6 +801,21 @@ def amplitude_table(rates: pd.DataFrame, published: pd.DataFrame | None, respons
     response : str
         ``"stiffness_kN_per_m"`` (Table IV, thesis §4.3.4) or ``"damping_kN_s_per_m"``
         (Table VIII, §5.3.4).
+
+    See Also
+    --------
+    factor_regressions : the rates it takes.
+    compare_with_thesis : the side-by-side join.
+
+    Examples
+    --------
+    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
+    ...                      "speed_km_h": 12.0, "pressure_bar": 1.38, "load_kN": 18.3,
+    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": [10.0, 14.0, 18.0],
+    ...                      "stiffness_kN_per_m": [430.0, 420.0, 410.0], "damping_kN_s_per_m": 1.5})
+    >>> t = amplitude_table(factor_regressions(runs, "amplitude"), None, STIFFNESS)
+    >>> t[["tyre_id", "speed_km_h", "stiffness_rate_kN_per_m_per_mm"]].round(6).to_dict("records")
+    [{'tyre_id': 'T1', 'speed_km_h': 12.0, 'stiffness_rate_kN_per_m_per_mm': -2.5}]
     """
     _validate.frame("rates", rates)
     _validate.choice("response", response, (STIFFNESS, DAMPING))
@@ -675,6 +832,20 @@ def surface_table(summary: pd.DataFrame, published: pd.DataFrame | None, respons
 
     ``published`` is ``table_v.csv`` (surface, stiffness_change_percent) or ``table_ix.csv``
     (surface, damping_change_percent). Surfaces are matched case- and space-insensitively.
+
+    See Also
+    --------
+    surface_effects : the summary it takes.
+    compare_with_thesis : the side-by-side join.
+
+    Examples
+    --------
+    >>> summary = pd.DataFrame({"surface": ["grass"], "n_cells": [4], "change_percent": [-10.0], "se": [1.0],
+    ...                         "ci_low": [-13.2], "ci_high": [-6.8]})
+    >>> published = pd.DataFrame({"surface": ["Grass"], "stiffness_change_percent": ["-12%"]})
+    >>> surface_table(summary, published, STIFFNESS)[["surface", "thesis_stiffness_change_percent",
+    ...                                               "stiffness_change_percent_difference"]].to_dict("records")
+    [{'surface': 'grass', 'thesis_stiffness_change_percent': -12, 'stiffness_change_percent_difference': 2.0}]
     """
     _validate.frame("summary", summary)
     _validate.choice("response", response, (STIFFNESS, DAMPING))
@@ -731,6 +902,24 @@ def summary_rates(
     DataFrame
         ``factor, measured_range, unit, thesis_value, thesis_change_text, value,
         value_difference, n, se, ci_low, ci_high, basis, reason``.
+
+    See Also
+    --------
+    pressure_regressions : the per-speed fits it takes.
+    factor_regressions : the rates it takes.
+
+    Examples
+    --------
+    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
+    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0, "load_kN": 18.3,
+    ...                      "speed_km_h": [0.0] * 3 + [12.0] * 3, "pressure_bar": [1.0, 1.4, 1.8] * 2,
+    ...                      "stiffness_kN_per_m": [400.0, 440.0, 480.0, 380.0, 420.0, 460.0],
+    ...                      "damping_kN_s_per_m": [3.0, 2.8, 2.6, 1.5, 1.4, 1.3]})
+    >>> rolling = runs.loc[runs["speed_km_h"] > 0]          # K rises 10 kN/m per kN of load here
+    >>> rates = factor_regressions(rolling.assign(load_kN=[14.0, 18.0, 22.0], pressure_bar=1.38), "load")
+    >>> t = summary_rates(pressure_regressions(runs, by="speed"), rates, STIFFNESS)
+    >>> t.set_index("factor").loc[["pressure", "load"], "value"].round(6).tolist()
+    [100.0, 10.0]
     """
     _validate.frame("by_speed", by_speed)
     _validate.frame("rates", rates)

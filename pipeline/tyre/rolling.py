@@ -78,6 +78,15 @@ def series_damping_N_s_per_m(a_kN_s_per_m_km_h: float, speed_km_h: float) -> flo
         ``a``, kN s/m × km/h (> 0).
     speed_km_h : float
         Rolling speed, km/h (>= 0).
+
+    See Also
+    --------
+    estimate_series_damping : a stand-in ``a``.
+
+    Examples
+    --------
+    >>> series_damping_N_s_per_m(100.0, 10.0), series_damping_N_s_per_m(100.0, 0.0)   # a = 100 kN s/m · km/h
+    (10000.0, inf)
     """
     a = _validate.positive("a_kN_s_per_m_km_h", a_kN_s_per_m_km_h)
     v = _validate.non_negative("speed_km_h", speed_km_h)
@@ -91,6 +100,16 @@ def estimate_series_damping(direction: str = "lateral") -> dict:
     -------
     dict
         ``series_damping_kN_s_per_m_km_h``, ``ci95_kN_s_per_m_km_h`` ([low, high]), ``source``.
+
+    See Also
+    --------
+    series_damping_N_s_per_m : ``c₂`` at a speed from ``a``.
+
+    Examples
+    --------
+    >>> a = estimate_series_damping("lateral")
+    >>> a["series_damping_kN_s_per_m_km_h"], a["ci95_kN_s_per_m_km_h"]
+    (100.0, [50.0, 200.0])
     """
     _validate.choice("direction", direction, DIRECTIONS)
     return {"series_damping_kN_s_per_m_km_h": SERIES_DAMPING_KN_S_PER_M_KM_H[direction],

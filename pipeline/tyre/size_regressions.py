@@ -78,6 +78,17 @@ def tyre_points(table: pd.DataFrame, tyres: pd.DataFrame | None = None) -> pd.Da
     DataFrame
         Adds ``size_used, section_width_in, rim_diameter_in, wr_in2, age_years``
         and ``size_in_table`` (the table's own designation).
+
+    See Also
+    --------
+    select : one fit's rows of them.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> points = tyre_points(read_published("table_iii"), read_published("table_ii"))
+    >>> len(points), points.loc[points["tyre_id"] == "T1", ["rim_diameter_in", "wr_in2"]].iloc[0].round(2).tolist()
+    (34, [38.0, 516.8])
     """
     _validate.frame("table", table, ["tyre_id", "condition", "carcass_stiffness_kN_per_m", "pressure_dependence_kN_per_m_bar"])
     if tyres is not None:
@@ -105,7 +116,21 @@ def tyre_points(table: pd.DataFrame, tyres: pd.DataFrame | None = None) -> pd.Da
 
 
 def select(points: pd.DataFrame, spec: dict, *, exclude=None, include=None, condition=None) -> pd.DataFrame:
-    """Rows of one fit's selection: condition, include/exclude lists, non-null x and y."""
+    """Rows of one fit's selection: condition, include/exclude lists, non-null x and y.
+
+    See Also
+    --------
+    tyre_points : the points it selects from.
+    variants : the fit under other selections.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> points = tyre_points(read_published("table_iii"), read_published("table_ii"))
+    >>> s = select(points, THESIS_FITS["dkp_vs_wr"])          # Fig. 30: rolling, F1 left out
+    >>> len(s), "F1" in set(s["tyre_id"])
+    (16, False)
+    """
     _validate.frame("points", points, ["tyre_id", "condition"])
     missing = [] if not isinstance(spec, dict) else [k for k in ("x", "y", "exclude", "include", "condition") if k not in spec]
     if not isinstance(spec, dict) or missing:
@@ -158,6 +183,18 @@ def selection_search(points: pd.DataFrame, name: str, *, max_excluded: int = 3,
     DataFrame
         ``fit, condition, change, n, intercept, slope, r_squared, matches_printed``, sorted with
         the matching selections first, then by how close r² and slope come.
+
+    See Also
+    --------
+    variants : the fit under the other data choices.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> points = tyre_points(read_published("table_iii"), read_published("table_ii"))
+    >>> s = selection_search(points, "kc_vs_rim", max_excluded=1)
+    >>> s[["change", "n", "slope"]].round(3).iloc[0].to_dict()
+    {'change': 'also excluding AS11', 'n': 11, 'slope': -1.775}
     """
     _validate.frame("points", points, ["tyre_id", "condition"])
     _validate.choice("name", name, tuple(THESIS_FITS))
@@ -197,7 +234,21 @@ def selection_search(points: pd.DataFrame, name: str, *, max_excluded: int = 3,
 
 
 def variants(points: pd.DataFrame, name: str) -> pd.DataFrame:
-    """The fit under the other plausible data choices: stationary, pooled, through origin."""
+    """The fit under the other plausible data choices: stationary, pooled, through origin.
+
+    See Also
+    --------
+    select : the rows of each variant.
+    selection_search : exclusions that reproduce the printed fit.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> points = tyre_points(read_published("table_iii"), read_published("table_ii"))
+    >>> v = variants(points, "dkp_vs_wr")
+    >>> v[["variant", "n", "slope", "r_squared"]].round(3).iloc[0].to_dict()     # thesis Fig. 30: 0.34, r² 0.82
+    {'variant': 'rolling, printed exclusions', 'n': 16, 'slope': 0.334, 'r_squared': 0.819}
+    """
     _validate.frame("points", points, ["tyre_id", "condition"])
     _validate.choice("name", name, tuple(THESIS_FITS))
     spec = THESIS_FITS[name]

@@ -139,6 +139,11 @@ class TyreSizeError(ValueError):
 def load_index_kg(load_index: int) -> float:
     """Load capacity per tyre, kg, of an ISO 4000-1 / ETRTO load index (0-279).
 
+    See Also
+    --------
+    speed_symbol_km_h : the service description's other half.
+    parse_tyre_size : reads both from a designation.
+
     Examples
     --------
     >>> load_index_kg(142)
@@ -153,6 +158,11 @@ def load_index_kg(load_index: int) -> float:
 
 def speed_symbol_km_h(symbol: str) -> float:
     """Reference speed, km/h, of an ISO 4000-1 speed symbol (``"A8"`` -> 40, ``"D"`` -> 65).
+
+    See Also
+    --------
+    load_index_kg : the service description's other half.
+    parse_tyre_size : reads both from a designation.
 
     Examples
     --------
@@ -325,6 +335,11 @@ def parse_tyre_size(text: str) -> TyreSize:
         If the text is not a size designation; the message names the text
         (and the part that does not parse) and gives examples.
 
+    See Also
+    --------
+    rolling_circumference_m : the circumference of a size.
+    load_index_kg : a load index's capacity.
+
     Examples
     --------
     >>> parse_tyre_size("16.9/14R30").section_width_in
@@ -417,6 +432,10 @@ def rolling_circumference_m(size: TyreSize | str, aspect_ratio: float | None = N
     against the 2.63 m of §5.5.4, so a catalogue value is preferred where one
     is given.
 
+    See Also
+    --------
+    tyre_rolling_circumference_m : a catalogue's value first.
+
     Examples
     --------
     >>> round(rolling_circumference_m("13.6R38"), 2)
@@ -449,6 +468,10 @@ def tyre_rolling_circumference_m(
     user's measurement); else its measured ``outer_diameter_m`` times pi times
     :data:`ROLLING_FACTOR`; else :func:`rolling_circumference_m` from the size.
 
+    See Also
+    --------
+    rolling_circumference_m : the estimate from the size alone.
+
     Examples
     --------
     >>> tyre_rolling_circumference_m("7.50-18", catalogue_m=2.63)
@@ -468,6 +491,10 @@ def lugs_per_side(circumference_m: float, *, ribbed: bool = False, catalogue: fl
 
     The catalogue's ``lugs_per_side`` where given; 0 for a ribbed tyre; else one
     lug every :data:`LUG_PITCH_m` of circumference, at least 8.
+
+    See Also
+    --------
+    tyre_rolling_circumference_m : the circumference it takes.
 
     Examples
     --------

@@ -38,6 +38,10 @@ def at_speeds(speeds_km_h, values, query_km_h) -> np.ndarray:
     ndarray
         One value per query speed.
 
+    See Also
+    --------
+    tyrelab.tyre.directional.rolling_coefficients : a tyre's coefficients per speed.
+
     Examples
     --------
     >>> at_speeds([0, 10, 15], [545.0, 345.0, 335.0], [0, 2, 4, 10, 12.5, 30]).tolist()

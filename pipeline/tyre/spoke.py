@@ -78,6 +78,15 @@ def unloaded_radius_m(size: str, aspect_ratio: float = ASPECT_RATIO_DEFAULT) -> 
         E.g. ``"13.6R38"``.
     aspect_ratio : float
         Section height over section width.
+
+    See Also
+    --------
+    tyrelab.tyre.sizes.parse_tyre_size : the size designation.
+
+    Examples
+    --------
+    >>> round(unloaded_radius_m("13.6R38"), 3)     # the thesis' r0 (§5.5.2)
+    0.795
     """
     s = parse_tyre_size(size)
     aspect_ratio = _validate.positive("aspect_ratio", aspect_ratio)
@@ -85,7 +94,17 @@ def unloaded_radius_m(size: str, aspect_ratio: float = ASPECT_RATIO_DEFAULT) -> 
 
 
 def contact_half_angle(h, r0):
-    """Half-angle α = acos(h / r0) of the contact zone, rad (0 when h ≥ r0)."""
+    """Half-angle α = acos(h / r0) of the contact zone, rad (0 when h ≥ r0).
+
+    See Also
+    --------
+    vertical_force : the spokes within ±α carry the force.
+
+    Examples
+    --------
+    >>> round(float(contact_half_angle(0.92 * 0.795, 0.795)), 4), float(contact_half_angle(0.9, 0.795))
+    (0.4027, 0.0)
+    """
     r0 = _validate.positive("r0", r0)
     return np.arccos(np.clip(np.asarray(h, dtype=float) / r0, -1.0, 1.0))
 
@@ -101,6 +120,17 @@ def spoke_rate(theta, h, h_dot, wheel_rate_rad_s):
         Axle height (m) and its rate (m/s).
     wheel_rate_rad_s : array-like
         θ̇, rad/s.
+
+    See Also
+    --------
+    vertical_force : the damping force from these rates.
+
+    Examples
+    --------
+    >>> float(spoke_rate(0.0, 0.73, 0.2, 3.5))     # the vertical spoke shortens as the axle moves
+    0.2
+    >>> round(float(spoke_rate(0.1, 0.73, 0.0, 3.5)), 4)   # ahead of the vertical a rolling wheel lengthens it
+    0.2576
     """
     _validate.non_negative_array("wheel_rate_rad_s", wheel_rate_rad_s)
     c = np.cos(theta)
@@ -127,6 +157,21 @@ def vertical_force(h, h_dot, wheel_rate_rad_s, r0, c_coulomb, c_viscous):
         Coulomb friction per radian of tyre, N/rad.
     c_viscous : float
         Viscous coefficient per radian of tyre, Ns/m/rad.
+
+    See Also
+    --------
+    vertical_force_spokes : the same summed over discrete spokes.
+    equivalent_damping : its energy per cycle as a viscous damping.
+
+    Examples
+    --------
+    A stationary wheel (θ̇ = 0) moving up: every spoke in the contact zone slides, the Coulomb
+    part is ``2 c1 sin α``:
+
+    >>> round(float(vertical_force(0.92 * 0.795, 0.1, 0.0, 0.795, 1.0, 0.0)), 4), round(float(2 * np.sin(np.arccos(0.92))), 4)
+    (0.7838, 0.7838)
+    >>> float(vertical_force(0.92 * 0.795, 0.0, 3.5, 0.795, 1.0, 1.0))   # no axle motion, no force
+    0.0
     """
     _validate.non_negative_array("wheel_rate_rad_s", wheel_rate_rad_s)
     r0 = _validate.positive("r0", r0)
@@ -146,6 +191,17 @@ def vertical_force_spokes(h, h_dot, wheel_angle_rad, wheel_rate_rad_s, r0, c_cou
     Spoke ``i`` is at angle ``wheel_angle + 2π i / n`` (wrapped to (−π, π]); each
     stands for ``2π / n`` rad of tyre. Arguments broadcast like
     :func:`vertical_force`; the spoke axis is appended last and summed.
+
+    See Also
+    --------
+    vertical_force : the closed form it converges to.
+
+    Examples
+    --------
+    >>> closed = float(vertical_force(0.73, 0.05, 3.5, 0.795, 1.0, 1.0))
+    >>> many = float(vertical_force_spokes(0.73, 0.05, 0.0, 3.5, 0.795, 1.0, 1.0, n_spokes=4000))
+    >>> bool(abs(many / closed - 1) < 0.01)          # within 1 % with 4000 spokes
+    True
     """
     n_spokes = _validate.positive_int("n_spokes", n_spokes)
     r0 = _validate.positive("r0", r0)
@@ -183,6 +239,17 @@ def damping_basis(speed_km_h, frequency_Hz=FREQUENCY_HZ, amplitude_m=AMPLITUDE_M
     Returns ``(g_coulomb, g_viscous)`` such that the equivalent damping is
     ``c1 g_coulomb + c2 g_viscous`` (Ns/m for c1 in N/rad and c2 in Ns/m/rad).
     Energy per cycle / (π A² ω), thesis §5.5.2. Arguments broadcast.
+
+    See Also
+    --------
+    equivalent_damping : ``c1 g_coulomb + c2 g_viscous``.
+    fit_coefficients : fits c1 and c2 on this basis.
+
+    Examples
+    --------
+    >>> g1, g2 = damping_basis([1.0, 10.0])
+    >>> bool(g1[0] > g1[1]), bool(np.allclose(equivalent_damping([1.0, 10.0], c_coulomb=0.25, c_viscous=1.0), 0.25 * g1 + g2))
+    (True, True)
     """
     _validate.positive_array("frequency_Hz", frequency_Hz)
     _validate.positive_array("amplitude_m", amplitude_m)
@@ -225,6 +292,19 @@ def equivalent_damping(speed_km_h, frequency_Hz=FREQUENCY_HZ, amplitude_m=AMPLIT
     -------
     ndarray
         Broadcast shape of the inputs.
+
+    See Also
+    --------
+    damping_basis : the same per unit coefficient.
+    speed_curves : Figs 44 and 45 from it.
+
+    Examples
+    --------
+    Coulomb friction damps less the faster the tyre rolls (thesis Fig. 44):
+
+    >>> c = equivalent_damping([1.0, 5.0, 20.0], c_coulomb=1.0, c_viscous=0.0)
+    >>> bool(c[0] > c[1] > c[2] > 0)
+    True
     """
     _validate.finite_array("c_coulomb", np.atleast_1d(c_coulomb))  # negative in an unconstrained fit (spoke_fit)
     _validate.finite_array("c_viscous", np.atleast_1d(c_viscous))
@@ -255,6 +335,19 @@ def fit_coefficients(speed_km_h, damping, frequency_Hz=FREQUENCY_HZ, amplitude_m
     dict
         ``c_coulomb, c_viscous, fitted (ndarray), relative_error (ndarray),
         max_abs_relative_error, n, status``.
+
+    See Also
+    --------
+    damping_basis : the basis it fits on.
+    fit_tyres : the fit per measured tyre.
+
+    Examples
+    --------
+    >>> speeds = [10.0, 15.0]
+    >>> damping = equivalent_damping(speeds, c_coulomb=0.3, c_viscous=0.9)
+    >>> fit = fit_coefficients(speeds, damping)
+    >>> round(fit["c_coulomb"], 6), round(fit["c_viscous"], 6)
+    (0.3, 0.9)
     """
     _validate.finite_array("damping", damping)
     v = np.asarray(speed_km_h, dtype=float)
@@ -294,6 +387,16 @@ def force_curves(speeds_km_h=(0.5, 1, 2, 5, 10, 20), c_coulomb=1.0, c_viscous=0.
     -------
     DataFrame
         ``speed_km_h, h_dot_m_per_s, force_N, c_coulomb_N_per_rad, c_viscous_N_s_per_m_per_rad``.
+
+    See Also
+    --------
+    vertical_force : what it draws.
+
+    Examples
+    --------
+    >>> f = force_curves(speeds_km_h=[0.5, 10.0], n_points=5)    # slower: nearer the full slide, 2 sin α
+    >>> f.groupby("speed_km_h")["force_N"].max().round(3).to_dict()
+    {0.5: 0.784, 10.0: 0.157}
     """
     _validate.non_negative_array("speeds_km_h", speeds_km_h)
     n_points = _validate.positive_int("n_points", n_points, minimum=2)
@@ -339,6 +442,17 @@ def speed_curves(speeds_km_h=None, r0=R0_13_6R38_M) -> pd.DataFrame:
 
     Models: ``coulomb`` (Fig. 44, c1 = 1 N/rad), ``combined`` (Fig. 45, c1 = 0.25 N/rad,
     c2 = 1 Ns/m/rad) and ``viscous`` (c2 = 1 Ns/m/rad alone, for reference).
+
+    See Also
+    --------
+    equivalent_damping : the damping drawn.
+    frequency_curves, amplitude_curves, deflection_curves : Figs 46–48.
+
+    Examples
+    --------
+    >>> c = speed_curves([1.0, 10.0])
+    >>> sorted(set(zip(c["figure"], c["model"]))), len(c)
+    ([('44', 'coulomb'), ('45', 'combined'), ('45', 'viscous')], 6)
     """
     r0 = _validate.positive("r0", r0)
     if speeds_km_h is not None:
@@ -358,7 +472,19 @@ _FIG_SPEEDS = (1.0, 5.0, 10.0, 15.0, 20.0)
 
 def frequency_curves(frequencies_Hz=np.arange(1.0, 8.01, 0.25), speeds_km_h=_FIG_SPEEDS,
                      r0=R0_13_6R38_M) -> pd.DataFrame:
-    """Fig. 46: equivalent damping vs excitation frequency at several speeds (Fig. 45 coefficients)."""
+    """Fig. 46: equivalent damping vs excitation frequency at several speeds (Fig. 45 coefficients).
+
+    See Also
+    --------
+    speed_curves : Figs 44 and 45.
+    equivalent_damping : the damping drawn.
+
+    Examples
+    --------
+    >>> c = frequency_curves([2.0, 4.0], speeds_km_h=[10.0])
+    >>> c[["frequency_Hz", "speed_km_h"]].to_dict("records")
+    [{'frequency_Hz': 2.0, 'speed_km_h': 10.0}, {'frequency_Hz': 4.0, 'speed_km_h': 10.0}]
+    """
     _validate.positive_array("frequencies_Hz", frequencies_Hz)
     _validate.non_negative_array("speeds_km_h", speeds_km_h)
     r0 = _validate.positive("r0", r0)
@@ -368,7 +494,19 @@ def frequency_curves(frequencies_Hz=np.arange(1.0, 8.01, 0.25), speeds_km_h=_FIG
 
 def amplitude_curves(amplitudes_mm=np.arange(2.0, 15.01, 0.5), speeds_km_h=_FIG_SPEEDS,
                      r0=R0_13_6R38_M) -> pd.DataFrame:
-    """Fig. 47: equivalent damping vs amplitude (±2–15 mm, i.e. 4–30 mm p-p as measured)."""
+    """Fig. 47: equivalent damping vs amplitude (±2–15 mm, i.e. 4–30 mm p-p as measured).
+
+    See Also
+    --------
+    speed_curves : Figs 44 and 45.
+    equivalent_damping : the damping drawn.
+
+    Examples
+    --------
+    >>> c = amplitude_curves([4.0, 8.0], speeds_km_h=[10.0])
+    >>> c["amplitude_mm_pp"].tolist(), c["figure"].unique().tolist()
+    ([8.0, 16.0], ['47'])
+    """
     _validate.positive_array("amplitudes_mm", amplitudes_mm)
     _validate.non_negative_array("speeds_km_h", speeds_km_h)
     r0 = _validate.positive("r0", r0)
@@ -378,7 +516,19 @@ def amplitude_curves(amplitudes_mm=np.arange(2.0, 15.01, 0.5), speeds_km_h=_FIG_
 
 def deflection_curves(deflection_percent=np.arange(2.0, 15.01, 0.5), speeds_km_h=_FIG_SPEEDS,
                       r0=R0_13_6R38_M) -> pd.DataFrame:
-    """Fig. 48: equivalent damping vs tyre deflection (1 − h/r0, %); 8 % is the thesis' h = 0.92 r0."""
+    """Fig. 48: equivalent damping vs tyre deflection (1 − h/r0, %); 8 % is the thesis' h = 0.92 r0.
+
+    See Also
+    --------
+    speed_curves : Figs 44 and 45.
+    equivalent_damping : the damping drawn.
+
+    Examples
+    --------
+    >>> c = deflection_curves([8.0], speeds_km_h=[10.0])
+    >>> round(float(c["deflection_mm"].iloc[0]), 1), c["figure"].iloc[0]     # 8 % of r0 = 0.795 m
+    (63.6, '48')
+    """
     d = _validate.positive_array("deflection_percent", deflection_percent)
     if np.any(d >= 100):
         raise ValueError(f"deflection_percent must be below 100, got {d.max():g}")
@@ -431,6 +581,23 @@ def fit_tyres(results: pd.DataFrame, tyres: pd.DataFrame | None = None, *,
         One row per tyre with measurement runs (:data:`SPOKE_FIT_COLUMNS`).
     points : DataFrame
         Per tyre and speed: measured and fitted damping (kNs/m) and error.
+
+    See Also
+    --------
+    fit_tyres_each : the same per tyre in one pass.
+    fit_coefficients : the fit of one tyre.
+    unloaded_radius_m : r0 from the size.
+
+    Examples
+    --------
+    >>> speeds = np.array([10.0, 15.0, 20.0])
+    >>> kNs = equivalent_damping(speeds, c_coulomb=300.0, c_viscous=900.0) / 1000   # a spoke tyre, kNs/m
+    >>> results = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
+    ...                         "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 16.0, "pressure_bar": 1.38,
+    ...                         "load_kN": 18.3, "speed_km_h": speeds, "damping_kN_s_per_m": kNs})
+    >>> fits, points = fit_tyres(results, pd.DataFrame({"tyre_id": ["T1"], "size": ["13.6R38"]}))
+    >>> fits[["n_speeds", "c_coulomb_kN_per_rad", "c_viscous_kN_s_per_m_per_rad", "physical"]].round(4).to_dict("records")
+    [{'n_speeds': 3, 'c_coulomb_kN_per_rad': 0.3, 'c_viscous_kN_s_per_m_per_rad': 0.9, 'physical': True}]
     """
     _validate.frame("results", results)
     min_speed_km_h = _validate.positive("min_speed_km_h", min_speed_km_h)
@@ -446,6 +613,10 @@ def fit_tyres_each(results: pd.DataFrame, tyres: pd.DataFrame | None = None, *, 
 
     ``out[tyre]`` equals ``fit_tyres(<results rows of tyre>, <tyres row of tyre>)``: the
     nominal runs are selected once.
+
+    See Also
+    --------
+    fit_tyres : one tyre's (or every tyre's) fit.
 
     Examples
     --------

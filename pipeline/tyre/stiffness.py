@@ -65,6 +65,10 @@ def traction_tyre_stiffness(size: str | TyreSize, pressure_bar: float, age_years
     float
         Stiffness K in kN/m.
 
+    See Also
+    --------
+    estimate_stiffness : with its prediction interval.
+
     Examples
     --------
     >>> round(traction_tyre_stiffness("13.6-38", 1.1, 1), 1)
@@ -280,6 +284,10 @@ def range_warnings(
     tuple of str
         One line per quantity outside its range, saying by how much; empty when inside.
 
+    See Also
+    --------
+    estimate_stiffness : returns these warnings with the estimate.
+
     Examples
     --------
     >>> r = FormulaDataRange((326.4, 699.2), (24, 44), (0.7, 2.0), (0, 16), (135, 135), (18, 18))
@@ -452,6 +460,11 @@ def estimate_stiffness(
         stiffness from the fit (leverage included: wider away from the data), its standard
         uncertainty, what they rest on, and the range warnings (the rule is still applied
         outside the data).
+
+    See Also
+    --------
+    traction_tyre_stiffness : the formula's point value.
+    range_warnings : where the estimate leaves its data.
 
     Examples
     --------

@@ -6,7 +6,7 @@ is imported on first use (:mod:`tyrelab._lazy`). The entry points a user needs f
 
 The modules live in layers (issue 45; docs/architecture.md): ``units``; ``model`` and ``elements``;
 the sub-packages ``terrain`` (ground input), ``comfort`` (exposure and its standards), ``solvers``
-(LTI, modes, the beam) and ``validation``; the scenario run; the thesis' studies on top. A module
+(LTI, the time domain, modes, the beam) and ``validation``; the scenario run; the thesis' studies on top. A module
 moved into a sub-package keeps its old name here (``tyrelab.vehicle.profiles`` is
 ``tyrelab.vehicle.terrain.profiles``).
 
@@ -18,7 +18,7 @@ moved into a sub-package keeps its old name here (``tyrelab.vehicle.profiles`` i
    scenario          -- scenario files in TOML: parsing, checks, overrides, sweeps (``parse_scenario``).
    scenario_limits   -- each scenario number's range and the work a sweep may create.
    model             -- the tractor as parts (chassis, axles, cab, implement, seat), assembled once.
-   tractor           -- the tractor in the time domain: exact in contact, RK4 across lift-off.
+   tractor           -- the ch. 7 tractor as twelve numbers on the time domain (solvers.time_domain: exact in contact, RK4 across lift-off).
    lti               -- exact first-order-hold solution of linear time-invariant systems.
    bounce_pitch      -- bounce and pitch natural frequencies of an unsuspended tractor (ch. 8).
 

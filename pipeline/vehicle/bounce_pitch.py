@@ -217,6 +217,15 @@ def frequency_rounding_range(
     -------
     ndarray, shape (2, 2)
         ``[[f1_low, f1_high], [f2_low, f2_high]]`` in Hz.
+
+    See Also
+    --------
+    table_xx : whether the thesis' printed frequencies lie in this range.
+
+    Examples
+    --------
+    >>> np.round(frequency_rounding_range(4700, 5500, 1.56, 0.99, 800, 1200), 2).tolist()   # [low, high] per mode, Hz
+    [[4.63, 4.64], [5.35, 5.39]]
     """
     _check(positive=dict(mass=mass, pitch_inertia=pitch_inertia, front_stiffness_kN_per_m=front_stiffness_kN_per_m,
                          rear_stiffness_kN_per_m=rear_stiffness_kN_per_m),
@@ -272,6 +281,19 @@ def table_xx(tractors: pd.DataFrame, published: pd.DataFrame | None = None, stif
         intervals ``ours_frequency_{1,2}_ci95_{low,high}_Hz``
         (:func:`frequency_uncertainty`); the measured-stiffness rows have none
         (the thesis states no uncertainty for them): NaN.
+
+    See Also
+    --------
+    table_xx_statistics : its ratio errors.
+    tyrelab.vehicle.published_layouts.tractors : the tractors it reads.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> from tyrelab.vehicle.published_layouts import tractors
+    >>> t = table_xx(tractors(read_published("table_xix")), read_published("table_xx"))
+    >>> len(t), sorted(t["stiffness_source"].unique())
+    (10, ['formula', 'stationary_free_vibration'])
     """
     _validate.frame("tractors", tractors)
     if published is not None:
@@ -369,6 +391,20 @@ def table_xx_statistics(table: pd.DataFrame) -> pd.DataFrame:
     -------
     DataFrame
         ``stiffness_source, basis (thesis|ours), n, mean, sd, p_within_10, p_within_30``.
+
+    See Also
+    --------
+    table_xx : the table it summarises.
+    tyrelab.vehicle.metrics.ratio_error_statistics : the statistics.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> from tyrelab.vehicle.published_layouts import tractors
+    >>> t = table_xx(tractors(read_published("table_xix")), read_published("table_xx"))
+    >>> s = table_xx_statistics(t).set_index(["stiffness_source", "basis"])
+    >>> round(float(s.loc[("formula", "thesis"), "mean"]), 3), round(float(s.loc[("formula", "ours"), "mean"]), 3)
+    (1.0, 1.004)
     """
     _validate.frame("table", table)
     rows = []

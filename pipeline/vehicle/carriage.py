@@ -102,7 +102,18 @@ class Carriage:
 
 
 def damped_natural_frequency(carriage: Carriage) -> float:
-    """Damped natural frequency f_n sqrt(1 - zeta^2), Hz."""
+    """Damped natural frequency f_n sqrt(1 - zeta^2), Hz.
+
+    See Also
+    --------
+    Carriage.natural_frequency_Hz : the undamped one.
+
+    Examples
+    --------
+    >>> c = Carriage(mass_kg=1000.0, stiffness_N_per_m=250e3, damping_N_s_per_m=2000.0)   # C_p 1000 N s/m
+    >>> round(c.natural_frequency_Hz, 3), round(c.damping_ratio, 4), round(damped_natural_frequency(c), 3)
+    (2.516, 0.0949, 2.505)
+    """
     _validate.instance("carriage", carriage, Carriage)
     z = carriage.damping_ratio
     return carriage.natural_frequency_Hz * math.sqrt(max(1 - z * z, 0.0))
@@ -146,6 +157,17 @@ def simulate_linear(
     -------
     dict
         ``z_m``, ``v_m_s``, ``a_m_s2`` arrays like ``u_m``.
+
+    See Also
+    --------
+    simulate_nonlinear : with lift-off and friction.
+
+    Examples
+    --------
+    >>> c = Carriage(mass_kg=1000.0, stiffness_N_per_m=250e3, damping_N_s_per_m=2000.0)   # C_p 1000 N s/m
+    >>> n = 5000; r = simulate_linear(c, np.full(n, 0.01), np.zeros(n), 1e-3)     # a 10 mm step
+    >>> round(float(r["z_m"][-1]), 4), bool(r["z_m"].max() > 0.01)               # settles, after an overshoot
+    (0.01, True)
     """
     dt_s = positive("dt_s", dt_s)
     a, b, c, d = state_space(carriage)
@@ -202,6 +224,21 @@ def simulate_nonlinear(
         ``z_m``, ``v_m_s``, ``a_m_s2``, ``lift_off_fraction`` (per run: the fraction of
         its ``n_steps`` samples with the tyre off the ground); arrays of shape ``(N,)``
         or ``(n_runs, N)``.
+
+    See Also
+    --------
+    simulate_linear : the exact linear path.
+    simulate_ivp : the same equations by solve_ivp.
+
+    Examples
+    --------
+    >>> c = Carriage(mass_kg=1000.0, stiffness_N_per_m=250e3, damping_N_s_per_m=2000.0)   # C_p 1000 N s/m
+    >>> dt = 1e-3; t = np.arange(20001) * dt / 2                        # 10 s, the input at half steps
+    >>> u, ud = 0.01 * np.sin(2 * np.pi * 1.5 * t), 0.01 * 2 * np.pi * 1.5 * np.cos(2 * np.pi * 1.5 * t)
+    >>> nl = simulate_nonlinear(c, u, ud, dt, lift_off=False)
+    >>> lin = simulate_linear(c, u[::2], ud[::2], dt)
+    >>> bool(np.abs(nl["z_m"] - lin["z_m"]).max() < 1e-6), float(nl["lift_off_fraction"])
+    (True, 0.0)
     """
     dt_s = positive("dt_s", dt_s)
     u, ud = _half_samples(u_half_m, u_dot_half_m_s)
@@ -322,6 +359,18 @@ def simulate_ivp(
     -------
     dict
         ``t_s``, ``z_m``, ``v_m_s``, ``a_m_s2`` at multiples of ``dt_out_s``.
+
+    See Also
+    --------
+    simulate_nonlinear : the fixed-step integrator it checks.
+
+    Examples
+    --------
+    >>> c = Carriage(mass_kg=1000.0, stiffness_N_per_m=250e3, damping_N_s_per_m=2000.0)   # C_p 1000 N s/m
+    >>> x = np.linspace(0, 50, 501); h = 0.01 * np.sin(2 * np.pi * x / 5.0)
+    >>> r = simulate_ivp(c, x, h, speed_m_s=2.0, t_end_s=5.0, dt_out_s=0.01)
+    >>> len(r["t_s"]), bool(np.abs(r["z_m"]).max() < 0.05)
+    (501, True)
     """
     _validate.instance("carriage", carriage, Carriage)
     for _name, _value in (("speed_m_s", speed_m_s), ("t_end_s", t_end_s), ("dt_out_s", dt_out_s), ("rtol", rtol),
@@ -354,6 +403,18 @@ def acceleration_response(carriage: Carriage, frequency_Hz) -> np.ndarray:
     """Complex acceleration per unit ground displacement, H(f) = z''/u, 1/s^2.
 
     ``H = -w^2 (K + j w C) / (K - M w^2 + j w (C + C_p))``.
+
+    See Also
+    --------
+    response_psd : the acceleration PSD through it.
+    damped_natural_frequency : where it peaks.
+
+    Examples
+    --------
+    >>> c = Carriage(mass_kg=1000.0, stiffness_N_per_m=250e3, damping_N_s_per_m=2000.0)   # C_p 1000 N s/m
+    >>> h = acceleration_response(c, [0.05, 2.5])
+    >>> round(float(abs(h[0]) / (2 * np.pi * 0.05) ** 2), 3), bool(abs(h[1]) > 10 * (2 * np.pi * 0.05) ** 2)
+    (1.0, True)
     """
     _validate.instance("carriage", carriage, Carriage)
     _validate.non_negative_array("frequency_Hz", frequency_Hz)
@@ -377,6 +438,17 @@ def response_psd(
     Returns
     -------
     f_Hz, psd_m2_s4_per_Hz : ndarray
+
+    See Also
+    --------
+    acceleration_response : the transfer function it squares.
+
+    Examples
+    --------
+    >>> c = Carriage(mass_kg=1000.0, stiffness_N_per_m=250e3, damping_N_s_per_m=2000.0)   # C_p 1000 N s/m
+    >>> n = np.array([0.1, 0.5]); f, s = response_psd(c, n, np.full(2, 256e-6), 10 / 3.6)
+    >>> np.round(f, 3).tolist(), bool(np.allclose(s, np.abs(acceleration_response(c, f)) ** 2 * 256e-6 / (10 / 3.6)))
+    ([0.278, 1.389], True)
     """
     _validate.instance("carriage", carriage, Carriage)
     speed_m_s = positive("speed_m_s", speed_m_s)

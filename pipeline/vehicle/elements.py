@@ -317,6 +317,10 @@ def element(name: str, g, stiffness: float, damping: float, model: str = "kelvin
     """An element of the horizontal ``model`` (``"kelvin_voigt"``, ``"maxwell"`` or ``"rolling"``
     with its ``series_damping`` in N s/m, ``inf``: locked).
 
+    See Also
+    --------
+    tyrelab.vehicle.tyres.build_parts : the tyre elements of a tractor.
+
     Examples
     --------
     >>> e = element("rear_longitudinal", np.array([1.0, 0.8]), 9.1e5, 6e3, "maxwell")

@@ -78,14 +78,38 @@ def _as_bool(s: pd.Series) -> pd.Series:
 
 def carriage_rolling(xii: pd.DataFrame) -> pd.DataFrame:
     """Table XII rolling rows: ``speed_km_h, actual_speed_m_s, load_condition, load_kg,
-    damping_kN_s_per_m, stiffness_kN_per_m`` (input of :func:`studies.carriage_study`)."""
+    damping_kN_s_per_m, stiffness_kN_per_m`` (input of :func:`studies.carriage_study`).
+
+    See Also
+    --------
+    carriage_stationary : the stationary rows.
+    tyrelab.vehicle.studies.carriage_study : reads these rows.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> r = carriage_rolling(read_published("table_xii"))
+    >>> len(r), r[["tyre_id", "speed_km_h", "load_kg", "stiffness_kN_per_m"]].to_dict("records")[0]
+    (12, {'tyre_id': 'T4', 'speed_km_h': 17.5, 'load_kg': 1860, 'stiffness_kN_per_m': 380})
+    """
     _validate.frame("xii", xii, ["characteristics", "nominal_speed_km_h"])
     rolling = xii[xii["characteristics"] == "rolling"].rename(columns={"nominal_speed_km_h": "speed_km_h"})
     return rolling.reset_index(drop=True)
 
 
 def carriage_stationary(xii: pd.DataFrame) -> pd.DataFrame:
-    """Table XII stationary rows: ``load_condition, load_kg, damping_kN_s_per_m, stiffness_kN_per_m``."""
+    """Table XII stationary rows: ``load_condition, load_kg, damping_kN_s_per_m, stiffness_kN_per_m``.
+
+    See Also
+    --------
+    carriage_rolling : the rolling rows.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> carriage_stationary(read_published("table_xii"))[["load_condition", "stiffness_kN_per_m"]].to_dict("records")[:2]
+    [{'load_condition': 'light', 'stiffness_kN_per_m': 545}, {'load_condition': 'heavy', 'stiffness_kN_per_m': 450}]
+    """
     _validate.frame("xii", xii, ["characteristics", "load_condition", "load_kg", "damping_kN_s_per_m", "stiffness_kN_per_m"])
     cols = ["load_condition", "load_kg", "damping_kN_s_per_m", "stiffness_kN_per_m"]
     return xii.loc[xii["characteristics"] == "stationary", cols].reset_index(drop=True)
@@ -96,6 +120,17 @@ def carriage_accuracy(table: pd.DataFrame) -> pd.DataFrame:
 
     Labels follow :func:`tyrelab.vehicle.metrics.accuracy_table`; the ``>``
     qualifiers of '>0.9999' cells are dropped (the value 0.9999 is kept).
+
+    See Also
+    --------
+    tractor_accuracy : Table XVII, the same for the tractor.
+    tyrelab.vehicle.metrics.accuracy_table : ours in the same layout.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> carriage_accuracy(read_published("table_xiii")).iloc[0].to_dict()
+    {'quantity': 'rms_acceleration', 'statistic': 'mean_ratio_error', 'thesis_rolling': 0.92, 'thesis_stationary': 1.03}
     """
     _validate.frame("table", table, ["quantity", "statistic", "rolling", "stationary"])
     rows = []
@@ -114,6 +149,17 @@ def tractor_mass(xv: pd.DataFrame) -> pd.DataFrame:
 
     Columns ``load_condition, mass_class, front_pressure_bar, rear_pressure_bar,
     mass_kg, pitch_inertia_kg_m2, cg_height_m, cg_to_rear_axle_m, wheelbase_m``.
+
+    See Also
+    --------
+    tractor_tyres : Table XVI, the tyres of each run.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> m = tractor_mass(read_published("table_xv"))
+    >>> len(m), list(m.columns[:4])
+    (4, ['load_condition', 'mass_class', 'front_pressure_bar', 'rear_pressure_bar'])
     """
     _validate.frame("xv", xv, ["parameter", "condition", "value", "value_text"])
     v = {(r.parameter, r.condition): r.value for r in xv.itertuples(index=False)}
@@ -139,7 +185,19 @@ def tractor_mass(xv: pd.DataFrame) -> pd.DataFrame:
 
 
 def tractor_tyres(xvi: pd.DataFrame) -> pd.DataFrame:
-    """Table XVI as :func:`studies.tractor_study` reads it (the digitised layout already is)."""
+    """Table XVI as :func:`studies.tractor_study` reads it (the digitised layout already is).
+
+    See Also
+    --------
+    tractor_axles_si : one row's axles in SI.
+    tractor_mass : Table XV, the tractor's masses.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> len(tractor_tyres(read_published("table_xvi")))
+    32
+    """
     _validate.frame("xvi", xvi)
     return xvi.reset_index(drop=True)
 
@@ -148,6 +206,10 @@ def tractor_axles_si(row) -> dict[str, float]:
     """A Table XVI row's tyres (per tyre, kN/m and kN s/m) as the pitch-plane tractor's axles in SI:
     ``front_stiffness_N_per_m``, ``rear_stiffness_N_per_m``, ``front_damping_N_s_per_m``,
     ``rear_damping_N_s_per_m`` (an axle is its two tyres).
+
+    See Also
+    --------
+    tractor_tyres : the rows it takes.
 
     Examples
     --------
@@ -165,7 +227,18 @@ def tractor_axles_si(row) -> dict[str, float]:
 
 
 def tractor_accuracy(xvii: pd.DataFrame) -> pd.DataFrame:
-    """Table XVII as ``track, quantity, statistic, thesis_rolling, thesis_stationary``."""
+    """Table XVII as ``track, quantity, statistic, thesis_rolling, thesis_stationary``.
+
+    See Also
+    --------
+    carriage_accuracy : Tables XIII and XIV, the same for the carriage.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> tractor_accuracy(read_published("table_xvii")).iloc[0].to_dict()
+    {'track': 'SBT', 'quantity': 'vertical_rms', 'statistic': 'mean_ratio_error', 'thesis_rolling': 1.13, 'thesis_stationary': 0.97}
+    """
     _validate.frame("xvii", xvii, ["surface", "quantity", "component", "statistic", "rolling", "stationary"])
     rows = [
         (
@@ -181,7 +254,18 @@ def tractor_accuracy(xvii: pd.DataFrame) -> pd.DataFrame:
 
 
 def longitudinal_sweep(xviii: pd.DataFrame) -> pd.DataFrame:
-    """Table XVIII: the sweep columns plus ``row`` = ``predicted`` | ``measured``."""
+    """Table XVIII: the sweep columns plus ``row`` = ``predicted`` | ``measured``.
+
+    See Also
+    --------
+    tractor_tyres : the runs of the tractor study.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> longitudinal_sweep(read_published("table_xviii"))["row"].value_counts().to_dict()
+    {'predicted': 8, 'measured': 1}
+    """
     _validate.frame("xviii", xviii, [*_XVIII_COLUMNS, "is_measured"])
     out = xviii[_XVIII_COLUMNS].astype(float)
     out["row"] = _as_bool(xviii["is_measured"]).map({True: "measured", False: "predicted"})
@@ -190,7 +274,19 @@ def longitudinal_sweep(xviii: pd.DataFrame) -> pd.DataFrame:
 
 def tractors(xix: pd.DataFrame) -> pd.DataFrame:
     """Table XIX with boolean ``four_wheel_drive`` and ``front_water_ballast``
-    (input of :func:`bounce_pitch.table_xx`)."""
+    (input of :func:`bounce_pitch.table_xx`).
+
+    See Also
+    --------
+    tyrelab.vehicle.bounce_pitch.table_xx : reads these rows.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> t = tractors(read_published("table_xix"))
+    >>> len(t), t["four_wheel_drive"].dtype.name
+    (5, 'bool')
+    """
     _validate.frame("xix", xix, ["four_wheel_drive", "front_water_ballast"])
     out = xix.copy()
     for c in ("four_wheel_drive", "front_water_ballast"):

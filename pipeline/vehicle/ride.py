@@ -169,6 +169,21 @@ def ride_sweep(
         reason (:func:`tyrelab.vehicle.scenario.variants.unused_key_problems`), before any work.
     ValueError
         A pressure given by option and swept key both, values out of range, too much work.
+
+    See Also
+    --------
+    ride : one variant.
+    tyrelab.vehicle.run.output.results_table : the ``ride_results`` rows of its results.
+    tyrelab.vehicle.run.sweep.expected_sweep : the frequency-domain expectation alone.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
+    >>> results = ride_sweep(s, rear_pressures_bar=[0.8, 1.2], speeds_km_h=[8.0], with_spectra=False)
+    >>> [(r.tyres["rear"].pressure_bar, r.nominal) for r in results]     # 1.2 bar is the scenario's own
+    [(0.8, False), (1.2, True)]
     """
     method = method or scenario.simulation.method
     _validate.choice("method", method, METHODS)

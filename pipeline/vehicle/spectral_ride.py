@@ -85,6 +85,10 @@ def lift_off_probability(static_load_N, force_sd_N):
     """Probability that a tyre leaves the ground, ``Φ(-F_static / σ_F)``: its dynamic force, Gaussian
     with standard deviation ``force_sd_N``, pulls below minus its static load (0 where ``σ = 0``).
 
+    See Also
+    --------
+    lifting_speeds : the speeds whose probability is too high.
+
     Examples
     --------
     >>> round(float(lift_off_probability(10e3, 10e3 / 3)), 6)  # 3 sigma
@@ -105,6 +109,10 @@ def primary_rows(table: pd.DataFrame) -> pd.DataFrame:
     beside spectral ones are a comparison, not a second answer). The figures and variant tables
     of a ride read these.
 
+    See Also
+    --------
+    spectral_row : the spectral rows it prefers.
+
     Examples
     --------
     >>> t = pd.DataFrame({"front_pressure_bar": [1.0, 1.0, 1.2], "rear_pressure_bar": 1.0, "speed_km_h": 8.0,
@@ -124,7 +132,22 @@ def primary_rows(table: pd.DataFrame) -> pd.DataFrame:
 
 def at_own_values(scenario: Scenario, variant: Scenario, combo: dict) -> bool:
     """Whether a variant (its scenario and swept values) is at ``scenario``'s own tyre pressures and
-    swept keys' values (the file's)."""
+    swept keys' values (the file's).
+
+    See Also
+    --------
+    nominal_index : the variant at them.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
+    >>> from tyrelab.vehicle.scenario.variants import with_values
+    >>> heavy = with_values(s, {"tractor.mass_kg": s.tractor.mass_kg + 500})
+    >>> at_own_values(s, s, {}), at_own_values(s, heavy, {"tractor.mass_kg": s.tractor.mass_kg + 500})
+    (True, False)
+    """
     _validate.instance("scenario", scenario, Scenario)
 
     def own(key: str):
@@ -143,7 +166,22 @@ def at_own_values(scenario: Scenario, variant: Scenario, combo: dict) -> bool:
 def nominal_index(scenario: Scenario, variants: list[tuple[Scenario, dict]]) -> int:
     """The variant of ``variants`` (``(scenario, swept values)`` pairs of :func:`ride_sweep`) at the
     scenario's own tyre pressures and swept keys' values (the file's; :func:`at_own_values`), else 0
-    (the first)."""
+    (the first).
+
+    See Also
+    --------
+    at_own_values : the test of each variant.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
+    >>> from tyrelab.vehicle.scenario.variants import with_values
+    >>> soft = with_values(s, {"tyres.rear.pressure_bar": 0.8})
+    >>> nominal_index(s, [(soft, {"tyres.rear.pressure_bar": 0.8}), (s, {})]), nominal_index(s, [(soft, {})])
+    (1, 0)
+    """
     _validate.instance("scenario", scenario, Scenario)
     return next((k for k, (sc, combo) in enumerate(variants) if at_own_values(scenario, sc, combo)), 0)
 
@@ -170,6 +208,11 @@ def spectral_row(speed_km_h: float, tyres: dict, i: int, aw_m_s2: dict, axes, ho
         Tyres an element stands for (2 in the pitch plane, 1 in 3-D): the per-tyre force.
     exposure : dict
         :func:`tyrelab.vehicle.ride.exposure` of ``aw_m_s2``.
+
+    See Also
+    --------
+    lift_off_probability : its lift-off columns.
+    primary_rows : the rows that answer.
     """
     aw = {ax: float(aw_m_s2.get(ax, 0.0)) for ax in ("z", "x", "y")}
     highest = max(iso2631.AXIS_FACTOR[ax] * aw[ax] for ax in axes)
@@ -192,6 +235,10 @@ def spectral_row(speed_km_h: float, tyres: dict, i: int, aw_m_s2: dict, axes, ho
 def lifting_speeds(rows: pd.DataFrame) -> list[float]:
     """The speeds of a variant's spectral rows whose lift-off probability (either axle) exceeds
     :data:`LIFT_OFF_PROBABILITY_LIMIT`: ``auto`` simulates them too.
+
+    See Also
+    --------
+    lift_off_probability : the probability of each row.
 
     Examples
     --------

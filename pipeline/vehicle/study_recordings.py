@@ -81,6 +81,11 @@ def carriage_recordings(table_xii: pd.DataFrame, stationary: pd.DataFrame, seed:
     dict
         :func:`~tyrelab.vehicle.studies.carriage_key` -> vertical acceleration, m/s², at
         :data:`tyrelab.vehicle.studies.FS_HZ` from the end of the lead-in.
+
+    See Also
+    --------
+    tractor_recordings : the tractor study's.
+    tyrelab.vehicle.studies.carriage_study : the study that reads them.
     """
     _validate.frame("table_xii", table_xii)
     _validate.frame("stationary", stationary)
@@ -118,6 +123,11 @@ def tractor_recordings(table_xv: pd.DataFrame, table_xvi: pd.DataFrame, seed: in
         :func:`~tyrelab.vehicle.studies.tractor_key` -> ``{"vertical_m_s2", "pitch_rad_s2",
         "longitudinal_m_s2"}`` at :data:`tyrelab.vehicle.studies.FS_HZ`, the study's record
         window (:func:`~tyrelab.vehicle.studies.tractor_record_window`).
+
+    See Also
+    --------
+    carriage_recordings : the carriage study's.
+    tyrelab.vehicle.studies.tractor_study : the study that reads them.
     """
     _validate.frame("table_xv", table_xv)
     _validate.frame("table_xvi", table_xvi)

@@ -452,6 +452,10 @@ def static_tyre_loads(asm) -> dict[str, float]:
     (:meth:`tyrelab.vehicle.model.Assembly.static_tyre_loads_N`): the pitch plane's element carries
     the axle's two tyres; in 3-D the mean of the axle's left and right tyres (one footprint per axle).
 
+    See Also
+    --------
+    build_parts : the tyre elements it loads.
+
     Examples
     --------
     >>> from tyrelab.vehicle.tractor import Tractor, tractor_parts

@@ -30,6 +30,10 @@ STANDARD_GRAVITY_M_S2 = 9.80665
 def from_kilo(value):
     """A value in kN/m, kN s/m or kN m/rad (scalar or array) in N/m, N s/m or N m/rad.
 
+    See Also
+    --------
+    to_kilo : back to kN units.
+
     Examples
     --------
     >>> from_kilo(455.0)
@@ -40,6 +44,10 @@ def from_kilo(value):
 
 def to_kilo(value):
     """:func:`from_kilo` back: SI to kN/m, kN s/m or kN m/rad.
+
+    See Also
+    --------
+    from_kilo : its inverse.
 
     Examples
     --------

@@ -50,6 +50,18 @@ def ride_plan(scenarios: dict) -> pd.DataFrame:
     ----------
     scenarios : dict
         Scenario file name of :data:`RIDE_PLAN` -> its loaded :class:`~tyrelab.vehicle.scenario.Scenario`.
+
+    See Also
+    --------
+    virtual_recordings : the recordings of its rows.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> p = ride_plan({f: load_scenario(scenarios_dir() / f) for f in ("mf698t.toml", "modern_tractor.toml")})
+    >>> len(p), p.loc[0, ["ride_id", "speed_km_h", "hours_per_day"]].to_dict()
+    (9, {'ride_id': 'mf698t_10kmh', 'speed_km_h': 10.0, 'hours_per_day': 0.4})
     """
     _validate.instance("scenarios", scenarios, dict)
     rows = []
@@ -84,6 +96,21 @@ def virtual_recordings(scenario, key: str, seed: int) -> tuple[dict, dict]:
     truth : dict
         The factors the virtual tractor differs by (``mass_factor``, ``front_stiffness_factor``,
         ``rear_stiffness_factor``).
+
+    See Also
+    --------
+    ride_plan : the campaign's rows.
+    tyrelab.vehicle.ride.ride : the ride each recording comes from.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> from tyrelab.vehicle.scenario.variants import with_overrides, with_values
+    >>> s = with_overrides(with_values(load_scenario(scenarios_dir() / "modern_tractor.toml"), {"surface.length_m": 60}), [8.0])
+    >>> frames, tractor = virtual_recordings(s, "demo", seed=1)
+    >>> list(frames[8.0].columns), sorted(tractor)          # the tractor differs from its scenario, seeded
+    (['time_s', 'seat_x_m_s2', 'seat_z_m_s2', 'floor_x_m_s2', 'floor_z_m_s2'], ['front_stiffness_factor', 'mass_factor', 'rear_stiffness_factor'])
     """
     _validate.instance("key", key, str)
     _validate.positive_int("seed", seed, minimum=0)

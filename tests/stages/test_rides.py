@@ -100,6 +100,10 @@ def test_exposure_day_from_the_tasks(built):
     a = {n: axes.loc[(n, "seat_z_m_s2"), "a_w_m_s2"] for n in ("high", "same")}
     assert day.loc[0, "a8_m_s2"] == pytest.approx(np.sqrt((a["high"] ** 2 * 2 + a["same"] ** 2 * 5) / 8))
     assert day.loc[0, "a8_axis"] == "z"
+    # issue 47: the daily VDV's verdict beside A(8)'s, as tyrelab exposure's JSON gives it
+    assert day.loc[0, "vdv_verdict"] == ("above limit value" if day.loc[0, "vdv_daily_m_s1_75"] > 21.0 else
+                                         "above action value" if day.loc[0, "vdv_daily_m_s1_75"] > 9.1 else
+                                         "below action value")
 
 
 def test_incremental_and_recordings_removed(campaign, built, tmp_path):

@@ -115,6 +115,10 @@ def test_crest_factor_rule():
     assert s["rms_method_sufficient"] and s["method_reasons"] == []
     assert iso2631.method_check(1.0, 3.0, 1.6, 1.0, 16.0)["reasons"] == ["MTVV/a_w 1.6 > 1.5"]
     assert iso2631.method_check(1.0, 3.0, 1.0, 3.6, 16.0)["reasons"] == ["VDV/(a_w T^1/4) 1.8 > 1.75"]
+    # issue 47: never equal numbers on both sides (1.5036 is not "1.5 > 1.5", 1.7502 not "1.75 > 1.75")
+    assert iso2631.method_check(1.0, 3.0, 1.5036, 1.0, 16.0)["reasons"] == ["MTVV/a_w 1.504 > 1.5"]
+    assert iso2631.method_check(1.0, 9.0004, 1.0, 3.5004, 16.0)["reasons"] == ["crest factor 9.0004 > 9",
+                                                                               "VDV/(a_w T^1/4) 1.7502 > 1.75"]
 
 
 @pytest.mark.parametrize("rows", [777, 5000, 262144])

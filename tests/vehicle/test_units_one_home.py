@@ -19,8 +19,6 @@ from tyrelab.vehicle import units
 GRAVITY_VALUES = (9.81, 9.80665)
 #: The units' one home, and the thesis' 9.81 of the chapter 6 study (a named constant).
 GRAVITY_HOMES = {"units.py", "carriage.py"}
-#: Files issue 45's other half (engineer i45b) converts; each entry is removed when it lands.
-KM_H_PENDING = {"ride.py", "sweeps.py", "scenario_limits.py"}
 
 
 def _numbers(tree):
@@ -53,7 +51,7 @@ def test_one_gravity_in_the_vehicle_package():
 
 
 def test_one_km_h_conversion_in_the_vehicle_package():
-    found = _found("km/h", {"units.py"} | KM_H_PENDING)
+    found = _found("km/h", {"units.py"})
     assert not found, "km/h converted by hand (use tyrelab.vehicle.units.km_h_to_m_s):\n" + "\n".join(found)
 
 

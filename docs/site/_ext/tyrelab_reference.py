@@ -120,19 +120,11 @@ def declared_tables() -> dict[str, str]:
 
 
 def _schema_descriptions() -> tuple[dict[str, dict[str, str]], dict[str, str]]:
-    """(published table -> column -> description and its title), (column -> description of the raw schemas)."""
-    from tyrelab.resources import schemas_dir
+    """(published table -> column -> description), (column -> description of the raw schemas):
+    :func:`tyrelab.legend.schema_descriptions`, the one reader of those schemas."""
+    from tyrelab import legend
 
-    published, raw = {}, {}
-    for p in sorted((Path(schemas_dir()) / "published").glob("*.json")):
-        doc = json.loads(p.read_text(encoding="utf-8"))
-        published[p.stem] = {f["name"]: f.get("description", "") for f in doc.get("fields", [])}
-        published[p.stem]["__title__"] = doc.get("title", "")
-    for name in ("raw_manifest", "tyres", "raw_rides", "raw_ride", "raw_run"):
-        p = Path(schemas_dir()) / f"{name}.json"
-        if p.exists():
-            for f in json.loads(p.read_text(encoding="utf-8")).get("fields", []):
-                raw.setdefault(f["name"], f.get("description", ""))
+    published, raw, _ = legend.schema_descriptions()
     return published, raw
 
 
@@ -157,7 +149,7 @@ def table_nodes(build: str | None, warn) -> list:
 
     from tyrelab import legend
 
-    published, raw = _schema_descriptions()
+    published, _, titles = legend.schema_descriptions()
     con = duckdb.connect(str(db), read_only=True)
     try:
         con.execute(f"SET file_search_path = '{Path(build).resolve()}'")
@@ -175,7 +167,7 @@ def table_nodes(build: str | None, warn) -> list:
             for (col, unit, text), (_, typ, *_) in zip(legend.describe(name, [c[0] for c in cols]), cols):
                 rows.append([col, typ.lower(), unit, text or "–"])
             about = legend.legend().get("tables", {}).get(name, {}).get("description", "")
-            intro = (f"Written by {stage}." + (f" {published[key]['__title__']}." if key in published else "")
+            intro = (f"Written by {stage}." + (f" {titles[key]}." if key in titles else "")
                      + (f" {about}" if about else ""))
             out.append(_section("table", name, nodes.paragraph(text=intro),
                                 _table(["column", "type", "unit", "meaning"], rows, [18, 8, 8, 50])))

@@ -16,9 +16,9 @@ A day whose tasks' recordings include one shorter than :data:`MIN_RECORD_S` gets
 no verdict: ``verdict`` and ``vdv_verdict`` say ``"no verdict: …"`` and the hours to the action
 and limit values are NaN. ISO 2631-1:1997 §5.5 asks for a measurement long enough for reasonable
 statistical precision and typical of the exposure assessed, and names no figure; the floor is
-the ride command's (:data:`tyrelab.vehicle.scenario_limits.MIN_VERDICT_DURATION_S`, four periods
-of 0.4 Hz, the lower band limit of the weightings) — a documented choice, far below what a
-survey should record.
+the ride command's too (:data:`MIN_RECORD_S`, which the scenario's limits read as
+:data:`tyrelab.vehicle.scenario_limits.MIN_VERDICT_DURATION_S`: four periods of 0.4 Hz, the lower
+band limit of the weightings) — a documented choice, far below what a survey should record.
 
 Examples
 --------
@@ -36,27 +36,33 @@ from dataclasses import dataclass, field
 from ... import _validate
 from . import iso2631
 from . import iso2631_5
-from ..scenario_limits import LIMITS, MIN_VERDICT_DURATION_S
 
 __all__ = ["TaskExposure", "daily_exposure", "governing_axis", "verdict", "EXPOSURE_VERDICTS", "MAX_HOURS_PER_DAY", "MIN_HOURS_PER_DAY",
-           "HOURS_TOLERANCE_H", "MIN_RECORD_S", "hours_problem"]
+           "HOURS_TOLERANCE_H", "MIN_RECORD_S", "hours_problem", "hours_to"]
 
 #: Verdicts against the Directive's daily values (the strings of :data:`tyrelab.vehicle.ride.VERDICTS`).
 EXPOSURE_VERDICTS = ("below action value", "above action value", "above limit value")
 #: A day has 24 hours: longer task hours are refused.
 MAX_HOURS_PER_DAY = 24.0
-#: Shortest daily exposure to a task, h (36 s; a scenario's ``exposure.hours_per_day`` has the
-#: same bound): shorter is a typo, and 1e-320 h would overflow the hours to the action value.
-MIN_HOURS_PER_DAY = LIMITS["exposure.hours_per_day"][0]
+#: Shortest daily exposure to a task, h (36 s; the bound of a scenario's ``exposure.hours_per_day``
+#: too, :data:`tyrelab.vehicle.scenario_limits.LIMITS`): shorter is a typo, and 1e-320 h would
+#: overflow the hours to the action value.
+MIN_HOURS_PER_DAY = 0.01
 #: How far the tasks' hours may add up beyond :data:`MAX_HOURS_PER_DAY`, h: the rounding of a sum
 #: of decimal hours (80 tasks of 0.3 h add up to 24.000000000000036 in floating point).
 HOURS_TOLERANCE_H = 1e-9
-#: Shortest recording a day's verdict is given on, s (see the module docstring).
-MIN_RECORD_S = MIN_VERDICT_DURATION_S
+#: Shortest recording a day's verdict is given on, s: four periods of 0.4 Hz, the lower band limit
+#: of the ISO 2631-1 weightings (a documented choice; see the module docstring). The ride's
+#: ``MIN_VERDICT_DURATION_S`` (:mod:`tyrelab.vehicle.scenario_limits`) is this one.
+MIN_RECORD_S = 10.0
 
 
 def hours_problem(hours) -> str | None:
     """Why ``hours`` cannot be a task's daily hours (``None`` if it can).
+
+    See Also
+    --------
+    daily_exposure : refuses such hours.
 
     Examples
     --------
@@ -112,6 +118,10 @@ class TaskExposure:
 def verdict(a8_m_s2: float) -> str:
     """The Directive's verdict on a daily A(8).
 
+    See Also
+    --------
+    daily_exposure : the day's A(8) and its verdict.
+
     Examples
     --------
     >>> verdict(0.49), verdict(0.6), verdict(1.2)
@@ -162,11 +172,28 @@ def governing_axis(k_a_w_m_s2) -> str | None:
     return max(ordered, key=lambda ax: finite[ax]) if ordered else None
 
 
-def _hours_to(value: float, a8: float, day_hours: float) -> float:
+def hours_to(value_m_s2: float, a8_m_s2: float, day_hours: float) -> float:
+    """Hours a day at which a day's mix of exposure (``a8_m_s2`` over ``day_hours``) reaches the daily
+    value ``value_m_s2``: ``T_day (value / A(8))²`` (EU Directive 2002/44/EC; one task of ``k a_w``
+    over 8 h: ``8 h (value / (k a_w))²``); ``inf`` without vibration, NaN for an A(8) that is not a
+    number. The one home of the hours to the action and limit values (the ride's rows read it).
+
+    See Also
+    --------
+    daily_exposure : a day's A(8) and its hours to the action and limit values.
+
+    Examples
+    --------
+    >>> round(hours_to(iso2631.EU_ACTION_A8_M_S2, 0.6, 8.0), 3), hours_to(0.5, 0.0, 8.0)
+    (5.556, inf)
+    """
+    _validate.positive("value_m_s2", value_m_s2)
+    _validate.non_negative("day_hours", day_hours)
+    a8 = a8_m_s2
     if not a8 > 0:
         return math.inf if a8 == 0 else math.nan
     try:
-        return day_hours * (value / a8) ** 2
+        return day_hours * (value_m_s2 / a8) ** 2
     except OverflowError:  # an A(8) of ~1e-160 m/s²: no vibration to speak of
         return math.inf
 
@@ -217,8 +244,8 @@ def daily_exposure(tasks) -> dict:
         rows.append({"name": t.name, "hours": float(t.hours), "measured_s": float(t.measured_s),
                      "a_w_m_s2": {ax: float(t.a_w_m_s2[ax]) for ax in partial},
                      "partial_a8_m_s2": partial,
-                     "hours_to_eav": _hours_to(iso2631.EU_ACTION_A8_M_S2, top, 8.0),
-                     "hours_to_elv": _hours_to(iso2631.EU_LIMIT_A8_M_S2, top, 8.0), **t.extra})
+                     "hours_to_eav": hours_to(iso2631.EU_ACTION_A8_M_S2, top, 8.0),
+                     "hours_to_elv": hours_to(iso2631.EU_LIMIT_A8_M_S2, top, 8.0), **t.extra})
     a8_axes = {ax: math.sqrt(sum(r["partial_a8_m_s2"].get(ax, 0.0) ** 2 for r in rows)) for ax in axes}
     a8_axis = governing_axis(a8_axes)
     a8 = a8_axes[a8_axis] if a8_axis else math.nan
@@ -248,8 +275,8 @@ def daily_exposure(tasks) -> dict:
         "vdv_daily_axes_m_s1_75": vdv_axes,
         "vdv_daily_m_s1_75": vdv,
         "vdv_daily_axis": vdv_axis,
-        "hours_to_eav": math.nan if withheld else _hours_to(iso2631.EU_ACTION_A8_M_S2, a8, day_hours),
-        "hours_to_elv": math.nan if withheld else _hours_to(iso2631.EU_LIMIT_A8_M_S2, a8, day_hours),
+        "hours_to_eav": math.nan if withheld else hours_to(iso2631.EU_ACTION_A8_M_S2, a8, day_hours),
+        "hours_to_elv": math.nan if withheld else hours_to(iso2631.EU_LIMIT_A8_M_S2, a8, day_hours),
         "exposure_points": 400.0 * a8**2,
         "verdict": withheld or verdict(a8),
         "vdv_verdict": withheld or (EXPOSURE_VERDICTS[2] if vdv > iso2631.EU_LIMIT_VDV else

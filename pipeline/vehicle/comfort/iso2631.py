@@ -43,6 +43,7 @@ __all__ = [
     "EU_ACTION_VDV",
     "EU_LIMIT_VDV",
     "AXIS_FACTOR",
+    "AXIS_WEIGHTING",
     "RUNNING_RMS_TAU_S",
     "CREST_FACTOR_LIMIT",
     "running_rms",
@@ -68,6 +69,10 @@ EU_LIMIT_VDV = 21.0
 
 #: Multiplying factors k for the seat point (ISO 2631-1 §8.2.3): x, y 1.4; z 1.0.
 AXIS_FACTOR = {"x": 1.4, "y": 1.4, "z": 1.0}
+#: The frequency weighting of each axis of a seated person (ISO 2631-1 §8.2.3, Table 1; health):
+#: W_d horizontal, W_k vertical. The one home (issue 45) the spectral ride, the measured recordings
+#: and :func:`evaluate` read.
+AXIS_WEIGHTING = {"x": "Wd", "y": "Wd", "z": "Wk"}
 
 #: Integration time of the running r.m.s. (ISO 2631-1 §6.3.1, linear integration), s.
 RUNNING_RMS_TAU_S = 1.0
@@ -111,6 +116,11 @@ def weighting_response(frequency_Hz, name: str = "Wk") -> np.ndarray:
     ndarray of complex
         Response; ``abs`` gives the weighting factor (ISO 2631-1 Table 3).
 
+    See Also
+    --------
+    weighting_ba : a digital filter of it.
+    weighted_signal : applies it to a record.
+
     Examples
     --------
     >>> round(float(abs(weighting_response(1.0, "Wk"))), 3)
@@ -134,6 +144,19 @@ def weighting_ba(name: str, fs_Hz: float) -> tuple[np.ndarray, np.ndarray]:
     Returns
     -------
     (b, a) : tuple of ndarray
+
+    See Also
+    --------
+    weighting_response : the analog response it approximates.
+    weighted_signal : the exact frequency-domain application.
+
+    Examples
+    --------
+    >>> from scipy import signal
+    >>> b, a = weighting_ba("Wk", 100.0)
+    >>> _, h = signal.freqz(b, a, worN=[4.0], fs=100.0)
+    >>> round(float(abs(h[0])), 3), round(float(abs(weighting_response(4.0, "Wk"))), 3)   # within 0.5 % at 4 Hz
+    (0.97, 0.967)
     """
     fs_Hz = positive("fs_Hz", fs_Hz)
     from scipy import signal
@@ -161,6 +184,18 @@ def weighted_signal(acceleration_m_s2, fs_Hz: float, name: str = "Wk") -> np.nda
     -------
     ndarray
         Weighted acceleration, m/s^2, same length.
+
+    See Also
+    --------
+    weighting_response : the weighting applied.
+    weighted_rms : the r.m.s. of the result.
+
+    Examples
+    --------
+    >>> fs = 200.0; t = np.arange(0, 60, 1 / fs)
+    >>> a = np.sin(2 * np.pi * 4.0 * t)                    # 4 Hz, 1 m/s² peak
+    >>> round(float(np.sqrt(np.mean(weighted_signal(a, fs, "Wk") ** 2))), 3)
+    0.683
     """
     fs_Hz = positive("fs_Hz", fs_Hz)
     a = np.asarray(acceleration_m_s2, dtype=float)
@@ -322,10 +357,24 @@ def evaluate(
         ``weighting, axis_factor, unweighted_rms_m_s2, weighted_rms_m_s2`` (k·a_w),
         ``vdv_m_s1_75`` (record), ``vdv_daily_m_s1_75`` (extrapolated to the exposure),
         ``crest_factor, a8_m_s2, exceeds_action, exceeds_limit``.
+
+    See Also
+    --------
+    weighted_signal : the weighting applied.
+    method_check : whether the r.m.s. method is enough.
+    tyrelab.vehicle.daily_exposure.daily_exposure : a day of several tasks.
+
+    Examples
+    --------
+    >>> fs = 200.0; t = np.arange(0, 60, 1 / fs)
+    >>> a = np.sin(2 * np.pi * 4.0 * t)                    # 4 Hz, 1 m/s² peak
+    >>> r = evaluate(a, fs, "z")
+    >>> round(r["weighted_rms_m_s2"], 3), round(r["a8_m_s2"], 3), r["exceeds_action"]   # 0.7071 × |W_k(4 Hz)| 0.967, less the ends
+    (0.683, 0.683, True)
     """
     _validate.choice("axis", axis, tuple(AXIS_FACTOR))
     _validate.non_negative("exposure_hours", exposure_hours)
-    name = "Wk" if axis == "z" else "Wd"
+    name = AXIS_WEIGHTING[axis]
     k = AXIS_FACTOR[axis]
     a = np.asarray(acceleration_m_s2, dtype=float)
     aw = k * weighted_signal(a, fs_Hz, name)
@@ -368,6 +417,10 @@ def running_rms(weighted_m_s2, fs_Hz: float, tau_s: float = RUNNING_RMS_TAU_S) -
     ndarray
         ``a_w(t0)`` at every sample, m/s².
 
+    See Also
+    --------
+    mtvv : its maximum.
+
     Examples
     --------
     >>> a = np.ones(400)
@@ -387,6 +440,11 @@ def running_rms(weighted_m_s2, fs_Hz: float, tau_s: float = RUNNING_RMS_TAU_S) -
 def mtvv(weighted_m_s2, fs_Hz: float, tau_s: float = RUNNING_RMS_TAU_S) -> float:
     """Maximum transient vibration value, the largest :func:`running_rms`, m/s² (ISO 2631-1 Eq. 3).
 
+    See Also
+    --------
+    running_rms : the running r.m.s. it maximises.
+    method_check : compares it with a_w.
+
     Examples
     --------
     >>> t = np.arange(6000) / 100.0
@@ -402,6 +460,11 @@ def vector_sum(a_wx_m_s2: float, a_wy_m_s2: float, a_wz_m_s2: float) -> float:
 
     The seat-point factors k of §8.2.3. This is not the Directive's A(8), which takes the
     highest single axis (:mod:`tyrelab.vehicle.daily_exposure`).
+
+    See Also
+    --------
+    evaluate : one axis' values.
+    tyrelab.vehicle.daily_exposure.daily_exposure : the Directive's A(8), the highest axis.
 
     Examples
     --------
@@ -427,6 +490,11 @@ def method_check(a_w_m_s2: float, crest: float, mtvv_m_s2: float, vdv_m_s1_75: f
         ``rms_method_sufficient`` (bool), ``mtvv_ratio``, ``vdv_ratio`` and ``reasons``
         (list of str, empty when the basic method is enough).
 
+    See Also
+    --------
+    evaluate : the values it checks.
+    mtvv : the maximum transient vibration value.
+
     Examples
     --------
     >>> method_check(1.0, 12.0, 1.2, 10.0, 3600.0)["reasons"]
@@ -438,11 +506,11 @@ def method_check(a_w_m_s2: float, crest: float, mtvv_m_s2: float, vdv_m_s1_75: f
     vdv_ratio = vdv_m_s1_75 / (a_w_m_s2 * duration_s**0.25) if a_w_m_s2 > 0 and duration_s > 0 else math.nan
     reasons = []
     if crest > CREST_FACTOR_LIMIT:
-        reasons.append(f"crest factor {crest:.3g} > {CREST_FACTOR_LIMIT:g}")
+        reasons.append(f"crest factor {_validate.compared(crest, '>', CREST_FACTOR_LIMIT)}")
     if mtvv_ratio > MTVV_RATIO_LIMIT:
-        reasons.append(f"MTVV/a_w {mtvv_ratio:.3g} > {MTVV_RATIO_LIMIT:g}")
+        reasons.append(f"MTVV/a_w {_validate.compared(mtvv_ratio, '>', MTVV_RATIO_LIMIT)}")
     if vdv_ratio > VDV_RATIO_LIMIT:
-        reasons.append(f"VDV/(a_w T^1/4) {vdv_ratio:.3g} > {VDV_RATIO_LIMIT:g}")
+        reasons.append(f"VDV/(a_w T^1/4) {_validate.compared(vdv_ratio, '>', VDV_RATIO_LIMIT)}")
     return {"rms_method_sufficient": not reasons, "mtvv_ratio": float(mtvv_ratio), "vdv_ratio": float(vdv_ratio),
             "reasons": reasons}
 
@@ -471,6 +539,16 @@ def impulse_response(response, fs_Hz: float, ring_s: float, lead_s: float = 0.2)
         ``h[-lead], ..., h[0], ..., h[ring - 1]``.
     lead : int
         Number of taps before t = 0 (the output delay of a plain convolution with ``taps``).
+
+    See Also
+    --------
+    weighted_signal : applies a weighting on the whole record instead.
+
+    Examples
+    --------
+    >>> taps, lead = impulse_response(lambda f: np.ones(f.shape, complex), 100.0, ring_s=1.0, lead_s=0.1)
+    >>> lead, len(taps), round(float(taps[lead]), 12), round(float(np.abs(np.delete(taps, lead)).max()), 12)
+    (10, 110, 1.0, 0.0)
     """
     fs_Hz = positive("fs_Hz", fs_Hz)
     n_ring = max(1, int(round(positive("ring_s", ring_s) * fs_Hz)))

@@ -71,6 +71,10 @@ def spine_response(frequency_Hz) -> np.ndarray:
     -------
     ndarray of complex
 
+    See Also
+    --------
+    spinal_acceleration : applies it to a record.
+
     Examples
     --------
     >>> f_peak = 31.0 / (2 * math.pi)
@@ -92,6 +96,18 @@ def spinal_acceleration(seat_z_m_s2, fs_Hz: float) -> np.ndarray:
     Applied as :func:`tyrelab.vehicle.iso2631.weighted_signal` applies a weighting: the
     record zero-padded to twice its length, times H at each FFT bin. Streams use
     :class:`tyrelab.vehicle.iso2631.ResponseFilter` with the same response.
+
+    See Also
+    --------
+    spine_response : the transfer function applied.
+    acceleration_dose : the dose from its peaks.
+
+    Examples
+    --------
+    >>> fs = 500.0; t = np.arange(0, 10, 1 / fs)
+    >>> a = np.sin(31.0 * t)                               # 1 m/s² at the spine model's peak, 4.93 Hz
+    >>> round(float(np.abs(spinal_acceleration(a, fs)[1000:-1000]).max()), 2)   # |H| = 1.56 there
+    1.56
     """
     fs_Hz = positive("fs_Hz", fs_Hz)
     a = np.asarray(seat_z_m_s2, dtype=float)
@@ -102,6 +118,10 @@ def spinal_acceleration(seat_z_m_s2, fs_Hz: float) -> np.ndarray:
 
 def positive_peaks(response_m_s2) -> np.ndarray:
     """The maximum of each run of positive samples (the peaks between zero crossings), m/s².
+
+    See Also
+    --------
+    dose_from_peaks : the dose of these peaks.
 
     Examples
     --------
@@ -118,6 +138,11 @@ def positive_peaks(response_m_s2) -> np.ndarray:
 def dose_from_peaks(peaks_m_s2) -> float:
     """``D_z = 1.07 (Σ A_i⁶)^(1/6)``, m/s² (Formula 3); 0 without peaks.
 
+    See Also
+    --------
+    positive_peaks : the peaks it takes.
+    acceleration_dose : the dose of a record.
+
     Examples
     --------
     >>> round(dose_from_peaks([1.0, 1.0]), 6)
@@ -129,7 +154,20 @@ def dose_from_peaks(peaks_m_s2) -> float:
 
 
 def acceleration_dose(seat_z_m_s2, fs_Hz: float) -> float:
-    """D_z of a whole record of seat vertical acceleration, m/s²."""
+    """D_z of a whole record of seat vertical acceleration, m/s².
+
+    See Also
+    --------
+    spinal_acceleration : the response whose peaks it counts.
+    daily_dose : the day's dose from the tasks' doses.
+
+    Examples
+    --------
+    >>> fs = 500.0; t = np.arange(0, 10, 1 / fs)
+    >>> a = np.sin(31.0 * t)                               # 1 m/s² at the spine model's peak, 4.93 Hz
+    >>> round(acceleration_dose(a, fs), 2)               # 1.07 × 1.56 × (50 peaks)^(1/6) = 3.20, less the ends
+    3.17
+    """
     return dose_from_peaks(positive_peaks(spinal_acceleration(seat_z_m_s2, fs_Hz)))
 
 
@@ -144,6 +182,10 @@ def daily_dose(doses_m_s2, exposure_s, measured_s) -> float:
         Daily exposure to each condition, s (any unit, the same as ``measured_s``).
     measured_s : float or array_like
         Duration of each condition's measurement.
+
+    See Also
+    --------
+    acceleration_dose : each task's dose.
 
     Examples
     --------

@@ -52,11 +52,9 @@ from . import metrics as mt
 __all__ = ["WEIGHTING_OF", "ChannelResult", "ChannelAnalyser", "RecordingAnalysis", "analyse_recording",
            "analyse_signals", "WEIGHTING_RING_S", "PSD_BANDWIDTH_HZ", "PEAK_BAND_HZ"]
 
-#: Channel -> (ISO 2631-1 weighting, axis) for the channels weighted (seat and cab floor).
-WEIGHTING_OF = {
-    "seat_x_m_s2": ("Wd", "x"), "seat_y_m_s2": ("Wd", "y"), "seat_z_m_s2": ("Wk", "z"),
-    "floor_x_m_s2": ("Wd", "x"), "floor_y_m_s2": ("Wd", "y"), "floor_z_m_s2": ("Wk", "z"),
-}
+#: Channel -> (ISO 2631-1 weighting, axis) for the channels weighted (seat and cab floor):
+#: ``seat_x_m_s2`` ... ``floor_z_m_s2``, each axis's weighting :data:`~tyrelab.vehicle.comfort.iso2631.AXIS_WEIGHTING`.
+WEIGHTING_OF = {f"{place}_{ax}_m_s2": (iso2631.AXIS_WEIGHTING[ax], ax) for place in ("seat", "floor") for ax in "xyz"}
 #: Length after which the weightings' impulse responses have rung down (the 0.4 Hz
 #: band-limiting high-pass decays as exp(-1.78 t): 1e-6 of its peak after 10 s), s.
 WEIGHTING_RING_S = 20.0
@@ -417,6 +415,22 @@ def analyse_recording(recording, workers: int | None = None) -> RecordingAnalysi
     ------
     tyrelab.rawformat.RunFileError
         From the reader, if a later chunk is bad (NaN, time going back, irregular).
+
+    See Also
+    --------
+    analyse_signals : the same for signals in memory.
+    tyrelab.vehicle.daily_exposure.daily_exposure : the day from the tasks' values.
+
+    Examples
+    --------
+    >>> import pandas as pd, tempfile
+    >>> from pathlib import Path
+    >>> from tyrelab.rawformat.rides import open_recording
+    >>> fs = 200.0; t = np.arange(0, 60, 1 / fs)
+    >>> path = Path(tempfile.mkdtemp()) / "seat.csv"
+    >>> pd.DataFrame({"time_s": t, "seat_z_m_s2": np.sin(2 * np.pi * 4 * t)}).to_csv(path, index=False)
+    >>> round(analyse_recording(open_recording(path)).axes()["z"]["a_w_m_s2"], 3)   # 0.7071 × |W_k(4 Hz)|
+    0.683
     """
     if not all(hasattr(recording, a) for a in ("sample_rate_Hz", "offsets", "channels", "chunks", "warnings")):
         raise ValueError(f"recording must be an opened recording (rawformat.rides.open_recording), got "
@@ -453,6 +467,17 @@ def analyse_signals(signals: dict, fs_Hz: float, chunk_rows: int | None = None) 
     """The same analysis for signals in memory (e.g. a prediction), channel name -> samples.
 
     The offset is the mean of the first ``chunk_rows`` samples, as a recording's.
+
+    See Also
+    --------
+    analyse_recording : the same for a recording file.
+
+    Examples
+    --------
+    >>> fs = 200.0; t = np.arange(0, 60, 1 / fs)
+    >>> z = analyse_signals({"seat_z_m_s2": np.sin(2 * np.pi * 4 * t)}, fs).axes()["z"]
+    >>> round(z["a_w_m_s2"], 3), z["weighting"], z["rms_method_sufficient"], round(z["peak_frequency_Hz"], 2)
+    (0.683, 'Wk', True, 4.0)
     """
     from ...rawformat.rides import CHUNK_ROWS
 

@@ -37,7 +37,17 @@ __all__ = [
 
 
 def rms(x) -> float:
-    """Root mean square of the mean-removed record (same unit as ``x``)."""
+    """Root mean square of the mean-removed record (same unit as ``x``).
+
+    See Also
+    --------
+    band_rms : the r.m.s. of a band of a PSD.
+
+    Examples
+    --------
+    >>> round(rms(np.sin(2 * np.pi * np.arange(1000) / 100) + 5.0), 4)     # a sine's 1/√2; the mean removed
+    0.7071
+    """
     _validate.finite_array("x", x, min_samples=0)
     a = np.asarray(x, dtype=float)
     return float(np.sqrt(np.mean((a - a.mean()) ** 2)))
@@ -62,6 +72,19 @@ def acceleration_psd(x, fs_Hz: float, bandwidth_Hz: float = 0.1) -> tuple[np.nda
     -------
     f_Hz, psd : ndarray
         Frequencies (Hz) and PSD (unit^2/Hz).
+
+    See Also
+    --------
+    band_rms : the r.m.s. of a band of it.
+    spectral_peak : its dominant peak.
+
+    Examples
+    --------
+    >>> fs = 100.0; t = np.arange(0, 60, 1 / fs)
+    >>> x = np.sin(2 * np.pi * 2.0 * t)                  # 2 Hz, amplitude 1 m/s²
+    >>> f, p = acceleration_psd(x, fs)
+    >>> round(float(f[1]), 3), round(float(f[np.argmax(p)]), 2)       # 0.1 Hz resolution, the peak at 2 Hz
+    (0.1, 2.0)
     """
     fs_Hz = positive("fs_Hz", fs_Hz)
     a = np.asarray(x, dtype=float)
@@ -70,7 +93,20 @@ def acceleration_psd(x, fs_Hz: float, bandwidth_Hz: float = 0.1) -> tuple[np.nda
 
 
 def band_rms(f_Hz, psd, f_low_Hz: float, f_high_Hz: float) -> float:
-    """rms from a PSD between two frequencies (thesis §7.4: 0.5-10 Hz)."""
+    """rms from a PSD between two frequencies (thesis §7.4: 0.5-10 Hz).
+
+    See Also
+    --------
+    acceleration_psd : the PSD it integrates.
+    rms : the r.m.s. of the record.
+
+    Examples
+    --------
+    >>> fs = 100.0; t = np.arange(0, 60, 1 / fs)
+    >>> x = np.sin(2 * np.pi * 2.0 * t)                  # 2 Hz, amplitude 1 m/s²
+    >>> round(band_rms(*acceleration_psd(x, fs), 0.5, 10.0), 3)
+    0.707
+    """
     _validate.band("f_low_Hz", (f_low_Hz, f_high_Hz))
     f = np.asarray(f_Hz)
     p = np.asarray(psd)
@@ -92,6 +128,19 @@ def spectral_peak(f_Hz, psd, f_low_Hz: float = 0.5, f_high_Hz: float = 10.0) -> 
         ``peak_frequency_Hz``, ``peak_height`` (PSD units), ``sqrt_peak_height``,
         ``half_power_width_Hz``, ``width_over_frequency`` (≈ 2 ζ for a lightly damped
         single mode).
+
+    See Also
+    --------
+    spectral_peaks : several peaks.
+    record_metrics : rms and this peak of a record.
+
+    Examples
+    --------
+    >>> fs = 100.0; t = np.arange(0, 60, 1 / fs)
+    >>> x = np.sin(2 * np.pi * 2.0 * t)                  # 2 Hz, amplitude 1 m/s²
+    >>> pk = spectral_peak(*acceleration_psd(x, fs))
+    >>> round(pk["peak_frequency_Hz"], 2), bool(pk["half_power_width_Hz"] < 0.3)
+    (2.0, True)
     """
     _validate.band("f_low_Hz", (f_low_Hz, f_high_Hz))
     f = np.asarray(f_Hz, dtype=float)
@@ -137,6 +186,17 @@ def spectral_peaks(
         How many peaks to return (fewer if fewer exist; padded with NaN).
     min_separation_Hz : float
         Minimum distance between reported peaks.
+
+    See Also
+    --------
+    spectral_peak : the dominant peak with its width.
+
+    Examples
+    --------
+    >>> fs = 100.0; t = np.arange(0, 60, 1 / fs)
+    >>> x = np.sin(2 * np.pi * 1.5 * t) + 0.5 * np.sin(2 * np.pi * 3.0 * t)
+    >>> [round(v, 2) for v in spectral_peaks(*acceleration_psd(x, fs))]
+    [1.5, 3.0]
     """
     n_peaks = _validate.positive_int("n_peaks", n_peaks)
     _validate.band("f_low_Hz", (f_low_Hz, f_high_Hz))
@@ -172,6 +232,19 @@ def envelope(x, fs_Hz: float, centre_Hz: float, cutoff_Hz: float = 0.5) -> np.nd
     -------
     ndarray
         Envelope, same unit and length as ``x``. A sine of amplitude A gives A.
+
+    See Also
+    --------
+    envelope_similarity : how alike two envelopes are.
+    envelope_error : their rms difference.
+
+    Examples
+    --------
+    >>> fs = 100.0; t = np.arange(0, 60, 1 / fs)
+    >>> x = np.sin(2 * np.pi * 2.0 * t)                  # 2 Hz, amplitude 1 m/s²
+    >>> e = envelope(2.0 * x, fs, centre_Hz=2.0)
+    >>> round(float(np.median(e)), 3)                   # a sine of amplitude A gives A
+    2.0
     """
     cutoff_Hz = positive("cutoff_Hz", cutoff_Hz)
     fs_Hz = positive("fs_Hz", fs_Hz)
@@ -200,6 +273,20 @@ def envelope_similarity(env_x, env_y, fs_Hz: float, max_lag_s: float = 1.0) -> f
     ``R = Rxy(tau)_max / sqrt(Rxx(tau)_max Ryy(tau)_max)`` over lags
     ``|tau| <= max_lag_s``, envelopes mean-removed (so independent envelopes give ≈ 0
     and identical ones 1, as the thesis describes).
+
+    See Also
+    --------
+    envelope : the envelopes compared.
+    envelope_error : their rms difference.
+
+    Examples
+    --------
+    >>> fs = 50.0; t = np.arange(0, 20, 1 / fs)
+    >>> e = 1 + 0.5 * np.sin(2 * np.pi * 0.2 * t)
+    >>> round(envelope_similarity(e, e, fs), 6), round(envelope_similarity(e, np.roll(e, 10), fs), 2)  # a lag of 0.2 s
+    (1.0, 1.0)
+    >>> round(envelope_similarity(e, 1 + 0.5 * np.sin(2 * np.pi * 0.45 * t), fs), 1) < 0.5      # another envelope
+    True
     """
     fs_Hz = positive("fs_Hz", fs_Hz)
     x = np.asarray(env_x, dtype=float)
@@ -215,7 +302,18 @@ def envelope_similarity(env_x, env_y, fs_Hz: float, max_lag_s: float = 1.0) -> f
 
 
 def envelope_error(env_predicted, env_measured) -> float:
-    """Normalised rms envelope error: rms(pred - meas) / rms(meas) (thesis §6.4.3, Fig. 60)."""
+    """Normalised rms envelope error: rms(pred - meas) / rms(meas) (thesis §6.4.3, Fig. 60).
+
+    See Also
+    --------
+    envelope : the envelopes compared.
+    envelope_similarity : their correlation.
+
+    Examples
+    --------
+    >>> round(envelope_error([1.1, 2.2, 3.3], [1.0, 2.0, 3.0]), 6)
+    0.1
+    """
     _validate.finite_array("env_predicted", env_predicted)
     _validate.finite_array("env_measured", env_measured)
     p = np.asarray(env_predicted, dtype=float)
@@ -243,6 +341,19 @@ def compare_records(
         ``ratio_rms``, ``ratio_sqrt_peak_height``, ``ratio_peak_frequency``,
         ``ratio_width_over_frequency``; ``envelope_correlation`` and
         ``envelope_error``.
+
+    See Also
+    --------
+    record_metrics : the measures of one record.
+    accuracy_table : the statistics over many runs.
+
+    Examples
+    --------
+    >>> fs = 100.0; t = np.arange(0, 60, 1 / fs)
+    >>> x = np.sin(2 * np.pi * 2.0 * t)                  # 2 Hz, amplitude 1 m/s²
+    >>> c = compare_records(0.9 * x, x, fs)
+    >>> round(c["ratio_rms"], 6), round(c["ratio_peak_frequency"], 6), round(c["envelope_correlation"], 3)
+    (0.9, 1.0, 1.0)
     """
     fs_Hz = positive("fs_Hz", fs_Hz)
     bandwidth_Hz = positive("bandwidth_Hz", bandwidth_Hz)
@@ -278,6 +389,10 @@ def ratio_error_statistics(ratios, tolerances=(0.1, 0.3)) -> dict:
     -------
     dict
         ``n``, ``mean``, ``sd`` (ddof=1) and ``p_within_<pct>`` per tolerance.
+
+    See Also
+    --------
+    accuracy_table : these statistics per group of runs.
 
     Examples
     --------
@@ -331,6 +446,20 @@ def accuracy_table(comparisons: pd.DataFrame, by: str = "characteristics") -> pd
         ``mean_ratio_error, sd_ratio_error, p_within_10, p_within_30`` for the four
         ratio quantities, and ``mean, sd`` of ``envelope_correlation`` and
         ``envelope_error``.
+
+    See Also
+    --------
+    compare_records : the per-run columns it reads.
+    ratio_error_statistics : the statistics of each column.
+
+    Examples
+    --------
+    >>> fs = 100.0; t = np.arange(0, 60, 1 / fs)
+    >>> x = np.sin(2 * np.pi * 2.0 * t)                  # 2 Hz, amplitude 1 m/s²
+    >>> rows = [{"characteristics": "rolling", **compare_records(k * x, x, fs)} for k in (0.9, 1.0, 1.1)]
+    >>> t = accuracy_table(pd.DataFrame(rows)).set_index(["quantity", "statistic"])
+    >>> round(float(t.loc[("rms_acceleration", "mean_ratio_error"), "rolling"]), 6), round(float(t.loc[("rms_acceleration", "sd_ratio_error"), "rolling"]), 6)
+    (1.0, 0.1)
     """
     _validate.frame("comparisons", comparisons, [by])
     groups = {k: g for k, g in comparisons.groupby(by, sort=False)}

@@ -40,6 +40,20 @@ def spectral_variants(scenarios, tyre_data=None, with_spectra: bool = True,
     -------
     list of RideResult
         One per scenario, its ``speeds`` the spectral rows.
+
+    See Also
+    --------
+    tyrelab.vehicle.run.time.ride_variants : the same simulated.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
+    >>> from tyrelab.vehicle.scenario.variants import with_overrides
+    >>> r = spectral_variants([with_overrides(s, speeds_km_h=[8.0])], with_spectra=False)
+    >>> r[0].speeds[["speed_km_h", "method"]].to_dict("records")
+    [{'speed_km_h': 8.0, 'method': 'spectral'}]
     """
     for k, sc in enumerate(scenarios):
         _validate.instance(f"scenarios[{k}]", sc, Scenario)

@@ -232,6 +232,21 @@ def result_json(results: list[RideResult]) -> dict:
     ``lift_off_fraction_*`` null; ``evdv_m_s1_75``, ``evdv_daily_m_s1_75``, ``front_tyre_force_sd_N``,
     ``rear_tyre_force_sd_N``, ``lift_off_probability_front``/``_rear`` besides) and, where it was
     simulated too, ``time_domain``: those speeds' time rows.
+
+    See Also
+    --------
+    results_table : the same results as table rows.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
+    >>> from tyrelab.vehicle.ride import ride_sweep
+    >>> results = ride_sweep(s, rear_pressures_bar=[0.8, 1.2], speeds_km_h=[8.0], with_spectra=False)
+    >>> doc = result_json(results)
+    >>> doc["name"] == s.name, [v["rear_pressure_bar"] for v in doc["sweep"]], doc["speeds"][0]["method"]
+    (True, [0.8, 1.2], 'spectral')
     """
     if not _validate.instances("results", results, RideResult):
         raise ValueError("results must hold at least one RideResult")
@@ -276,6 +291,21 @@ def results_table(results: list[RideResult], scenario_id: str | None = None) -> 
     ``roll_Hz`` always; ``front_axle_roll_Hz``, ``cab_pitch_Hz``, ... where the model has them).
     ``method`` says how a row was computed (``time``, ``spectral``): a variant computed both ways
     (:attr:`RideResult.time_rows`) has its spectral rows, then its time rows.
+
+    See Also
+    --------
+    result_json : the same results as JSON.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
+    >>> from tyrelab.vehicle.ride import ride_sweep
+    >>> results = ride_sweep(s, rear_pressures_bar=[0.8, 1.2], speeds_km_h=[8.0], with_spectra=False)
+    >>> t = results_table(results)          # the nominal variant is also simulated: a time row beside its spectral one
+    >>> t[["rear_pressure_bar", "method", "is_nominal"]].to_dict("records")
+    [{'rear_pressure_bar': 0.8, 'method': 'spectral', 'is_nominal': False}, {'rear_pressure_bar': 1.2, 'method': 'spectral', 'is_nominal': True}, {'rear_pressure_bar': 1.2, 'method': 'time', 'is_nominal': True}]
     """
     _validate.instances("results", results, RideResult)
     frames = []

@@ -32,6 +32,10 @@ def state_names(tractor: Tractor) -> list[str]:
     ``x'`` ("vx", any longitudinal element) and ``q = d - s`` (Maxwell). A Maxwell element
     without spring or damper carries no force and adds no state.
 
+    See Also
+    --------
+    simulate_state_space : simulates those states.
+
     Examples
     --------
     >>> state_names(Tractor(1000, 250, 1.0, 1.0, 0.5, 1e5, 1e5, 0.0, 0.0, 1e5, 1e3, "maxwell"))
@@ -91,6 +95,11 @@ def simulate_state_space(a, b, c, d, w, dt_s: float = DT_S, outputs=None) -> np.
     -------
     ndarray, shape (p, N)
 
+    See Also
+    --------
+    tyrelab.vehicle.lti.discretise : the discretisation it uses.
+    ground_response : the same system in the frequency domain.
+
     Examples
     --------
     Unit step into ``x' = -x``, ``y = x``: ``1 - exp(-t)``.
@@ -121,6 +130,21 @@ def ground_response(h: np.ndarray, frequency_Hz, speed_m_s: float, wheelbase_m: 
     Returns
     -------
     ndarray, shape (p, n_f)
+
+    See Also
+    --------
+    simulate_state_space : the same system in time.
+
+    Examples
+    --------
+    An output that adds the front and rear ground displacements (bounce at the CG of a symmetric
+    tractor, per unit): the wheelbase filter cancels it where the rear is half a period behind,
+    ``f = v / (2 L)``:
+
+    >>> f = np.array([0.0, 0.5, 1.0]); h = np.zeros((1, 4, f.size), complex)
+    >>> h[:, 0] = h[:, 2] = 1.0                                 # to front and rear displacement; no rate terms
+    >>> np.round(np.abs(ground_response(h, f, speed_m_s=2.5, wheelbase_m=2.5)), 9).tolist()
+    [[2.0, 0.0, 2.0]]
     """
     positive("speed_m_s", speed_m_s)
     _validate.non_negative("wheelbase_m", wheelbase_m)

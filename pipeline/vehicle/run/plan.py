@@ -241,7 +241,20 @@ def _lateral_interval(p: VariantPlan, rows: list) -> dict:
 def seat_axes(scenario: Scenario) -> dict[str, str]:
     """Seat axis (``z``, ``x``, and ``y`` in 3-D) -> the assembly output that gives it: the seat
     point's acceleration in space, or with ``[seat] gravity_tilt`` what a body-fixed
-    accelerometer reads (plus ``g θ`` fore-aft and ``g φ`` lateral)."""
+    accelerometer reads (plus ``g θ`` fore-aft and ``g φ`` lateral).
+
+    See Also
+    --------
+    tyrelab.vehicle.model.assemble : the assembly whose outputs they are.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
+    >>> seat_axes(s)                        # the pitch plane: no lateral axis
+    {'z': 'seat_vertical_m_s2', 'x': 'seat_longitudinal_m_s2'}
+    """
     _validate.instance("scenario", scenario, Scenario)
     tilt = "_tilt" if scenario.seat.gravity_tilt else ""
     axes = {"z": SEAT_VERTICAL, "x": f"seat_longitudinal{tilt}_m_s2"}

@@ -119,7 +119,7 @@ def exposure(a_wz_m_s2: float, a_wx_m_s2: float, hours_per_day: float, a_wy_m_s2
         "a_v_m_s2": iso2631.vector_sum(a_wx_m_s2, a_wy_m_s2, a_wz_m_s2),
         "a8_m_s2": a8,
         "a8_axis": axis,
-        "hours_to_eav": de._hours_to(iso2631.EU_ACTION_A8_M_S2, aw, 8.0),
-        "hours_to_elv": de._hours_to(iso2631.EU_LIMIT_A8_M_S2, aw, 8.0),
+        "hours_to_eav": de.hours_to(iso2631.EU_ACTION_A8_M_S2, aw, 8.0),
+        "hours_to_elv": de.hours_to(iso2631.EU_LIMIT_A8_M_S2, aw, 8.0),
         "verdict": de.verdict(a8),
     }

@@ -147,6 +147,10 @@ def expected_sweep(scenario: Scenario, front_pressures_bar, rear_pressures_bar, 
         of these (``a8_m_s2``, ``hours_to_eav``, ``hours_to_elv``, ``verdict``) at the scenario's
         hours per day.
 
+    See Also
+    --------
+    tyrelab.vehicle.ride.ride_sweep : simulated as well.
+
     Examples
     --------
     >>> from tyrelab.resources import scenarios_dir

@@ -21,7 +21,7 @@ from .. import lti
 from .. import metrics as mt
 from ..scenario import Scenario
 from ..scenario.limits import MIN_VERDICT_DURATION_S
-from ..tractor import simulate
+from ..solvers.time_domain import LIFT_OFF_RTOL, off_ground, simulate  # noqa: F401  (LIFT_OFF_RTOL: a name of this module)
 from .plan import axle_flags, finish, prepare, record_window, speed_run
 from .output import RideResult
 from .records import AXIS_WORDS, FIGURE_BAND_HZ, RideCache, VariantPlan
@@ -31,26 +31,10 @@ from .track import DT_S, FS_HZ, tyre_inputs, wheel_inputs
 
 __all__ = ["ride_variants", "LIFT_OFF_RTOL", "RK4_REAL_STABILITY", "fast_element_problems"]
 
-#: A tyre is off the ground where its dynamic force reaches minus its static load: to this relative
-#: rounding (the nonlinear model clamps the force at exactly that; the linear model's force that
-#: would pull is tested the same way).
-LIFT_OFF_RTOL = 1e-6
 #: The classical RK4's stability bound on the negative real axis, ``|λ dt|`` (2.785; Hairer & Wanner,
 #: Solving ODEs II, §IV.2): an element's own state that relaxes faster than this over the lift-off
 #: path's step grows without bound there (its records are not finite).
 RK4_REAL_STABILITY = 2.785
-
-
-def off_ground(force_N, static_N: float) -> np.ndarray:
-    """Where a tyre is off the ground (or would pull, in the linear model): its dynamic force at or
-    below minus its static load, to :data:`LIFT_OFF_RTOL`.
-
-    Examples
-    --------
-    >>> off_ground(np.array([-50.0, -99.99999999, -120.0]), 100.0).tolist()
-    [False, True, True]
-    """
-    return np.asarray(force_N) <= -static_N * (1 - LIFT_OFF_RTOL)
 
 
 def ride_variants(scenarios, tyre_data=None, with_spectra: bool = True, with_signals: bool = False,
@@ -58,7 +42,23 @@ def ride_variants(scenarios, tyre_data=None, with_spectra: bool = True, with_sig
     """:func:`~tyrelab.vehicle.ride.ride` for several scenarios (variants) at once, batched: the runs are taken speed by
     speed, so the wheel inputs of a speed are built once for every variant that shares its track,
     footprints and radii, and a run's record is reduced to its numbers as soon as it is simulated.
-    Each result is what :func:`~tyrelab.vehicle.ride.ride` gives for that scenario alone."""
+    Each result is what :func:`~tyrelab.vehicle.ride.ride` gives for that scenario alone.
+
+    See Also
+    --------
+    tyrelab.vehicle.run.frequency.spectral_variants : the same in the frequency domain.
+    tyrelab.vehicle.ride.ride_sweep : builds the variants and calls it.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
+    >>> from tyrelab.vehicle.scenario.variants import with_overrides
+    >>> r = ride_variants([with_overrides(s, speeds_km_h=[8.0])], with_spectra=False)
+    >>> r[0].speeds[["speed_km_h", "method"]].to_dict("records")
+    [{'speed_km_h': 8.0, 'method': 'time'}]
+    """
     for k, sc in enumerate(scenarios):
         _validate.instance(f"scenarios[{k}]", sc, Scenario)
     cache = cache or RideCache()

@@ -31,6 +31,7 @@ import numpy as np
 from ..terrain.profiles import ROAD_HEIGHT_BOUNDS_M
 from ..units import km_h_to_m_s
 from ... import _validate
+from ..comfort.daily_exposure import MAX_HOURS_PER_DAY, MIN_HOURS_PER_DAY, MIN_RECORD_S
 
 __all__ = ["LIMITS", "METHODS", "uses_spectral", "MAX_VARIANTS", "MAX_SPECTRAL_VARIANTS", "MAX_SAMPLES", "MIN_VERDICT_DURATION_S",
            "BYTES_PER_SAMPLE", "SECONDS_PER_SAMPLE", "SECONDS_PER_SPECTRAL_ROW", "MAX_TRACK_POINTS", "scenario_problems",
@@ -68,7 +69,7 @@ LIMITS: dict[str, tuple[float, float, str]] = {
     "surface.lateral_offset_m": (-50.0, 50.0, "m"),
     "surface.spectrum_waviness": (0.5, 5.0, ""),
     "exposure.speeds_km_h": (0.5, 80.0, "km/h"),
-    "exposure.hours_per_day": (0.01, 24.0, "h"),
+    "exposure.hours_per_day": (MIN_HOURS_PER_DAY, MAX_HOURS_PER_DAY, "h"),  # a task's hours (comfort/daily_exposure.py)
     "exposure.working_speed_km_h": (0.5, 80.0, "km/h"),  # one of the speeds (checked when parsed)
     "simulation.duration_s": (1.0, 3_600.0, "s"),
     "profile.height_m": (*ROAD_HEIGHT_BOUNDS_M, "m"),  # one home: every road's heights (terrain.profiles)
@@ -129,8 +130,9 @@ BYTES_PER_SAMPLE = 300.0
 SECONDS_PER_SAMPLE = 2.5e-6
 #: Shortest seat record that gets a verdict against the EU limits, s: four periods of 0.4 Hz, the
 #: lower band limit of the ISO 2631-1 weightings (a documented choice; shorter records get their
-#: exposure numbers, a warning and `verdict` "no verdict: ...").
-MIN_VERDICT_DURATION_S = 10.0
+#: exposure numbers, a warning and `verdict` "no verdict: ..."). The daily exposure's
+#: :data:`~tyrelab.vehicle.comfort.daily_exposure.MIN_RECORD_S`, one number (issue 45).
+MIN_VERDICT_DURATION_S = MIN_RECORD_S
 
 
 def _limit(key: str) -> tuple[float, float, str]:
@@ -183,6 +185,18 @@ def scenario_problems(scenario) -> list[str]:
 
     Also: a step ``dx_m`` longer than a sixteenth of the track, and a profile CSV whose heights
     or gaps between points are out of range.
+
+    See Also
+    --------
+    override_problems : numbers given beside a scenario.
+    work_problems : the work a sweep asks for.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> scenario_problems(load_scenario(scenarios_dir() / "modern_tractor.toml"))
+    []
     """
     s = scenario
     checks: list[tuple[str, object]] = []
@@ -356,6 +370,10 @@ _profile_problems = profile_problems
 def override_problems(speeds_km_h=None, front_pressures_bar=None, rear_pressures_bar=None) -> list[str]:
     """Speeds and pressures given beside a scenario (``tyrelab ride --speeds`` ...) outside :data:`LIMITS`.
 
+    See Also
+    --------
+    scenario_problems : the scenario's own numbers.
+
     Examples
     --------
     >>> override_problems(speeds_km_h=[8, 1e300])
@@ -380,6 +398,10 @@ def uses_spectral(scenario, method: str, n_variants: int) -> bool:
     """Whether ``method`` computes spectral rows for a sweep of ``n_variants`` of ``scenario``:
     ``spectral``; ``auto`` for more than one variant on an ISO 8608 surface (a profile or any other
     deterministic road is simulated).
+
+    See Also
+    --------
+    work_estimate : the work under each method.
 
     Examples
     --------
@@ -426,6 +448,10 @@ def work_estimate(scenario, n_variants: int, speeds_km_h=None, method: str = "ti
     the nominal variant besides (the speeds that may lift a tyre are bounded when known, by
     ``max_samples``).
 
+    See Also
+    --------
+    work_problems : the refusals from it.
+
     Examples
     --------
     >>> from types import SimpleNamespace as NS
@@ -462,6 +488,10 @@ def work_problems(scenario, n_variants: int, speeds_km_h=None, *, max_variants: 
 
     ``max_variants`` default: :data:`MAX_SPECTRAL_VARIANTS` where ``method`` computes spectral rows
     (:func:`work_estimate`), else :data:`MAX_VARIANTS`.
+
+    See Also
+    --------
+    work_estimate : the estimate it checks.
 
     Examples
     --------

@@ -67,6 +67,11 @@ def _sections() -> dict[str, dict]:
 def key_table() -> pd.DataFrame:
     """Every scenario key with its section, type, unit, default and description.
 
+    See Also
+    --------
+    numeric_key : one key's field.
+    parse_scenario : checks a scenario against it.
+
     Examples
     --------
     >>> t = key_table()
@@ -517,6 +522,11 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
     ScenarioError
         With every problem found.
 
+    See Also
+    --------
+    key_table : the keys it accepts.
+    scenario_from_dict : the same from a dict.
+
     Examples
     --------
     >>> s = parse_scenario('''
@@ -668,7 +678,17 @@ def _from_document(doc: dict, where: str, base_dir, path, confine: bool, read_pr
 
 def numeric_key(key: str) -> dict | None:
     """The schema field of a numeric scenario key ``"section.key"`` (``"tyres.front.pressure_bar"``),
-    or None when it is not one."""
+    or None when it is not one.
+
+    See Also
+    --------
+    key_table : every key.
+
+    Examples
+    --------
+    >>> numeric_key("tyres.front.pressure_bar")["unit"], numeric_key("seat.dampingratio") is None
+    ('bar', True)
+    """
     _checks.instance("key", key, str)
     section, _, name = key.rpartition(".")
     f = _sections().get(section, {}).get("fields", {}).get(name)

@@ -60,6 +60,11 @@ MAX_SET_COMBINATIONS = 10_000
 def parse_sets(items) -> dict:
     """``["KEY=V1,V2", ...]`` (``tyrelab ride --set``) -> ``{"KEY": (V1, V2)}``, every problem at once.
 
+    See Also
+    --------
+    with_values : a scenario with one combination of them.
+    sweep_variants : every combination.
+
     Examples
     --------
     >>> parse_sets(["implement.mass_kg=500,1000", "tyres.rear.pressure_bar=1.2"])
@@ -93,6 +98,11 @@ def parse_sets(items) -> dict:
 def with_values(scenario: Scenario, values: dict) -> Scenario:
     """A copy of ``scenario`` with numeric keys replaced, ``{"section.key": value}``, checked as the
     file is (every problem at once, :class:`ScenarioError`); the ``[sweep]`` table is dropped.
+
+    See Also
+    --------
+    with_overrides : speeds and pressures only.
+    parse_sets : the values of ``--set``.
 
     Examples
     --------
@@ -145,6 +155,19 @@ def with_overrides(
     Per-speed stiffness/damping lists keep applying to the scenario's own speeds
     (:func:`tyrelab.vehicle.ride.per_speed` interpolates them); pressures replace
     the tyre's pressure only.
+
+    See Also
+    --------
+    with_values : any numeric key.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
+    >>> o = with_overrides(s, speeds_km_h=[8.0], rear_pressure_bar=0.8)
+    >>> o.exposure.speeds_km_h, o.rear.pressure_bar, o.front.pressure_bar == s.front.pressure_bar
+    ((8.0,), 0.8, True)
     """
     s = scenario
     if speeds_km_h:
@@ -182,6 +205,19 @@ def pressure_axes(scenario: Scenario, front_pressures_bar, rear_pressures_bar, k
         ``keys`` without the pressure keys.
     asked : list of str
         The pressure keys given a value (by any of these), not left at the tyre's own.
+
+    See Also
+    --------
+    sweep_variants : the sweep these axes span.
+    parse_sets : the swept keys.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
+    >>> pressure_axes(s, [1.2, 1.6], None, {"seat.damping_ratio": (0.2, 0.4)})[:3]
+    ([1.2, 1.6], [1.2], {'seat.damping_ratio': (0.2, 0.4)})
     """
     _validate.instance("scenario", scenario, Scenario)
     others = dict(keys)
@@ -318,6 +354,18 @@ def unused_key_problems(scenario: Scenario, keys, spectral: bool = False) -> lis
         The swept keys (``{"section.key": values}`` or the keys alone).
     spectral : bool
         The sweep's rows are spectral (:func:`tyrelab.vehicle.scenario.limits.uses_spectral`).
+
+    See Also
+    --------
+    sweep_variants : refuses a sweep of such keys.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> s = load_scenario(scenarios_dir() / "modern_tractor.toml")
+    >>> unused_key_problems(s, ["seat.natural_frequency_Hz"])      # it changes the ride: no problem
+    []
     """
     _validate.instance("scenario", scenario, Scenario)
     items = keys.items() if isinstance(keys, dict) else ((k, ()) for k in keys)

@@ -56,6 +56,11 @@ def natural_frequencies(
     tuple of float
         ``(f1_Hz, f2_Hz)`` in ascending order.
 
+    See Also
+    --------
+    mode_shapes : with each mode's nodal point.
+    frequency_uncertainty : their intervals.
+
     Examples
     --------
     Equal springs with the centre of gravity midway decouple bounce and pitch:
@@ -128,6 +133,10 @@ def mode_shapes(
         ``bounce`` and ``pitch``: ``frequency_Hz``, ``nodal_point_ahead_of_cg_m``
         (inf when the mode does not pitch).
 
+    See Also
+    --------
+    natural_frequencies : the frequencies alone.
+
     Examples
     --------
     >>> m = mode_shapes(1000, 250, 1.0, 1.0, 1e5, 1e5)
@@ -170,6 +179,10 @@ def frequency_uncertainty(mass_kg: float, pitch_inertia_kg_m2: float, front_dist
     Returns
     -------
     (u1_Hz, u2_Hz), ((lo1, hi1), (lo2, hi2))
+
+    See Also
+    --------
+    natural_frequencies : the frequencies it brackets.
 
     Examples
     --------

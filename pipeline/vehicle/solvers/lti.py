@@ -192,6 +192,10 @@ def discretise(a, b, c, d, dt_s: float) -> FohSystem:
     -------
     FohSystem
 
+    See Also
+    --------
+    tyrelab.vehicle.run.pitch_plane.simulate_state_space : simulates with it.
+
     Examples
     --------
     >>> s = discretise([[-1.0]], [[1.0]], [[1.0]], [[0.0]], 1e-3)

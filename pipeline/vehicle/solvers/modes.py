@@ -115,6 +115,10 @@ def mac_matrix(reference: ModeSet, other: ModeSet) -> np.ndarray:
     """Mass-weighted MAC of every mode of ``reference`` (rows) with every mode of ``other``
     (columns), over their common coordinates with the reference's mass matrix.
 
+    See Also
+    --------
+    follow_names : names modes by it.
+
     Examples
     --------
     >>> from tyrelab.vehicle.model import assemble
@@ -189,6 +193,20 @@ def mode_set(asm: Assembly) -> ModeSet:
     the larger ``|z|/|θ|`` share is bounce, the other pitch (thesis §8.2). The pitch-plane tractor on
     rigid axles is thesis §8.2's beam on two springs: its frequencies are
     :func:`tyrelab.vehicle.solvers.beam.mode_shapes`' (the same eigenproblem).
+
+    See Also
+    --------
+    follow_names : follows them into a variant.
+    frequency_intervals : their 95 % intervals.
+
+    Examples
+    --------
+    >>> from tyrelab.vehicle.model import Axle, Chassis, Parts, assemble
+    >>> asm = assemble(Parts(Chassis(5120.0, 6210.0, 0.838), Axle("front", 1.54, 4.25e5, 1.5e3),
+    ...                      Axle("rear", -0.896, 3.3e5, 1e3)))
+    >>> m = mode_set(asm)
+    >>> m.names, [round(f, 3) for f in m.frequencies_Hz]
+    (('bounce', 'pitch'), [2.322, 3.531])
     """
     _validate.instance("asm", asm, Assembly)
     k, m, coords = asm.undamped()
@@ -242,6 +260,10 @@ def frequency_intervals(asm: Assembly, u_front_tyre_kN_per_m: float, u_rear_tyre
     notes : list of str
         Why each None.
 
+    See Also
+    --------
+    mode_set : the modes whose frequencies it brackets.
+
     Examples
     --------
     >>> from tyrelab.vehicle.model import assemble
@@ -284,7 +306,7 @@ def frequency_intervals(asm: Assembly, u_front_tyre_kN_per_m: float, u_rear_tyre
             axle, mac = lost[n]
             out[n] = None
             notes.append(f"{n}: no 95 % interval: the mode cannot be followed when the {axle} tyre stiffness "
-                         f"changes by 1 % (its shape's MAC {mac:.2f} < {FOLLOW_MAC:g}: it trades places with another mode)")
+                         f"changes by 1 % (its shape's MAC {_validate.compared(mac, '<', FOLLOW_MAC, 2)}: it trades places with another mode)")
         elif raw[n][0] < 0:
             out[n] = None
             notes.append(f"{n}: no 95 % interval: the first-order interval would reach below 0 Hz "
@@ -296,13 +318,29 @@ def frequency_intervals(asm: Assembly, u_front_tyre_kN_per_m: float, u_rear_tyre
 
 def follow_names(reference: ModeSet, other: ModeSet) -> tuple[dict, list]:
     """``other``'s modes under ``reference``'s names: ``{other's name: reference's name}`` for every
-    mode followed (:meth:`ModeSet.follow`), and a note per reference mode that cannot be followed."""
+    mode followed (:meth:`ModeSet.follow`), and a note per reference mode that cannot be followed.
+
+    See Also
+    --------
+    mac_matrix : the MAC it follows modes by.
+    mode_set : the modes it names.
+
+    Examples
+    --------
+    >>> from tyrelab.vehicle.model import Axle, Chassis, Parts, assemble
+    >>> asm = assemble(Parts(Chassis(5120.0, 6210.0, 0.838), Axle("front", 1.54, 4.25e5, 1.5e3),
+    ...                      Axle("rear", -0.896, 3.3e5, 1e3)))
+    >>> stiffer = assemble(Parts(Chassis(5120.0, 6210.0, 0.838), Axle("front", 1.54, 5e5, 1.5e3),
+    ...                          Axle("rear", -0.896, 3.3e5, 1e3)))
+    >>> follow_names(mode_set(asm), mode_set(stiffer))
+    ({'bounce': 'bounce', 'pitch': 'pitch'}, [])
+    """
     _validate.instance("reference", reference, ModeSet)
     _validate.instance("other", other, ModeSet)
     mapping, notes = {}, []
     for name, (j, mac) in reference.follow(other).items():
         if j is None:
-            notes.append(f"{name}: not followed from the first variant (best MAC {mac:.2f} < {FOLLOW_MAC:g}): no number")
+            notes.append(f"{name}: not followed from the first variant (best MAC {_validate.compared(mac, '<', FOLLOW_MAC, 2)}): no number")
         else:
             mapping[other.names[j]] = name
     return mapping, notes

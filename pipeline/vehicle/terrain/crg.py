@@ -82,6 +82,10 @@ def wheel_positions(lateral_offset_m: float, front_track_m: float | None, rear_t
     """``v`` (m, left positive) of each wheel's line: ``front_left``, ``front_right``, ``rear_left``,
     ``rear_right``; all on ``lateral_offset_m`` without track widths (the pitch-plane model).
 
+    See Also
+    --------
+    wheel_tracks : the heights along those lines.
+
     Examples
     --------
     >>> wheel_positions(0.1, 1.8, 2.0)
@@ -106,7 +110,22 @@ def _window(data: CrgData, start_m: float, length_m: float | None) -> tuple[int,
 def crg_problems(data: CrgData, positions: dict, start_m: float, length_m: float | None,
                  fill_missing: bool = False) -> list[str]:
     """Every problem of driving the wheels ``positions`` (:func:`wheel_positions`) over ``data`` from
-    ``start_m`` for ``length_m`` (None: to the end), one line each naming the key."""
+    ``start_m`` for ``length_m`` (None: to the end), one line each naming the key.
+
+    See Also
+    --------
+    wheel_tracks : reads the road when there is none.
+
+    Examples
+    --------
+    >>> import pyopencrg
+    >>> u, v = np.arange(0, 20.01, 0.05), np.arange(-1.5, 1.51, 0.1)
+    >>> d = CrgData.of(pyopencrg.CrgRoad(np.outer(np.sin(u), np.ones(v.size)) * 0.01, u_inc=0.05, v=v))
+    >>> crg_problems(d, wheel_positions(0.0, 1.9, 1.9), 0.0, 10.0)
+    []
+    >>> [p.split(":")[0] for p in crg_problems(d, wheel_positions(0.0, 4.0, 4.0), 0.0, 30.0)][3:]  # off it, past its end
+    ['surface.lateral_offset_m', 'surface.length_m']
+    """
     _validate.instance("data", data, CrgData)
     _validate.instance("positions", positions, dict)
     problems = []
@@ -171,6 +190,20 @@ def wheel_tracks(data: CrgData, positions: dict, start_m: float = 0.0, length_m:
         0, ``u_inc``, ... along the window.
     heights : dict
         Wheel -> heights, m (grid plus banking times ``v``; no reference-line elevation).
+
+    See Also
+    --------
+    wheel_positions : the lines' lateral positions.
+    crg_problems : what stops the wheels from driving the road.
+
+    Examples
+    --------
+    >>> import pyopencrg
+    >>> u, v = np.arange(0, 20.01, 0.05), np.arange(-1.5, 1.51, 0.1)
+    >>> d = CrgData.of(pyopencrg.CrgRoad(np.outer(np.sin(u), np.ones(v.size)) * 0.01, u_inc=0.05, v=v))
+    >>> x, tracks = wheel_tracks(d, wheel_positions(0.0, 1.9, 1.9), start_m=2.0, length_m=10.0)
+    >>> float(x[-1]), sorted(tracks), round(float(tracks["rear_right"][0]), 6) == round(float(0.01 * np.sin(2.0)), 6)
+    (10.0, ['front_left', 'front_right', 'rear_left', 'rear_right'], True)
     """
     _validate.instance("data", data, CrgData)
     problems = crg_problems(data, positions, start_m, length_m, fill_missing)

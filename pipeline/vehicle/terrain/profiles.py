@@ -37,6 +37,7 @@ __all__ = [
     "isotropic_coherence",
     "TRACK_MODELS",
     "profile_spectrum",
+    "side_spectra",
     "add_lead_in",
     "uniform_grid",
     "ROAD_HEIGHT_BOUNDS_M",
@@ -156,6 +157,17 @@ def spectral_synthesis(
     -------
     ndarray
         Elevations in m, zero mean.
+
+    See Also
+    --------
+    iso8608_track : two tracks of an ISO 8608 class.
+    profile_spectrum : its PSD.
+
+    Examples
+    --------
+    >>> h = spectral_synthesis(4096, 0.05, 256e-6, np.random.default_rng(1), n_max_cycles_per_m=2.83)
+    >>> h.shape, round(float(h.mean()), 12)
+    ((4096,), 0.0)
     """
     g0_m3 = _validate.positive("g0_m3", g0_m3)
     dx_m = _validate.positive("dx_m", dx_m)
@@ -207,6 +219,16 @@ def slatted_track(
     -------
     Profile
         ``meta`` holds ``slat_x_m``, ``left_slats_m``, ``right_slats_m``.
+
+    See Also
+    --------
+    slat_surface : its slats and gaps resolved.
+
+    Examples
+    --------
+    >>> tr = slatted_track(seed=1, length_m=10.0)
+    >>> round(float(np.diff(tr.meta["slat_x_m"]).mean()), 2), tr.dx_m     # a slat every 0.16 m
+    (0.16, 0.01)
     """
     seed = _validate.positive_int("seed", seed, minimum=0)
     length_m = _validate.positive("length_m", length_m)
@@ -253,6 +275,17 @@ def slat_surface(track: Profile, side: str = "left") -> np.ndarray:
     -------
     ndarray
         Elevation at ``track.x_m``, m.
+
+    See Also
+    --------
+    slatted_track : the track it resolves.
+
+    Examples
+    --------
+    >>> tr = slatted_track(seed=1, length_m=2.0)
+    >>> s = slat_surface(tr, "left")
+    >>> float(s.min()), bool(s.max() >= 0.010)          # the base in the gaps, slats at least 10 mm above it
+    (0.0, True)
     """
     _validate.instance("track", track, Profile)
     _validate.choice("side", side, ("left", "right"))
@@ -279,6 +312,10 @@ def isotropic_coherence(n_cycles_per_m, track_width_m: float) -> np.ndarray:
     1973, "The description of road surface roughness", J. Sound Vib. 31(2) 175-183), in closed
     form for w = 2 (the 2-D spectrum ∝ |k|⁻³: ``∫ (κ² + k₂²)^(-3/2) cos(k₂ b) dk₂ = 2 b K₁(κ b)/κ``
     against ``2/κ²`` for ``b = 0``). 1 at long wavelengths, falling to 0.5 near ``n ≈ 0.2/b``.
+
+    See Also
+    --------
+    iso8608_track : two tracks with this coherence.
 
     Examples
     --------
@@ -328,6 +365,21 @@ def iso8608_track(
     Returns
     -------
     Profile
+
+    See Also
+    --------
+    spectral_synthesis : the random process of each track.
+    isotropic_coherence : the coherence of ``tracks="isotropic"``.
+    profile_spectrum : the PSD of the result.
+
+    Examples
+    --------
+    >>> p = iso8608_track("C", seed=1, length_m=400.0)
+    >>> n, g = profile_spectrum(p.left_m, p.dx_m)
+    >>> band = (n > 0.05) & (n < 0.5)                  # G_d(n) n² is G_d(n0) n0² for waviness 2
+    >>> fitted = float(np.exp(np.mean(np.log(g[band] * (n[band] / 0.1) ** 2))))
+    >>> bool(0.5 < fitted / ISO8608_CLASS_G0_M3["C"] < 2.0), p.dx_m
+    (True, 0.05)
     """
     length_m = _validate.positive("length_m", length_m)
     dx_m = _validate.positive("dx_m", dx_m)
@@ -363,6 +415,10 @@ def uniform_grid(x_m, *heights_m) -> tuple[np.ndarray, list[np.ndarray]]:
     first distance to its last (``(end - start)/dx`` is a whole number up to the rounding of the
     distances written in the file, which must not drop the last sample); heights interpolated.
 
+    See Also
+    --------
+    tyrelab.scenario_io.read_profile_csv : reads a profile file onto it.
+
     Examples
     --------
     >>> g, (h,) = uniform_grid([0.0, 0.1, 0.2, 0.35, 0.4], [0.0, 1.0, 2.0, 3.5, 4.0])
@@ -380,6 +436,17 @@ def add_lead_in(profile: Profile, lead_in_m: float = 5.0) -> Profile:
 
     Lets a simulation start at rest on level ground; ``meta['lead_in_m']`` records
     the offset so analyses can skip it.
+
+    See Also
+    --------
+    iso8608_track : a profile to lead into.
+
+    Examples
+    --------
+    >>> p = iso8608_track("C", seed=1, length_m=20.0)
+    >>> q = add_lead_in(p, 5.0)
+    >>> round(float(q.x_m[-1] - p.x_m[-1]), 2), q.meta["lead_in_m"], float(q.left_m[0]) == float(p.left_m[0])
+    (10.0, 5.0, True)
     """
     _validate.instance("profile", profile, Profile)
     lead_in_m = _validate.non_negative("lead_in_m", lead_in_m)
@@ -391,7 +458,8 @@ def add_lead_in(profile: Profile, lead_in_m: float = 5.0) -> Profile:
                    pad(profile.rear_left_m), pad(profile.rear_right_m))
 
 
-def profile_spectrum(elevation_m, dx_m: float, segment_m: float = 12.8) -> tuple[np.ndarray, np.ndarray]:
+def profile_spectrum(elevation_m, dx_m: float, segment_m: float = 12.8,
+                     detrend: str = "linear") -> tuple[np.ndarray, np.ndarray]:
     """One-sided displacement PSD of a profile by Welch's method (thesis Fig. 51).
 
     Parameters
@@ -402,18 +470,82 @@ def profile_spectrum(elevation_m, dx_m: float, segment_m: float = 12.8) -> tuple
         Spacing, m.
     segment_m : float
         Welch segment length, m (resolution 1/segment cycles/m), Hann, 50 % overlap.
+    detrend : str
+        Each segment's trend taken out: ``linear`` (the profiles' spectra, Fig. 51) or ``constant``
+        (its mean: the 3-D ride's side spectra, :func:`side_spectra`).
 
     Returns
     -------
     n_cycles_per_m, psd_m3 : ndarray
         Spatial frequency (cycles/m) and PSD in m^2/(cycles/m).
+
+    See Also
+    --------
+    spectral_synthesis : a profile of a given spectrum.
+
+    Examples
+    --------
+    >>> rng = np.random.default_rng(1)
+    >>> h = spectral_synthesis(2**14, 0.05, 256e-6, rng, n_min_cycles_per_m=0.011, n_max_cycles_per_m=2.83)
+    >>> n, g = profile_spectrum(h, 0.05)
+    >>> round(float(n[1]), 4)                           # 1 / 12.8 m
+    0.0781
+    >>> bool(0.5 < float(np.median(g[(n > 0.08) & (n < 1)] * (n[(n > 0.08) & (n < 1)] / 0.1) ** 2)) / 256e-6 < 2)
+    True
     """
     _validate.finite_array("elevation_m", elevation_m, min_samples=2)
     dx_m = _validate.positive("dx_m", dx_m)
     segment_m = _validate.positive("segment_m", segment_m)
+    _validate.choice("detrend", detrend, ("linear", "constant"))
     h = np.asarray(elevation_m, dtype=float)
     nper = min(h.size, int(round(segment_m / dx_m)))
-    return signal.welch(h, fs=1.0 / dx_m, window="hann", nperseg=nper, noverlap=nper // 2, detrend="linear")
+    return signal.welch(h, fs=1.0 / dx_m, window="hann", nperseg=nper, noverlap=nper // 2, detrend=detrend)
+
+
+def side_spectra(left_m, right_m, dx_m: float, segment_m: float,
+                 detrend: str = "constant") -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The two wheel tracks' spectra and their cross-spectrum by Welch's method, as
+    :func:`profile_spectrum` (Hann, 50 % overlap; each segment's mean taken out by default): the
+    side spectra of a 3-D ride over a measured road (issue 45: one Welch for the profiles).
+
+    Parameters
+    ----------
+    left_m, right_m : array_like
+        Elevations of the left and right tracks, m, on the same grid of spacing ``dx_m``.
+    dx_m, segment_m : float
+        Spacing and Welch segment length, m.
+    detrend : str
+        As :func:`profile_spectrum`.
+
+    Returns
+    -------
+    n_cycles_per_m, g_ll, g_rr, g_lr : ndarray
+        Spatial frequency (cycles/m), the tracks' PSDs and their cross-spectrum, m^2/(cycles/m).
+        ``g_lr`` is ``E[L R*]`` (the model's ``S_LR``: the output spectrum is ``h S hᴴ``);
+        :func:`scipy.signal.csd` ``(x, y)`` averages ``conj(X) Y``, hence ``csd(right, left)``.
+
+    See Also
+    --------
+    profile_spectrum : one track's spectrum, the same Welch.
+
+    Examples
+    --------
+    Two tracks half a wavelength apart: opposite phase, the cross-spectrum minus the spectrum.
+
+    >>> x = np.arange(4096) * 0.05
+    >>> n, g_ll, g_rr, g_lr = side_spectra(np.sin(2 * np.pi * x), -np.sin(2 * np.pi * x), 0.05, 12.8)
+    >>> k = int(np.argmax(g_ll))
+    >>> float(n[k]), bool(np.isclose(g_lr[k].real, -g_ll[k])), bool(np.isclose(g_rr[k], g_ll[k]))
+    (1.015625, True, True)
+    """
+    n, g_ll = profile_spectrum(left_m, dx_m, segment_m, detrend)
+    _, g_rr = profile_spectrum(right_m, dx_m, segment_m, detrend)
+    h_l, h_r = np.asarray(left_m, dtype=float), np.asarray(right_m, dtype=float)
+    if h_l.shape != h_r.shape:
+        raise ValueError(f"right_m: {h_r.size} samples, left_m has {h_l.size}")
+    nper = min(h_l.size, int(round(segment_m / dx_m)))
+    _, g_lr = signal.csd(h_r, h_l, fs=1.0 / dx_m, window="hann", nperseg=nper, noverlap=nper // 2, detrend=detrend)
+    return n, g_ll, g_rr, g_lr
 
 
 def spectra_table(profiles: dict[str, np.ndarray], dx_m: float, segment_m: float = 12.8) -> pd.DataFrame:

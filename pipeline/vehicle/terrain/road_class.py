@@ -51,6 +51,10 @@ def class_of(g0_m3: float) -> str:
     """The ISO 8608 class (A-H) of a level ``G_d(n0)`` (m³): the class whose geometric mean is
     within a factor 2 (below A's range: A; above H's: H).
 
+    See Also
+    --------
+    road_class : the class of a measured track.
+
     Examples
     --------
     >>> class_of(256e-6), class_of(511e-6), class_of(513e-6), class_of(1e-9), class_of(1.0)

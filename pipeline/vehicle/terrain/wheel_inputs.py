@@ -41,6 +41,17 @@ def ground_input(
     Returns
     -------
     t_s, u_m, u_dot_m_s : ndarray
+
+    See Also
+    --------
+    half_step_input : the input at half steps for RK4.
+
+    Examples
+    --------
+    >>> x = np.linspace(0.0, 10.0, 101); h = 0.01 * x                 # a 1 % slope
+    >>> t, u, du = ground_input(x, h, speed_m_s=2.0, dt_s=0.1, x_start_m=0.0, x_end_m=4.0)
+    >>> round(float(t[-1]), 6), round(float(u[-1]), 6), round(float(du[5]), 6)     # 2 s; 40 mm up; 0.02 m/s
+    (2.0, 0.04, 0.02)
     """
     speed_m_s, dt_s = positive("speed_m_s", speed_m_s), positive("dt_s", dt_s)
     if not float(x_end_m) > float(x_start_m):
@@ -64,6 +75,10 @@ def half_step_input(x_m, elevation_m, speed_m_s: float, n_steps: int, x_start_m:
     Returns
     -------
     u_m, u_dot_m_s : ndarray, shape (2 n_steps - 1,) (``n_steps`` without half steps)
+
+    See Also
+    --------
+    ground_input : the input at whole steps.
 
     Examples
     --------

@@ -67,6 +67,10 @@ def track_of(text, campaign: Path | None = None) -> ValidationTrack:
     ValueError
         An unknown track, or a profile CSV outside the campaign or missing.
 
+    See Also
+    --------
+    predicted_seat : the prediction on that track.
+
     Examples
     --------
     >>> track_of("ISO 8608 class d").road_class, track_of("").kind
@@ -102,6 +106,11 @@ def predicted_seat(scenario, speed_km_h: float, track: ValidationTrack, tyre_dat
     signals : dict
         ``seat_z_m_s2``, ``seat_x_m_s2`` -> samples (the pitch-plane model has no y).
     fs_Hz : float
+
+    See Also
+    --------
+    track_of : the track it rides.
+    validation_rows : the comparison with the measured record.
     """
     _validate.non_negative("speed_km_h", speed_km_h)
     _validate.instance("track", track, ValidationTrack)
@@ -153,6 +162,19 @@ def validation_rows(measured: RecordingAnalysis, predicted_signals: dict, predic
         ``axis, measured_a_w_m_s2, predicted_a_w_m_s2, ratio_a_w`` (measured / predicted),
         ``measured_peak_frequency_Hz, predicted_peak_frequency_Hz, measured_half_power_width_Hz,
         predicted_half_power_width_Hz, envelope_similarity``.
+
+    See Also
+    --------
+    predicted_seat : the predicted record.
+    validation_statistics : the statistics over the rows.
+
+    Examples
+    --------
+    >>> from tyrelab.vehicle.comfort.measured_ride import analyse_signals
+    >>> fs = 200.0; t = np.arange(0, 60, 1 / fs); z = np.sin(2 * np.pi * 4 * t)
+    >>> rows = validation_rows(analyse_signals({"seat_z_m_s2": z}, fs), {"seat_z_m_s2": 1.1 * z}, fs, known_profile=False)
+    >>> round(rows[0]["ratio_a_w"], 4), rows[0]["measured_peak_frequency_Hz"]        # measured / predicted
+    (0.9091, 4.0)
     """
     _validate.instance("measured", measured, RecordingAnalysis)
     _validate.positive("predicted_fs_Hz", predicted_fs_Hz)
@@ -194,6 +216,20 @@ def validation_statistics(rows: pd.DataFrame) -> pd.DataFrame:
     DataFrame
         ``axis, quantity`` (``a_w``, ``peak_frequency``, ``half_power_width``, and
         ``envelope_similarity`` with its mean and sd only), ``n, mean, sd, p_within_10, p_within_30``.
+
+    See Also
+    --------
+    validation_rows : the rows it summarises.
+    tyrelab.vehicle.metrics.ratio_error_statistics : the thesis' statistics.
+
+    Examples
+    --------
+    >>> from tyrelab.vehicle.comfort.measured_ride import analyse_signals
+    >>> fs = 200.0; t = np.arange(0, 60, 1 / fs); z = np.sin(2 * np.pi * 4 * t)
+    >>> rows = validation_rows(analyse_signals({"seat_z_m_s2": z}, fs), {"seat_z_m_s2": 1.1 * z}, fs, known_profile=False)
+    >>> s = validation_statistics(pd.DataFrame(rows * 3))
+    >>> s.loc[s["quantity"] == "a_w", ["axis", "n", "mean"]].round(4).to_dict("records")    # predicted / measured
+    [{'axis': 'z', 'n': 3, 'mean': 1.1}]
     """
     if rows is not None:
         _validate.frame("rows", rows)
