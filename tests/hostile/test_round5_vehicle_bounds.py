@@ -19,7 +19,8 @@ from tyrelab.resources import scenarios_dir
 from tyrelab.scenario_io import ScenarioError, load_scenario, parse_scenario
 from tyrelab.vehicle import ride as ride_module
 from tyrelab.vehicle.scenario import limits
-from tyrelab.vehicle.scenario.parse import _is_number, long_integer_problems
+from tyrelab.vehicle.scenario.limits import long_integer_problems
+from tyrelab.vehicle.scenario.parse import _is_number
 
 text = functools.partial(scenario_text, name="round5 vehicle", hours_per_day=None)
 MODERN = scenarios_dir() / "modern_tractor.toml"

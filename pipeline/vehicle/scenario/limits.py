@@ -35,7 +35,7 @@ from ..comfort.daily_exposure import MAX_HOURS_PER_DAY, MIN_HOURS_PER_DAY, MIN_R
 
 __all__ = ["LIMITS", "METHODS", "uses_spectral", "MAX_VARIANTS", "MAX_SPECTRAL_VARIANTS", "MAX_SAMPLES", "MIN_VERDICT_DURATION_S",
            "BYTES_PER_SAMPLE", "SECONDS_PER_SAMPLE", "SECONDS_PER_SPECTRAL_ROW", "MAX_TRACK_POINTS", "scenario_problems",
-           "profile_problems", "override_problems", "track_length_m", "work_estimate", "work_problems"]
+           "profile_problems", "override_problems", "track_length_m", "long_integer_problems", "work_estimate", "work_problems"]
 
 #: key -> (lowest, highest, unit) of every number of a scenario the model is built for.
 LIMITS: dict[str, tuple[float, float, str]] = {
@@ -522,4 +522,40 @@ def work_problems(scenario, n_variants: int, speeds_km_h=None, *, max_variants: 
         problems.append(f"{e['simulated_variants']} variant(s) x {e['speeds']} speed(s) simulate {e['samples']:,} samples "
                         f"(about {e['memory_GB']:.1f} GB for the longest run and {e['seconds']:.0f} s), more than "
                         f"{max_samples:,}; --max-samples N lifts the bound (or raise the speed, shorten the track)")
+    return problems
+
+
+def long_integer_problems(text: str) -> list[str]:
+    """Every integer of a scenario's TOML text too long for Python to read (more digits than
+    ``sys.get_int_max_str_digits()``, 4300: :mod:`tomllib` refuses the whole text with a ValueError
+    naming no key), one line each naming its key (``[table]`` and ``key =`` on its line; else the
+    line); the digits are counted, never converted.
+
+    See Also
+    --------
+    tyrelab.scenario_io.huge_number_problems : integers TOML reads that are too large for a float.
+
+    Examples
+    --------
+    >>> long_integer_problems("[tractor]\\nmass_kg = 1" + "0" * 5000 + "\\n")
+    ['tractor.mass_kg: an integer of 5001 digits is not a finite number']
+    """
+    import re
+    import sys
+
+    limit = sys.get_int_max_str_digits() or 4300
+    table, problems = "", []
+    for number, line in enumerate(text.splitlines(), 1):
+        header = re.match(r"\s*\[\[?\s*([^\]]*?)\s*\]\]?\s*(#.*)?$", line)
+        if header:
+            table = header.group(1).replace('"', "").replace("'", "").replace(" ", "")
+            continue
+        for run in re.finditer(r"(?<![\w.])[+-]?[0-9][0-9_]*", line):
+            digits = sum(c.isdigit() for c in run.group())
+            if digits <= limit:
+                continue
+            key = re.match(r"\s*([\w.\"' -]+?)\s*=", line)
+            name = key.group(1).replace('"', "").replace("'", "").replace(" ", "") if key else None
+            where = f"{table}.{name}" if table and name else name or f"line {number}"
+            problems.append(f"{where}: an integer of {digits} digits is not a finite number")
     return problems

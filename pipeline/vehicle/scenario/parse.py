@@ -46,7 +46,7 @@ from ... import _validate as _checks
 from ...schema import load_schema
 from ...tyre.sizes import TyreSizeError, parse_tyre_size
 from ..model import cab_mount_problems, needs, pivot_problem, scenario_key
-from .limits import LIMITS, scenario_problems
+from .limits import LIMITS, long_integer_problems, scenario_problems
 from .specs import (AxleSpec, BallastSpec, CabSpec, ExposureSpec, ImplementSpec, Scenario, ScenarioError, SeatSpec,
                     SimulationSpec, SurfaceSpec, SweepSpec, TractorSpec, TyreSpec)
 
@@ -563,42 +563,6 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
     except ValueError:  # an integer of more digits than Python converts (4300): tomllib's own ValueError
         raise ScenarioError(where, long_integer_problems(text) or ["not valid TOML: a number too long to read"]) from None
     return _from_document(doc, where, base_dir, path, confine, read_profile, read_crg)
-
-
-def long_integer_problems(text: str) -> list[str]:
-    """Every integer of a scenario's TOML text too long for Python to read (more digits than
-    ``sys.get_int_max_str_digits()``, 4300: :mod:`tomllib` refuses the whole text with a ValueError
-    naming no key), one line each naming its key (``[table]`` and ``key =`` on its line; else the
-    line); the digits are counted, never converted.
-
-    See Also
-    --------
-    tyrelab.scenario_io.huge_number_problems : integers TOML reads that are too large for a float.
-
-    Examples
-    --------
-    >>> long_integer_problems("[tractor]\\nmass_kg = 1" + "0" * 5000 + "\\n")
-    ['tractor.mass_kg: an integer of 5001 digits is not a finite number']
-    """
-    import re
-    import sys
-
-    limit = sys.get_int_max_str_digits() or 4300
-    table, problems = "", []
-    for number, line in enumerate(text.splitlines(), 1):
-        header = re.match(r"\s*\[\[?\s*([^\]]*?)\s*\]\]?\s*(#.*)?$", line)
-        if header:
-            table = header.group(1).replace('"', "").replace("'", "").replace(" ", "")
-            continue
-        for run in re.finditer(r"(?<![\w.])[+-]?[0-9][0-9_]*", line):
-            digits = sum(c.isdigit() for c in run.group())
-            if digits <= limit:
-                continue
-            key = re.match(r"\s*([\w.\"' -]+?)\s*=", line)
-            name = key.group(1).replace('"', "").replace("'", "").replace(" ", "") if key else None
-            where = f"{table}.{name}" if table and name else name or f"line {number}"
-            problems.append(f"{where}: an integer of {digits} digits is not a finite number")
-    return problems
 
 
 def _plain(value, depth: int = 0):
