@@ -13,9 +13,14 @@ at 1.6 Hz (ζ 0.25) and 2.9 Hz (ζ 0.12), sensor noise added. Then times in this
 
 And the peak of memory allocated (``tracemalloc``) while *frf* runs on the recording and on one
 of twice its length: bounded by the segment length (and the reader's first chunk), not the
-recording, the two peaks are alike.
+recording, the two peaks are alike. Then the estimator's own part of it: the peak while the Welch
+matrices stream through :class:`tyrelab.measurement.frf.CrossSpectraAccumulator` in the reader's
+batches (:data:`tyrelab.rawformat.rides.READ_ROWS` rows), for segments of 1, 2 and 4 times the
+default length, on the recording and on the one of twice its length: it follows the segment, not
+the recording.
 
-Prints one JSON object: seconds of each, ``ratio`` = frf / csd alone (issue 43: ≤ 2), the peaks.
+Prints one JSON object: seconds of each, ``ratio`` = frf / csd alone (issue 43: ≤ 2), the peaks
+(``stream_peak_MB``: segment samples -> [peak on the recording, peak on twice its length]).
 """
 
 from __future__ import annotations
@@ -32,8 +37,8 @@ import pandas as pd
 from scipy import signal
 
 from tyrelab.api import vehicle_frf
-from tyrelab.measurement.frf import segment_samples
-from tyrelab.rawformat.rides import INPUT_CHANNELS
+from tyrelab.measurement.frf import CrossSpectraAccumulator, segment_samples
+from tyrelab.rawformat.rides import INPUT_CHANNELS, READ_ROWS
 
 OUTPUTS = ["floor_x_m_s2", "floor_y_m_s2", "floor_z_m_s2", "roll_rad_s2", "pitch_rad_s2", "yaw_rad_s2"]
 
@@ -68,6 +73,16 @@ def csd_alone(frame: pd.DataFrame, fs: float) -> None:
         signal.csd(y[k], y[k], fs=fs, nperseg=nperseg)
 
 
+def stream(frame: pd.DataFrame, fs: float, nperseg: int) -> None:
+    """The Welch matrices of ``frame`` streamed in the reader's batches (the estimator's part of *frf*)."""
+    x = frame[INPUT_CHANNELS].to_numpy().T
+    y = frame[OUTPUTS].to_numpy().T
+    acc = CrossSpectraAccumulator(4, 6, fs, nperseg)
+    for i in range(0, x.shape[1], READ_ROWS):
+        acc.add(x[:, i:i + READ_ROWS], y[:, i:i + READ_ROWS])
+    acc.finish()
+
+
 def _best(fn, repeat: int) -> float:
     best = np.inf
     for _ in range(repeat):
@@ -98,13 +113,17 @@ def main(argv=None) -> dict:
         result = vehicle_frf(path)
         t_frf = _best(lambda: vehicle_frf(path), args.repeat)
         t_csd = _best(lambda: csd_alone(frame, args.fs), args.repeat)
-        del frame
+        twice = pd.read_parquet(double)
+        base = segment_samples(args.fs)
+        stream_peak = {n: [round(_peak_mb(lambda: stream(f, args.fs, n)), 1) for f in (frame, twice)]
+                       for n in (base, 2 * base, 4 * base)}
+        del frame, twice
         peak_full = _peak_mb(lambda: vehicle_frf(path))
         peak_double = _peak_mb(lambda: vehicle_frf(double))
     out = {"minutes": args.minutes, "fs_Hz": args.fs, "inputs": 4, "outputs": 6,
            "modes_fitted": len(result.mode_rows()), "frf_s": round(t_frf, 3), "csd_alone_s": round(t_csd, 3),
            "ratio": round(t_frf / t_csd, 2), "peak_MB": round(peak_full, 1), "peak_double_length_MB": round(peak_double, 1),
-           "recording_MB": round(args.minutes * 60 * args.fs * 11 * 8 / 1e6, 1)}
+           "recording_MB": round(args.minutes * 60 * args.fs * 11 * 8 / 1e6, 1), "stream_peak_MB": stream_peak}
     print(json.dumps(out))
     return out
 

@@ -56,7 +56,7 @@ from . import _validate
 __all__ = ["STAND_SCENARIO_FILE", "STAND_SCENARIO_TEXT", "STAND_FS_HZ", "DURATION_S", "INPUT_RMS_M_S2",
            "SENSOR_NOISE_M_S2", "SENSOR_NOISE_RAD_S2", "HEIGHT_NOISE_M", "STATIONARY_STIFFNESS_FACTOR",
            "LUG_HEIGHT_MM", "STAND_SPEEDS_KM_H", "MODEL_OUTPUTS", "WHEELS", "stand_scenario", "condition_scenario",
-           "wheel_frf", "PredictedMode", "model_modes", "frf_validation_rows", "VALIDATION_MODEL", "stand_plan", "stand_recording"]
+           "wheel_frf", "PredictedMode", "model_modes", "predicted_frf", "frf_validation_rows", "VALIDATION_MODEL", "stand_plan", "stand_recording"]
 
 STAND_SCENARIO_FILE = "stand_mf698t_3d.toml"
 STAND_SCENARIO_TEXT = """# The thesis' MF698T (Table XV heavy; Table XVI rolling tyres, HH, 10 km/h) made 3-D for the virtual
@@ -287,35 +287,57 @@ VALIDATION_MODEL = ("the scenario's model at the recording's speed: its tyres (s
                     "from the complex roots")
 
 
-def frf_validation_rows(result, scenario, speed_km_h: float) -> list[dict]:
+def predicted_frf(result, scenario, speed_km_h: float):
+    """The model's FRFs on ``result``'s bins, outputs and inputs, (F, p, q) complex per m/s² at the
+    wheel (:func:`wheel_frf`; NaN for an output the model does not have), or None when the scenario is
+    not a four-wheel 3-D tractor. ``result``: a :class:`tyrelab.measurement.frf.RecordingFrf`.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as S
+    >>> r = S(estimate=S(frequency_Hz=np.array([1.0, 2.0])), outputs=("floor_z_m_s2", "seat_z_m_s2"),
+    ...       wheels=("rear_left",))
+    >>> h = predicted_frf(r, stand_scenario(), 6.0)
+    >>> h.shape, bool(np.isnan(h[:, 1]).all()), round(float(abs(h[1, 0, 0])), 3)
+    ((2, 2, 1), True, 0.87)
+    """
+    f = result.estimate.frequency_Hz
+    known = [o for o in result.outputs if o in MODEL_OUTPUTS]
+    out = np.full((f.size, len(result.outputs), len(result.wheels)), np.nan, complex)
+    if not known:
+        return out
+    try:
+        model = wheel_frf(scenario, speed_km_h, f, known)  # (F, known, 4)
+    except ValueError:  # not a four-wheel 3-D tractor: no FRFs per wheel
+        return None
+    cols = [WHEELS.index(w) for w in result.wheels]
+    for n, o in enumerate(known):
+        out[:, result.outputs.index(o), :] = model[:, n, cols]
+    return out
+
+
+def frf_validation_rows(result, scenario, speed_km_h: float, predicted=None) -> list[dict]:
     """``vehicle_frf_validation`` rows: per output and measured mode, the nearest predicted mode
     (:func:`model_modes`; nearest root ``λ`` in the complex plane, so that a heavily damped mode is not
-    taken for a lightly damped one of similar frequency) and its name: frequencies, damping ratios, their ratios and whether the prediction
-    lies in the measured 95 % interval; per output the median FRF magnitude error (predicted /
-    measured - 1, :func:`wheel_frf`) over the coherent, separable, unmasked bins of 0.5-12 Hz
-    (a 3-D four-wheel scenario only; NaN otherwise). An output without a fitted mode gets one row
-    without one.
+    taken for a lightly damped one of similar frequency) and its name: frequencies, damping ratios,
+    their ratios and whether the prediction lies in the measured 95 % interval; per output the median
+    FRF magnitude error (predicted / measured - 1, :func:`predicted_frf`, or ``predicted`` when given)
+    over the coherent, separable, unmasked bins of 0.5-12 Hz (a 3-D four-wheel scenario only; NaN
+    otherwise). An output without a fitted mode gets one row without one.
 
     ``result``: a :class:`tyrelab.measurement.frf.RecordingFrf`.
     """
-    predicted = model_modes(scenario, speed_km_h)
+    predicted_modes = model_modes(scenario, speed_km_h)
     e = result.estimate
     f = e.frequency_Hz
-    try:
-        known = [o for o in result.outputs if o in MODEL_OUTPUTS]
-        model = dict(zip(known, np.moveaxis(wheel_frf(scenario, speed_km_h, f, known), 1, 0))) if known else {}
-    except ValueError:  # not a four-wheel 3-D tractor: no FRFs per wheel
-        model = {}
+    model = predicted_frf(result, scenario, speed_km_h) if predicted is None else predicted
     rows = []
     for k, out in enumerate(result.outputs):
         err = math.nan
-        if out in model:
-            cols = [WHEELS.index(w) for w in result.wheels]
+        if model is not None and not np.isnan(model[:, k]).all():
             usable = result.usable(k) & ((f >= 0.5) & (f <= 12.0))[:, None]
-            meas = np.abs(e.h[:, k, :])
-            pred = np.abs(model[out][:, cols])
             with np.errstate(divide="ignore", invalid="ignore"):
-                rel = np.abs(pred / meas - 1.0)[usable]
+                rel = np.abs(np.abs(model[:, k]) / np.abs(e.h[:, k, :]) - 1.0)[usable]
             rel = rel[np.isfinite(rel)]
             err = float(np.median(rel)) if rel.size else math.nan
         base = {"output": out, "frf_magnitude_error": err, "model": VALIDATION_MODEL}
@@ -323,8 +345,9 @@ def frf_validation_rows(result, scenario, speed_km_h: float) -> list[dict]:
         if not modes:
             rows.append({**base, "mode": None})
         for n, m in enumerate(modes, start=1):
-            near = min(predicted, key=lambda p: abs(_pole(p.frequency_Hz, p.damping_ratio)
-                                                    - _pole(m.frequency_Hz, m.damping_ratio))) if predicted else None
+            near = min(predicted_modes, key=lambda p: abs(_pole(p.frequency_Hz, p.damping_ratio)
+                                                          - _pole(m.frequency_Hz, m.damping_ratio))) \
+                if predicted_modes else None
             name, fd, z = (near.name, near.frequency_Hz, near.damping_ratio) if near else (None, math.nan, math.nan)
             rows.append({**base, "mode": n, "predicted_mode": name, "measured_frequency_Hz": m.frequency_Hz,
                          "measured_frequency_ci95_low_Hz": m.frequency_low_Hz,

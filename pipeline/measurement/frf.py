@@ -776,18 +776,25 @@ class RecordingFrf:
         return (~e.ill_conditioned & ~self.masked[:, None]
                 & (e.multiple_coherence[:, k:k + 1] >= FIT_MIN_COHERENCE))
 
-    def frf_rows(self, max_Hz: float = STORED_MAX_Hz) -> list[dict]:
-        """One row per input, output and bin in (0, ``max_Hz``] (the ``vehicle_frf`` columns)."""
+    def frf_rows(self, max_Hz: float = STORED_MAX_Hz, predicted=None) -> list[dict]:
+        """One row per input, output and bin in (0, ``max_Hz``] (the ``vehicle_frf`` columns).
+
+        ``predicted``: a model's FRFs on the same bins, (F, p, q) complex (NaN where it has none),
+        written as ``predicted_h_magnitude`` (the column is left out without it)."""
         e = self.estimate
         f = e.frequency_Hz
         keep = np.flatnonzero((f > 0) & (f <= max_Hz))
+        if predicted is not None and np.shape(predicted) != e.h.shape:
+            raise ValueError(f"predicted must have the estimate's shape {e.h.shape}, got {np.shape(predicted)}")
         rows = []
         for k, out in enumerate(self.outputs):
             for j, (inp, wheel) in enumerate(zip(self.inputs, self.wheels)):
                 h = e.h[keep, k, j]
                 h2 = e.h2[keep, k, j] if e.h2 is not None else np.full(keep.size, np.nan)
+                extra = [{}] * keep.size if predicted is None else \
+                    [{"predicted_h_magnitude": _num(abs(v))} for v in np.asarray(predicted)[keep, k, j]]
                 for n, i in enumerate(keep):
-                    rows.append({
+                    rows.append({**extra[n], 
                         "input": inp, "wheel": wheel, "output": out, "frequency_Hz": float(f[i]),
                         "h_magnitude": _num(abs(h[n])), "h_phase_deg": _num(np.degrees(np.angle(h[n]))),
                         "h_unit": frf_unit(out), "h2_magnitude": _num(abs(h2[n])),

@@ -277,6 +277,20 @@ def table_i_from_results(results: pd.DataFrame, thesis: pd.DataFrame) -> pd.Data
     --------
     table_i_runs : the runs it groups.
     tyrelab.rig.experiments.table_i : the same from virtual experiments.
+
+    Examples
+    --------
+    A stepped-sine run and a free decay of one tyre at 18.3 kN: the decay's 2.3 Hz and 10 % with the
+    suspended mass L/g = 1866 kg give K = m ω² = 389.7 kN/m and C = 2 ζ m ω = 5.39 kN s/m:
+
+    >>> from tyrelab.published import read_published
+    >>> r = pd.DataFrame({"tyre_id": "T1", "pressure_bar": 1.38, "load_kN": 18.3, "speed_km_h": 0.0, "direction": "vertical",
+    ...                   "qc_ok": True, "method": ["stepped_sine", "free_vibration"], "excitation_frequency_Hz": [4.0, np.nan],
+    ...                   "stiffness_N_per_m": [400e3, np.nan], "damping_N_s_per_m": [2.0e3, np.nan],
+    ...                   "natural_frequency_Hz": [np.nan, 2.3], "damping_ratio": [np.nan, 0.1]})
+    >>> t = table_i_from_results(r, read_published("table_i")).set_index("method")
+    >>> t.loc[["apparent_mass", "free_vibration"], ["stiffness_kN_per_m", "damping_kN_s_per_m"]].round(2).values.tolist()
+    [[400.0, 2.0], [389.71, 5.39]]
     """
     runs = table_i_runs(results)
     runs = runs.loc[runs["table_i_method"].notna()]

@@ -40,6 +40,7 @@ import pandas as pd
 from . import tables
 from .chapters import CHAPTERS, Chapter, FigureSpec, TableSpec
 from .docs import DOCS, document
+from .frf_page import VEHICLE_FRF
 from .measured_page import MEASURED_RIDE
 
 __all__ = ["Output", "Page", "ChapterPage", "RidePage", "IndexPage", "RunsPage", "DocsPage", "PAGES", "register", "registered",
@@ -314,4 +315,5 @@ for _number, _chapter in enumerate(CHAPTERS):
     register((RidePage if _chapter.slug == "ride" else ChapterPage)(_chapter, order=10 * (_number + 1)))
 register(RunsPage())
 register(ChapterPage(MEASURED_RIDE, order=10 * (len(CHAPTERS) + 1)))
+register(ChapterPage(VEHICLE_FRF, order=10 * (len(CHAPTERS) + 1) + 3))  # beside the measured ride
 register(DocsPage())

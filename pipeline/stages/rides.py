@@ -27,7 +27,8 @@ transfer functions and modes (:func:`tyrelab.measurement.frf.recording_frf`): ``
 (per recording, input, output and bin) and ``vehicle_modes`` (per recording, output and mode). The
 rotation and lug-passing bins of a rolling row naming a scenario are masked from its tyres; such a
 row's measured modes and FRFs are compared with the scenario's model at the row's speed
-(``vehicle_frf_validation``, :func:`tyrelab.stand.frf_validation_rows`).
+(``vehicle_frf_validation``, :func:`tyrelab.stand.frf_validation_rows`; the model's FRF magnitude
+beside the measured one in ``vehicle_frf.predicted_h_magnitude``).
 """
 
 from __future__ import annotations
@@ -71,7 +72,8 @@ EMPTY_COLUMNS = {
                       "dzd_m_s2", "vdv_verdict"],
     "vehicle_frf": ["ride_id", "input", "wheel", "output", "frequency_Hz", "h_magnitude", "h_phase_deg", "h_unit",
                     "h2_magnitude", "h2_phase_deg", "coherence", "partial_coherence", "multiple_coherence",
-                    "random_error", "condition_number", "input_coherence", "ill_conditioned", "masked"],
+                    "random_error", "condition_number", "input_coherence", "ill_conditioned", "masked",
+                    "predicted_h_magnitude"],
     "vehicle_modes": ["ride_id", "output", "mode", "frequency_Hz", "damping_ratio", "frequency_ci95_low_Hz",
                       "frequency_ci95_high_Hz", "damping_ci95_low", "damping_ci95_high", "inputs"],
     "vehicle_frf_validation": ["ride_id", "speed_km_h", "scenario", "output", "frf_magnitude_error", "model", "mode",
@@ -198,15 +200,16 @@ def _frf(path: Path, channel_map, speed_km_h: float, wheels, scenario=None) -> d
         r = recording_frf(open_recording(path, channel_map), speed_km_h, wheels)
     except (ValueError, ArithmeticError) as exc:
         return {"error": printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)}
-    out = {"frf": pd.DataFrame(r.frf_rows()), "modes": r.mode_rows(), "validation": []}
+    predicted, validation = None, []
     if scenario is not None:
-        from ..stand import frf_validation_rows
+        from ..stand import frf_validation_rows, predicted_frf
 
         try:
-            out["validation"] = frf_validation_rows(r, scenario, speed_km_h)
+            predicted = predicted_frf(r, scenario, speed_km_h)
+            validation = frf_validation_rows(r, scenario, speed_km_h, predicted)
         except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
             return {"error": f"prediction: {printable(str(exc).splitlines()[0] if str(exc) else type(exc).__name__)}"}
-    return out
+    return {"frf": pd.DataFrame(r.frf_rows(predicted=predicted)), "modes": r.mode_rows(), "validation": validation}
 
 
 def _plain(row: dict) -> dict:

@@ -213,6 +213,24 @@ def spectral_row(speed_km_h: float, tyres: dict, i: int, aw_m_s2: dict, axes, ho
     --------
     lift_off_probability : its lift-off columns.
     primary_rows : the rows that answer.
+
+    Examples
+    --------
+    The shipped tractor at 8 km/h with an expected a_wz of 0.6 and a_wx of 0.3 m/s²: eVDV
+    ``1.4 a_w T^¼`` over a 180 s record and over the 8 h day, each axle's force per tyre (the pitch
+    plane's element carries two), A(8) and the hours to the action value ``8 h (0.5 / 0.6)²``:
+
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> from tyrelab.vehicle.run.rows import exposure
+    >>> from tyrelab.vehicle.tyres import resolve_tyres
+    >>> tyres = resolve_tyres(load_scenario(scenarios_dir() / "modern_tractor.toml"))
+    >>> row = spectral_row(8.0, tyres, 0, {"z": 0.6, "x": 0.3}, ("z", "x"), 8.0, 180.0, {"front": 2000.0, "rear": 3000.0},
+    ...                    {"front": 20e3, "rear": 40e3}, 2, exposure(0.6, 0.3, 8.0))
+    >>> round(row.evdv_m_s1_75, 3), round(row.evdv_daily_m_s1_75, 2), row.front_tyre_force_sd_N, round(row.hours_to_eav, 2)
+    (3.077, 10.94, 1000.0, 5.56)
+    >>> row.method, row.a8_axis, row.verdict
+    ('spectral', 'z', 'above action value')
     """
     aw = {ax: float(aw_m_s2.get(ax, 0.0)) for ax in ("z", "x", "y")}
     highest = max(iso2631.AXIS_FACTOR[ax] * aw[ax] for ax in axes)

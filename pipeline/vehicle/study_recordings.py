@@ -86,6 +86,16 @@ def carriage_recordings(table_xii: pd.DataFrame, stationary: pd.DataFrame, seed:
     --------
     tractor_recordings : the tractor study's.
     tyrelab.vehicle.studies.carriage_study : the study that reads them.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> from tyrelab.vehicle.published_layouts import carriage_rolling, carriage_stationary
+    >>> xii = carriage_rolling(read_published("table_xii")).head(2)      # two of Table XII's runs, for speed
+    >>> stationary = carriage_stationary(read_published("table_xii"))
+    >>> rec = carriage_recordings(xii, stationary)
+    >>> list(rec)
+    [(17.5, 'light'), (17.5, 'heavy')]
     """
     _validate.frame("table_xii", table_xii)
     _validate.frame("stationary", stationary)
@@ -128,6 +138,17 @@ def tractor_recordings(table_xv: pd.DataFrame, table_xvi: pd.DataFrame, seed: in
     --------
     carriage_recordings : the carriage study's.
     tyrelab.vehicle.studies.tractor_study : the study that reads them.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> from tyrelab.vehicle.published_layouts import tractor_mass, tractor_tyres
+    >>> mass, tyres = tractor_mass(read_published("table_xv")), tractor_tyres(read_published("table_xvi"))
+    >>> rolling = tyres["characteristics"] == "rolling"
+    >>> one = tyres.loc[~rolling | (tyres.index == tyres.index[rolling][0])]   # the first rolling run, for speed
+    >>> rec = tractor_recordings(mass, one)
+    >>> list(rec), sorted(rec[(1, "SBT", 10.0)])
+    ([(1, 'SBT', 10.0)], ['longitudinal_m_s2', 'pitch_rad_s2', 'vertical_m_s2'])
     """
     _validate.frame("table_xv", table_xv)
     _validate.frame("table_xvi", table_xvi)

@@ -11,8 +11,9 @@ from tyrelab.report.chapters import Chapter, FigureSpec, TableSpec
 def test_registry_lists_index_chapters_ride_runs_and_docs_in_order():
     slugs = [p.slug for p in pages.registered()]
     assert slugs[0] == "index" and slugs[-2:] == ["runs", "docs"]
-    # issue 24's page after the chapters, then issue 34's rig methods (registered by tyrelab.report.methods_page)
-    assert slugs[1:-2] == [c.slug for c in pages.CHAPTERS] + ["measured-ride", "rig-methods"]
+    # issue 24's page after the chapters, issue 43's vehicle FRFs, then issue 34's rig methods (registered by
+    # tyrelab.report.methods_page)
+    assert slugs[1:-2] == [c.slug for c in pages.CHAPTERS] + ["measured-ride", "vehicle-frf", "rig-methods"]
     with pytest.raises(ValueError, match="'runs' is already registered"):
         pages.register(pages.RunsPage())
 

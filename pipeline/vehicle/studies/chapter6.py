@@ -240,6 +240,17 @@ def carriage_study(
     --------
     carriage_case_inputs : what each case reads.
     tyrelab.vehicle.study_recordings.carriage_recordings : the virtual recordings it is compared with.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> from tyrelab.vehicle.published_layouts import carriage_rolling, carriage_stationary
+    >>> xii = carriage_rolling(read_published("table_xii")).head(2)      # two of Table XII's runs, for speed
+    >>> stationary = carriage_stationary(read_published("table_xii"))
+    >>> from tyrelab.vehicle.study_recordings import carriage_recordings
+    >>> s = carriage_study(xii, stationary, recordings=carriage_recordings(xii, stationary))
+    >>> sorted(s["runs"]["characteristics"].unique()), list(s["table_xiii"].columns[2:])
+    (['reference', 'rolling', 'stationary'], ['rolling', 'stationary'])
     """
     _validate.frame("table_xii", table_xii)
     _validate.frame("stationary", stationary)

@@ -104,6 +104,14 @@ def tractor_case_inputs(
     See Also
     --------
     tractor_study : the study of these cases.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> from tyrelab.vehicle.published_layouts import tractor_mass, tractor_tyres
+    >>> cases = tractor_case_inputs(tractor_mass(read_published("table_xv")), tractor_tyres(read_published("table_xvi")))
+    >>> len(cases), tractor_key(cases[0]["row"]), cases[0]["farm_class"], cases[0]["duration_s"]
+    (28, (1, 'SBT', 10.0), 'D', 30.0)
     """
     _validate.frame("table_xv", table_xv)
     _validate.frame("table_xvi", table_xvi)
@@ -184,6 +192,17 @@ def tractor_study(
     --------
     tractor_case_inputs : what each case reads.
     with_tractor_recordings : compares it with recordings.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> from tyrelab.vehicle.published_layouts import tractor_mass, tractor_tyres
+    >>> mass, tyres = tractor_mass(read_published("table_xv")), tractor_tyres(read_published("table_xvi"))
+    >>> rolling = tyres["characteristics"] == "rolling"
+    >>> one = tyres.loc[~rolling | (tyres.index == tyres.index[rolling][0])]   # the first rolling run, for speed
+    >>> s = tractor_study(mass, one)
+    >>> s["runs"][["characteristics", "sweep"]].drop_duplicates().values.tolist()    # the run, its stationary twin, the sweep
+    [['rolling', False], ['stationary', False], ['rolling', True]]
     """
     _validate.frame("table_xv", table_xv)
     _validate.frame("table_xvi", table_xvi)
@@ -314,6 +333,18 @@ def with_tractor_recordings(study: dict, recordings: dict | None) -> dict:
     --------
     tractor_study : the study it completes.
     tyrelab.vehicle.study_recordings.tractor_recordings : the virtual recordings.
+
+    Examples
+    --------
+    >>> from tyrelab.published import read_published
+    >>> from tyrelab.vehicle.published_layouts import tractor_mass, tractor_tyres
+    >>> mass, tyres = tractor_mass(read_published("table_xv")), tractor_tyres(read_published("table_xvi"))
+    >>> rolling = tyres["characteristics"] == "rolling"
+    >>> one = tyres.loc[~rolling | (tyres.index == tyres.index[rolling][0])]   # the first rolling run, for speed
+    >>> from tyrelab.vehicle.study_recordings import tractor_recordings
+    >>> s = with_tractor_recordings(tractor_study(mass, one), tractor_recordings(mass, one))
+    >>> s["runs"]["source"].value_counts().to_dict()
+    {'prediction': 13, 'recording': 1}
     """
     if not isinstance(study, dict) or not {"runs", "spectra"} <= set(study):
         raise ValueError("study: expected tractor_study's result (a dict with runs and spectra)")

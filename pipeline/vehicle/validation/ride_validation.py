@@ -111,6 +111,16 @@ def predicted_seat(scenario, speed_km_h: float, track: ValidationTrack, tyre_dat
     --------
     track_of : the track it rides.
     validation_rows : the comparison with the measured record.
+
+    Examples
+    --------
+    >>> from tyrelab.resources import scenarios_dir
+    >>> from tyrelab.scenario_io import load_scenario
+    >>> from tyrelab.vehicle.scenario.variants import with_values
+    >>> s = with_values(load_scenario(scenarios_dir() / "modern_tractor.toml"), {"surface.length_m": 60})
+    >>> signals, fs = predicted_seat(s, 8.0, track_of("scenario"))     # the scenario's own track, 8 km/h
+    >>> sorted(signals), fs
+    (['floor_x_m_s2', 'floor_z_m_s2', 'seat_x_m_s2', 'seat_z_m_s2'], 1000.0)
     """
     _validate.non_negative("speed_km_h", speed_km_h)
     _validate.instance("track", track, ValidationTrack)
