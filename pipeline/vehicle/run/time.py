@@ -181,7 +181,7 @@ def fast_element_problems(asm, dt_s: float, speed_km_h: float) -> list[str]:
         c2 = f", c2 = {to_kilo(series):.4g} kN s/m at {speed_km_h:g} km/h" if model == "rolling" else ""
         lines.append(f"{', '.join(keys)}: the {e.name.replace('_', ' ')} element ({model}: k = {to_kilo(e.stiffness):.4g} "
                      f"kN/m, c = {to_kilo(e.damping):.4g} kN s/m{c2}) relaxes at {e.stiffness / c:.4g} /s, faster than "
-                     f"the lift-off model's RK4 step of {dt_s * 1e3:g} ms follows ({RK4_REAL_STABILITY / dt_s:.4g} /s; "
+                     f"the lift-off model's RK4 step of {dt_s:g} s follows ({RK4_REAL_STABILITY / dt_s:.4g} /s; "
                      "its records would not be finite): more damping or less stiffness, or simulation.lift_off = false "
                      "(the linear model, exact at any rate)")
     return lines
