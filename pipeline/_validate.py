@@ -62,9 +62,15 @@ def shown(value, width: int = 40) -> str:
     '2.5'
     """
     if isinstance(value, int) and not isinstance(value, bool) and abs(value) >= 10**width:
-        digits = str(abs(value))
+        try:
+            digits = str(abs(value))
+        except ValueError:  # more digits than Python converts (sys.get_int_max_str_digits): counted, not shown
+            return f"{'-' if value < 0 else ''}an integer of about {int(abs(value).bit_length() * 0.30103) + 1} digits"
         return f"{'-' if value < 0 else ''}{digits[:10]}…{digits[-10:]} ({len(digits)} digits)"
-    text = repr(value)
+    try:
+        text = repr(value)
+    except ValueError:  # a container holding such an integer
+        return f"a {type(value).__name__} holding an integer too long to show"
     return text if len(text) <= 2 * width else text[:width] + "…"
 
 

@@ -210,7 +210,9 @@ def ride(
     speeds, front, rear = _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spectra,
                                           max_samples)
     sc = with_overrides(_scenario(scenario), speeds, front, rear)
-    too_much = limits.work_problems(sc, 1, method=sc.simulation.method,
+    # the work this call does: one variant simulated at every speed (ride_module.ride takes no
+    # spectral rows, whatever the scenario's [simulation] method), bounded as tyrelab ride bounds it
+    too_much = limits.work_problems(sc, 1, method="time",
                                     max_samples=limits.MAX_SAMPLES if max_samples is None else max_samples)
     if too_much:  # before any work, as tyrelab ride refuses it
         raise ValueError("; ".join(p.replace("--max-samples N", "max_samples=N") for p in too_much))
@@ -346,23 +348,6 @@ def ride_sweep(
                                   max_variants=max_variants, max_samples=max_samples, method=method)
 
 
-def _road_grid_problems(x) -> list[str]:
-    """The grid ``tyrelab road`` resamples a profile CSV on (its median step from its first distance
-    to its last, :func:`tyrelab.vehicle.profiles.uniform_grid`) bounded before it is built: at most
-    :data:`tyrelab.vehicle.scenario_limits.MAX_SAMPLES` points (a 108 kB file of 30 km at 1 mm asked
-    for 30 million points, 1.8 GB)."""
-    import numpy as np
-
-    from .vehicle.scenario_limits import MAX_SAMPLES
-
-    step = float(np.median(np.diff(x))) if len(x) > 1 else 0.0
-    points = (float(x[-1]) - float(x[0])) / step + 1 if step > 0 else float("inf")
-    if points > MAX_SAMPLES:
-        return [f"its median step of {step:g} m over {float(x[-1]) - float(x[0]):g} m makes {points:,.0f} points, "
-                f"more than the {MAX_SAMPLES:,} tyrelab road (road_class) resamples (a coarser profile, or a part of it)"]
-    return []
-
-
 def road_class(file: str | os.PathLike, *, track_width_m: float = 1.8, lateral_offset_m: float = 0.0,
                start_m: float = 0.0, length_m: float | None = None, fill_missing: bool = False) -> dict:
     """The ISO 8608 class, fitted ``G_d(n0)``, r.m.s. and length of each track of a road: what
@@ -431,7 +416,7 @@ def road_class(file: str | os.PathLike, *, track_width_m: float = 1.8, lateral_o
         from .vehicle.scenario.limits import profile_problems
 
         x, left, right = read_profile_csv(path)
-        problems = profile_problems(x, left, right) or _road_grid_problems(x)
+        problems = profile_problems(x, left, right)  # its grid bounded before it is built, as a ride's
         if problems:
             raise ValueError("; ".join(p.replace("surface.profile: ", "") for p in problems))
         grid, (left_u, right_u) = uniform_grid(x, left, right)

@@ -242,7 +242,7 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
 
     try:
         doc = tomllib.loads(text) if isinstance(text, str) else None
-    except (tomllib.TOMLDecodeError, RecursionError):
+    except (tomllib.TOMLDecodeError, RecursionError, ValueError):  # ValueError: an integer of over 4300 digits
         doc = None  # the parser below says what is wrong with the text
     _refuse_huge(doc, path, base_dir, confine)
     return _parse_text(text, base_dir, path, confine=confine, read_profile=read_profile_csv,

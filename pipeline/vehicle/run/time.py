@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ..units import km_h_to_m_s
+from ..units import km_h_to_m_s, to_kilo
 from ... import _validate
 from .. import iso2631
 from .. import lti
@@ -29,7 +29,13 @@ from .rows import SpeedRow, exposure, tyre_columns
 from .spectral import AXIS_WEIGHTING, _expected_batch, _transmissibility
 from .track import DT_S, FS_HZ, tyre_inputs, wheel_inputs
 
-__all__ = ["ride_variants", "LIFT_OFF_RTOL"]
+__all__ = ["ride_variants", "LIFT_OFF_RTOL", "RK4_REAL_STABILITY", "fast_element_problems"]
+
+#: The classical RK4's stability bound on the negative real axis, ``|λ dt|`` (2.785; Hairer & Wanner,
+#: Solving ODEs II, §IV.2): an element's own state that relaxes faster than this over the lift-off
+#: path's step grows without bound there (its records are not finite).
+RK4_REAL_STABILITY = 2.785
+
 
 def ride_variants(scenarios, tyre_data=None, with_spectra: bool = True, with_signals: bool = False,
                   cache: RideCache | None = None) -> list[RideResult]:
@@ -110,6 +116,14 @@ def _redo_lifting(p: VariantPlan) -> None:
         return
     seat_outputs = tuple(p.axes.values())
     runs = [p.runs[i] for i in redo]
+    # before the RK4 runs: an element state it cannot follow is the scenario keys that set it, not
+    # "weighted_m_s2 has non-finite samples" after it
+    problems = [line for i, r in zip(redo, runs) for line in fast_element_problems(r.asm, DT_S, p.speeds_km_h[i])]
+    if problems:  # one line per set of keys (the left and right tyres of an axle share theirs)
+        first: dict = {}
+        for line in problems:
+            first.setdefault(line.split(": ", 1)[0], line)
+        raise ValueError("; ".join(first.values()))
     n_max = max(r.stop for r in runs)
     inputs = [tyre_inputs(r.asm, p.track.profile, sc.surface.enveloping, r.footprints_m, p.radii_m, r.v_m_s, p.wheelbase_m,
                           n_max) for r in runs]
@@ -124,6 +138,53 @@ def _redo_lifting(p: VariantPlan) -> None:
         r.lift = tuple(float(o[r.start:r.stop].mean()) for o in off)
         r.method = "nonlinear (tyre lift-off)"
         _reduce(p, i, np.vstack([sim[o][row_i, :r.stop] for o in seat_outputs]))
+
+
+def fast_element_problems(asm, dt_s: float, speed_km_h: float) -> list[str]:
+    """The elements of the assembly ``asm`` whose own state the lift-off path's RK4 (step ``dt_s``)
+    cannot follow, one line each naming the scenario keys that set it: a series (Maxwell) element
+    relaxes at ``k / c``, a rolling one at ``k / (c + c₂)`` (:mod:`tyrelab.vehicle.elements`; ``c₂``
+    its series damper at ``speed_km_h``); faster than :data:`RK4_REAL_STABILITY` ``/ dt_s`` is
+    refused (the linear model, ``simulation.lift_off = false``, is exact at any rate).
+
+    See Also
+    --------
+    tyrelab.vehicle.tractor.simulate : the lift-off path (exact in contact, RK4 across lift-off).
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as NS
+    >>> from tyrelab.vehicle.elements import element
+    >>> e = element("front_left_lateral", np.array([1.0]), 2.6e5, 10.0, "maxwell")
+    >>> print(fast_element_problems(NS(elements=[e]), 1e-3, 20.0)[0].split(": the")[0])
+    tyres.front.lateral_stiffness_kN_per_m, tyres.front.lateral_damping_kN_s_per_m
+    >>> fast_element_problems(NS(elements=[element("rear_longitudinal", np.array([1.0]), 9.1e5, 6e3, "maxwell")]), 1e-3, 20.0)
+    []
+    """
+    lines = []
+    for e in asm.elements:
+        model = getattr(e, "model", "")
+        if not e.states() or model not in ("maxwell", "rolling"):
+            continue
+        series = e.series_damping if model == "rolling" else 0.0
+        c = e.damping + series
+        if not c > 0 or e.stiffness / c * dt_s <= RK4_REAL_STABILITY:
+            continue
+        if e.name.endswith("_lateral"):
+            prefix = f"tyres.{e.name.split('_')[0]}.lateral_"
+        elif e.name.endswith("_longitudinal"):
+            prefix = "tractor.longitudinal_"
+        else:  # pragma: no cover - every element with a state is a tyre's lateral or an axle's longitudinal
+            prefix = f"{e.name}."
+        keys = [prefix + "stiffness_kN_per_m", prefix + "damping_kN_s_per_m"]
+        keys += [prefix + "series_damping_kN_s_per_m_km_h"] if model == "rolling" else []
+        c2 = f", c2 = {to_kilo(series):.4g} kN s/m at {speed_km_h:g} km/h" if model == "rolling" else ""
+        lines.append(f"{', '.join(keys)}: the {e.name.replace('_', ' ')} element ({model}: k = {to_kilo(e.stiffness):.4g} "
+                     f"kN/m, c = {to_kilo(e.damping):.4g} kN s/m{c2}) relaxes at {e.stiffness / c:.4g} /s, faster than "
+                     f"the lift-off model's RK4 step of {dt_s:g} s follows ({RK4_REAL_STABILITY / dt_s:.4g} /s; "
+                     "its records would not be finite): more damping or less stiffness, or simulation.lift_off = false "
+                     "(the linear model, exact at any rate)")
+    return lines
 
 
 def _reduce(p: VariantPlan, i: int, y: np.ndarray) -> None:

@@ -28,12 +28,14 @@ import math
 
 import numpy as np
 
+from ..terrain.profiles import ROAD_HEIGHT_BOUNDS_M
 from ..units import km_h_to_m_s
 from ... import _validate
 from ..comfort.daily_exposure import MAX_HOURS_PER_DAY, MIN_HOURS_PER_DAY, MIN_RECORD_S
 
 __all__ = ["LIMITS", "METHODS", "uses_spectral", "MAX_VARIANTS", "MAX_SPECTRAL_VARIANTS", "MAX_SAMPLES", "MIN_VERDICT_DURATION_S",
-           "BYTES_PER_SAMPLE", "SECONDS_PER_SAMPLE", "SECONDS_PER_SPECTRAL_ROW", "scenario_problems", "profile_problems", "override_problems", "work_estimate", "work_problems"]
+           "BYTES_PER_SAMPLE", "SECONDS_PER_SAMPLE", "SECONDS_PER_SPECTRAL_ROW", "MAX_TRACK_POINTS", "scenario_problems",
+           "profile_problems", "override_problems", "track_length_m", "long_integer_problems", "work_estimate", "work_problems"]
 
 #: key -> (lowest, highest, unit) of every number of a scenario the model is built for.
 LIMITS: dict[str, tuple[float, float, str]] = {
@@ -70,7 +72,7 @@ LIMITS: dict[str, tuple[float, float, str]] = {
     "exposure.hours_per_day": (MIN_HOURS_PER_DAY, MAX_HOURS_PER_DAY, "h"),  # a task's hours (comfort/daily_exposure.py)
     "exposure.working_speed_km_h": (0.5, 80.0, "km/h"),  # one of the speeds (checked when parsed)
     "simulation.duration_s": (1.0, 3_600.0, "s"),
-    "profile.height_m": (-2.0, 2.0, "m"),
+    "profile.height_m": (*ROAD_HEIGHT_BOUNDS_M, "m"),  # one home: every road's heights (terrain.profiles)
     "profile.gap_m": (0.0, 10.0, "m"),
     # the 3-D model and the tractor's parts (issue 23; bounds issue 37): roll inertias as the pitch
     # inertias' scale, tracks and offsets within a tractor's width, parts' masses below the
@@ -119,6 +121,10 @@ MAX_SPECTRAL_VARIANTS = 20_000
 SECONDS_PER_SPECTRAL_ROW = 1.5e-3
 #: Most samples (1 kHz) one command may simulate over all speeds and pairs (``--max-samples``).
 MAX_SAMPLES = 10_000_000
+#: Most points of a profile's uniform grid (its median step from its first distance to its last),
+#: checked before the grid is built: what ``tyrelab road`` and a ride resample a profile CSV onto
+#: (a 108 kB file of 30 km at 1 mm asked for 30 million points, 1.8 GB). The samples' bound.
+MAX_TRACK_POINTS = MAX_SAMPLES
 #: Memory and time per simulated sample (measured: 2.2 GB and 18 s for 7.2 million samples).
 BYTES_PER_SAMPLE = 300.0
 SECONDS_PER_SAMPLE = 2.5e-6
@@ -146,10 +152,28 @@ def _known(key: str) -> bool:
     return True
 
 
+def _finite(value) -> bool:
+    """``math.isfinite`` where an integer too large for a float is not finite (no OverflowError)."""
+    try:
+        return math.isfinite(value)
+    except OverflowError:
+        return False
+
+
 def _out(key: str, value: float) -> str | None:
+    """The line of ``key``'s ``value`` outside :data:`LIMITS` (None: inside); a bool, a non-finite
+    value or an integer too large for a float is no number here.
+
+    Examples
+    --------
+    >>> _out("tractor.mass_kg", 10**400)
+    'tractor.mass_kg: 1000000000…0000000000 (401 digits) is not a finite number'
+    >>> _out("tractor.mass_kg", 5120) is None
+    True
+    """
     low, high, unit = _limit(key)
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)) or not math.isfinite(value):
-        return f"{key}: {value!r} is not a finite number"
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating)) or not _finite(value):
+        return f"{key}: {_validate.shown(value)} is not a finite number"
     if not low <= value <= high:
         u = f" {unit}" if unit else ""
         return f"{key}: {value:g}{u} is outside {low:g} to {high:g}{u}, what the ride model is built for"
@@ -320,9 +344,14 @@ def profile_problems(x, left, right, path=None) -> list[str]:
             problems.append(f"{where}: {x[-1] - x[0]:g} m long, above {LIMITS['surface.length_m'][1]:g} m")
         step = float(np.median(np.diff(x)))
         low = LIMITS["surface.dx_m"][0]
+        points = (float(x[-1]) - float(x[0])) / step + 1 if step > 0 else math.inf
         if step < low:
             problems.append(f"{where}: a step of {step:g} m between points (the median) is below {low:g} m: "
                             f"the track would hold {(x[-1] - x[0]) / step:.3g} points")
+        elif points > MAX_TRACK_POINTS:
+            problems.append(f"{where}: its median step of {step:g} m over {float(x[-1]) - float(x[0]):g} m makes "
+                            f"{points:,.0f} points, more than the {MAX_TRACK_POINTS:,} a track is resampled to (a "
+                            "coarser profile, or a part of it)")
     low, high, _ = LIMITS["profile.height_m"]
     h = np.concatenate([left, right])
     if not (np.isfinite(h).all() and h.min() >= low and h.max() <= high):
@@ -387,6 +416,30 @@ def uses_spectral(scenario, method: str, n_variants: int) -> bool:
     return method == "spectral"
 
 
+def track_length_m(scenario) -> float:
+    """The length of road a scenario's tractor drives, m: a profile CSV's own (its first distance to
+    its last, as read; ``surface.length_m`` does not apply to it), else ``surface.length_m`` (a CRG
+    road's window: the rest of the file unless given). What the work of a ride is estimated on.
+
+    See Also
+    --------
+    work_estimate : the samples, memory and time of a ride on it.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as NS
+    >>> track_length_m(NS(surface=NS(kind="profile", length_m=400.0, profile_data=(np.array([5.0, 20005.0]),) * 3)))
+    20000.0
+    >>> track_length_m(NS(surface=NS(kind="iso8608", length_m=200.0)))
+    200.0
+    """
+    s = scenario.surface
+    data = getattr(s, "profile_data", None)
+    if getattr(s, "kind", None) == "profile" and data is not None and len(data[0]) > 1:
+        return float(data[0][-1]) - float(data[0][0])
+    return float(s.length_m)
+
+
 def work_estimate(scenario, n_variants: int, speeds_km_h=None, method: str = "time") -> dict:
     """Samples, memory and time of ``n_variants`` variants at every speed (an estimate) under
     ``method`` (:mod:`tyrelab.vehicle.spectral_ride`): ``time`` simulates every variant; spectral
@@ -411,13 +464,13 @@ def work_estimate(scenario, n_variants: int, speeds_km_h=None, method: str = "ti
     _validate.positive_int("n_variants", n_variants)
     spectral = uses_spectral(scenario, method, n_variants)
     speeds = list(speeds_km_h or scenario.exposure.speeds_km_h)
-    span_m = scenario.surface.length_m + scenario.surface.lead_in_m + \
-        scenario.tractor.front_distance_m + scenario.tractor.rear_distance_m
+    length_m = track_length_m(scenario)  # a profile CSV's own length, not surface.length_m
+    span_m = length_m + scenario.surface.lead_in_m + scenario.tractor.front_distance_m + scenario.tractor.rear_distance_m
     samples = 0.0
     for v in speeds:
         seconds = span_m / km_h_to_m_s(v)
         if scenario.simulation.duration_s is not None:
-            seconds = min(seconds, scenario.simulation.duration_s + span_m - scenario.surface.length_m)
+            seconds = min(seconds, scenario.simulation.duration_s + span_m - length_m)
         samples += seconds * 1000.0
     simulated = 0 if method == "spectral" and spectral else 1 if spectral else n_variants
     rows = n_variants * len(speeds) if spectral else 0
@@ -469,4 +522,40 @@ def work_problems(scenario, n_variants: int, speeds_km_h=None, *, max_variants: 
         problems.append(f"{e['simulated_variants']} variant(s) x {e['speeds']} speed(s) simulate {e['samples']:,} samples "
                         f"(about {e['memory_GB']:.1f} GB for the longest run and {e['seconds']:.0f} s), more than "
                         f"{max_samples:,}; --max-samples N lifts the bound (or raise the speed, shorten the track)")
+    return problems
+
+
+def long_integer_problems(text: str) -> list[str]:
+    """Every integer of a scenario's TOML text too long for Python to read (more digits than
+    ``sys.get_int_max_str_digits()``, 4300: :mod:`tomllib` refuses the whole text with a ValueError
+    naming no key), one line each naming its key (``[table]`` and ``key =`` on its line; else the
+    line); the digits are counted, never converted.
+
+    See Also
+    --------
+    tyrelab.scenario_io.huge_number_problems : integers TOML reads that are too large for a float.
+
+    Examples
+    --------
+    >>> long_integer_problems("[tractor]\\nmass_kg = 1" + "0" * 5000 + "\\n")
+    ['tractor.mass_kg: an integer of 5001 digits is not a finite number']
+    """
+    import re
+    import sys
+
+    limit = sys.get_int_max_str_digits() or 4300
+    table, problems = "", []
+    for number, line in enumerate(text.splitlines(), 1):
+        header = re.match(r"\s*\[\[?\s*([^\]]*?)\s*\]\]?\s*(#.*)?$", line)
+        if header:
+            table = header.group(1).replace('"', "").replace("'", "").replace(" ", "")
+            continue
+        for run in re.finditer(r"(?<![\w.])[+-]?[0-9][0-9_]*", line):
+            digits = sum(c.isdigit() for c in run.group())
+            if digits <= limit:
+                continue
+            key = re.match(r"\s*([\w.\"' -]+?)\s*=", line)
+            name = key.group(1).replace('"', "").replace("'", "").replace(" ", "") if key else None
+            where = f"{table}.{name}" if table and name else name or f"line {number}"
+            problems.append(f"{where}: an integer of {digits} digits is not a finite number")
     return problems

@@ -46,7 +46,7 @@ from ... import _validate as _checks
 from ...schema import load_schema
 from ...tyre.sizes import TyreSizeError, parse_tyre_size
 from ..model import cab_mount_problems, needs, pivot_problem, scenario_key
-from .limits import LIMITS, scenario_problems
+from .limits import LIMITS, long_integer_problems, scenario_problems
 from .specs import (AxleSpec, BallastSpec, CabSpec, ExposureSpec, ImplementSpec, Scenario, ScenarioError, SeatSpec,
                     SimulationSpec, SurfaceSpec, SweepSpec, TractorSpec, TyreSpec)
 
@@ -102,7 +102,14 @@ def _control_characters(text: str, allowed: str = "") -> str:
 
 
 def _is_number(v) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+    """A finite real number: no bool, no NaN or infinity, no integer too large for a float (``1``
+    and 400 zeros, which TOML holds exactly: False, never an OverflowError)."""
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        return False
+    try:
+        return math.isfinite(v)
+    except OverflowError:
+        return False
 
 
 def _check_value(where: str, f: dict, value, n_speeds: int | None) -> list[str]:
@@ -131,10 +138,11 @@ def _check_value(where: str, f: dict, value, n_speeds: int | None) -> list[str]:
             if t == "number_or_numbers" and n_speeds is not None and len(value) != n_speeds:
                 return [f"{where}: {len(value)} values but exposure.speeds_km_h has {n_speeds} (give one per speed)"]
         else:
-            return [f"{where}: expected {'a number or ' if t == 'number_or_numbers' else ''}a list of numbers, got {value!r}"]
+            return [f"{where}: expected {'a number or ' if t == 'number_or_numbers' else ''}a list of numbers, got "
+                    f"{_checks.shown(value)}"]
     elif t == "number":
         if not _is_number(value):
-            return [f"{where}: expected a number, got {value!r}"]
+            return [f"{where}: expected a number, got {_checks.shown(value)}"]
         values = [value]
     else:  # pragma: no cover - schema typo
         raise ValueError(f"schema type {t!r}")
@@ -552,6 +560,8 @@ def parse_scenario(text: str, base_dir: str | Path = ".", path: str | Path | Non
         raise ScenarioError(where, [f"not valid TOML: {exc}"]) from None
     except RecursionError:  # arrays nested thousands deep
         raise ScenarioError(where, ["not valid TOML: nested too deeply"]) from None
+    except ValueError:  # an integer of more digits than Python converts (4300): tomllib's own ValueError
+        raise ScenarioError(where, long_integer_problems(text) or ["not valid TOML: a number too long to read"]) from None
     return _from_document(doc, where, base_dir, path, confine, read_profile, read_crg)
 
 

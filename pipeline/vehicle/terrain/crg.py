@@ -39,6 +39,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ... import _validate
+from .profiles import ROAD_HEIGHT_BOUNDS_M
 
 __all__ = ["CrgData", "MAX_GRID_VALUES", "wheel_positions", "crg_problems", "wheel_tracks"]
 
@@ -143,18 +144,28 @@ def crg_problems(data: CrgData, positions: dict, start_m: float, length_m: float
     i0, i1 = _window(data, start_m, length_m)
     if i1 - i0 < 16:
         return [f"surface.length_m: {data.name} gives {i1 - i0} cross sections from start_m (need at least 16)"]
-    if not fill_missing:
-        z = np.asarray(data.road.z)[i0:i1]
-        v_grid = np.asarray(data.road.v, float)
-        for wheel, v in positions.items():
-            j = int(np.clip(np.searchsorted(v_grid, v), 1, v_grid.size - 1))
-            cols = z[:, [j - 1, j]] if v_grid[j] != v else z[:, [j]]
-            bad = np.flatnonzero(~np.isfinite(cols).all(axis=1))
-            if bad.size:
-                u = data.u_start_m + (i0 + bad[0]) * data.u_inc_m
-                problems.append(f"surface.file: {data.name} has {bad.size} missing heights (NaN) under the "
-                                f"{wheel.replace('_', ' ')} wheel (v = {v:g} m), the first at u = {u:g} m; "
-                                "fill_missing = true fills them as OpenCRG does")
+    z = np.asarray(data.road.z)[i0:i1]
+    v_grid = np.asarray(data.road.v, float)
+    banking = np.asarray(data.road.banking, float)[i0:i1]
+    low, high = ROAD_HEIGHT_BOUNDS_M
+    for wheel, v in positions.items():
+        j = int(np.clip(np.searchsorted(v_grid, v), 1, v_grid.size - 1))
+        cols = z[:, [j - 1, j]] if v_grid[j] != v else z[:, [j]]
+        bad = np.flatnonzero(~np.isfinite(cols).all(axis=1))
+        if bad.size and not fill_missing:
+            u = data.u_start_m + (i0 + bad[0]) * data.u_inc_m
+            problems.append(f"surface.file: {data.name} has {bad.size} missing heights (NaN) under the "
+                            f"{wheel.replace('_', ' ')} wheel (v = {v:g} m), the first at u = {u:g} m; "
+                            "fill_missing = true fills them as OpenCRG does")
+        # the heights along the wheel's line (bilinear across v at the grid's u, plus the banking): the
+        # same plausibility bound as a profile CSV's heights, before any track is built
+        w = (v - v_grid[j - 1]) / (v_grid[j] - v_grid[j - 1]) if cols.shape[1] == 2 else 1.0
+        h = (cols[:, 0] * (1.0 - w) + cols[:, -1] * w if cols.shape[1] == 2 else cols[:, 0]) + banking * v
+        h = h[np.isfinite(h)]
+        if h.size and (h.min() < low or h.max() > high):
+            problems.append(f"surface.file: {data.name}'s heights under the {wheel.replace('_', ' ')} wheel (v = {v:g} m) "
+                            f"must be within {low:g} to {high:g} m, as a profile's (found {h.min():g} to {h.max():g} m: "
+                            "millimetres stored as metres?)")
     return problems
 
 

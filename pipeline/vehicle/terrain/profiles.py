@@ -40,7 +40,14 @@ __all__ = [
     "side_spectra",
     "add_lead_in",
     "uniform_grid",
+    "ROAD_HEIGHT_BOUNDS_M",
 ]
+
+#: Lowest and highest height a road may have under a wheel, m, from every source alike (a profile
+#: CSV's heights, a CRG road's under each wheel; ``profile.height_m`` of the scenario limits is
+#: this): a plausibility bound far beyond any farm track's (ISO 8608 class H at 10 mm steps stays
+#: within a few hundred mm), below a road written in millimetres as metres (a documented choice).
+ROAD_HEIGHT_BOUNDS_M = (-2.0, 2.0)
 
 #: ISO 8608 reference spatial frequency n0, cycles/m.
 ISO8608_N0_CYCLES_PER_M = 0.1
