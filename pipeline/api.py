@@ -498,7 +498,9 @@ def vehicle_frf(
         Rolling speed (0: stationary).
     scenario : path, str, dict or Scenario, optional
         The vehicle (as :func:`ride`): with a speed above 0 its tyres' rotation and lug-passing
-        bins are masked.
+        bins are masked; its model at the speed (stationary tyres at 0 km/h, rolling above) gives
+        the predicted FRFs (``predicted``, ``predicted_h_magnitude`` of the rows) and modes compared
+        with the measured ones (``validation``: the rides stage's ``vehicle_frf_validation`` rows).
     sample_rate_Hz : float, optional
     channel_map : dict, optional
         For ``.mf4``/``.tdms``.
@@ -539,13 +541,20 @@ def vehicle_frf(
     speed = float(speed_km_h)
     if not (speed >= 0 and speed < float("inf")):
         raise ValueError(f"speed_km_h must be finite and >= 0, got {speed_km_h!r}")
-    wheels = None
-    if scenario is not None and speed > 0:
+    wheels, sc = None, None
+    if scenario is not None:
         from .measurement.frf import scenario_wheel_geometry
 
-        wheels = scenario_wheel_geometry(_scenario(scenario))
+        sc = _scenario(scenario)
+        wheels = scenario_wheel_geometry(sc) if speed > 0 else None
     if isinstance(recording, pd.DataFrame):
         rec = _FrameRecording(recording, sample_rate_Hz)
     else:
         rec = open_recording(Path(recording), channel_map)
-    return recording_frf(rec, speed, wheels)
+    result = recording_frf(rec, speed, wheels)
+    if sc is not None:  # the scenario's model at this speed beside the measurement (the rides stage's)
+        from .stand import frf_validation_rows, predicted_frf
+
+        result.predicted = predicted_frf(result, sc, speed)
+        result.validation = frf_validation_rows(result, sc, speed, result.predicted)
+    return result

@@ -682,6 +682,14 @@ def frf_table(r, max_Hz: float = 20.0) -> str:
                      f"{row['damping_ratio']:>8.3f}{row['damping_ci95_low']:>8.3f}-{row['damping_ci95_high']:<7.3f}")
     if not r.mode_rows():
         lines.append("(none fitted)")
+    compared = [v for v in getattr(r, "validation", []) if v.get("mode") is not None]
+    if compared:  # --scenario: its model's nearest mode beside each measured one
+        lines += ["", "the scenario's model at this speed (nearest mode; in = inside the measured 95 % interval)",
+                  f"{'output':<22}{'mode':>5}  {'model mode':<14}{'f_Hz':>8}{'in':>5}{'zeta':>8}{'in':>5}"]
+        for v in compared:
+            lines.append(f"{v['output']:<22}{v['mode']:>5}  {str(v['predicted_mode']):<14}"
+                         f"{v['predicted_frequency_Hz']:>8.3f}{('yes' if v['frequency_in_interval'] else 'no'):>5}"
+                         f"{v['predicted_damping_ratio']:>8.3f}{('yes' if v['damping_in_interval'] else 'no'):>5}")
     lines += ["", "FRFs over 0.5-12 Hz", f"{'input':<26}{'output':<22}{'peak |H|':>10}{'at_Hz':>8}{'coh':>6}"
               f"{'flagged':>9}{'masked':>8}  unit"]
     band = (e.frequency_Hz >= 0.5) & (e.frequency_Hz <= min(12.0, max_Hz))

@@ -51,3 +51,27 @@ def test_road_input_exits_3_with_one_line_and_bad_files_exit_2(tmp_path, capsys)
 def test_library_arguments_checked():
     with pytest.raises(ValueError, match="speed_km_h"):
         tyrelab.vehicle_frf(pd.DataFrame({"floor_z_m_s2": [0.0]}), speed_km_h=-1)
+
+
+def test_a_scenario_gives_the_predicted_frfs_and_modes_beside_the_measured(tmp_path, capsys):
+    """``--scenario``: the model at the recording's speed beside the measurement (the rides stage's
+    ``predicted_h_magnitude`` and ``vehicle_frf_validation``), JSON, table and library alike."""
+    from tyrelab import stand
+    from tyrelab.generate import write_run
+
+    row = next(r for r in stand.stand_plan().to_dict("records") if r["ride_id"] == "stand_rear_left_still_6kmh")
+    sc = stand.stand_scenario()
+    write_run(stand.stand_recording(sc, row, 1991), tmp_path / "stand.parquet")
+    (tmp_path / "stand.toml").write_text(stand.STAND_SCENARIO_TEXT, encoding="utf-8")
+    args = ["frf", str(tmp_path / "stand.parquet"), "--speed", "6", "--scenario", str(tmp_path / "stand.toml")]
+    assert main(args) == 0
+    doc = json.loads(capsys.readouterr().out)
+    z = [f for f in doc["frf"] if f["output"] == "floor_z_m_s2" and 1.0 <= f["frequency_Hz"] <= 2.0]
+    assert z and all(abs(f["predicted_h_magnitude"] / f["h_magnitude"] - 1) < 0.1 for f in z)
+    assert {"bounce", "pitch"} <= {v["predicted_mode"] for v in doc["validation"]}
+    lib = tyrelab.vehicle_frf(tmp_path / "stand.parquet", speed_km_h=6.0, scenario=tmp_path / "stand.toml")
+    assert [v["predicted_mode"] for v in lib.validation] == [v["predicted_mode"] for v in doc["validation"]]
+    assert main([*args, "--format", "table"]) == 0
+    assert "the scenario's model at this speed" in capsys.readouterr().out
+    assert main(["frf", str(tmp_path / "stand.parquet")]) == 0
+    assert "validation" not in json.loads(capsys.readouterr().out)  # no scenario: no prediction

@@ -758,6 +758,12 @@ class RecordingFrf:
         Output -> list of :class:`VehicleMode`.
     speed_km_h : float
     sample_rate_Hz, duration_s : float
+    predicted : (F, p, q) complex or None
+        A model's FRFs on the same bins (NaN for an output it does not have), set by the caller
+        that has one (:func:`tyrelab.api.vehicle_frf` with a scenario); written beside the measured
+        ones (``predicted_h_magnitude``).
+    validation : list of dict
+        The ``vehicle_frf_validation`` rows of that model (:func:`tyrelab.stand.frf_validation_rows`).
     """
 
     inputs: tuple
@@ -769,6 +775,8 @@ class RecordingFrf:
     speed_km_h: float
     sample_rate_Hz: float
     duration_s: float
+    predicted: np.ndarray | None = None
+    validation: list = field(default_factory=list)
 
     def usable(self, k: int) -> np.ndarray:
         """(F, q) bins of output ``k`` the fit may use: separable, unmasked, coherent."""
@@ -779,9 +787,11 @@ class RecordingFrf:
     def frf_rows(self, max_Hz: float = STORED_MAX_Hz, predicted=None) -> list[dict]:
         """One row per input, output and bin in (0, ``max_Hz``] (the ``vehicle_frf`` columns).
 
-        ``predicted``: a model's FRFs on the same bins, (F, p, q) complex (NaN where it has none),
-        written as ``predicted_h_magnitude`` (the column is left out without it)."""
+        ``predicted``: a model's FRFs on the same bins, (F, p, q) complex (NaN where it has none;
+        default :attr:`predicted`), written as ``predicted_h_magnitude`` (the column is left out
+        without one)."""
         e = self.estimate
+        predicted = self.predicted if predicted is None else predicted
         f = e.frequency_Hz
         keep = np.flatnonzero((f > 0) & (f <= max_Hz))
         if predicted is not None and np.shape(predicted) != e.h.shape:
@@ -820,10 +830,15 @@ class RecordingFrf:
 
     def to_json(self, max_Hz: float = STORED_MAX_Hz) -> dict:
         """``inputs``, ``outputs``, ``speed_km_h``, ``sample_rate_Hz``, ``duration_s``, ``n_d``,
-        ``modes`` (rows) and ``frf`` (rows), NaN as None."""
-        return {"inputs": list(self.inputs), "wheels": list(self.wheels), "outputs": list(self.outputs),
-                "speed_km_h": self.speed_km_h, "sample_rate_Hz": self.sample_rate_Hz, "duration_s": self.duration_s,
-                "n_d": self.estimate.n_d, "modes": self.mode_rows(), "frf": self.frf_rows(max_Hz)}
+        ``modes`` (rows) and ``frf`` (rows), NaN as None; with a prediction (:attr:`predicted`) the
+        rows' ``predicted_h_magnitude`` and ``validation`` (the ``vehicle_frf_validation`` rows)."""
+        doc = {"inputs": list(self.inputs), "wheels": list(self.wheels), "outputs": list(self.outputs),
+               "speed_km_h": self.speed_km_h, "sample_rate_Hz": self.sample_rate_Hz, "duration_s": self.duration_s,
+               "n_d": self.estimate.n_d, "modes": self.mode_rows(), "frf": self.frf_rows(max_Hz)}
+        if self.predicted is not None or self.validation:
+            doc["validation"] = [{k: (None if isinstance(v, float) and not math.isfinite(v) else v)
+                                  for k, v in row.items()} for row in self.validation]
+        return doc
 
 
 def scenario_wheel_geometry(scenario) -> list[tuple[float, int]]:
