@@ -43,7 +43,7 @@ __all__ = [
     "Carriage",
     "ground_input",
     "half_step_input",
-    "state_space",
+    "carriage_state_space",
     "simulate_linear",
     "simulate_nonlinear",
     "simulate_ivp",
@@ -119,10 +119,22 @@ def damped_natural_frequency(carriage: Carriage) -> float:
     return carriage.natural_frequency_Hz * math.sqrt(max(1 - z * z, 0.0))
 
 
-def state_space(c: Carriage) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Continuous state space of the linear carriage.
+def carriage_state_space(c: Carriage) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Continuous state space of the linear carriage (``state_space`` before issue 45, still
+    importable from here under that name; :func:`tyrelab.vehicle.ride.state_space` is the
+    pitch-plane tractor's).
 
     State ``[z, z']``, inputs ``[u, u']``, outputs ``[z, z', z'']``.
+
+    See Also
+    --------
+    simulate_linear : runs it over a ground input.
+
+    Examples
+    --------
+    >>> a, b, c, d = carriage_state_space(Carriage(100.0, 1e5, 1e3, parasitic_damping_N_s_per_m=0.0))
+    >>> a.tolist(), c.shape, d.shape
+    ([[0.0, 1.0], [-1000.0, -10.0]], (3, 2), (3, 2))
     """
     _validate.instance("c", c, Carriage)
     m, k, cc, cp = c.mass_kg, c.stiffness_N_per_m, c.damping_N_s_per_m, c.parasitic_damping_N_s_per_m
@@ -131,6 +143,11 @@ def state_space(c: Carriage) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.nda
     out_c = np.vstack([np.eye(2), a[1]])
     out_d = np.vstack([np.zeros((2, 2)), b[1]])
     return a, b, out_c, out_d
+
+
+#: The name of :func:`carriage_state_space` before issue 45 (not in ``__all__``: the ride's
+#: ``state_space`` is the pitch-plane tractor's).
+state_space = carriage_state_space
 
 
 def simulate_linear(
@@ -170,7 +187,7 @@ def simulate_linear(
     (0.01, True)
     """
     dt_s = positive("dt_s", dt_s)
-    a, b, c, d = state_space(carriage)
+    a, b, c, d = carriage_state_space(carriage)
     w = np.vstack([np.asarray(u_m, float), np.asarray(u_dot_m_s, float)])  # (2, n)
     y = lti.discretise(a, b, c, d, dt_s).run(w, x0=np.array([z0_m, v0_m_s], float))
     return {"z_m": y[0], "v_m_s": y[1], "a_m_s2": y[2]}
