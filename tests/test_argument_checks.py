@@ -195,6 +195,8 @@ ROWS = [
     (f"{TY}.formula_fit.front_rule", dict(table_iii=lambda: _pub("table_iii"), table_ii=lambda: _pub("table_ii"), front_id="F9"), "table_iii"),
     (f"{TY}.formula_fit.front_rule", dict(table_iii=lambda: _pub("table_iii"), table_ii=pd.DataFrame()), "table_ii"),
     (f"{TY}.formula_fit.fit_table", dict(fits=["fit"]), "fits"),
+    # tyre/examples.py
+    (f"{TY}.examples.demo_runs", dict(series="speed"), "series"),
     # tyre/mf_tyre.py
     (f"{TY}.mf_tyre.measured_tyre", dict(tyre_id="ZZ", tyres=lambda: _pub("table_ii")), "tyre_id"),
     (f"{TY}.mf_tyre.measured_tyre", dict(tyre_id="T1", tyres=lambda: _pub("table_ii"), damping_speed_km_h=0.0), "damping_speed_km_h"),
