@@ -195,6 +195,8 @@ ROWS = [
     (f"{TY}.formula_fit.front_rule", dict(table_iii=lambda: _pub("table_iii"), table_ii=lambda: _pub("table_ii"), front_id="F9"), "table_iii"),
     (f"{TY}.formula_fit.front_rule", dict(table_iii=lambda: _pub("table_iii"), table_ii=pd.DataFrame()), "table_ii"),
     (f"{TY}.formula_fit.fit_table", dict(fits=["fit"]), "fits"),
+    # tyre/examples.py
+    (f"{TY}.examples.demo_runs", dict(series="speed"), "series"),
     # tyre/mf_tyre.py
     (f"{TY}.mf_tyre.measured_tyre", dict(tyre_id="ZZ", tyres=lambda: _pub("table_ii")), "tyre_id"),
     (f"{TY}.mf_tyre.measured_tyre", dict(tyre_id="T1", tyres=lambda: _pub("table_ii"), damping_speed_km_h=0.0), "damping_speed_km_h"),
@@ -286,7 +288,7 @@ ROWS = [
     (f"{VE}.carriage.ground_input", dict(x_m=[0.0, 1.0, 2.0], elevation_m=[0.0, 0.01, 0.0], speed_m_s=0.0, dt_s=0.001, x_start_m=0.0, x_end_m=2.0), "speed_m_s"),
     (f"{VE}.carriage.ground_input", dict(x_m=[0.0, 1.0, 2.0], elevation_m=[0.0, 0.01, 0.0], speed_m_s=1.0, dt_s=0.001, x_start_m=2.0, x_end_m=1.0), "x_end_m"),
     (f"{VE}.carriage.half_step_input", dict(x_m=[0.0, 1.0, 2.0], elevation_m=[0.0, 0.01, 0.0], speed_m_s=1.0, n_steps=10, dt_s=0.0), "dt_s"),
-    (f"{VE}.carriage.state_space", dict(c=None), "c"),
+    (f"{VE}.carriage.carriage_state_space", dict(c=None), "c"),
     (f"{VE}.carriage.simulate_linear", dict(carriage=_carriage, u_m=[0.0] * 3, u_dot_m_s=[0.0] * 3, dt_s=-1.0), "dt_s"),
     (f"{VE}.carriage.simulate_nonlinear", dict(carriage=_carriage, u_half_m=[0.0] * 3, u_dot_half_m_s=[0.0] * 3, dt_s=0), "dt_s"),
     (f"{VE}.carriage.simulate_ivp", dict(carriage=_carriage, x_m=[0.0, 1.0, 2.0], elevation_m=[0.0] * 3, speed_m_s=1.0, t_end_s=INF), "t_end_s"),
@@ -405,7 +407,6 @@ ROWS = [
     # vehicle/ride.py
     (f"{VE}.tyres.per_speed", dict(values=[1.0, 2.0], list_speeds_km_h=[4.0], speeds_km_h=[4.0, 8.0]), "values"),
     (f"{VE}.tyres.resolve_tyres", dict(scenario="modern.toml"), "scenario"),
-    (f"{VE}.tyres.build_tractor", dict(scenario="modern.toml", tyres={}, i=0), "scenario"),
     (f"{VE}.tyres.build_parts", dict(scenario=_scenario, tyres={}, i=-1), "i"),
     (f"{VE}.tyres.static_tyre_loads", dict(asm="tractor"), "asm"),
     (f"{VE}.tyres.scenario_fits", dict(scenario=None, tables={}), "scenario"),
@@ -414,9 +415,7 @@ ROWS = [
     (f"{VE}.run.track.tyre_inputs", dict(asm=None, track=None, kind="none", footprints=(0.3, 0.4), radii=(0.6, 0.8), speed_m_s=1.0, wheelbase_m=2.5, n_steps=10), "asm"),
     (f"{VE}.run.pitch_plane.state_names", dict(tractor=None), "tractor"),
     (f"{VE}.run.pitch_plane.state_space", dict(tractor="tractor"), "tractor"),
-    (f"{VE}.run.pitch_plane.simulate_state_space", dict(a=-np.eye(1), b=np.eye(1), c=np.eye(1), d=np.zeros((1, 1)), w=np.zeros((5, 1)), dt_s=0.0), "dt_s"),
     (f"{VE}.run.spectral.frequency_response", dict(a=-np.eye(1), b=np.eye(1), c=np.eye(1), d=np.zeros((1, 1)), frequency_Hz=[NAN]), "frequency_Hz"),
-    (f"{VE}.run.pitch_plane.ground_response", dict(h=np.ones((1, 2, 3)), frequency_Hz=[1.0, 2.0, 3.0], speed_m_s=0.0, wheelbase_m=2.5), "speed_m_s"),
     (f"{VE}.run.spectral.enveloping_response", dict(kind="soft", footprint_m=0.3, dx_m=0.05, n_cycles_per_m=[0.1]), "kind"),
     (f"{VE}.run.track.build_profile", dict(scenario=None), "scenario"),
     (f"{VE}.run.track.axle_inputs", dict(track=_slatted, kind="none", footprints=(0.3, 0.4), radii=(0.6, 0.8), speed_m_s=-1.0, wheelbase_m=2.5, n_steps=10), "speed_m_s"),
