@@ -299,7 +299,7 @@ def predicted_frf(result, scenario, speed_km_h: float):
     ...       wheels=("rear_left",))
     >>> h = predicted_frf(r, stand_scenario(), 6.0)
     >>> h.shape, bool(np.isnan(h[:, 1]).all()), round(float(abs(h[1, 0, 0])), 3)
-    ((2, 2, 1), True, 0.87)
+    ((2, 2, 1), True, 0.976)
     """
     f = result.estimate.frequency_Hz
     known = [o for o in result.outputs if o in MODEL_OUTPUTS]
