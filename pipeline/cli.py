@@ -660,8 +660,11 @@ def cmd_frf(args) -> int:
     e = r.estimate
     band = (e.frequency_Hz >= 0.5) & (e.frequency_Hz <= 12.0)
     if band.any() and e.ill_conditioned[band].all():
-        print(f"{prog}: {printable(args.file)}: the inputs cannot be separated in any bin of 0.5-12 Hz (condition "
-              f"number {float(np.nanmedian(e.condition_number[band])):.3g}: inputs correlated as on a road?): "
+        delays = e.input_delay_s if e.input_delay_s is not None else np.full(len(r.inputs), np.nan)
+        why = (f"condition number {float(np.nanmedian(e.condition_number[band])):.3g}: inputs correlated as on a road?"
+               if not np.isfinite(delays).any() else "one input is another delayed, as on a road: " + ", ".join(
+                   f"{inp} {d:+.3g} s" for inp, d in zip(r.inputs, delays) if np.isfinite(d)))
+        print(f"{prog}: {printable(args.file)}: the inputs cannot be separated in any bin of 0.5-12 Hz ({why}): "
               "no mode fitted", file=sys.stderr)
         return EXIT_QUARANTINE
     return EXIT_OK

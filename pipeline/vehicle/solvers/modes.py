@@ -509,14 +509,36 @@ def damped_modes(asm: Assembly, gravity_m_s2: float | None = None, reference: Mo
         for lo, hi in zip(grid[:-1], grid[1:]):
             go(float(lo), float(hi), 0)
         current, roots = state["current"], state["roots"]
-    # the roots followed are the modes; each named by its own shape (the rules of mode_set): a mode
-    # followed through a veering takes the name of what it has become
-    chosen = sorted(current.values(), key=lambda j: abs(roots[j]))
-    quality_of = {j: quality[i] for i, j in current.items()}
+    # the modes: every oscillating root (a complex pair, followed or not: a pair can form from a followed
+    # mode's real roots and a contact point's as the dampers are released, issue 43) and the real roots
+    # the following reached. Each named by its own shape (the rules of mode_set), the oscillating ones
+    # first: a mode followed through a veering takes the name of what it has become, and a real root
+    # (reported overdamped) takes a name only where no oscillating mode has it (else ``_2``)
     final = state["shapes"]
-    shares = [np.real(final[:, j].conj() * (m @ final[:, j])) for j in chosen]
+    quality_of = {j: quality[i] for i, j in current.items()}
+    oscillating = [j for j in range(len(roots)) if abs(roots[j].imag) > 1e-9 * abs(roots[j])]
+    chosen = sorted(set(oscillating), key=lambda j: abs(roots[j]))
+    real = sorted((j for j in current.values() if j not in oscillating), key=lambda j: abs(roots[j]))
+    ref_shapes = ref.shapes.astype(complex)
+    for j in chosen:
+        if j not in quality_of:  # not followed: its match to the undamped mode it resembles most
+            quality_of[j] = float(np.max(_complex_mac(m, ref_shapes, final[:, [j]]))) if ref_shapes.size else 0.0
+
+    def shares_of(js):
+        return [np.real(final[:, j].conj() * (m @ final[:, j])) for j in js]
+
+    named = list(zip(_shape_names(shares_of(chosen), ref.coordinates, one_to_one=True), chosen))
+    taken = {n for n, _ in named}
+    for j in real:
+        base = name = _shape_names(shares_of([j]), ref.coordinates)[0]
+        k = 1
+        while name in taken:
+            k += 1
+            name = f"{base}_{k}"
+        taken.add(name)
+        named.append((name, j))
     out = {}
-    for name, j in zip(_shape_names(shares, ref.coordinates, one_to_one=True), chosen):
+    for name, j in sorted(named, key=lambda t: abs(roots[t[1]])):
         lam = complex(roots[j])
         size = abs(lam)
         overdamped = abs(lam.imag) <= 1e-9 * size
