@@ -427,6 +427,8 @@ ROWS = [
     (f"{VE}.ride.ride_sweep", dict(scenario=_scenario, max_variants=0), "max_variants"),
     (f"{VE}.run.time.ride_variants", dict(scenarios=["modern.toml"]), "scenarios"),
     (f"{VE}.run.frequency.spectral_variants", dict(scenarios=["modern.toml"]), "scenarios"),
+    (f"{VE}.run.time.ride_variants", dict(scenarios=lambda: [_scenario()], a8_interval=[True, False]), "a8_interval"),
+    (f"{VE}.run.frequency.spectral_variants", dict(scenarios=lambda: [_scenario()], a8_interval=[]), "a8_interval"),
     (f"{VE}.ride.ride_sweep", dict(scenario=_scenario, method="fast"), "method"),
     (f"{VE}.run.sweep.expected_sweep", dict(scenario="modern.toml", front_pressures_bar=[1.0], rear_pressures_bar=[1.0]), "scenario"),
     (f"{VE}.run.sweep.expected_sweep", dict(scenario=_scenario, front_pressures_bar=[], rear_pressures_bar=[1.0]), "front_pressures_bar"),
