@@ -73,6 +73,7 @@ from scipy import ndimage, optimize, signal
 from scipy.stats import t as student_t
 
 from .._validate import positive, positive_int
+from ..units import km_h_to_m_s
 
 __all__ = ["MIN_SEGMENT_S", "MAX_INPUT_COHERENCE", "FIT_MIN_COHERENCE", "FIT_BAND_Hz", "MAX_MODES",
            "MASK_HARMONICS", "MASK_HALF_WIDTH", "CrossSpectra", "CrossSpectraAccumulator", "cross_spectra",
@@ -603,7 +604,7 @@ def wheel_excitation_mask(frequency_Hz, speed_km_h: float, wheels, harmonics: in
     mask = np.zeros(f.shape, dtype=bool)
     if speed_km_h is None or not speed_km_h > 0:
         return mask
-    v = float(speed_km_h) / 3.6
+    v = km_h_to_m_s(float(speed_km_h))
     df = float(np.median(np.diff(f))) if f.size > 1 else 0.0
     centres = []
     for circumference_m, lugs in wheels:

@@ -423,6 +423,27 @@ def _roots(asm: Assembly, gravity_m_s2: float | None, coordinates) -> tuple[np.n
     return roots[keep], vecs[np.ix_(idx, np.flatnonzero(keep))]
 
 
+def _release_path(asm: Assembly, gravity_m_s2: float | None, coordinates):
+    """``share -> _roots(_released(asm, share), gravity_m_s2, coordinates)`` for ``share > 0``, the same
+    numbers from the same operations (:meth:`~tyrelab.vehicle.model.Assembly.state_rows`), cheaper: every
+    released model has one layout, and only the series elements' rows change with ``share`` (the rest,
+    a static load's moment at a contact point among them, computed once). The tilt outputs' gravity
+    does not enter the roots."""
+    one = _released(asm, 1.0)
+    lay = one.layout
+    known, _, _ = one.state_rows(lay, [e for e in one.elements if not isinstance(e, Rolling)])
+    idx = [lay.vel_cols[asm.coordinates.index(c)] for c in coordinates]
+
+    def roots_at(share: float) -> tuple[np.ndarray, np.ndarray]:
+        _, _, rows = one.state_rows(lay, _released(asm, share).elements, known)
+        roots, vecs = linalg.eig(rows[:, :lay.n])
+        scale = float(np.max(np.abs(roots))) if roots.size else 0.0
+        keep = (np.abs(roots) > ZERO_ROOT * scale) & (roots.imag >= -ZERO_ROOT * np.abs(roots))
+        return roots[keep], vecs[np.ix_(idx, np.flatnonzero(keep))]
+
+    return roots_at
+
+
 def _complex_mac(m: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Mass-weighted MAC of the columns of ``a`` (rows) with those of ``b`` (columns), complex shapes."""
     cross = np.abs(a.conj().T @ m @ b) ** 2
@@ -482,10 +503,11 @@ def damped_modes(asm: Assembly, gravity_m_s2: float | None = None, reference: Mo
     quality = {i: float(mac[i, j]) for i, j in current.items()}
     state = {"current": current, "roots": roots, "shapes": shapes}
     if _released_by(asm):
+        roots_at = _release_path(asm, gravity_m_s2, ref.coordinates)
 
         def advance(share: float) -> list:
             """The step to ``share``: the followed modes' MAC, the new state (not yet taken)."""
-            new_roots, new_shapes = _roots(_released(asm, share), gravity_m_s2, ref.coordinates)
+            new_roots, new_shapes = roots_at(share)
             order = sorted(state["current"])
             mac = _complex_mac(m, state["shapes"][:, [state["current"][i] for i in order]], new_shapes)
             rows, cols = optimize.linear_sum_assignment(-mac)
