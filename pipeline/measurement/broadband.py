@@ -739,10 +739,17 @@ def model_test(kelvin_voigt: ModelFit, maxwell: ModelFit) -> float:
     return float(f_dist.sf(stat, 1, nu))
 
 
-def _same_model(f, z, u, model) -> ModelFit | None:
-    """``model`` fitted to another estimator's ``z`` over the same bins (None where it cannot be)."""
+def _same_model(f, z, u, fit: ModelFit, start: ModelFit) -> ModelFit | None:
+    """``fit``'s model fitted to another estimator's ``z`` over the same bins (None where it cannot be):
+    Kelvin–Voigt anew, the series damper polished from ``fit`` (``start`` the Kelvin–Voigt fit that
+    bounds its search, :func:`_maxwell_fit`)."""
+    if not np.all(np.isfinite(z)):
+        return None
     try:
-        return fit_model(f, z, u, model) if np.all(np.isfinite(z)) else None
+        if fit.model == "kelvin_voigt":
+            return fit_model(f, z, u, fit.model)
+        w = 1.0 / np.maximum(u, 1e-12 * np.abs(z).max()) ** 2
+        return _maxwell_fit(2 * np.pi * f, z, w, start, near=fit)
     except (ValueError, np.linalg.LinAlgError):
         return None
 
@@ -875,8 +882,8 @@ def analyse_broadband(force_N, accel_m_s2, sample_rate_Hz: float, band_Hz, *, ro
     # the same model over the same bins from H1 and from H2: H1 = γ² H2 at every bin, so under noise in
     # one channel the truth lies between them and their spread is mean(1/γ² − 1); more than that and
     # twice the type A interval apart from the reported estimate says the noise is not what either assumes
-    h1_fit = _same_model(f[in_fit], (omega**2 * h1 - shift)[in_fit], uk_f[in_fit], chosen.model)
-    h2_fit = _same_model(f[in_fit], (omega**2 * h2 - shift)[in_fit], uk_f[in_fit], chosen.model)
+    h1_fit = _same_model(f[in_fit], (omega**2 * h1 - shift)[in_fit], uk_f[in_fit], chosen, fits["kelvin_voigt"])
+    h2_fit = _same_model(f[in_fit], (omega**2 * h2 - shift)[in_fit], uk_f[in_fit], chosen, fits["kelvin_voigt"])
     spread = expected = math.nan
     if h1_fit is not None and h2_fit is not None:
         k = chosen.stiffness_N_per_m
