@@ -431,17 +431,24 @@ def _maxwell_blocks(omega, zb, weight, around: float, tol: float = 3e-3) -> np.n
     return np.column_stack([k, c, c2])
 
 
-def _maxwell_fit(omega, z, weight, start: ModelFit, around: float | None = None, polish: bool = True) -> ModelFit:
+def _maxwell_fit(omega, z, weight, start: ModelFit, around: float | None = None, polish: bool = True,
+                 near: ModelFit | None = None) -> ModelFit:
     """The series-damper model: c₂ by a bounded scalar search (``scipy.optimize.minimize_scalar``) of
     the χ² with K and C solved for each c₂ (:func:`_kv_given_series`); ``polish``: then all three by
-    ``scipy.optimize.least_squares`` from there. ``around``: search one decade either side of it."""
+    ``scipy.optimize.least_squares`` from there. ``around``: search one decade either side of it.
+    ``near``: a series-damper fit of nearly the same data (before a small correction of ``z``): no
+    search, polished from its parameters."""
     c0 = max(start.damping_N_s_per_m, 1.0)
     lo, hi = (math.log(around / 10), math.log(around * 10)) if around else (math.log(0.3 * c0), math.log(1e4 * c0 + 1e6))
-    # c₂ to 0.01 % when polished after, else to 0.3 % (a block's estimate: its spread is percents)
-    best = optimize.minimize_scalar(lambda q: _kv_given_series(omega, z, weight, math.exp(q))[2], bounds=(lo, hi),
-                                    method="bounded", options={"xatol": 1e-4 if polish else 3e-3})
-    c2 = math.exp(best.x)
-    k, c, chi2 = _kv_given_series(omega, z, weight, c2)
+    if near is not None:
+        k, c, c2 = _params(near)
+        chi2 = float(np.sum(weight * np.abs(z - maxwell_impedance(omega, k, c, c2)) ** 2))
+    else:
+        # c₂ to 0.01 % when polished after, else to 0.3 % (a block's estimate: its spread is percents)
+        best = optimize.minimize_scalar(lambda q: _kv_given_series(omega, z, weight, math.exp(q))[2], bounds=(lo, hi),
+                                        method="bounded", options={"xatol": 1e-4 if polish else 3e-3})
+        c2 = math.exp(best.x)
+        k, c, chi2 = _kv_given_series(omega, z, weight, c2)
     if polish:
         sw = np.sqrt(weight)
 
@@ -732,10 +739,17 @@ def model_test(kelvin_voigt: ModelFit, maxwell: ModelFit) -> float:
     return float(f_dist.sf(stat, 1, nu))
 
 
-def _same_model(f, z, u, model) -> ModelFit | None:
-    """``model`` fitted to another estimator's ``z`` over the same bins (None where it cannot be)."""
+def _same_model(f, z, u, fit: ModelFit, start: ModelFit) -> ModelFit | None:
+    """``fit``'s model fitted to another estimator's ``z`` over the same bins (None where it cannot be):
+    Kelvin–Voigt anew, the series damper polished from ``fit`` (``start`` the Kelvin–Voigt fit that
+    bounds its search, :func:`_maxwell_fit`)."""
+    if not np.all(np.isfinite(z)):
+        return None
     try:
-        return fit_model(f, z, u, model) if np.all(np.isfinite(z)) else None
+        if fit.model == "kelvin_voigt":
+            return fit_model(f, z, u, fit.model)
+        w = 1.0 / np.maximum(u, 1e-12 * np.abs(z).max()) ** 2
+        return _maxwell_fit(2 * np.pi * f, z, w, start, near=fit)
     except (ValueError, np.linalg.LinAlgError):
         return None
 
@@ -853,8 +867,9 @@ def analyse_broadband(force_N, accel_m_s2, sample_rate_Hz: float, band_Hz, *, ro
     # measured dynamic stiffness (of every estimator alike) and the model fitted again
     shift = np.zeros_like(z)
     shift[in_fit] = 1j * _impedance_slope(omega[in_fit], chosen) * _window_shift(est)[in_fit]
-    chosen = fits[chosen.model] = fit_model(f[in_fit], (z - shift)[in_fit], uk_f[in_fit], chosen.model)
     om, wt = omega[in_fit], 1.0 / np.maximum(uk_f[in_fit], 1e-12 * np.abs(z[in_fit]).max()) ** 2
+    chosen = fits[chosen.model] = (_kv_fit(om, (z - shift)[in_fit], wt) if chosen.model == "kelvin_voigt" else
+                                   _maxwell_fit(om, (z - shift)[in_fit], wt, fits["kelvin_voigt"], near=chosen))
     if swept:
         se, dof = _residual_se(om, (z - shift)[in_fit], wt, chosen)
     else:
@@ -867,8 +882,8 @@ def analyse_broadband(force_N, accel_m_s2, sample_rate_Hz: float, band_Hz, *, ro
     # the same model over the same bins from H1 and from H2: H1 = γ² H2 at every bin, so under noise in
     # one channel the truth lies between them and their spread is mean(1/γ² − 1); more than that and
     # twice the type A interval apart from the reported estimate says the noise is not what either assumes
-    h1_fit = _same_model(f[in_fit], (omega**2 * h1 - shift)[in_fit], uk_f[in_fit], chosen.model)
-    h2_fit = _same_model(f[in_fit], (omega**2 * h2 - shift)[in_fit], uk_f[in_fit], chosen.model)
+    h1_fit = _same_model(f[in_fit], (omega**2 * h1 - shift)[in_fit], uk_f[in_fit], chosen, fits["kelvin_voigt"])
+    h2_fit = _same_model(f[in_fit], (omega**2 * h2 - shift)[in_fit], uk_f[in_fit], chosen, fits["kelvin_voigt"])
     spread = expected = math.nan
     if h1_fit is not None and h2_fit is not None:
         k = chosen.stiffness_N_per_m
@@ -895,30 +910,34 @@ def analyse_broadband(force_N, accel_m_s2, sample_rate_Hz: float, band_Hz, *, ro
 def _segment_spectra(f, x, sample_rate_Hz, resolution_Hz, pair=None) -> FrfEstimate:
     """The displacement-referenced spectra of every Welch segment (Hann, 50 % overlap, no detrend) as an
     :class:`FrfEstimate` whose blocks are the segments (its means are the whole record's Welch
-    estimate), with ``s_xd`` the window's shift of each bin (:func:`_window_shift`).
+    estimate, the numbers of ``scipy.signal.csd(..., window="hann", detrend=False)``: checked to
+    rounding by ``test_the_segments_spectra_are_the_whole_records_welch_estimate``), with ``s_xd`` the
+    window's shift of each bin (:func:`_window_shift`).
 
-    One ``csd`` call (``boxcar`` on segments windowed beforehand, rescaled to the Hann window's
-    density: the same numbers as ``csd(..., window="hann")``), so that the reference can also be
-    weighted by the window's time derivative ``dw/dt`` (Hann ``w = sin²(πt/T)``: ``(π/T) sin(2πt/T)``)."""
+    Each channel's segments are transformed once (``scipy.fft.rfft``) and the cross-spectra formed
+    from the transforms — ``csd`` transforms both signals of every pair — with ``csd``'s density
+    scaling ``1/(fs Σw²)``, one-sided (doubled but at 0 Hz and Nyquist); the reference also weighted
+    by the window's time derivative ``dw/dt`` (Hann ``w = sin²(πt/T)``: ``(π/T) sin(2πt/T)``)."""
     nperseg = _nperseg(x.size, sample_rate_Hz, resolution_Hz, 1)
-    step = nperseg // 2
     w = signal.get_window("hann", nperseg)
     dw = np.pi * sample_rate_Hz / nperseg * np.sin(2 * np.pi * np.arange(nperseg) / nperseg)
 
-    def seg(v, win=w):
-        return np.lib.stride_tricks.sliding_window_view(v, nperseg)[::step] * win
+    def transform(v, win=w):
+        return sfft.rfft(np.lib.stride_tricks.sliding_window_view(v, nperseg)[:: nperseg // 2] * win, axis=-1)
 
-    xs, ys = [seg(x), seg(x), seg(f), seg(x)], [seg(f), seg(x), seg(f), seg(x, dw)]
+    xx, ff = transform(x), transform(f)
+    scale = np.full(nperseg // 2 + 1, 2.0 / (sample_rate_Hz * np.sum(w**2)))
+    scale[0] /= 2
+    if nperseg % 2 == 0:
+        scale[-1] /= 2
+    cx = np.conj(xx)
+    s_12 = None
     if pair is not None:
-        xs.append(seg(pair[0]))
-        ys.append(seg(pair[1]))
-    freq, sp = signal.csd(np.stack(xs), np.stack(ys), fs=sample_rate_Hz, window="boxcar", nperseg=nperseg,
-                          axis=-1, detrend=False)
-    sp *= nperseg / np.sum(w**2)
+        s_12 = (np.conj(transform(pair[0])) * transform(pair[1])).real * scale
+    freq = sfft.rfftfreq(nperseg, 1 / sample_rate_Hz)
     to_acc = np.where(freq > 0, -(2 * np.pi * freq) ** 2, np.nan)
-    s_12 = sp[4].real if pair is not None else None
-    return FrfEstimate(freq, sp[1].real, sp[2].real, sp[0], 1, to_acc, s_12,
-                       float(pair[2]) if pair is not None else math.nan, sp[3])
+    return FrfEstimate(freq, (cx * xx).real * scale, (np.conj(ff) * ff).real * scale, cx * ff * scale, 1, to_acc,
+                       s_12, float(pair[2]) if pair is not None else math.nan, cx * transform(x, dw) * scale)
 
 
 def _window_shift(est: FrfEstimate) -> np.ndarray:
