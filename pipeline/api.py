@@ -141,6 +141,7 @@ def ride(
     build: str | os.PathLike | None = None,
     with_spectra: bool = False,
     max_samples: int | None = None,
+    max_rows: int | None = None,
 ):
     """Seat vibration and EU daily exposure of a tractor scenario: what ``tyrelab ride`` computes.
 
@@ -166,6 +167,10 @@ def ride(
         Most 1 kHz samples the call may simulate over all speeds (default
         :data:`tyrelab.vehicle.scenario_limits.MAX_SAMPLES`, as ``tyrelab ride --max-samples``):
         more is refused with an estimate before any work.
+    max_rows : int, optional
+        Most spectral rows (speeds of a scenario whose ``[simulation] method`` is ``spectral``;
+        default: what :data:`tyrelab.vehicle.scenario_limits.MAX_SPECTRAL_SECONDS` of the estimate
+        allow, as ``tyrelab ride --max-rows``): more is refused before any work.
 
     Returns
     -------
@@ -208,18 +213,26 @@ def ride(
     from .vehicle.scenario import with_overrides
 
     speeds, front, rear = _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spectra,
-                                          max_samples)
+                                          max_samples, max_rows)
     sc = with_overrides(_scenario(scenario), speeds, front, rear)
-    # the work this call does: one variant simulated at every speed (ride_module.ride takes no
-    # spectral rows, whatever the scenario's [simulation] method), bounded as tyrelab ride bounds it
-    too_much = limits.work_problems(sc, 1, method="time",
+    # the work of one variant at every speed under the scenario's [simulation] method (spectral rows
+    # or simulated samples), bounded as tyrelab ride bounds it, before any work
+    method = sc.simulation.method
+    too_much = limits.work_problems(sc, 1, speeds, method=method, with_spectra=bool(with_spectra), max_rows=max_rows,
                                     max_samples=limits.MAX_SAMPLES if max_samples is None else max_samples)
-    if too_much:  # before any work, as tyrelab ride refuses it
-        raise ValueError("; ".join(p.replace("--max-samples N", "max_samples=N") for p in too_much))
+    if too_much:
+        raise ValueError("; ".join(p.replace("--max-samples N", "max_samples=N").replace("--max-rows N", "max_rows=N")
+                                   for p in too_much))
+    if limits.uses_spectral(sc, method, 1):  # method = "spectral": the rows of tyrelab ride, in the frequency domain
+        from .vehicle.run.frequency import spectral_variants
+
+        result = spectral_variants([sc], _tyre_data(build), bool(with_spectra))[0]
+        result.nominal = True
+        return result
     return ride_module.ride(sc, _tyre_data(build), with_spectra=bool(with_spectra))
 
 
-def _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spectra, max_samples):
+def _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spectra, max_samples, max_rows=None):
     """:func:`ride`'s speeds and pressures as floats, checked like ``tyrelab ride``'s options (finite,
     within :data:`tyrelab.vehicle.scenario_limits.LIMITS`); ValueError naming every bad one at once."""
     from .vehicle import scenario_limits as limits
@@ -245,9 +258,9 @@ def _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spe
     rear = None if rear_pressure_bar is None else number("rear_pressure_bar", rear_pressure_bar)
     if not isinstance(with_spectra, (bool, np.bool_)):
         problems.append(f"with_spectra must be True or False, got {shown(with_spectra)}")
-    if max_samples is not None and (isinstance(max_samples, bool) or not isinstance(max_samples, (int, np.integer))
-                                    or max_samples < 1):
-        problems.append(f"max_samples must be an integer >= 1, got {shown(max_samples)}")
+    for name, value in (("max_samples", max_samples), ("max_rows", max_rows)):
+        if value is not None and (isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1):
+            problems.append(f"{name} must be an integer >= 1, got {shown(value)}")
     if not problems:
         problems = limits.override_problems(speeds, None if front is None else [front],
                                             None if rear is None else [rear])
@@ -282,6 +295,7 @@ def ride_sweep(
     max_variants: int | None = None,
     max_samples: int | None = None,
     map_fn=None,
+    max_rows: int | None = None,
 ):
     """Every variant of a scenario's sweep: what ``tyrelab ride`` computes with pressures or ``--set``.
 
@@ -304,6 +318,9 @@ def ride_sweep(
         Figure data of every variant, of none, or of the nominal variant alone.
     max_variants, max_samples : int, optional
         Bounds of the work (refused before any work, with the estimate).
+    max_rows : int, optional
+        Most spectral rows (variant x speed; default: what
+        :data:`tyrelab.vehicle.scenario_limits.MAX_SPECTRAL_SECONDS` of the estimate allow).
     map_fn : callable, optional
         ``map_fn(task, items)``: the caller's executor (:func:`tyrelab.executor.map_batches`); default
         in-process.
@@ -345,7 +362,8 @@ def ride_sweep(
         sets = {str(k): tuple(float(x) for x in (v if hasattr(v, "__iter__") else [v])) for k, v in sets.items()}
     return ride_module.ride_sweep(_scenario(scenario), front_pressures_bar, rear_pressures_bar, speeds_km_h,
                                   _tyre_data(build), map_fn, with_spectra=with_spectra, sets=sets,
-                                  max_variants=max_variants, max_samples=max_samples, method=method)
+                                  max_variants=max_variants, max_samples=max_samples, method=method,
+                                  max_rows=max_rows)
 
 
 def road_class(file: str | os.PathLike, *, track_width_m: float = 1.8, lateral_offset_m: float = 0.0,

@@ -602,7 +602,8 @@ def cmd_ride(args) -> int:
                              speeds_km_h=args.speeds, sets=args.set or [], build=args.build,
                              map_fn=mapped,
                              with_spectra="nominal" if args.out else False,
-                             max_variants=args.max_variants, max_samples=args.max_samples, method=args.method)
+                             max_variants=args.max_variants, max_samples=args.max_samples, method=args.method,
+                             max_rows=args.max_rows)
     except ScenarioError as exc:  # a swept value the scenario refuses: every problem, one line each
         for problem in exc.problems:
             print(f"tyrelab ride: {printable(exc.path)}: {printable(_key_suggestion(problem))}", file=sys.stderr)
@@ -1126,6 +1127,9 @@ def build_parser() -> argparse.ArgumentParser:
                          "refused with an estimate)")
     rd.add_argument("--max-samples", type=_whole(10**12), default=None, metavar="N",
                     help="most 1 kHz samples the command may simulate over all pairs and speeds (default 10 million)")
+    rd.add_argument("--max-rows", type=_whole(10**9), default=None, metavar="N",
+                    help="most spectral rows (variant x speed) the command may compute (default: what 300 s of the "
+                         "estimate allow, about 100,000 rows of the pitch plane, 3,300 of the 3-D model)")
     rd.add_argument("--executor", choices=["local", "dask"], default="local",
                     help="local: worker processes on this machine (default); dask: a dask.distributed cluster")
     rd.add_argument("--scheduler", default=None, help="dask scheduler address (with --executor dask)")

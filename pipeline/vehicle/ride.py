@@ -122,6 +122,7 @@ def ride_sweep(
     max_variants: int | None = None,
     max_samples: int | None = None,
     method: str | None = None,
+    max_rows: int | None = None,
 ) -> list[RideResult]:
     """:func:`ride` for every variant: each front × rear pressure pair (the scenario's own when not
     given) and every combination of the swept keys.
@@ -149,6 +150,10 @@ def ride_sweep(
         Bounds of the work (:mod:`tyrelab.vehicle.scenario.limits`; default its ``MAX_VARIANTS``
         for the time domain, ``MAX_SPECTRAL_VARIANTS`` for spectral rows, and ``MAX_SAMPLES``): more
         is refused with a ValueError giving the estimate, before any work.
+    max_rows : int, optional
+        Most spectral rows (variant x speed; default: what
+        :data:`~tyrelab.vehicle.scenario.limits.MAX_SPECTRAL_SECONDS` of the estimate allow, by the
+        model's cost a row), refused alike before any work.
     method : {"auto", "time", "spectral"}, optional
         How the rows are computed (default the scenario's ``[simulation] method``;
         :func:`tyrelab.vehicle.spectral_ride`): ``auto`` simulates one variant, and computes a
@@ -193,8 +198,10 @@ def ride_sweep(
         _validate.positive_int("max_variants", max_variants)
     if max_samples is not None:
         _validate.positive_int("max_samples", max_samples)
+    if max_rows is not None:
+        _validate.positive_int("max_rows", max_rows)
     variants = sweep_variants(scenario, front_pressures_bar, rear_pressures_bar, speeds_km_h, sets, method,
-                              max_variants, max_samples)
+                              max_variants, max_samples, max_rows=max_rows, with_spectra=with_spectra)
     scenarios = [v for v, _ in variants]
     nominal = nominal_index(scenario, variants)
     results = _sweep_results(scenarios, method, nominal, tyre_data, with_spectra, map_fn, max_samples)
