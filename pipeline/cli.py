@@ -246,6 +246,12 @@ def _print_result(fmt: str, names: list, frames, first: bool, table_bytes: int, 
             raise _ResultTooLarge(len(pd.concat(held)) if held else 0)
         held.append(df)
     df = pd.concat(held, ignore_index=True) if held else pd.DataFrame(columns=names)
+    # for a terminal: a name or text value's control characters escaped (an ESC drives no terminal,
+    # a newline forges no row); csv and json keep the values as they are (json escapes them)
+    df.columns = [printable(str(c)) for c in df.columns]
+    for i in range(df.shape[1]):
+        if df.dtypes.iloc[i] == object or isinstance(df.dtypes.iloc[i], pd.StringDtype):
+            df.isetitem(i, df.iloc[:, i].map(lambda v: printable(v) if isinstance(v, str) else v))
     if df.empty:  # not pandas' "Empty DataFrame / Columns: [...] / Index: []"
         _out(f"no rows (columns: {', '.join(map(str, df.columns))})\n" if len(df.columns) else "no rows\n")
     else:
