@@ -50,7 +50,7 @@ from . import profiles as pr  # noqa: F401 (an old name of this module)
 from .model import assemble  # noqa: F401 (an old name of this module)
 from .modes import LATERAL_ROLL_SHARE, MODE_NAMES, ModeSet, follow_names, frequency_intervals, mode_set  # noqa: F401
 from .scenario import Scenario, ScenarioError, sweep_variants, with_overrides, with_values  # noqa: F401
-from .scenario.limits import METHODS
+from .scenario.limits import METHODS, bound_argument
 from .spectral_ride import at_own_values, nominal_index
 from .tractor import Tractor, simulate  # noqa: F401 (old names of this module)
 from .tyres import AxleTyres, ShippedTyres, build_parts, build_tractor, per_speed, resolve_tyres  # noqa: F401
@@ -194,12 +194,9 @@ def ride_sweep(
     _validate.choice("method", method, METHODS)
     if with_spectra not in (True, False, "nominal"):
         raise ValueError(f"with_spectra must be True, False or 'nominal', got {with_spectra!r}")
-    if max_variants is not None:
-        _validate.positive_int("max_variants", max_variants)
-    if max_samples is not None:
-        _validate.positive_int("max_samples", max_samples)
-    if max_rows is not None:
-        _validate.positive_int("max_rows", max_rows)
+    for name, value in (("max_variants", max_variants), ("max_samples", max_samples), ("max_rows", max_rows)):
+        if value is not None:
+            bound_argument(name, value)
     variants = sweep_variants(scenario, front_pressures_bar, rear_pressures_bar, speeds_km_h, sets, method,
                               max_variants, max_samples, max_rows=max_rows, with_spectra=with_spectra)
     scenarios = [v for v, _ in variants]

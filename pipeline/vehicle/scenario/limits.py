@@ -35,8 +35,9 @@ from ..comfort.daily_exposure import MAX_HOURS_PER_DAY, MIN_HOURS_PER_DAY, MIN_R
 
 __all__ = ["LIMITS", "METHODS", "uses_spectral", "MAX_VARIANTS", "MAX_SPECTRAL_VARIANTS", "MAX_SAMPLES", "MIN_VERDICT_DURATION_S",
            "BYTES_PER_SAMPLE", "SECONDS_PER_SAMPLE", "SECONDS_PER_SPECTRAL_ROW", "SECONDS_PER_SPECTRAL_VARIANT", "SECONDS_PER_SPECTRAL_ROW_3D",
-           "SECONDS_PER_SPECTRAL_VARIANT_3D", "SECONDS_PER_SPECTRAL_FIGURE_ROW", "MAX_SPECTRAL_SECONDS", "MAX_TRACK_POINTS", "scenario_problems",
-           "profile_problems", "override_problems", "track_length_m", "long_integer_problems", "work_estimate", "work_problems"]
+           "SECONDS_PER_SPECTRAL_VARIANT_3D", "SECONDS_PER_SPECTRAL_FIGURE_ROW", "MAX_SPECTRAL_SECONDS", "MAX_TRACK_POINTS", "BOUND_CEILINGS", "scenario_problems",
+           "profile_problems", "override_problems", "track_length_m", "long_integer_problems", "work_estimate", "work_problems",
+           "bound_argument"]
 
 #: key -> (lowest, highest, unit) of every number of a scenario the model is built for.
 LIMITS: dict[str, tuple[float, float, str]] = {
@@ -143,6 +144,10 @@ SECONDS_PER_SPECTRAL_FIGURE_ROW = 6e-3
 MAX_SPECTRAL_SECONDS = 300.0
 #: Most samples (1 kHz) one command may simulate over all speeds and pairs (``--max-samples``).
 MAX_SAMPLES = 10_000_000
+#: Highest value each bound may be set to (``--max-variants``, ``--max-samples``, ``--max-rows``; the
+#: library's ``max_variants``, ``max_samples``, ``max_rows``): a bound stays a bound, an integer of
+#: 400 digits is refused naming its argument, not taken for "none".
+BOUND_CEILINGS = {"max_variants": 1_000_000, "max_samples": 10**12, "max_rows": 10**9}
 #: Most points of a profile's uniform grid (its median step from its first distance to its last),
 #: checked before the grid is built: what ``tyrelab road`` and a ride resample a profile CSV onto
 #: (a 108 kB file of 30 km at 1 mm asked for 30 million points, 1.8 GB). The samples' bound.
@@ -588,6 +593,26 @@ def work_problems(scenario, n_variants: int, speeds_km_h=None, *, max_variants: 
                         f"(about {e['memory_GB']:.1f} GB for the longest run and {e['seconds']:.0f} s), more than "
                         f"{max_samples:,}; --max-samples N lifts the bound (or raise the speed, shorten the track)")
     return problems
+
+
+def bound_argument(name: str, value) -> int:
+    """A bound given to the work (``max_variants``, ``max_samples``, ``max_rows``) as an int;
+    ValueError naming ``name`` unless it is an integer from 1 to its :data:`BOUND_CEILINGS` entry
+    (an integer of any length, a bool, a float are refused, never an OverflowError).
+
+    Examples
+    --------
+    >>> bound_argument("max_rows", 5000)
+    5000
+    >>> bound_argument("max_rows", 10**400)
+    Traceback (most recent call last):
+    ...
+    ValueError: max_rows must be an integer from 1 to 1000000000, got 1000000000…0000000000 (401 digits)
+    """
+    high = BOUND_CEILINGS[name]
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or not 1 <= value <= high:
+        raise ValueError(f"{name} must be an integer from 1 to {high}, got {_validate.shown(value)}")
+    return int(value)
 
 
 def long_integer_problems(text: str) -> list[str]:
