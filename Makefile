@@ -55,10 +55,12 @@ install: $(BIN)/tyrelab
 compile: install
 	@$(BIN)/python -m compileall -q pipeline
 
+# $(call generate_demo,FOLDER,SCALE,SEED,ALSO): a fresh demo campaign in FOLDER (ALSO removed with it: a
+# build made from the old one), then the target's stamp. The one recipe of $(STAMP) and $(DOCS_STAMP).
+generate_demo = rm -rf $(1) $(4) && $(BIN)/tyrelab generate --out $(1) --scale $(2) --seed $(3) && touch $@
+
 $(STAMP): | $(BIN)/tyrelab
-	rm -rf $(DEMO)
-	$(BIN)/tyrelab generate --out $(DEMO) --scale $(SCALE) --seed $(SEED)
-	touch $@
+	$(call generate_demo,$(DEMO),$(SCALE),$(SEED))
 
 data: $(STAMP)
 
@@ -68,7 +70,7 @@ run: data compile
 
 test: install compile
 	$(BIN)/lint-imports --no-cache
-	$(BIN)/python -m pytest -q -m "not slow" -n auto
+	$(BIN)/python -m pytest -q -m "not slow" -n auto --durations=25
 
 # The lock again from pyproject.toml's ranges: `make lock` keeps every pin the ranges still allow (and
 # adds what a changed range needs); `make lock-upgrade` takes the newest of everything. Needs uv.
@@ -124,9 +126,7 @@ DOCS_ENV = PATH="$(abspath $(BIN)):$$PATH" TYRELAB_DOCS_WORK="$(abspath $(DOCS_W
 DOCS_STAMP := $(DOCS_WORK)/raw/demo/.generated-small-seed1991-$(GEN_KEY)
 
 $(DOCS_STAMP): | $(BIN)/tyrelab
-	rm -rf $(DOCS_WORK)/raw/demo $(DOCS_WORK)/build
-	$(BIN)/tyrelab generate --out $(DOCS_WORK)/raw/demo --scale small --seed 1991
-	touch $@
+	$(call generate_demo,$(DOCS_WORK)/raw/demo,small,1991,$(DOCS_WORK)/build)
 
 # Sphinx and its extensions (the extra docs) are in the lock, installed with the rest: the stamp only
 # says so to the targets that name it.

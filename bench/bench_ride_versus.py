@@ -84,7 +84,7 @@ def _run(mods: dict, rev: str, args) -> int:
     tyres = ride.resolve_tyres(s)
     track = ride.build_profile(s)
     i = list(s.exposure.speeds_km_h).index(16.0)
-    tr = ride.build_tractor(s, tyres, i)
+    tr = new["vehicle.tractor"].Tractor.of_parts(ride.build_parts(s, tyres, i))
     v, wb = 16.0 / 3.6, s.tractor.wheelbase_m
     _, stop = ride._record_window(track, wb, v, None)
     fp = (float(tyres["front"].footprint_m[i]), float(tyres["rear"].footprint_m[i]))

@@ -288,6 +288,7 @@ class _ResultTooLarge(Exception):
 def cmd_sql(args) -> int:
     import duckdb
 
+    from . import interrupts
     from .warehouse import QueryLimits, QueryTimeout, WriteRefused, error_line, iter_query, memory_bound
 
     try:
@@ -332,9 +333,11 @@ def cmd_sql(args) -> int:
     except (BrokenPipeError, OutputError):
         raise
     except duckdb.Error as exc:  # the user's query errors: a misspelt name gets the closest the warehouse has
+        interrupts.check()  # DuckDB's "Query interrupted" where it swallowed Ctrl-C: interrupted, exit 130
         print(f"tyrelab sql: {type(exc).__name__}: {error_line(Path(args.build), exc)}", file=sys.stderr)
         return EXIT_USAGE
     except Exception as exc:  # noqa: BLE001 - DuckDB errors are the user's query errors
+        interrupts.check()
         print(f"tyrelab sql: {printable(f'{type(exc).__name__}: {str(exc).splitlines()[0]}')}", file=sys.stderr)
         return EXIT_USAGE
     return EXIT_OK
@@ -659,8 +662,11 @@ def cmd_frf(args) -> int:
     e = r.estimate
     band = (e.frequency_Hz >= 0.5) & (e.frequency_Hz <= 12.0)
     if band.any() and e.ill_conditioned[band].all():
-        print(f"{prog}: {printable(args.file)}: the inputs cannot be separated in any bin of 0.5-12 Hz (condition "
-              f"number {float(np.nanmedian(e.condition_number[band])):.3g}: inputs correlated as on a road?): "
+        delays = e.input_delay_s if e.input_delay_s is not None else np.full(len(r.inputs), np.nan)
+        why = (f"condition number {float(np.nanmedian(e.condition_number[band])):.3g}: inputs correlated as on a road?"
+               if not np.isfinite(delays).any() else "one input is another delayed, as on a road: " + ", ".join(
+                   f"{inp} {d:+.3g} s" for inp, d in zip(r.inputs, delays) if np.isfinite(d)))
+        print(f"{prog}: {printable(args.file)}: the inputs cannot be separated in any bin of 0.5-12 Hz ({why}): "
               "no mode fitted", file=sys.stderr)
         return EXIT_QUARANTINE
     return EXIT_OK
@@ -1224,10 +1230,6 @@ def _discard_stdout() -> None:
         pass
 
 
-def _terminate(signum, frame):  # pragma: no cover - exercised in a subprocess
-    raise KeyboardInterrupt
-
-
 def _caused_by_interrupt(exc: BaseException) -> bool:
     """Whether a KeyboardInterrupt is among the explicit causes (``raise ... from``) of ``exc``.
 
@@ -1289,20 +1291,20 @@ def main(argv: list[str] | None = None) -> int:
     if args.quiet and args.verbose:  # one before the verb, the other after it
         parser.error("argument -v/--verbose: not allowed with argument -q/--quiet")
     _configure_output(args)
-    import signal
-    import threading
     import warnings
 
+    from . import interrupts
     from .progress import say_library_warnings_once
 
     shown_before = say_library_warnings_once()  # no library's RuntimeWarning on stderr: ours, once each
 
-    if threading.current_thread() is threading.main_thread():
-        previous = signal.signal(signal.SIGTERM, _terminate)
-    else:  # pragma: no cover
-        previous = None
+    # Ctrl-C and SIGTERM recorded as well as raised: a library that swallows the KeyboardInterrupt
+    # (DuckDB's signal check during a statement) cannot make a command run on (tyrelab.interrupts)
+    previous = interrupts.install()
     try:
         code = args.func(args)
+        if code != EXIT_INTERRUPTED:
+            interrupts.check()
         try:
             sys.stdout.flush()  # here, not at exit: a reader gone is caught below
         except BrokenPipeError:
@@ -1324,7 +1326,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"tyrelab {args.command}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
     except Exception as exc:
-        if not _caused_by_interrupt(exc):
+        if not (_caused_by_interrupt(exc) or interrupts.requested()):
             raise
         # Ctrl-C while an extension module initialises: it reports an ImportError whose cause is the
         # KeyboardInterrupt (pybind11's "initialization failed", scipy.optimize._highspy)
@@ -1332,8 +1334,7 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_INTERRUPTED
     finally:
         warnings.showwarning = shown_before
-        if previous is not None:
-            signal.signal(signal.SIGTERM, previous)
+        interrupts.restore(previous)
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -239,11 +239,8 @@ def model_modes(scenario, speed_km_h: float) -> list[PredictedMode]:
     modes), damped frequency ``Im λ / 2π`` and damping ratio ``-Re λ / |λ|`` (real roots, an
     overdamped mode or a series damper's relaxation, are no resonance a stand can fit; left out).
 
-    Names are :func:`tyrelab.vehicle.solvers.modes.damped_modes`' (followed from the undamped modes
-    by their shapes); a pair that following leaves out or gives a real root instead (a heavily damped
-    yaw can lose its pair to a contact point's relaxation) is named by the coordinate that carries
-    most of its kinetic energy (:data:`tyrelab.vehicle.solvers.modes.MODE_NAMES`; ``_2`` where the
-    name is taken).
+    Names are :func:`tyrelab.vehicle.solvers.modes.damped_modes`' (every oscillating root named by its
+    own shape, followed from the undamped modes; a real root is reported there as overdamped).
 
     Examples
     --------
@@ -251,34 +248,11 @@ def model_modes(scenario, speed_km_h: float) -> list[PredictedMode]:
     >>> [(m.name, round(m.frequency_Hz, 2), round(m.damping_ratio, 2)) for m in modes][:3]
     [('lateral_roll', 1.36, 0.41), ('yaw', 2.15, 0.44), ('bounce', 2.44, 0.02)]
     """
-    from scipy import linalg
+    from .vehicle.solvers.modes import damped_modes
 
-    from .vehicle.solvers.modes import MODE_NAMES, ZERO_ROOT, damped_modes
-
-    asm = _assembly(scenario, speed_km_h)
-    named = {m.root: m.name for m in damped_modes(asm).values() if not m.overdamped}
-    lay = asm.layout
-    lam, vecs = linalg.eig(asm.linear(list(asm.kinematic_outputs)[:1]).a)
-    scale = float(np.max(np.abs(lam))) if lam.size else 0.0
-    keep = np.flatnonzero((lam.imag > ZERO_ROOT * np.abs(lam)) & (np.abs(lam) > ZERO_ROOT * scale))
-    vel = vecs[np.ix_(lay.vel_cols, keep)]
-    out = []
-    for i, v in zip(keep, vel.T):
-        root = complex(lam[i])
-        name = next((n for r, n in named.items() if abs(r - root) <= 1e-6 * abs(root)), None)
-        if name is None:
-            energy = np.real(v.conj() * (asm.mass @ v))
-            coord = asm.coordinates[int(np.argmax(energy))]
-            name = MODE_NAMES.get(coord, coord)
-        out.append((name, root))
-    out.sort(key=lambda t: t[1].imag)
-    modes: list[PredictedMode] = []
-    for name, root in out:
-        while name in {m.name for m in modes}:
-            name = f"{name}_2"
-        size = abs(root)
-        modes.append(PredictedMode(name, root.imag / (2 * math.pi), -root.real / size, size / (2 * math.pi)))
-    return modes
+    modes = [PredictedMode(d.name, d.damped_Hz, d.damping_ratio, d.undamped_Hz)
+             for d in damped_modes(_assembly(scenario, speed_km_h)).values() if not d.overdamped]
+    return sorted(modes, key=lambda m: m.frequency_Hz)
 
 
 #: What the prediction of :func:`frf_validation_rows` is.
@@ -299,7 +273,7 @@ def predicted_frf(result, scenario, speed_km_h: float):
     ...       wheels=("rear_left",))
     >>> h = predicted_frf(r, stand_scenario(), 6.0)
     >>> h.shape, bool(np.isnan(h[:, 1]).all()), round(float(abs(h[1, 0, 0])), 3)
-    ((2, 2, 1), True, 0.87)
+    ((2, 2, 1), True, 0.976)
     """
     f = result.estimate.frequency_Hz
     known = [o for o in result.outputs if o in MODEL_OUTPUTS]

@@ -52,7 +52,7 @@ import duckdb
 import pandas as pd
 import pyarrow.parquet as pq
 
-from . import io
+from . import interrupts, io
 from ._hold import hold
 
 __all__ = ["READ_ONLY_STATEMENTS", "SANDBOX_SETTINGS", "SPILL_FOLDER", "QueryLimits", "QueryTimeout", "WriteRefused",
@@ -469,6 +469,7 @@ def _statement(con: duckdb.DuckDBPyConnection, statement: str, timeout_s: float 
     try:
         hold("sql-statement")  # a test's Ctrl-C lands here: the statement handed to DuckDB's thread
         while not done.wait(0.1 if deadline is None else max(0.0, min(0.1, deadline - time.monotonic()))):
+            interrupts.check()  # a Ctrl-C that DuckDB swallowed on this thread (tyrelab.interrupts)
             if deadline is not None and time.monotonic() >= deadline:
                 stop()
                 if "df" not in box:
@@ -560,6 +561,7 @@ def _streamed(con: duckdb.DuckDBPyConnection, statement: str, timeout_s: float |
             try:
                 kind, item = box.get(timeout=0.1 if deadline is None else max(0.0, min(0.1, deadline - time.monotonic())))
             except queue.Empty:
+                interrupts.check()  # a Ctrl-C that DuckDB swallowed on this thread (tyrelab.interrupts)
                 if deadline is not None and time.monotonic() >= deadline:
                     raise QueryTimeout(f"statement stopped after {timeout_s:g} s (the time limit)") from None
                 continue

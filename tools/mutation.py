@@ -14,7 +14,7 @@ exercise it as the test command (``pytest -x``), so one module can be run, resum
 re-run alone::
 
     python tools/mutation.py                         # every module (hours on 2 cores)
-    python tools/mutation.py vehicle/iso2631.py      # one module
+    python tools/mutation.py vehicle/comfort/iso2631.py      # one module
     python tools/mutation.py --report                # scores of the sessions run so far
 
 The score of a module is ``killed / (mutants - equivalent)``; the equivalent mutants are
@@ -58,9 +58,9 @@ MODULES: dict[str, list[str]] = {
     "tyre/sizes.py": ["tests/tyre/test_sizes.py"],
     "tyre/spoke.py": ["tests/tyre/test_spoke.py"],
     "tyre/stiffness.py": ["tests/tyre/test_stiffness.py", "tests/tyre/test_stiffness_estimate.py"],
-    "vehicle/iso2631.py": ["tests/vehicle/test_iso2631.py"],
-    "vehicle/bounce_pitch.py": ["tests/vehicle/test_bounce_pitch.py"],
-    "vehicle/carriage.py": ["tests/vehicle/test_carriage.py"],
+    "vehicle/comfort/iso2631.py": ["tests/vehicle/test_iso2631.py"],
+    "vehicle/studies/bounce_pitch.py": ["tests/vehicle/test_bounce_pitch.py"],
+    "vehicle/studies/carriage.py": ["tests/vehicle/test_carriage.py"],
     "vehicle/tractor.py": ["tests/vehicle/test_metrics_tractor.py"],
     "vehicle/ride.py": ["tests/vehicle/test_ride.py"],
     # issue 45: the ride's layers (ride.py runs a scenario or a sweep with them)

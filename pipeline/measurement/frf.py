@@ -64,14 +64,15 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import optimize, signal
+from scipy import ndimage, optimize, signal
 from scipy.stats import t as student_t
 
 from .._validate import positive, positive_int
 
 __all__ = ["MIN_SEGMENT_S", "MAX_INPUT_COHERENCE", "FIT_MIN_COHERENCE", "FIT_BAND_Hz", "MAX_MODES",
            "MASK_HARMONICS", "MASK_HALF_WIDTH", "CrossSpectra", "CrossSpectraAccumulator", "cross_spectra",
-           "segment_samples", "second_difference_correction", "MimoFrf", "mimo_frf", "wheel_excitation_mask",
+           "segment_samples", "second_difference_correction", "MimoFrf", "mimo_frf",
+           "input_delays", "MIN_WINDOW_OVERLAP", "DELAY_SMOOTH_BINS", "wheel_excitation_mask",
            "VehicleMode", "fit_vehicle_modes", "DAMPING_BOUNDS", "MIN_MODE_CONTRIBUTION", "WHEELS", "STORED_MAX_Hz",
            "input_channel_wheel", "frf_unit", "RecordingFrf", "recording_frf", "scenario_wheel_geometry"]
 
@@ -143,6 +144,8 @@ class CrossSpectra:
     n_segments: int
     n_d: float
     sample_rate_Hz: float
+    #: Segment length, samples (Hann window: :func:`scipy.signal.csd`'s default); None: ``2 (F - 1)``.
+    nperseg: int | None = None
 
 
 class CrossSpectraAccumulator:
@@ -264,7 +267,7 @@ class CrossSpectraAccumulator:
             s_xx = s_xx * c[:, :, None] * c[:, None, :]
             s_xy = s_xy * c[:, :, None]
         return CrossSpectra(f, s_xx, s_xy, (self._syy / self.n_segments).T, self.n_segments,
-                            self.n_samples / self.nperseg, self.fs)
+                            self.n_samples / self.nperseg, self.fs, self.nperseg)
 
 
 def cross_spectra(inputs, outputs, sample_rate_Hz: float, nperseg: int | None = None, heights=None) -> CrossSpectra:
@@ -340,8 +343,15 @@ class MimoFrf:
     input_coherence : (F, q)
         Multiple coherence of each input with the other inputs.
     ill_conditioned : (F, q) bool
-        ``input_coherence >= MAX_INPUT_COHERENCE`` (or a bin without input power).
+        ``input_coherence >= MAX_INPUT_COHERENCE``, or ``delay_coherence >= MAX_INPUT_COHERENCE`` where
+        the input is another's delayed (:func:`input_delays`), or a bin without input power.
     n_d : float
+    delay_coherence : (F, q)
+        Largest coherence of the input with another input once aligned by their delay
+        (:func:`input_delays`; NaN with one input).
+    input_delay_s : (q,)
+        The delay of the input behind (+) or ahead of (-) the input it is delay-related with
+        (:func:`input_delays`), NaN where none is.
     """
 
     frequency_Hz: np.ndarray
@@ -355,6 +365,111 @@ class MimoFrf:
     input_coherence: np.ndarray
     ill_conditioned: np.ndarray
     n_d: float
+    delay_coherence: np.ndarray | None = None
+    input_delay_s: np.ndarray | None = None
+
+
+#: Least correlation of the Welch window with itself shifted by an inputs' delay at which the delay is
+#: sought (:func:`input_delays`): delays up to about a third of a Hann segment (0.32 N). A delay-related
+#: pair's Welch coherence is this squared (0.25) times its aligned coherence; a longer delay leaves the
+#: segments' inputs nearly independent (each segment sees the two inputs' different stretches of road).
+MIN_WINDOW_OVERLAP = 0.5
+
+
+#: Bins over which a delay-related pair's aligned coherence is averaged before it is compared with
+#: :data:`MAX_INPUT_COHERENCE` (:func:`input_delays`).
+DELAY_SMOOTH_BINS = 5
+
+
+def _window_overlap(nperseg: int, lag: np.ndarray) -> np.ndarray:
+    """``Σ w[n] w[n + d] / Σ w²`` of the Hann window of ``csd``/``welch`` at lags ``d`` (samples)."""
+    w = signal.get_window("hann", nperseg)
+    full = np.correlate(w, w, "full")[nperseg - 1:] / np.dot(w, w)
+    d = np.minimum(np.abs(np.asarray(lag, dtype=int)), nperseg - 1)
+    return full[d]
+
+
+def input_delays(spectra: CrossSpectra, band_Hz: tuple[float, float] = FIT_BAND_Hz,
+                 min_overlap: float = MIN_WINDOW_OVERLAP) -> tuple[np.ndarray, np.ndarray]:
+    """Pairs of inputs of which one is the other delayed (road input: each rear wheel its front's
+    signal a wheelbase later), which a Welch estimate does not see as coherent.
+
+    Within a segment of length ``T`` a delay ``τ`` leaves only the window's overlap with itself
+    shifted, ``ρ(τ) = Σ w[n] w[n+τ] / Σ w²``, of the two inputs' common stretch: their Welch coherence
+    is ``ρ(τ)²`` times their coherence once aligned (B&P §9.1.4, the time-delay bias of spectral
+    estimates; 0.77 for a 1.46 s delay in 10.24 s Hann segments), so ``S_xx`` looks well conditioned
+    while the inputs cannot be separated. The delay of each pair is the peak of its generalised
+    cross-correlation (the inverse transform of the coherency ``S_ij / sqrt(S_ii S_jj)``, Knapp &
+    Carter 1976) within the lags where ``ρ ≥ min_overlap``; the aligned coherence is
+    ``min(1, γ²_ij / ρ(τ)²)``. A pair is delay-related where the median of its aligned coherence over
+    the bins of ``band_Hz`` with input power reaches :data:`MAX_INPUT_COHERENCE`; its aligned coherence
+    is then averaged over :data:`DELAY_SMOOTH_BINS` bins (one bin's estimate scatters: 0.81-1 for a pure
+    delay of 14 % of a segment).
+
+    Returns
+    -------
+    delay_coherence : (F, q)
+        Each input's largest aligned coherence with a delay-related input, averaged over
+        :data:`DELAY_SMOOTH_BINS` bins (0 where none is; NaN with one input).
+    delay_s : (q,)
+        Its delay behind (+) that input, NaN where none is.
+
+    See Also
+    --------
+    mimo_frf : flags these inputs ``ill_conditioned``.
+
+    Examples
+    --------
+    A rear input that is the front one 1.46 s later (6 km/h over a 2.44 m wheelbase), 10.24 s segments:
+
+    >>> import numpy as np
+    >>> rng = np.random.default_rng(3)
+    >>> x = rng.standard_normal(60_000)
+    >>> lag = 73                                              # 1.46 s at 50 Hz
+    >>> s = cross_spectra(np.vstack([x[lag:], x[:-lag]]), x[None, lag:], 50.0, 512)
+    >>> coh, delay = input_delays(s)
+    >>> band = (s.frequency_Hz > 0.5) & (s.frequency_Hz < 12)
+    >>> np.round(delay, 2).tolist(), bool(coh[band].min() > 0.9), bool(mimo_frf(s).ill_conditioned[band].all())
+    ([-1.46, 1.46], True, True)
+    """
+    f = spectra.frequency_Hz
+    s_xx = spectra.s_xx
+    nf, q, _ = s_xx.shape
+    delay = np.full(q, np.nan)
+    if q < 2:
+        return np.full((nf, q), np.nan), delay
+    nperseg = int(spectra.nperseg or 2 * (nf - 1))
+    fs = float(spectra.sample_rate_Hz)
+    dx = np.real(np.einsum("fii->fi", s_xx))
+    powered = np.all(dx > 1e-12 * np.max(dx, axis=0, keepdims=True), axis=1) & (dx.min(axis=1) > 0)
+    band = powered & (f >= band_Hz[0]) & (f <= band_Hz[1])
+    lags = np.arange(nperseg)
+    lags = np.where(lags > nperseg // 2, lags - nperseg, lags)
+    rho = _window_overlap(nperseg, lags)
+    allowed = rho >= min_overlap
+    out = np.zeros((nf, q))
+    best = np.zeros(q)
+    if band.sum() < 3:
+        return out, delay
+    for i in range(q):
+        for j in range(i + 1, q):
+            with np.errstate(invalid="ignore", divide="ignore"):
+                coherency = np.where(powered, s_xx[:, i, j] / np.sqrt(dx[:, i] * dx[:, j]), 0.0)
+            r = np.fft.irfft(coherency, n=nperseg)  # peak at the lag of j behind i (csd: conj(X_i) X_j)
+            k = int(np.argmax(np.where(allowed, np.abs(r), -1.0)))
+            gamma2 = np.abs(coherency) ** 2
+            aligned = np.minimum(gamma2 / rho[k] ** 2, 1.0)
+            if lags[k] == 0 or np.median(aligned[band]) < MAX_INPUT_COHERENCE:
+                continue  # no delay, or not a delay relation (a zero lag is input_coherence's)
+            score = float(np.median(aligned[band]))
+            # a bin's estimate scatters (the delayed stretch outside the window is noise to it): the
+            # mean over DELAY_SMOOTH_BINS bins, so a delay-related pair is flagged in every bin it holds
+            smooth = ndimage.uniform_filter1d(np.where(powered, aligned, 0.0), DELAY_SMOOTH_BINS, mode="nearest")
+            for a, sign in ((i, -1.0), (j, 1.0)):
+                out[:, a] = np.maximum(out[:, a], np.where(powered, smooth, 0.0))
+                if score > best[a]:
+                    best[a], delay[a] = score, sign * lags[k] / fs
+    return out, delay
 
 
 def mimo_frf(spectra: CrossSpectra, max_input_coherence: float = MAX_INPUT_COHERENCE) -> MimoFrf:
@@ -435,8 +550,12 @@ def mimo_frf(spectra: CrossSpectra, max_input_coherence: float = MAX_INPUT_COHER
         h2 = None
         if q == 1:
             h2 = np.where(finite[:, None, None], (s_yy / np.conj(s_xy[:, 0, :]))[:, :, None], np.nan)
+    delay_coherence, delay_s = input_delays(spectra)
     ill = ~finite[:, None] | (input_coherence >= max_input_coherence)
-    return MimoFrf(spectra.frequency_Hz, h, h2, coh, partial, mult, err, cond, input_coherence, ill, spectra.n_d)
+    if q > 1:
+        ill |= delay_coherence >= max_input_coherence
+    return MimoFrf(spectra.frequency_Hz, h, h2, coh, partial, mult, err, cond, input_coherence, ill, spectra.n_d,
+                   delay_coherence, delay_s)
 
 
 def wheel_excitation_mask(frequency_Hz, speed_km_h: float, wheels, harmonics: int = MASK_HARMONICS,
@@ -797,6 +916,9 @@ class RecordingFrf:
         if predicted is not None and np.shape(predicted) != e.h.shape:
             raise ValueError(f"predicted must have the estimate's shape {e.h.shape}, got {np.shape(predicted)}")
         rows = []
+        q = len(self.inputs)
+        delay_coherence = e.delay_coherence if e.delay_coherence is not None else np.full((f.size, q), np.nan)
+        delay_s = e.input_delay_s if e.input_delay_s is not None else np.full(q, np.nan)
         for k, out in enumerate(self.outputs):
             for j, (inp, wheel) in enumerate(zip(self.inputs, self.wheels)):
                 h = e.h[keep, k, j]
@@ -814,7 +936,8 @@ class RecordingFrf:
                         "random_error": _num(e.random_error[i, k, j]),
                         "condition_number": _num(e.condition_number[i]),
                         "input_coherence": _num(e.input_coherence[i, j]),
-                        "ill_conditioned": bool(e.ill_conditioned[i, j]), "masked": bool(self.masked[i])})
+                        "ill_conditioned": bool(e.ill_conditioned[i, j]), "masked": bool(self.masked[i]),
+                        "delay_coherence": _num(delay_coherence[i, j]), "input_delay_s": _num(delay_s[j])})
         return rows
 
     def mode_rows(self) -> list[dict]:

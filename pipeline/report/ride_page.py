@@ -11,8 +11,6 @@ import json
 import textwrap
 from pathlib import Path
 
-import pandas as pd
-
 from .. import __version__, io
 from ..vehicle.ride import RideResult, nominal_result, result_json, results_table
 from .ride_sections import (AXIS_WORDS, answer, scenario_figures, surface_edge_note, variant_name, variant_rows,

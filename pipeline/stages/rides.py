@@ -74,7 +74,7 @@ EMPTY_COLUMNS = {
     "vehicle_frf": ["ride_id", "input", "wheel", "output", "frequency_Hz", "h_magnitude", "h_phase_deg", "h_unit",
                     "h2_magnitude", "h2_phase_deg", "coherence", "partial_coherence", "multiple_coherence",
                     "random_error", "condition_number", "input_coherence", "ill_conditioned", "masked",
-                    "predicted_h_magnitude"],
+                    "predicted_h_magnitude", "delay_coherence", "input_delay_s"],
     "vehicle_modes": ["ride_id", "output", "mode", "frequency_Hz", "damping_ratio", "frequency_ci95_low_Hz",
                       "frequency_ci95_high_Hz", "damping_ci95_low", "damping_ci95_high", "inputs"],
     "vehicle_frf_validation": ["ride_id", "speed_km_h", "scenario", "output", "frf_magnitude_error", "model", "mode",

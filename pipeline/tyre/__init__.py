@@ -38,6 +38,12 @@ is imported on first use (:mod:`tyrelab._lazy`). One tyre run's K and C is
 .. autosummary::
 
    mf_tyre           -- a measured tyre as MF-Tyre ``.tir`` files and K(P), C(P) tables.
+
+.. rubric:: Example data
+
+.. autosummary::
+
+   examples          -- one made-up tyre's runs, the data of this package's Examples (``demo_runs``).
 """
 
 from .._lazy import attach

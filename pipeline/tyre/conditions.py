@@ -147,10 +147,8 @@ def usable(results: pd.DataFrame) -> pd.Series:
 
     Examples
     --------
-    >>> results = pd.DataFrame({"tyre_id": ["T1"] * 4, "kind": ["measurement"] * 3 + ["calibration"],
-    ...                         "qc_ok": [True, True, False, True], "speed_km_h": [0.0, 12.0, 12.0, 0.0],
-    ...                         "pressure_bar": [1.0, 1.4, 1.4, 1.0], "surface": ["concrete", "grass", None, None],
-    ...                         "excitation_frequency_Hz": [4.0, 4.0, 6.0, 4.0], "amplitude_mm_pp": [14.0, 14.0, 14.0, 30.0]})
+    >>> from tyrelab.tyre.examples import demo_runs
+    >>> results = demo_runs("mixed")       # passed QC standing and rolling; failed QC; a calibration run
     >>> usable(results).tolist()
     [True, True, False, False]
     """
@@ -263,10 +261,8 @@ def nominal(results: pd.DataFrame, *, except_for: str | None = None) -> pd.Serie
 
     Examples
     --------
-    >>> results = pd.DataFrame({"tyre_id": ["T1"] * 4, "kind": ["measurement"] * 3 + ["calibration"],
-    ...                         "qc_ok": [True, True, False, True], "speed_km_h": [0.0, 12.0, 12.0, 0.0],
-    ...                         "pressure_bar": [1.0, 1.4, 1.4, 1.0], "surface": ["concrete", "grass", None, None],
-    ...                         "excitation_frequency_Hz": [4.0, 4.0, 6.0, 4.0], "amplitude_mm_pp": [14.0, 14.0, 14.0, 30.0]})
+    >>> from tyrelab.tyre.examples import demo_runs
+    >>> results = demo_runs("mixed")       # passed QC standing and rolling; failed QC; a calibration run
     >>> nominal(results).tolist()
     [True, False, False, False]
     >>> nominal(results, except_for="surface").tolist()
@@ -327,10 +323,8 @@ def table_iii_runs(results: pd.DataFrame) -> pd.DataFrame:
 
     Examples
     --------
-    >>> results = pd.DataFrame({"tyre_id": ["T1"] * 4, "kind": ["measurement"] * 3 + ["calibration"],
-    ...                         "qc_ok": [True, True, False, True], "speed_km_h": [0.0, 12.0, 12.0, 0.0],
-    ...                         "pressure_bar": [1.0, 1.4, 1.4, 1.0], "surface": ["concrete", "grass", None, None],
-    ...                         "excitation_frequency_Hz": [4.0, 4.0, 6.0, 4.0], "amplitude_mm_pp": [14.0, 14.0, 14.0, 30.0]})
+    >>> from tyrelab.tyre.examples import demo_runs
+    >>> results = demo_runs("mixed")       # passed QC standing and rolling; failed QC; a calibration run
     >>> table_iii_runs(results)[["speed_km_h", "condition"]].to_dict("records")
     [{'speed_km_h': 0.0, 'condition': 'stationary'}]
     """

@@ -202,11 +202,8 @@ def predictions_from_recordings(results: pd.DataFrame, our_table_iii: pd.DataFra
     Examples
     --------
     >>> from tyrelab.tyre.regressions import DAMPING, pressure_regressions, table_iii
-    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
-    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0, "load_kN": 18.3,
-    ...                      "speed_km_h": [0.0] * 3 + [12.0] * 3, "pressure_bar": [1.0, 1.4, 1.8] * 2,
-    ...                      "stiffness_kN_per_m": [400.0, 440.0, 480.0, 380.0, 420.0, 460.0],
-    ...                      "damping_kN_s_per_m": [3.0, 2.8, 2.6, 1.5, 1.4, 1.3]})
+    >>> from tyrelab.tyre.examples import demo_runs
+    >>> runs = demo_runs()                                  # tyre T1: 1.0-1.8 bar, standing and at 12 km/h
     >>> p = predictions_from_recordings(runs, table_iii(pressure_regressions(runs), None),
     ...                                 pd.DataFrame({"tyre_id": ["T1"], "size": ["13.6R38"]}))
     >>> p[["pressure_bar", "measured_kN_per_m", "stationary_kN_per_m", "stationary_error_percent"]].round(2).to_dict("records")[0]

@@ -405,11 +405,8 @@ def pressure_table(
     Examples
     --------
     >>> from tyrelab.tyre.regressions import DAMPING, pressure_regressions, table_iii
-    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
-    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0, "load_kN": 18.3,
-    ...                      "speed_km_h": [0.0] * 3 + [12.0] * 3, "pressure_bar": [1.0, 1.4, 1.8] * 2,
-    ...                      "stiffness_kN_per_m": [400.0, 440.0, 480.0, 380.0, 420.0, 460.0],
-    ...                      "damping_kN_s_per_m": [3.0, 2.8, 2.6, 1.5, 1.4, 1.3]})
+    >>> from tyrelab.tyre.examples import demo_runs
+    >>> runs = demo_runs()                                  # tyre T1: 1.0-1.8 bar, standing and at 12 km/h
     >>> t = pressure_table("T1", pressure_regressions(runs, by="speed"), pressure_regressions(runs, DAMPING, by="speed"), [1.6])
     >>> t[["speed_km_h", "pressure_bar", "stiffness_kN_per_m", "damping_kN_s_per_m"]].round(3).to_dict("records")
     [{'speed_km_h': 0.0, 'pressure_bar': 1.6, 'stiffness_kN_per_m': 460.0, 'damping_kN_s_per_m': 2.7}, {'speed_km_h': 12.0, 'pressure_bar': 1.6, 'stiffness_kN_per_m': 440.0, 'damping_kN_s_per_m': 1.35}]

@@ -358,11 +358,8 @@ def pressure_regressions(
 
     Examples
     --------
-    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
-    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0, "load_kN": 18.3,
-    ...                      "speed_km_h": [0.0] * 3 + [12.0] * 3, "pressure_bar": [1.0, 1.4, 1.8] * 2,
-    ...                      "stiffness_kN_per_m": [400.0, 440.0, 480.0, 380.0, 420.0, 460.0],
-    ...                      "damping_kN_s_per_m": [3.0, 2.8, 2.6, 1.5, 1.4, 1.3]})
+    >>> from tyrelab.tyre.examples import demo_runs
+    >>> runs = demo_runs()                                  # tyre T1: 1.0-1.8 bar, standing and at 12 km/h
     >>> fit = pressure_regressions(runs)
     >>> fit[["condition", "n", "intercept", "slope"]].round(6).to_dict("records")
     [{'condition': 'stationary', 'n': 3, 'intercept': 300.0, 'slope': 100.0}, {'condition': 'rolling', 'n': 3, 'intercept': 280.0, 'slope': 100.0}]
@@ -465,10 +462,8 @@ def factor_regressions(
 
     Examples
     --------
-    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
-    ...                      "speed_km_h": 12.0, "pressure_bar": 1.38, "load_kN": [14.0, 18.0, 22.0],
-    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0,
-    ...                      "stiffness_kN_per_m": [400.0, 420.0, 440.0], "damping_kN_s_per_m": [1.0, 1.8, 2.6]})
+    >>> from tyrelab.tyre.examples import demo_runs
+    >>> runs = demo_runs("load")                            # tyre T1: 14, 18, 22 kN at 12 km/h
     >>> r = factor_regressions(runs, "load")
     >>> r[["response", "factor_unit", "n", "slope"]].round(6).to_dict("records")
     [{'response': 'stiffness_kN_per_m', 'factor_unit': 'kN', 'n': 3, 'slope': 5.0}, {'response': 'damping_kN_s_per_m', 'factor_unit': 'kN', 'n': 3, 'slope': 0.2}]
@@ -576,11 +571,8 @@ def surface_effects(results: pd.DataFrame, response: str = STIFFNESS) -> tuple[p
 
     Examples
     --------
-    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
-    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0, "load_kN": 18.3,
-    ...                      "speed_km_h": [0.0] * 3 + [12.0] * 3, "pressure_bar": [1.0, 1.4, 1.8] * 2,
-    ...                      "stiffness_kN_per_m": [400.0, 440.0, 480.0, 380.0, 420.0, 460.0],
-    ...                      "damping_kN_s_per_m": [3.0, 2.8, 2.6, 1.5, 1.4, 1.3]})
+    >>> from tyrelab.tyre.examples import demo_runs
+    >>> runs = demo_runs()                                  # tyre T1: 1.0-1.8 bar, standing and at 12 km/h
     >>> grass = runs.assign(surface="grass", stiffness_kN_per_m=runs["stiffness_kN_per_m"] * 0.9)
     >>> cells, summary = surface_effects(pd.concat([runs, grass], ignore_index=True))
     >>> len(cells), summary[["surface", "n_cells"]].to_dict("records"), round(float(summary["change_percent"].iloc[0]), 6)
@@ -732,11 +724,8 @@ def table_iii(fit: pd.DataFrame, published: pd.DataFrame | None) -> pd.DataFrame
 
     Examples
     --------
-    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
-    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0, "load_kN": 18.3,
-    ...                      "speed_km_h": [0.0] * 3 + [12.0] * 3, "pressure_bar": [1.0, 1.4, 1.8] * 2,
-    ...                      "stiffness_kN_per_m": [400.0, 440.0, 480.0, 380.0, 420.0, 460.0],
-    ...                      "damping_kN_s_per_m": [3.0, 2.8, 2.6, 1.5, 1.4, 1.3]})
+    >>> from tyrelab.tyre.examples import demo_runs
+    >>> runs = demo_runs()                                  # tyre T1: 1.0-1.8 bar, standing and at 12 km/h
     >>> t = table_iii(pressure_regressions(runs), None)
     >>> t[["tyre_id", "condition", "carcass_stiffness_kN_per_m", "pressure_dependence_kN_per_m_bar"]].round(6).to_dict("records")[1]
     {'tyre_id': 'T1', 'condition': 'stationary', 'carcass_stiffness_kN_per_m': 300.0, 'pressure_dependence_kN_per_m_bar': 100.0}
@@ -767,11 +756,8 @@ def table_vii(fit: pd.DataFrame, published: pd.DataFrame | None) -> pd.DataFrame
 
     Examples
     --------
-    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
-    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0, "load_kN": 18.3,
-    ...                      "speed_km_h": [0.0] * 3 + [12.0] * 3, "pressure_bar": [1.0, 1.4, 1.8] * 2,
-    ...                      "stiffness_kN_per_m": [400.0, 440.0, 480.0, 380.0, 420.0, 460.0],
-    ...                      "damping_kN_s_per_m": [3.0, 2.8, 2.6, 1.5, 1.4, 1.3]})
+    >>> from tyrelab.tyre.examples import demo_runs
+    >>> runs = demo_runs()                                  # tyre T1: 1.0-1.8 bar, standing and at 12 km/h
     >>> t = table_vii(pressure_regressions(runs, DAMPING, by="speed"), None)
     >>> t[["speed_km_h", "carcass_damping_kN_s_per_m", "pressure_dependence_kN_s_per_m_bar"]].round(6).to_dict("records")
     [{'speed_km_h': 0.0, 'carcass_damping_kN_s_per_m': 3.5, 'pressure_dependence_kN_s_per_m_bar': -0.5}, {'speed_km_h': 12.0, 'carcass_damping_kN_s_per_m': 1.75, 'pressure_dependence_kN_s_per_m_bar': -0.25}]
@@ -809,10 +795,8 @@ def amplitude_table(rates: pd.DataFrame, published: pd.DataFrame | None, respons
 
     Examples
     --------
-    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
-    ...                      "speed_km_h": 12.0, "pressure_bar": 1.38, "load_kN": 18.3,
-    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": [10.0, 14.0, 18.0],
-    ...                      "stiffness_kN_per_m": [430.0, 420.0, 410.0], "damping_kN_s_per_m": 1.5})
+    >>> from tyrelab.tyre.examples import demo_runs
+    >>> runs = demo_runs("amplitude")                       # tyre T1: 10, 14, 18 mm at 12 km/h
     >>> t = amplitude_table(factor_regressions(runs, "amplitude"), None, STIFFNESS)
     >>> t[["tyre_id", "speed_km_h", "stiffness_rate_kN_per_m_per_mm"]].round(6).to_dict("records")
     [{'tyre_id': 'T1', 'speed_km_h': 12.0, 'stiffness_rate_kN_per_m_per_mm': -2.5}]
@@ -910,11 +894,8 @@ def summary_rates(
 
     Examples
     --------
-    >>> runs = pd.DataFrame({"tyre_id": "T1", "kind": "measurement", "qc_ok": True, "surface": "concrete",
-    ...                      "excitation_frequency_Hz": 4.0, "amplitude_mm_pp": 14.0, "load_kN": 18.3,
-    ...                      "speed_km_h": [0.0] * 3 + [12.0] * 3, "pressure_bar": [1.0, 1.4, 1.8] * 2,
-    ...                      "stiffness_kN_per_m": [400.0, 440.0, 480.0, 380.0, 420.0, 460.0],
-    ...                      "damping_kN_s_per_m": [3.0, 2.8, 2.6, 1.5, 1.4, 1.3]})
+    >>> from tyrelab.tyre.examples import demo_runs
+    >>> runs = demo_runs()                                  # tyre T1: 1.0-1.8 bar, standing and at 12 km/h
     >>> rolling = runs.loc[runs["speed_km_h"] > 0]          # K rises 10 kN/m per kN of load here
     >>> rates = factor_regressions(rolling.assign(load_kN=[14.0, 18.0, 22.0], pressure_bar=1.38), "load")
     >>> t = summary_rates(pressure_regressions(runs, by="speed"), rates, STIFFNESS)

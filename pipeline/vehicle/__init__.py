@@ -6,9 +6,10 @@ is imported on first use (:mod:`tyrelab._lazy`). The entry points a user needs f
 
 The modules live in layers (issue 45; docs/architecture.md): ``units``; ``model`` and ``elements``;
 the sub-packages ``terrain`` (ground input), ``comfort`` (exposure and its standards), ``solvers``
-(LTI, the time domain, modes, the beam) and ``validation``; the scenario run; the thesis' studies on top. A module
+(LTI, the time domain, modes, the beam) and ``validation``; the scenario run; the thesis' studies on top
+(``studies``: chapters 6-8, their published layouts and virtual recordings). A module
 moved into a sub-package keeps its old name here (``tyrelab.vehicle.profiles`` is
-``tyrelab.vehicle.terrain.profiles``).
+``tyrelab.vehicle.terrain.profiles``, ``tyrelab.vehicle.carriage`` is ``tyrelab.vehicle.studies.carriage``).
 
 .. rubric:: Ride prediction
 

@@ -50,14 +50,14 @@ from . import profiles as pr  # noqa: F401 (an old name of this module)
 from .model import assemble  # noqa: F401 (an old name of this module)
 from .modes import LATERAL_ROLL_SHARE, MODE_NAMES, ModeSet, follow_names, frequency_intervals, mode_set  # noqa: F401
 from .scenario import Scenario, ScenarioError, sweep_variants, with_overrides, with_values  # noqa: F401
-from .scenario.limits import METHODS, bound_argument
+from .scenario.limits import RIDE_METHODS, bound_argument
 from .spectral_ride import at_own_values, nominal_index
 from .tractor import Tractor, simulate  # noqa: F401 (old names of this module)
-from .tyres import AxleTyres, ShippedTyres, build_parts, build_tractor, per_speed, resolve_tyres  # noqa: F401
+from .tyres import AxleTyres, ShippedTyres, build_parts, per_speed, resolve_tyres  # noqa: F401
 from .tyres import _damping_fit, _formula_stiffness, _lateral_tyre, _model_damping, _thesis_stiffness_model  # noqa: F401
 from .run.frequency import _spectral_reduce, spectral_variants  # noqa: F401
 from .run.output import RideResult, _clean, _clean_class, _lateral_note, _tyre_json, result_json, results_table  # noqa: F401
-from .run.pitch_plane import OUTPUTS, ground_response, simulate_state_space, state_names, state_space  # noqa: F401
+from .run.pitch_plane import OUTPUTS, state_names, state_space  # noqa: F401
 from .run.plan import LATERAL_INTERVAL_STEPS, _lateral_interval, axle_flags as _axle_flags, finish as _finish  # noqa: F401
 from .run.plan import modes, prepare as _prepare, record_window as _record_window, seat_axes  # noqa: F401
 from .run.plan import speed_run as _linear_model  # noqa: F401
@@ -75,10 +75,10 @@ from .units import KILO, from_kilo, to_kilo  # noqa: F401 (old names of this mod
 
 #: This module's names and those of the layers in vehicle/run/ (whose package lists none: these are
 #: the names ``tyrelab.vehicle`` re-exports); the tyres' (AxleTyres, ShippedTyres, per_speed,
-#: resolve_tyres, build_tractor, build_parts) are :mod:`tyrelab.vehicle.tyres`' and still import from here.
+#: resolve_tyres, build_parts) are :mod:`tyrelab.vehicle.tyres`' and still import from here.
 __all__ = [
-    "OUTPUTS", "Track", "RideResult", "tyre_inputs", "state_names", "state_space", "simulate_state_space", "frequency_response",
-    "ground_response", "enveloping_response", "build_profile", "crg_profile", "road_classes", "axle_inputs",
+    "OUTPUTS", "Track", "RideResult", "tyre_inputs", "state_names", "state_space", "frequency_response",
+    "enveloping_response", "build_profile", "crg_profile", "road_classes", "axle_inputs",
     "exposure", "seat_axes", "modes", "input_cross_spectra", "ride", "ride_variants", "RideCache", "ride_sweep",
     "spectral_variants", "expected_weighted_rms", "expected_sweep", "result_json", "results_table", "VERDICTS",
 ]
@@ -191,7 +191,7 @@ def ride_sweep(
     [(0.8, False), (1.2, True)]
     """
     method = method or scenario.simulation.method
-    _validate.choice("method", method, METHODS)
+    _validate.choice("method", method, RIDE_METHODS)
     if with_spectra not in (True, False, "nominal"):
         raise ValueError(f"with_spectra must be True, False or 'nominal', got {with_spectra!r}")
     for name, value in (("max_variants", max_variants), ("max_samples", max_samples), ("max_rows", max_rows)):

@@ -24,7 +24,7 @@ independent of roll, lateral and yaw (Stayner, Collins and Lines 1984), so the t
 The time domain itself (:func:`simulate`: exact while every tyre is in contact, RK4 across
 lift-off, switched within a run) is :mod:`tyrelab.vehicle.solvers.time_domain` (issue 45), the solver
 the ride scenarios share; this module is the twelve-number tractor on it (:func:`simulate_tractor`),
-and keeps the solver's names (``simulate``, ``METHODS``, ``CALM_STEPS``, ``off_ground``, ...) importable
+and keeps the solver's names (``simulate``, ``INTEGRATION_METHODS``, ``CALM_STEPS``, ``off_ground``, ...) importable
 from here (and so from :mod:`tyrelab.vehicle`).
 """
 
@@ -36,19 +36,23 @@ import numpy as np
 
 from .. import _validate
 from .model import Axle, Chassis, Parts, SeatPoint, assemble
-from .solvers.time_domain import CALM_STEPS, LIFT_OFF_RTOL, METHODS, RECORDED_OUTPUTS, off_ground, simulate
+from .solvers.time_domain import CALM_STEPS, INTEGRATION_METHODS, LIFT_OFF_RTOL, METHODS, RECORDED_OUTPUTS, off_ground, simulate  # noqa: F401  (METHODS: the old name)
 from .units import STANDARD_GRAVITY_M_S2 as GRAVITY_M_S2  # noqa: F401  (the name of issue 35)
 
-__all__ = ["Tractor", "tractor_parts", "simulate", "simulate_tractor", "LONGITUDINAL_MODELS",
-           "METHODS", "CALM_STEPS", "PARAMETERS", "TRACTOR_OUTPUTS",
+__all__ = ["Tractor", "tractor_parts", "simulate", "simulate_tractor", "TRACTOR_LONGITUDINAL_MODELS",
+           "INTEGRATION_METHODS", "CALM_STEPS", "PARAMETERS", "TRACTOR_OUTPUTS",
            # the time domain's (solvers/time_domain.py) too, so that tyrelab.vehicle re-exports them
            "off_ground", "LIFT_OFF_RTOL", "RECORDED_OUTPUTS"]
 
 #: What :func:`simulate_tractor` records per sample (the time domain's default record).
 TRACTOR_OUTPUTS = RECORDED_OUTPUTS
 
-#: Rear longitudinal element: none, Kelvin-Voigt (parallel) or Maxwell (series).
-LONGITUDINAL_MODELS = ("none", "kelvin_voigt", "maxwell")
+#: Rear longitudinal element: none, Kelvin-Voigt (parallel) or Maxwell (series) (an assembled axle
+#: has the rolling tyre too: :data:`tyrelab.vehicle.model.AXLE_LONGITUDINAL_MODELS`).
+TRACTOR_LONGITUDINAL_MODELS = ("none", "kelvin_voigt", "maxwell")
+#: The names of :data:`TRACTOR_LONGITUDINAL_MODELS` and :data:`INTEGRATION_METHODS` before issue 45:
+#: still importable from here, not in ``__all__`` (another module's name meant another thing).
+LONGITUDINAL_MODELS = TRACTOR_LONGITUDINAL_MODELS
 
 
 @dataclass(frozen=True)
@@ -72,7 +76,7 @@ class Tractor:
     longitudinal_stiffness_N_per_m, longitudinal_damping_N_s_per_m : float
         Rear axle longitudinal element (two tyres), N/m and N s/m.
     longitudinal_model : str or array of str
-        One of :data:`LONGITUDINAL_MODELS`, for the whole batch or one per run.
+        One of :data:`TRACTOR_LONGITUDINAL_MODELS`, for the whole batch or one per run.
     """
 
     mass_kg: float
@@ -137,8 +141,8 @@ def tractor_parts(tractor: Tractor, seat: SeatPoint | None = None) -> Parts:
     """
     _validate.instance("tractor", tractor, Tractor)
     model = str(tractor.longitudinal_model)
-    if model not in LONGITUDINAL_MODELS:
-        raise ValueError(f"longitudinal_model {model!r}: expected one of {LONGITUDINAL_MODELS}")
+    if model not in TRACTOR_LONGITUDINAL_MODELS:
+        raise ValueError(f"longitudinal_model {model!r}: expected one of {TRACTOR_LONGITUDINAL_MODELS}")
     kx, cx = float(tractor.longitudinal_stiffness_N_per_m), float(tractor.longitudinal_damping_N_s_per_m)
     if model == "maxwell" and not (kx > 0 and cx > 0):
         model = "none"
@@ -162,9 +166,9 @@ def _models(tractor: Tractor, runs: int) -> np.ndarray:
     models = np.asarray(tractor.longitudinal_model, dtype=object)
     if models.ndim > 1 or (models.ndim == 1 and models.size != runs):
         raise ValueError(f"longitudinal_model: expected one value or {runs} (one per run), got shape {models.shape}")
-    bad = sorted({str(m) for m in models.ravel()} - set(LONGITUDINAL_MODELS))
+    bad = sorted({str(m) for m in models.ravel()} - set(TRACTOR_LONGITUDINAL_MODELS))
     if bad:
-        raise ValueError(f"longitudinal_model {bad[0]!r}: expected one of {LONGITUDINAL_MODELS}")
+        raise ValueError(f"longitudinal_model {bad[0]!r}: expected one of {TRACTOR_LONGITUDINAL_MODELS}")
     return np.broadcast_to(models, (runs,))
 
 
@@ -201,7 +205,7 @@ def simulate_tractor(
         Gravity, m/s² (the static tyre loads: the lift-off floors); default the standard gravity
         (:func:`~tyrelab.vehicle.model.assemble`), the ch. 7 study passes the thesis' 9.81.
     method : str
-        One of :data:`METHODS`.
+        One of :data:`INTEGRATION_METHODS`.
 
     Returns
     -------

@@ -32,11 +32,10 @@ from ..tyre.stiffness import estimate_stiffness
 from . import enveloping as ev
 from .model import Assembly, Parts, assemble
 from .scenario import Scenario
-from .tractor import Tractor
 from .units import from_kilo
 
 __all__ = ["AxleTyres", "ShippedTyres", "FitTyres", "MEASURED_TABLES", "BUILD_FORMULA_TABLES", "DIRECTIONAL_TABLES", "FIT_TABLES",
-           "scenario_fits", "per_speed", "resolve_tyres", "static_tyre_loads", "build_parts", "build_tractor"]
+           "scenario_fits", "per_speed", "resolve_tyres", "static_tyre_loads", "build_parts"]
 
 
 @dataclass(frozen=True)
@@ -555,39 +554,17 @@ def _longitudinal_series(given: tuple, spec, speeds: np.ndarray, tyre_data=None)
             "longitudinal_series_source": r.source_text["series_damping_kN_s_per_m_km_h"]}
 
 
-def build_tractor(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Tractor:
-    """The :class:`~tyrelab.vehicle.tractor.Tractor` at speed index ``i`` (axle = two tyres, SI).
-
-    See Also
-    --------
-    build_parts : the parts of the same numbers (any model, 3-D included).
-    resolve_tyres : the tyre numbers per speed it takes.
-
-    Examples
-    --------
-    >>> from tyrelab.resources import scenarios_dir
-    >>> from tyrelab.vehicle import parse_scenario
-    >>> sc = parse_scenario((scenarios_dir() / "mf698t.toml").read_text())
-    >>> build_tractor(sc, resolve_tyres(sc), 0).mass_kg
-    5120.0
-    """
-    _validate.instance("scenario", scenario, Scenario)
-    _validate.positive_int("i", i, minimum=0)
-    return Tractor.of_parts(build_parts(scenario, tyres, i))
-
-
 def build_parts(scenario: Scenario, tyres: dict[str, AxleTyres], i: int) -> Parts:
     """The tractor's :class:`~tyrelab.vehicle.model.Parts` at speed index ``i`` (per tyre, SI).
 
     The looked-up tyre numbers at that speed in SI, then the scenario's own parts
     (:meth:`tyrelab.vehicle.scenario.Scenario.parts`, where its kN values become SI). Without
-    ``tractor.roll_inertia_kg_m2`` the parts are those of the pitch-plane
-    :class:`~tyrelab.vehicle.tractor.Tractor` of :func:`build_tractor`.
+    ``tractor.roll_inertia_kg_m2`` the parts are those of a pitch-plane
+    :class:`~tyrelab.vehicle.tractor.Tractor` (:meth:`~tyrelab.vehicle.tractor.Tractor.of_parts`).
 
     See Also
     --------
     resolve_tyres : the tyre numbers per speed it takes.
-    build_tractor : the pitch-plane tractor of the same numbers.
     tyrelab.vehicle.model.assemble : the assembly of the parts.
 
     Examples

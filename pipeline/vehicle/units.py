@@ -3,7 +3,7 @@
 The model is SI inside (N/m, N s/m, N m/rad, per tyre or per element). The thesis' tables,
 the scenario file's keys and the tyre formula give stiffness and damping in kN/m, kN s/m and
 kN m/rad. Their values become SI where they are read — :mod:`tyrelab.vehicle.scenario` (a
-scenario's parts), :mod:`tyrelab.vehicle.published_layouts` (the thesis' tables),
+scenario's parts), :mod:`tyrelab.vehicle.studies.published_layouts` (the thesis' tables),
 :class:`tyrelab.vehicle.ride.AxleTyres` (a tyre's looked-up numbers) — and go back to kN where
 they are written out (tables, JSON), with these two functions; no other module of
 ``tyrelab.vehicle`` writes a factor of 1e3 (``tests/vehicle/test_units_tree.py`` checks it).
@@ -12,7 +12,7 @@ Speeds are given in km/h (scenario files, the thesis' tables) and are m/s inside
 is the one conversion (no ``/ 3.6`` elsewhere in ``tyrelab.vehicle``). Gravity is the standard
 gravity :data:`STANDARD_GRAVITY_M_S2` (ISO 80000-3, CGPM 1901), the value the raw format, the rig
 and the measurement methods use too; a thesis study that needs the thesis' 9.81 m/s² to reproduce
-its printed numbers names it itself (:data:`tyrelab.vehicle.carriage.THESIS_GRAVITY_M_S2`).
+its printed numbers names it itself (:data:`tyrelab.vehicle.studies.carriage.THESIS_GRAVITY_M_S2`).
 """
 
 from __future__ import annotations

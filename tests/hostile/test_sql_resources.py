@@ -134,3 +134,50 @@ def test_ctrl_c_exits_130(build, tmp_path):
     assert proc.returncode == 130, err
     assert not holds.passed("sql-statement")
     assert err.strip().splitlines()[-1] == "tyrelab sql: interrupted" and "Traceback" not in err
+
+
+# DuckDB's Python module checks for signals while it runs a statement on the main thread: it catches the
+# KeyboardInterrupt, clears it and raises "RuntimeError: Query interrupted" (a SET or ATTACH while the
+# connection is made) or nothing (the statement finished anyway). Measured: one Ctrl-C in ~100 that landed
+# while `tyrelab sql` connected ended as "RuntimeError: Query interrupted", exit 2, and one ran on with the
+# statement (minutes). tyrelab.interrupts records the request besides raising.
+
+def test_a_ctrl_c_that_duckdb_swallowed_still_stops_a_running_statement(build):
+    import threading
+
+    from tyrelab import interrupts
+    from tyrelab.warehouse import iter_query
+
+    previous = interrupts.install()
+    try:
+        # the handler ran and its KeyboardInterrupt was lost in DuckDB: only the record is left
+        timer = threading.Timer(0.5, interrupts._requested.set)
+        timer.start()
+        with pytest.raises(KeyboardInterrupt):  # not QueryTimeout: the limit is the test's guard against a hang
+            for _names, frames in iter_query(build / "warehouse.duckdb", LONG, QueryLimits(timeout_s=HANG_GUARD_S / 4)):
+                for _ in frames:
+                    pass
+        timer.join()
+    finally:
+        interrupts.restore(previous)
+        interrupts._requested.clear()
+
+
+@pytest.mark.parametrize("kind", ["RuntimeError", "InterruptException"])
+def test_a_ctrl_c_that_duckdb_turned_into_query_interrupted_exits_130(build, capsys, monkeypatch, kind):
+    import duckdb
+
+    from tyrelab import interrupts, warehouse
+
+    def connect_interrupted(*args, **kwargs):
+        interrupts._requested.set()  # SIGINT arrived; DuckDB cleared the KeyboardInterrupt and raised its own
+        raise RuntimeError("Query interrupted") if kind == "RuntimeError" else duckdb.InterruptException("Interrupted!")
+
+    monkeypatch.setattr(warehouse, "connect_read_only", connect_interrupted)
+    try:
+        rc = main(["sql", "--build", str(build), "SELECT 1"])
+    finally:
+        interrupts._requested.clear()
+    err = capsys.readouterr().err
+    assert rc == 130, err
+    assert err.strip().splitlines() == ["tyrelab sql: interrupted"]

@@ -16,7 +16,18 @@ from tyrelab.vehicle import iso2631, ride
 from tyrelab.vehicle import profiles as pr
 from tyrelab.scenario_io import ScenarioError, load_scenario, parse_scenario
 from tyrelab.vehicle.model import SeatSuspension
+from tyrelab.vehicle.solvers import lti
 from tyrelab.vehicle.tractor import Tractor, simulate_tractor
+
+
+def run_linear(a, b, c, d, w, dt_s: float = ride.DT_S) -> np.ndarray:
+    """Outputs of ``(A, B, C, D)`` from rest at the samples of ``w`` (exact first-order hold)."""
+    return lti.discretise(np.asarray(a, float), np.asarray(b, float), np.asarray(c, float), np.asarray(d, float), dt_s).run(w)
+
+
+def pitch_plane_tractor(scenario, tyres, i: int) -> Tractor:
+    """The twelve-number tractor of a scenario's parts at speed index ``i``."""
+    return Tractor.of_parts(ride.build_parts(scenario, tyres, i))
 
 
 # ------------------------------------------------------------------ checked by: sinusoid
@@ -46,7 +57,7 @@ def test_sinusoidal_profile_matches_the_steady_state_answer(tmp_path):
     assert row["simulation"] == "linear"
     v = speed_km_h / 3.6
     f0 = v / wavelength
-    t = ride.build_tractor(res.scenario, res.tyres, 0)
+    t = pitch_plane_tractor(res.scenario, res.tyres, 0)
     expected = steady_state_seat_accel(t, f0, v, amplitude, -0.4) * abs(iso2631.weighting_response(f0, "Wk")) / math.sqrt(2)
     assert row["a_wz_m_s2"] == pytest.approx(expected, rel=0.02)
     assert row["expected_a_wz_m_s2"] > 0  # a declared spectrum is needed for a line spectrum's expectation
@@ -84,7 +95,7 @@ def test_linear_path_equals_simulate_tractor_without_lift_off(model, kx, cx):
     ur[:400] = udr[:400] = 0
     sim = simulate_tractor(t, u, ud, ur, udr, dt, lift_off=False)
     a, b, c, d = ride.state_space(t, 0.3, 1.1)
-    y = ride.simulate_state_space(a, b, c, d, np.vstack([u[::2], ud[::2], ur[::2], udr[::2]]), dt)
+    y = run_linear(a, b, c, d, np.vstack([u[::2], ud[::2], ur[::2], udr[::2]]), dt)
     out = dict(zip(ride.OUTPUTS, y))
     for key in ("vertical_m_s2", "pitch_rad_s2", "longitudinal_m_s2"):
         scale = np.sqrt(np.mean(sim[key] ** 2)) + 1e-12
@@ -100,7 +111,7 @@ def test_frequency_response_is_the_time_path_at_one_frequency():
     time = np.arange(40000) * 1e-3
     u = np.sin(2 * np.pi * f * time)
     w = np.vstack([u, 2 * np.pi * f * np.cos(2 * np.pi * f * time), np.zeros_like(u), np.zeros_like(u)])
-    y = ride.simulate_state_space(a, b, c, d, w)
+    y = run_linear(a, b, c, d, w)
     h = ride.frequency_response(a, b, c, d, [f])[:, :, 0]
     amp = np.abs(h[:, 0] + 2j * np.pi * f * h[:, 1])
     tail = y[:, -10000:]
@@ -431,12 +442,12 @@ def test_one_axle_lifting_off_sends_the_run_to_the_nonlinear_model(tmp_path, wav
         tmp_path / "sine.csv", index=False)
     text = scenario_text('kind = "profile"\nprofile = "sine.csv"\nenveloping = "none"', "[10]", 'longitudinal_model = "none"')
     sc = load_scenario(write(tmp_path, text))
-    t = ride.build_tractor(sc, ride.resolve_tyres(sc), 0)
+    t = pitch_plane_tractor(sc, ride.resolve_tyres(sc), 0)
     v = 10 / 3.6
     track = ride.build_profile(sc)
     _, stop = ride._record_window(track, t.wheelbase_m, v, None)
     u = ride.axle_inputs(track.profile, "none", (0.3, 0.3), (0.7, 0.9), v, t.wheelbase_m, stop)
-    y = ride.simulate_state_space(*ride.state_space(t), np.vstack([w[::2] for w in u]))
+    y = run_linear(*ride.state_space(t), np.vstack([w[::2] for w in u]))
     forces = dict(zip(ride.OUTPUTS, y))
     static = dict(zip(("front", "rear"), t.mass_kg * 9.80665 * np.array([t.rear_distance_m, t.front_distance_m])
                       / t.wheelbase_m))
@@ -448,7 +459,7 @@ def test_one_axle_lifting_off_sends_the_run_to_the_nonlinear_model(tmp_path, wav
     assert row[f"lift_off_fraction_{lifted}"] > 0.002 and row[f"lift_off_fraction_{other}"] == 0
 
 
-def test_build_tractor_puts_two_tyres_on_each_axle(tmp_path):
+def test_the_parts_put_two_tyres_on_each_axle(tmp_path):
     """Axle values are two tyres' in SI (kN -> N); the longitudinal tyre values only with a longitudinal model."""
     text = scenario_text('kind = "iso8608"\nclass = "A"\nlength_m = 10', "[10, 20]",
                          'longitudinal_model = "kelvin_voigt"\nlongitudinal_stiffness_kN_per_m = 400\n'
@@ -456,24 +467,12 @@ def test_build_tractor_puts_two_tyres_on_each_axle(tmp_path):
                          front="stiffness_kN_per_m = [300, 400]\ndamping_kN_s_per_m = 1.5")
     sc = load_scenario(write(tmp_path, text))
     tyres = ride.resolve_tyres(sc)
-    t = ride.build_tractor(sc, tyres, 1)
+    t = pitch_plane_tractor(sc, tyres, 1)
     assert (t.front_stiffness_N_per_m, t.front_damping_N_s_per_m) == (800e3, 3e3)
     assert t.rear_stiffness_N_per_m == pytest.approx(2e3 * tyres["rear"].stiffness_kN_per_m[1], rel=1e-15)
     assert (t.longitudinal_stiffness_N_per_m, t.longitudinal_damping_N_s_per_m) == (800e3, 5e3)
-    none = ride.build_tractor(load_scenario(write(tmp_path, text.replace('"kelvin_voigt"', '"none"'), "n.toml")), tyres, 0)
+    none = pitch_plane_tractor(load_scenario(write(tmp_path, text.replace('"kelvin_voigt"', '"none"'), "n.toml")), tyres, 0)
     assert (none.longitudinal_stiffness_N_per_m, none.longitudinal_damping_N_s_per_m) == (0.0, 0.0)
-
-
-def test_ground_response_is_quasi_static_at_low_frequency():
-    """Far below the body modes the tractor follows the ground: the CG's vertical acceleration per metre of
-    profile is (j w)^2 (both axles, delay phase w L / v = 0.006 rad at 0.001 Hz, 10 km/h: error ~2e-5),
-    and it pitches by nothing."""
-    t = Tractor(4700, 5500, 1.56, 0.95, 0.95, 7e5, 8e5, 3e3, 3e3, 0.0, 0.0, "none")
-    f = np.array([0.001])
-    g = ride.ground_response(ride.frequency_response(*ride.state_space(t), f), f, 10 / 3.6, t.wheelbase_m)[:, 0]
-    w2 = (2 * np.pi * f[0]) ** 2
-    assert abs(g[2]) / w2 == pytest.approx(1.0, abs=1e-4)
-    assert abs(g[3]) / w2 < 1e-2
 
 
 def test_json_numbers_are_rounded_to_six_decimals_and_the_transmissibility_grid(tmp_path):

@@ -164,3 +164,42 @@ def test_the_ch7_study_builds_its_wheel_inputs_with_the_ride_s_one_construction(
     u0 = 0.5 * (uf[0] + ur[0])
     for a, b in zip(got, (uf - u0, udf, ur - u0, udr)):
         np.testing.assert_array_equal(a, b)
+
+
+def test_a_name_two_modules_export_means_one_thing():
+    """``METHODS`` was the time domain's integrators in ``tractor`` and the ride's methods in
+    ``scenario_limits``; ``LONGITUDINAL_MODELS`` the twelve-number tractor's and the assembled
+    axle's (with ``rolling``). Each meaning has its own name now; a name two modules of a package
+    export (``__all__``) must be one object, or ``tyrelab.vehicle.<name>`` cannot tell which."""
+    import importlib
+
+    from tyrelab import _lazy
+
+    packages = ["tyrelab.vehicle"] + [f"tyrelab.vehicle.{p}" for p in ("model", "terrain", "comfort", "solvers", "scenario",
+                                                                        "run", "studies", "validation")]
+    twins = []
+    for package in packages:
+        for name, subs in _lazy.collisions(package).items():
+            objects = [getattr(importlib.import_module(f"{package}.{s}"), name) for s in subs]
+            if any(o is not objects[0] for o in objects):
+                twins.append(f"{package}: {name} in {subs}")
+    assert not twins, "one name, two meanings: " + "; ".join(twins)
+
+
+def test_the_old_names_of_the_split_meanings_still_import():
+    from tyrelab.vehicle import scenario_limits, tractor
+    from tyrelab.vehicle.model import AXLE_LONGITUDINAL_MODELS, parts
+    from tyrelab.vehicle.scenario.limits import RIDE_METHODS
+    from tyrelab.vehicle.solvers.time_domain import INTEGRATION_METHODS
+
+    assert tractor.METHODS is tractor.INTEGRATION_METHODS is INTEGRATION_METHODS == ("auto", "rk4")
+    assert scenario_limits.METHODS is RIDE_METHODS == ("auto", "time", "spectral")
+    assert tractor.LONGITUDINAL_MODELS is tractor.TRACTOR_LONGITUDINAL_MODELS == ("none", "kelvin_voigt", "maxwell")
+    assert parts.LONGITUDINAL_MODELS is AXLE_LONGITUDINAL_MODELS == ("none", "kelvin_voigt", "maxwell", "rolling")
+
+
+def test_one_simulation_step_for_the_ride_and_the_studies():
+    from tyrelab.vehicle.run import records, track
+    from tyrelab.vehicle.studies import shared
+
+    assert shared.DT_S is track.DT_S and records.DT_S is track.DT_S and shared.FS_HZ is track.FS_HZ

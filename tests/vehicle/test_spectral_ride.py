@@ -16,6 +16,7 @@ from tyrelab.scenario_io import load_scenario, parse_scenario
 from tyrelab.vehicle import ride, spectral_ride
 from tyrelab.vehicle import scenario_limits as limits
 from tyrelab.vehicle.model import assemble
+from tyrelab.vehicle.solvers import lti
 
 #: Both shipped scenarios on main before issue 36 (at 3b91bfc, after issue 33; one variant each: its rows
 #: must not change), under the thesis' gravity 9.81 m/s² the model had then (issue 45 made it the
@@ -139,7 +140,7 @@ def test_tyre_force_standard_deviation_agrees_with_a_long_simulation():
     w = np.empty((2 * len(asm.tyres), stop))
     w[0::2], w[1::2] = u[:, ::2], du[:, ::2]
     lm = asm.linear(tuple(f"{t}_force_N" for t in asm.tyres))
-    forces = ride.simulate_state_space(*lm.abcd, w)[:, start:stop]
+    forces = lti.discretise(*lm.abcd, ride.DT_S).run(w)[:, start:stop]
     for k, axle in enumerate(asm.tyres):  # pitch plane: an element is the axle's two tyres
         assert row[f"{axle}_tyre_force_sd_N"] == pytest.approx(np.std(forces[k]) / 2, rel=0.08), axle
     static = asm.static_tyre_loads_N()

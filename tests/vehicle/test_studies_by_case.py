@@ -173,3 +173,35 @@ def test_the_sweep_case_reads_table_xviii(tractor_tables):
     after = studies.tractor_case_inputs(mass, tyres, table_xviii=edited)
     assert _changed(before, after) == [True, False, False]
     assert (455.0, 2.0) in after[0]["longitudinal_grid"]["kelvin_voigt"]
+
+
+def test_a_carriage_study_of_one_case_has_tables_and_no_warning(tables, full):
+    """One case (or one left after the 5 and 7.5 km/h runs are set aside) gave numpy's "Degrees of
+    freedom <= 0" warning from the envelope's sd; the sd of one comparison is NaN, said once."""
+    import warnings
+
+    one = tables[0].head(1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        s = studies.carriage_study(one, tables[1], cases={0: full["cases"][0]})
+    for name in ("table_xiii", "table_xiv"):
+        t = s[name].set_index(["quantity", "statistic"])
+        assert np.isnan(t.loc[("envelope_error", "sd"), "rolling"]) and np.isfinite(t.loc[("envelope_error", "mean"), "rolling"])
+    assert len(s["comparisons"]) == len(full["cases"][0]["comparisons"])
+
+
+def test_the_envelope_sd_of_one_comparison_is_nan_without_a_warning():
+    import warnings
+
+    from tyrelab.vehicle.comfort import metrics as mt
+
+    fs = 100.0
+    x = np.sin(2 * np.pi * 2.0 * np.arange(0, 30, 1 / fs))
+    one = pd.DataFrame([{"characteristics": "rolling", **mt.compare_records(1.1 * x, x, fs)}])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        t = mt.accuracy_table(one).set_index(["quantity", "statistic"])["rolling"]
+    assert np.isnan(t[("envelope_correlation", "sd")]) and np.isnan(t[("envelope_error", "sd")])
+    two = pd.concat([one, pd.DataFrame([{"characteristics": "rolling", **mt.compare_records(0.9 * x, x, fs)}])])
+    t2 = mt.accuracy_table(two).set_index(["quantity", "statistic"])["rolling"]
+    assert np.isfinite(t2[("envelope_error", "sd")])

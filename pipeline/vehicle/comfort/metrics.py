@@ -427,6 +427,11 @@ _XIII_ROWS = [
 ]
 
 
+def _sample_sd(values: np.ndarray) -> float:
+    """Sample standard deviation (ddof=1); NaN for fewer than two values (undefined; numpy would warn)."""
+    return float(np.std(values, ddof=1)) if values.size > 1 else math.nan
+
+
 def accuracy_table(comparisons: pd.DataFrame, by: str = "characteristics") -> pd.DataFrame:
     """Tables XIII/XIV layout from per-run comparisons (thesis §6.4).
 
@@ -445,7 +450,7 @@ def accuracy_table(comparisons: pd.DataFrame, by: str = "characteristics") -> pd
         Long form: ``quantity, statistic, <value of by>...`` with statistics
         ``mean_ratio_error, sd_ratio_error, p_within_10, p_within_30`` for the four
         ratio quantities, and ``mean, sd`` of ``envelope_correlation`` and
-        ``envelope_error``.
+        ``envelope_error`` (the sd, ddof=1, of a group of one comparison is NaN: undefined).
 
     See Also
     --------
@@ -474,7 +479,7 @@ def accuracy_table(comparisons: pd.DataFrame, by: str = "characteristics") -> pd
         ):
             rows.append({"quantity": quantity, "statistic": stat, **{k: v[key] for k, v in st.items()}})
     for quantity in ("envelope_correlation", "envelope_error"):
-        for stat, fn in (("mean", np.mean), ("sd", lambda v: np.std(v, ddof=1))):
+        for stat, fn in (("mean", np.mean), ("sd", _sample_sd)):
             rows.append(
                 {"quantity": quantity, "statistic": stat, **{k: float(fn(g[quantity].to_numpy(float))) for k, g in groups.items()}}
             )

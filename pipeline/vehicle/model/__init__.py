@@ -79,11 +79,11 @@ from ..units import STANDARD_GRAVITY_M_S2  # noqa: F401  (the model's gravity, a
 from ..units import STANDARD_GRAVITY_M_S2 as GRAVITY_M_S2  # noqa: F401  (the name of issue 35)
 from .assembly import Assembly, Builder, assemble, coordinate_output
 from .linear import LinearModel
-from .parts import (AXLE_MOUNTS, CHASSIS_FREEDOMS, LATERAL_MODELS, LONGITUDINAL_MODELS, Axle, Ballast, Cab,
+from .parts import (AXLE_LONGITUDINAL_MODELS, AXLE_MOUNTS, CHASSIS_FREEDOMS, LATERAL_MODELS, LONGITUDINAL_MODELS, Axle, Ballast, Cab,
                     Chassis, Implement, Part, Parts, SeatPoint, SeatSuspension, cab_mount_problems, needs,
                     pivot_problem, scenario_key)
 
 __all__ = ["Chassis", "Axle", "Cab", "Implement", "Ballast", "SeatPoint", "SeatSuspension", "Parts", "Part",
            "Builder", "Element", "Assembly", "LinearModel", "assemble", "coordinate_output", "AXLE_MOUNTS",
-           "LONGITUDINAL_MODELS", "LATERAL_MODELS", "CHASSIS_FREEDOMS", "needs", "scenario_key", "pivot_problem",
+           "AXLE_LONGITUDINAL_MODELS", "LATERAL_MODELS", "CHASSIS_FREEDOMS", "needs", "scenario_key", "pivot_problem",
            "cab_mount_problems"]

@@ -212,21 +212,8 @@ class Assembly:
         """
         lay = self.layout
         names, n, nq = lay.states, lay.n, len(self.coordinates)
-        # the force of each element as a row over [states, inputs] (its kind's form)
-        force_rows = {e.name: _weighted(e, e.force_row(lay)) for e in self.elements}
-        gen = np.zeros((nq, lay.width))
-        for e in self.elements:
-            gen += np.outer(-e.g, force_rows[e.name])  # generalised force -g F
-        acc = _solve_mass(self.mass, gen)  # q'' rows over [states, inputs]
-        rows = np.zeros((n, lay.width))
+        force_rows, acc, rows = self.state_rows(lay, self.elements)
         eye = np.eye(nq)
-        for j in range(nq):
-            rows[lay.vel_cols[j]] = acc[j]
-            if lay.pos_cols[j] is not None:
-                rows[lay.pos_cols[j]] = lay.row(np.zeros(nq), eye[j])
-        for e in self.elements:
-            for s, r in e.derivative_rows(lay).items():
-                rows[lay.index[s]] = r
         out_rows = {}
         g = self.gravity_m_s2 if gravity_m_s2 is None else gravity_m_s2
         for name, (r_acc, r_tilt) in self.kinematic_outputs.items():
@@ -245,6 +232,40 @@ class Assembly:
             raise ValueError(f"outputs: unknown {missing} (known: {', '.join(out_rows)})")
         out = np.array([out_rows[o] for o in wanted]).reshape(len(wanted), lay.width)
         return LinearModel(rows[:, :n], rows[:, n:], out[:, :n], out[:, n:], tuple(names), lay.inputs, tuple(wanted))
+
+    def state_rows(self, lay: StateLayout, elements, known: dict | None = None) -> tuple[dict, np.ndarray, np.ndarray]:
+        """The rows of the model in contact that :meth:`linear` builds, for ``elements`` (this
+        assembly's, or others of the same coordinates and mass) on the layout ``lay``: each
+        element's force row (by name; ``known`` gives rows already computed on ``lay``), the
+        accelerations ``q''`` over ``[states, inputs]`` and the state derivatives' rows (``A | B``).
+
+        Examples
+        --------
+        >>> p = Parts(Chassis(5120.0, 6210.0, 0.838), Axle("front", 1.54, 4.25e5, 1.5e3),
+        ...           Axle("rear", -0.896, 3.3e5, 1e3))
+        >>> asm = assemble(p)
+        >>> _, _, rows = asm.state_rows(asm.layout, asm.elements)
+        >>> bool(np.array_equal(rows[:, :asm.layout.n], asm.linear().a))
+        True
+        """
+        n, nq = lay.n, len(self.coordinates)
+        known = known or {}
+        # the force of each element as a row over [states, inputs] (its kind's form)
+        force_rows = {e.name: known[e.name] if e.name in known else _weighted(e, e.force_row(lay)) for e in elements}
+        gen = np.zeros((nq, lay.width))
+        for e in elements:
+            gen += np.outer(-e.g, force_rows[e.name])  # generalised force -g F
+        acc = _solve_mass(self.mass, gen)  # q'' rows over [states, inputs]
+        rows = np.zeros((n, lay.width))
+        eye = np.eye(nq)
+        for j in range(nq):
+            rows[lay.vel_cols[j]] = acc[j]
+            if lay.pos_cols[j] is not None:
+                rows[lay.pos_cols[j]] = lay.row(np.zeros(nq), eye[j])
+        for e in elements:
+            for s, r in e.derivative_rows(lay).items():
+                rows[lay.index[s]] = r
+        return force_rows, acc, rows
 
     def linear_tyres(self, outputs, stiffness_N_per_m: dict, damping_N_s_per_m: dict | None = None):
         """:meth:`linear` for many values of the axles' tyre stiffness and damping at once.

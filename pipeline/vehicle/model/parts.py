@@ -19,14 +19,17 @@ from ..elements import SpringDamper, Tyre, element
 from .linear import LinearModel
 
 __all__ = ["Chassis", "Axle", "Cab", "Implement", "Ballast", "SeatPoint", "SeatSuspension", "Parts", "Part",
-           "AXLE_MOUNTS", "LONGITUDINAL_MODELS", "LATERAL_MODELS", "CHASSIS_FREEDOMS", "needs", "scenario_key",
+           "AXLE_MOUNTS", "AXLE_LONGITUDINAL_MODELS", "LATERAL_MODELS", "CHASSIS_FREEDOMS", "needs", "scenario_key",
            "pivot_problem", "cab_mount_problems"]
 
 #: How an axle is carried (:class:`Axle`).
 AXLE_MOUNTS = ("rigid", "pivot", "suspended")
 #: Longitudinal element of an axle's tyres: none, Kelvin-Voigt (parallel), Maxwell (series), the
 #: rolling tyre (a Kelvin-Voigt unit in series with ``c₂ = a / v``, issue 42).
-LONGITUDINAL_MODELS = ("none", "kelvin_voigt", "maxwell", "rolling")
+AXLE_LONGITUDINAL_MODELS = ("none", "kelvin_voigt", "maxwell", "rolling")
+#: The name of :data:`AXLE_LONGITUDINAL_MODELS` before issue 45 (the twelve-number tractor's are
+#: :data:`tyrelab.vehicle.tractor.TRACTOR_LONGITUDINAL_MODELS`): still importable, not in ``__all__``.
+LONGITUDINAL_MODELS = AXLE_LONGITUDINAL_MODELS
 #: Lateral element of a tyre at its contact patch (issue 33): none, Kelvin-Voigt, Maxwell, rolling (issue 42).
 LATERAL_MODELS = ("none", "kelvin_voigt", "maxwell", "rolling")
 #: The chassis' freedoms, in the order they are coordinates (those some part asks for): lateral
@@ -232,7 +235,7 @@ class Axle(Part):
     suspension_stiffness_N_per_m, suspension_damping_N_s_per_m : float
         Suspended axle: the spring and damper between axle and chassis (both sides together).
     longitudinal_model : str
-        Fore-aft element of the axle's tyres at the ground contact, :data:`LONGITUDINAL_MODELS`.
+        Fore-aft element of the axle's tyres at the ground contact, :data:`AXLE_LONGITUDINAL_MODELS`.
     longitudinal_stiffness_N_per_m, longitudinal_damping_N_s_per_m : float
         Per tyre.
     lateral_model : str
@@ -270,8 +273,8 @@ class Axle(Part):
         ax, out = self, []
         if ax.mount not in AXLE_MOUNTS:
             return [f"{ax.name}_axle.mount {ax.mount!r}: expected one of {AXLE_MOUNTS}"]
-        if ax.longitudinal_model not in LONGITUDINAL_MODELS:
-            return [f"longitudinal_model {ax.longitudinal_model!r}: expected one of {LONGITUDINAL_MODELS}"]
+        if ax.longitudinal_model not in AXLE_LONGITUDINAL_MODELS:
+            return [f"longitudinal_model {ax.longitudinal_model!r}: expected one of {AXLE_LONGITUDINAL_MODELS}"]
         if ax.lateral_model not in LATERAL_MODELS:
             return [f"lateral_model {ax.lateral_model!r}: expected one of {LATERAL_MODELS}"]
         if ax.lateral_model != "none":

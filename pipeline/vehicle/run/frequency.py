@@ -22,7 +22,7 @@ __all__ = ["spectral_variants"]
 
 
 def spectral_variants(scenarios, tyre_data=None, with_spectra: bool = True,
-                      cache: RideCache | None = None) -> list[RideResult]:
+                      cache: RideCache | None = None, a8_interval=None) -> list[RideResult]:
     """:func:`~tyrelab.vehicle.run.time.ride_variants` in the frequency domain: per variant and speed a spectral row
     (:func:`tyrelab.vehicle.spectral_ride.spectral_row`: the exact expectation of the linear model
     for the track's spectrum), no simulation.
@@ -35,6 +35,10 @@ def spectral_variants(scenarios, tyre_data=None, with_spectra: bool = True,
     with_spectra : bool
         Also the expected seat PSD per axis (on a 0.1 Hz grid of 0.2-20 Hz) and the transmissibility.
     cache : RideCache, optional
+    a8_interval : sequence of bool, optional
+        Per scenario, whether its result has the A(8) interval across the stand-in lateral
+        stiffness (``a8_lateral_ci95_m_s2``; default every one's): a sweep computes it for the
+        variant it reports (:func:`tyrelab.vehicle.ride.result_json`: the first).
 
     Returns
     -------
@@ -58,7 +62,10 @@ def spectral_variants(scenarios, tyre_data=None, with_spectra: bool = True,
     for k, sc in enumerate(scenarios):
         _validate.instance(f"scenarios[{k}]", sc, Scenario)
     cache = cache or RideCache()
-    preps = [prepare(sc, tyre_data, cache, with_spectra, False) for sc in scenarios]
+    flags = [True] * len(scenarios) if a8_interval is None else [bool(x) for x in a8_interval]
+    if len(flags) != len(scenarios):
+        raise ValueError(f"a8_interval: one flag per scenario ({len(scenarios)}), got {len(flags)}")
+    preps = [prepare(sc, tyre_data, cache, with_spectra, False, f) for sc, f in zip(scenarios, flags)]
     groups: dict = {}
     for p in preps:
         for i, speed in enumerate(p.speeds_km_h):

@@ -53,9 +53,10 @@ def modes(asm) -> tuple[dict, dict]:
 
 
 def prepare(scenario: Scenario, tyre_data, cache: RideCache, with_spectra: bool = True,
-            with_signals: bool = False) -> VariantPlan:
+            with_signals: bool = False, a8_interval: bool = True) -> VariantPlan:
     """A variant ready to run: its tyres (:func:`tyrelab.vehicle.tyres.resolve_tyres`), track, seat
-    axes and seat filter; the runs are added by :func:`speed_run`."""
+    axes and seat filter; the runs are added by :func:`speed_run`. ``a8_interval``: whether its
+    result has the A(8) interval across the stand-in lateral stiffness (:func:`_lateral_interval`)."""
     tyres, asms = _resolve(scenario, tyre_data, cache.tyres)
     track_key, track = cache.track(scenario)
     if asms and asms[0] is None:  # footprints given: the first speed's assembly, built here (speed_run takes it)
@@ -63,7 +64,8 @@ def prepare(scenario: Scenario, tyre_data, cache: RideCache, with_spectra: bool 
     seat = seat_filter(asms[0]) if asms else None  # the seat part's filter (no feedback on the tractor)
     return VariantPlan(scenario, tyres, track, track_key, seat_axes(scenario),
                        cache.seat_system(seat) if seat is not None else None,
-                       seat.linear().abcd if seat is not None else None, asms, with_spectra, with_signals)
+                       seat.linear().abcd if seat is not None else None, asms, with_spectra, with_signals,
+                       a8_interval=bool(a8_interval), modes_memo=cache.modes)
 
 
 def seat_filter(asm: Assembly):
@@ -108,7 +110,10 @@ def finish(p: VariantPlan) -> RideResult:
         d0 = next(iter(by_speed.values()))
         nat = {n: d.undamped_Hz for n, d in d0.items() if d is not None}
         nodal = {n: x for n, x in nodal.items() if n in nat}
-        nat_ci, zeta_ci, notes = _damped_intervals(p, d0, shapes)
+        nat_ci, zeta_ci, notes = _memo(p, ("intervals", first.parts, first.gravity_m_s2, build_parts(sc, tyres, 0)) + tuple(
+            (tyres[ax].stiffness_u_kN_per_m, tuple(sorted((tyres[ax].lateral_sources or {}).items())))
+            for ax in ("front", "rear")), lambda: _damped_intervals(p, d0, shapes))
+        nat_ci, zeta_ci = _copied(nat_ci), _copied(zeta_ci)
     else:
         nat_ci, notes = frequency_intervals(first, tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
     warnings += [f"natural frequencies: {n}" for n in notes]
@@ -121,7 +126,7 @@ def finish(p: VariantPlan) -> RideResult:
         transmissibility=pd.concat(trans, ignore_index=True) if trans else pd.DataFrame(columns=cols),
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
         warnings=warnings, natural_frequency_intervals_Hz=nat_ci, signals=signals, road_classes=track.road_classes,
-        a8_lateral_ci95_m_s2=_lateral_interval(p, rows),
+        a8_lateral_ci95_m_s2=_lateral_interval(p, rows) if p.a8_interval else {},
         modes=shapes, modes_by_speed=by_speed, damping_ratio_intervals=zeta_ci,
     )
 
@@ -133,7 +138,33 @@ def _damped_by_speed(p: VariantPlan, shapes: ModeSet) -> dict:
     whose character changes with speed (two modes veering as the series dampers soften) changes its
     name. Across a sweep's variants the names are followed at each speed
     (:func:`~tyrelab.vehicle.modes.follow_renamed`, :mod:`~tyrelab.vehicle.run.sweep`)."""
-    return {float(speed): damped_modes(p.runs[i].asm, reference=shapes) for i, speed in enumerate(p.speeds_km_h)}
+    first = p.runs[0].asm
+    out = {}
+    for i, speed in enumerate(p.speeds_km_h):
+        asm = p.runs[i].asm
+        key = ("damped", asm.parts, asm.gravity_m_s2, first.parts, first.gravity_m_s2)
+        out[float(speed)] = dict(_memo(p, key, lambda: damped_modes(asm, reference=shapes)))
+    return out
+
+
+def _memo(p: VariantPlan, key: tuple, compute):
+    """``compute()``, kept in ``p.modes_memo`` under ``key`` (the model it is of: its parts, gravity and
+    what else it reads) for the variants that share that model; computed every time without a memo
+    or where the key cannot be hashed."""
+    if p.modes_memo is None:
+        return compute()
+    try:
+        hash(key)
+    except TypeError:  # a part holding an array: not shared
+        return compute()
+    if key not in p.modes_memo:
+        p.modes_memo[key] = compute()
+    return p.modes_memo[key]
+
+
+def _copied(intervals: dict) -> dict:
+    """A shared ``{mode: [lo, hi] or None}``, its lists copied (a caller may rename or change them)."""
+    return {n: None if ci is None else list(ci) for n, ci in intervals.items()}
 
 
 def _damped_intervals(p: VariantPlan, nominal: dict, shapes: ModeSet) -> tuple[dict, dict, list]:

@@ -96,6 +96,11 @@ class VariantPlan:
     runs: dict = field(default_factory=dict)
     #: Static tyre loads by the tyres' stiffness pair (spectral rows).
     static_loads: dict = field(default_factory=dict)
+    #: Whether :func:`~tyrelab.vehicle.run.plan.finish` computes the A(8) interval across the stand-in
+    #: lateral stiffness (``a8_lateral_ci95_m_s2``): a sweep reports its first variant's only.
+    a8_interval: bool = True
+    #: The modes of the models this variant shares with others (:attr:`RideCache.modes`), by model.
+    modes_memo: dict | None = None
 
     @property
     def wheelbase_m(self) -> float:
@@ -112,7 +117,8 @@ class VariantPlan:
 
 class RideCache:
     """What the runs of several variants share in one process: the tracks (by surface), each wheel
-    track enveloped (by footprint or radius) and the seat filter's discretisation.
+    track enveloped (by footprint or radius), the seat filter's discretisation and the damped modes
+    of each model (:attr:`modes`).
     :func:`~tyrelab.vehicle.ride.ride_sweep` passes one to all its variants; a caller running
     variants one by one may pass its own."""
 
@@ -122,6 +128,10 @@ class RideCache:
         self.seat: dict = {}
         #: :func:`~tyrelab.vehicle.tyres.resolve_tyres`' memo
         self.tyres: dict = {}
+        #: The damped modes and their intervals by the model they are of (its parts and gravity): a
+        #: variant that shares a model with another (a swept key the model does not read, the nominal
+        #: variant simulated beside its spectral rows) takes them from here.
+        self.modes: dict = {}
 
     def track(self, scenario: Scenario) -> tuple[tuple, Track]:
         """(key, :class:`~tyrelab.vehicle.run.track.Track`) of ``scenario``'s surface (built once per surface)."""

@@ -34,21 +34,25 @@ SWEEP_CHUNK = 25
 
 def _ride_batch(item: tuple) -> list[RideResult]:
     """Executor task: a chunk of scenario variants, batched (:func:`~tyrelab.vehicle.run.time.ride_variants`;
-    module level, picklable)."""
-    scenarios, tyre_data, with_spectra = item
-    return ride_variants(scenarios, tyre_data, with_spectra)
+    module level, picklable). ``item``: scenarios, tyre data, ``with_spectra`` and optionally the
+    ``a8_interval`` flags."""
+    scenarios, tyre_data, with_spectra, *flags = item
+    return ride_variants(scenarios, tyre_data, with_spectra, a8_interval=flags[0] if flags else None)
 
 
 def _spectral_batch(item: tuple) -> list[RideResult]:
     """Executor task: a chunk of variants in the frequency domain (module level, picklable)."""
-    scenarios, tyre_data, with_spectra = item
-    return spectral_variants(scenarios, tyre_data, with_spectra)
+    scenarios, tyre_data, with_spectra, *flags = item
+    return spectral_variants(scenarios, tyre_data, with_spectra, a8_interval=flags[0] if flags else None)
 
 
-def in_chunks(task, scenarios: list, size: int, tyre_data, with_spectra: bool, map_fn) -> list[RideResult]:
+def in_chunks(task, scenarios: list, size: int, tyre_data, with_spectra: bool, map_fn,
+              a8_interval=None) -> list[RideResult]:
     """``task`` (:func:`_ride_batch`, :func:`_spectral_batch`) over chunks of ``scenarios`` of
-    ``size``, through the caller's executor ``map_fn``; results in order."""
-    chunks = [(scenarios[k:k + size], tyre_data, with_spectra) for k in range(0, len(scenarios), size)]
+    ``size``, through the caller's executor ``map_fn``; results in order. ``a8_interval``: per
+    scenario, as :func:`~tyrelab.vehicle.run.frequency.spectral_variants` (default every one's)."""
+    flags = [True] * len(scenarios) if a8_interval is None else list(a8_interval)
+    chunks = [(scenarios[k:k + size], tyre_data, with_spectra, flags[k:k + size]) for k in range(0, len(scenarios), size)]
     return [r for chunk in map_fn(task, chunks) for r in chunk]
 
 
@@ -57,26 +61,30 @@ def _sweep_results(scenarios: list, method: str, nominal: int, tyre_data, with_s
     """The results of a sweep's variants under ``method`` (:mod:`tyrelab.vehicle.spectral_ride`), in
     order, with figure data as :func:`~tyrelab.vehicle.ride.ride_sweep`'s ``with_spectra`` says. ``auto``'s time-domain
     checks stay within ``max_samples`` (the nominal variant first, then the lifting speeds in order;
-    those beyond are left spectral, with a warning)."""
-    cache = RideCache()  # shared by the runs in this process (tracks, enveloped wheel tracks, tyres)
+    those beyond are left spectral, with a warning). The A(8) interval across the stand-in lateral
+    stiffness is computed for the first variant alone, the one :func:`~tyrelab.vehicle.ride.result_json`
+    reports (``a8_lateral_ci95_m_s2``; the others' are empty), and not for the time-domain checks (their
+    rows alone are taken)."""
+    cache = RideCache()  # shared by the runs in this process (tracks, enveloped wheel tracks, tyres, modes)
 
-    def timed(chosen: list, spectra: bool) -> list[RideResult]:  # chunks of variants, each batched in its task
+    def timed(chosen: list, spectra: bool, flags: list) -> list[RideResult]:  # chunks, each batched in its task
         if map_fn is None or len(chosen) <= 1:
-            return ride_variants(chosen, tyre_data, spectra, cache=cache) if chosen else []
+            return ride_variants(chosen, tyre_data, spectra, cache=cache, a8_interval=flags) if chosen else []
         return in_chunks(_ride_batch, chosen, max(1, min(SWEEP_CHUNK, -(-len(chosen) // 8))), tyre_data, spectra,
-                          map_fn)
+                         map_fn, flags)
 
-    def spectral(chosen: list, spectra: bool) -> list[RideResult]:
+    def spectral(chosen: list, spectra: bool, flags: list) -> list[RideResult]:
         if map_fn is None or len(chosen) <= sr.SPECTRAL_CHUNK:
-            return spectral_variants(chosen, tyre_data, spectra, cache) if chosen else []
-        return in_chunks(_spectral_batch, chosen, sr.SPECTRAL_CHUNK, tyre_data, spectra, map_fn)
+            return spectral_variants(chosen, tyre_data, spectra, cache, a8_interval=flags) if chosen else []
+        return in_chunks(_spectral_batch, chosen, sr.SPECTRAL_CHUNK, tyre_data, spectra, map_fn, flags)
 
     run = spectral if limits.uses_spectral(scenarios[0], method, len(scenarios)) else timed
+    reported = [j == 0 for j in range(len(scenarios))]  # the variant whose A(8) interval is reported
     if with_spectra == "nominal":  # the figure data of the nominal variant alone (what a sweep's page draws)
-        results = run(scenarios[:nominal] + scenarios[nominal + 1:], False)
-        results.insert(nominal, run([scenarios[nominal]], True)[0])
+        results = run(scenarios[:nominal] + scenarios[nominal + 1:], False, reported[:nominal] + reported[nominal + 1:])
+        results.insert(nominal, run([scenarios[nominal]], True, [reported[nominal]])[0])
     else:
-        results = run(scenarios, bool(with_spectra))
+        results = run(scenarios, bool(with_spectra), reported)
     if run is timed or method == "spectral":
         return results
     checks = [(nominal, scenarios[nominal])]  # auto: the nominal variant and the speeds that may lift a tyre
@@ -93,7 +101,7 @@ def _sweep_results(scenarios: list, method: str, nominal: int, tyre_data, with_s
             continue
         budget -= cost
         checks.append((j, sc))
-    for (j, _), t in zip(checks, timed([sc for _, sc in checks], False)):
+    for (j, _), t in zip(checks, timed([sc for _, sc in checks], False, [False] * len(checks))):
         results[j].time_rows = t.speeds
         results[j].warnings = list(dict.fromkeys(results[j].warnings + t.warnings))
     for j in skipped:

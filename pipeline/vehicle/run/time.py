@@ -38,11 +38,13 @@ RK4_REAL_STABILITY = 2.785
 
 
 def ride_variants(scenarios, tyre_data=None, with_spectra: bool = True, with_signals: bool = False,
-                  cache: RideCache | None = None) -> list[RideResult]:
+                  cache: RideCache | None = None, a8_interval=None) -> list[RideResult]:
     """:func:`~tyrelab.vehicle.ride.ride` for several scenarios (variants) at once, batched: the runs are taken speed by
     speed, so the wheel inputs of a speed are built once for every variant that shares its track,
     footprints and radii, and a run's record is reduced to its numbers as soon as it is simulated.
-    Each result is what :func:`~tyrelab.vehicle.ride.ride` gives for that scenario alone.
+    Each result is what :func:`~tyrelab.vehicle.ride.ride` gives for that scenario alone (``a8_interval``:
+    per scenario whether it has the A(8) interval across the stand-in lateral stiffness, as
+    :func:`~tyrelab.vehicle.run.frequency.spectral_variants`; default every one's).
 
     See Also
     --------
@@ -62,7 +64,10 @@ def ride_variants(scenarios, tyre_data=None, with_spectra: bool = True, with_sig
     for k, sc in enumerate(scenarios):
         _validate.instance(f"scenarios[{k}]", sc, Scenario)
     cache = cache or RideCache()
-    preps = [prepare(sc, tyre_data, cache, with_spectra, with_signals) for sc in scenarios]
+    flags = [True] * len(scenarios) if a8_interval is None else [bool(x) for x in a8_interval]
+    if len(flags) != len(scenarios):
+        raise ValueError(f"a8_interval: one flag per scenario ({len(scenarios)}), got {len(flags)}")
+    preps = [prepare(sc, tyre_data, cache, with_spectra, with_signals, f) for sc, f in zip(scenarios, flags)]
     groups: dict = {}
     for j, p in enumerate(preps):
         for i, speed in enumerate(p.speeds_km_h):

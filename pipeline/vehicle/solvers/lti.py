@@ -194,7 +194,7 @@ def discretise(a, b, c, d, dt_s: float) -> FohSystem:
 
     See Also
     --------
-    tyrelab.vehicle.run.pitch_plane.simulate_state_space : simulates with it.
+    tyrelab.vehicle.run.pitch_plane.state_space : a model it runs (the pitch-plane tractor).
 
     Examples
     --------

@@ -423,6 +423,27 @@ def _roots(asm: Assembly, gravity_m_s2: float | None, coordinates) -> tuple[np.n
     return roots[keep], vecs[np.ix_(idx, np.flatnonzero(keep))]
 
 
+def _release_path(asm: Assembly, gravity_m_s2: float | None, coordinates):
+    """``share -> _roots(_released(asm, share), gravity_m_s2, coordinates)`` for ``share > 0``, the same
+    numbers from the same operations (:meth:`~tyrelab.vehicle.model.Assembly.state_rows`), cheaper: every
+    released model has one layout, and only the series elements' rows change with ``share`` (the rest,
+    a static load's moment at a contact point among them, computed once). The tilt outputs' gravity
+    does not enter the roots."""
+    one = _released(asm, 1.0)
+    lay = one.layout
+    known, _, _ = one.state_rows(lay, [e for e in one.elements if not isinstance(e, Rolling)])
+    idx = [lay.vel_cols[asm.coordinates.index(c)] for c in coordinates]
+
+    def roots_at(share: float) -> tuple[np.ndarray, np.ndarray]:
+        _, _, rows = one.state_rows(lay, _released(asm, share).elements, known)
+        roots, vecs = linalg.eig(rows[:, :lay.n])
+        scale = float(np.max(np.abs(roots))) if roots.size else 0.0
+        keep = (np.abs(roots) > ZERO_ROOT * scale) & (roots.imag >= -ZERO_ROOT * np.abs(roots))
+        return roots[keep], vecs[np.ix_(idx, np.flatnonzero(keep))]
+
+    return roots_at
+
+
 def _complex_mac(m: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Mass-weighted MAC of the columns of ``a`` (rows) with those of ``b`` (columns), complex shapes."""
     cross = np.abs(a.conj().T @ m @ b) ** 2
@@ -482,10 +503,11 @@ def damped_modes(asm: Assembly, gravity_m_s2: float | None = None, reference: Mo
     quality = {i: float(mac[i, j]) for i, j in current.items()}
     state = {"current": current, "roots": roots, "shapes": shapes}
     if _released_by(asm):
+        roots_at = _release_path(asm, gravity_m_s2, ref.coordinates)
 
         def advance(share: float) -> list:
             """The step to ``share``: the followed modes' MAC, the new state (not yet taken)."""
-            new_roots, new_shapes = _roots(_released(asm, share), gravity_m_s2, ref.coordinates)
+            new_roots, new_shapes = roots_at(share)
             order = sorted(state["current"])
             mac = _complex_mac(m, state["shapes"][:, [state["current"][i] for i in order]], new_shapes)
             rows, cols = optimize.linear_sum_assignment(-mac)
@@ -509,14 +531,36 @@ def damped_modes(asm: Assembly, gravity_m_s2: float | None = None, reference: Mo
         for lo, hi in zip(grid[:-1], grid[1:]):
             go(float(lo), float(hi), 0)
         current, roots = state["current"], state["roots"]
-    # the roots followed are the modes; each named by its own shape (the rules of mode_set): a mode
-    # followed through a veering takes the name of what it has become
-    chosen = sorted(current.values(), key=lambda j: abs(roots[j]))
-    quality_of = {j: quality[i] for i, j in current.items()}
+    # the modes: every oscillating root (a complex pair, followed or not: a pair can form from a followed
+    # mode's real roots and a contact point's as the dampers are released, issue 43) and the real roots
+    # the following reached. Each named by its own shape (the rules of mode_set), the oscillating ones
+    # first: a mode followed through a veering takes the name of what it has become, and a real root
+    # (reported overdamped) takes a name only where no oscillating mode has it (else ``_2``)
     final = state["shapes"]
-    shares = [np.real(final[:, j].conj() * (m @ final[:, j])) for j in chosen]
+    quality_of = {j: quality[i] for i, j in current.items()}
+    oscillating = [j for j in range(len(roots)) if abs(roots[j].imag) > 1e-9 * abs(roots[j])]
+    chosen = sorted(set(oscillating), key=lambda j: abs(roots[j]))
+    real = sorted((j for j in current.values() if j not in oscillating), key=lambda j: abs(roots[j]))
+    ref_shapes = ref.shapes.astype(complex)
+    for j in chosen:
+        if j not in quality_of:  # not followed: its match to the undamped mode it resembles most
+            quality_of[j] = float(np.max(_complex_mac(m, ref_shapes, final[:, [j]]))) if ref_shapes.size else 0.0
+
+    def shares_of(js):
+        return [np.real(final[:, j].conj() * (m @ final[:, j])) for j in js]
+
+    named = list(zip(_shape_names(shares_of(chosen), ref.coordinates, one_to_one=True), chosen))
+    taken = {n for n, _ in named}
+    for j in real:
+        base = name = _shape_names(shares_of([j]), ref.coordinates)[0]
+        k = 1
+        while name in taken:
+            k += 1
+            name = f"{base}_{k}"
+        taken.add(name)
+        named.append((name, j))
     out = {}
-    for name, j in zip(_shape_names(shares, ref.coordinates, one_to_one=True), chosen):
+    for name, j in sorted(named, key=lambda t: abs(roots[t[1]])):
         lam = complex(roots[j])
         size = abs(lam)
         overdamped = abs(lam.imag) <= 1e-9 * size

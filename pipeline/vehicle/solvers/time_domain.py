@@ -28,10 +28,14 @@ from ... import _validate
 from ..model import Assembly, coordinate_output
 from . import lti
 
-__all__ = ["simulate", "off_ground", "METHODS", "CALM_STEPS", "RECORDED_OUTPUTS", "LIFT_OFF_RTOL"]
+__all__ = ["simulate", "off_ground", "INTEGRATION_METHODS", "CALM_STEPS", "RECORDED_OUTPUTS", "LIFT_OFF_RTOL"]
 
-#: Solution paths of :func:`simulate`.
-METHODS = ("auto", "rk4")
+#: Solution paths of :func:`simulate` (its ``method``): exact while in contact, switched to RK4
+#: across lift-off (``auto``), or RK4 throughout.
+INTEGRATION_METHODS = ("auto", "rk4")
+#: The name of :data:`INTEGRATION_METHODS` before issue 45 (``[simulation] method`` is
+#: :data:`tyrelab.vehicle.scenario.limits.RIDE_METHODS`): still importable, not in ``__all__``.
+METHODS = INTEGRATION_METHODS
 #: What :func:`simulate` records per sample unless told (the pitch-plane tractor's outputs,
 #: :data:`tyrelab.vehicle.tractor.TRACTOR_OUTPUTS`).
 RECORDED_OUTPUTS = ("vertical_m_s2", "pitch_rad_s2", "longitudinal_m_s2", "z_m", "theta_rad")
@@ -365,7 +369,7 @@ def simulate(
         Each assembly's own (:func:`~tyrelab.vehicle.model.assemble` sets it: the lift-off floors
         and the ``*_tilt`` readings); a value given must be theirs.
     method : str
-        One of :data:`METHODS`.
+        One of :data:`INTEGRATION_METHODS`.
     record : tuple of str
         Outputs recorded per sample: kinematic outputs of the assembly, coordinates
         (``z_m``, ``theta_rad``, ...) and tyre or axle forces (``<tyre>_force_N``; in the
@@ -395,8 +399,8 @@ def simulate(
     >>> list(simulate([asm], u - 0.01, du, record=("z_m",))["method_used"])
     ['exact+rk4']
     """
-    if method not in METHODS:
-        raise ValueError(f"method {method!r}: expected one of {METHODS}")
+    if method not in INTEGRATION_METHODS:
+        raise ValueError(f"method {method!r}: expected one of {INTEGRATION_METHODS}")
     dt_s = _validate.positive("dt_s", dt_s)
     u = np.asarray(u_half, float)
     du = np.asarray(du_half, float)

@@ -22,9 +22,15 @@ realisation of the same ISO 8608 class (the thesis' survey was years older than 
 Agreement statistics therefore measure how far the linear prediction is from the
 recordings, not from the thesis' tractor; they are reported beside the thesis'.
 
-The package (issue 45): :mod:`~tyrelab.vehicle.studies.chapter6` (the carriage),
-:mod:`~tyrelab.vehicle.studies.chapter7` (the tractor), :mod:`~tyrelab.vehicle.studies.shared`
-(their sampling and table checks). Every name is importable from here, as before the split.
+The package (issue 45): :mod:`~tyrelab.vehicle.studies.chapter6` (the carriage study),
+:mod:`~tyrelab.vehicle.studies.chapter7` (the tractor study), :mod:`~tyrelab.vehicle.studies.shared`
+(their sampling and table checks), :mod:`~tyrelab.vehicle.studies.carriage` (the ch. 6 carriage),
+:mod:`~tyrelab.vehicle.studies.bounce_pitch` (ch. 8), :mod:`~tyrelab.vehicle.studies.published_layouts`
+(the digitised tables), :mod:`~tyrelab.vehicle.studies.study_recordings` and
+:mod:`~tyrelab.vehicle.studies.virtual_rides` (the virtual vehicles' recordings). They import the
+engine below them (model, solvers, terrain, comfort, run), never the reverse (import-linter,
+``pyproject.toml``). Every name of the studies is importable from here, as before the split, and
+each moved module from its old path (``tyrelab.vehicle.carriage`` is this package's ``carriage``).
 """
 
 from ..tractor import simulate_tractor  # noqa: F401  (a name of the module before the split)

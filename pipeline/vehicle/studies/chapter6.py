@@ -7,7 +7,7 @@ import numpy as np
 import pandas as pd
 
 from ... import _validate
-from .. import carriage as cm
+from . import carriage as cm
 from ..comfort import iso2631
 from ..comfort import metrics as mt
 from ..terrain import enveloping as ev

@@ -10,8 +10,8 @@ import numpy as np
 import pandas as pd
 
 from ... import _validate
-from .. import carriage as cm
-from .. import published_layouts as layouts
+from . import carriage as cm
+from . import published_layouts as layouts
 from ..comfort import iso2631
 from ..comfort import metrics as mt
 from ..terrain import enveloping as ev

@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 
 from ..comfort import metrics as mt
+from ..run.track import DT_S, FS_HZ  # noqa: F401  (the ride's step is the studies': one home, issue 45)
 
 __all__ = ["T4_ROLLING_RADIUS_M", "FRONT_7_50_18_RADIUS_M", "SURVEY_ERROR_M", "RECORDED_NOISE_RMS_M", "RECORDED_SPIKE",
            "DT_S", "LEAD_IN_M", "FS_HZ"]
@@ -24,9 +25,8 @@ SURVEY_ERROR_M = 0.003
 RECORDED_NOISE_RMS_M = 0.001
 #: Recorded-estimate spurious peak (§6.5.1): centre, half-width (cycles/m), power factor.
 RECORDED_SPIKE = (1.35, 0.05, 13.0)
-DT_S = 1e-3
+#: Road driven before a study's track starts, m.
 LEAD_IN_M = 5.0
-FS_HZ = 1.0 / DT_S
 
 
 def _by_condition(table: pd.DataFrame, needed, name: str, what: str, problems: list[str]) -> pd.DataFrame:
