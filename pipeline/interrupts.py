@@ -87,6 +87,10 @@ def install() -> dict | None:
     """Install :func:`handler` for SIGINT and SIGTERM; returns the previous handlers for :func:`restore`
     (None, and nothing changed, outside the main thread, where Python cannot set handlers).
 
+    A signal this process was started ignoring keeps being ignored (a shell starts a background
+    job, ``tyrelab run &`` in a script, with SIGINT ignored: a Ctrl-C meant for the foreground is not
+    its), as Python itself leaves an ignored SIGINT alone.
+
     Returns
     -------
     dict or None
@@ -104,7 +108,8 @@ def install() -> dict | None:
     if threading.current_thread() is not threading.main_thread():
         return None
     _requested.clear()
-    return {sig: signal.signal(sig, handler) for sig in (signal.SIGINT, signal.SIGTERM)}
+    return {sig: signal.signal(sig, handler) for sig in (signal.SIGINT, signal.SIGTERM)
+            if signal.getsignal(sig) is not signal.SIG_IGN}
 
 
 def restore(previous: dict | None) -> None:

@@ -1,11 +1,25 @@
 import fcntl
 import logging
 import os
+import signal
 
 import pytest
 
 from tests.report.small_campaign import build_small_report
 from tyrelab.stages import Context
+
+
+def pytest_configure(config):
+    """Ctrl-C as a terminal sends it, even when the suite was started ignoring SIGINT.
+
+    A shell starts a background job (``make test &`` in a script, a queue daemon under ``nohup``)
+    with SIGINT ignored, and a child inherits an ignored signal across ``exec``: every test that
+    sends SIGINT to a ``tyrelab`` subprocess would then wait out its hang guard (600 s) for a
+    command that never saw the signal. A handled signal is reset to the default across ``exec``, so
+    Python's own handler here gives the subprocesses the SIGINT a user's terminal gives them.
+    """
+    if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 @pytest.fixture(scope="session")

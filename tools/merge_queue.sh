@@ -12,6 +12,9 @@
 # (each half gated on its own, recursively), so one broken branch never holds the others back.
 # Logs: ../wt/_gate-logs/. Set GATE_DOCS=0 to skip the docs build for a batch that cannot affect it.
 set -uo pipefail
+# Started in the background (the daemon under nohup, `&` in a script) a shell ignores SIGINT and
+# SIGQUIT, and the gate's tests would inherit that: their Ctrl-C tests then hang. Run with the defaults.
+if [ -z "${QUEUE_DEFAULT_SIGNALS:-}" ]; then QUEUE_DEFAULT_SIGNALS=1 exec env --default-signal=INT,QUIT "$0" "$@"; fi
 exec 9>"${WT_ROOT:-$(dirname "$(git rev-parse --show-toplevel)")/wt}/.queue.lock"
 flock 9
 [ $# -ge 1 ] || { echo "usage: tools/merge_queue.sh BRANCH [BRANCH ...]" >&2; exit 2; }
