@@ -1,6 +1,7 @@
 """The sixth hostile round, output (issue 46, Deliver 7): ``tyrelab sql``'s table (the default
 format, for a terminal) escapes the control characters of names and text values as every other
-verb does; a result of duplicate column names is answered in each format."""
+verb does, and so do the report's pages (a run id with an ESC); a result of duplicate column names
+is answered in each format."""
 
 import json
 
@@ -45,3 +46,13 @@ def test_duplicate_column_names_are_answered(build, capsys, fmt):
         assert json.loads(out) == [{"a": 1, "a_2": "x"}] and "same name" in err
     else:
         assert "x" in out and out.count("a") >= 2
+
+
+def test_a_report_page_shows_a_control_character_as_its_escape():
+    from tyrelab.report.render import environment
+
+    page = environment().from_string("<td>{{ run_id }}</td><td>{{ run_id|breakable }}</td><td>{{ n }}</td><p>{{ text }}</p>")
+    html = page.render(run_id="esc\x1b[31m_<b>", n=3, text="two\nlines\ttab")
+    assert "\x1b" not in html
+    assert html == ("<td>esc\\x1b[31m_&lt;b&gt;</td><td>esc\\x1b[31m_<wbr>&lt;b&gt;</td><td>3</td>"
+                    "<p>two\nlines\ttab</p>")  # escaped for HTML too; a newline and a tab are HTML's own
