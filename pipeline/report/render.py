@@ -50,6 +50,10 @@ def visible_controls(value):
     run id or a note of a user's with an ESC shows it instead of a raw byte (as every verb's
     terminal output does, :func:`tyrelab.io.printable`). Markup stays Markup; other values pass.
 
+    See Also
+    --------
+    tyrelab.io.printable : the same for a terminal (every control character).
+
     Examples
     --------
     >>> visible_controls("run" + chr(27) + "[31m"), visible_controls(3)

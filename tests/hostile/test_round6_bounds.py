@@ -76,7 +76,7 @@ def test_the_row_bound_is_what_the_time_allows_and_max_rows_replaces_it():
     assert limits.work_problems(sc, 1, speeds, method="spectral") == []
     (line,) = limits.work_problems(sc, 1, speeds + [4.0], method="spectral")
     assert line.startswith(f"speeds_km_h: 1 variant(s) x {allowed + 1} speed(s) make {allowed + 1:,} spectral rows, "
-                           "about 300 s of the 3-D model (85 ms a row, 400 ms a variant)"), line
+                           "about 300 s of the 3-D model (0.085 s a row, 0.400 s a variant)"), line
     assert line.endswith("more than the 300 s a command's spectral rows may take; --max-rows N lifts the bound")
     assert limits.work_problems(sc, 1, speeds + [4.0], method="spectral", max_rows=allowed + 1) == []
     (line,) = limits.work_problems(sc, 1, [4.0] * 5, method="spectral", max_rows=4)

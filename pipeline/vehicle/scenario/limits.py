@@ -563,7 +563,7 @@ def work_problems(scenario, n_variants: int, speeds_km_h=None, *, max_variants: 
     >>> print(work_problems(s, 100 * 100, method="time")[0])
     10000 variants (pressure pairs x swept values) is more than 400 in the time domain (about 33539 s of simulation); --max-variants N lifts the bound, --method auto or spectral computes them in the frequency domain (about 270 s)
     >>> print(work_problems(s, 1, [0.5 + i / 1000 for i in range(200_000)], method="spectral")[0])
-    speeds_km_h: 1 variant(s) x 200000 speed(s) make 200,000 spectral rows, about 600 s of the pitch-plane model (3 ms a row, 3 ms a variant), more than the 300 s a command's spectral rows may take; --max-rows N lifts the bound
+    speeds_km_h: 1 variant(s) x 200000 speed(s) make 200,000 spectral rows, about 600 s of the pitch-plane model (0.003 s a row, 0.003 s a variant), more than the 300 s a command's spectral rows may take; --max-rows N lifts the bound
     """
     e = work_estimate(scenario, n_variants, speeds_km_h, method, with_spectra)
     problems = []
@@ -584,7 +584,7 @@ def work_problems(scenario, n_variants: int, speeds_km_h=None, *, max_variants: 
     if rows and (rows > max_rows if max_rows is not None else e["spectral_seconds"] > MAX_SPECTRAL_SECONDS):
         key = "speeds_km_h" if speeds_km_h is not None else "exposure.speeds_km_h"
         model, row_s, variant_s = _spectral_costs(scenario)
-        costs = f"{row_s * 1e3:.0f} ms a row, {variant_s * 1e3:.0f} ms a variant"
+        costs = f"{row_s:.3f} s a row, {variant_s:.3f} s a variant"
         figures = e["spectral_figure_rows"] > 0
         bound = (f"the {max_rows:,} rows allowed" if max_rows is not None
                  else f"the {MAX_SPECTRAL_SECONDS:.0f} s a command's spectral rows may take")
@@ -602,6 +602,10 @@ def bound_argument(name: str, value) -> int:
     """A bound given to the work (``max_variants``, ``max_samples``, ``max_rows``) as an int;
     ValueError naming ``name`` unless it is an integer from 1 to its :data:`BOUND_CEILINGS` entry
     (an integer of any length, a bool, a float are refused, never an OverflowError).
+
+    See Also
+    --------
+    work_problems : the refusals of the work those bounds set.
 
     Examples
     --------
