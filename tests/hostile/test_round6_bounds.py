@@ -46,7 +46,7 @@ def _no_work(monkeypatch):
         monkeypatch.setattr(target, fail)
 
 
-SPEEDS = [f"{0.5 + i * 0.02:.2f}" for i in range(3600)]  # 3,600 speeds: 306 s of 3-D rows
+SPEEDS = [f"{0.5 + i * 0.015:.3f}" for i in range(4400)]  # 4,400 speeds: 308 s of 3-D rows
 
 
 # ----------------------------------------------------------------------------- spectral rows bounded
@@ -76,7 +76,7 @@ def test_the_row_bound_is_what_the_time_allows_and_max_rows_replaces_it():
     assert limits.work_problems(sc, 1, speeds, method="spectral") == []
     (line,) = limits.work_problems(sc, 1, speeds + [4.0], method="spectral")
     assert line.startswith(f"speeds_km_h: 1 variant(s) x {allowed + 1} speed(s) make {allowed + 1:,} spectral rows, "
-                           "about 300 s of the 3-D model (0.085 s a row, 0.400 s a variant)"), line
+                           "about 300 s of the 3-D model (0.070 s a row, 0.300 s a variant)"), line
     assert line.endswith("more than the 300 s a command's spectral rows may take; --max-rows N lifts the bound")
     assert limits.work_problems(sc, 1, speeds + [4.0], method="spectral", max_rows=allowed + 1) == []
     (line,) = limits.work_problems(sc, 1, [4.0] * 5, method="spectral", max_rows=4)
@@ -90,11 +90,11 @@ def test_tyrelab_ride_refuses_too_many_spectral_rows_before_work(tmp_path, capsy
     _no_work(monkeypatch)
     assert main(["ride", str(path), "--speeds", *SPEEDS]) == 2
     (err,) = lines(capsys.readouterr().err)
-    assert "speeds_km_h: 1 variant(s) x 3600 speed(s) make 3,600 spectral rows" in err and "--max-rows N" in err
+    assert "speeds_km_h: 1 variant(s) x 4400 speed(s) make 4,400 spectral rows" in err and "--max-rows N" in err
     assert main(["ride", str(path), "--speeds", *SPEEDS, "--method", "time"]) == 2  # simulated: the samples' bound
     assert "samples" in capsys.readouterr().err
     with pytest.raises(BaseException, match="work started"):  # --max-rows lifts it: work starts
-        main(["ride", str(path), "--speeds", *SPEEDS, "--max-rows", "3600"])
+        main(["ride", str(path), "--speeds", *SPEEDS, "--max-rows", "4400"])
 
 
 def test_a_sweep_of_many_variants_times_speeds_is_refused_by_its_rows(tmp_path, capsys, monkeypatch):
@@ -113,24 +113,24 @@ def test_the_library_and_the_stage_refuse_the_same_rows(tmp_path, monkeypatch):
     doc = tomllib.loads(path.read_text())
     speeds = [float(v) for v in SPEEDS]
     _no_work(monkeypatch)
-    with pytest.raises(ValueError, match=r"^speeds_km_h: 1 variant\(s\) x 3600 .*; max_rows=N lifts the bound$"):
+    with pytest.raises(ValueError, match=r"^speeds_km_h: 1 variant\(s\) x 4400 .*; max_rows=N lifts the bound$"):
         tyrelab.ride(doc, speeds_km_h=speeds)
-    with pytest.raises(ValueError, match="3,600 spectral rows"):
+    with pytest.raises(ValueError, match="4,400 spectral rows"):
         tyrelab.ride_sweep(path, speeds_km_h=speeds)
     with pytest.raises(ValueError, match="max_rows must be an integer from 1 to"):
         tyrelab.ride(doc, max_rows=0)
     # the simulate stage's task: the scenario's own speeds, every row with figure data
-    many = path.read_text().replace("speeds_km_h = [4, 8, 12, 16, 20]", f"speeds_km_h = [{', '.join(SPEEDS[:3400])}]")
+    many = path.read_text().replace("speeds_km_h = [4, 8, 12, 16, 20]", f"speeds_km_h = [{', '.join(SPEEDS[:4100])}]")
     (tmp_path / "many.toml").write_text(many)
     sc = load_scenario(tmp_path / "many.toml")
-    assert limits.work_problems(sc, 1, method="spectral") == []  # 3,400 rows alone are within the bound
-    with pytest.raises(ValueError, match=r"^exposure\.speeds_km_h: 1 variant\(s\) x 3400 .*figure data besides"):
+    assert limits.work_problems(sc, 1, method="spectral") == []  # 4,100 rows alone are within the bound
+    with pytest.raises(ValueError, match=r"^exposure\.speeds_km_h: 1 variant\(s\) x 4100 .*figure data besides"):
         ride_module.ride_sweep(sc, with_spectra=True)
     from tyrelab.stages import ride_scenarios
 
     out = ride_scenarios.scenario_task((str(tmp_path / "many.toml"), "raw", None))
-    assert out["error"].startswith(f"{tmp_path / 'many.toml'}: exposure.speeds_km_h: 1 variant(s) x 3400 speed(s) "
-                                   "make 3,400 spectral rows")
+    assert out["error"].startswith(f"{tmp_path / 'many.toml'}: exposure.speeds_km_h: 1 variant(s) x 4100 speed(s) "
+                                   "make 4,100 spectral rows")
 
 
 # ----------------------------------------------------------------------------- the library honours the method

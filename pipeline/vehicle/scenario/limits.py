@@ -122,17 +122,17 @@ MAX_SPECTRAL_VARIANTS = 20_000
 #: CPU time of one spectral row (a variant at a speed) of the pitch-plane model, s: tyres, assembly,
 #: the expectation on 4,000 frequencies. Measured by ``bench/bench_spectral_rows.py`` (issue 46;
 #: docs/benchmarks.md, "Spectral rows") on the shipped ``modern_tractor.toml``: 2.6-4.1 ms a row at
-#: load 10-18 (issue 36's 1.2 ms was the 10 x 10 x 8 grid before the damped modes of issue 42).
+#: load 9-18 (issue 36's 1.2 ms was the 10 x 10 x 8 grid before the damped modes of issue 42).
 SECONDS_PER_SPECTRAL_ROW = 3e-3
 #: What a pitch-plane variant costs besides its rows, whatever its speeds (modes, their intervals), s:
-#: the bench's one variant at 200 speeds and 100 variants at one speed, solved for both: 3.3 ms.
+#: the bench's one variant at 200 speeds and 100 variants at one speed, solved for both: 2.8-3.3 ms.
 SECONDS_PER_SPECTRAL_VARIANT = 3e-3
 #: The same of the 3-D model (roll inertia given; the rolling tyre's damped modes per speed) on
-#: ``modern_3d_tractor.toml``: 78-82 ms a row,
-SECONDS_PER_SPECTRAL_ROW_3D = 85e-3
-#: and 0.21-0.58 s a variant (the damped modes' intervals, the lateral A(8) interval; the wide range
-#: is the shared machine's load, 10 and 18).
-SECONDS_PER_SPECTRAL_VARIANT_3D = 0.4
+#: ``modern_3d_tractor.toml``: 63 ms a row since issue 42's cuts (78-82 ms before),
+SECONDS_PER_SPECTRAL_ROW_3D = 70e-3
+#: and 0.24 s a variant (the damped modes' intervals; 0.21-0.58 s before the cuts, the range the
+#: shared machine's load, 10 and 18).
+SECONDS_PER_SPECTRAL_VARIANT_3D = 0.3
 #: What a row's figure data (the expected seat PSD and transmissibility per axis) add to it, s:
 #: 3-14 ms (pitch plane, 3-D). Every row of the simulate stage has them, the page's variant of
 #: ``tyrelab ride --out``.
@@ -140,7 +140,7 @@ SECONDS_PER_SPECTRAL_FIGURE_ROW = 6e-3
 #: Most estimated seconds of spectral rows one command computes (:func:`work_estimate`): the bound on
 #: rows (variants x speeds) before any work, ``--max-rows N`` sets another. 5 min: the 100 x 100
 #: pressure grid at 8 speeds of the pitch plane (80,000 rows, about 270 s) goes through; of the 3-D
-#: model about 3,500 rows of few variants, 250 variants at 8 speeds.
+#: model about 4,200 rows of few variants, 350 variants at 8 speeds.
 MAX_SPECTRAL_SECONDS = 300.0
 #: Most samples (1 kHz) one command may simulate over all speeds and pairs (``--max-samples``).
 MAX_SAMPLES = 10_000_000
