@@ -52,6 +52,7 @@ import numpy as np
 import pandas as pd
 
 from . import _validate
+from .units import km_h_to_m_s
 
 __all__ = ["STAND_SCENARIO_FILE", "STAND_SCENARIO_TEXT", "STAND_FS_HZ", "DURATION_S", "INPUT_RMS_M_S2",
            "SENSOR_NOISE_M_S2", "SENSOR_NOISE_RAD_S2", "HEIGHT_NOISE_M", "STATIONARY_STIFFNESS_FACTOR",
@@ -391,7 +392,7 @@ def stand_recording(scenario, row: dict, seed: int, duration_s: float = DURATION
     if track:  # §2.3: one wheel on a rough profile (class D), the others on concrete
         from .vehicle import profiles as pr
 
-        v = speed / 3.6
+        v = km_h_to_m_s(speed)
         prof = pr.iso8608_track("D", seed=int(rng.integers(2 ** 31)), length_m=v * duration_s + 10.0, dx_m=0.05)
         heights = np.interp(v * t, prof.x_m, prof.left_m)
         heights = heights - heights.mean()
@@ -407,7 +408,7 @@ def stand_recording(scenario, row: dict, seed: int, duration_s: float = DURATION
             common = _band_noise(rng, n, fs_Hz, 1.0)
             left = common + 0.7 * _band_noise(rng, n, fs_Hz, 1.0)
             right = common + 0.7 * _band_noise(rng, n, fs_Hz, 1.0)
-            lag = int(round(wheelbase / (max(speed, 6.0) / 3.6) * fs_Hz))  # a wheelbase later at the stand's pace
+            lag = int(round(wheelbase / km_h_to_m_s(max(speed, 6.0)) * fs_Hz))  # a wheelbase later at the stand's pace
             ground[0] = left / left.std() * INPUT_RMS_M_S2
             ground[1] = right / right.std() * INPUT_RMS_M_S2
             ground[3] = np.roll(ground[1], lag)

@@ -516,6 +516,8 @@ def test_a_bad_argument_is_a_value_error_naming_it(path, kwargs, parameter):
 # --- every public function of tyre/ and vehicle/ has a row (issue 28) ------------------------------------
 #: Packages whose every public function (``__all__`` of each module) needs a row in :data:`ROWS`.
 CHECKED_PACKAGES = ("tyrelab.tyre", "tyrelab.vehicle")
+#: ... and modules of the package that those use (the units moved below every package: issue 45).
+CHECKED_MODULES = ("tyrelab.units",)
 
 #: Public functions of those packages with no argument a caller can get wrong, each with the reason.
 EXEMPT: dict[str, str] = {
@@ -525,9 +527,10 @@ EXEMPT: dict[str, str] = {
     "tyrelab.vehicle.scenario.parse.key_table": "takes no argument",
     "tyrelab.vehicle.model.cab_mount_problems": "returns its arguments' problems as lines, by design",
     "tyrelab.vehicle.model.pivot_problem": "writes the pivot rule's line for a section name (any text)",
-    "tyrelab.vehicle.units.from_kilo": "a unit conversion of any number or array (numpy's arithmetic): nothing to refuse",
-    "tyrelab.vehicle.units.to_kilo": "a unit conversion of any number or array (numpy's arithmetic): nothing to refuse",
-    "tyrelab.vehicle.units.km_h_to_m_s": "a unit conversion of any number or array (numpy's arithmetic): nothing to refuse",
+    "tyrelab.units.from_kilo": "a unit conversion of any number or array (numpy's arithmetic): nothing to refuse",
+    "tyrelab.units.to_kilo": "a unit conversion of any number or array (numpy's arithmetic): nothing to refuse",
+    "tyrelab.units.km_h_to_m_s": "a unit conversion of any number or array (numpy's arithmetic): nothing to refuse",
+    "tyrelab.units.m_s_to_km_h": "a unit conversion of any number or array (numpy's arithmetic): nothing to refuse",
     # these check arguments for a living: every problem is a returned line, so that a caller prints them all
     # at once (tyrelab ride); each line names the key and the bound (doctests of vehicle/scenario_limits.py)
     "tyrelab.vehicle.scenario.limits.scenario_problems": "returns its argument's problems as lines, by design",
@@ -544,14 +547,14 @@ def _public_functions() -> list[str]:
     import pkgutil
 
     out = set()
-    for package in CHECKED_PACKAGES:  # and their sub-packages (issue 45: vehicle/ in layers)
-        pkg = importlib.import_module(package)
-        for info in pkgutil.walk_packages(pkg.__path__, f"{package}."):
-            module = importlib.import_module(info.name)
-            for name in getattr(module, "__all__", ()):
-                obj = getattr(module, name)
-                if inspect.isfunction(obj) and obj.__module__ == module.__name__:
-                    out.add(f"{module.__name__}.{name}")
+    names = [info.name for package in CHECKED_PACKAGES  # and their sub-packages (issue 45: vehicle/ in layers)
+             for info in pkgutil.walk_packages(importlib.import_module(package).__path__, f"{package}.")]
+    for module_name in [*names, *CHECKED_MODULES]:
+        module = importlib.import_module(module_name)
+        for name in getattr(module, "__all__", ()):
+            obj = getattr(module, name)
+            if inspect.isfunction(obj) and obj.__module__ == module.__name__:
+                out.add(f"{module.__name__}.{name}")
     return sorted(out)
 
 

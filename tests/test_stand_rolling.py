@@ -205,8 +205,8 @@ def _coherent(r, k, j, f):
             & (e.random_error[:, k, j] <= 0.03))
 
 
-@pytest.mark.parametrize("ride_id", ["stand_rear_left_still_6kmh", "stand_rear_left_still_11kmh",
-                                     "stand_rear_left_correlated_6kmh"])
+@pytest.mark.parametrize("ride_id", ["stand_rear_left_still_0kmh", "stand_rear_left_still_6kmh",
+                                     "stand_rear_left_still_11kmh", "stand_rear_left_correlated_6kmh"])
 def test_stand_recordings_give_the_references_frfs_and_modes(scenario, ride_id):
     row = _row(ride_id)
     speed = row["speed_km_h"]
@@ -231,14 +231,17 @@ def test_stand_recordings_give_the_references_frfs_and_modes(scenario, ride_id):
         fd, z = truth[name]
         m = min(r.modes[out], key=lambda m: abs(m.frequency_Hz - fd))
         assert m.frequency_Hz == pytest.approx(fd, rel=0.02) and abs(m.damping_ratio - z) < 0.03, (name, m, fd, z)
-    # lateral-roll, 41 % damped at 6 km/h and 80 % at 11, overlapping yaw (44 %, 76 %): the reference
-    # inside the roll channel's 95 % frequency interval, its damping ratio within 0.05 and its undamped
-    # frequency (|λ|/2π, far better conditioned than Im λ/2π at this damping) within 5 %
+    # lateral-roll, 41 % damped at 6 km/h and 80 % at 11, overlapping yaw (44 %, 76 %), fitted with the
+    # roll, lateral and yaw outputs' poles shared (fit_shared_modes): at 6 km/h within 2 % and 0.03 in
+    # every output that shows it. At 11 km/h the pair is not identifiable from this recording (the
+    # Cramér-Rao bound of its damped frequency, shared fit, exact model: 80 %): the reference inside
+    # the 95 % intervals, which say so
     fd, z = truth["lateral_roll"]
-    m = min(r.modes["roll_rad_s2"], key=lambda m: abs(m.frequency_Hz - fd))
-    assert m.frequency_low_Hz <= fd <= m.frequency_high_Hz, (m, fd, z)
-    undamped = m.frequency_Hz / math.sqrt(1 - m.damping_ratio ** 2)
-    assert undamped == pytest.approx(fd / math.sqrt(1 - z * z), rel=0.05) and abs(m.damping_ratio - z) < 0.05, (m, fd, z)
+    for out in ("roll_rad_s2", "floor_y_m_s2"):
+        m = min(r.modes[out], key=lambda m: abs(m.frequency_Hz - fd))
+        assert m.frequency_low_Hz <= fd <= m.frequency_high_Hz and m.damping_low <= z <= m.damping_high, (m, fd, z)
+        if speed < 11:
+            assert m.frequency_Hz == pytest.approx(fd, rel=0.02) and abs(m.damping_ratio - z) < 0.03, (out, m, fd, z)
 
 
 @pytest.mark.parametrize("speed", [6.0, 11.0])

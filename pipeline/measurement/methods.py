@@ -21,6 +21,7 @@ import pandas as pd
 from scipy import signal
 
 from .._validate import band, positive, positive_int, same_last_axis
+from ..units import STANDARD_GRAVITY_M_S2
 from .apparent_mass import h1_spectrum
 
 __all__ = ["METHODS", "TABLE_I_SOURCE", "TABLE_I_RECORDINGS_SOURCE", "THESIS_DIRECTION", "THESIS_METHOD",
@@ -33,7 +34,7 @@ METHODS = ("apparent_mass", "load_deflection", "free_vibration", "forced_vibrati
 TABLE_I_SOURCE = "virtual experiments on the truth-model tyre (tyrelab.rig.experiments)"
 #: ... or the campaign's recordings of several methods on one tyre and condition (issue 34).
 TABLE_I_RECORDINGS_SOURCE = "recordings: {tyre} at {pressure:g} bar, {load:g} kN, stationary ({runs} runs)"
-_G = 9.80665
+_G = STANDARD_GRAVITY_M_S2
 #: The direction and method of the runs the thesis' tables and figures rest on (chapters 4-5: the
 #: vertical apparent mass by stepped sine, §3.2); the other directions have tables of their own (issue 44).
 THESIS_DIRECTION, THESIS_METHOD = "vertical", "stepped_sine"

@@ -21,6 +21,7 @@ import numpy as np
 
 from .. import _validate
 from .._validate import positive_int
+from ..units import km_h_to_m_s
 from . import apparent_mass as am
 
 __all__ = ["MIN_COHERENCE", "MAX_AMPLITUDE_DRIFT", "MAX_FREQUENCY_DRIFT_HZ", "BLOCK_S", "clipped",
@@ -110,7 +111,7 @@ def interference_frequencies_Hz(speed_km_h: float, circumference_m: float, lugs_
         raise ValueError(f"lugs_per_side and harmonics must be >= 0, got {lugs_per_side!r}, {harmonics!r}")
     if speed_km_h == 0 or circumference_m == 0:
         return []
-    f_rot = speed_km_h / 3.6 / circumference_m
+    f_rot = km_h_to_m_s(speed_km_h) / circumference_m
     out = [k * f_rot for k in range(1, harmonics + 1)]
     if lugs_per_side > 0:
         out += [lugs_per_side * f_rot, 2 * lugs_per_side * f_rot]

@@ -33,6 +33,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from . import mapped
+from ..units import STANDARD_GRAVITY_M_S2
 from .mapped import CHANNEL_MAP, FormatError, RunFileError, load_channel_map, read_mapped
 
 __all__ = [
@@ -201,7 +202,7 @@ def check_run(df: pd.DataFrame, excitation_frequency_Hz: float, sample_rate_Hz: 
             i = int(np.flatnonzero(np.abs(values) > _FLOAT32_MAX)[0])
             raise RunFileError(f"channel {c} has a sample of {values[i]:g} at row {i}, beyond the "
                                f"{_FLOAT32_MAX:.3g} a float32 channel holds (not a measurement)")
-    g = 9.80665
+    g = STANDARD_GRAVITY_M_S2
     mean_accel = [float(pd.to_numeric(df[c]).mean()) for c in ("accel_left_m_s2", "accel_right_m_s2")]
     if all(-1.15 * g < m < -0.85 * g for m in mean_accel):
         raise RunFileError(

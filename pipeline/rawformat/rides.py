@@ -50,6 +50,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..io import MAX_HEADER_BYTES as _io_MAX_HEADER_BYTES
+from ..units import STANDARD_GRAVITY_M_S2
 from . import mapped
 from .mapped import RunFileError
 
@@ -91,7 +92,7 @@ SAMPLE_RATE_RANGE_Hz = (16.0, 20000.0)
 RELEASE_EVERY = 8
 #: Allowed relative jitter of the sampling interval.
 MAX_DT_JITTER = 0.01
-GRAVITY_M_S2 = 9.80665
+GRAVITY_M_S2 = STANDARD_GRAVITY_M_S2
 #: Largest magnitude of a channel's sample accepted, m/s² (or rad/s² for ``pitch``/``roll``/``yaw``, m
 #: for a ground height): 1000
 #: m/s² is about 100 g, ten times the ±10 g range of the seat-pad accelerometers ISO 10326-1

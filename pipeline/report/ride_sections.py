@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 import pandas as pd
 
 from ..vehicle.spectral_ride import LIFT_OFF_PROBABILITY_LIMIT, primary_rows
+from ..units import km_h_to_m_s
 
 __all__ = ["PRESSURE_COLUMNS", "VERDICT_ORDER", "AXIS_WORDS", "answer", "split_warnings", "warning_groups", "method_note", "variant_name", "variant_decimals", "scenario_sections", "SECTION_TABLES", "variant_labels", "swept_columns", "variant_rows", "RideFigure", "scenario_figures",
            "surface_edge_note"]
@@ -376,5 +377,5 @@ def surface_edge_note(surface_kind: str, speed_km_h: float) -> str:
     v = float(speed_km_h)
     return (f"Each curve drops where the track's unevenness ends: a generated ISO 8608 track holds wavelengths "
             f"down to {1 / n_max:.2f} m ({n_max:g} cycles/m, the standard's band), so at speed v the ground input "
-            f"stops at v × {n_max:g} cycles/m ({v / 3.6 * n_max:.1f} Hz at {v:g} km/h); above it only the "
+            f"stops at v × {n_max:g} cycles/m ({km_h_to_m_s(v) * n_max:.1f} Hz at {v:g} km/h); above it only the "
             f"estimate's leakage is left, more than six decades down (not drawn).")

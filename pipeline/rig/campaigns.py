@@ -38,6 +38,7 @@ import numpy as np
 import pandas as pd
 
 from . import truth
+from ..units import km_h_to_m_s
 from .instrument import RigConfig
 from .method_runs import METHOD_DURATION_S, simulate_method_run
 
@@ -76,7 +77,7 @@ def duration_s(speed_km_h: float) -> float:
     """Recording length: 50 s, shorter when the track is too short (§3.5)."""
     if speed_km_h < 15:
         return RUN_DURATION_S
-    return round(min(RUN_DURATION_S, TRACK_LENGTH_M / (speed_km_h / 3.6)), 1)
+    return round(min(RUN_DURATION_S, TRACK_LENGTH_M / km_h_to_m_s(speed_km_h)), 1)
 
 
 def pressures(tyre_id: str, n: int) -> tuple[float, ...]:

@@ -40,12 +40,13 @@ from scipy import fft as sfft
 
 from ..measurement.recording import frame_tyre_force
 from ..rawformat import ACCEL_CHANNELS, BEAM_CHANNELS, OPTIONAL_CHANNELS, TIME
+from ..units import STANDARD_GRAVITY_M_S2, km_h_to_m_s
 
 __all__ = ["G", "SURFACE_ROUGHNESS_M3", "SLAT_PERIOD_M", "HUM_Hz", "NO_SCATTER", "RigConfig", "DayCalibration",
     "day_calibration", "RunSignals", "carriage_mass_kg", "ground_profile", "simulate_axle", "record",
     "derived_tyre_force"]
 
-G = 9.80665  # m/s^2
+G = STANDARD_GRAVITY_M_S2  # m/s^2 (tyrelab.units)
 
 
 #: Mains frequency of the hum artefact, Hz (UK, where the thesis' vehicle ran).
@@ -281,7 +282,7 @@ def ground_profile(rng: np.random.Generator, t: np.ndarray, speed_km_h: float, s
     """
     n = t.size
     z = np.zeros(n)
-    v = speed_km_h / 3.6
+    v = km_h_to_m_s(speed_km_h)
     if v <= 0:
         return z
     dt = t[1] - t[0]
@@ -406,7 +407,7 @@ def simulate_axle(
         nl = nl - cfg.cubic_fraction * K * d1**3 / d0**2 * taper
     if cfg.lug_stiffness_modulation and traction and lug_height_mm > 0 and speed_km_h > 0:
         n_lugs = max(int(round(circumference_m / 0.2)), 8)
-        theta = 2 * np.pi * n_lugs * (speed_km_h / 3.6) * t / circumference_m + rng.uniform(0, 2 * np.pi)
+        theta = 2 * np.pi * n_lugs * km_h_to_m_s(speed_km_h) * t / circumference_m + rng.uniform(0, 2 * np.pi)
         nl = nl - cfg.lug_stiffness_modulation * K * np.sin(theta) * d1 * taper
     N = sfft.rfft(nl)
     X = X + N * a22 / det

@@ -29,6 +29,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..tyre.sizes import DEFAULT_ASPECT_RATIO, parse_tyre_size, rolling_circumference_m
+from ..units import m_s_to_km_h
 
 __all__ = ["NOMINAL_FREQUENCY_HZ", "NOMINAL_AMPLITUDE_MM_PP", "NOMINAL_LOAD_KN", "NOMINAL_PRESSURE_BAR",
     "REFERENCE_SURFACE", "SURFACE_STIFFNESS_CHANGE", "SURFACE_DAMPING_CHANGE", "SURFACES", "TyreParams",
@@ -393,7 +394,7 @@ def _damping_nodes_at(tyre: TyreParams, v: float) -> tuple[float, float]:
 
 def _peak_speed_km_h(tyre: TyreParams) -> float:
     """Speed of the damping maximum: 0.04 rev/s (§5.5.4) -> km/h."""
-    return _PEAK_REV_S * tyre.circumference_m * 3.6
+    return m_s_to_km_h(_PEAK_REV_S * tyre.circumference_m)
 
 
 def _bump(tyre: TyreParams, v: float) -> float:

@@ -42,6 +42,7 @@ import pandas as pd
 from scipy import stats
 
 from .. import _validate
+from ..units import km_h_to_m_s
 from .sizes import TyreSize, parse_tyre_size
 
 __all__ = [
@@ -292,7 +293,7 @@ def tir_parameters(tyre: MeasuredTyre, pressure_bar: float) -> dict[str, list[tu
     at = "measured" if low - 1e-9 <= p0 <= high + 1e-9 else f"extrapolated to NOMPRES outside the tested {low:g}-{high:g} bar"
     model = [("FITTYP", 61, "Magic Formula 6.1"), ("TYRESIDE", "'LEFT'", "placeholder")]
     if speed is not None:
-        model.append(("LONGVL", round(speed / 3.6, 6), f"measured: speed of the damping fit, {speed:g} km/h (m/s)"))
+        model.append(("LONGVL", round(km_h_to_m_s(speed), 6), f"measured: speed of the damping fit, {speed:g} km/h (m/s)"))
     model.append(("VXLOW", 1, "placeholder: MF default (m/s)"))
     diameter_note = "measured: catalogue outer diameter / 2" if tyre.outer_diameter_m else "from the size: rim/2 + aspect x width"
     vertical = [

@@ -40,6 +40,7 @@ import pandas as pd
 from scipy.optimize import lsq_linear
 
 from .. import _validate
+from ..units import KM_H_PER_M_S
 from . import conditions as cond
 from .sizes import parse_tyre_size
 
@@ -63,7 +64,7 @@ C_VISCOUS_FIG45_N_S_PER_M_PER_RAD = 1.0
 #: :func:`unloaded_radius_m`).
 ASPECT_RATIO_DEFAULT = (R0_13_6R38_M - 38 * 0.0254 / 2) / (13.6 * 0.0254)
 
-_KMH = 1.0 / 3.6
+_KMH = 1.0 / KM_H_PER_M_S  # the bits of 1.0 / 3.6 (tyrelab.units)
 
 
 def unloaded_radius_m(size: str, aspect_ratio: float = ASPECT_RATIO_DEFAULT) -> float:

@@ -166,6 +166,8 @@ def ride_sweep(
         Pressure pairs front-major, then the swept keys in order (the last varying fastest);
         :attr:`RideResult.variant` names each variant's swept values. Every variant's modes carry
         the first variant's names, followed by shape (:func:`tyrelab.vehicle.modes.follow_names`).
+        The A(8) interval across a stand-in lateral stiffness (:attr:`RideResult.a8_lateral_ci95_m_s2`)
+        is the first variant's alone, the one :func:`result_json` reports.
 
     Raises
     ------

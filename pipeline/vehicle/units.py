@@ -1,75 +1,25 @@
-"""The units of the vehicle model, each written once: kilo, km/h and standard gravity (issues 35, 45).
+"""The units of the vehicle model: :mod:`tyrelab.units` under its earlier name (issues 35, 45).
 
-The model is SI inside (N/m, N s/m, N m/rad, per tyre or per element). The thesis' tables,
-the scenario file's keys and the tyre formula give stiffness and damping in kN/m, kN s/m and
-kN m/rad. Their values become SI where they are read — :mod:`tyrelab.vehicle.scenario` (a
-scenario's parts), :mod:`tyrelab.vehicle.studies.published_layouts` (the thesis' tables),
-:class:`tyrelab.vehicle.ride.AxleTyres` (a tyre's looked-up numbers) — and go back to kN where
-they are written out (tables, JSON), with these two functions; no other module of
-``tyrelab.vehicle`` writes a factor of 1e3 (``tests/vehicle/test_units_tree.py`` checks it).
+Kilo, km/h and standard gravity moved to :mod:`tyrelab.units`, below every package of tyrelab, so
+that the raw format, the rig and the measurement methods take them from the one home the vehicle
+model uses; every name importable from here before still is, and is the same object.
 
-Speeds are given in km/h (scenario files, the thesis' tables) and are m/s inside: :func:`km_h_to_m_s`
-is the one conversion (no ``/ 3.6`` elsewhere in ``tyrelab.vehicle``). Gravity is the standard
-gravity :data:`STANDARD_GRAVITY_M_S2` (ISO 80000-3, CGPM 1901), the value the raw format, the rig
-and the measurement methods use too; a thesis study that needs the thesis' 9.81 m/s² to reproduce
-its printed numbers names it itself (:data:`tyrelab.vehicle.studies.carriage.THESIS_GRAVITY_M_S2`).
+Examples
+--------
+>>> from tyrelab import units as package_units
+>>> km_h_to_m_s is package_units.km_h_to_m_s and STANDARD_GRAVITY_M_S2 == 9.80665
+True
 """
 
 from __future__ import annotations
 
+from ..units import (  # noqa: F401  (re-exported: the names of issue 35)
+    KILO,
+    KM_H_PER_M_S,
+    STANDARD_GRAVITY_M_S2,
+    from_kilo,
+    km_h_to_m_s,
+    to_kilo,
+)
+
 __all__ = ["KILO", "from_kilo", "to_kilo", "KM_H_PER_M_S", "km_h_to_m_s", "STANDARD_GRAVITY_M_S2"]
-
-#: kN -> N (and kN s/m -> N s/m, kN m/rad -> N m/rad).
-KILO = 1e3
-#: km/h in one m/s (3600 s / 1000 m).
-KM_H_PER_M_S = 3.6
-#: Standard acceleration of gravity, m/s² (3rd CGPM 1901; ISO 80000-3).
-STANDARD_GRAVITY_M_S2 = 9.80665
-
-
-def from_kilo(value):
-    """A value in kN/m, kN s/m or kN m/rad (scalar or array) in N/m, N s/m or N m/rad.
-
-    See Also
-    --------
-    to_kilo : back to kN units.
-
-    Examples
-    --------
-    >>> from_kilo(455.0)
-    455000.0
-    """
-    return KILO * value
-
-
-def to_kilo(value):
-    """:func:`from_kilo` back: SI to kN/m, kN s/m or kN m/rad.
-
-    See Also
-    --------
-    from_kilo : its inverse.
-
-    Examples
-    --------
-    >>> to_kilo(455000.0)
-    455.0
-    """
-    return value / KILO
-
-
-def km_h_to_m_s(speed_km_h):
-    """A speed in km/h (scalar or array) in m/s: ``speed_km_h / 3.6`` (the division, so the
-    numbers are those of the ``/ 3.6`` it replaced, to the bit).
-
-    See Also
-    --------
-    from_kilo, to_kilo : the kilo factor, the other unit conversion of the vehicle package.
-
-    Examples
-    --------
-    >>> km_h_to_m_s(36.0)
-    10.0
-    >>> km_h_to_m_s(7.0) == 7.0 / 3.6
-    True
-    """
-    return speed_km_h / KM_H_PER_M_S

@@ -116,3 +116,19 @@ def test_the_release_path_gives_the_roots_of_the_released_models(three_d):
             roots, shapes = m._roots(m._released(asm, share), None, ref.coordinates)
             got_roots, got_shapes = path(share)
             assert np.array_equal(got_roots, roots) and np.array_equal(got_shapes, shapes), (i, share)
+
+
+@pytest.mark.parametrize("kind", ["fixed", "tapered", "none"])
+def test_the_envelope_table_is_each_footprints_response(kind):
+    """The expectation's enveloping table (the cosines of a window length computed once for the
+    footprints that share it) equals :func:`enveloping_response` of each footprint, to the last bit."""
+    import numpy as np
+
+    from tyrelab.vehicle.run import spectral
+
+    n = np.geomspace(0.01, 10.0, 500)
+    fps = [0.30, 0.30 + 1e-16, 0.3049, 0.41, 0.62, 0.0]
+    table = spectral._envelope_table(kind, fps, 0.05, n)
+    assert table.shape == (len(fps), n.size)
+    for row, fp in zip(table, fps):
+        assert np.array_equal(row, spectral.enveloping_response(kind, fp, 0.05, n))

@@ -1,10 +1,10 @@
-"""Issue 45, Deliver 2: gravity and km/h each written once in tyrelab.vehicle (:mod:`tyrelab.vehicle.units`).
+"""Issue 45, Deliver 2: gravity and km/h each written once in tyrelab (:mod:`tyrelab.units`).
 
-The standard gravity 9.80665 m/s² is :data:`~tyrelab.vehicle.units.STANDARD_GRAVITY_M_S2`; the
-thesis' 9.81, which the chapter 6 and 7 studies need to reproduce the printed tables, is
-:data:`~tyrelab.vehicle.studies.carriage.THESIS_GRAVITY_M_S2`. The packages below ``vehicle/`` (the raw
-format, the rig, the measurement methods) cannot import it (the layers' direction): their
-copies are checked against it here.
+The standard gravity 9.80665 m/s² is :data:`tyrelab.units.STANDARD_GRAVITY_M_S2`; the thesis' 9.81,
+which the chapter 6 and 7 studies need to reproduce the printed tables, is
+:data:`~tyrelab.vehicle.studies.carriage.THESIS_GRAVITY_M_S2`. :mod:`tyrelab.units` sits below every
+package (the raw format, the rig, the measurement methods and the tyre package import it as the
+vehicle model does), so the whole package is checked, not only ``vehicle/``.
 """
 
 import ast
@@ -12,13 +12,13 @@ from pathlib import Path
 
 import numpy as np
 
-import tyrelab.vehicle
-from tyrelab.vehicle import units
+import tyrelab
+from tyrelab import units
 
 #: Gravity written as a number.
 GRAVITY_VALUES = (9.81, 9.80665)
 #: The units' one home, and the thesis' 9.81 of the chapter 6 study (a named constant).
-GRAVITY_HOMES = {"units.py", "studies/carriage.py"}
+GRAVITY_HOMES = {"units.py", "vehicle/studies/carriage.py"}
 
 
 def _numbers(tree):
@@ -33,7 +33,7 @@ def _numbers(tree):
 
 
 def _found(kind: str, allowed) -> list[str]:
-    root = Path(tyrelab.vehicle.__file__).parent
+    root = Path(tyrelab.__file__).parent
     out = []
     for path in sorted(root.rglob("*.py")):
         if path.relative_to(root).as_posix() in allowed:
@@ -45,14 +45,14 @@ def _found(kind: str, allowed) -> list[str]:
     return out
 
 
-def test_one_gravity_in_the_vehicle_package():
+def test_one_gravity_in_the_package():
     found = _found("gravity", GRAVITY_HOMES)
-    assert not found, "gravity written by hand (use tyrelab.vehicle.units.STANDARD_GRAVITY_M_S2):\n" + "\n".join(found)
+    assert not found, "gravity written by hand (use tyrelab.units.STANDARD_GRAVITY_M_S2):\n" + "\n".join(found)
 
 
-def test_one_km_h_conversion_in_the_vehicle_package():
+def test_one_km_h_conversion_in_the_package():
     found = _found("km/h", {"units.py"})
-    assert not found, "km/h converted by hand (use tyrelab.vehicle.units.km_h_to_m_s):\n" + "\n".join(found)
+    assert not found, "km/h converted by hand (use tyrelab.units.km_h_to_m_s):\n" + "\n".join(found)
 
 
 def test_the_check_finds_what_it_should():

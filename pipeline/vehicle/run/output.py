@@ -66,7 +66,8 @@ class RideResult:
     #: A profile or CRG road's ISO 8608 class per wheel track (:func:`~tyrelab.vehicle.run.track.road_classes`); empty otherwise.
     road_classes: dict = field(default_factory=dict)
     #: 3-D with a stand-in lateral stiffness (issue 33): speed (km/h) -> A(8) (m/s²) with every stand-in
-    #: lateral stiffness at the low and at the high end of its 95 % interval.
+    #: lateral stiffness at the low and at the high end of its 95 % interval. A sweep computes it for
+    #: its first variant alone (the one :func:`result_json` reports); the others' are empty.
     a8_lateral_ci95_m_s2: dict = field(default_factory=dict)
     #: The undamped modes (:class:`~tyrelab.vehicle.modes.ModeSet`) the natural frequencies name.
     modes: ModeSet | None = field(default=None, repr=False)

@@ -83,12 +83,26 @@ def enveloping_response(kind: str, footprint_m: float, dx_m: float, n_cycles_per
     _validate.choice("kind", kind, ("none", "fixed", "tapered", "rigid_band"))
     _validate.non_negative("footprint_m", footprint_m)
     positive("dx_m", dx_m)
+    if kind not in ("fixed", "tapered"):
+        return np.ones_like(np.asarray(n_cycles_per_m, float))
+    return _envelope_table(kind, [footprint_m], dx_m, n_cycles_per_m)[0]
+
+
+def _envelope_table(kind: str, footprints_m, dx_m: float, n_cycles_per_m) -> np.ndarray:
+    """:func:`enveloping_response` of each footprint (rows), the cosines of each window length computed
+    once (a sweep's footprints differ in their last bits more often than in their windows)."""
     n = np.asarray(n_cycles_per_m, float)
     if kind not in ("fixed", "tapered"):
-        return np.ones_like(n)
-    taps = ev.window(kind, footprint_m, dx_m)  # the filter's own taps (terrain/enveloping.py: one home)
-    k = np.arange(taps.size) - taps.size // 2
-    return np.cos(2 * math.pi * np.outer(n, k * dx_m)) @ taps
+        return np.ones((len(footprints_m), n.size))
+    cosines: dict = {}
+    rows = []
+    for fp in footprints_m:
+        taps = ev.window(kind, fp, dx_m)  # the filter's own taps (terrain/enveloping.py: one home)
+        if taps.size not in cosines:
+            k = np.arange(taps.size) - taps.size // 2
+            cosines[taps.size] = np.cos(2 * math.pi * np.outer(n, k * dx_m))
+        rows.append(cosines[taps.size] @ taps)
+    return np.array(rows).reshape(len(rows), n.size)
 
 
 def input_cross_spectra(tyres: list[str], side_spectrum, f_Hz, v: float, wheelbase_m: float) -> np.ndarray:
@@ -147,7 +161,7 @@ def _expected_batch(members: list, v: float, forces: bool = False) -> None:
         env = {}
         for j, axle in enumerate(("front", "rear")):
             fps = sorted({r.footprints_m[j] for r in runs})
-            table = np.array([enveloping_response(sc.surface.enveloping, fp, track.profile.dx_m, grid["n"]) for fp in fps])
+            table = _envelope_table(sc.surface.enveloping, fps, track.profile.dx_m, grid["n"])
             env[axle] = (table, np.array([fps.index(r.footprints_m[j]) for r in runs]))
         seat_tf = _seat_tf(p0.seat_abcd, grid["f"]) if p0.seat_abcd is not None else None
         tyres = runs[0].asm.tyres
