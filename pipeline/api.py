@@ -100,6 +100,10 @@ def analyse_recording(
     positive("axle_mass_kg", axle_mass_kg)  # before reading a file
     if sample_rate_Hz is not None:
         positive("sample_rate_Hz", sample_rate_Hz)
+    if interference_Hz is not None:
+        if isinstance(interference_Hz, (str, bytes)) or not hasattr(interference_Hz, "__iter__"):
+            raise ValueError(f"interference_Hz must be a list of frequencies, got {shown(interference_Hz)}")
+        interference_Hz = [positive(f"interference_Hz[{i}]", f) for i, f in enumerate(interference_Hz)]
     if isinstance(recording, pd.DataFrame):
         return analyse_frame(recording, axle_mass_kg, sample_rate_Hz=sample_rate_Hz, interference_Hz=interference_Hz)
     if not isinstance(recording, (str, os.PathLike)):
@@ -141,6 +145,7 @@ def ride(
     build: str | os.PathLike | None = None,
     with_spectra: bool = False,
     max_samples: int | None = None,
+    max_rows: int | None = None,
 ):
     """Seat vibration and EU daily exposure of a tractor scenario: what ``tyrelab ride`` computes.
 
@@ -166,6 +171,10 @@ def ride(
         Most 1 kHz samples the call may simulate over all speeds (default
         :data:`tyrelab.vehicle.scenario_limits.MAX_SAMPLES`, as ``tyrelab ride --max-samples``):
         more is refused with an estimate before any work.
+    max_rows : int, optional
+        Most spectral rows (speeds of a scenario whose ``[simulation] method`` is ``spectral``;
+        default: what :data:`tyrelab.vehicle.scenario_limits.MAX_SPECTRAL_SECONDS` of the estimate
+        allow, as ``tyrelab ride --max-rows``): more is refused before any work.
 
     Returns
     -------
@@ -208,18 +217,26 @@ def ride(
     from .vehicle.scenario import with_overrides
 
     speeds, front, rear = _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spectra,
-                                          max_samples)
+                                          max_samples, max_rows)
     sc = with_overrides(_scenario(scenario), speeds, front, rear)
-    # the work this call does: one variant simulated at every speed (ride_module.ride takes no
-    # spectral rows, whatever the scenario's [simulation] method), bounded as tyrelab ride bounds it
-    too_much = limits.work_problems(sc, 1, method="time",
+    # the work of one variant at every speed under the scenario's [simulation] method (spectral rows
+    # or simulated samples), bounded as tyrelab ride bounds it, before any work
+    method = sc.simulation.method
+    too_much = limits.work_problems(sc, 1, speeds, method=method, with_spectra=bool(with_spectra), max_rows=max_rows,
                                     max_samples=limits.MAX_SAMPLES if max_samples is None else max_samples)
-    if too_much:  # before any work, as tyrelab ride refuses it
-        raise ValueError("; ".join(p.replace("--max-samples N", "max_samples=N") for p in too_much))
+    if too_much:
+        raise ValueError("; ".join(p.replace("--max-samples N", "max_samples=N").replace("--max-rows N", "max_rows=N")
+                                   for p in too_much))
+    if limits.uses_spectral(sc, method, 1):  # method = "spectral": the rows of tyrelab ride, in the frequency domain
+        from .vehicle.run.frequency import spectral_variants
+
+        result = spectral_variants([sc], _tyre_data(build), bool(with_spectra))[0]
+        result.nominal = True
+        return result
     return ride_module.ride(sc, _tyre_data(build), with_spectra=bool(with_spectra))
 
 
-def _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spectra, max_samples):
+def _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spectra, max_samples, max_rows=None):
     """:func:`ride`'s speeds and pressures as floats, checked like ``tyrelab ride``'s options (finite,
     within :data:`tyrelab.vehicle.scenario_limits.LIMITS`); ValueError naming every bad one at once."""
     from .vehicle import scenario_limits as limits
@@ -245,9 +262,11 @@ def _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spe
     rear = None if rear_pressure_bar is None else number("rear_pressure_bar", rear_pressure_bar)
     if not isinstance(with_spectra, (bool, np.bool_)):
         problems.append(f"with_spectra must be True or False, got {shown(with_spectra)}")
-    if max_samples is not None and (isinstance(max_samples, bool) or not isinstance(max_samples, (int, np.integer))
-                                    or max_samples < 1):
-        problems.append(f"max_samples must be an integer >= 1, got {shown(max_samples)}")
+    for name, value in (("max_samples", max_samples), ("max_rows", max_rows)):
+        try:
+            None if value is None else limits.bound_argument(name, value)
+        except ValueError as exc:
+            problems.append(str(exc))
     if not problems:
         problems = limits.override_problems(speeds, None if front is None else [front],
                                             None if rear is None else [rear])
@@ -257,6 +276,16 @@ def _ride_arguments(speeds_km_h, front_pressure_bar, rear_pressure_bar, with_spe
     if problems:
         raise ValueError("; ".join(problems))
     return speeds, front, rear
+
+
+def _numbers(name: str, values) -> list[float] | None:
+    """``values`` (a list of numbers, or None) as floats; ValueError naming ``name[i]`` of a value
+    that is no finite number (a bool, a string, an integer too large for a float)."""
+    if values is None:
+        return None
+    if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
+        raise ValueError(f"{name} must be a list of numbers, got {shown(values)}")
+    return [finite(f"{name}[{i}]", v) for i, v in enumerate(values)]
 
 
 def _tyre_data(build):
@@ -282,6 +311,7 @@ def ride_sweep(
     max_variants: int | None = None,
     max_samples: int | None = None,
     map_fn=None,
+    max_rows: int | None = None,
 ):
     """Every variant of a scenario's sweep: what ``tyrelab ride`` computes with pressures or ``--set``.
 
@@ -304,6 +334,9 @@ def ride_sweep(
         Figure data of every variant, of none, or of the nominal variant alone.
     max_variants, max_samples : int, optional
         Bounds of the work (refused before any work, with the estimate).
+    max_rows : int, optional
+        Most spectral rows (variant x speed; default: what
+        :data:`tyrelab.vehicle.scenario_limits.MAX_SPECTRAL_SECONDS` of the estimate allow).
     map_fn : callable, optional
         ``map_fn(task, items)``: the caller's executor (:func:`tyrelab.executor.map_batches`); default
         in-process.
@@ -341,11 +374,16 @@ def ride_sweep(
         sets = {}
     elif not hasattr(sets, "items"):
         sets = parse_sets(list(sets))
-    else:
-        sets = {str(k): tuple(float(x) for x in (v if hasattr(v, "__iter__") else [v])) for k, v in sets.items()}
+    else:  # every value a finite number, named (an integer of 400 digits, a bool, a string: one line)
+        sets = {str(k): tuple(finite(f"sets[{str(k)!r}][{i}]", x)
+                              for i, x in enumerate(v if hasattr(v, "__iter__") and not isinstance(v, str) else [v]))
+                for k, v in sets.items()}
+    front_pressures_bar, rear_pressures_bar = (_numbers(name, values) for name, values in (
+        ("front_pressures_bar", front_pressures_bar), ("rear_pressures_bar", rear_pressures_bar)))
     return ride_module.ride_sweep(_scenario(scenario), front_pressures_bar, rear_pressures_bar, speeds_km_h,
                                   _tyre_data(build), map_fn, with_spectra=with_spectra, sets=sets,
-                                  max_variants=max_variants, max_samples=max_samples, method=method)
+                                  max_variants=max_variants, max_samples=max_samples, method=method,
+                                  max_rows=max_rows)
 
 
 def road_class(file: str | os.PathLike, *, track_width_m: float = 1.8, lateral_offset_m: float = 0.0,
@@ -400,12 +438,12 @@ def road_class(file: str | os.PathLike, *, track_width_m: float = 1.8, lateral_o
     from .scenario_io import read_crg, read_profile_csv
     from .vehicle import road_class as rc
 
+    _road_arguments(track_width_m, lateral_offset_m, start_m, length_m, fill_missing)  # whatever the file
     path = Path(file)
     pos = None
     if path.suffix.lower() == ".crg":
         from .vehicle.crg import wheel_tracks
 
-        positive("track_width_m", track_width_m)
         data = read_crg(path)
         half = 0.5 * track_width_m
         pos = {"left": lateral_offset_m + half, "right": lateral_offset_m - half}
@@ -432,6 +470,49 @@ def road_class(file: str | os.PathLike, *, track_width_m: float = 1.8, lateral_o
     if pos is not None:
         doc["lateral_position_m"] = {k: round(v, 6) for k, v in pos.items()}
     return doc
+
+
+def _argument_limits() -> dict[str, tuple[float, float, str]]:
+    """:data:`~tyrelab.vehicle.scenario_limits.LIMITS` and the ranges of the arguments that are no
+    scenario key: one home for the bounds of ``tyrelab``'s options and of this module's arguments
+    (``frf_speed_km_h``: a standing vehicle to the ride model's fastest; ``frf_max_Hz``: up to the
+    Nyquist frequency of raw format v1; ``stiffness_u_kN_per_m``)."""
+    from .rawformat import SAMPLE_RATE_RANGE_Hz
+    from .vehicle.scenario_limits import LIMITS
+
+    return {**LIMITS, "stiffness_u_kN_per_m": (0.0, LIMITS["stiffness_kN_per_m"][1], "kN/m"),
+            "frf_speed_km_h": (0.0, LIMITS["exposure.speeds_km_h"][1], "km/h"),
+            "frf_max_Hz": (0.0, SAMPLE_RATE_RANGE_Hz[1] / 2, "Hz")}
+
+
+def _in_range(name: str, value, key: str) -> float:
+    """``value`` within :func:`_argument_limits`'s ``key`` range; ValueError naming ``name`` (as
+    ``tyrelab``'s option of the same meaning says it)."""
+    from ._validate import in_range
+
+    low, high, unit = _argument_limits()[key]
+    try:
+        return in_range(name, value, low, high, unit)
+    except ValueError as exc:
+        raise ValueError(f"{exc} (the range the model is built for)" if "within" in str(exc) else str(exc)) from None
+
+
+def _road_arguments(track_width_m, lateral_offset_m, start_m, length_m, fill_missing) -> None:
+    """:func:`road_class`'s numbers in the ranges of ``tyrelab road``'s options, every problem at once."""
+    problems = []
+    for name, value, key in (("track_width_m", track_width_m, "tractor.front_track_m"),
+                             ("lateral_offset_m", lateral_offset_m, "surface.lateral_offset_m"),
+                             ("start_m", start_m, "surface.start_m"), ("length_m", length_m, "surface.length_m")):
+        if value is None and name == "length_m":
+            continue
+        try:
+            _in_range(name, value, key)
+        except ValueError as exc:
+            problems.append(str(exc))
+    if not isinstance(fill_missing, (bool, np.bool_)):
+        problems.append(f"fill_missing must be True or False, got {shown(fill_missing)}")
+    if problems:
+        raise ValueError("; ".join(problems))
 
 
 class _FrameRecording:
@@ -538,9 +619,9 @@ def vehicle_frf(
     from .measurement.frf import recording_frf
     from .rawformat.rides import open_recording
 
-    speed = float(speed_km_h)
-    if not (speed >= 0 and speed < float("inf")):
-        raise ValueError(f"speed_km_h must be finite and >= 0, got {speed_km_h!r}")
+    speed = _in_range("speed_km_h", speed_km_h, "frf_speed_km_h")  # tyrelab frf --speed's range
+    if sample_rate_Hz is not None:  # before reading the recording
+        positive("sample_rate_Hz", sample_rate_Hz)
     wheels, sc = None, None
     if scenario is not None:
         from .measurement.frf import scenario_wheel_geometry

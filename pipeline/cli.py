@@ -246,6 +246,12 @@ def _print_result(fmt: str, names: list, frames, first: bool, table_bytes: int, 
             raise _ResultTooLarge(len(pd.concat(held)) if held else 0)
         held.append(df)
     df = pd.concat(held, ignore_index=True) if held else pd.DataFrame(columns=names)
+    # for a terminal: a name or text value's control characters escaped (an ESC drives no terminal,
+    # a newline forges no row); csv and json keep the values as they are (json escapes them)
+    df.columns = [printable(str(c)) for c in df.columns]
+    for i in range(df.shape[1]):
+        if df.dtypes.iloc[i] == object or isinstance(df.dtypes.iloc[i], pd.StringDtype):
+            df.isetitem(i, df.iloc[:, i].map(lambda v: printable(v) if isinstance(v, str) else v))
     if df.empty:  # not pandas' "Empty DataFrame / Columns: [...] / Index: []"
         _out(f"no rows (columns: {', '.join(map(str, df.columns))})\n" if len(df.columns) else "no rows\n")
     else:
@@ -421,14 +427,9 @@ def _option_problems(args, dests) -> list[str]:
     """One line per numeric option of ``dests`` outside its range (:data:`OPTION_LIMITS`), naming it:
     checked before any work, every problem at once (``--mass 1e308`` would give 1.8e-152 Hz)."""
     from . import _validate
-    from .vehicle.scenario_limits import LIMITS
+    from .api import _argument_limits
 
-    from .rawformat import SAMPLE_RATE_RANGE_Hz
-
-    limits = {**LIMITS, "stiffness_u_kN_per_m": (0.0, LIMITS["stiffness_kN_per_m"][1], "kN/m"),
-              # frf: a standing vehicle (0) to the ride model's fastest; up to the Nyquist frequency of raw format v1
-              "frf_speed_km_h": (0.0, LIMITS["exposure.speeds_km_h"][1], "km/h"),
-              "frf_max_Hz": (0.0, SAMPLE_RATE_RANGE_Hz[1] / 2, "Hz")}
+    limits = _argument_limits()  # the library's arguments share them
     problems = []
     for dest in dests:
         value = getattr(args, dest, None)
@@ -605,7 +606,8 @@ def cmd_ride(args) -> int:
                              speeds_km_h=args.speeds, sets=args.set or [], build=args.build,
                              map_fn=mapped,
                              with_spectra="nominal" if args.out else False,
-                             max_variants=args.max_variants, max_samples=args.max_samples, method=args.method)
+                             max_variants=args.max_variants, max_samples=args.max_samples, method=args.method,
+                             max_rows=args.max_rows)
     except ScenarioError as exc:  # a swept value the scenario refuses: every problem, one line each
         for problem in exc.problems:
             print(f"tyrelab ride: {printable(exc.path)}: {printable(_key_suggestion(problem))}", file=sys.stderr)
@@ -1127,11 +1129,17 @@ def build_parser() -> argparse.ArgumentParser:
                          "simulates every variant; spectral gives each its exact expectation in the frequency domain "
                          "(no MTVV or crest factor); auto simulates one variant, and a sweep on an ISO 8608 surface "
                          "spectrally with the nominal variant and any that may lift a tyre simulated beside")
-    rd.add_argument("--max-variants", type=_whole(10**6), default=None, metavar="N",
+    rd.add_argument("--max-variants", type=_whole(10**6),  # limits.BOUND_CEILINGS
+                    default=None, metavar="N",
                     help="most variants a sweep may run (default 400 in the time domain, 20000 spectral; more is "
                          "refused with an estimate)")
-    rd.add_argument("--max-samples", type=_whole(10**12), default=None, metavar="N",
+    rd.add_argument("--max-samples", type=_whole(10**12),  # limits.BOUND_CEILINGS
+                    default=None, metavar="N",
                     help="most 1 kHz samples the command may simulate over all pairs and speeds (default 10 million)")
+    rd.add_argument("--max-rows", type=_whole(10**9),  # limits.BOUND_CEILINGS
+                    default=None, metavar="N",
+                    help="most spectral rows (variant x speed) the command may compute (default: what 300 s of the "
+                         "estimate allow, about 100,000 rows of the pitch plane, 3,300 of the 3-D model)")
     rd.add_argument("--executor", choices=["local", "dask"], default="local",
                     help="local: worker processes on this machine (default); dask: a dask.distributed cluster")
     rd.add_argument("--scheduler", default=None, help="dask scheduler address (with --executor dask)")

@@ -453,6 +453,7 @@ ROWS = [
     (f"{VE}.daily_exposure.governing_axis", dict(k_a_w_m_s2=None), "k_a_w_m_s2"),
     # vehicle/scenario_limits.py
     (f"{VE}.scenario.limits.work_estimate", dict(scenario=_scenario, n_variants=0), "n_variants"),
+    (f"{VE}.scenario.limits.bound_argument", dict(name="max_rows", value=10**400), "max_rows"),
     # vehicle/modes.py
     (f"{VE}.modes.mode_set", dict(asm="tractor"), "asm"),
     (f"{VE}.modes.mac_matrix", dict(reference=None, other=None), "reference"),

@@ -86,6 +86,10 @@ class RunInfo:
     channels: tuple[str, ...]
 
 
+#: The largest magnitude a converted channel (float32) holds; a sample beyond it would become infinite.
+_FLOAT32_MAX = float(np.finfo(np.float32).max)
+
+
 def read_run_file(path: Path, columns: list[str] | None = None, channel_map: dict | None = None) -> pd.DataFrame:
     """Read a run file into a DataFrame of raw-format-v1 columns.
 
@@ -194,6 +198,10 @@ def check_run(df: pd.DataFrame, excitation_frequency_Hz: float, sample_rate_Hz: 
         if np.isinf(values).any():
             i = int(np.flatnonzero(np.isinf(values))[0])
             raise RunFileError(f"channel {c} has an infinite sample at row {i}")
+        if c != "time_s" and (np.abs(values) > _FLOAT32_MAX).any():  # stored as float32 (the ingest stage)
+            i = int(np.flatnonzero(np.abs(values) > _FLOAT32_MAX)[0])
+            raise RunFileError(f"channel {c} has a sample of {values[i]:g} at row {i}, beyond the "
+                               f"{_FLOAT32_MAX:.3g} a float32 channel holds (not a measurement)")
     g = STANDARD_GRAVITY_M_S2
     mean_accel = [float(pd.to_numeric(df[c]).mean()) for c in ("accel_left_m_s2", "accel_right_m_s2")]
     if all(-1.15 * g < m < -0.85 * g for m in mean_accel):

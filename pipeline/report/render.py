@@ -17,7 +17,7 @@ from markupsafe import Markup, escape
 from .. import __version__, resources
 from .tables import Note
 
-__all__ = ["TEMPLATE_DIR", "environment", "format_number", "breakable", "abbreviations_used", "SYMBOLS", "code_version", "provenance", "UNITS", "column_label"]
+__all__ = ["TEMPLATE_DIR", "environment", "visible_controls", "format_number", "breakable", "abbreviations_used", "SYMBOLS", "code_version", "provenance", "UNITS", "column_label"]
 
 #: Templates live in the repository's ``reports/`` folder.
 TEMPLATE_DIR = resources.templates_dir()
@@ -31,12 +31,38 @@ def environment() -> jinja2.Environment:
         undefined=jinja2.StrictUndefined,
         trim_blocks=True,
         lstrip_blocks=True,
+        finalize=visible_controls,
     )
     env.filters["num"] = format_number
     env.filters["label"] = column_label
     env.filters["breakable"] = breakable
     env.tests["note"] = lambda value: isinstance(value, Note)
     return env
+
+
+#: Control characters HTML may not hold (C0 but tab, newline and carriage return; DEL; C1).
+_CONTROL = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f]")
+
+
+def visible_controls(value):
+    r"""A page's value with the control characters HTML may not hold written as their escapes
+    (``\x1b``): what every ``{{ }}`` of a page prints (the environment's ``finalize``), so that a
+    run id or a note of a user's with an ESC shows it instead of a raw byte (as every verb's
+    terminal output does, :func:`tyrelab.io.printable`). Markup stays Markup; other values pass.
+
+    See Also
+    --------
+    tyrelab.io.printable : the same for a terminal (every control character).
+
+    Examples
+    --------
+    >>> visible_controls("run" + chr(27) + "[31m"), visible_controls(3)
+    ('run\\x1b[31m', 3)
+    """
+    if isinstance(value, str) and _CONTROL.search(value):
+        text = _CONTROL.sub(lambda m: m.group().encode("unicode_escape").decode("ascii"), value)
+        return Markup(text) if isinstance(value, Markup) else text
+    return value
 
 
 def breakable(value) -> Markup:

@@ -136,10 +136,13 @@ def scenario_task(item: tuple) -> dict:
         nominal = [r for r in results if r.nominal]  # its pressures and the file's value of each swept key
         nat, nodal = ((nominal[0].natural_frequencies_Hz, nominal[0].nodal_points_m) if nominal else
                       ride.modes(assemble(ride.build_parts(sc, ride.resolve_tyres(sc, tyre_data), 0))))
-    except (ScenarioError, ValueError) as exc:
+    except ScenarioError as exc:  # names its file
         return {"file": path, "error": str(exc).replace("\n", "; ")}
+    except ValueError as exc:  # too much work, a value the model refuses: named with its file alike
+        return {"file": path, "error": f"{path}: {exc}".replace("\n", "; ")}
     except Exception as exc:  # noqa: BLE001 - the model failed: this scenario only (quarantined), the others run
-        return {"file": path, "error": f"the ride model failed: {type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else ''}"}
+        return {"file": path, "error": f"{path}: the ride model failed: {type(exc).__name__}: "
+                                       f"{str(exc).splitlines()[0] if str(exc) else ''}"}
     table = ride.results_table(results, sc.name)
     table["file"] = path  # rows are keyed by the scenario file: two files may share a name
     s = sc.surface

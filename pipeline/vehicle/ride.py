@@ -50,7 +50,7 @@ from . import profiles as pr  # noqa: F401 (an old name of this module)
 from .model import assemble  # noqa: F401 (an old name of this module)
 from .modes import LATERAL_ROLL_SHARE, MODE_NAMES, ModeSet, follow_names, frequency_intervals, mode_set  # noqa: F401
 from .scenario import Scenario, ScenarioError, sweep_variants, with_overrides, with_values  # noqa: F401
-from .scenario.limits import RIDE_METHODS
+from .scenario.limits import RIDE_METHODS, bound_argument
 from .spectral_ride import at_own_values, nominal_index
 from .tractor import Tractor, simulate  # noqa: F401 (old names of this module)
 from .tyres import AxleTyres, ShippedTyres, build_parts, per_speed, resolve_tyres  # noqa: F401
@@ -122,6 +122,7 @@ def ride_sweep(
     max_variants: int | None = None,
     max_samples: int | None = None,
     method: str | None = None,
+    max_rows: int | None = None,
 ) -> list[RideResult]:
     """:func:`ride` for every variant: each front × rear pressure pair (the scenario's own when not
     given) and every combination of the swept keys.
@@ -149,6 +150,10 @@ def ride_sweep(
         Bounds of the work (:mod:`tyrelab.vehicle.scenario.limits`; default its ``MAX_VARIANTS``
         for the time domain, ``MAX_SPECTRAL_VARIANTS`` for spectral rows, and ``MAX_SAMPLES``): more
         is refused with a ValueError giving the estimate, before any work.
+    max_rows : int, optional
+        Most spectral rows (variant x speed; default: what
+        :data:`~tyrelab.vehicle.scenario.limits.MAX_SPECTRAL_SECONDS` of the estimate allow, by the
+        model's cost a row), refused alike before any work.
     method : {"auto", "time", "spectral"}, optional
         How the rows are computed (default the scenario's ``[simulation] method``;
         :func:`tyrelab.vehicle.spectral_ride`): ``auto`` simulates one variant, and computes a
@@ -191,12 +196,11 @@ def ride_sweep(
     _validate.choice("method", method, RIDE_METHODS)
     if with_spectra not in (True, False, "nominal"):
         raise ValueError(f"with_spectra must be True, False or 'nominal', got {with_spectra!r}")
-    if max_variants is not None:
-        _validate.positive_int("max_variants", max_variants)
-    if max_samples is not None:
-        _validate.positive_int("max_samples", max_samples)
+    for name, value in (("max_variants", max_variants), ("max_samples", max_samples), ("max_rows", max_rows)):
+        if value is not None:
+            bound_argument(name, value)
     variants = sweep_variants(scenario, front_pressures_bar, rear_pressures_bar, speeds_km_h, sets, method,
-                              max_variants, max_samples)
+                              max_variants, max_samples, max_rows=max_rows, with_spectra=with_spectra)
     scenarios = [v for v, _ in variants]
     nominal = nominal_index(scenario, variants)
     results = _sweep_results(scenarios, method, nominal, tyre_data, with_spectra, map_fn, max_samples)

@@ -69,10 +69,14 @@ def test_a_long_profile_at_a_walking_pace_is_refused_before_any_work_by_cli_libr
         ride_module.ride_sweep(load_scenario(path))
 
 
-def test_library_ride_bounds_a_spectral_scenario_by_what_it_simulates(monkeypatch):
+def test_library_ride_bounds_a_spectral_scenario_by_what_it_computes(monkeypatch):
     doc = tomllib.loads(MODERN.read_text())
-    doc.setdefault("simulation", {})["method"] = "spectral"  # tyrelab.ride simulates every speed all the same
+    doc.setdefault("simulation", {})["method"] = "spectral"  # tyrelab.ride computes spectral rows, as tyrelab ride
     monkeypatch.setattr(ride_module, "ride", lambda *a, **k: pytest.fail("ran"))
+    monkeypatch.setattr("tyrelab.vehicle.run.frequency.spectral_variants", lambda *a, **k: pytest.fail("ran"))
+    with pytest.raises(ValueError, match=r"1 variant\(s\) x 1000 speed\(s\) make 1,000 spectral rows"):
+        tyrelab.ride(doc, speeds_km_h=[5 + 0.01 * i for i in range(1000)], max_rows=999)
+    doc["simulation"]["method"] = "time"  # simulated: bounded by the samples
     with pytest.raises(ValueError, match=r"1 variant\(s\) x 1000 speed\(s\) simulate"):
         tyrelab.ride(doc, speeds_km_h=[5 + 0.01 * i for i in range(1000)])
 

@@ -34,8 +34,10 @@ from ... import _validate
 from ..comfort.daily_exposure import MAX_HOURS_PER_DAY, MIN_HOURS_PER_DAY, MIN_RECORD_S
 
 __all__ = ["LIMITS", "RIDE_METHODS", "uses_spectral", "MAX_VARIANTS", "MAX_SPECTRAL_VARIANTS", "MAX_SAMPLES", "MIN_VERDICT_DURATION_S",
-           "BYTES_PER_SAMPLE", "SECONDS_PER_SAMPLE", "SECONDS_PER_SPECTRAL_ROW", "MAX_TRACK_POINTS", "scenario_problems",
-           "profile_problems", "override_problems", "track_length_m", "long_integer_problems", "work_estimate", "work_problems"]
+           "BYTES_PER_SAMPLE", "SECONDS_PER_SAMPLE", "SECONDS_PER_SPECTRAL_ROW", "SECONDS_PER_SPECTRAL_VARIANT", "SECONDS_PER_SPECTRAL_ROW_3D",
+           "SECONDS_PER_SPECTRAL_VARIANT_3D", "SECONDS_PER_SPECTRAL_FIGURE_ROW", "MAX_SPECTRAL_SECONDS", "MAX_TRACK_POINTS", "BOUND_CEILINGS", "scenario_problems",
+           "profile_problems", "override_problems", "track_length_m", "long_integer_problems", "work_estimate", "work_problems",
+           "bound_argument"]
 
 #: key -> (lowest, highest, unit) of every number of a scenario the model is built for.
 LIMITS: dict[str, tuple[float, float, str]] = {
@@ -114,13 +116,38 @@ LIMITS: dict[str, tuple[float, float, str]] = {
 #: Most variants one scenario may sweep in the time domain (``tyrelab ride --max-variants`` lifts it).
 MAX_VARIANTS = 400
 #: Most variants of a sweep computed in the frequency domain (``--method auto`` or ``spectral``;
-#: ``--max-variants`` lifts it): 100 x 100 pressures and a swept key of two values, about 4 min.
+#: ``--max-variants`` lifts it): 100 x 100 pressures and a swept key of two values. Their rows
+#: (variant x speed) are bounded besides, by :data:`MAX_SPECTRAL_SECONDS`.
 MAX_SPECTRAL_VARIANTS = 20_000
-#: Time of one spectral speed row (variant x speed), s: the 10 x 10 x 8 grid of bench/bench_ride.py
-#: took about 1.2 ms a row (tyres, assembly, expectation on 4,000 frequencies, modes; issue 36).
-SECONDS_PER_SPECTRAL_ROW = 1.5e-3
+#: CPU time of one spectral row (a variant at a speed) of the pitch-plane model, s: tyres, assembly,
+#: the expectation on 4,000 frequencies. Measured by ``bench/bench_spectral_rows.py`` (issue 46;
+#: docs/benchmarks.md, "Spectral rows") on the shipped ``modern_tractor.toml``: 2.6-4.1 ms a row at
+#: load 9-18 (issue 36's 1.2 ms was the 10 x 10 x 8 grid before the damped modes of issue 42).
+SECONDS_PER_SPECTRAL_ROW = 3e-3
+#: What a pitch-plane variant costs besides its rows, whatever its speeds (modes, their intervals), s:
+#: the bench's one variant at 200 speeds and 100 variants at one speed, solved for both: 2.8-3.3 ms.
+SECONDS_PER_SPECTRAL_VARIANT = 3e-3
+#: The same of the 3-D model (roll inertia given; the rolling tyre's damped modes per speed) on
+#: ``modern_3d_tractor.toml``: 63 ms a row since issue 42's cuts (78-82 ms before),
+SECONDS_PER_SPECTRAL_ROW_3D = 70e-3
+#: and 0.24 s a variant (the damped modes' intervals; 0.21-0.58 s before the cuts, the range the
+#: shared machine's load, 10 and 18).
+SECONDS_PER_SPECTRAL_VARIANT_3D = 0.3
+#: What a row's figure data (the expected seat PSD and transmissibility per axis) add to it, s:
+#: 3-14 ms (pitch plane, 3-D). Every row of the simulate stage has them, the page's variant of
+#: ``tyrelab ride --out``.
+SECONDS_PER_SPECTRAL_FIGURE_ROW = 6e-3
+#: Most estimated seconds of spectral rows one command computes (:func:`work_estimate`): the bound on
+#: rows (variants x speeds) before any work, ``--max-rows N`` sets another. 5 min: the 100 x 100
+#: pressure grid at 8 speeds of the pitch plane (80,000 rows, about 270 s) goes through; of the 3-D
+#: model about 4,200 rows of few variants, 350 variants at 8 speeds.
+MAX_SPECTRAL_SECONDS = 300.0
 #: Most samples (1 kHz) one command may simulate over all speeds and pairs (``--max-samples``).
 MAX_SAMPLES = 10_000_000
+#: Highest value each bound may be set to (``--max-variants``, ``--max-samples``, ``--max-rows``; the
+#: library's ``max_variants``, ``max_samples``, ``max_rows``): a bound stays a bound, an integer of
+#: 400 digits is refused naming its argument, not taken for "none".
+BOUND_CEILINGS = {"max_variants": 1_000_000, "max_samples": 10**12, "max_rows": 10**9}
 #: Most points of a profile's uniform grid (its median step from its first distance to its last),
 #: checked before the grid is built: what ``tyrelab road`` and a ride resample a profile CSV onto
 #: (a 108 kB file of 30 km at 1 mm asked for 30 million points, 1.8 GB). The samples' bound.
@@ -443,12 +470,27 @@ def track_length_m(scenario) -> float:
     return float(s.length_m)
 
 
-def work_estimate(scenario, n_variants: int, speeds_km_h=None, method: str = "time") -> dict:
+def _spectral_costs(scenario) -> tuple[str, float, float]:
+    """The model of ``scenario`` (``pitch-plane`` or ``3-D``: roll inertia given) and what its
+    spectral rows cost, s: a row, and a variant whatever its speeds (:data:`SECONDS_PER_SPECTRAL_ROW`,
+    :data:`SECONDS_PER_SPECTRAL_VARIANT`, and their ``_3D``)."""
+    if getattr(getattr(scenario, "tractor", None), "roll_inertia_kg_m2", None) is not None:
+        return "3-D", SECONDS_PER_SPECTRAL_ROW_3D, SECONDS_PER_SPECTRAL_VARIANT_3D
+    return "pitch-plane", SECONDS_PER_SPECTRAL_ROW, SECONDS_PER_SPECTRAL_VARIANT
+
+
+def work_estimate(scenario, n_variants: int, speeds_km_h=None, method: str = "time",
+                  with_spectra: bool | str = False) -> dict:
     """Samples, memory and time of ``n_variants`` variants at every speed (an estimate) under
     ``method`` (:mod:`tyrelab.vehicle.spectral_ride`): ``time`` simulates every variant; spectral
     rows (``spectral``, or ``auto`` for a sweep on an ISO 8608 surface) simulate nothing
-    (``spectral_rows``: variant x speed rows, :data:`SECONDS_PER_SPECTRAL_ROW` each), ``auto``
-    the nominal variant besides (the speeds that may lift a tyre are bounded when known, by
+    (``spectral_rows``: variant x speed rows, :data:`SECONDS_PER_SPECTRAL_ROW` each, or
+    :data:`SECONDS_PER_SPECTRAL_ROW_3D` of the 3-D model, and a variant's own cost,
+    :data:`SECONDS_PER_SPECTRAL_VARIANT` or :data:`SECONDS_PER_SPECTRAL_VARIANT_3D`; and
+    :data:`SECONDS_PER_SPECTRAL_FIGURE_ROW` more for each row with figure data: every row with
+    ``with_spectra`` True, the nominal variant's with ``"nominal"``: ``spectral_figure_rows``;
+    ``spectral_seconds``),
+    ``auto`` the nominal variant besides (the speeds that may lift a tyre are bounded when known, by
     ``max_samples``).
 
     See Also
@@ -463,8 +505,14 @@ def work_estimate(scenario, n_variants: int, speeds_km_h=None, method: str = "ti
     >>> e = work_estimate(s, 1)
     >>> e["samples"], round(e["memory_GB"], 1), round(e["seconds"])
     (7740000, 2.3, 19)
+    >>> s.surface.kind = "iso8608"
+    >>> e = work_estimate(s, 10, [4, 8, 12], method="spectral", with_spectra="nominal")
+    >>> e["spectral_rows"], e["samples"], round(e["spectral_seconds"], 3)   # 30 rows, 3 with figure data
+    (30, 0, 0.138)
     """
     _validate.positive_int("n_variants", n_variants)
+    if with_spectra not in (True, False, "nominal"):
+        raise ValueError(f"with_spectra must be True, False or 'nominal', got {_validate.shown(with_spectra)}")
     spectral = uses_spectral(scenario, method, n_variants)
     speeds = list(speeds_km_h or scenario.exposure.speeds_km_h)
     length_m = track_length_m(scenario)  # a profile CSV's own length, not surface.length_m
@@ -477,20 +525,28 @@ def work_estimate(scenario, n_variants: int, speeds_km_h=None, method: str = "ti
         samples += seconds * 1000.0
     simulated = 0 if method == "spectral" and spectral else 1 if spectral else n_variants
     rows = n_variants * len(speeds) if spectral else 0
+    figure_rows = 0 if not spectral or not with_spectra else rows if with_spectra is True else len(speeds)
+    _, row_s, variant_s = _spectral_costs(scenario)
+    spectral_seconds = (rows * row_s + (n_variants * variant_s if spectral else 0.0)
+                        + figure_rows * SECONDS_PER_SPECTRAL_FIGURE_ROW)
     total = samples * simulated
     return {"variants": n_variants, "speeds": len(speeds), "samples": int(round(total)),
             "largest_run_samples": int(round(samples)) if simulated else 0,
             "memory_GB": samples * BYTES_PER_SAMPLE / 1e9 if simulated else 0.0,
-            "seconds": total * SECONDS_PER_SAMPLE + rows * SECONDS_PER_SPECTRAL_ROW,
-            "spectral_rows": rows, "simulated_variants": simulated}
+            "seconds": total * SECONDS_PER_SAMPLE + spectral_seconds,
+            "spectral_rows": rows, "spectral_figure_rows": figure_rows, "spectral_seconds": spectral_seconds,
+            "simulated_variants": simulated}
 
 
 def work_problems(scenario, n_variants: int, speeds_km_h=None, *, max_variants: int | None = None,
-                  max_samples: int = MAX_SAMPLES, method: str = "time") -> list[str]:
+                  max_samples: int = MAX_SAMPLES, method: str = "time", max_rows: int | None = None,
+                  with_spectra: bool | str = False) -> list[str]:
     """Refusals, each with the estimate and the option that lifts the bound (empty: go ahead).
 
     ``max_variants`` default: :data:`MAX_SPECTRAL_VARIANTS` where ``method`` computes spectral rows
-    (:func:`work_estimate`), else :data:`MAX_VARIANTS`.
+    (:func:`work_estimate`), else :data:`MAX_VARIANTS`. Spectral rows (variant x speed): at most
+    ``max_rows``, by default as many as :data:`MAX_SPECTRAL_SECONDS` of the estimate allow (the line
+    names the speeds' key: ``speeds_km_h`` when given, else ``exposure.speeds_km_h``; and the estimate).
 
     See Also
     --------
@@ -505,9 +561,11 @@ def work_problems(scenario, n_variants: int, speeds_km_h=None, *, max_variants: 
     >>> work_problems(s, 100 * 100, method="spectral"), work_problems(s, 100 * 100, method="auto")
     ([], [])
     >>> print(work_problems(s, 100 * 100, method="time")[0])
-    10000 variants (pressure pairs x swept values) is more than 400 in the time domain (about 33539 s of simulation); --max-variants N lifts the bound, --method auto or spectral computes them in the frequency domain (about 120 s)
+    10000 variants (pressure pairs x swept values) is more than 400 in the time domain (about 33539 s of simulation); --max-variants N lifts the bound, --method auto or spectral computes them in the frequency domain (about 270 s)
+    >>> print(work_problems(s, 1, [0.5 + i / 1000 for i in range(200_000)], method="spectral")[0])
+    speeds_km_h: 1 variant(s) x 200000 speed(s) make 200,000 spectral rows, about 600 s of the pitch-plane model (0.003 s a row, 0.003 s a variant), more than the 300 s a command's spectral rows may take; --max-rows N lifts the bound
     """
-    e = work_estimate(scenario, n_variants, speeds_km_h, method)
+    e = work_estimate(scenario, n_variants, speeds_km_h, method, with_spectra)
     problems = []
     spectral = e["spectral_rows"] > 0
     limit = max_variants or (MAX_SPECTRAL_VARIANTS if spectral else MAX_VARIANTS)
@@ -516,16 +574,52 @@ def work_problems(scenario, n_variants: int, speeds_km_h=None, *, max_variants: 
             problems.append(f"{n_variants} variants (pressure pairs x swept values) is more than {limit} (about {e['seconds']:.0f} s in the frequency "
                             "domain); --max-variants N lifts the bound")
         else:
-            rows = n_variants * e["speeds"] * SECONDS_PER_SPECTRAL_ROW
+            _, row_s, variant_s = _spectral_costs(scenario)
+            rows = n_variants * (e["speeds"] * row_s + variant_s)
             problems.append(f"{n_variants} variants (pressure pairs x swept values) is more than {limit} in the time domain (about {e['seconds']:.0f} s "
                             "of simulation); --max-variants N lifts the bound"
                             + (f", --method auto or spectral computes them in the frequency domain (about {rows:.0f} s)"
                                if scenario.surface.kind == "iso8608" else ""))
+    rows = e["spectral_rows"]
+    if rows and (rows > max_rows if max_rows is not None else e["spectral_seconds"] > MAX_SPECTRAL_SECONDS):
+        key = "speeds_km_h" if speeds_km_h is not None else "exposure.speeds_km_h"
+        model, row_s, variant_s = _spectral_costs(scenario)
+        costs = f"{row_s:.3f} s a row, {variant_s:.3f} s a variant"
+        figures = e["spectral_figure_rows"] > 0
+        bound = (f"the {max_rows:,} rows allowed" if max_rows is not None
+                 else f"the {MAX_SPECTRAL_SECONDS:.0f} s a command's spectral rows may take")
+        problems.append(f"{key}: {n_variants} variant(s) x {e['speeds']} speed(s) make {rows:,} spectral rows, about "
+                        f"{e['spectral_seconds']:.0f} s of the {model} model ({costs}"
+                        f"{', figure data besides' if figures else ''}), more than {bound}; --max-rows N lifts the bound")
     if e["samples"] > max_samples:
         problems.append(f"{e['simulated_variants']} variant(s) x {e['speeds']} speed(s) simulate {e['samples']:,} samples "
                         f"(about {e['memory_GB']:.1f} GB for the longest run and {e['seconds']:.0f} s), more than "
                         f"{max_samples:,}; --max-samples N lifts the bound (or raise the speed, shorten the track)")
     return problems
+
+
+def bound_argument(name: str, value) -> int:
+    """A bound given to the work (``max_variants``, ``max_samples``, ``max_rows``) as an int;
+    ValueError naming ``name`` unless it is an integer from 1 to its :data:`BOUND_CEILINGS` entry
+    (an integer of any length, a bool, a float are refused, never an OverflowError).
+
+    See Also
+    --------
+    work_problems : the refusals of the work those bounds set.
+
+    Examples
+    --------
+    >>> bound_argument("max_rows", 5000)
+    5000
+    >>> bound_argument("max_rows", 10**400)
+    Traceback (most recent call last):
+    ...
+    ValueError: max_rows must be an integer from 1 to 1000000000, got 1000000000…0000000000 (401 digits)
+    """
+    high = BOUND_CEILINGS[name]
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or not 1 <= value <= high:
+        raise ValueError(f"{name} must be an integer from 1 to {high}, got {_validate.shown(value)}")
+    return int(value)
 
 
 def long_integer_problems(text: str) -> list[str]:

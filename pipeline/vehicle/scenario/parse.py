@@ -256,8 +256,10 @@ def _crg_problems(doc: dict, surf: dict, base_dir: Path, confine: bool, read_crg
                 "load_scenario read CRG files)"]
     try:
         data = read_crg(full)
-    except ValueError as exc:
-        return [f"surface.file: {exc}"]
+    except ValueError as exc:  # the file named as the scenario names it (no path of this machine in a table)
+        text = str(exc)
+        return [f"surface.file: {surf['file']}: {text[len(str(full)) + 2:]}" if text.startswith(f"{full}: ")
+                else f"surface.file: {text}"]
     profiles[full] = data
     gap_problem = []
     if data.u_inc_m > LIMITS["profile.gap_m"][1]:  # as a profile CSV's distances

@@ -379,7 +379,8 @@ def unused_key_problems(scenario: Scenario, keys, spectral: bool = False) -> lis
 
 def sweep_variants(scenario: Scenario, front_pressures_bar=None, rear_pressures_bar=None, speeds_km_h=None,
                    sets: dict | None = None, method: str = "auto", max_variants: int | None = None,
-                   max_samples: int | None = None) -> list[tuple[Scenario, dict]]:
+                   max_samples: int | None = None, *, max_rows: int | None = None,
+                   with_spectra: bool | str = False) -> list[tuple[Scenario, dict]]:
     """A sweep's variants, ``(scenario, swept values)``: each front × rear pressure pair (the
     :func:`pressure_axes`, however given) and every combination of the swept keys (``[sweep]`` and
     ``sets``), pressure pairs front-major, the last key varying fastest; checked before any is built.
@@ -391,7 +392,8 @@ def sweep_variants(scenario: Scenario, front_pressures_bar=None, rear_pressures_
         reason (:func:`unused_key_problems`).
     ValueError
         A pressure given by option and swept key both, values out of range, too much work
-        (:func:`tyrelab.vehicle.scenario.limits.work_problems`).
+        (:func:`tyrelab.vehicle.scenario.limits.work_problems`: ``max_variants``, ``max_samples``,
+        and ``max_rows`` spectral rows, ``with_spectra`` saying which have figure data).
 
     See Also
     --------
@@ -418,7 +420,8 @@ def sweep_variants(scenario: Scenario, front_pressures_bar=None, rear_pressures_
     if bad:  # a key that changes nothing would run identical variants under different labels
         raise ScenarioError(scenario.path or "<scenario>", bad)
     too_much = work_problems(scenario, n, speeds_km_h, max_variants=max_variants,
-                             max_samples=max_samples or MAX_SAMPLES, method=method)
+                             max_samples=max_samples or MAX_SAMPLES, method=method, max_rows=max_rows,
+                             with_spectra=with_spectra)
     if too_much:  # before any work (the variants are not even built)
         raise ValueError("; ".join(too_much))
     out = []
