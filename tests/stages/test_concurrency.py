@@ -20,7 +20,8 @@ def _cli_count(build) -> subprocess.CompletedProcess:
                            "SELECT count(*) AS n FROM results"], capture_output=True, text=True)
 
 
-@pytest.mark.parametrize("point", ["stage-warehouse", "replace"])
+# "replace" in the default run; the same readers before the warehouse stage (11 s) with -m slow (the budget)
+@pytest.mark.parametrize("point", [pytest.param("stage-warehouse", marks=pytest.mark.slow), "replace"])
 def test_queries_while_the_pipeline_writes(tmp_path, point):
     """Readers (the library and the command) while a forced run is held in the middle of its writes
     (before the warehouse stage rewrites the database, or with a table written but not yet renamed
