@@ -44,6 +44,7 @@ from ... import _validate
 from . import beam
 from ..elements import Maxwell, Rolling, StaticLoadMoment
 from ..model import Assembly, assemble
+from ..model.assembly import _solve_mass, _weighted as _weighted_row
 from ..units import from_kilo, to_kilo
 
 __all__ = ["MODE_NAMES", "LATERAL_ROLL_SHARE", "FOLLOW_MAC", "ZERO_ROOT", "ModeSet", "mode_set", "mac_matrix",
@@ -435,22 +436,48 @@ def _roots(asm: Assembly, gravity_m_s2: float | None, coordinates) -> tuple[np.n
 
 def _release_path(asm: Assembly, gravity_m_s2: float | None, coordinates):
     """``share -> _roots(_released(asm, share), gravity_m_s2, coordinates)`` for ``share > 0``, the same
-    numbers from the same operations (:meth:`~tyrelab.vehicle.model.Assembly.state_rows`), cheaper: every
-    released model has one layout, and only the series elements' rows change with ``share`` (the rest,
-    a static load's moment at a contact point among them, computed once). The tilt outputs' gravity
-    does not enter the roots."""
+    numbers from the same operations (:meth:`~tyrelab.vehicle.model.Assembly.state_rows`, to the bit),
+    cheaper: every released model has one layout, and only the series elements' rows change with
+    ``share``. What does not change is computed once: the other elements' force rows (a static load's
+    moment at a contact point among them) and their generalised forces, the position rows and the other
+    elements' state-derivative rows; at each share the series elements' force and derivative rows
+    (:class:`~tyrelab.vehicle.elements.Rolling`, its damper ``c₂`` as :func:`_released` sets it) and
+    the sum of the generalised forces in the elements' order. The tilt outputs' gravity does not enter
+    the roots."""
     one = _released(asm, 1.0)
     lay = one.layout
     known, _, _ = one.state_rows(lay, [e for e in one.elements if not isinstance(e, Rolling)])
     idx = [lay.vel_cols[asm.coordinates.index(c)] for c in coordinates]
+    n, nq = lay.n, len(one.coordinates)
+    series = {e.name for e in one.elements if isinstance(e, Rolling)}  # their rows follow the share
+    _, _, fixed = one.state_rows(lay, [e for e in one.elements if e.name not in series], known)
+    for j in range(nq):  # what state_rows writes from the generalised forces: set at each share
+        fixed[lay.vel_cols[j]] = 0.0
+    generalised = [(e, None if e.name in series else np.outer(-e.g, known[e.name])) for e in one.elements]
+    mass = one.mass
+
+    def rows_at(share: float) -> np.ndarray:
+        gen = np.zeros((nq, lay.width))
+        rows = fixed.copy()
+        for e, g_f in generalised:
+            if g_f is None:  # a series element at this share, as _released and state_rows build it
+                e = dataclasses.replace(e, series_damping=e.series_damping / share)
+                g_f = np.outer(-e.g, _weighted_row(e, e.force_row(lay)))
+                for state, r in e.derivative_rows(lay).items():
+                    rows[lay.index[state]] = r
+            gen += g_f
+        acc = _solve_mass(mass, gen)
+        for j in range(nq):
+            rows[lay.vel_cols[j]] = acc[j]
+        return rows
 
     def roots_at(share: float) -> tuple[np.ndarray, np.ndarray]:
-        _, _, rows = one.state_rows(lay, _released(asm, share).elements, known)
-        roots, vecs = linalg.eig(rows[:, :lay.n])
+        roots, vecs = linalg.eig(rows_at(share)[:, :n])
         scale = float(np.max(np.abs(roots))) if roots.size else 0.0
         keep = (np.abs(roots) > ZERO_ROOT * scale) & (roots.imag >= -ZERO_ROOT * np.abs(roots))
         return roots[keep], vecs[np.ix_(idx, np.flatnonzero(keep))]
 
+    roots_at.rows_at = rows_at  # (the tests compare it with state_rows)
     return roots_at
 
 
