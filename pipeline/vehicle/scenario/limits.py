@@ -207,56 +207,6 @@ def _out(key: str, value: float) -> str | None:
     return None
 
 
-#: How many values of one list key (``exposure.speeds_km_h`` ...) out of range for one reason are
-#: named one line each; more are said in one line naming the first few (a scenario with thousands of
-#: speeds out of range is one line, not thousands).
-MAX_LINES_PER_KEY = 3
-
-
-def _grouped(lines: list[str]) -> list[str]:
-    """``lines`` with the lines of one key and one reason (outside the same range, or not a finite
-    number) beyond :data:`MAX_LINES_PER_KEY` said once, where the first of them stood.
-
-    Examples
-    --------
-    >>> lines = [f"exposure.speeds_km_h: {v} km/h is outside 0.5 to 80 km/h, what the ride model is built for"
-    ...          for v in (100, 101, 102, 103, 104)]
-    >>> _grouped(lines)  # doctest: +NORMALIZE_WHITESPACE
-    ['exposure.speeds_km_h: 5 values are outside 0.5 to 80 km/h, what the ride model is built for
-      (100 km/h, 101 km/h, 102 km/h and 2 more)']
-    >>> _grouped(lines[:2]) == lines[:2]
-    True
-    """
-    def reason(line: str) -> tuple[str, str, str] | None:
-        key, sep, rest = line.partition(": ")
-        for mark in (" is outside ", " is not a finite number"):
-            value, found, tail = rest.partition(mark)
-            if sep and found:
-                return key, value, mark + tail
-        return None
-
-    groups: dict[tuple[str, str], list[str]] = {}
-    for line in lines:
-        r = reason(line)
-        if r is not None:
-            groups.setdefault((r[0], r[2]), []).append(r[1])
-    out, said = [], set()
-    for line in lines:
-        r = reason(line)
-        if r is None or len(groups[(r[0], r[2])]) <= MAX_LINES_PER_KEY:
-            out.append(line)
-            continue
-        if (r[0], r[2]) in said:
-            continue
-        said.add((r[0], r[2]))
-        values = groups[(r[0], r[2])]
-        head, _, why = r[2].removeprefix(" is ").partition(", ")
-        shown = ", ".join(values[:MAX_LINES_PER_KEY])
-        out.append(f"{r[0]}: {len(values)} values are {head}{', ' + why if why else ''} "
-                   f"({shown} and {len(values) - MAX_LINES_PER_KEY} more)")
-    return out
-
-
 def scenario_problems(scenario) -> list[str]:
     """Every number of ``scenario`` outside :data:`LIMITS`, one line each naming key and bound.
 
@@ -325,7 +275,7 @@ def scenario_problems(scenario) -> list[str]:
         if line:
             problems.append(line.replace("sweep.front.pressure_bar", "sweep.front_pressures_bar")
                             .replace("sweep.rear.pressure_bar", "sweep.rear_pressures_bar"))
-    problems = _grouped(problems)
+    problems = _validate.grouped_problems(problems)
     if not problems and surf.dx_m > surf.length_m / 16:
         problems.append(f"surface.dx_m: {surf.dx_m:g} m is longer than surface.length_m / 16 "
                         f"({surf.length_m / 16:g} m): the track needs at least 16 points")
@@ -465,7 +415,7 @@ def override_problems(speeds_km_h=None, front_pressures_bar=None, rear_pressures
             line = _out(limit, v)
             if line:
                 problems.append(key + line[len(limit):])
-    return _grouped(problems)
+    return _validate.grouped_problems(problems)
 
 
 #: How a ride's rows are computed (``[simulation] method``; :mod:`tyrelab.vehicle.spectral_ride`).
