@@ -42,13 +42,14 @@ from scipy import linalg, optimize
 
 from ... import _validate
 from . import beam
-from ..elements import Maxwell, Rolling, StaticLoadMoment
 from ..model import Assembly, assemble
-from ..model.assembly import _solve_mass, _weighted as _weighted_row
+from .roots import (SENSITIVITY_SHAPE_SHARE, ZERO_ROOT, _release_path, _released, _released_by, _roots,
+                    root_sensitivities)
 from ..units import from_kilo, to_kilo
 
 __all__ = ["MODE_NAMES", "LATERAL_ROLL_SHARE", "FOLLOW_MAC", "ZERO_ROOT", "ModeSet", "mode_set", "mac_matrix",
-           "frequency_intervals", "follow_names", "DampedMode", "damped_modes", "follow_damped", "follow_renamed", "FOLLOW_STEPS"]
+           "frequency_intervals", "follow_names", "DampedMode", "damped_modes", "follow_damped", "follow_renamed", "FOLLOW_STEPS",
+           "root_sensitivities", "SENSITIVITY_SHAPE_SHARE"]
 
 #: Mode names by the coordinate that moves most (the body's ``z`` and ``th`` by thesis §8.2's rule;
 #: ``y`` and ``psi``: the body's lateral and yaw freedoms of issue 33's lateral tyre elements).
@@ -357,10 +358,6 @@ def follow_names(reference: ModeSet, other: ModeSet) -> tuple[dict, list]:
     return mapping, notes
 
 
-#: A root ``λ`` with ``|λ|`` below this share of the largest is a zero root (a series damper's drift:
-#: the body and its contact points moving sideways together feel nothing), left out. The roots of
-#: the linear model come from a nonsymmetric eigenproblem whose rounding is ~1e-13 of the largest.
-ZERO_ROOT = 1e-9
 
 
 @dataclass(frozen=True)
@@ -396,89 +393,6 @@ FOLLOW_STEPS = 8
 FOLLOW_FROM = 1e-4
 FOLLOW_SURE = 0.9
 FOLLOW_SPLITS = 6
-
-
-def _released_by(asm: Assembly) -> bool:
-    """Whether ``asm`` has a series damper that is not locked (a rolling or a Maxwell element)."""
-    return any((isinstance(e, Rolling) and not e.locked) or (isinstance(e, Maxwell) and e.active) for e in asm.elements)
-
-
-def _released(asm: Assembly, share: float) -> Assembly:
-    """``asm`` with every series damper's ``1/c₂`` times ``share`` (0: locked, the Kelvin-Voigt unit): a
-    rolling element's, and a Maxwell element's (a rolling element without the unit's damper)."""
-    import copy
-
-    if not _released_by(asm):
-        return asm
-    new = {}
-    for e in asm.elements:
-        if isinstance(e, Maxwell) and e.active:  # a spring in series with a damper: the unit without damper
-            e = Rolling(e.name, e.g, e.stiffness, 0.0, e.gate, e.floor_N, series_damping=e.damping)
-        if isinstance(e, Rolling):
-            new[e.name] = dataclasses.replace(e, series_damping=e.series_damping / share if share > 0 else math.inf)
-    other = copy.copy(asm)
-    other.elements = [new.get(e.name, e) if not isinstance(e, StaticLoadMoment) or e.contact is None
-                      else dataclasses.replace(e, contact=new[e.contact.name]) for e in asm.elements]
-    return other
-
-
-def _roots(asm: Assembly, gravity_m_s2: float | None, coordinates) -> tuple[np.ndarray, np.ndarray]:
-    """The non-zero roots of the upper half plane (and the real ones) and their shapes over ``coordinates``
-    (the velocity part of the eigenvector, ``λ q``)."""
-    lm = asm.linear(list(asm.kinematic_outputs)[:1], gravity_m_s2=gravity_m_s2)
-    lay = asm.layout
-    roots, vecs = linalg.eig(lm.a)
-    scale = float(np.max(np.abs(roots))) if roots.size else 0.0
-    keep = (np.abs(roots) > ZERO_ROOT * scale) & (roots.imag >= -ZERO_ROOT * np.abs(roots))
-    idx = [lay.vel_cols[asm.coordinates.index(c)] for c in coordinates]
-    return roots[keep], vecs[np.ix_(idx, np.flatnonzero(keep))]
-
-
-def _release_path(asm: Assembly, gravity_m_s2: float | None, coordinates):
-    """``share -> _roots(_released(asm, share), gravity_m_s2, coordinates)`` for ``share > 0``, the same
-    numbers from the same operations (:meth:`~tyrelab.vehicle.model.Assembly.state_rows`, to the bit),
-    cheaper: every released model has one layout, and only the series elements' rows change with
-    ``share``. What does not change is computed once: the other elements' force rows (a static load's
-    moment at a contact point among them) and their generalised forces, the position rows and the other
-    elements' state-derivative rows; at each share the series elements' force and derivative rows
-    (:class:`~tyrelab.vehicle.elements.Rolling`, its damper ``c₂`` as :func:`_released` sets it) and
-    the sum of the generalised forces in the elements' order. The tilt outputs' gravity does not enter
-    the roots."""
-    one = _released(asm, 1.0)
-    lay = one.layout
-    known, _, _ = one.state_rows(lay, [e for e in one.elements if not isinstance(e, Rolling)])
-    idx = [lay.vel_cols[asm.coordinates.index(c)] for c in coordinates]
-    n, nq = lay.n, len(one.coordinates)
-    series = {e.name for e in one.elements if isinstance(e, Rolling)}  # their rows follow the share
-    _, _, fixed = one.state_rows(lay, [e for e in one.elements if e.name not in series], known)
-    for j in range(nq):  # what state_rows writes from the generalised forces: set at each share
-        fixed[lay.vel_cols[j]] = 0.0
-    generalised = [(e, None if e.name in series else np.outer(-e.g, known[e.name])) for e in one.elements]
-    mass = one.mass
-
-    def rows_at(share: float) -> np.ndarray:
-        gen = np.zeros((nq, lay.width))
-        rows = fixed.copy()
-        for e, g_f in generalised:
-            if g_f is None:  # a series element at this share, as _released and state_rows build it
-                e = dataclasses.replace(e, series_damping=e.series_damping / share)
-                g_f = np.outer(-e.g, _weighted_row(e, e.force_row(lay)))
-                for state, r in e.derivative_rows(lay).items():
-                    rows[lay.index[state]] = r
-            gen += g_f
-        acc = _solve_mass(mass, gen)
-        for j in range(nq):
-            rows[lay.vel_cols[j]] = acc[j]
-        return rows
-
-    def roots_at(share: float) -> tuple[np.ndarray, np.ndarray]:
-        roots, vecs = linalg.eig(rows_at(share)[:, :n])
-        scale = float(np.max(np.abs(roots))) if roots.size else 0.0
-        keep = (np.abs(roots) > ZERO_ROOT * scale) & (roots.imag >= -ZERO_ROOT * np.abs(roots))
-        return roots[keep], vecs[np.ix_(idx, np.flatnonzero(keep))]
-
-    roots_at.rows_at = rows_at  # (the tests compare it with state_rows)
-    return roots_at
 
 
 def _complex_mac(m: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
