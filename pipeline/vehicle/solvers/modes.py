@@ -43,7 +43,7 @@ from scipy import linalg, optimize
 from ... import _validate
 from . import beam
 from ..model import Assembly, assemble
-from .roots import (SENSITIVITY_SHAPE_SHARE, ZERO_ROOT, _release_path, _released, _released_by, _roots,
+from .roots import (SENSITIVITY_SHAPE_SHARE, ZERO_ROOT, DampedMode, _release_path, _released, _released_by, _roots,
                     root_sensitivities)
 from ..units import from_kilo, to_kilo
 
@@ -358,30 +358,6 @@ def follow_names(reference: ModeSet, other: ModeSet) -> tuple[dict, list]:
     return mapping, notes
 
 
-
-
-@dataclass(frozen=True)
-class DampedMode:
-    """One mode of the damped model (issue 42): the root ``λ`` (rad/s) of the linear model followed
-    from the undamped mode of the same name by its shape.
-
-    ``undamped_Hz = |λ| / 2π``, ``damped_Hz = Im λ / 2π`` and ``damping_ratio = -Re λ / |λ|`` of an
-    oscillating mode (a complex pair); an overdamped mode is a real root: ``overdamped`` True,
-    ``damped_Hz`` 0 and ``damping_ratio`` 1 (``-Re λ/|λ|`` of a real root; its frequency ``|λ|/2π`` is
-    the decay rate's, not an oscillation's). ``mac``: the shape's match to the undamped mode."""
-
-    name: str
-    root: complex
-    undamped_Hz: float
-    damped_Hz: float
-    damping_ratio: float
-    overdamped: bool
-    mac: float
-    #: The shape over ``coordinates`` (complex, the velocity part of the eigenvector) and the mass matrix
-    #: over them (:func:`follow_damped`).
-    shape: np.ndarray | None = dataclasses.field(default=None, repr=False, compare=False)
-    coordinates: tuple = dataclasses.field(default=(), repr=False, compare=False)
-    mass: np.ndarray | None = dataclasses.field(default=None, repr=False, compare=False)
 
 
 #: The series dampers are released along ``1/c₂ = share / c₂`` with ``share`` from 0 (locked) through

@@ -9,20 +9,46 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from dataclasses import dataclass
 
 import numpy as np
 from scipy import linalg
 
+from ... import _validate
 from ..elements import Maxwell, Rolling, StaticLoadMoment
 from ..model import Assembly
 from ..model.assembly import _solve_mass, _weighted as _weighted_row
 
-__all__ = ["ZERO_ROOT", "SENSITIVITY_SHAPE_SHARE", "root_sensitivities"]
+__all__ = ["ZERO_ROOT", "DampedMode", "SENSITIVITY_SHAPE_SHARE", "root_sensitivities"]
 
 #: A root ``λ`` with ``|λ|`` below this share of the largest is a zero root (a series damper's drift:
 #: the body and its contact points moving sideways together feel nothing), left out. The roots of
 #: the linear model come from a nonsymmetric eigenproblem whose rounding is ~1e-13 of the largest.
 ZERO_ROOT = 1e-9
+
+
+@dataclass(frozen=True)
+class DampedMode:
+    """One mode of the damped model (issue 42): the root ``λ`` (rad/s) of the linear model followed
+    from the undamped mode of the same name by its shape.
+
+    ``undamped_Hz = |λ| / 2π``, ``damped_Hz = Im λ / 2π`` and ``damping_ratio = -Re λ / |λ|`` of an
+    oscillating mode (a complex pair); an overdamped mode is a real root: ``overdamped`` True,
+    ``damped_Hz`` 0 and ``damping_ratio`` 1 (``-Re λ/|λ|`` of a real root; its frequency ``|λ|/2π`` is
+    the decay rate's, not an oscillation's). ``mac``: the shape's match to the undamped mode."""
+
+    name: str
+    root: complex
+    undamped_Hz: float
+    damped_Hz: float
+    damping_ratio: float
+    overdamped: bool
+    mac: float
+    #: The shape over ``coordinates`` (complex, the velocity part of the eigenvector) and the mass matrix
+    #: over them (:func:`follow_damped`).
+    shape: np.ndarray | None = dataclasses.field(default=None, repr=False, compare=False)
+    coordinates: tuple = dataclasses.field(default=(), repr=False, compare=False)
+    mass: np.ndarray | None = dataclasses.field(default=None, repr=False, compare=False)
 
 
 def _released_by(asm: Assembly) -> bool:
@@ -112,9 +138,10 @@ def _release_path(asm: Assembly, gravity_m_s2: float | None, coordinates):
 #: is asked about stays below this share (the largest coefficient of another eigenvector in its
 #: perturbed eigenvector): then the perturbed model's modes are the nominal ones moved a little, no two
 #: trading places (the full solve follows them with a MAC of about ``1 - share²``). Measured on the 3-D
-#: bench tractor and ``modern_3d_tractor`` (2 x 4 pressure pairs x 3 speeds, 363 modes and axles): the
-#: share stayed below 0.022, and the derivatives of frequency and damping ratio differed from the ±1 %
-#: full solves' central differences by a median 9e-5, at most 6e-3 of themselves (``docs/benchmarks.md``).
+#: bench tractor and ``modern_3d_tractor`` (4 pressure pairs x 3 speeds each, 330 oscillating modes and
+#: axles; ``bench/bench_ride.py --sensitivities``): no axle refused, and the derivatives of frequency and
+#: damping ratio differ from the ±1 % full solves' central differences by a median 8e-5 and 1.1e-4, at
+#: most 6e-3 of themselves.
 SENSITIVITY_SHAPE_SHARE = 0.05
 
 
@@ -143,11 +170,15 @@ def root_sensitivities(a: np.ndarray, modes: dict, da: np.ndarray, step: float) 
     step : float
         The parameter change the answer stands for (the full solve's ±1 % step).
 
+    See Also
+    --------
+    tyrelab.vehicle.solvers.modes.damped_modes : the modes whose roots these are.
+    tyrelab.vehicle.solvers.modes.frequency_intervals : the undamped modes' intervals (central differences).
+
     Examples
     --------
     A mass on a spring and damper, ``p`` the stiffness: ``f = √(k/m)/2π`` and ``ζ = c/(2√(km))``.
 
-    >>> from tyrelab.vehicle.solvers.modes import DampedMode
     >>> m, k, c = 1000.0, 1e5, 2e3
     >>> a = np.array([[0.0, 1.0], [-k / m, -c / m]]); da = np.array([[0.0, 0.0], [-1.0 / m, 0.0]])
     >>> lam = complex(np.linalg.eigvals(a)[np.argmax(np.linalg.eigvals(a).imag)])
@@ -156,8 +187,15 @@ def root_sensitivities(a: np.ndarray, modes: dict, da: np.ndarray, step: float) 
     >>> round(dfdk / (0.5 / (2 * math.pi * math.sqrt(k * m))), 9), round(dzdk / (-0.5 * c / (2 * math.sqrt(m) * k ** 1.5)), 9)
     (1.0, 1.0)
     """
-    a, da = np.asarray(a, float), np.asarray(da, float)
-    if not modes or any(d.overdamped for d in modes.values()) or not (np.isfinite(a).all() and np.isfinite(da).all()):
+    a, da = _validate.finite_array("a", a), _validate.finite_array("da", da)
+    if a.ndim != 2 or a.shape[0] != a.shape[1]:
+        raise ValueError(f"a must be a square state matrix, got shape {a.shape}")
+    if da.shape != a.shape:
+        raise ValueError(f"da must have a's shape {a.shape}, got {da.shape}")
+    if not isinstance(modes, dict) or not all(isinstance(d, DampedMode) for d in modes.values()):
+        raise ValueError("modes must be a dict of DampedMode (damped_modes)")
+    step = _validate.positive("step", step)
+    if not modes or any(d.overdamped for d in modes.values()):
         return None
     lam, left, right = linalg.eig(a, left=True, right=True)
     scale = float(np.max(np.abs(lam)))
