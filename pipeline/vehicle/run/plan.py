@@ -115,20 +115,24 @@ def finish(p: VariantPlan) -> RideResult:
             for ax in ("front", "rear")), lambda: _damped_intervals(p, d0, shapes))
         nat_ci, zeta_ci = _copied(nat_ci), _copied(zeta_ci)
     else:
-        nat_ci, notes = frequency_intervals(first, tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
+        nat_ci, notes = frequency_intervals(first, tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m,
+                                            modes=shapes)
     warnings += [f"natural frequencies: {n}" for n in notes]
 
-    cols = ["speed_km_h", "frequency_Hz"]
     return RideResult(
         scenario=sc, tyres=tyres, natural_frequencies_Hz=nat, nodal_points_m=nodal,
         speeds=pd.DataFrame([row.as_dict() for row in rows]),
-        spectra=pd.concat(spectra, ignore_index=True) if spectra else pd.DataFrame(columns=cols),
-        transmissibility=pd.concat(trans, ignore_index=True) if trans else pd.DataFrame(columns=cols),
+        spectra=pd.concat(spectra, ignore_index=True) if spectra else _NO_FIGURE_DATA.copy(),
+        transmissibility=pd.concat(trans, ignore_index=True) if trans else _NO_FIGURE_DATA.copy(),
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
         warnings=warnings, natural_frequency_intervals_Hz=nat_ci, signals=signals, road_classes=track.road_classes,
         a8_lateral_ci95_m_s2=_lateral_interval(p, rows) if p.a8_interval else {},
         modes=shapes, modes_by_speed=by_speed, damping_ratio_intervals=zeta_ci,
     )
+
+
+#: A result's ``spectra`` and ``transmissibility`` without figure data (each result its own copy).
+_NO_FIGURE_DATA = pd.DataFrame(columns=["speed_km_h", "frequency_Hz"])
 
 
 def _damped_by_speed(p: VariantPlan, shapes: ModeSet) -> dict:

@@ -244,13 +244,23 @@ def _scaled(asm: Assembly, axle: str, factor: float) -> Assembly:
         part, tyre_stiffness_N_per_m=factor * part.tyre_stiffness_N_per_m)}))
 
 
-def frequency_intervals(asm: Assembly, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: float) -> tuple[dict, list]:
+def frequency_intervals(asm: Assembly, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: float,
+                        modes: ModeSet | None = None) -> tuple[dict, list]:
     """95 % intervals of the natural frequencies from the tyre stiffness uncertainties.
 
     First order (GUM 5.1.2), central differences (±1 % of each axle's tyre stiffness),
     independent axles, ``f ± 1.96 u`` (:func:`tyrelab.vehicle.solvers.beam.frequency_uncertainty`
     for thesis §8.2's beam, the same method on the assembled model otherwise), each perturbed model's
     modes followed from the nominal ones by shape (:meth:`ModeSet.follow`).
+
+    Parameters
+    ----------
+    asm : Assembly
+    u_front_tyre_kN_per_m, u_rear_tyre_kN_per_m : float
+        Standard uncertainty of one front and one rear tyre's vertical stiffness, kN/m.
+    modes : ModeSet, optional
+        ``mode_set(asm)`` where the caller has it already (a ride's :func:`~tyrelab.vehicle.run.plan.finish`),
+        else computed here.
 
     Returns
     -------
@@ -274,7 +284,7 @@ def frequency_intervals(asm: Assembly, u_front_tyre_kN_per_m: float, u_rear_tyre
     ([2.095, 2.407], [])
     """
     _validate.instance("asm", asm, Assembly)
-    base = mode_set(asm)
+    base = mode_set(asm) if modes is None else _validate.instance("modes", modes, ModeSet)
     freqs = base.frequencies()
     p = asm.parts
     lost: dict = {}
