@@ -90,6 +90,27 @@ def test_without_noise_c_carries_no_window_bias():
         assert np.max(np.abs(shift.imag) / (2 * np.pi * r.frequency_Hz[r.in_fit])) > 0.005  # it is there to take off
 
 
+def test_a_sweeps_bins_at_the_records_ends_are_found_and_a_random_runs_are_not():
+    """A linear 1-8 Hz sweep over 50 s passes its edges in the record's tapered ends (the 1.25 Hz bin
+    in its first 1.8 s): those bins are left out of a swept run's fit (``broadband._at_the_ends``)."""
+    from scipy import signal
+
+    fs, n = 256.0, 256 * 50
+    t = np.arange(n) / fs
+    sweep = signal.chirp(t, 1.0, 50.0, 8.0)
+    noise = np.random.default_rng(0).standard_normal(n)
+    for x, ends in ((sweep, True), (noise, False)):
+        est = bb._segment_spectra(-2.6e5 * x, x, fs, bb.RESOLUTION_Hz)
+        at_ends = bb._at_the_ends(est, 50.0, bb._taper_s(n, fs))
+        f = est.frequency_Hz
+        inside = (f >= 1.75) & (f <= 7.25)
+        assert not at_ends[inside].any()
+        if ends:
+            assert at_ends[np.isclose(f, 1.25)].all() and at_ends[np.isclose(f, 7.75)].all()
+        else:
+            assert not at_ends[(f >= 1.0) & (f <= 8.0)].any()
+
+
 def test_the_jackknife_replicates_are_not_bounded():
     """A replicate's C below zero stays below zero: bounding it at C = 0 truncated the scatter of a C
     that is barely in the data (a rolling tyre under load-beam noise: coverage 0.76)."""
