@@ -11,7 +11,7 @@ built once for both). Prints wall times, ratios and the largest relative
 difference of the seat vertical acceleration between the two paths.
 
     .venv/bin/python bench/bench_ride.py [--skip-sweep] [--targets] [--lateral] [--rolling] [--methods]
-                                         [--rolling-grid]
+                                         [--rolling-grid] [--sensitivities]
 
 ``--targets`` also measures issue 23's sweep targets as ratios to u = one 4-speed scenario
 (``one_scenario_cpu_s``) in this process, all in CPU seconds: the whole 10 x 10 pressure grid x 8
@@ -43,6 +43,14 @@ mode table and ``ride.json`` report them per variant and speed): ``rolling_grid_
 the ratio of the two grids less that common work, what the rows alone would give. The A(8) interval
 across the stand-in lateral stiffness is the first variant's alone in a sweep (the one ``ride.json``
 reports).
+
+``--sensitivities`` (issue 42, third session): how far the damped modes' ±1 % tyre-stiffness derivatives by
+first-order root perturbation (``modes.root_sensitivities``) lie from the ±1 % models' modes solved in full
+(central differences), over the 3-D bench tractor and ``modern_3d_tractor.toml`` at 4 pressure pairs x 3
+speeds each, every oscillating mode (the ride solves an axle in full where any mode is overdamped; here its
+oscillating modes are compared as well): the relative differences of df/dk and dζ/dk (median, 95th
+percentile, largest), the axles the perturbation refuses, and the overdamped modes the full solve cannot
+follow through ±1 % (an interval the ride then leaves out, with a note).
 
 ``--methods`` measures issue 36 in this process, in CPU seconds: the 10 x 10 pressure grid x 8
 speeds (4-18 km/h) of ``ride_sweep`` under ``--method auto`` (spectral rows for every variant, the
@@ -102,6 +110,8 @@ def main(argv=None) -> int:
     p.add_argument("--rolling", action="store_true",
                    help="also issue 42's cost: the 3-D scenario with the rolling tyre against kelvin_voigt")
     p.add_argument("--methods", action="store_true", help="only issue 36: the grid and the command, auto against time")
+    p.add_argument("--sensitivities", action="store_true",
+                   help="only issue 42: first-order root sensitivities against the full solves")
     p.add_argument("--rolling-grid", action="store_true",
                    help="only issue 42: the 3-D rolling-tyre grid, auto against time, and the damped modes' cost")
     args = p.parse_args(argv)
@@ -110,6 +120,9 @@ def main(argv=None) -> int:
         return 0
     if args.rolling_grid:
         print(json.dumps(_rolling_grid(), indent=2))
+        return 0
+    if args.sensitivities:
+        print(json.dumps(_sensitivities(), indent=2))
         return 0
     sc = load_scenario(scenarios_dir() / "modern_tractor.toml")
     ride.ride(with_overrides(sc, [16.0]), with_spectra=False)  # warm-up: imports, caches
@@ -220,7 +233,7 @@ def _rolling_grid() -> dict:
     speeds8 = [2.0 * k for k in range(2, 10)]
     fronts = [round(0.8 + 0.15 * i, 4) for i in range(10)]
     rears = [round(0.6 + 0.12 * i, 4) for i in range(10)]
-    ride.ride_sweep(sc, fronts[:2], rears[:1], [16.0], with_spectra=False)  # warm-up: imports, caches
+    _warm_up(sc, fronts, rears, speeds8)
     spent = {"by_speed": 0.0, "intervals": 0.0, "variants": 0}
     originals = {"by_speed": plan._damped_by_speed, "intervals": plan._damped_intervals}
 
@@ -260,6 +273,58 @@ def _rolling_grid() -> dict:
     out["rolling_grid_rows"] = {m: t["method"].value_counts().to_dict() for m, t in tables.items()}
     out["load_average_1min_end"] = round(os.getloadavg()[0], 1)
     return out
+
+
+def _sensitivities() -> dict:
+    """Issue 42: first-order root sensitivities against central differences of full solves (module docstring)."""
+    import dataclasses
+
+    from tyrelab.vehicle.model import assemble
+    from tyrelab.vehicle.solvers import modes
+
+    def scaled(parts, axle, f):
+        part = getattr(parts, axle)
+        return dataclasses.replace(parts, **{axle: dataclasses.replace(part, tyre_stiffness_N_per_m=f * part.tyre_stiffness_N_per_m)})
+
+    err_f, err_z, lost, refused = [], [], 0, 0
+    for sc0 in (parse_scenario(_three_d_text(), scenarios_dir()), load_scenario(scenarios_dir() / "modern_3d_tractor.toml")):
+        for pf, pr in ((0.8, 0.6), (1.2, 1.0), (1.6, 1.4), (2.15, 1.68)):
+            for speed in (4.0, 10.0, 18.0):
+                sc = with_overrides(sc0, [speed], pf, pr)
+                base = ride.build_parts(sc, ride.resolve_tyres(sc), 0)
+                asm = assemble(base)
+                shapes = modes.mode_set(modes._released(asm, 0.0))
+                nominal = {n: d for n, d in modes.damped_modes(asm, reference=shapes).items() if d is not None}
+                oscillating = {n: d for n, d in nominal.items() if not d.overdamped}
+                a = asm.linear(list(asm.kinematic_outputs)[:1]).a
+                for axle in ("front", "rear"):
+                    k = getattr(base, axle).tyre_stiffness_N_per_m
+                    models = {f: assemble(scaled(base, axle, f)) for f in (1.01, 0.99)}
+                    da = (models[1.01].linear(list(asm.kinematic_outputs)[:1]).a
+                          - models[0.99].linear(list(asm.kinematic_outputs)[:1]).a) / (0.02 * k)
+                    slopes = modes.root_sensitivities(a, oscillating, da, 0.01 * k)
+                    if slopes is None:
+                        refused += 1
+                        continue
+                    full = {f: modes.follow_damped(nominal, modes.damped_modes(m, reference=shapes)) for f, m in models.items()}
+                    for n, (df, dz) in slopes.items():
+                        up, down = full[1.01][n], full[0.99][n]
+                        if up is None or down is None:
+                            lost += 1
+                            continue
+                        df_full = (up.undamped_Hz - down.undamped_Hz) / (0.02 * k)
+                        dz_full = (up.damping_ratio - down.damping_ratio) / (0.02 * k)
+                        err_f.append(abs(df / df_full - 1) if df_full else 0.0)
+                        err_z.append(abs(dz / dz_full - 1) if dz_full else 0.0)
+                    lost += sum(1 for n in nominal if n not in oscillating and (full[1.01][n] is None or full[0.99][n] is None))
+
+    def stats(x):
+        return {"median": float(f"{np.median(x):.2e}"), "p95": float(f"{np.quantile(x, 0.95):.2e}"),
+                "max": float(f"{max(x):.2e}"), "modes": len(x)}
+
+    return {"df_dk_relative_difference": stats(err_f), "dzeta_dk_relative_difference": stats(err_z),
+            "axles_refused": refused, "overdamped_modes_the_full_solve_cannot_follow": lost,
+            "shape_share_limit": modes.SENSITIVITY_SHAPE_SHARE}
 
 
 def _targets(sc, u_s: float) -> dict:
@@ -306,6 +371,17 @@ def _targets(sc, u_s: float) -> dict:
             "fd_variant_speeds": len(table), "fd_cpu_s": round(t_fd, 2), "fd_10000_over_u": round(t_fd / u_s, 1)}
 
 
+def _warm_up(sc, fronts, rears, speeds) -> None:
+    """Imports and the process' caches that the first run of either method fills and the other then
+    finds (the ISO 2631-1 weightings on each record length's FFT grid, the tyre models): one variant
+    simulated and four spectral at the grid's speeds, at pressures off the grid (nothing of the grid's
+    own variants is kept). Both methods are then timed warm (until issue 42's third session the warm-up
+    ran one speed, so the first method timed, auto, paid the caches the time grid then found)."""
+    off_f, off_r = [f + 0.05 for f in fronts[:2]], [r + 0.05 for r in rears[:2]]
+    ride.ride_sweep(sc, off_f[:1], off_r[:1], speeds, with_spectra=False, method="time", max_samples=10**9)
+    ride.ride_sweep(sc, off_f, off_r, speeds, with_spectra=False, method="spectral")
+
+
 def _cpu() -> float:
     """CPU seconds of this process and its finished children."""
     import resource
@@ -328,7 +404,7 @@ def _methods() -> dict:
     speeds8 = [2.0 * k for k in range(2, 10)]
     fronts = [round(0.8 + 0.15 * i, 4) for i in range(10)]
     rears = [round(0.6 + 0.12 * i, 4) for i in range(10)]
-    ride.ride_sweep(sc, fronts[:2], rears[:1], [16.0], with_spectra=False)  # warm-up: imports, caches
+    _warm_up(sc, fronts, rears, speeds8)
     out: dict = {"load_average_1min_start": round(os.getloadavg()[0], 1)}
     tables = {}
     for method in ("auto", "time"):

@@ -26,7 +26,7 @@ import numpy as np
 
 __all__ = ["positive", "positive_array", "finite_array", "same_last_axis", "band", "non_negative", "probability",
            "positive_int", "frame", "choice", "instances", "instance", "non_negative_array", "finite", "in_range",
-           "shown", "compared"]
+           "shown", "compared", "grouped_problems"]
 
 
 def compared(value: float, op: str, limit: float, digits: int = 3) -> str:
@@ -341,3 +341,54 @@ def instance(name: str, value, kind):
         kinds = " or ".join(k.__name__ for k in (kind if isinstance(kind, tuple) else (kind,)))
         raise ValueError(f"{name} must be a {kinds}, got {type(value).__name__}")
     return value
+
+
+#: How many values of one list key (``exposure.speeds_km_h`` ...) out of range for one reason are
+#: named one line each; more are said in one line naming the first few (a scenario with thousands of
+#: speeds out of range is one line, not thousands).
+MAX_LINES_PER_KEY = 3
+
+
+def grouped_problems(lines: list[str]) -> list[str]:
+    """Problem lines (``"key: value is outside …"``, ``"key: value is not a finite number"``) with the
+    lines of one key and one reason beyond :data:`MAX_LINES_PER_KEY` said once, where the first of them
+    stood; other lines as they are.
+
+    Examples
+    --------
+    >>> lines = [f"exposure.speeds_km_h: {v} km/h is outside 0.5 to 80 km/h, what the ride model is built for"
+    ...          for v in (100, 101, 102, 103, 104)]
+    >>> grouped_problems(lines)  # doctest: +NORMALIZE_WHITESPACE
+    ['exposure.speeds_km_h: 5 values are outside 0.5 to 80 km/h, what the ride model is built for
+      (100 km/h, 101 km/h, 102 km/h and 2 more)']
+    >>> grouped_problems(lines[:2]) == lines[:2]
+    True
+    """
+    def reason(line: str) -> tuple[str, str, str] | None:
+        key, sep, rest = line.partition(": ")
+        for mark in (" is outside ", " is not a finite number"):
+            value, found, tail = rest.partition(mark)
+            if sep and found:
+                return key, value, mark + tail
+        return None
+
+    groups: dict[tuple[str, str], list[str]] = {}
+    for line in lines:
+        r = reason(line)
+        if r is not None:
+            groups.setdefault((r[0], r[2]), []).append(r[1])
+    out, said = [], set()
+    for line in lines:
+        r = reason(line)
+        if r is None or len(groups[(r[0], r[2])]) <= MAX_LINES_PER_KEY:
+            out.append(line)
+            continue
+        if (r[0], r[2]) in said:
+            continue
+        said.add((r[0], r[2]))
+        values = groups[(r[0], r[2])]
+        head, _, why = r[2].removeprefix(" is ").partition(", ")
+        shown = ", ".join(values[:MAX_LINES_PER_KEY])
+        out.append(f"{r[0]}: {len(values)} values are {head}{', ' + why if why else ''} "
+                   f"({shown} and {len(values) - MAX_LINES_PER_KEY} more)")
+    return out

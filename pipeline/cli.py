@@ -288,7 +288,6 @@ class _ResultTooLarge(Exception):
 def cmd_sql(args) -> int:
     import duckdb
 
-    from . import interrupts
     from .warehouse import QueryLimits, QueryTimeout, WriteRefused, error_line, iter_query, memory_bound
 
     try:
@@ -333,11 +332,9 @@ def cmd_sql(args) -> int:
     except (BrokenPipeError, OutputError):
         raise
     except duckdb.Error as exc:  # the user's query errors: a misspelt name gets the closest the warehouse has
-        interrupts.check()  # DuckDB's "Query interrupted" where it swallowed Ctrl-C: interrupted, exit 130
         print(f"tyrelab sql: {type(exc).__name__}: {error_line(Path(args.build), exc)}", file=sys.stderr)
         return EXIT_USAGE
     except Exception as exc:  # noqa: BLE001 - DuckDB errors are the user's query errors
-        interrupts.check()
         print(f"tyrelab sql: {printable(f'{type(exc).__name__}: {str(exc).splitlines()[0]}')}", file=sys.stderr)
         return EXIT_USAGE
     return EXIT_OK

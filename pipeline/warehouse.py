@@ -400,8 +400,9 @@ def connect_read_only(db_path: Path, limits: QueryLimits | None = None) -> duckd
         con.execute(f"SET allowed_directories = [{', '.join(map(_sql_path, allowed))}]")
         for name, value in SANDBOX_SETTINGS:
             con.execute(f"SET {name} = {value}")
-    except BaseException:
+    except BaseException as exc:
         con.close()
+        _interrupted(exc)
         raise
     return con
 
@@ -431,6 +432,19 @@ def check_read_only(sql: str) -> list[str]:
                 "(SELECT, WITH, DESCRIBE, SHOW, SUMMARIZE, FROM, VALUES)"
             )
     return [st.query.strip().rstrip(";").strip() for st in statements]
+
+
+def _interrupted(exc: BaseException) -> None:
+    """Raise ``KeyboardInterrupt`` from ``exc`` if Ctrl-C or SIGTERM arrived while DuckDB worked.
+
+    DuckDB's Python module looks for signals during a statement, clears the ``KeyboardInterrupt``
+    and raises ``RuntimeError: Query interrupted`` (or an error of its own) in its place: an error
+    that comes while an interrupt is recorded (:func:`tyrelab.interrupts.requested`) is that
+    interrupt, here for every caller of the warehouse (a query, ``--describe``, the report's reads),
+    never a query error printed before "interrupted".
+    """
+    if not isinstance(exc, KeyboardInterrupt) and interrupts.requested():
+        raise KeyboardInterrupt from exc
 
 
 def _statement(con: duckdb.DuckDBPyConnection, statement: str, timeout_s: float | None) -> pd.DataFrame:
@@ -478,6 +492,7 @@ def _statement(con: duckdb.DuckDBPyConnection, statement: str, timeout_s: float 
         stop()
         raise
     if "exc" in box:
+        _interrupted(box["exc"])
         raise box["exc"]
     return box["df"]
 
@@ -566,6 +581,7 @@ def _streamed(con: duckdb.DuckDBPyConnection, statement: str, timeout_s: float |
                     raise QueryTimeout(f"statement stopped after {timeout_s:g} s (the time limit)") from None
                 continue
             if kind == "exc":
+                _interrupted(item)
                 raise item
             if kind == "end":
                 finished = True

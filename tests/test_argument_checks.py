@@ -462,6 +462,10 @@ ROWS = [
     (f"{VE}.modes.damped_modes", dict(asm="tractor"), "asm"),
     (f"{VE}.modes.follow_damped", dict(reference=None, other={}), "reference"),
     (f"{VE}.modes.follow_renamed", dict(reference=None, other={}), "reference"),
+    (f"{VE}.solvers.roots.root_sensitivities", dict(a=[[0.0, 1.0], [-1.0, NAN]], modes={}, da=np.zeros((2, 2)), step=1.0), "a"),
+    (f"{VE}.solvers.roots.root_sensitivities", dict(a=np.eye(2), modes={}, da=np.zeros((3, 3)), step=1.0), "da"),
+    (f"{VE}.solvers.roots.root_sensitivities", dict(a=np.eye(2), modes=[], da=np.zeros((2, 2)), step=1.0), "modes"),
+    (f"{VE}.solvers.roots.root_sensitivities", dict(a=np.eye(2), modes={}, da=np.zeros((2, 2)), step=0.0), "step"),
     # vehicle/sweeps.py
     (f"{VE}.scenario.variants.pressure_axes", dict(scenario="modern.toml", front_pressures_bar=None, rear_pressures_bar=None, keys={}), "scenario"),
     (f"{VE}.scenario.variants.unused_key_problems", dict(scenario=None, keys=[]), "scenario"),

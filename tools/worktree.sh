@@ -19,7 +19,9 @@ if [ ! -x .venv/bin/tyrelab ]; then
   uv=$(command -v uv || true)
   [ -n "$uv" ] || { python3 -m pip install -q --user uv >/dev/null; uv=$(python3 -m site --user-base)/bin/uv; }
   "$uv" venv -q --seed --python "$(command -v python3)" .venv
-  "$uv" pip install -q --python .venv/bin/python -e ".[${EXTRAS:-dev,dask,formats,browser}]"
+  # --compile-bytecode: with PYTHONDONTWRITEBYTECODE=1 nothing writes .pyc later, and every subprocess
+  # a test starts would compile scipy and pandas from source again (see the Makefile's `compile`)
+  "$uv" pip install -q --python .venv/bin/python --compile-bytecode -e ".[${EXTRAS:-dev,dask,formats,browser}]"
   touch .venv/bin/tyrelab
 fi
 echo "$dir"

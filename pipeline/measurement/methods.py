@@ -33,7 +33,10 @@ METHODS = ("apparent_mass", "load_deflection", "free_vibration", "forced_vibrati
 #: Where our Table I comes from: virtual experiments, not the campaign's recordings.
 TABLE_I_SOURCE = "virtual experiments on the truth-model tyre (tyrelab.rig.experiments)"
 #: ... or the campaign's recordings of several methods on one tyre and condition (issue 34).
-TABLE_I_RECORDINGS_SOURCE = "recordings: {tyre} at {pressure:g} bar, {load:g} kN, stationary ({runs} runs)"
+#: ``source`` of a Table I from recordings: ``runs`` the runs its rows are the means of (``n_runs`` summed),
+#: ``methods`` how many of them each method's row has (issue 44: it said the case's runs of every method
+#: and frequency, "8 runs" where the rows rest on 1-2 each).
+TABLE_I_RECORDINGS_SOURCE = "recordings: {tyre} at {pressure:g} bar, {load:g} kN, stationary ({runs} runs: {methods})"
 _G = STANDARD_GRAVITY_M_S2
 #: The direction and method of the runs the thesis' tables and figures rest on (chapters 4-5: the
 #: vertical apparent mass by stepped sine, §3.2); the other directions have tables of their own (issue 44).
@@ -311,8 +314,10 @@ def table_i_from_results(results: pd.DataFrame, thesis: pd.DataFrame) -> pd.Data
     (_, (tyre, pressure, load), g) = best
     m = load * 1e3 / _G
     ours = {}
+    at4_of = 0  # the stepped-sine runs of the case, of which those at 4 Hz are used where there are any
     for method, sub in g.groupby("table_i_method"):
         if method == "apparent_mass":
+            at4_of = len(sub)
             at4 = (sub["excitation_frequency_Hz"] - 4.0).abs() <= 0.5  # the thesis' 4 Hz where there are such runs
             sub = sub.loc[at4] if at4.any() else sub
             k, c = sub["stiffness_N_per_m"].mean(), sub["damping_N_s_per_m"].mean()
@@ -326,7 +331,10 @@ def table_i_from_results(results: pd.DataFrame, thesis: pd.DataFrame) -> pd.Data
             c = float(np.nanmean(2 * sub[z].to_numpy(float) * m * wn))
         ours[method] = (float(k), float(c), len(sub))
     th = thesis.set_index("method")
-    source = TABLE_I_RECORDINGS_SOURCE.format(tyre=tyre, pressure=pressure, load=load, runs=len(g))
+    used = {method: ours[method][2] for method in METHODS if method in ours}
+    each = ", ".join(f"{method.replace('_', ' ')} {n}" + (" at 4 Hz" if method == "apparent_mass" and n < at4_of else "")
+                     for method, n in used.items())
+    source = TABLE_I_RECORDINGS_SOURCE.format(tyre=tyre, pressure=pressure, load=load, runs=sum(used.values()), methods=each)
     k0, c0, _ = ours["apparent_mass"]
     tk0, tc0 = (float(th.loc["apparent_mass", c]) for c in ("stiffness_kN_per_m", "damping_kN_s_per_m"))
     rows = []

@@ -83,7 +83,11 @@ METHOD_COLUMNS = {"model": str, "series_damping_N_s_per_m": float, "series_dampi
                   "h1_h2_expected_spread": float, "model_test_p": float, "ground_motion_ratio": float,
                   "stiffness_u_a_N_per_m": float, "stiffness_u_b_N_per_m": float,
                   "damping_u_a_N_s_per_m": float, "damping_u_b_N_s_per_m": float,
-                  "creep_coefficient_N_s_per_m": float, "creep_coefficient_u_N_s_per_m": float}
+                  "creep_coefficient_N_s_per_m": float, "creep_coefficient_u_N_s_per_m": float,
+                  # issue 44: the ground input's effect on a rolling broadband run, tested against its own error
+                  "ground_stiffness_effect_N_per_m": float, "ground_stiffness_effect_u_N_per_m": float,
+                  "ground_damping_effect_N_s_per_m": float, "ground_damping_effect_u_N_s_per_m": float,
+                  "qc_ground_input": str}
 
 
 def channel_problem(run_id: str, method: str, channels) -> str | None:
@@ -436,6 +440,12 @@ def analyse_method_run(method: str, direction: str, time_s, accel_m_s2, beams_N,
                        stiffness_u_a_N_per_m=r.stiffness_u_a_N_per_m,
                        stiffness_u_b_N_per_m=r.stiffness_u_b_N_per_m, damping_u_a_N_s_per_m=r.damping_u_a_N_s_per_m,
                        damping_u_b_N_s_per_m=r.damping_u_b_N_s_per_m)
+            if r.ground_input is not None:
+                row.update(ground_stiffness_effect_N_per_m=r.ground_stiffness_effect_N_per_m,
+                           ground_stiffness_effect_u_N_per_m=r.ground_stiffness_effect_u_N_per_m,
+                           ground_damping_effect_N_s_per_m=r.ground_damping_effect_N_s_per_m,
+                           ground_damping_effect_u_N_s_per_m=r.ground_damping_effect_u_N_s_per_m,
+                           qc_ground_input=r.ground_input)
             fb = r.frequency_Hz[r.in_fit]
             row.update(model=r.fit.model, stiffness_N_per_m=r.fit.stiffness_N_per_m,
                        damping_N_s_per_m=r.fit.damping_N_s_per_m,

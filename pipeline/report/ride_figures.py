@@ -19,6 +19,8 @@ import math
 
 import numpy as np
 import pandas as pd
+from matplotlib.artist import Artist
+from matplotlib.font_manager import FontProperties
 from matplotlib.lines import Line2D
 
 from ..vehicle import iso2631
@@ -149,6 +151,40 @@ def _hours_grid(table: pd.DataFrame, x_key: str, y_key: str) -> pd.DataFrame:
     return table.groupby([y_key, x_key], sort=True)["hours_to_eav"].min().unstack(x_key)
 
 
+class _CellNumbers(Artist):
+    """The number written in each cell of a heatmap, centred, in one artist: a grid's hundreds of cells as
+    :class:`~matplotlib.text.Text` artists cost most of the figure's time (each laid out on its own, twice
+    per drawing under the constrained layout), while these are one size and font and need no layout
+    (inside their axes: not part of the figure's layout either)."""
+
+    def __init__(self, xs, ys, labels, colors, fontsize: float):
+        super().__init__()
+        self._xy = np.column_stack([np.asarray(xs, float), np.asarray(ys, float)])
+        self._labels, self._colors = list(labels), list(colors)
+        self._prop = FontProperties(size=fontsize)
+        self._extents: dict = {}  # (renderer kind, label) -> width, height, descent (the same in every drawing)
+        self.set_in_layout(False)
+
+    def draw(self, renderer) -> None:
+        if not self.get_visible():
+            return
+        renderer.open_group("cell_numbers", gid=self.get_gid())
+        gc = renderer.new_gc()
+        points = self.axes.transData.transform(self._xy)
+        kind = (type(renderer), renderer.points_to_pixels(1.0))
+        height = renderer.get_canvas_width_height()[1] if renderer.flipy() else None  # y down (SVG), as Text.draw
+        for (x, y), label, color in zip(points, self._labels, self._colors):
+            if (kind, label) not in self._extents:
+                self._extents[kind, label] = renderer.get_text_width_height_descent(label, self._prop, ismath=False)
+            w, h, d = self._extents[kind, label]
+            gc.set_foreground(color)
+            base = y - h / 2 + d  # the baseline of a box centred on the cell
+            renderer.draw_text(gc, x - w / 2, base if height is None else height - base, label, self._prop, 0.0)
+        gc.restore()
+        renderer.close_group("cell_numbers")
+        self.stale = False
+
+
 def _draw_hours(ax, grid: pd.DataFrame, vmax: float, fontsize: float = 8):
     z = np.minimum(grid.to_numpy(float), 24.0)  # "never" (NaN, inf) and beyond a day: ≥ 24 h
     z = np.where(np.isnan(z), 24.0, z)
@@ -156,11 +192,11 @@ def _draw_hours(ax, grid: pd.DataFrame, vmax: float, fontsize: float = 8):
     ax.grid(False)
     ax.set_xticks(range(grid.shape[1]), [f"{v:g}" for v in grid.columns])
     ax.set_yticks(range(grid.shape[0]), [f"{v:g}" for v in grid.index])
-    for i in range(z.shape[0]):
-        for j in range(z.shape[1]):
-            dark = z[i, j] < 0.15 * vmax or z[i, j] > 0.85 * vmax  # the colour map's dark ends: white text
-            ax.text(j, i, "≥24" if z[i, j] >= 24 else f"{z[i, j]:.3g}", ha="center", va="center", fontsize=fontsize,
-                    color="white" if dark else "black")
+    rows, cols = np.indices(z.shape)
+    dark = (z < 0.15 * vmax) | (z > 0.85 * vmax)  # the colour map's dark ends: white text
+    ax.add_artist(_CellNumbers(cols.ravel(), rows.ravel(),
+                               ["≥24" if v >= 24 else f"{v:.3g}" for v in z.ravel()],
+                               np.where(dark.ravel(), "white", "black"), fontsize))
     return im
 
 

@@ -163,19 +163,24 @@ def test_a_ctrl_c_that_duckdb_swallowed_still_stops_a_running_statement(build):
         interrupts._requested.clear()
 
 
+@pytest.mark.parametrize("describe", [False, True], ids=["query", "describe"])
 @pytest.mark.parametrize("kind", ["RuntimeError", "InterruptException"])
-def test_a_ctrl_c_that_duckdb_turned_into_query_interrupted_exits_130(build, capsys, monkeypatch, kind):
+def test_a_ctrl_c_that_duckdb_turned_into_query_interrupted_exits_130(build, capsys, monkeypatch, kind, describe):
     import duckdb
 
     from tyrelab import interrupts, warehouse
 
-    def connect_interrupted(*args, **kwargs):
-        interrupts._requested.set()  # SIGINT arrived; DuckDB cleared the KeyboardInterrupt and raised its own
-        raise RuntimeError("Query interrupted") if kind == "RuntimeError" else duckdb.InterruptException("Interrupted!")
+    class Connection:  # DuckDB's own connection, whose ATTACH met the Ctrl-C
+        def execute(self, *args, **kwargs):
+            interrupts._requested.set()  # SIGINT arrived; DuckDB cleared the KeyboardInterrupt and raised its own
+            raise RuntimeError("Query interrupted") if kind == "RuntimeError" else duckdb.InterruptException("Interrupted!")
 
-    monkeypatch.setattr(warehouse, "connect_read_only", connect_interrupted)
-    try:
-        rc = main(["sql", "--build", str(build), "SELECT 1"])
+        def close(self):
+            pass
+
+    monkeypatch.setattr(warehouse.duckdb, "connect", lambda *args, **kwargs: Connection())
+    try:  # the warehouse says "interrupted" for every caller: a query and --describe alike
+        rc = main(["sql", "--build", str(build)] + (["--describe", "runs"] if describe else ["SELECT 1"]))
     finally:
         interrupts._requested.clear()
     err = capsys.readouterr().err

@@ -192,12 +192,19 @@ class Assembly:
         """Static load of every tyre element (N): ``K q_s = -g Σ m J_z`` (tyres and suspension
         springs), a tyre's load its compression force ``k g·q_s``; ``g`` the assembly's
         :attr:`gravity_m_s2` unless given."""
+        g = self.gravity_m_s2 if gravity_m_s2 is None else gravity_m_s2
+        memo = getattr(self, "_static_loads", None)  # (elements, g, loads): kept while the elements are these
+        if memo is not None and memo[1] == g and len(memo[0]) == len(self.elements) and all(
+                a is b for a, b in zip(memo[0], self.elements)):
+            return dict(memo[2])
         k = self.stiffness_matrix(tyres_only=True)
-        grav = -(self.gravity_m_s2 if gravity_m_s2 is None else gravity_m_s2) * self._weight_row
+        grav = -g * self._weight_row
         keep = np.flatnonzero(np.diag(k) != 0)
         q = np.zeros(len(self.coordinates))
         q[keep] = np.linalg.solve(k[np.ix_(keep, keep)], grav[keep])
-        return {e.name: float(e.stiffness * (e.g @ q)) for e in self.elements if e.input is not None}
+        loads = {e.name: float(e.stiffness * (e.g @ q)) for e in self.elements if e.input is not None}
+        self._static_loads = (tuple(self.elements), g, loads)
+        return dict(loads)
 
     # ----------------------------------------------------------------- linear
     def linear(self, outputs=None, gravity_m_s2: float | None = None) -> LinearModel:
@@ -420,4 +427,7 @@ def assemble(parts: Parts, gravity_m_s2: float | None = None) -> Assembly:
         count[tyre] = count.get(tyre, 0) + 1
         asm.elements.append(StaticLoadMoment(f"{tyre}_static_moment_{count[tyre]}", g, loads[tyre], 0.0, (tyre,), d=d,
                                              contact=by_name[contact] if contact else None))
+    # the floors and the static moments leave the static loads as they are (neither is a spring):
+    # kept for the assembled elements (:meth:`Assembly.static_tyre_loads_N`)
+    asm._static_loads = (tuple(asm.elements), asm.gravity_m_s2, loads)
     return asm

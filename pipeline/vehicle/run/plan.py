@@ -15,6 +15,7 @@ from ..units import from_kilo, km_h_to_m_s
 from ... import _validate
 from ..model import Assembly, assemble
 from ..modes import ModeSet, damped_modes, follow_damped, frequency_intervals, mode_set
+from ..modes import root_sensitivities as modes_root_sensitivities
 from ..scenario import Scenario
 from ..tyres import _resolve, build_parts
 from .output import RideResult
@@ -115,20 +116,24 @@ def finish(p: VariantPlan) -> RideResult:
             for ax in ("front", "rear")), lambda: _damped_intervals(p, d0, shapes))
         nat_ci, zeta_ci = _copied(nat_ci), _copied(zeta_ci)
     else:
-        nat_ci, notes = frequency_intervals(first, tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m)
+        nat_ci, notes = frequency_intervals(first, tyres["front"].stiffness_u_kN_per_m, tyres["rear"].stiffness_u_kN_per_m,
+                                            modes=shapes)
     warnings += [f"natural frequencies: {n}" for n in notes]
 
-    cols = ["speed_km_h", "frequency_Hz"]
     return RideResult(
         scenario=sc, tyres=tyres, natural_frequencies_Hz=nat, nodal_points_m=nodal,
         speeds=pd.DataFrame([row.as_dict() for row in rows]),
-        spectra=pd.concat(spectra, ignore_index=True) if spectra else pd.DataFrame(columns=cols),
-        transmissibility=pd.concat(trans, ignore_index=True) if trans else pd.DataFrame(columns=cols),
+        spectra=pd.concat(spectra, ignore_index=True) if spectra else _NO_FIGURE_DATA.copy(),
+        transmissibility=pd.concat(trans, ignore_index=True) if trans else _NO_FIGURE_DATA.copy(),
         track_label=track.profile.label, spectrum_source=track.spectrum_source, track_length_m=track.length_m,
         warnings=warnings, natural_frequency_intervals_Hz=nat_ci, signals=signals, road_classes=track.road_classes,
         a8_lateral_ci95_m_s2=_lateral_interval(p, rows) if p.a8_interval else {},
         modes=shapes, modes_by_speed=by_speed, damping_ratio_intervals=zeta_ci,
     )
+
+
+#: A result's ``spectra`` and ``transmissibility`` without figure data (each result its own copy).
+_NO_FIGURE_DATA = pd.DataFrame(columns=["speed_km_h", "frequency_Hz"])
 
 
 def _damped_by_speed(p: VariantPlan, shapes: ModeSet) -> dict:
@@ -169,7 +174,10 @@ def _copied(intervals: dict) -> dict:
 
 def _damped_intervals(p: VariantPlan, nominal: dict, shapes: ModeSet) -> tuple[dict, dict, list]:
     """95 % intervals of the first speed's damped modes (issue 42): first order in each axle's vertical
-    tyre stiffness uncertainty (GUM 5.1.2, ±1 %, as :func:`~tyrelab.vehicle.modes.frequency_intervals`),
+    tyre stiffness uncertainty (GUM 5.1.2): the roots' derivatives by first-order perturbation
+    (:func:`~tyrelab.vehicle.modes.root_sensitivities`, ``dA/dk`` from the models at ±1 % of ``k``)
+    where it holds, else central differences of the ±1 % models' modes solved in full (as
+    :func:`~tyrelab.vehicle.modes.frequency_intervals`),
     widened to hold every stand-in's spread: the lateral stiffness, lateral damping and series damper
     ``a`` at both ends of their 95 % intervals (x/÷ 2) where they are stand-ins. Every perturbed model's
     modes are followed from the nominal ones by shape. Returns the frequencies' and the damping ratios'
@@ -187,13 +195,27 @@ def _damped_intervals(p: VariantPlan, nominal: dict, shapes: ModeSet) -> tuple[d
             k: f * getattr(part, k) for k, f in factors.items()})})
 
     var_f, var_z, lost = dict.fromkeys(nat, 0.0), dict.fromkeys(nat, 0.0), {}
-    for axle in ("front", "rear"):
+    first = p.runs[0].asm
+    a = None if any(d.overdamped for d in nat.values()) else first.linear(list(first.kinematic_outputs)[:1]).a
+    for axle in ("front", "rear"):  # (a: the model whose roots the nominal modes are)
         u = tyres[axle].stiffness_u_kN_per_m
         if not u > 0:
             continue
         k = getattr(base, axle).tyre_stiffness_N_per_m
-        up = modes_of(scaled(base, axle, tyre_stiffness_N_per_m=1.01))
-        down = modes_of(scaled(base, axle, tyre_stiffness_N_per_m=0.99))
+        up_parts = scaled(base, axle, tyre_stiffness_N_per_m=1.01)
+        down_parts = scaled(base, axle, tyre_stiffness_N_per_m=0.99)
+        # first order in the roots (modes.root_sensitivities) where it holds, else the perturbed models solved
+        slopes = None
+        if not any(d.overdamped for d in nat.values()):  # (root_sensitivities' first refusal, before assembling)
+            lm_up, lm_down = (assemble(x).linear(list(first.kinematic_outputs)[:1]) for x in (up_parts, down_parts))
+            if lm_up.a.shape == a.shape == lm_down.a.shape:
+                slopes = modes_root_sensitivities(a, nat, (lm_up.a - lm_down.a) / (0.02 * k), 0.01 * k)
+        if slopes is not None:
+            for n, (df_dk, dz_dk) in slopes.items():
+                var_f[n] += (df_dk * from_kilo(u)) ** 2
+                var_z[n] += (dz_dk * from_kilo(u)) ** 2
+            continue
+        up, down = modes_of(up_parts), modes_of(down_parts)
         for n in nat:
             if up[n] is None or down[n] is None:
                 lost[n] = axle

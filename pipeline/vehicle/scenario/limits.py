@@ -275,6 +275,7 @@ def scenario_problems(scenario) -> list[str]:
         if line:
             problems.append(line.replace("sweep.front.pressure_bar", "sweep.front_pressures_bar")
                             .replace("sweep.rear.pressure_bar", "sweep.rear_pressures_bar"))
+    problems = _validate.grouped_problems(problems)
     if not problems and surf.dx_m > surf.length_m / 16:
         problems.append(f"surface.dx_m: {surf.dx_m:g} m is longer than surface.length_m / 16 "
                         f"({surf.length_m / 16:g} m): the track needs at least 16 points")
@@ -414,7 +415,7 @@ def override_problems(speeds_km_h=None, front_pressures_bar=None, rear_pressures
             line = _out(limit, v)
             if line:
                 problems.append(key + line[len(limit):])
-    return problems
+    return _validate.grouped_problems(problems)
 
 
 #: How a ride's rows are computed (``[simulation] method``; :mod:`tyrelab.vehicle.spectral_ride`).

@@ -14,6 +14,7 @@ study (:mod:`tyrelab.vehicle.bounce_pitch`, Table XX) calls it for the thesis' t
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -102,12 +103,15 @@ def _axle_N_per_m(tyre_kN_per_m):
     return 2 * from_kilo(tyre_kN_per_m)
 
 
+@functools.lru_cache(maxsize=1024)
 def _matrices(m, inertia, l1, l2, kf, kr) -> tuple[np.ndarray, np.ndarray]:
     """Stiffness and mass matrices of the beam on two springs (thesis §8.2), coordinates (z, θ):
     the undamped eigenproblem of the assembled pitch-plane tractor
-    (:meth:`tyrelab.vehicle.model.Assembly.undamped`; an axle is two tyres)."""
+    (:meth:`tyrelab.vehicle.model.Assembly.undamped`; an axle is two tyres). Kept per arguments
+    (read-only): a variant's modes and their interval ask for the same beam more than once."""
     parts = Parts(Chassis(m, inertia, 0.0), Axle("front", l1, kf / 2, 0.0), Axle("rear", -l2, kr / 2, 0.0))
     stiffness, mass, _ = assemble(parts).undamped(("z", "th"))
+    stiffness.flags.writeable = mass.flags.writeable = False
     return stiffness, mass
 
 

@@ -42,12 +42,14 @@ from scipy import linalg, optimize
 
 from ... import _validate
 from . import beam
-from ..elements import Maxwell, Rolling, StaticLoadMoment
 from ..model import Assembly, assemble
+from .roots import (SENSITIVITY_SHAPE_SHARE, ZERO_ROOT, DampedMode, _release_path, _released, _released_by, _roots,
+                    root_sensitivities)
 from ..units import from_kilo, to_kilo
 
 __all__ = ["MODE_NAMES", "LATERAL_ROLL_SHARE", "FOLLOW_MAC", "ZERO_ROOT", "ModeSet", "mode_set", "mac_matrix",
-           "frequency_intervals", "follow_names", "DampedMode", "damped_modes", "follow_damped", "follow_renamed", "FOLLOW_STEPS"]
+           "frequency_intervals", "follow_names", "DampedMode", "damped_modes", "follow_damped", "follow_renamed", "FOLLOW_STEPS",
+           "root_sensitivities", "SENSITIVITY_SHAPE_SHARE"]
 
 #: Mode names by the coordinate that moves most (the body's ``z`` and ``th`` by thesis §8.2's rule;
 #: ``y`` and ``psi``: the body's lateral and yaw freedoms of issue 33's lateral tyre elements).
@@ -244,13 +246,23 @@ def _scaled(asm: Assembly, axle: str, factor: float) -> Assembly:
         part, tyre_stiffness_N_per_m=factor * part.tyre_stiffness_N_per_m)}))
 
 
-def frequency_intervals(asm: Assembly, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: float) -> tuple[dict, list]:
+def frequency_intervals(asm: Assembly, u_front_tyre_kN_per_m: float, u_rear_tyre_kN_per_m: float,
+                        modes: ModeSet | None = None) -> tuple[dict, list]:
     """95 % intervals of the natural frequencies from the tyre stiffness uncertainties.
 
     First order (GUM 5.1.2), central differences (±1 % of each axle's tyre stiffness),
     independent axles, ``f ± 1.96 u`` (:func:`tyrelab.vehicle.solvers.beam.frequency_uncertainty`
     for thesis §8.2's beam, the same method on the assembled model otherwise), each perturbed model's
     modes followed from the nominal ones by shape (:meth:`ModeSet.follow`).
+
+    Parameters
+    ----------
+    asm : Assembly
+    u_front_tyre_kN_per_m, u_rear_tyre_kN_per_m : float
+        Standard uncertainty of one front and one rear tyre's vertical stiffness, kN/m.
+    modes : ModeSet, optional
+        ``mode_set(asm)`` where the caller has it already (a ride's :func:`~tyrelab.vehicle.run.plan.finish`),
+        else computed here.
 
     Returns
     -------
@@ -274,7 +286,7 @@ def frequency_intervals(asm: Assembly, u_front_tyre_kN_per_m: float, u_rear_tyre
     ([2.095, 2.407], [])
     """
     _validate.instance("asm", asm, Assembly)
-    base = mode_set(asm)
+    base = mode_set(asm) if modes is None else _validate.instance("modes", modes, ModeSet)
     freqs = base.frequencies()
     p = asm.parts
     lost: dict = {}
@@ -346,34 +358,6 @@ def follow_names(reference: ModeSet, other: ModeSet) -> tuple[dict, list]:
     return mapping, notes
 
 
-#: A root ``λ`` with ``|λ|`` below this share of the largest is a zero root (a series damper's drift:
-#: the body and its contact points moving sideways together feel nothing), left out. The roots of
-#: the linear model come from a nonsymmetric eigenproblem whose rounding is ~1e-13 of the largest.
-ZERO_ROOT = 1e-9
-
-
-@dataclass(frozen=True)
-class DampedMode:
-    """One mode of the damped model (issue 42): the root ``λ`` (rad/s) of the linear model followed
-    from the undamped mode of the same name by its shape.
-
-    ``undamped_Hz = |λ| / 2π``, ``damped_Hz = Im λ / 2π`` and ``damping_ratio = -Re λ / |λ|`` of an
-    oscillating mode (a complex pair); an overdamped mode is a real root: ``overdamped`` True,
-    ``damped_Hz`` 0 and ``damping_ratio`` 1 (``-Re λ/|λ|`` of a real root; its frequency ``|λ|/2π`` is
-    the decay rate's, not an oscillation's). ``mac``: the shape's match to the undamped mode."""
-
-    name: str
-    root: complex
-    undamped_Hz: float
-    damped_Hz: float
-    damping_ratio: float
-    overdamped: bool
-    mac: float
-    #: The shape over ``coordinates`` (complex, the velocity part of the eigenvector) and the mass matrix
-    #: over them (:func:`follow_damped`).
-    shape: np.ndarray | None = dataclasses.field(default=None, repr=False, compare=False)
-    coordinates: tuple = dataclasses.field(default=(), repr=False, compare=False)
-    mass: np.ndarray | None = dataclasses.field(default=None, repr=False, compare=False)
 
 
 #: The series dampers are released along ``1/c₂ = share / c₂`` with ``share`` from 0 (locked) through
@@ -385,63 +369,6 @@ FOLLOW_STEPS = 8
 FOLLOW_FROM = 1e-4
 FOLLOW_SURE = 0.9
 FOLLOW_SPLITS = 6
-
-
-def _released_by(asm: Assembly) -> bool:
-    """Whether ``asm`` has a series damper that is not locked (a rolling or a Maxwell element)."""
-    return any((isinstance(e, Rolling) and not e.locked) or (isinstance(e, Maxwell) and e.active) for e in asm.elements)
-
-
-def _released(asm: Assembly, share: float) -> Assembly:
-    """``asm`` with every series damper's ``1/c₂`` times ``share`` (0: locked, the Kelvin-Voigt unit): a
-    rolling element's, and a Maxwell element's (a rolling element without the unit's damper)."""
-    import copy
-
-    if not _released_by(asm):
-        return asm
-    new = {}
-    for e in asm.elements:
-        if isinstance(e, Maxwell) and e.active:  # a spring in series with a damper: the unit without damper
-            e = Rolling(e.name, e.g, e.stiffness, 0.0, e.gate, e.floor_N, series_damping=e.damping)
-        if isinstance(e, Rolling):
-            new[e.name] = dataclasses.replace(e, series_damping=e.series_damping / share if share > 0 else math.inf)
-    other = copy.copy(asm)
-    other.elements = [new.get(e.name, e) if not isinstance(e, StaticLoadMoment) or e.contact is None
-                      else dataclasses.replace(e, contact=new[e.contact.name]) for e in asm.elements]
-    return other
-
-
-def _roots(asm: Assembly, gravity_m_s2: float | None, coordinates) -> tuple[np.ndarray, np.ndarray]:
-    """The non-zero roots of the upper half plane (and the real ones) and their shapes over ``coordinates``
-    (the velocity part of the eigenvector, ``λ q``)."""
-    lm = asm.linear(list(asm.kinematic_outputs)[:1], gravity_m_s2=gravity_m_s2)
-    lay = asm.layout
-    roots, vecs = linalg.eig(lm.a)
-    scale = float(np.max(np.abs(roots))) if roots.size else 0.0
-    keep = (np.abs(roots) > ZERO_ROOT * scale) & (roots.imag >= -ZERO_ROOT * np.abs(roots))
-    idx = [lay.vel_cols[asm.coordinates.index(c)] for c in coordinates]
-    return roots[keep], vecs[np.ix_(idx, np.flatnonzero(keep))]
-
-
-def _release_path(asm: Assembly, gravity_m_s2: float | None, coordinates):
-    """``share -> _roots(_released(asm, share), gravity_m_s2, coordinates)`` for ``share > 0``, the same
-    numbers from the same operations (:meth:`~tyrelab.vehicle.model.Assembly.state_rows`), cheaper: every
-    released model has one layout, and only the series elements' rows change with ``share`` (the rest,
-    a static load's moment at a contact point among them, computed once). The tilt outputs' gravity
-    does not enter the roots."""
-    one = _released(asm, 1.0)
-    lay = one.layout
-    known, _, _ = one.state_rows(lay, [e for e in one.elements if not isinstance(e, Rolling)])
-    idx = [lay.vel_cols[asm.coordinates.index(c)] for c in coordinates]
-
-    def roots_at(share: float) -> tuple[np.ndarray, np.ndarray]:
-        _, _, rows = one.state_rows(lay, _released(asm, share).elements, known)
-        roots, vecs = linalg.eig(rows[:, :lay.n])
-        scale = float(np.max(np.abs(roots))) if roots.size else 0.0
-        keep = (np.abs(roots) > ZERO_ROOT * scale) & (roots.imag >= -ZERO_ROOT * np.abs(roots))
-        return roots[keep], vecs[np.ix_(idx, np.flatnonzero(keep))]
-
-    return roots_at
 
 
 def _complex_mac(m: np.ndarray, a: np.ndarray, b: np.ndarray) -> np.ndarray:
