@@ -1073,6 +1073,11 @@ def merge_bins(frequency_Hz, h, sigma, usable, bin_Hz: float):
     """Adjacent bins merged by ``n = round(bin_Hz / df)`` (n ≥ 2, else unchanged): the mean frequency
     and ``H``, the standard error ``sqrt(Σ σ²) / n`` (independent bins), usable where all ``n`` are.
 
+    See Also
+    --------
+    recording_frf : each output's own fit on the merged bins.
+    fit_vehicle_modes : that fit.
+
     Examples
     --------
     >>> import numpy as np
