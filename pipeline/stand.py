@@ -332,7 +332,8 @@ def frf_validation_rows(result, scenario, speed_km_h: float, predicted=None) -> 
                          "measured_damping_ratio": m.damping_ratio, "measured_damping_ci95_low": m.damping_low,
                          "measured_damping_ci95_high": m.damping_high, "predicted_damping_ratio": z,
                          "damping_ratio_ratio": z / m.damping_ratio if m.damping_ratio > 0 else math.nan,
-                         "damping_in_interval": bool(m.damping_low <= z <= m.damping_high)})
+                         "damping_in_interval": bool(m.damping_low <= z <= m.damping_high),
+                         "measured_determined": bool(getattr(m, "determined", True))})
     return rows
 
 

@@ -82,10 +82,10 @@ def _rows(scenario, a, b):
     return np.array([1.0, a, b, 0.0, 0.0]), np.array([0.0, 0.0, h, 1.0, a])
 
 
-def _dynamic(scenario, speed_km_h, s):
+def _dynamic(scenario, speed_km_h, s, tyres=None):
     """The dynamic matrix over ``[q (5), s_i (rolling: 4)]`` at the Laplace variable ``s`` and the
-    ground rows (``rhs[:, j]`` per metre of pad ``j``)."""
-    tyres = _tyres(scenario, speed_km_h)
+    ground rows (``rhs[:, j]`` per metre of pad ``j``); ``tyres``: :func:`_tyres`' (resolved once)."""
+    tyres = _tyres(scenario, speed_km_h) if tyres is None else tyres
     rolling = speed_km_h > 0
     n = 5 + (4 if rolling else 0)
     d = np.zeros((n, n), complex)
@@ -109,9 +109,10 @@ def _dynamic(scenario, speed_km_h, s):
 def reference_frf(scenario, speed_km_h, frequency_Hz):
     """(F, 6 outputs of :data:`OUTPUTS`, 4 wheels) per m/s² of pad acceleration."""
     out = np.zeros((len(frequency_Hz), len(OUTPUTS), 4), complex)
+    tyres = _tyres(scenario, speed_km_h)
     for n, f in enumerate(frequency_Hz):
         w = 2 * math.pi * f
-        d, rhs = _dynamic(scenario, speed_km_h, 1j * w)
+        d, rhs = _dynamic(scenario, speed_km_h, 1j * w, tyres)
         q = np.linalg.solve(d, rhs)[:5]  # per metre of pad
         acc = -(w ** 2) * q
         rows = [acc[Z], G * q[TH], acc[Y] + G * q[PHI], acc[PHI], acc[TH], acc[PSI]]
@@ -221,10 +222,12 @@ def test_stand_recordings_give_the_references_frfs_and_modes(scenario, ride_id):
             continue
         checked.add(out)
         rel = np.abs(np.abs(e.h[ok, k, j]) / np.abs(ref[ok, OUTPUTS.index(out)]) - 1)
-        # within 5 % over the coherent band: the median well inside, 85 % of the bins (the rest: the
-        # sharp bounce and pitch peaks, 2-4 % damped, whose half-power width is about one bin, where
-        # the Hann window's resolution bias is of that order)
-        assert np.median(rel) < 0.02 and np.mean(rel < 0.05) >= 0.85, (out, np.median(rel), np.mean(rel < 0.05))
+        # within 5 % over the coherent band: the median well inside (2 %, or 1.5 times the bins' own median
+        # random error where that is larger: 20.48 s segments leave 23 averages, and with correlated inputs
+        # the scatter is 1.2-1.6 times B&P's n_d - q random error), 85 % of the bins (the rest: the sharp
+        # bounce and pitch peaks, 2-4 % damped, where the Hann window's resolution bias is largest)
+        limit = max(0.02, 1.5 * float(np.median(e.random_error[ok, k, j])))
+        assert np.median(rel) < limit and np.mean(rel < 0.05) >= 0.85, (out, np.median(rel), limit, np.mean(rel < 0.05))
     assert {"floor_z_m_s2", "pitch_rad_s2", "roll_rad_s2"} <= checked, checked
     truth = reference_modes(scenario, speed)
     for name, out in (("bounce", "floor_z_m_s2"), ("pitch", "pitch_rad_s2")):
@@ -232,16 +235,22 @@ def test_stand_recordings_give_the_references_frfs_and_modes(scenario, ride_id):
         m = min(r.modes[out], key=lambda m: abs(m.frequency_Hz - fd))
         assert m.frequency_Hz == pytest.approx(fd, rel=0.02) and abs(m.damping_ratio - z) < 0.03, (name, m, fd, z)
     # lateral-roll, 41 % damped at 6 km/h and 80 % at 11, overlapping yaw (44 %, 76 %), fitted with the
-    # roll, lateral and yaw outputs' poles shared (fit_shared_modes): at 6 km/h within 2 % and 0.03 in
-    # every output that shows it. At 11 km/h the pair is not identifiable from this recording (the
-    # Cramér-Rao bound of its damped frequency, shared fit, exact model: 80 %): the reference inside
-    # the 95 % intervals, which say so
+    # roll, lateral and yaw outputs' poles shared (fit_shared_modes): at 0 and 6 km/h determined, within 2 %
+    # and 0.03 and inside its 95 % intervals in every output that shows it. At 11 km/h the pair is not
+    # identifiable from this recording (the profile of the fit's cost, a second pole beside it fitting
+    # alike): either the mode says so (determined false) or the reference is inside its intervals
     fd, z = truth["lateral_roll"]
     for out in ("roll_rad_s2", "floor_y_m_s2"):
         m = min(r.modes[out], key=lambda m: abs(m.frequency_Hz - fd))
-        assert m.frequency_low_Hz <= fd <= m.frequency_high_Hz and m.damping_low <= z <= m.damping_high, (m, fd, z)
+        inside = m.frequency_low_Hz <= fd <= m.frequency_high_Hz and m.damping_low <= z <= m.damping_high
         if speed < 11:
+            assert m.determined and inside, (out, m, fd, z)
             assert m.frequency_Hz == pytest.approx(fd, rel=0.02) and abs(m.damping_ratio - z) < 0.03, (out, m, fd, z)
+        else:
+            assert inside or (not m.determined and m.undetermined_reason), (out, m, fd, z)
+    rows = pd.DataFrame(r.mode_rows())
+    assert {"natural_frequency_Hz", "determined", "undetermined_reason"} <= set(rows.columns)
+    assert (rows["natural_frequency_ci95_low_Hz"] <= rows["natural_frequency_Hz"]).all()
 
 
 # 6 km/h (the case of issue 43) in the default run; 11 km/h (6.5 s a case) with -m slow (the budget)
@@ -250,9 +259,9 @@ def test_stand_recordings_give_the_references_frfs_and_modes(scenario, ride_id):
 def test_road_correlated_inputs_are_flagged_not_fitted(scenario, speed, noise):
     """Pure road input from the reference (each rear pad its front's signal a wheelbase later: 1.46 s at
     6 km/h, 0.80 s at 11; left and right independent), with and without sensor noise (m/s², rad/s²):
-    every input flagged in the band, its delay found, no mode fitted. At 6 km/h the delay is 14 % of a
-    10.24 s segment and the Welch coherence of the front and rear inputs only 0.77: the delay, not the
-    coherence, says they cannot be separated."""
+    every input flagged in the band, its delay found, no mode fitted. At 6 km/h with 10.24 s segments (a
+    shorter ``min_segment_s``) the delay is 14 % of a segment and the Welch coherence of the front and
+    rear inputs only 0.77: the delay, not the coherence, says they cannot be separated."""
     fs, n = stand.STAND_FS_HZ, int(300 * stand.STAND_FS_HZ)
     rng = np.random.default_rng(43)
     f = np.fft.rfftfreq(n, 1 / fs)
@@ -273,8 +282,13 @@ def test_road_correlated_inputs_are_flagged_not_fitted(scenario, speed, noise):
     assert e.ill_conditioned[inband].mean() > 0.98
     assert all(not m for m in r.modes.values())
     np.testing.assert_allclose(e.input_delay_s, [-lag, -lag, lag, lag], atol=1.5 / fs)  # rear behind front
-    if speed == 6.0:  # what the Welch coherence alone would not flag
-        assert np.median(e.input_coherence[inband]) < 0.9
+    if speed == 6.0:  # what the Welch coherence alone would not flag: 10.24 s segments
+        from tyrelab.measurement import frf
+
+        short = frf.mimo_frf(frf.cross_spectra(np.vstack([cols[f"input_{w}_z_m_s2"] for w in stand.WHEELS]),
+                                               np.vstack([cols[o] for o in OUTPUTS]), fs, 512))
+        sb = (short.frequency_Hz >= 0.5) & (short.frequency_Hz <= 12.0)
+        assert np.median(short.input_coherence[sb]) < 0.9 and short.ill_conditioned[sb].mean() > 0.98
 
 
 def test_independent_and_partly_common_inputs_have_no_delay_relation(scenario):

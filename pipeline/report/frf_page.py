@@ -8,18 +8,23 @@ from .chapters import Chapter, FigureSpec, TableSpec
 __all__ = ["VEHICLE_FRF", "BEST_MODES_SQL", "VERDICT_SQL"]
 
 #: Per recording and predicted mode the measured mode with the narrowest frequency interval (a mode
-#: seen in several outputs is judged where it is best determined).
+#: seen in several outputs is judged where it is best determined; one the recording determines first).
 BEST_MODES_SQL = (
     "SELECT * EXCLUDE (rank) FROM (SELECT *, row_number() OVER (PARTITION BY ride_id, predicted_mode "
-    "ORDER BY measured_frequency_ci95_high_Hz - measured_frequency_ci95_low_Hz, output, mode) AS rank "
+    "ORDER BY NOT coalesce(measured_determined, true), "
+    "measured_frequency_ci95_high_Hz - measured_frequency_ci95_low_Hz, output, mode) AS rank "
     "FROM vehicle_frf_validation WHERE mode IS NOT NULL AND predicted_mode IS NOT NULL) WHERE rank = 1")
 
 #: Per predicted mode: in how many recordings its frequency and damping ratio lie in the measured
-#: 95 % intervals (of the best-determined measurement, :data:`BEST_MODES_SQL`), and the verdict.
+#: 95 % intervals (of the best-determined measurement, :data:`BEST_MODES_SQL`), and the verdict; a mode
+#: no recording determines (``measured_determined`` false: vehicle_modes' ``determined``) says so.
 VERDICT_SQL = (
     "SELECT predicted_mode AS mode, count(*) AS recordings, "
     "sum(frequency_in_interval::INT) AS frequency_within, sum(damping_in_interval::INT) AS damping_within, "
-    "CASE WHEN bool_and(frequency_in_interval AND damping_in_interval) "
+    "sum((NOT coalesce(measured_determined, true))::INT) AS undetermined, "
+    "CASE WHEN bool_and(NOT coalesce(measured_determined, true)) "
+    "THEN 'not determined by the recordings (see vehicle_modes.undetermined_reason)' "
+    "WHEN bool_and(frequency_in_interval AND damping_in_interval) "
     "THEN 'within the measured intervals in every recording' "
     "WHEN bool_or(frequency_in_interval AND damping_in_interval) "
     "THEN 'within in ' || sum((frequency_in_interval AND damping_in_interval)::INT) || ' of ' || count(*) "
@@ -62,6 +67,6 @@ VEHICLE_FRF = Chapter(
                            "measured_frequency_ci95_low_Hz", "measured_frequency_ci95_high_Hz",
                            "predicted_frequency_Hz", "frequency_in_interval", "measured_damping_ratio",
                            "measured_damping_ci95_low", "measured_damping_ci95_high", "predicted_damping_ratio",
-                           "damping_in_interval", "frf_magnitude_error")),
+                           "damping_in_interval", "measured_determined", "frf_magnitude_error")),
     ),
 )

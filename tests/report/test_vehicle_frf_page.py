@@ -13,9 +13,10 @@ COLUMNS = ("ride_id", "output", "mode", "predicted_mode", "measured_frequency_Hz
            "measured_damping_ratio", "predicted_damping_ratio", "damping_ratio_ratio", "damping_in_interval")
 
 
-def _validation(rows):
+def _validation(rows, determined=None):
     con = duckdb.connect()
     frame = pd.DataFrame(rows, columns=COLUMNS)
+    frame["measured_determined"] = True if determined is None else determined
     con.register("v", frame)
     con.execute("CREATE TABLE vehicle_frf_validation AS SELECT * FROM v")
     return con
@@ -80,3 +81,18 @@ def test_at_most_max_recordings_stand_and_track_first():
     methods = pd.DataFrame({"ride_id": rides, "method": ["road"] * 3 + ["four_post"] * (len(rides) - 3)})
     chosen = frf_figures._recordings(pd.DataFrame({"ride_id": rides}), methods)
     assert len(chosen) == frf_figures.MAX_RECORDINGS and chosen[0] == "r03" and "r00" not in chosen
+
+
+def test_a_mode_no_recording_determines_says_so_and_a_determined_one_is_judged_first():
+    rows = [
+        # a: lateral-roll in two outputs, the narrower interval undetermined (damped beyond 1/√2)
+        ("a", "roll_rad_s2", 1, "lateral_roll", 1.15, 1.10, 1.20, 0.99, 0.86, False, 0.75, 0.80, 1.07, False),
+        ("a", "floor_y_m_s2", 1, "lateral_roll", 1.00, 0.80, 1.30, 0.99, 0.99, True, 0.78, 0.80, 1.03, True),
+        ("b", "roll_rad_s2", 1, "yaw", 1.50, 1.40, 1.60, 1.46, 0.97, True, 0.70, 0.76, 1.09, True),
+    ]
+    con = _validation(rows, determined=[False, True, False])
+    best = con.execute(BEST_MODES_SQL + " ORDER BY ride_id, predicted_mode").fetchdf()
+    assert list(zip(best["predicted_mode"], best["output"])) == [("lateral_roll", "floor_y_m_s2"), ("yaw", "roll_rad_s2")]
+    verdict = con.execute(VERDICT_SQL).fetchdf().set_index("mode")
+    assert verdict.loc["yaw", "verdict"].startswith("not determined") and verdict.loc["yaw", "undetermined"] == 1
+    assert verdict.loc["lateral_roll", "verdict"] == "within the measured intervals in every recording"

@@ -87,7 +87,10 @@ def test_frf_table_recovers_the_system_and_heights_agree(built):
     k = ind["output"].map({o: i for i, o in enumerate(OUTPUTS)}).to_numpy()
     j = ind["wheel"].map(wheel).to_numpy()
     expected = np.abs(truth[np.arange(len(ind)), k, j])
-    assert np.mean(np.abs(ind["h_magnitude"] - expected) / expected) < 0.03
+    # within 3 %, or 1.5 times the bins' mean random error where larger (20.48 s segments leave 44
+    # averages of this 900 s recording; B&P's n_d - q error of 50 % overlapped segments understates the
+    # scatter: the mean |error| of |H| would be 0.8 of its standard error)
+    assert np.mean(np.abs(ind["h_magnitude"] - expected) / expected) < max(0.03, 1.5 * float(ind["random_error"].mean()))
     assert not ind["ill_conditioned"].any() and not ind["masked"].any()
     h = t[(t["ride_id"] == "heights") & t["frequency_Hz"].between(0.5, 12)]
     assert list(h["frequency_Hz"]) == list(ind["frequency_Hz"])
