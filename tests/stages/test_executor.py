@@ -187,6 +187,7 @@ def test_map_in_background_abandon_ends_the_workers(tmp_path):
     never = tmp_path / "never-released"
     bg = map_in_background(_announce_and_wait, [(str(tmp_path), str(never)) for _ in range(2)], jobs=2)
     procs = list(bg._pool._processes.values())
+    manager, wakeup = bg._pool._executor_manager_thread, bg._pool._executor_manager_thread_wakeup
     deadline = time.monotonic() + HANG_GUARD_S  # until both workers say they run their batch
     while len(list(tmp_path.glob("running-*"))) < 2:
         assert time.monotonic() < deadline and all(p.is_alive() for p in procs)
@@ -194,6 +195,9 @@ def test_map_in_background_abandon_ends_the_workers(tmp_path):
     assert {p.pid for p in procs} == {int(f.name.split("-")[1]) for f in tmp_path.glob("running-*")}
     bg.abandon()  # terminates and joins them: none is left, and no batch finished
     assert not any(p.is_alive() for p in procs)
+    # and the pool's manager thread has ended, its wake-up pipe closed: Python's exit hook, which writes
+    # to that pipe, cannot meet it half-closed (an "Exception ignored ... Bad file descriptor" at exit)
+    assert not manager.is_alive() and wakeup._closed
 
 
 def test_command_gc_in_a_command_process():
